@@ -1,0 +1,66 @@
+#include "cli_options.hpp"
+
+#include <sstream>
+
+#include "pfgen/model/decimal_literals.hpp"
+#include "pfgen/model/model.hpp"
+
+namespace pfgen::cli {
+namespace {
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  if (!text.empty() && text.back() == separator) parts.push_back("");
+  return parts;
+}
+
+}  // namespace
+
+GiNaC::numeric parse_number(const std::string& option, const std::string& text) {
+  auto value = parse_exact_number(text);
+  if (!value) throw CliValueError(option + ": '" + text + "' is not a number");
+  return *value;
+}
+
+std::vector<GiNaC::numeric> parse_number_list(const std::string& option, const std::string& text) {
+  std::vector<GiNaC::numeric> out;
+  for (const auto& part : split(text, ',')) out.push_back(parse_number(option, part));
+  if (out.empty()) throw CliValueError(option + ": no values given");
+  return out;
+}
+
+std::vector<std::vector<GiNaC::numeric>> parse_number_matrix(const std::string& option, const std::string& text) {
+  std::vector<std::vector<GiNaC::numeric>> out;
+  for (const auto& row : split(text, ';')) out.push_back(parse_number_list(option, row));
+  if (out.empty()) throw CliValueError(option + ": no values given");
+  return out;
+}
+
+std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& option, const std::string& text) {
+  std::size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw CliValueError(option + ": expected name=value, got '" + text + "'");
+  return {text.substr(0, eq), parse_number(option, text.substr(eq + 1))};
+}
+
+std::vector<FilterKind> parse_filter_list(const std::string& text, const Model& model) {
+  std::vector<FilterKind> supported = supported_filter_kinds(model);
+  if (text.empty()) return supported;
+  std::vector<FilterKind> out;
+  for (const auto& name : split(text, ',')) {
+    auto kind = parse_filter_kind(name);
+    if (!kind) throw CliValueError("--filter: unknown filter kind '" + name + "' (known: optimal, ekf, additive, ekf-additive)");
+    bool ok = false;
+    for (FilterKind k : supported) ok = ok || k == *kind;
+    if (!ok)
+      throw CliValueError("--filter: '" + name + "' needs additive_diffusion or additive_diffusion_covariance in model " +
+                          model.name);
+    out.push_back(*kind);
+  }
+  return out;
+}
+
+}  // namespace pfgen::cli

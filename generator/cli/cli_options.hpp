@@ -1,0 +1,25 @@
+#pragma once
+// Parsing of the command line's value syntax: --m "1,-2", --P "1,0;0,1",
+// --set a=0.2 and --filter lists. Errors are CliValueErrors naming the option.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pfgen/derivation/filter_kind.hpp"
+#include "pfgen/evaluation/point_evaluator.hpp"
+
+namespace pfgen::cli {
+
+class CliValueError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+std::vector<GiNaC::numeric> parse_number_list(const std::string& option, const std::string& text);
+std::vector<std::vector<GiNaC::numeric>> parse_number_matrix(const std::string& option, const std::string& text);
+GiNaC::numeric parse_number(const std::string& option, const std::string& text);
+std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& option, const std::string& text);
+// "optimal,ekf" -> kinds, each supported by the model; empty text -> every supported kind.
+std::vector<FilterKind> parse_filter_list(const std::string& text, const Model& model);
+
+}  // namespace pfgen::cli

@@ -1,0 +1,38 @@
+#pragma once
+// The subcommands of `pfgen`. Each returns the process exit code; problems with
+// the model or the options are thrown and reported by main().
+#include <string>
+#include <vector>
+
+namespace pfgen::cli {
+
+struct DeriveOptions {
+  std::string model_path;
+  std::string filter = "optimal";
+  std::string format = "text";
+};
+
+struct LatexOptions {
+  std::string model_path;
+  std::string output_path;
+  std::string filters;  // comma-separated; empty: every kind the model supports
+};
+
+struct EvalOptions {
+  std::string model_path;
+  std::string filter;
+  std::string t = "0";
+  std::string m;
+  std::string P;
+  std::vector<std::string> assignments;
+};
+
+int run_derive(const DeriveOptions& options);
+int run_latex(const LatexOptions& options);
+int run_eval(const EvalOptions& options);
+
+// Writes `contents` to `path` through a temporary file and a rename, so that a
+// failure never leaves a partial output file behind.
+void write_file_atomically(const std::string& path, const std::string& contents);
+
+}  // namespace pfgen::cli

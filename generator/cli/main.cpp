@@ -1,0 +1,59 @@
+// pfgen: derive, print and evaluate optimal filters for polynomial stochastic systems.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "cli_options.hpp"
+#include "commands.hpp"
+#include "pfgen/evaluation/point_evaluator.hpp"
+#include "pfgen/model/model_error.hpp"
+
+int main(int argc, char** argv) {
+  using namespace pfgen::cli;
+  CLI::App app{"pfgen " PFGEN_VERSION ": optimal filters for polynomial stochastic systems"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "pfgen " PFGEN_VERSION);
+
+  DeriveOptions derive;
+  CLI::App* derive_cmd = app.add_subcommand("derive", "Print the closed filter equations of a model");
+  derive_cmd->add_option("MODEL", derive.model_path, "Model file (YAML)")->required();
+  derive_cmd->add_option("--filter", derive.filter, "optimal | ekf | additive | ekf-additive")->capture_default_str();
+  derive_cmd->add_option("--format", derive.format, "text | latex | json")
+      ->check(CLI::IsMember({"text", "latex", "json"}))
+      ->capture_default_str();
+
+  LatexOptions latex;
+  CLI::App* latex_cmd = app.add_subcommand("latex", "Write a standalone LaTeX document of the model and its filters");
+  latex_cmd->add_option("MODEL", latex.model_path, "Model file (YAML)")->required();
+  latex_cmd->add_option("-o,--output", latex.output_path, "Output .tex file")->required();
+  latex_cmd->add_option("--filter", latex.filters, "Comma-separated filter kinds (default: every kind the model supports)");
+
+  EvalOptions eval;
+  CLI::App* eval_cmd = app.add_subcommand("eval", "Evaluate a filter's m drift, gain and P drift at one point (JSON)");
+  eval_cmd->add_option("MODEL", eval.model_path, "Model file (YAML)")->required();
+  eval_cmd->add_option("--filter", eval.filter, "optimal | ekf | additive | ekf-additive")->required();
+  eval_cmd->add_option("--t", eval.t, "Time")->capture_default_str();
+  eval_cmd->add_option("--m", eval.m, "Estimate, comma-separated: --m=-1.5,2")->required();
+  eval_cmd->add_option("--P", eval.P, "Covariance, rows separated by ';': --P '1,0;0,1'")->required();
+  eval_cmd->add_option("--set", eval.assignments, "Parameter value, name=value (repeatable)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (*derive_cmd) return run_derive(derive);
+    if (*latex_cmd) return run_latex(latex);
+    if (*eval_cmd) return run_eval(eval);
+  } catch (const pfgen::ModelError& e) {
+    std::cerr << "pfgen: " << e.what() << "\n";
+  } catch (const CliValueError& e) {
+    std::cerr << "pfgen: error: " << e.what() << "\n";
+  } catch (const pfgen::EvaluationError& e) {
+    std::cerr << "pfgen: error: " << e.what() << "\n";
+  } catch (const std::exception& e) {
+    std::cerr << "pfgen: error: " << e.what() << "\n";
+  }
+  return 1;
+}

@@ -1,0 +1,22 @@
+#pragma once
+// Which published condition makes the Gaussian closure exact for a model
+// (DESIGN-NOTES §2), or which condition failed, so that a user knows whether
+// the derived filter is optimal or a Gaussian assumed-density approximation.
+#include <string>
+#include <vector>
+
+#include "pfgen/derivation/filter_kind.hpp"
+#include "pfgen/model/model.hpp"
+
+namespace pfgen {
+
+struct ExactnessReport {
+  bool exact = false;
+  std::string condition;                // short name of the condition that holds, or "none"
+  std::string explanation;              // one sentence for the user
+  std::vector<std::string> failed;      // each failed condition with its reason
+};
+
+ExactnessReport assess_exactness(const Model& model, FilterKind kind);
+
+}  // namespace pfgen

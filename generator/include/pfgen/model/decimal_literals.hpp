@@ -1,0 +1,18 @@
+#pragma once
+// Decimal literals such as 0.1 or 2.5e-3 are exact rationals in pfgen: the
+// derived coefficients (0.03 = 3/100 in paper 000 eq 22) must compare exactly
+// with published equations, which floating-point GiNaC numerics would not.
+#include <ginac/ginac.h>
+#include <optional>
+#include <string>
+
+namespace pfgen {
+
+// Rewrites every numeric literal in `expression` as a parenthesised exact
+// rational "(N/D)", leaving identifiers such as x1 or a2b untouched.
+std::string rationalize_decimal_literals(const std::string& expression);
+
+// Parses one real number ("-1.5", "2", "1e-3") exactly; nullopt if `text` is not one.
+std::optional<GiNaC::numeric> parse_exact_number(const std::string& text);
+
+}  // namespace pfgen

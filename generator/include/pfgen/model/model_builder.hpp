@@ -1,0 +1,55 @@
+#pragma once
+// The C++ API for building a Model from GiNaC expressions, for users who
+// generate models in code. The YAML loader uses it too, so both paths share
+// one validation (validate_model).
+//
+//   pfgen::ModelBuilder b("basin2006_quadratic");
+//   GiNaC::symbol x = b.state("x");
+//   b.drift({GiNaC::numeric(1, 10) * GiNaC::pow(x, 2)});
+//   b.diffusion({{GiNaC::numeric(1, 10) * GiNaC::pow(x, 2)}});
+//   b.observation({0}, {{1}}, {{1}});
+//   pfgen::Model model = b.build();
+//
+// Floating-point numbers in the expressions (0.1 written as a C++ double) are
+// replaced by the exact rational of their shortest round-trip decimal (1/10).
+#include <string>
+
+#include "pfgen/model/model.hpp"
+
+namespace pfgen {
+
+class ModelBuilder {
+ public:
+  explicit ModelBuilder(std::string name, std::string source = "<api>");
+
+  GiNaC::symbol state(const std::string& name);
+  GiNaC::symbol parameter(const std::string& name, const GiNaC::numeric& default_value);
+  // Renames the time symbol (default "t"); call before using time() in expressions.
+  GiNaC::symbol time(const std::string& name);
+  GiNaC::symbol time() const { return model_.time; }
+
+  ModelBuilder& drift(const ExVector& f);
+  ModelBuilder& diffusion(const ExMatrix& g);
+  ModelBuilder& diffusion_covariance(const ExMatrix& G);
+  ModelBuilder& additive_diffusion(const ExMatrix& g);
+  ModelBuilder& additive_diffusion_covariance(const ExMatrix& G);
+  ModelBuilder& observation(const ExVector& A0, const ExMatrix& A, const ExMatrix& B);
+  ModelBuilder& initial(const InitialConditions& initial);
+
+  // Every name an expression of this model may use: states, parameters, time.
+  GiNaC::symtab symbols() const;
+
+  // Validates and returns the model; throws ModelError on the first problem.
+  Model build() const;
+
+ private:
+  Model model_;
+  bool has_drift_ = false;
+  bool has_diffusion_ = false;
+  bool has_observation_ = false;
+};
+
+// Replaces floating-point numerics by exact rationals (see ModelBuilder).
+GiNaC::ex exact_rationals(const GiNaC::ex& e);
+
+}  // namespace pfgen

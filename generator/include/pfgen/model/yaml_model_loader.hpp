@@ -1,0 +1,15 @@
+#pragma once
+// Reads a model file (YAML). See README.md, "Model file reference".
+#include <string>
+
+#include "pfgen/model/model.hpp"
+
+namespace pfgen {
+
+// Loads and validates; throws ModelError (with file, line and column) on any problem.
+Model load_model_file(const std::string& path);
+
+// Same, from text already in memory; `path` only names the source in errors.
+Model load_model_text(const std::string& text, const std::string& path);
+
+}  // namespace pfgen

@@ -1,0 +1,22 @@
+#pragma once
+// Renders one filter's equations for `pfgen derive`: text, a LaTeX block and
+// JSON. All three list the same things in the same order: the exactness
+// diagnostic, dm (drift and innovation gain), the gain entries, and dP for the
+// upper triangle of P. In text and LaTeX each dP is written as its three parts
+// in turn, E[(x-m)f^T] + E[f(x-m)^T], then E[g g^T], then - P A^T R^-1 A P, so
+// it reads like the published equations; JSON gives each entry combined.
+#include <string>
+
+#include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/printing/json_writer.hpp"
+
+namespace pfgen {
+
+std::string equations_text(const Model& model, const FilterEquations& eq);
+std::string equations_latex(const Model& model, const FilterEquations& eq);
+Json equations_json(const Model& model, const FilterEquations& eq);
+
+// The predicted observation A0 + A m, one polynomial per observation row.
+std::vector<Polynomial> predicted_observation(const Model& model, const FilterVariables& vars);
+
+}  // namespace pfgen

@@ -1,0 +1,36 @@
+#pragma once
+// A minimal JSON value with deterministic output: object members keep the
+// order they were added in, numbers are printed as shortest round-trip text.
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pfgen {
+
+class Json {
+ public:
+  static Json string(std::string value);
+  static Json number(double value);  // throws std::domain_error on NaN or infinity
+  static Json boolean(bool value);
+  static Json array(std::vector<Json> items = {});
+  static Json object();
+
+  Json& add(const std::string& key, Json value);  // objects only
+  Json& push(Json value);                         // arrays only
+
+  // Pretty-printed: one member per line; arrays of scalars stay on one line.
+  std::string dump() const;
+
+ private:
+  enum class Kind { String, Number, Boolean, Array, Object };
+  void write(std::string& out, int indent) const;
+  bool is_scalar_array() const;
+  Kind kind_ = Kind::Object;
+  std::string scalar_;
+  std::vector<Json> items_;
+  std::vector<std::string> keys_;
+};
+
+std::string json_quote(const std::string& text);
+
+}  // namespace pfgen

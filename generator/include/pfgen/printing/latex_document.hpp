@@ -1,0 +1,17 @@
+#pragma once
+// A standalone LaTeX document for `pfgen latex`: the model, then each filter's
+// equations with its exactness diagnostic. Compiles with plain pdflatex
+// (article class, amsmath only).
+#include <string>
+#include <vector>
+
+#include "pfgen/derivation/filter_equations.hpp"
+
+namespace pfgen {
+
+std::string latex_document(const Model& model, const std::vector<FilterEquations>& filters);
+
+// Escapes text-mode special characters (& % $ # _ { } ~ ^ \).
+std::string latex_escape_text(const std::string& text);
+
+}  // namespace pfgen

@@ -1,0 +1,15 @@
+#pragma once
+#include <ginac/ginac.h>
+#include <string>
+
+namespace pfgen {
+
+// A rational whose denominator has only the prime factors 2 and 5 (3/100,
+// 1/8) is written as the exact decimal ("0.03", "0.125"); other rationals
+// return an empty string and are printed as fractions by the caller.
+std::string exact_decimal(const GiNaC::numeric& value);
+
+// A double as the shortest text that reads back as the same double ("%.17g" at most).
+std::string shortest_double(double value);
+
+}  // namespace pfgen

@@ -1,0 +1,105 @@
+#include "pfgen/derivation/filter_equations.hpp"
+
+#include <stdexcept>
+
+#include "pfgen/derivation/gaussian_expectation.hpp"
+#include "pfgen/derivation/observation_terms.hpp"
+
+namespace pfgen {
+namespace {
+
+using PolyMatrix = std::vector<std::vector<Polynomial>>;
+
+std::vector<Polynomial> state_polynomials(const ExVector& v, const Model& model) {
+  std::vector<Polynomial> out;
+  for (const auto& e : v) out.push_back(Polynomial::from_ex(e, model.states));
+  return out;
+}
+
+PolyMatrix jacobian(const std::vector<Polynomial>& f) {
+  PolyMatrix J(f.size(), std::vector<Polynomial>(f.size()));
+  for (std::size_t i = 0; i < f.size(); ++i)
+    for (std::size_t k = 0; k < f.size(); ++k) J[i][k] = f[i].derivative(static_cast<std::uint32_t>(k));
+  return J;
+}
+
+// The three state-dependent quantities a filter kind needs, read in m and P:
+// the drift of m, the matrix standing for the Jacobian (E[J_f] or J_f(m)) and
+// the diffusion covariance (E[G], G(m) or the additive G), upper triangle.
+struct MomentTerms {
+  std::vector<Polynomial> drift;
+  PolyMatrix jacobian;
+  std::vector<Polynomial> diffusion_upper;
+};
+
+MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariables& vars) {
+  const std::size_t n = model.n();
+  std::vector<Polynomial> f = state_polynomials(model.drift, model);
+  PolyMatrix J = jacobian(f);
+  const ExMatrix& G = uses_additive_diffusion(kind) ? model.additive_diffusion->G : model.diffusion.G;
+  std::vector<Polynomial> G_upper;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) G_upper.push_back(Polynomial::from_ex(G[i][j], model.states));
+
+  // State x_i and mean m_i share variable index i (FilterVariables), so the
+  // extended filter's f(m), J(m), G(m) are the x-polynomials read as they are.
+  if (is_extended_kalman(kind)) return MomentTerms{f, J, G_upper};
+
+  GaussianExpectation E(vars);
+  MomentTerms out;
+  for (const auto& fi : f) out.drift.push_back(E.of(fi));
+  out.jacobian.assign(n, std::vector<Polynomial>(n));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < n; ++k) out.jacobian[i][k] = E.of(J[i][k]);
+  for (const auto& g : G_upper) out.diffusion_upper.push_back(E.of(g));
+  return out;
+}
+
+}  // namespace
+
+Polynomial FilterEquations::P_drift(std::size_t i, std::size_t j) const {
+  std::size_t u = variables.upper_index(i, j);
+  return P_moment[u] + P_diffusion[u] - P_correction[u];
+}
+
+FilterEquations derive_filter(const Model& model, FilterKind kind) {
+  if (uses_additive_diffusion(kind) && !model.additive_diffusion)
+    throw std::invalid_argument("filter '" + filter_kind_name(kind) + "' needs additive_diffusion or "
+                                "additive_diffusion_covariance in the model");
+  const std::size_t n = model.n();
+  FilterEquations eq{kind, FilterVariables(n), model.p(), {}, {}, {}, {}, {}, assess_exactness(model, kind)};
+  const FilterVariables& vars = eq.variables;
+  auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
+
+  MomentTerms terms = moment_terms(model, kind, vars);
+  eq.m_drift = std::move(terms.drift);
+  eq.P_diffusion = std::move(terms.diffusion_upper);
+
+  // E[(x-m) f^T]_ij = sum_k P_ik E[d_k f_j] (Stein's lemma); the EKF uses J(m).
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      Polynomial moment;
+      for (std::size_t k = 0; k < n; ++k) {
+        moment += terms.jacobian[j][k].times_monomial(P(i, k));
+        moment += terms.jacobian[i][k].times_monomial(P(k, j));
+      }
+      eq.P_moment.push_back(std::move(moment));
+    }
+
+  ObservationTerms obs = observation_terms(model);
+  eq.gain.assign(n, std::vector<Polynomial>(eq.p));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t r = 0; r < eq.p; ++r)
+      for (std::size_t k = 0; k < n; ++k) eq.gain[i][r].add_term(P(i, k), obs.At_Rinv[k][r]);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      Polynomial correction;
+      for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t l = 0; l < n; ++l)
+          if (!obs.At_Rinv_A[k][l].is_zero()) correction.add_term(P(i, k) * P(l, j), obs.At_Rinv_A[k][l]);
+      eq.P_correction.push_back(std::move(correction));
+    }
+  return eq;
+}
+
+}  // namespace pfgen

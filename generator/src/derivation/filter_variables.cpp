@@ -1,0 +1,42 @@
+#include "pfgen/derivation/filter_variables.hpp"
+
+#include <stdexcept>
+
+namespace pfgen {
+
+FilterVariables::FilterVariables(std::size_t n) : n_(n) {
+  // Indices run together (P12) while every index is one digit; from n = 10 on
+  // they are separated (P1_10 in text, P_{1,10} in LaTeX) to stay unambiguous.
+  const bool separate = n >= 10;
+  for (std::size_t i = 0; i < n; ++i) {
+    text_names_.push_back("m" + std::to_string(i + 1));
+    latex_names_.push_back("m_{" + std::to_string(i + 1) + "}");
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i; j < n; ++j) {
+      std::string a = std::to_string(i + 1);
+      std::string b = std::to_string(j + 1);
+      text_names_.push_back("P" + a + (separate ? "_" : "") + b);
+      latex_names_.push_back("P_{" + a + (separate ? "," : "") + b + "}");
+      P_entries_.emplace_back(i, j);
+    }
+  }
+  for (const auto& name : text_names_) symbols_.push_back(GiNaC::symbol(name));
+}
+
+std::size_t FilterVariables::upper_index(std::size_t i, std::size_t j) const {
+  if (i > j) std::swap(i, j);
+  if (j >= n_) throw std::out_of_range("FilterVariables: index out of range");
+  // Rows 0..i-1 hold n, n-1, ..., n-i+1 entries.
+  return i * n_ - i * (i - 1) / 2 + (j - i);
+}
+
+std::uint32_t FilterVariables::P(std::size_t i, std::size_t j) const {
+  return static_cast<std::uint32_t>(n_ + upper_index(i, j));
+}
+
+std::pair<std::size_t, std::size_t> FilterVariables::P_entry(std::uint32_t variable) const {
+  return P_entries_.at(variable - n_);
+}
+
+}  // namespace pfgen

@@ -1,0 +1,107 @@
+#include "pfgen/model/decimal_literals.hpp"
+
+#include <cctype>
+#include <sstream>
+
+namespace pfgen {
+namespace {
+
+bool is_identifier_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+
+// Scans a numeric literal starting at `pos`; returns its length (0 if none).
+std::size_t scan_number(const std::string& s, std::size_t pos) {
+  std::size_t i = pos;
+  bool digits = false;
+  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) { ++i; digits = true; }
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) { ++i; digits = true; }
+  }
+  if (!digits) return 0;
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    std::size_t j = i + 1;
+    if (j < s.size() && (s[j] == '+' || s[j] == '-')) ++j;
+    std::size_t exponent_start = j;
+    while (j < s.size() && std::isdigit(static_cast<unsigned char>(s[j]))) ++j;
+    if (j > exponent_start) i = j;
+  }
+  return i - pos;
+}
+
+// Exact value of an unsigned literal already known to be well formed.
+GiNaC::numeric literal_value(const std::string& literal) {
+  std::string mantissa = literal;
+  long exponent = 0;
+  std::size_t e = literal.find_first_of("eE");
+  if (e != std::string::npos) {
+    mantissa = literal.substr(0, e);
+    exponent = std::stol(literal.substr(e + 1));
+  }
+  std::string digits;
+  for (char c : mantissa) {
+    if (c == '.') {
+      continue;
+    }
+    digits += c;
+  }
+  std::size_t dot = mantissa.find('.');
+  if (dot != std::string::npos) exponent -= static_cast<long>(mantissa.size() - dot - 1);
+  // Strip leading zeros so CLN does not read the digits as octal.
+  std::size_t first = digits.find_first_not_of('0');
+  digits = first == std::string::npos ? "0" : digits.substr(first);
+  GiNaC::numeric value(digits.c_str());
+  GiNaC::numeric ten(10);
+  if (exponent > 0) value *= ten.power(GiNaC::numeric(exponent));
+  if (exponent < 0) value /= ten.power(GiNaC::numeric(-exponent));
+  return value;
+}
+
+}  // namespace
+
+std::string rationalize_decimal_literals(const std::string& expression) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < expression.size()) {
+    char c = expression[i];
+    if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') {
+      std::size_t j = i;
+      while (j < expression.size() && is_identifier_char(expression[j])) ++j;
+      out.append(expression, i, j - i);
+      i = j;
+      continue;
+    }
+    std::size_t length = scan_number(expression, i);
+    if (length > 0) {
+      GiNaC::numeric value = literal_value(expression.substr(i, length));
+      std::ostringstream rational;
+      rational << "(" << value.numer();
+      if (!value.is_integer()) rational << "/" << value.denom();
+      rational << ")";
+      out += rational.str();
+      i += length;
+      continue;
+    }
+    out += c;
+    ++i;
+  }
+  return out;
+}
+
+std::optional<GiNaC::numeric> parse_exact_number(const std::string& text) {
+  std::size_t start = text.find_first_not_of(" \t");
+  if (start == std::string::npos) return std::nullopt;
+  std::size_t end = text.find_last_not_of(" \t");
+  std::string s = text.substr(start, end - start + 1);
+  bool negative = false;
+  if (!s.empty() && (s[0] == '-' || s[0] == '+')) {
+    negative = s[0] == '-';
+    s = s.substr(1);
+  }
+  if (s.empty() || scan_number(s, 0) != s.size()) return std::nullopt;
+  GiNaC::numeric value = literal_value(s);
+  return negative ? -value : value;
+}
+
+}  // namespace pfgen

@@ -1,0 +1,75 @@
+#include "pfgen/model/expression_parser.hpp"
+
+#include <cctype>
+
+#include "pfgen/model/decimal_literals.hpp"
+#include "pfgen/model/model_error.hpp"
+
+namespace pfgen {
+namespace {
+
+// GiNaC's parser accepts only what a model may contain once unknown names are
+// rejected; but it also knows the literals I, Pi, Euler and Catalan and a set of
+// functions. Complex numbers have no place in a real SDE.
+bool has_imaginary_part(const GiNaC::ex& e) { return e.has(GiNaC::I); }
+
+std::string first_identifier_not_in(const std::string& text, const GiNaC::symtab& symbols) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    unsigned char c = static_cast<unsigned char>(text[i]);
+    if (std::isalpha(c) || c == '_') {
+      std::size_t j = i;
+      while (j < text.size() &&
+             (std::isalnum(static_cast<unsigned char>(text[j])) || text[j] == '_'))
+        ++j;
+      std::string name = text.substr(i, j - i);
+      std::size_t k = j;
+      while (k < text.size() && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
+      bool is_call = k < text.size() && text[k] == '(';
+      if (!is_call && symbols.find(name) == symbols.end() && name != "Pi" && name != "Euler" &&
+          name != "Catalan" && name != "I")
+        return name;
+      i = j;
+    } else if (std::isdigit(c) || c == '.') {
+      // Skip numbers, including exponents such as 1e-3, so 'e' is not a name.
+      while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '.'))
+        ++i;
+    } else {
+      ++i;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+ExpressionParser::ExpressionParser(const GiNaC::symtab& symbols) : symbols_(symbols) {}
+
+GiNaC::ex ExpressionParser::parse(const std::string& text, const ExpressionSite& site) const {
+  auto fail = [&](const std::string& why) {
+    return ModelError(site.field, why, site.row, site.column);
+  };
+  std::size_t first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) throw fail("empty expression");
+  for (char c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 && c != ' ' && c != '\t')
+      throw fail("expression contains a control character");
+  }
+  std::string unknown = first_identifier_not_in(text, symbols_);
+  if (!unknown.empty()) throw fail("unknown symbol '" + unknown + "' in '" + text + "'");
+  GiNaC::parser reader(symbols_, /*strict=*/true);
+  GiNaC::ex value;
+  try {
+    value = reader(rationalize_decimal_literals(text));
+  } catch (const GiNaC::parse_error& e) {
+    std::string why = e.what();
+    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+    throw fail("cannot parse '" + text + "': " + why);
+  } catch (const std::exception& e) {
+    throw fail("cannot evaluate '" + text + "': " + e.what());
+  }
+  if (has_imaginary_part(value)) throw fail("'" + text + "' is not real");
+  return value;
+}
+
+}  // namespace pfgen

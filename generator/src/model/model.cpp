@@ -1,0 +1,17 @@
+#include "pfgen/model/model.hpp"
+
+namespace pfgen {
+
+ExMatrix multiply_by_transpose(const ExMatrix& g) {
+  ExMatrix G(g.size(), ExVector(g.size(), 0));
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    for (std::size_t j = 0; j < g.size(); ++j) {
+      GiNaC::ex sum = 0;
+      for (std::size_t k = 0; k < g[i].size(); ++k) sum += g[i][k] * g[j][k];
+      G[i][j] = sum.expand();
+    }
+  }
+  return G;
+}
+
+}  // namespace pfgen

@@ -1,0 +1,151 @@
+#include "pfgen/model/model_builder.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "pfgen/model/decimal_literals.hpp"
+#include "pfgen/model/model_error.hpp"
+#include "pfgen/model/model_validator.hpp"
+
+namespace pfgen {
+namespace {
+
+// Shortest decimal that reads back as the same double, as an exact rational.
+GiNaC::numeric exact_from_double(double value) {
+  char buffer[40];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    if (std::strtod(buffer, nullptr) == value) break;
+  }
+  return *parse_exact_number(buffer);
+}
+
+struct ExactRationals : GiNaC::map_function {
+  GiNaC::ex operator()(const GiNaC::ex& e) override {
+    if (GiNaC::is_a<GiNaC::numeric>(e)) {
+      const auto& number = GiNaC::ex_to<GiNaC::numeric>(e);
+      if (number.is_real() && !number.is_rational()) return exact_from_double(number.to_double());
+      return e;
+    }
+    return e.map(*this);
+  }
+};
+
+ExMatrix exact_matrix(const ExMatrix& m) {
+  ExMatrix out = m;
+  for (auto& row : out)
+    for (auto& entry : row) entry = exact_rationals(entry);
+  return out;
+}
+
+ExVector exact_vector(const ExVector& v) {
+  ExVector out = v;
+  for (auto& entry : out) entry = exact_rationals(entry);
+  return out;
+}
+
+Diffusion from_g(const ExMatrix& g) {
+  Diffusion d;
+  d.g = exact_matrix(g);
+  d.G = multiply_by_transpose(*d.g);
+  return d;
+}
+
+Diffusion from_G(const ExMatrix& G) {
+  Diffusion d;
+  d.G = exact_matrix(G);
+  for (auto& row : d.G)
+    for (auto& entry : row) entry = entry.expand();
+  return d;
+}
+
+}  // namespace
+
+GiNaC::ex exact_rationals(const GiNaC::ex& e) {
+  ExactRationals convert;
+  return convert(e);
+}
+
+ModelBuilder::ModelBuilder(std::string name, std::string source) {
+  model_.name = std::move(name);
+  model_.source = std::move(source);
+  model_.time = GiNaC::symbol("t");
+}
+
+GiNaC::symbol ModelBuilder::state(const std::string& name) {
+  GiNaC::symbol s(name);
+  model_.state_names.push_back(name);
+  model_.states.push_back(s);
+  return s;
+}
+
+GiNaC::symbol ModelBuilder::parameter(const std::string& name, const GiNaC::numeric& value) {
+  GiNaC::symbol s(name);
+  GiNaC::numeric exact = value;
+  if (value.is_real() && !value.is_rational()) exact = exact_from_double(value.to_double());
+  model_.parameters.push_back(Parameter{name, s, exact});
+  return s;
+}
+
+GiNaC::symbol ModelBuilder::time(const std::string& name) {
+  model_.time = GiNaC::symbol(name);
+  return model_.time;
+}
+
+ModelBuilder& ModelBuilder::drift(const ExVector& f) {
+  model_.drift = exact_vector(f);
+  has_drift_ = true;
+  return *this;
+}
+
+ModelBuilder& ModelBuilder::diffusion(const ExMatrix& g) {
+  model_.diffusion = from_g(g);
+  has_diffusion_ = true;
+  return *this;
+}
+
+ModelBuilder& ModelBuilder::diffusion_covariance(const ExMatrix& G) {
+  model_.diffusion = from_G(G);
+  has_diffusion_ = true;
+  return *this;
+}
+
+ModelBuilder& ModelBuilder::additive_diffusion(const ExMatrix& g) {
+  model_.additive_diffusion = from_g(g);
+  return *this;
+}
+
+ModelBuilder& ModelBuilder::additive_diffusion_covariance(const ExMatrix& G) {
+  model_.additive_diffusion = from_G(G);
+  return *this;
+}
+
+ModelBuilder& ModelBuilder::observation(const ExVector& A0, const ExMatrix& A, const ExMatrix& B) {
+  model_.observation = Observation{exact_vector(A0), exact_matrix(A), exact_matrix(B)};
+  has_observation_ = true;
+  return *this;
+}
+
+ModelBuilder& ModelBuilder::initial(const InitialConditions& initial) {
+  model_.initial = initial;
+  return *this;
+}
+
+GiNaC::symtab ModelBuilder::symbols() const {
+  GiNaC::symtab table;
+  for (const auto& s : model_.states) table[s.get_name()] = s;
+  for (const auto& p : model_.parameters) table[p.name] = p.symbol;
+  table[model_.time.get_name()] = model_.time;
+  return table;
+}
+
+Model ModelBuilder::build() const {
+  if (!has_drift_) throw ModelError("drift", "missing required field");
+  if (!has_diffusion_)
+    throw ModelError("diffusion", "missing required field (give diffusion or diffusion_covariance)");
+  if (!has_observation_) throw ModelError("observation", "missing required field");
+  validate_model(model_);
+  return model_;
+}
+
+}  // namespace pfgen

@@ -1,0 +1,27 @@
+#include "pfgen/model/model_error.hpp"
+
+namespace pfgen {
+
+ModelError::ModelError(std::string field, std::string message, std::optional<int> row,
+                       std::optional<int> column)
+    : std::runtime_error(message), field_(std::move(field)), message_(std::move(message)),
+      row_(row), column_(column) {
+  rebuild();
+}
+
+void ModelError::rebuild() {
+  std::string text = file_.empty() ? std::string("<model>") : file_;
+  if (location_.line > 0) {
+    text += ":" + std::to_string(location_.line);
+    if (location_.column > 0) text += ":" + std::to_string(location_.column);
+  }
+  text += ": error:";
+  if (!field_.empty()) text += " field '" + field_ + "'";
+  if (row_) text += ", row " + std::to_string(*row_);
+  if (column_) text += ", column " + std::to_string(*column_);
+  text += (field_.empty() && !row_ && !column_) ? " " : ": ";
+  text += message_;
+  what_ = text;
+}
+
+}  // namespace pfgen

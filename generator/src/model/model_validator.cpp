@@ -1,0 +1,220 @@
+#include "pfgen/model/model_validator.hpp"
+
+#include <Eigen/Dense>
+#include <cctype>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "pfgen/model/model_error.hpp"
+
+namespace pfgen {
+namespace {
+
+std::string to_text(const GiNaC::ex& e) {
+  std::ostringstream out;
+  out << e;
+  return out.str();
+}
+
+GiNaC::lst state_list(const Model& model) {
+  GiNaC::lst states;
+  for (const auto& s : model.states) states.append(s);
+  return states;
+}
+
+bool depends_on_states(const Model& model, const GiNaC::ex& e) {
+  for (const auto& s : model.states)
+    if (e.has(s)) return true;
+  return false;
+}
+
+// Row and column are reported 1-based, as a user counts them in the file.
+std::optional<int> one_based(std::size_t index) { return static_cast<int>(index + 1); }
+
+void require_polynomial(const Model& model, const GiNaC::ex& e, const std::string& field,
+                        std::optional<int> row, std::optional<int> column) {
+  if (!e.is_polynomial(state_list(model)))
+    throw ModelError(field,
+                     "'" + to_text(e) + "' is not polynomial in the states (only non-negative "
+                     "integer powers of states are allowed; sin(x), 1/x, x^0.5 are not)",
+                     row, column);
+}
+
+void require_state_free(const Model& model, const GiNaC::ex& e, const std::string& field,
+                        std::optional<int> row, std::optional<int> column) {
+  if (depends_on_states(model, e))
+    throw ModelError(field, "'" + to_text(e) + "' must not depend on the states", row, column);
+}
+
+void require_shape(const ExMatrix& m, std::size_t rows, std::optional<std::size_t> columns,
+                   const std::string& field, const std::string& what) {
+  if (m.size() != rows)
+    throw ModelError(field, "expected " + std::to_string(rows) + " rows (" + what + "), found " +
+                                std::to_string(m.size()));
+  std::size_t width = columns ? *columns : (m.empty() ? 0 : m[0].size());
+  if (width == 0) throw ModelError(field, "rows must not be empty", 1);
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (m[i].size() != width)
+      throw ModelError(field,
+                       "expected " + std::to_string(width) + " columns, found " +
+                           std::to_string(m[i].size()),
+                       one_based(i));
+  }
+}
+
+// Numeric value at the parameters' defaults and t = 0.
+GiNaC::ex at_defaults(const Model& model, const GiNaC::ex& e) {
+  GiNaC::exmap values;
+  for (const auto& p : model.parameters) values[p.symbol] = p.default_value;
+  values[model.time] = 0;
+  return e.subs(values).evalf();
+}
+
+void validate_names(const Model& model) {
+  if (!is_valid_identifier(model.name))
+    throw ModelError("name", "'" + model.name +
+                                 "' is not an identifier (letters, digits, _; not starting with a digit)");
+  if (model.states.empty()) throw ModelError("states", "at least one state is required");
+  std::set<std::string> seen;
+  // m1, P12, m_1, P_1_2 are the filter's own variables in printed equations.
+  const std::regex reserved("^(m|P)_?[0-9][0-9_]*$");
+  auto check = [&](const std::string& name, const std::string& field, std::optional<int> index) {
+    if (!is_valid_identifier(name))
+      throw ModelError(field, "'" + name + "' is not an identifier", index);
+    if (std::regex_match(name, reserved))
+      throw ModelError(field, "'" + name + "' is reserved for the filter's m and P entries", index);
+    if (!seen.insert(name).second)
+      throw ModelError(field, "name '" + name + "' is used twice", index);
+  };
+  for (std::size_t i = 0; i < model.state_names.size(); ++i)
+    check(model.state_names[i], "states", one_based(i));
+  for (const auto& p : model.parameters) check(p.name, "parameters." + p.name, std::nullopt);
+  check(model.time.get_name(), "time", std::nullopt);
+}
+
+void validate_diffusion(const Model& model, const Diffusion& d, const std::string& g_field,
+                        const std::string& G_field, bool must_be_state_free) {
+  std::size_t n = model.n();
+  if (d.g) {
+    require_shape(*d.g, n, std::nullopt, g_field, "one per state");
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < (*d.g)[i].size(); ++j) {
+        require_polynomial(model, (*d.g)[i][j], g_field, one_based(i), one_based(j));
+        if (must_be_state_free)
+          require_state_free(model, (*d.g)[i][j], g_field, one_based(i), one_based(j));
+      }
+    return;
+  }
+  require_shape(d.G, n, n, G_field, "one per state; G = g g^T is n x n");
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      require_polynomial(model, d.G[i][j], G_field, one_based(i), one_based(j));
+      if (must_be_state_free)
+        require_state_free(model, d.G[i][j], G_field, one_based(i), one_based(j));
+      if (j > i && !(d.G[i][j] - d.G[j][i]).expand().is_zero())
+        throw ModelError(G_field,
+                         "not symmetric: entry (" + std::to_string(i + 1) + "," +
+                             std::to_string(j + 1) + ") is '" + to_text(d.G[i][j]) +
+                             "' but entry (" + std::to_string(j + 1) + "," +
+                             std::to_string(i + 1) + ") is '" + to_text(d.G[j][i]) + "'",
+                         one_based(i), one_based(j));
+    }
+}
+
+void validate_observation(const Model& model) {
+  const Observation& obs = model.observation;
+  std::size_t p = obs.A.size();
+  if (p == 0) throw ModelError("observation.A", "at least one observation row is required");
+  require_shape(obs.A, p, model.n(), "observation.A", "p x n with n = number of states");
+  if (obs.A0.size() != p)
+    throw ModelError("observation.A0", "expected " + std::to_string(p) +
+                                           " entries (one per row of A), found " +
+                                           std::to_string(obs.A0.size()));
+  require_shape(obs.B, p, std::nullopt, "observation.B", "one per observation, as in A");
+  for (std::size_t i = 0; i < p; ++i) {
+    require_state_free(model, obs.A0[i], "observation.A0", one_based(i), std::nullopt);
+    for (std::size_t j = 0; j < obs.A[i].size(); ++j)
+      require_state_free(model, obs.A[i][j], "observation.A", one_based(i), one_based(j));
+    for (std::size_t j = 0; j < obs.B[i].size(); ++j)
+      require_state_free(model, obs.B[i][j], "observation.B", one_based(i), one_based(j));
+  }
+  // R = B B^T must be positive definite: symbolically not singular, and
+  // numerically positive definite at the parameters' defaults and t = 0.
+  Eigen::MatrixXd R(p, p);
+  ExMatrix Rsym = multiply_by_transpose(obs.B);
+  for (std::size_t i = 0; i < p; ++i)
+    for (std::size_t j = 0; j < p; ++j) {
+      GiNaC::ex value = at_defaults(model, Rsym[i][j]);
+      if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real())
+        throw ModelError("observation.B", "B B^T entry (" + std::to_string(i + 1) + "," +
+                                              std::to_string(j + 1) +
+                                              ") is not a real number at the parameter defaults");
+      R(i, j) = GiNaC::ex_to<GiNaC::numeric>(value).to_double();
+    }
+  Eigen::LLT<Eigen::MatrixXd> cholesky(R);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(R);
+  if (cholesky.info() != Eigen::Success || eigen.eigenvalues().minCoeff() <= 1e-12 * std::max(1.0, R.norm()))
+    throw ModelError("observation.B",
+                     "B B^T is not positive definite (smallest eigenvalue " +
+                         std::to_string(eigen.eigenvalues().minCoeff()) +
+                         " at the parameter defaults and t = 0); every observation needs its own noise");
+}
+
+void validate_initial(const Model& model) {
+  if (!model.initial) return;
+  const InitialConditions& init = *model.initial;
+  std::size_t n = model.n();
+  if (!init.x0.empty() && init.x0.size() != n)
+    throw ModelError("initial.x0", "expected " + std::to_string(n) + " entries, found " +
+                                       std::to_string(init.x0.size()));
+  if (init.m0.size() != n)
+    throw ModelError("initial.m0", "expected " + std::to_string(n) + " entries, found " +
+                                       std::to_string(init.m0.size()));
+  if (init.P0.size() != n)
+    throw ModelError("initial.P0", "expected " + std::to_string(n) + " rows, found " +
+                                       std::to_string(init.P0.size()));
+  Eigen::MatrixXd P(n, n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (init.P0[i].size() != n)
+      throw ModelError("initial.P0", "expected " + std::to_string(n) + " columns, found " +
+                                         std::to_string(init.P0[i].size()),
+                       one_based(i));
+    for (std::size_t j = 0; j < n; ++j) P(i, j) = init.P0[i][j].to_double();
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (init.P0[i][j] != init.P0[j][i])
+        throw ModelError("initial.P0", "not symmetric", one_based(i), one_based(j));
+  // Positive semi-definite, not definite: paper 001 starts from a singular P0.
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(P);
+  if (eigen.eigenvalues().minCoeff() < -1e-12 * std::max(1.0, P.norm()))
+    throw ModelError("initial.P0", "not positive semi-definite (smallest eigenvalue " +
+                                       std::to_string(eigen.eigenvalues().minCoeff()) + ")");
+}
+
+}  // namespace
+
+bool is_valid_identifier(const std::string& name) {
+  if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))) return false;
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return true;
+}
+
+void validate_model(const Model& model) {
+  validate_names(model);
+  std::size_t n = model.n();
+  if (model.drift.size() != n)
+    throw ModelError("drift", "expected " + std::to_string(n) + " entries (one per state), found " +
+                                  std::to_string(model.drift.size()));
+  for (std::size_t i = 0; i < n; ++i) require_polynomial(model, model.drift[i], "drift", one_based(i), std::nullopt);
+  validate_diffusion(model, model.diffusion, "diffusion", "diffusion_covariance", false);
+  if (model.additive_diffusion)
+    validate_diffusion(model, *model.additive_diffusion, "additive_diffusion",
+                       "additive_diffusion_covariance", true);
+  validate_observation(model);
+  validate_initial(model);
+}
+
+}  // namespace pfgen

@@ -1,0 +1,165 @@
+#include "pfgen/printing/equation_report.hpp"
+
+#include "pfgen/printing/latex_printer.hpp"
+#include "pfgen/printing/text_printer.hpp"
+
+namespace pfgen {
+namespace {
+
+// "a + b - c" from parts printed separately, so like terms of different parts
+// (0.03*P11^2 from E[gg^T] and -P11^2 from the correction) stay visible.
+std::string join_parts(const ExpressionPrinter& printer, const std::vector<Polynomial>& parts,
+                       const ExpressionPrinter::VariableNamer& name) {
+  std::string out;
+  for (const auto& part : parts) {
+    if (part.is_zero()) continue;
+    std::string text = printer.print(part, name);
+    if (out.empty()) {
+      out = text;
+    } else if (text[0] == '-') {
+      out += " - " + text.substr(1);
+    } else {
+      out += " + " + text;
+    }
+  }
+  return out.empty() ? "0" : out;
+}
+
+std::vector<Polynomial> P_parts(const FilterEquations& eq, std::size_t u) {
+  return {eq.P_moment[u], eq.P_diffusion[u], eq.P_correction[u].scaled(-1)};
+}
+
+bool is_single_term(const Polynomial& p) { return p.terms().size() <= 1; }
+
+std::string exactness_line(const ExactnessReport& r) {
+  std::string out = r.explanation;
+  for (const auto& failed : r.failed) out += "\n  failed: " + failed;
+  return out;
+}
+
+}  // namespace
+
+std::vector<Polynomial> predicted_observation(const Model& model, const FilterVariables& vars) {
+  std::vector<Polynomial> out;
+  for (std::size_t r = 0; r < model.p(); ++r) {
+    Polynomial h = Polynomial::constant(model.observation.A0[r]);
+    for (std::size_t k = 0; k < model.n(); ++k) h.add_term(Monomial::variable(vars.m(k)), model.observation.A[r][k]);
+    out.push_back(h);
+  }
+  return out;
+}
+
+std::string equations_text(const Model& model, const FilterEquations& eq) {
+  TextPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  const std::size_t n = eq.n();
+  std::vector<Polynomial> h = predicted_observation(model, vars);
+
+  std::string out;
+  out += "model: " + model.name + "\n";
+  out += "filter: " + filter_kind_name(eq.kind) + " (" + filter_kind_description(eq.kind) + ")\n";
+  out += "exactness: " + exactness_line(eq.exactness) + "\n";
+  out += "variables: ";
+  for (std::size_t i = 0; i < n; ++i)
+    out += (i ? ", " : "") + vars.text_name(vars.m(i)) + " = E[" + model.state_names[i] + "]";
+  out += "; P = covariance of (";
+  for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
+  out += ")\n";
+  out += "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [P A^T (B B^T)^-1 A P]\n\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    std::string line = "dm" + std::to_string(i + 1) + " = (" + printer.print(eq.m_drift[i], name) + ") dt";
+    for (std::size_t r = 0; r < eq.p; ++r) {
+      std::string predicted = printer.print(h[r], name);
+      if (!is_single_term(h[r])) predicted = "(" + predicted + ")";
+      line += " + K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " (dy" + std::to_string(r + 1) + " - " +
+              predicted + " dt)";
+    }
+    out += line + "\n";
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t r = 0; r < eq.p; ++r)
+      out += "K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " = " + printer.print(eq.gain[i][r], name) + "\n";
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j)
+      out += "d" + vars.text_name(vars.P(i, j)) + " = (" + join_parts(printer, P_parts(eq, vars.upper_index(i, j)), name) +
+             ") dt\n";
+  return out;
+}
+
+std::string equations_latex(const Model& model, const FilterEquations& eq) {
+  LatexPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return vars.latex_name(v); };
+  const std::size_t n = eq.n();
+  std::vector<Polynomial> h = predicted_observation(model, vars);
+  auto K = [](std::size_t i, std::size_t r) { return "K_{" + std::to_string(i + 1) + "," + std::to_string(r + 1) + "}"; };
+
+  std::string out = "\\begin{align*}\n";
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::string line = "dm_{" + std::to_string(i + 1) + "} &= \\left(" + printer.print(eq.m_drift[i], name) + "\\right)dt";
+    for (std::size_t r = 0; r < eq.p; ++r)
+      line += " + " + K(i, r) + "\\left(dy_{" + std::to_string(r + 1) + "} - " +
+              (is_single_term(h[r]) ? printer.print(h[r], name) : "\\left(" + printer.print(h[r], name) + "\\right)") +
+              "\\,dt\\right)";
+    lines.push_back(line);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t r = 0; r < eq.p; ++r) lines.push_back(K(i, r) + " &= " + printer.print(eq.gain[i][r], name));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j)
+      lines.push_back("\\frac{d" + vars.latex_name(vars.P(i, j)) + "}{dt} &= " +
+                      join_parts(printer, P_parts(eq, vars.upper_index(i, j)), name));
+  for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
+  out += "\\end{align*}\n";
+  return out;
+}
+
+Json equations_json(const Model& model, const FilterEquations& eq) {
+  TextPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  const std::size_t n = eq.n();
+
+  Json exactness = Json::object();
+  exactness.add("exact", Json::boolean(eq.exactness.exact));
+  exactness.add("condition", Json::string(eq.exactness.condition));
+  exactness.add("explanation", Json::string(eq.exactness.explanation));
+  Json failed = Json::array();
+  for (const auto& f : eq.exactness.failed) failed.push(Json::string(f));
+  exactness.add("failed", failed);
+
+  Json variables = Json::array();
+  for (std::size_t v = 0; v < vars.count(); ++v) variables.push(Json::string(vars.text_name(static_cast<std::uint32_t>(v))));
+  Json m_drift = Json::array();
+  for (const auto& p : eq.m_drift) m_drift.push(Json::string(printer.print(p, name)));
+  Json gain = Json::array();
+  for (std::size_t i = 0; i < n; ++i) {
+    Json row = Json::array();
+    for (std::size_t r = 0; r < eq.p; ++r) row.push(Json::string(printer.print(eq.gain[i][r], name)));
+    gain.push(row);
+  }
+  Json P_drift = Json::array();
+  for (std::size_t i = 0; i < n; ++i) {
+    Json row = Json::array();
+    for (std::size_t j = 0; j < n; ++j) row.push(Json::string(printer.print(eq.P_drift(i, j), name)));
+    P_drift.push(row);
+  }
+  Json predicted = Json::array();
+  for (const auto& h : predicted_observation(model, vars)) predicted.push(Json::string(printer.print(h, name)));
+
+  Json out = Json::object();
+  out.add("model", Json::string(model.name));
+  out.add("filter", Json::string(filter_kind_name(eq.kind)));
+  out.add("description", Json::string(filter_kind_description(eq.kind)));
+  out.add("exactness", exactness);
+  out.add("variables", variables);
+  out.add("m_drift", m_drift);
+  out.add("gain", gain);
+  out.add("predicted_observation", predicted);
+  out.add("P_drift", P_drift);
+  return out;
+}
+
+}  // namespace pfgen

@@ -1,0 +1,152 @@
+#include "pfgen/printing/expression_printer.hpp"
+
+#include <algorithm>
+
+namespace pfgen {
+namespace {
+
+// Polynomial term order: total degree descending, then the exponent of the
+// lowest-numbered variable where two monomials differ, larger first.
+bool prints_before(const Monomial& a, const Monomial& b) {
+  if (a.degree() != b.degree()) return a.degree() > b.degree();
+  const auto& fa = a.factors();
+  const auto& fb = b.factors();
+  std::size_t i = 0, j = 0;
+  while (i < fa.size() || j < fb.size()) {
+    std::uint32_t va = i < fa.size() ? fa[i].first : UINT32_MAX;
+    std::uint32_t vb = j < fb.size() ? fb[j].first : UINT32_MAX;
+    std::uint32_t ea = va <= vb ? fa[i].second : 0;
+    std::uint32_t eb = vb <= va ? fb[j].second : 0;
+    if (ea != eb) return ea > eb;
+    if (va <= vb) ++i;
+    if (vb <= va) ++j;
+  }
+  return false;
+}
+
+bool is_negative_integer_power(const GiNaC::ex& e) {
+  return GiNaC::is_exactly_a<GiNaC::power>(e) && e.op(1).info(GiNaC::info_flags::negint);
+}
+
+}  // namespace
+
+std::string ExpressionPrinter::print(const GiNaC::ex& e) const {
+  std::vector<Term> terms;
+  if (GiNaC::is_exactly_a<GiNaC::add>(e)) {
+    for (std::size_t k = 0; k < e.nops(); ++k) terms.push_back(to_term(e.op(k)));
+  } else {
+    terms.push_back(to_term(e));
+  }
+  // Coefficient expressions have no variable order of their own: sort by text.
+  std::stable_sort(terms.begin(), terms.end(), [this](const Term& a, const Term& b) {
+    std::string ka = print_term_body(a), kb = print_term_body(b);
+    if (ka != kb) return ka < kb;
+    return a.negative < b.negative;
+  });
+  return print_sum(terms);
+}
+
+std::string ExpressionPrinter::print(const Polynomial& p, const VariableNamer& name) const {
+  std::vector<std::pair<Monomial, GiNaC::ex>> ordered(p.terms().begin(), p.terms().end());
+  std::stable_sort(ordered.begin(), ordered.end(),
+                   [](const auto& a, const auto& b) { return prints_before(a.first, b.first); });
+  std::vector<Term> terms;
+  for (const auto& [monomial, coefficient] : ordered) {
+    Term term;
+    if (GiNaC::is_exactly_a<GiNaC::add>(coefficient)) {
+      term.numerator_factors.push_back(parenthesized(print(coefficient)));
+    } else {
+      term = to_term(coefficient);
+    }
+    for (const auto& [variable, exponent] : monomial.factors())
+      term.numerator_factors.push_back(print_integer_power(name(variable), exponent));
+    terms.push_back(term);
+  }
+  return print_sum(terms);
+}
+
+std::string ExpressionPrinter::print_sum(std::vector<Term> terms) const {
+  if (terms.empty()) return "0";
+  std::string out;
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    const Term& term = terms[k];
+    if (k == 0) {
+      out += term.negative ? "-" : "";
+    } else {
+      out += term.negative ? " - " : " + ";
+    }
+    out += print_term_body(term);
+  }
+  return out;
+}
+
+std::string ExpressionPrinter::print_term_body(const Term& term) const {
+  std::vector<std::string> numerator;
+  if (term.magnitude != 1 || term.numerator_factors.empty()) numerator.push_back(number(term.magnitude));
+  numerator.insert(numerator.end(), term.numerator_factors.begin(), term.numerator_factors.end());
+  std::string top = join_factors(numerator);
+  if (term.denominator_factors.empty()) return top;
+  return quotient(top, join_factors(term.denominator_factors));
+}
+
+ExpressionPrinter::Term ExpressionPrinter::to_term(const GiNaC::ex& e) const {
+  Term term;
+  auto absorb = [&](const GiNaC::ex& factor) {
+    if (GiNaC::is_exactly_a<GiNaC::numeric>(factor)) {
+      GiNaC::numeric value = GiNaC::ex_to<GiNaC::numeric>(factor);
+      if (value.is_negative()) {
+        term.negative = !term.negative;
+        value = -value;
+      }
+      term.magnitude *= value;
+    } else if (is_negative_integer_power(factor)) {
+      long exponent = -GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).to_long();
+      term.denominator_factors.push_back(print_integer_power(print_factor(factor.op(0)), exponent));
+    } else {
+      term.numerator_factors.push_back(print_factor(factor));
+    }
+  };
+  if (GiNaC::is_exactly_a<GiNaC::mul>(e)) {
+    for (std::size_t k = 0; k < e.nops(); ++k) absorb(e.op(k));
+  } else {
+    absorb(e);
+  }
+  std::sort(term.numerator_factors.begin(), term.numerator_factors.end());
+  std::sort(term.denominator_factors.begin(), term.denominator_factors.end());
+  return term;
+}
+
+std::string ExpressionPrinter::print_factor(const GiNaC::ex& e) const {
+  if (GiNaC::is_exactly_a<GiNaC::symbol>(e)) return symbol_name(GiNaC::ex_to<GiNaC::symbol>(e).get_name());
+  if (GiNaC::is_exactly_a<GiNaC::constant>(e)) return constant(e);
+  if (GiNaC::is_exactly_a<GiNaC::numeric>(e)) {
+    const auto& value = GiNaC::ex_to<GiNaC::numeric>(e);
+    std::string text = number(GiNaC::abs(value));
+    if (value.is_negative() || !value.is_integer()) return parenthesized((value.is_negative() ? "-" : "") + text);
+    return text;
+  }
+  if (GiNaC::is_a<GiNaC::function>(e)) {
+    std::vector<std::string> args;
+    for (std::size_t k = 0; k < e.nops(); ++k) args.push_back(print(e.op(k)));
+    return function_call(GiNaC::ex_to<GiNaC::function>(e).get_name(), args);
+  }
+  if (GiNaC::is_exactly_a<GiNaC::power>(e)) {
+    const GiNaC::ex& base = e.op(0);
+    const GiNaC::ex& exponent = e.op(1);
+    bool simple_base = GiNaC::is_exactly_a<GiNaC::symbol>(base) || GiNaC::is_a<GiNaC::function>(base) ||
+                       GiNaC::is_exactly_a<GiNaC::constant>(base) ||
+                       (GiNaC::is_exactly_a<GiNaC::numeric>(base) && GiNaC::ex_to<GiNaC::numeric>(base).is_pos_integer());
+    std::string base_text = simple_base ? print_factor(base) : parenthesized(print(base));
+    if (exponent.info(GiNaC::info_flags::posint))
+      return print_integer_power(base_text, GiNaC::ex_to<GiNaC::numeric>(exponent).to_long());
+    return power(base_text, print(exponent));
+  }
+  return parenthesized(print(e));
+}
+
+std::string ExpressionPrinter::print_integer_power(const std::string& base, long exponent) const {
+  if (exponent == 1) return base;
+  return power(base, std::to_string(exponent));
+}
+
+}  // namespace pfgen

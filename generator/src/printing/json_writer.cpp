@@ -1,0 +1,133 @@
+#include "pfgen/printing/json_writer.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "pfgen/printing/number_format.hpp"
+
+namespace pfgen {
+
+std::string json_quote(const std::string& text) {
+  std::string out = "\"";
+  for (unsigned char c : text) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (c < 0x20) {
+          char buffer[8];
+          std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
+          out += buffer;
+        } else {
+          out += static_cast<char>(c);
+        }
+    }
+  }
+  return out + "\"";
+}
+
+Json Json::string(std::string value) {
+  Json j;
+  j.kind_ = Kind::String;
+  j.scalar_ = json_quote(value);
+  return j;
+}
+
+Json Json::number(double value) {
+  if (!std::isfinite(value)) throw std::domain_error("result is not a finite number");
+  Json j;
+  j.kind_ = Kind::Number;
+  j.scalar_ = shortest_double(value);
+  return j;
+}
+
+Json Json::boolean(bool value) {
+  Json j;
+  j.kind_ = Kind::Boolean;
+  j.scalar_ = value ? "true" : "false";
+  return j;
+}
+
+Json Json::array(std::vector<Json> items) {
+  Json j;
+  j.kind_ = Kind::Array;
+  j.items_ = std::move(items);
+  return j;
+}
+
+Json Json::object() { return Json(); }
+
+Json& Json::add(const std::string& key, Json value) {
+  if (kind_ != Kind::Object) throw std::logic_error("Json::add on a non-object");
+  keys_.push_back(key);
+  items_.push_back(std::move(value));
+  return *this;
+}
+
+Json& Json::push(Json value) {
+  if (kind_ != Kind::Array) throw std::logic_error("Json::push on a non-array");
+  items_.push_back(std::move(value));
+  return *this;
+}
+
+bool Json::is_scalar_array() const {
+  for (const auto& item : items_)
+    if (item.kind_ == Kind::Array || item.kind_ == Kind::Object) return false;
+  return true;
+}
+
+void Json::write(std::string& out, int indent) const {
+  const std::string pad(indent + 2, ' ');
+  switch (kind_) {
+    case Kind::String:
+    case Kind::Number:
+    case Kind::Boolean:
+      out += scalar_;
+      return;
+    case Kind::Array: {
+      if (is_scalar_array()) {
+        out += "[";
+        for (std::size_t k = 0; k < items_.size(); ++k) {
+          if (k) out += ", ";
+          items_[k].write(out, indent);
+        }
+        out += "]";
+        return;
+      }
+      out += "[\n";
+      for (std::size_t k = 0; k < items_.size(); ++k) {
+        out += pad;
+        items_[k].write(out, indent + 2);
+        out += k + 1 < items_.size() ? ",\n" : "\n";
+      }
+      out += std::string(indent, ' ') + "]";
+      return;
+    }
+    case Kind::Object: {
+      if (items_.empty()) {
+        out += "{}";
+        return;
+      }
+      out += "{\n";
+      for (std::size_t k = 0; k < items_.size(); ++k) {
+        out += pad + json_quote(keys_[k]) + ": ";
+        items_[k].write(out, indent + 2);
+        out += k + 1 < items_.size() ? ",\n" : "\n";
+      }
+      out += std::string(indent, ' ') + "}";
+      return;
+    }
+  }
+}
+
+std::string Json::dump() const {
+  std::string out;
+  write(out, 0);
+  return out + "\n";
+}
+
+}  // namespace pfgen
