@@ -1,5 +1,6 @@
 #include "pfgen/printing/equation_report.hpp"
 
+#include "pfgen/printing/latex_document.hpp"
 #include "pfgen/printing/latex_printer.hpp"
 #include "pfgen/printing/text_printer.hpp"
 
@@ -95,7 +96,13 @@ std::string equations_latex(const Model& model, const FilterEquations& eq) {
   std::vector<Polynomial> h = predicted_observation(model, vars);
   auto K = [](std::size_t i, std::size_t r) { return "K_{" + std::to_string(i + 1) + "," + std::to_string(r + 1) + "}"; };
 
-  std::string out = "\\begin{align*}\n";
+  std::string out = "\\noindent\\textbf{Exactness:} " + latex_escape_text(eq.exactness.explanation) + ".\n";
+  if (!eq.exactness.failed.empty()) {
+    out += "\\begin{itemize}\n";
+    for (const auto& f : eq.exactness.failed) out += "\\item " + latex_escape_text(f) + "\n";
+    out += "\\end{itemize}\n";
+  }
+  out += "\\begin{align*}\n";
   std::vector<std::string> lines;
   for (std::size_t i = 0; i < n; ++i) {
     std::string line = "dm_{" + std::to_string(i + 1) + "} &= \\left(" + printer.print(eq.m_drift[i], name) + "\\right)dt";

@@ -98,12 +98,6 @@ std::string latex_document(const Model& model, const std::vector<FilterEquations
   for (const auto& eq : filters) {
     out += "\\section*{Filter \\texttt{" + latex_escape_text(filter_kind_name(eq.kind)) + "}}\n";
     out += latex_escape_text(filter_kind_description(eq.kind)) + ".\n\n";
-    out += "\\textbf{Exactness:} " + latex_escape_text(eq.exactness.explanation) + ".\n";
-    if (!eq.exactness.failed.empty()) {
-      out += "\\begin{itemize}\n";
-      for (const auto& f : eq.exactness.failed) out += "\\item " + latex_escape_text(f) + "\n";
-      out += "\\end{itemize}\n";
-    }
     out += equations_latex(model, eq);
   }
   out += "\\end{document}\n";

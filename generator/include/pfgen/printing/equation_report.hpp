@@ -1,5 +1,6 @@
 #pragma once
-// Renders one filter's equations for `pfgen derive`: text, a LaTeX block and
+// Renders one filter's equations for `pfgen derive`: text, a LaTeX fragment (the
+// exactness diagnostic as a paragraph, then an align* block) and
 // JSON. All three list the same things in the same order: the exactness
 // diagnostic, dm (drift and innovation gain), the gain entries, and dP for the
 // upper triangle of P. In text and LaTeX each dP is written as its three parts

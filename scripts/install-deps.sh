@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages pfgen needs that are not installed yet
+# (apt-get update first). Needs root, or sudo when not root.
+set -euo pipefail
+packages=(
+  g++ make cmake pkg-config            # toolchain
+  libginac-dev libcln-dev              # symbolic derivation
+  libeigen3-dev                        # numerics in the validator (and the runtime to come)
+  libyaml-cpp-dev libcli11-dev         # model files, command line
+  catch2                               # tests
+  texlive-latex-base                   # pdflatex for `pfgen latex` documents
+)
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all Debian packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+$SUDO apt-get update
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
