@@ -2,16 +2,32 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <string>
 
 #include "cli_options.hpp"
 #include "commands.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/model_error.hpp"
 
+namespace {
+
+// Every error is reported on exactly one line of stderr.
+std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace pfgen::cli;
   CLI::App app{"pfgen " PFGEN_VERSION ": optimal filters for polynomial stochastic systems"};
   app.require_subcommand(1);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "pfgen: error: " + one_line(e.what()) + " (see pfgen --help)\n";
+  });
   app.set_version_flag("--version", "pfgen " PFGEN_VERSION);
 
   DeriveOptions derive;
@@ -47,13 +63,13 @@ int main(int argc, char** argv) {
     if (*latex_cmd) return run_latex(latex);
     if (*eval_cmd) return run_eval(eval);
   } catch (const pfgen::ModelError& e) {
-    std::cerr << "pfgen: " << e.what() << "\n";
+    std::cerr << "pfgen: " << one_line(e.what()) << "\n";
   } catch (const CliValueError& e) {
-    std::cerr << "pfgen: error: " << e.what() << "\n";
+    std::cerr << "pfgen: error: " << one_line(e.what()) << "\n";
   } catch (const pfgen::EvaluationError& e) {
-    std::cerr << "pfgen: error: " << e.what() << "\n";
+    std::cerr << "pfgen: error: " << one_line(e.what()) << "\n";
   } catch (const std::exception& e) {
-    std::cerr << "pfgen: error: " << e.what() << "\n";
+    std::cerr << "pfgen: error: " << one_line(e.what()) << "\n";
   }
   return 1;
 }

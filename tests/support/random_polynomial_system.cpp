@@ -23,21 +23,46 @@ std::vector<unsigned> random_exponents(std::mt19937& rng, std::size_t n, unsigne
   return exponents;
 }
 
+// All exponent vectors of n variables with total degree <= max_degree.
+void all_exponents(std::size_t n, unsigned max_degree, std::vector<unsigned>& current,
+                   std::vector<std::vector<unsigned>>& out) {
+  if (current.size() == n) {
+    out.push_back(current);
+    return;
+  }
+  for (unsigned e = 0; e <= max_degree; ++e) {
+    current.push_back(e);
+    all_exponents(n, max_degree - e, current, out);
+    current.pop_back();
+  }
+}
+
+RandomTerm random_term(std::mt19937& rng, std::vector<unsigned> exponents, const RandomSystemOptions& options) {
+  RandomTerm term;
+  term.coefficient = random_rational(rng);
+  if (options.symbolic_coefficients) {
+    term.times_parameter = uniform(rng, 0, 5) == 0;
+    term.times_sin_t = uniform(rng, 0, 7) == 0;
+  }
+  term.exponents = std::move(exponents);
+  return term;
+}
+
 RandomPolynomial random_polynomial(std::mt19937& rng, std::size_t n, unsigned max_degree, bool force_max_degree,
                                    const RandomSystemOptions& options) {
   RandomPolynomial poly;
+  if (options.dense) {
+    std::vector<unsigned> current;
+    std::vector<std::vector<unsigned>> exponents;
+    all_exponents(n, max_degree, current, exponents);
+    for (auto& e : exponents) poly.terms.push_back(random_term(rng, std::move(e), options));
+    return poly;
+  }
   const int count = uniform(rng, 1, static_cast<int>(options.max_terms));
   for (int k = 0; k < count; ++k) {
-    RandomTerm term;
-    term.coefficient = random_rational(rng);
-    if (options.symbolic_coefficients) {
-      term.times_parameter = uniform(rng, 0, 5) == 0;
-      term.times_sin_t = uniform(rng, 0, 7) == 0;
-    }
     const unsigned degree =
         (k == 0 && force_max_degree) ? max_degree : static_cast<unsigned>(uniform(rng, 0, static_cast<int>(max_degree)));
-    term.exponents = random_exponents(rng, n, degree);
-    poly.terms.push_back(term);
+    poly.terms.push_back(random_term(rng, random_exponents(rng, n, degree), options));
   }
   return poly;
 }

@@ -38,6 +38,7 @@ struct RandomSystemOptions {
   unsigned max_terms = 4;             // terms per polynomial: 1..max_terms
   bool symbolic_coefficients = true;  // allow a * c and sin(t) * c coefficients
   bool identity_observation = true;   // A = I (p = n); otherwise p in 1..n+1 random integer rows
+  bool dense = false;                 // every monomial up to the degree, instead of 1..max_terms terms
 };
 
 struct RandomSystem {

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <sstream>
+#include <stdexcept>
 
 namespace pfgen {
 namespace {
@@ -37,7 +38,12 @@ GiNaC::numeric literal_value(const std::string& literal) {
   std::size_t e = literal.find_first_of("eE");
   if (e != std::string::npos) {
     mantissa = literal.substr(0, e);
-    exponent = std::stol(literal.substr(e + 1));
+    // Bounded so that 1e99999999999 is refused instead of exhausting memory.
+    std::string digits = literal.substr(e + 1);
+    std::size_t first = digits.find_first_not_of("+-0");
+    if (first != std::string::npos && digits.size() - first > 4)
+      throw std::out_of_range("the exponent of '" + literal + "' is too large");
+    exponent = std::stol(digits);
   }
   std::string digits;
   for (char c : mantissa) {
@@ -100,7 +106,12 @@ std::optional<GiNaC::numeric> parse_exact_number(const std::string& text) {
     s = s.substr(1);
   }
   if (s.empty() || scan_number(s, 0) != s.size()) return std::nullopt;
-  GiNaC::numeric value = literal_value(s);
+  GiNaC::numeric value;
+  try {
+    value = literal_value(s);
+  } catch (const std::out_of_range&) {
+    return std::nullopt;
+  }
   return negative ? -value : value;
 }
 

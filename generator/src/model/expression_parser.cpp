@@ -41,6 +41,19 @@ std::string first_identifier_not_in(const std::string& text, const GiNaC::symtab
   return {};
 }
 
+// GiNaC's message is "GiNaC: parse error at line 0, column 0: WHY\n[function(file:line)]":
+// keep WHY only, so that the error stays on one line and names no GiNaC internals.
+std::string parse_error_reason(const std::string& message) {
+  std::string why = message.substr(0, message.find('\n'));
+  const std::string prefix = "GiNaC: parse error at ";
+  if (why.compare(0, prefix.size(), prefix) == 0) {
+    std::size_t colon = why.find(": ", prefix.size());
+    if (colon != std::string::npos) why = why.substr(colon + 2);
+  }
+  while (!why.empty() && (why.back() == ' ' || why.back() == '\r')) why.pop_back();
+  return why.empty() ? "syntax error" : why;
+}
+
 }  // namespace
 
 ExpressionParser::ExpressionParser(const GiNaC::symtab& symbols) : symbols_(symbols) {}
@@ -62,9 +75,7 @@ GiNaC::ex ExpressionParser::parse(const std::string& text, const ExpressionSite&
   try {
     value = reader(rationalize_decimal_literals(text));
   } catch (const GiNaC::parse_error& e) {
-    std::string why = e.what();
-    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
-    throw fail("cannot parse '" + text + "': " + why);
+    throw fail("cannot parse '" + text + "': " + parse_error_reason(e.what()));
   } catch (const std::exception& e) {
     throw fail("cannot evaluate '" + text + "': " + e.what());
   }

@@ -1,5 +1,7 @@
 #include "pfgen/model/model.hpp"
 
+#include <algorithm>
+
 namespace pfgen {
 
 ExMatrix multiply_by_transpose(const ExMatrix& g) {
@@ -7,7 +9,8 @@ ExMatrix multiply_by_transpose(const ExMatrix& g) {
   for (std::size_t i = 0; i < g.size(); ++i) {
     for (std::size_t j = 0; j < g.size(); ++j) {
       GiNaC::ex sum = 0;
-      for (std::size_t k = 0; k < g[i].size(); ++k) sum += g[i][k] * g[j][k];
+      // Rows of unequal length are reported by validate_model(); never read past a row.
+      for (std::size_t k = 0; k < std::min(g[i].size(), g[j].size()); ++k) sum += g[i][k] * g[j][k];
       G[i][j] = sum.expand();
     }
   }

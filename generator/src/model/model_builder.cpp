@@ -44,19 +44,27 @@ ExVector exact_vector(const ExVector& v) {
   return out;
 }
 
+// G is computed (or expanded) only in build(), after validate_model() has checked
+// the shapes and degrees: expanding (x+1)^(10^9) first would never finish.
 Diffusion from_g(const ExMatrix& g) {
   Diffusion d;
   d.g = exact_matrix(g);
-  d.G = multiply_by_transpose(*d.g);
   return d;
 }
 
 Diffusion from_G(const ExMatrix& G) {
   Diffusion d;
   d.G = exact_matrix(G);
+  return d;
+}
+
+void complete(Diffusion& d) {
+  if (d.g) {
+    d.G = multiply_by_transpose(*d.g);
+    return;
+  }
   for (auto& row : d.G)
     for (auto& entry : row) entry = entry.expand();
-  return d;
 }
 
 }  // namespace
@@ -145,7 +153,10 @@ Model ModelBuilder::build() const {
     throw ModelError("diffusion", "missing required field (give diffusion or diffusion_covariance)");
   if (!has_observation_) throw ModelError("observation", "missing required field");
   validate_model(model_);
-  return model_;
+  Model model = model_;
+  complete(model.diffusion);
+  if (model.additive_diffusion) complete(*model.additive_diffusion);
+  return model;
 }
 
 }  // namespace pfgen

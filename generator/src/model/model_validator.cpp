@@ -4,18 +4,15 @@
 #include <cctype>
 #include <regex>
 #include <set>
-#include <sstream>
 
 #include "pfgen/model/model_error.hpp"
+#include "pfgen/notation/text_printer.hpp"
 
 namespace pfgen {
 namespace {
 
-std::string to_text(const GiNaC::ex& e) {
-  std::ostringstream out;
-  out << e;
-  return out.str();
-}
+// In the canonical order of pfgen's printer: GiNaC's own varies from run to run.
+std::string to_text(const GiNaC::ex& e) { return TextPrinter().print(e); }
 
 GiNaC::lst state_list(const Model& model) {
   GiNaC::lst states;
@@ -39,6 +36,21 @@ void require_polynomial(const Model& model, const GiNaC::ex& e, const std::strin
                      "'" + to_text(e) + "' is not polynomial in the states (only non-negative "
                      "integer powers of states are allowed; sin(x), 1/x, x^0.5 are not)",
                      row, column);
+  // The closure's moments grow with the degree: x^(10^10) must be refused, not exhaust memory.
+  constexpr int kMaxDegree = 1000;
+  for (std::size_t k = 0; k < model.states.size(); ++k) {
+    int degree = kMaxDegree + 1;
+    try {
+      degree = e.degree(model.states[k]);
+    } catch (const std::exception&) {
+      // The exponent does not even fit an int.
+    }
+    if (degree > kMaxDegree)
+      throw ModelError(field,
+                       "'" + to_text(e) + "' has a degree in state '" + model.state_names[k] +
+                           "' above the limit of " + std::to_string(kMaxDegree),
+                       row, column);
+  }
 }
 
 void require_state_free(const Model& model, const GiNaC::ex& e, const std::string& field,
@@ -57,8 +69,8 @@ void require_shape(const ExMatrix& m, std::size_t rows, std::optional<std::size_
   for (std::size_t i = 0; i < m.size(); ++i) {
     if (m[i].size() != width)
       throw ModelError(field,
-                       "expected " + std::to_string(width) + " columns, found " +
-                           std::to_string(m[i].size()),
+                       "expected " + std::to_string(width) + " columns" + (columns ? " (" + what + ")" : "") +
+                           ", found " + std::to_string(m[i].size()),
                        one_based(i));
   }
 }
@@ -106,13 +118,17 @@ void validate_diffusion(const Model& model, const Diffusion& d, const std::strin
       }
     return;
   }
-  require_shape(d.G, n, n, G_field, "one per state; G = g g^T is n x n");
+  require_shape(d.G, n, n, G_field, "G = g g^T must be square, n x n with n = number of states");
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j) {
       require_polynomial(model, d.G[i][j], G_field, one_based(i), one_based(j));
       if (must_be_state_free)
         require_state_free(model, d.G[i][j], G_field, one_based(i), one_based(j));
-      if (j > i && !(d.G[i][j] - d.G[j][i]).expand().is_zero())
+    }
+  // Symmetry only once every entry is known to be a polynomial of bounded degree.
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if (!(d.G[i][j] - d.G[j][i]).expand().is_zero())
         throw ModelError(G_field,
                          "not symmetric: entry (" + std::to_string(i + 1) + "," +
                              std::to_string(j + 1) + ") is '" + to_text(d.G[i][j]) +
@@ -152,6 +168,12 @@ void validate_observation(const Model& model) {
                                               ") is not a real number at the parameter defaults");
       R(i, j) = GiNaC::ex_to<GiNaC::numeric>(value).to_double();
     }
+  for (std::size_t i = 0; i < p; ++i)
+    if (R(i, i) <= 0)
+      throw ModelError("observation.B",
+                       "row is zero at the parameter defaults and t = 0, so observation " + std::to_string(i + 1) +
+                           " has no noise and B B^T is not positive definite",
+                       one_based(i));
   Eigen::LLT<Eigen::MatrixXd> cholesky(R);
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(R);
   if (cholesky.info() != Eigen::Success || eigen.eigenvalues().minCoeff() <= 1e-12 * std::max(1.0, R.norm()))

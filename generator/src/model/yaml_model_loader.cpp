@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -270,6 +271,9 @@ Model load_model_text(const std::string& text, const std::string& path) {
 }
 
 Model load_model_file(const std::string& path) {
+  std::error_code ignored;
+  if (std::filesystem::is_directory(path, ignored))
+    throw located(ModelError("", "cannot read the model file: it is a directory"), path, {});
   std::ifstream in(path, std::ios::binary);
   if (!in) throw located(ModelError("", "cannot open the model file"), path, {});
   std::ostringstream buffer;

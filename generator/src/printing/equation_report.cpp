@@ -1,8 +1,7 @@
 #include "pfgen/printing/equation_report.hpp"
 
-#include "pfgen/printing/latex_document.hpp"
-#include "pfgen/printing/latex_printer.hpp"
-#include "pfgen/printing/text_printer.hpp"
+#include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/text_printer.hpp"
 
 namespace pfgen {
 namespace {

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "pfgen/printing/number_format.hpp"
+#include "pfgen/notation/number_format.hpp"
 
 namespace pfgen {
 

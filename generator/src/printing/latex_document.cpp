@@ -1,7 +1,7 @@
 #include "pfgen/printing/latex_document.hpp"
 
 #include "pfgen/printing/equation_report.hpp"
-#include "pfgen/printing/latex_printer.hpp"
+#include "pfgen/notation/latex_printer.hpp"
 
 namespace pfgen {
 namespace {
@@ -68,20 +68,6 @@ std::string model_section(const Model& model) {
 }
 
 }  // namespace
-
-std::string latex_escape_text(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': case '%': case '$': case '#': case '_': case '{': case '}': out += std::string("\\") + c; break;
-      case '~': out += "\\textasciitilde{}"; break;
-      case '^': out += "\\textasciicircum{}"; break;
-      case '\\': out += "\\textbackslash{}"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 std::string latex_document(const Model& model, const std::vector<FilterEquations>& filters) {
   std::string out;

@@ -11,7 +11,4 @@ namespace pfgen {
 
 std::string latex_document(const Model& model, const std::vector<FilterEquations>& filters);
 
-// Escapes text-mode special characters (& % $ # _ { } ~ ^ \).
-std::string latex_escape_text(const std::string& text);
-
 }  // namespace pfgen

@@ -1,9 +1,9 @@
-#include "pfgen/printing/latex_printer.hpp"
+#include "pfgen/notation/latex_printer.hpp"
 
 #include <set>
 #include <sstream>
 
-#include "pfgen/printing/number_format.hpp"
+#include "pfgen/notation/number_format.hpp"
 
 namespace pfgen {
 namespace {
@@ -77,6 +77,20 @@ std::string LatexPrinter::constant(const GiNaC::ex& c) const {
   std::ostringstream out;
   out << GiNaC::latex << c;
   return out.str();
+}
+
+std::string latex_escape_text(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': case '%': case '$': case '#': case '_': case '{': case '}': out += std::string("\\") + c; break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '\\': out += "\\textbackslash{}"; break;
+      default: out += c;
+    }
+  }
+  return out;
 }
 
 }  // namespace pfgen

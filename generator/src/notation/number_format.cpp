@@ -1,4 +1,4 @@
-#include "pfgen/printing/number_format.hpp"
+#include "pfgen/notation/number_format.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,7 @@
 #pragma once
 // Plain text in the syntax of model files: 0.1*m1^2 + 0.1*P11. Text output
 // parses back with GiNaC's parser (and pfgen's model reader).
-#include "pfgen/printing/expression_printer.hpp"
+#include "pfgen/notation/expression_printer.hpp"
 
 namespace pfgen {
 

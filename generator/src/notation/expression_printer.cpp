@@ -1,4 +1,4 @@
-#include "pfgen/printing/expression_printer.hpp"
+#include "pfgen/notation/expression_printer.hpp"
 
 #include <algorithm>
 

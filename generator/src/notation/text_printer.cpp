@@ -1,8 +1,8 @@
-#include "pfgen/printing/text_printer.hpp"
+#include "pfgen/notation/text_printer.hpp"
 
 #include <sstream>
 
-#include "pfgen/printing/number_format.hpp"
+#include "pfgen/notation/number_format.hpp"
 
 namespace pfgen {
 

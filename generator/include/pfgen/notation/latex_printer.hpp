@@ -1,7 +1,7 @@
 #pragma once
 // LaTeX math: 0.1\,m_{1}^{2} + 0.1\,P_{11}; rationals as \frac, Greek names as
 // Greek letters, multi-letter names upright, x_1 style names subscripted.
-#include "pfgen/printing/expression_printer.hpp"
+#include "pfgen/notation/expression_printer.hpp"
 
 namespace pfgen {
 
@@ -19,5 +19,8 @@ class LatexPrinter : public ExpressionPrinter {
   std::string parenthesized(const std::string& inner) const override;
   std::string constant(const GiNaC::ex& c) const override;
 };
+
+// Escapes text-mode special characters (& % $ # _ { } ~ ^ \) for prose around the math.
+std::string latex_escape_text(const std::string& text);
 
 }  // namespace pfgen

@@ -1,0 +1,329 @@
+// Bad input through the real `pfgen` program: every bad model file (and every
+// bad --m/--P/--set value) gives exactly one error line on stderr naming the
+// file, the field, the row and column of a matrix entry and what is wrong; a
+// non-zero exit without a crash; nothing on stdout; and no output file, not
+// even a temporary one.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "support/cli_helpers.hpp"
+
+using namespace pfgen_test;
+
+namespace {
+
+struct BadModel {
+  std::string file;    // in tests/data/bad
+  std::string field;   // "" when the problem is the file itself
+  int row;             // 0: not a matrix or vector entry
+  int column;          // 0: no column
+  int line;            // expected line in the file; 0: no line (the field is absent, or the file is not YAML)
+  std::string phrase;  // what is wrong
+};
+
+const std::vector<BadModel>& bad_models() {
+  static const std::vector<BadModel> cases = {
+      // syntax errors in expressions
+      {"syntax_unbalanced_paren.yaml", "drift", 1, 0, 4, "cannot parse '-(x + 1': expected ')'"},
+      {"syntax_double_operator.yaml", "drift", 1, 0, 4, "cannot parse 'x +* 2'"},
+      {"syntax_in_diffusion_entry.yaml", "diffusion", 2, 1, 5, "cannot parse 'x1^'"},
+      {"syntax_empty_expression.yaml", "drift", 1, 0, 4, "empty expression"},
+      {"syntax_unknown_function.yaml", "drift", 1, 0, 4, "no function \"frobnicate\""},
+      {"syntax_division_by_zero.yaml", "diffusion", 1, 1, 5, "division by zero"},
+      {"complex_coefficient.yaml", "drift", 1, 0, 4, "is not real"},
+      {"huge_exponent_literal.yaml", "drift", 1, 0, 4, "exponent of '1e99999999999' is too large"},
+      // unknown symbols
+      {"unknown_symbol_drift.yaml", "drift", 1, 0, 4, "unknown symbol 'a'"},
+      {"unknown_symbol_observation_B.yaml", "observation.B", 1, 1, 9, "unknown symbol 'sigma'"},
+      {"unknown_symbol_diffusion_covariance.yaml", "diffusion_covariance", 2, 2, 5, "unknown symbol 'y'"},
+      // non-polynomial dependence on a state
+      {"nonpoly_sin.yaml", "drift", 1, 0, 4, "'sin(x)' is not polynomial in the states"},
+      {"nonpoly_reciprocal.yaml", "drift", 1, 0, 4, "'1/x' is not polynomial in the states"},
+      {"nonpoly_decimal_power.yaml", "drift", 1, 0, 4, "is not polynomial in the states"},
+      {"nonpoly_rational_power.yaml", "drift", 2, 0, 4, "is not polynomial in the states"},
+      {"nonpoly_negative_power.yaml", "drift", 1, 0, 4, "is not polynomial in the states"},
+      {"nonpoly_exp_in_diffusion.yaml", "diffusion", 1, 2, 5, "'exp(x)' is not polynomial in the states"},
+      {"nonpoly_sqrt_in_diffusion_covariance.yaml", "diffusion_covariance", 2, 2, 5,
+       "is not polynomial in the states"},
+      {"nonpoly_state_in_observation_A.yaml", "observation.A", 1, 2, 7, "must not depend on the states"},
+      {"nonpoly_state_in_observation_B.yaml", "observation.B", 1, 1, 8, "must not depend on the states"},
+      {"nonpoly_state_in_additive_diffusion.yaml", "additive_diffusion", 1, 1, 6, "must not depend on the states"},
+      {"huge_degree.yaml", "drift", 1, 0, 4, "above the limit"},
+      {"huge_degree_in_diffusion_covariance.yaml", "diffusion_covariance", 1, 1, 5, "above the limit"},
+      // wrong dimensions
+      {"dims_drift_too_few.yaml", "drift", 0, 0, 4, "expected 2 entries (one per state), found 1"},
+      {"dims_drift_too_many.yaml", "drift", 0, 0, 4, "expected 1 entries (one per state), found 2"},
+      {"dims_drift_not_a_list.yaml", "drift", 0, 0, 4, "expected a list"},
+      {"dims_diffusion_rows.yaml", "diffusion", 0, 0, 5, "expected 2 rows (one per state), found 1"},
+      {"dims_diffusion_ragged_columns.yaml", "diffusion", 2, 0, 5, "expected 2 columns, found 1"},
+      {"dims_diffusion_row_not_a_list.yaml", "diffusion", 1, 0, 5, "expected a list (one row of the matrix)"},
+      {"dims_diffusion_empty_row.yaml", "diffusion", 1, 0, 5, "rows must not be empty"},
+      {"dims_diffusion_covariance_rows.yaml", "diffusion_covariance", 0, 0, 5, "expected 2 rows"},
+      {"dims_additive_diffusion_rows.yaml", "additive_diffusion", 0, 0, 6, "expected 1 rows (one per state), found 2"},
+      {"dims_A_columns.yaml", "observation.A", 1, 0, 7, "expected 2 columns"},
+      {"dims_A_ragged.yaml", "observation.A", 2, 0, 7, "expected 2 columns"},
+      {"dims_A0_length.yaml", "observation.A0", 0, 0, 7, "expected 1 entries (one per row of A), found 2"},
+      {"dims_B_rows.yaml", "observation.B", 0, 0, 8, "expected 1 rows (one per observation, as in A), found 2"},
+      {"dims_B_ragged.yaml", "observation.B", 2, 0, 8, "expected 2 columns, found 1"},
+      {"dims_initial_m0.yaml", "initial.m0", 0, 0, 9, "expected 2 entries, found 1"},
+      {"dims_initial_x0.yaml", "initial.x0", 0, 0, 9, "expected 2 entries, found 3"},
+      {"dims_initial_P0_rows.yaml", "initial.P0", 0, 0, 9, "expected 2 rows, found 1"},
+      {"dims_initial_P0_columns.yaml", "initial.P0", 2, 0, 9, "expected 2 columns, found 3"},
+      // diffusion_covariance not square or not symmetric
+      {"covariance_not_square.yaml", "diffusion_covariance", 1, 0, 5, "must be square"},
+      {"covariance_not_square_wide.yaml", "diffusion_covariance", 1, 0, 5, "must be square"},
+      {"covariance_asymmetric.yaml", "diffusion_covariance", 1, 2, 5,
+       "not symmetric: entry (1,2) is '0.5' but entry (2,1) is '0'"},
+      {"covariance_asymmetric_symbolic.yaml", "diffusion_covariance", 2, 3, 5,
+       "not symmetric: entry (2,3) is 'x1*x2' but entry (3,2) is 'x1*x3'"},
+      {"additive_covariance_asymmetric.yaml", "additive_diffusion_covariance", 1, 2, 6, "not symmetric"},
+      {"initial_P0_asymmetric.yaml", "initial.P0", 1, 2, 9, "not symmetric"},
+      {"initial_P0_not_psd.yaml", "initial.P0", 0, 0, 9, "not positive semi-definite"},
+      // B B^T not positive definite
+      {"B_zero.yaml", "observation.B", 1, 0, 8, "observation 1 has no noise and B B^T is not positive definite"},
+      {"B_zero_row.yaml", "observation.B", 2, 0, 8, "observation 2 has no noise and B B^T is not positive definite"},
+      {"B_rank_deficient.yaml", "observation.B", 0, 0, 8, "B B^T is not positive definite"},
+      {"B_zero_parameter_default.yaml", "observation.B", 1, 0, 9, "B B^T is not positive definite"},
+      // missing required fields
+      {"missing_name.yaml", "name", 0, 0, 0, "missing required field"},
+      {"missing_name_value.yaml", "name", 0, 0, 2, "missing required field"},
+      {"missing_states.yaml", "states", 0, 0, 0, "missing required field"},
+      {"missing_states_empty_list.yaml", "states", 0, 0, 3, "at least one state is required"},
+      {"missing_drift.yaml", "drift", 0, 0, 0, "missing required field"},
+      {"missing_diffusion.yaml", "diffusion", 0, 0, 0, "missing required field (give diffusion or diffusion_covariance)"},
+      {"missing_observation.yaml", "observation", 0, 0, 0, "missing required field"},
+      {"missing_observation_A.yaml", "observation.A", 0, 0, 6, "missing required field"},
+      {"missing_observation_B.yaml", "observation.B", 0, 0, 6, "missing required field"},
+      {"missing_initial_P0.yaml", "initial.P0", 0, 0, 9, "missing required field"},
+      // unknown or conflicting fields, bad names and values
+      {"unknown_top_level_field.yaml", "drfit", 0, 0, 5, "unknown field"},
+      {"unknown_observation_field.yaml", "observation.C", 0, 0, 9, "unknown field (known: A0, A, B)"},
+      {"unknown_initial_field.yaml", "initial.Q0", 0, 0, 9, "unknown field (known: x0, m0, P0)"},
+      {"both_diffusion_forms.yaml", "diffusion_covariance", 0, 0, 6, "not both"},
+      {"name_not_identifier.yaml", "name", 0, 0, 2, "'my model' is not an identifier"},
+      {"state_name_reserved.yaml", "states", 2, 0, 3, "'m1' is reserved"},
+      {"state_name_duplicate.yaml", "states", 2, 0, 3, "name 'x' is used twice"},
+      {"parameter_not_a_number.yaml", "parameters.a", 0, 0, 4, "'fast' is not a number"},
+      {"initial_m0_not_a_number.yaml", "initial.m0", 2, 0, 9, "'zero' is not a number"},
+      // not a model, not YAML, not text
+      {"yaml_unclosed_bracket.yaml", "", 0, 0, 5, "not valid YAML"},
+      {"yaml_unterminated_string.yaml", "", 0, 0, 5, "not valid YAML"},
+      {"yaml_bad_indentation.yaml", "", 0, 0, 8, "not valid YAML"},
+      {"yaml_top_level_list.yaml", "", 0, 0, 0, "must be a mapping"},
+      {"yaml_top_level_scalar.yaml", "", 0, 0, 0, "must be a mapping"},
+      {"yaml_comments_only.yaml", "", 0, 0, 0, "the model file is empty"},
+      {"empty_file.yaml", "", 0, 0, 0, "the model file is empty"},
+      {"not_utf8_latin1.yaml", "", 0, 0, 0, "not UTF-8 text"},
+  };
+  return cases;
+}
+
+// The single error line for a model problem:
+//   pfgen: FILE[:LINE:COL]: error: [field 'F'[, row R][, column C]: ]WHAT
+void check_model_error(const ProcessResult& r, const std::string& path, const BadModel& expected) {
+  INFO("stderr: " << r.err);
+  INFO("stdout: " << r.out);
+  CHECK(r.exit_code != 0);
+  CHECK(r.exit_code < 128);  // 128 + signal (e.g. 139 for SIGSEGV) is a crash
+  CHECK(r.out.empty());
+  CHECK(count_lines(r.err) == 1);
+  CHECK(!r.err.empty());
+  CHECK(r.err.back() == '\n');
+  // CHECK and return rather than REQUIRE: one bad file must not hide the others.
+  const std::string head = "pfgen: " + path;
+  const bool names_file = r.err.compare(0, head.size(), head) == 0;
+  CHECK(names_file);
+  if (!names_file) return;
+  std::smatch where;
+  const std::string rest = r.err.substr(head.size());
+  const bool has_location = std::regex_search(rest, where, std::regex("^(:([0-9]+):[0-9]+)?: error: "));
+  CHECK(has_location);
+  if (!has_location) return;
+  if (expected.line > 0) {
+    CHECK(where[2].str() == std::to_string(expected.line));
+  }
+  const std::string message = rest.substr(where.length(0));
+  if (expected.field.empty()) {
+    CHECK(message.find("field '") == std::string::npos);
+  } else {
+    std::string prefix = "field '" + expected.field + "'";
+    if (expected.row > 0) prefix += ", row " + std::to_string(expected.row);
+    if (expected.column > 0) prefix += ", column " + std::to_string(expected.column);
+    prefix += ": ";
+    CHECK(message.compare(0, prefix.size(), prefix) == 0);
+  }
+  CHECK(message.find(expected.phrase) != std::string::npos);
+}
+
+// derive and latex -o on a bad model: one error line, no output file.
+void check_bad_model(const std::string& path, const BadModel& expected) {
+  INFO("model file: " << path);
+  {
+    INFO("pfgen derive");
+    check_model_error(run_pfgen({"derive", path}), path, expected);
+  }
+  {
+    INFO("pfgen derive --format json");
+    check_model_error(run_pfgen({"derive", path, "--format", "json"}), path, expected);
+  }
+  {
+    INFO("pfgen latex -o");
+    TempDir out;
+    check_model_error(run_pfgen({"latex", path, "-o", out.file("out.tex")}), path, expected);
+    CHECK(out.entries().empty());  // neither out.tex nor its temporary file
+  }
+  {
+    INFO("pfgen eval");
+    check_model_error(run_pfgen({"eval", path, "--filter", "optimal", "--m=-1", "--P", "1"}), path, expected);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("every bad model file gives one error line naming file, field, row and column", "[cli][bad_input]") {
+  for (const auto& expected : bad_models()) check_bad_model(test_data_dir() + "/bad/" + expected.file, expected);
+}
+
+TEST_CASE("every file in tests/data/bad is covered by the bad-input table", "[cli][bad_input]") {
+  std::set<std::string> listed;
+  for (const auto& expected : bad_models()) {
+    CHECK(listed.insert(expected.file).second);  // no file listed twice
+    CHECK(std::filesystem::exists(test_data_dir() + "/bad/" + expected.file));
+  }
+  std::set<std::string> on_disk;
+  for (const auto& entry : std::filesystem::directory_iterator(test_data_dir() + "/bad"))
+    on_disk.insert(entry.path().filename().string());
+  CHECK(on_disk == listed);
+  CHECK(listed.size() >= 70);
+}
+
+TEST_CASE("binary files, directories and missing files are refused with one line", "[cli][bad_input]") {
+  TempDir dir;
+  std::string random_bytes;
+  unsigned state = 12345;
+  for (int k = 0; k < 512; ++k) {
+    state = state * 1103515245u + 12345u;
+    random_bytes += static_cast<char>((state >> 16) & 0xFF);
+  }
+  random_bytes[17] = '\0';
+  write_file(dir.file("random.bin"), random_bytes);
+  write_file(dir.file("image.png"), std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR\0\0\0\x01", 20));
+  // "name: x" in UTF-16 with a byte order mark: NUL bytes in every other place.
+  write_file(dir.file("utf16.yaml"), std::string("\xff\xfen\0a\0m\0e\0:\0 \0x\0\n\0", 18));
+  // A valid model followed by one NUL byte.
+  write_file(dir.file("trailing_nul.yaml"),
+             read_file(example("basin2006_quadratic.yaml")) + std::string(1, '\0'));
+  std::filesystem::create_directory(dir.file("model_dir.yaml"));
+
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"random.bin", "the file is binary, not UTF-8 text"},
+      {"image.png", "the file is binary, not UTF-8 text"},
+      {"utf16.yaml", "the file is binary, not UTF-8 text"},
+      {"trailing_nul.yaml", "the file is binary, not UTF-8 text"},
+      {"model_dir.yaml", "it is a directory"},
+      {"no_such_model.yaml", "cannot open the model file"},
+  };
+  for (const auto& [name, phrase] : cases) check_bad_model(dir.file(name), BadModel{name, "", 0, 0, 0, phrase});
+}
+
+TEST_CASE("error lines are the same in separate runs", "[cli][bad_input]") {
+  // Messages quote expressions; GiNaC's own printing order changes between processes.
+  for (const std::string file : {"covariance_asymmetric_symbolic.yaml", "nonpoly_state_in_observation_B.yaml",
+                                 "nonpoly_rational_power.yaml"}) {
+    const std::string path = test_data_dir() + "/bad/" + file;
+    const ProcessResult first = run_pfgen({"derive", path});
+    INFO(first.err);
+    CHECK(first.exit_code == 1);
+    for (int run = 0; run < 2; ++run) CHECK(run_pfgen({"derive", path}).err == first.err);
+  }
+}
+
+namespace {
+
+// A one-line `pfgen: error: ...` with a non-zero exit and nothing on stdout.
+void check_option_error(const ProcessResult& r, const std::vector<std::string>& phrases) {
+  INFO("stderr: " << r.err);
+  INFO("stdout: " << r.out);
+  CHECK(r.exit_code != 0);
+  CHECK(r.exit_code < 128);
+  CHECK(r.out.empty());
+  CHECK(count_lines(r.err) == 1);
+  CHECK(r.err.rfind("pfgen: error: ", 0) == 0);
+  for (const auto& phrase : phrases) CHECK(r.err.find(phrase) != std::string::npos);
+}
+
+ProcessResult eval_partial(std::vector<std::string> options) {
+  std::vector<std::string> args = {"eval", example("basin_skliar_partial.yaml"), "--filter", "optimal"};
+  args.insert(args.end(), options.begin(), options.end());
+  return run_pfgen(args);
+}
+
+}  // namespace
+
+TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line", "[cli][bad_input]") {
+  const std::string good_P = "--P=0.5,-0.2;-0.2,0.3";
+  SECTION("--m with the wrong count") {
+    check_option_error(eval_partial({"--m=-1.5", good_P}), {"--m", "expected 2 values, found 1"});
+    check_option_error(eval_partial({"--m=-1.5,2,3", good_P}), {"--m", "expected 2 values, found 3"});
+  }
+  SECTION("--m not a number") {
+    check_option_error(eval_partial({"--m=-1.5,abc", good_P}), {"--m", "'abc' is not a number"});
+    check_option_error(eval_partial({"--m=1,,2", good_P}), {"--m", "'' is not a number"});
+    check_option_error(eval_partial({"--m=0x10,2", good_P}), {"--m", "'0x10' is not a number"});
+    check_option_error(eval_partial({"--m=nan,2", good_P}), {"--m", "'nan' is not a number"});
+    // An exact rational with 10^11 digits would exhaust memory.
+    check_option_error(eval_partial({"--m=1e99999999999,2", good_P}), {"--m", "is not a number"});
+  }
+  SECTION("--P with the wrong shape") {
+    check_option_error(eval_partial({"--m=-1.5,2", "--P=0.5,-0.2"}), {"--P", "expected 2 rows, found 1"});
+    check_option_error(eval_partial({"--m=-1.5,2", "--P=0.5,-0.2;-0.2"}), {"--P", "row 2 has 1 values"});
+    check_option_error(eval_partial({"--m=-1.5,2", "--P=1,0;0,1;0,0"}), {"--P", "expected 2 rows, found 3"});
+  }
+  SECTION("--P asymmetric") {
+    check_option_error(eval_partial({"--m=-1.5,2", "--P=0.5,-0.2;0.2,0.3"}),
+                       {"--P", "not symmetric", "row 1 column 2"});
+  }
+  SECTION("--P not a number") {
+    check_option_error(eval_partial({"--m=-1.5,2", "--P=0.5,-0.2;-0.2,x"}), {"--P", "'x' is not a number"});
+  }
+  SECTION("--t not a number") {
+    check_option_error(eval_partial({"--m=-1.5,2", good_P, "--t=soon"}), {"--t", "'soon' is not a number"});
+  }
+  SECTION("--set of an unknown parameter or without a value") {
+    check_option_error(eval_partial({"--m=-1.5,2", good_P, "--set", "a=1"}),
+                       {"--set", "has no parameter 'a'"});
+    check_option_error(eval_partial({"--m=-1.5,2", good_P, "--set", "a"}), {"--set", "expected name=value"});
+    check_option_error(eval_partial({"--m=-1.5,2", good_P, "--set", "=1"}), {"--set", "expected name=value"});
+  }
+  SECTION("--filter unknown or not supported by the model") {
+    check_option_error(run_pfgen({"eval", example("basin_skliar_partial.yaml"), "--filter", "kalman", "--m=1,2",
+                                  good_P}),
+                       {"--filter", "unknown filter kind 'kalman'"});
+    check_option_error(run_pfgen({"eval", example("basin_skliar_partial.yaml"), "--filter", "additive",
+                                  "--m=1,2", good_P}),
+                       {"--filter", "needs additive_diffusion"});
+  }
+  SECTION("a missing option is one line too") {
+    check_option_error(eval_partial({"--m=-1.5,2"}), {"--P is required"});
+  }
+}
+
+TEST_CASE("latex -o to an unwritable place gives one error line and leaves nothing", "[cli][bad_input]") {
+  TempDir dir;
+  check_option_error(run_pfgen({"latex", example("basin2006_quadratic.yaml"), "-o", dir.file("no/such/dir/out.tex")}),
+                     {"-o", "cannot write"});
+  std::filesystem::create_directory(dir.file("taken.tex"));
+  check_option_error(run_pfgen({"latex", example("basin2006_quadratic.yaml"), "-o", dir.file("taken.tex")}),
+                     {"-o", "cannot write"});
+  CHECK(dir.entries() == std::vector<std::string>{"taken.tex"});
+  CHECK(std::filesystem::is_empty(dir.file("taken.tex")));
+  check_option_error(run_pfgen({"latex", example("basin2006_quadratic.yaml"), "--filter", "optimal,bogus", "-o",
+                                dir.file("out.tex")}),
+                     {"--filter", "unknown filter kind 'bogus'"});
+  CHECK(dir.entries() == std::vector<std::string>{"taken.tex"});
+}

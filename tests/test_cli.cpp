@@ -1,0 +1,435 @@
+// The `pfgen` program end to end: eval against hand-computed values, derive's
+// JSON, negative numbers on the command line, and byte-identical output from
+// separate processes (GiNaC's term order follows memory addresses, so only
+// separate runs show an order that leaks into the output).
+#include <catch2/catch.hpp>
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "support/cli_helpers.hpp"
+
+using namespace pfgen_test;
+
+namespace {
+
+// ---- a small strict JSON reader, enough to check pfgen's output ----
+
+struct JsonValue {
+  enum class Kind { Null, Boolean, Number, String, Array, Object } kind = Kind::Null;
+  bool boolean = false;
+  double number = 0;
+  std::string text;
+  std::vector<JsonValue> items;
+  std::vector<std::pair<std::string, JsonValue>> members;
+
+  bool has(const std::string& key) const {
+    for (const auto& m : members)
+      if (m.first == key) return true;
+    return false;
+  }
+  const JsonValue& operator[](const std::string& key) const {
+    for (const auto& m : members)
+      if (m.first == key) return m.second;
+    throw std::runtime_error("no key '" + key + "'");
+  }
+  const JsonValue& operator[](std::size_t k) const { return items.at(k); }
+  std::vector<std::string> keys() const {
+    std::vector<std::string> out;
+    for (const auto& m : members) out.push_back(m.first);
+    return out;
+  }
+};
+
+class JsonReader {
+ public:
+  explicit JsonReader(const std::string& text) : s_(text) {}
+
+  JsonValue document() {
+    JsonValue v = value();
+    space();
+    if (i_ != s_.size()) fail("trailing characters");
+    return v;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& why) const {
+    throw std::runtime_error("invalid JSON at offset " + std::to_string(i_) + ": " + why);
+  }
+  void space() {
+    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\n' || s_[i_] == '\t' || s_[i_] == '\r')) ++i_;
+  }
+  void expect(char c) {
+    space();
+    if (i_ >= s_.size() || s_[i_] != c) fail(std::string("expected '") + c + "'");
+    ++i_;
+  }
+  bool literal(const std::string& word) {
+    if (s_.compare(i_, word.size(), word) != 0) return false;
+    i_ += word.size();
+    return true;
+  }
+  std::string string() {
+    expect('"');
+    std::string out;
+    while (true) {
+      if (i_ >= s_.size()) fail("unterminated string");
+      char c = s_[i_++];
+      if (c == '"') return out;
+      if (static_cast<unsigned char>(c) < 0x20) fail("control character in string");
+      if (c != '\\') {
+        out += c;
+        continue;
+      }
+      if (i_ >= s_.size()) fail("unterminated escape");
+      char e = s_[i_++];
+      switch (e) {
+        case '"': case '\\': case '/': out += e; break;
+        case 'n': out += '\n'; break;
+        case 't': out += '\t'; break;
+        case 'r': out += '\r'; break;
+        case 'b': out += '\b'; break;
+        case 'f': out += '\f'; break;
+        case 'u':
+          if (i_ + 4 > s_.size()) fail("short \\u escape");
+          out += '?';
+          i_ += 4;
+          break;
+        default: fail("bad escape");
+      }
+    }
+  }
+  JsonValue value() {
+    space();
+    if (i_ >= s_.size()) fail("unexpected end");
+    JsonValue v;
+    char c = s_[i_];
+    if (c == '{') {
+      v.kind = JsonValue::Kind::Object;
+      ++i_;
+      space();
+      if (i_ < s_.size() && s_[i_] == '}') return ++i_, v;
+      while (true) {
+        std::string key = string();
+        expect(':');
+        v.members.emplace_back(key, value());
+        space();
+        if (i_ < s_.size() && s_[i_] == ',') { ++i_; continue; }
+        expect('}');
+        return v;
+      }
+    }
+    if (c == '[') {
+      v.kind = JsonValue::Kind::Array;
+      ++i_;
+      space();
+      if (i_ < s_.size() && s_[i_] == ']') return ++i_, v;
+      while (true) {
+        v.items.push_back(value());
+        space();
+        if (i_ < s_.size() && s_[i_] == ',') { ++i_; continue; }
+        expect(']');
+        return v;
+      }
+    }
+    if (c == '"') {
+      v.kind = JsonValue::Kind::String;
+      v.text = string();
+      return v;
+    }
+    if (literal("true")) { v.kind = JsonValue::Kind::Boolean; v.boolean = true; return v; }
+    if (literal("false")) { v.kind = JsonValue::Kind::Boolean; return v; }
+    if (literal("null")) return v;
+    // number: -?(0|[1-9][0-9]*)(\.[0-9]+)?([eE][+-]?[0-9]+)?
+    std::size_t start = i_;
+    if (s_[i_] == '-') ++i_;
+    auto digits = [&] {
+      std::size_t from = i_;
+      while (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_]))) ++i_;
+      if (i_ == from) fail("expected a digit");
+    };
+    if (i_ < s_.size() && s_[i_] == '0') ++i_; else digits();
+    if (i_ < s_.size() && s_[i_] == '.') { ++i_; digits(); }
+    if (i_ < s_.size() && (s_[i_] == 'e' || s_[i_] == 'E')) {
+      ++i_;
+      if (i_ < s_.size() && (s_[i_] == '+' || s_[i_] == '-')) ++i_;
+      digits();
+    }
+    v.kind = JsonValue::Kind::Number;
+    v.number = std::strtod(s_.substr(start, i_ - start).c_str(), nullptr);
+    return v;
+  }
+
+  const std::string& s_;
+  std::size_t i_ = 0;
+};
+
+JsonValue parse_json(const std::string& text) { return JsonReader(text).document(); }
+
+// ---- running eval ----
+
+struct Evaluated {
+  std::vector<double> m_drift;
+  std::vector<std::vector<double>> gain;
+  std::vector<std::vector<double>> P_drift;
+};
+
+std::vector<double> numbers(const JsonValue& array) {
+  REQUIRE(array.kind == JsonValue::Kind::Array);
+  std::vector<double> out;
+  for (const auto& item : array.items) {
+    REQUIRE(item.kind == JsonValue::Kind::Number);
+    out.push_back(item.number);
+  }
+  return out;
+}
+
+Evaluated eval(const std::vector<std::string>& args) {
+  std::vector<std::string> full = {"eval"};
+  full.insert(full.end(), args.begin(), args.end());
+  ProcessResult r = run_pfgen(full);
+  INFO("stderr: " << r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.err.empty());
+  JsonValue j = parse_json(r.out);
+  REQUIRE(j.kind == JsonValue::Kind::Object);
+  CHECK(j.keys() == std::vector<std::string>{"model", "filter", "m_drift", "gain", "P_drift"});
+  Evaluated e;
+  e.m_drift = numbers(j["m_drift"]);
+  for (const auto& row : j["gain"].items) e.gain.push_back(numbers(row));
+  for (const auto& row : j["P_drift"].items) e.P_drift.push_back(numbers(row));
+  return e;
+}
+
+// |a - b| <= 1e-12, with a readable message.
+void check_close(double actual, double expected, const std::string& what) {
+  INFO(what << ": pfgen " << actual << ", by hand " << expected);
+  CHECK(std::fabs(actual - expected) <= 1e-12);
+}
+
+const std::vector<std::string> kAllKinds = {"optimal", "ekf", "additive", "ekf-additive"};
+
+}  // namespace
+
+TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed filters", "[cli]") {
+  const std::string model = example("basin2006_quadratic.yaml");
+  const double m = -1.5, P = 0.5;
+  struct Expected {
+    std::string kind;
+    double m_drift, gain, P_drift;
+  };
+  // dx = 0.1 x^2 dt + 0.1 x^2 dW1, dy = x dt + dW2 (paper 000 eqs 21-22); the
+  // additive kinds use 0.1 dW1; the EKF linearises f = 0.1 x^2 at m (f' = 0.2 m).
+  const std::vector<Expected> cases = {
+      {"optimal", 0.1 * (m * m + P), P,
+       0.4 * m * P + 0.03 * P * P + 0.06 * m * m * P + 0.01 * std::pow(m, 4) - P * P},
+      {"ekf", 0.1 * m * m, P, 2 * 0.2 * m * P + 0.01 * std::pow(m, 4) - P * P},
+      {"additive", 0.1 * (m * m + P), P, 0.4 * m * P + 0.01 - P * P},
+      {"ekf-additive", 0.1 * m * m, P, 2 * 0.2 * m * P + 0.01 - P * P},
+  };
+  for (const auto& c : cases) {
+    INFO("filter " << c.kind);
+    Evaluated e = eval({model, "--filter", c.kind, "--m=-1.5", "--P", "0.5"});
+    REQUIRE(e.m_drift.size() == 1);
+    REQUIRE(e.gain.size() == 1);
+    REQUIRE(e.gain[0].size() == 1);
+    REQUIRE(e.P_drift.size() == 1);
+    REQUIRE(e.P_drift[0].size() == 1);
+    check_close(e.m_drift[0], c.m_drift, "m_drift");
+    check_close(e.gain[0][0], c.gain, "gain");
+    check_close(e.P_drift[0][0], c.P_drift, "P_drift");
+  }
+  // The optimal value itself, written out: -0.3 + 0.0075 + 0.0675 + 0.050625 - 0.25.
+  Evaluated optimal = eval({model, "--filter", "optimal", "--m=-1.5", "--P", "0.5"});
+  check_close(optimal.P_drift[0][0], -0.424375, "optimal P_drift");
+  check_close(optimal.m_drift[0], 0.275, "optimal m_drift");
+}
+
+TEST_CASE("eval accepts negative numbers in every spelling of the options", "[cli]") {
+  const std::string model = example("basin2006_quadratic.yaml");
+  ProcessResult joined = run_pfgen({"eval", model, "--filter", "optimal", "--m=-1.5", "--P=0.5", "--t=-2"});
+  ProcessResult separate = run_pfgen({"eval", model, "--filter", "optimal", "--m", "-1.5", "--P", "0.5", "--t", "-2"});
+  INFO(joined.err << separate.err);
+  REQUIRE(joined.exit_code == 0);
+  REQUIRE(separate.exit_code == 0);
+  CHECK(joined.out == separate.out);
+  // -1.5, -15e-1 and -3/2 written as a decimal are the same exact number.
+  ProcessResult exponent = run_pfgen({"eval", model, "--filter", "optimal", "--m=-15e-1", "--P=5e-1"});
+  REQUIRE(exponent.exit_code == 0);
+  CHECK(exponent.out == joined.out);
+  CHECK(parse_json(joined.out)["m_drift"][0].number == Approx(0.275).margin(1e-15));
+}
+
+TEST_CASE("eval of basin_skliar_partial with negative entries matches the hand-computed filter", "[cli]") {
+  // dx1 = 0.1 (x1^2 + x2) dt, dx2 = 0.1 x2 dt, dy = x1 dt + dW2 (paper 001).
+  const double m1 = -1.5, m2 = 2, P11 = 0.5, P12 = -0.2, P22 = 0.3;
+  Evaluated e = eval({example("basin_skliar_partial.yaml"), "--filter", "optimal", "--m=-1.5,2",
+                      "--P=0.5,-0.2;-0.2,0.3"});
+  REQUIRE(e.m_drift.size() == 2);
+  REQUIRE(e.gain.size() == 2);
+  REQUIRE(e.P_drift.size() == 2);
+  for (const auto& row : e.gain) REQUIRE(row.size() == 1);
+  for (const auto& row : e.P_drift) REQUIRE(row.size() == 2);
+  check_close(e.m_drift[0], 0.1 * (m1 * m1 + P11 + m2), "m_drift[1]");
+  check_close(e.m_drift[1], 0.1 * m2, "m_drift[2]");
+  check_close(e.gain[0][0], P11, "gain[1][1]");
+  check_close(e.gain[1][0], P12, "gain[2][1]");
+  // E[(x-m) f^T] + E[f (x-m)^T] - P A^T A P, A = (1 0).
+  const double dP11 = 2 * (0.2 * m1 * P11 + 0.1 * P12) - P11 * P11;
+  const double dP12 = 0.2 * m1 * P12 + 0.1 * P22 + 0.1 * P12 - P11 * P12;
+  const double dP22 = 2 * 0.1 * P22 - P12 * P12;
+  check_close(e.P_drift[0][0], dP11, "P_drift[1][1]");
+  check_close(e.P_drift[0][1], dP12, "P_drift[1][2]");
+  check_close(e.P_drift[1][0], dP12, "P_drift[2][1]");
+  check_close(e.P_drift[1][1], dP22, "P_drift[2][2]");
+  check_close(e.P_drift[0][1], 0.17, "P_drift[1][2] written out");
+}
+
+TEST_CASE("eval --set overrides parameter defaults, negative values included", "[cli]") {
+  TempDir dir;
+  // Kalman-Bucy: dx = a x dt + s dW1, dy = c x dt + dW2.
+  write_file(dir.file("kb.yaml"),
+             "name: kalman_bucy_scalar\n"
+             "states: [x]\n"
+             "parameters: {a: -1, s: 0.5, c: 2}\n"
+             "drift: [\"a*x\"]\n"
+             "diffusion: [[\"s\"]]\n"
+             "observation:\n"
+             "  A: [[\"c\"]]\n"
+             "  B: [[\"1\"]]\n");
+  const double m = -0.75, P = 0.4;
+  auto check = [&](const Evaluated& e, double a, double s, double c) {
+    check_close(e.m_drift[0], a * m, "m_drift");
+    check_close(e.gain[0][0], P * c, "gain");
+    check_close(e.P_drift[0][0], 2 * a * P + s * s - c * c * P * P, "P_drift");
+  };
+  check(eval({dir.file("kb.yaml"), "--filter", "optimal", "--m=-0.75", "--P=0.4"}), -1, 0.5, 2);
+  check(eval({dir.file("kb.yaml"), "--filter", "optimal", "--m=-0.75", "--P=0.4", "--set", "a=-0.25", "--set",
+              "c=-3"}),
+        -0.25, 0.5, -3);
+  check(eval({dir.file("kb.yaml"), "--filter", "ekf", "--m=-0.75", "--P=0.4", "--set=s=1.5"}), -1, 1.5, 2);
+}
+
+TEST_CASE("derive --format json is a JSON object with the documented keys", "[cli]") {
+  struct Case {
+    std::string file;
+    std::vector<std::string> kinds;
+    std::size_t n, p;
+  };
+  for (const auto& c : {Case{"basin2006_quadratic.yaml", kAllKinds, 1, 1},
+                        Case{"basin_skliar_partial.yaml", {"optimal", "ekf"}, 2, 1}}) {
+    for (const auto& kind : c.kinds) {
+      INFO(c.file << " --filter " << kind);
+      ProcessResult r = run_pfgen({"derive", example(c.file), "--filter", kind, "--format", "json"});
+      INFO("stderr: " << r.err);
+      REQUIRE(r.exit_code == 0);
+      CHECK(r.err.empty());
+      JsonValue j = parse_json(r.out);
+      REQUIRE(j.kind == JsonValue::Kind::Object);
+      for (const std::string key : {"model", "filter", "description", "exactness", "variables", "m_drift", "gain",
+                                    "predicted_observation", "P_drift"})
+        CHECK(j.has(key));
+      CHECK(j["model"].text == c.file.substr(0, c.file.size() - 5));
+      CHECK(j["filter"].text == kind);
+      CHECK(j["exactness"]["exact"].kind == JsonValue::Kind::Boolean);
+      CHECK(j["variables"].items.size() == c.n + c.n * (c.n + 1) / 2);
+      REQUIRE(j["m_drift"].items.size() == c.n);
+      for (const auto& entry : j["m_drift"].items) {
+        CHECK(entry.kind == JsonValue::Kind::String);
+        CHECK(!entry.text.empty());
+      }
+      REQUIRE(j["gain"].items.size() == c.n);
+      for (const auto& row : j["gain"].items) CHECK(row.items.size() == c.p);
+      REQUIRE(j["P_drift"].items.size() == c.n);
+      for (std::size_t i = 0; i < c.n; ++i) {
+        REQUIRE(j["P_drift"][i].items.size() == c.n);
+        for (std::size_t k = 0; k < c.n; ++k) CHECK(j["P_drift"][i][k].text == j["P_drift"][k][i].text);
+      }
+      CHECK(j["predicted_observation"].items.size() == c.p);
+    }
+  }
+  // The paper 000 optimal filter, as the JSON spells it.
+  JsonValue j = parse_json(run_pfgen({"derive", example("basin2006_quadratic.yaml"), "--format", "json"}).out);
+  CHECK(j["m_drift"][0].text == "0.1*m1^2 + 0.1*P11");
+  CHECK(j["gain"][0][0].text == "P11");
+  CHECK(j["exactness"]["exact"].boolean);
+}
+
+TEST_CASE("derive, latex and eval are byte-identical across separate processes", "[cli][determinism]") {
+  struct Case {
+    std::string file;
+    std::vector<std::string> kinds;
+    std::string m, P;
+  };
+  const std::vector<Case> cases = {
+      {"basin2006_quadratic.yaml", kAllKinds, "--m=-1.5", "--P=0.5"},
+      {"basin_skliar_partial.yaml", {"optimal", "ekf"}, "--m=-1.5,2", "--P=0.5,-0.2;-0.2,0.3"},
+  };
+  auto same_three_times = [](const std::vector<std::string>& args) {
+    std::vector<ProcessResult> runs;
+    for (int k = 0; k < 3; ++k) runs.push_back(run_pfgen(args));
+    INFO("stderr: " << runs[0].err);
+    REQUIRE(runs[0].exit_code == 0);
+    CHECK(!runs[0].out.empty());
+    for (int k = 1; k < 3; ++k) {
+      CHECK(runs[k].exit_code == 0);
+      CHECK(runs[k].out == runs[0].out);
+      CHECK(runs[k].err == runs[0].err);
+    }
+  };
+  for (const auto& c : cases) {
+    const std::string model = example(c.file);
+    for (const auto& kind : c.kinds) {
+      for (const std::string format : {"text", "latex", "json"}) {
+        INFO("derive " << c.file << " --filter " << kind << " --format " << format);
+        same_three_times({"derive", model, "--filter", kind, "--format", format});
+      }
+      INFO("eval " << c.file << " --filter " << kind);
+      same_three_times({"eval", model, "--filter", kind, c.m, c.P});
+    }
+    INFO("latex " << c.file);
+    TempDir dir;
+    std::vector<std::string> documents;
+    for (int k = 0; k < 3; ++k) {
+      const std::string out = dir.file("run" + std::to_string(k) + ".tex");
+      ProcessResult r = run_pfgen({"latex", model, "-o", out});
+      INFO("stderr: " << r.err);
+      REQUIRE(r.exit_code == 0);
+      CHECK(r.out.empty());
+      CHECK(r.err.empty());
+      documents.push_back(read_file(out));
+    }
+    CHECK(!documents[0].empty());
+    CHECK(documents[1] == documents[0]);
+    CHECK(documents[2] == documents[0]);
+    // Only the three documents: no temporary file left behind.
+    CHECK(dir.entries() == std::vector<std::string>{"run0.tex", "run1.tex", "run2.tex"});
+  }
+}
+
+TEST_CASE("latex --filter writes the requested filters only, and overwrites atomically", "[cli]") {
+  TempDir dir;
+  const std::string out = dir.file("doc.tex");
+  write_file(out, "old contents\n");
+  ProcessResult r = run_pfgen({"latex", example("basin2006_quadratic.yaml"), "--filter", "ekf,additive", "-o", out});
+  INFO("stderr: " << r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string tex = read_file(out);
+  CHECK(tex.find("old contents") == std::string::npos);
+  CHECK(tex.find("\\section*{Filter \\texttt{ekf}}") != std::string::npos);
+  CHECK(tex.find("\\section*{Filter \\texttt{additive}}") != std::string::npos);
+  CHECK(tex.find("\\section*{Filter \\texttt{optimal}}") == std::string::npos);
+  CHECK(tex.find("\\section*{Filter \\texttt{ekf-additive}}") == std::string::npos);
+  CHECK(dir.entries() == std::vector<std::string>{"doc.tex"});
+  // A failing run leaves the previous document untouched.
+  ProcessResult bad = run_pfgen({"latex", test_data_dir() + "/bad/nonpoly_sin.yaml", "-o", out});
+  CHECK(bad.exit_code != 0);
+  CHECK(read_file(out) == tex);
+  CHECK(dir.entries() == std::vector<std::string>{"doc.tex"});
+}
