@@ -1,11 +1,14 @@
 #include "commands.hpp"
 
 #include <cstdio>
+#include <filesystem>
+#include <regex>
 #include <fstream>
 #include <iostream>
 #include <unistd.h>
 
 #include "cli_options.hpp"
+#include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
@@ -40,6 +43,63 @@ void write_file_atomically(const std::string& path, const std::string& contents)
     std::remove(temporary.c_str());
     throw CliValueError("-o: cannot write '" + path + "'");
   }
+}
+
+int run_codegen(const CodegenCliOptions& options) {
+  Model model = load_model_file(options.model_path);
+  if (options.output_dir.empty() && !options.stats) throw CliValueError("-o: give an output directory (or --stats)");
+  if (!std::regex_match(options.name_space, std::regex("[A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)*")))
+    throw CliValueError("--namespace: '" + options.name_space + "' is not a C++ namespace name");
+  codegen::CodegenOptions codegen_options;
+  codegen_options.scalar = options.scalar == "float"    ? codegen::ScalarMode::Float
+                           : options.scalar == "double" ? codegen::ScalarMode::Double
+                                                        : codegen::ScalarMode::Template;
+  codegen_options.name_space = options.name_space;
+  codegen_options.eliminate_common_subexpressions = !options.no_cse;
+  // Everything is generated in memory first: a failure leaves no partial output.
+  std::vector<codegen::GeneratedFilter> files;
+  for (FilterKind kind : parse_filter_list(options.filters, model))
+    files.push_back(codegen::generate_filter_code(model, derive_filter(model, kind), codegen_options));
+  if (!options.output_dir.empty()) {
+    for (const auto& file : files) {
+      std::filesystem::path path = std::filesystem::path(options.output_dir) / file.relative_path;
+      std::error_code error;
+      std::filesystem::create_directories(path.parent_path(), error);
+      if (error) throw CliValueError("-o: cannot create directory '" + path.parent_path().string() + "'");
+      write_file_atomically(path.string(), file.contents);
+    }
+  }
+  if (options.stats) {
+    auto counts = [](const codegen::OpCounts& c) {
+      Json o = Json::object();
+      o.add("adds", Json::number(static_cast<double>(c.adds)));
+      o.add("muls", Json::number(static_cast<double>(c.muls)));
+      o.add("divs", Json::number(static_cast<double>(c.divs)));
+      o.add("calls", Json::number(static_cast<double>(c.calls)));
+      o.add("total", Json::number(static_cast<double>(c.total())));
+      return o;
+    };
+    for (const auto& file : files) {
+      Json functions = Json::array();
+      for (const auto& f : file.functions) {
+        Json entry = Json::object();
+        entry.add("function", Json::string(f.function));
+        entry.add("naive", counts(f.naive));
+        entry.add("cse", counts(f.cse));
+        functions.push(entry);
+      }
+      Json out = Json::object();
+      out.add("model", Json::string(model.name));
+      out.add("filter", Json::string(filter_kind_name(file.kind)));
+      out.add("ops_naive", Json::number(static_cast<double>(file.naive_total().total())));
+      out.add("ops_cse", Json::number(static_cast<double>(file.cse_total().total())));
+      out.add("naive", counts(file.naive_total()));
+      out.add("cse", counts(file.cse_total()));
+      out.add("functions", functions);
+      std::cout << out.dump_line();
+    }
+  }
+  return 0;
 }
 
 int run_derive(const DeriveOptions& options) {

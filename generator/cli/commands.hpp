@@ -27,6 +27,17 @@ struct EvalOptions {
   std::vector<std::string> assignments;
 };
 
+struct CodegenCliOptions {
+  std::string model_path;
+  std::string output_dir;  // may be empty with --stats
+  std::string filters;     // comma-separated; empty: every kind the model supports
+  std::string scalar = "template";
+  std::string name_space = "pfgen_models";
+  bool stats = false;
+  bool no_cse = false;     // benchmark baseline only
+};
+
+int run_codegen(const CodegenCliOptions& options);
 int run_derive(const DeriveOptions& options);
 int run_latex(const LatexOptions& options);
 int run_eval(const EvalOptions& options);

@@ -53,6 +53,18 @@ int main(int argc, char** argv) {
   eval_cmd->add_option("--P", eval.P, "Covariance, rows separated by ';': --P '1,0;0,1'")->required();
   eval_cmd->add_option("--set", eval.assignments, "Parameter value, name=value (repeatable)");
 
+  CodegenCliOptions codegen;
+  CLI::App* codegen_cmd = app.add_subcommand("codegen", "Write header-only C++ of a model's filters");
+  codegen_cmd->add_option("MODEL", codegen.model_path, "Model file (YAML)")->required();
+  codegen_cmd->add_option("-o,--output", codegen.output_dir, "Output directory; files go to DIR/<model>/<filter>.hpp");
+  codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filter kinds (default: every kind the model supports)");
+  codegen_cmd->add_option("--scalar", codegen.scalar, "float | double | template")
+      ->check(CLI::IsMember({"float", "double", "template"}))
+      ->capture_default_str();
+  codegen_cmd->add_option("--namespace", codegen.name_space, "Outer C++ namespace")->capture_default_str();
+  codegen_cmd->add_flag("--stats", codegen.stats, "Print operation counts as JSON, one line per filter kind");
+  codegen_cmd->add_flag("--no-cse", codegen.no_cse, "Emit without common-subexpression elimination (benchmark baseline)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -60,6 +72,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*derive_cmd) return run_derive(derive);
+    if (*codegen_cmd) return run_codegen(codegen);
     if (*latex_cmd) return run_latex(latex);
     if (*eval_cmd) return run_eval(eval);
   } catch (const pfgen::ModelError& e) {

@@ -59,6 +59,34 @@ Monomial Monomial::without_one(std::uint32_t index) const {
 
 // ---- Polynomial ----
 
+namespace {
+
+bool displays_before(const Monomial& a, const Monomial& b) {
+  if (a.degree() != b.degree()) return a.degree() > b.degree();
+  const auto& fa = a.factors();
+  const auto& fb = b.factors();
+  std::size_t i = 0, j = 0;
+  while (i < fa.size() || j < fb.size()) {
+    std::uint32_t va = i < fa.size() ? fa[i].first : UINT32_MAX;
+    std::uint32_t vb = j < fb.size() ? fb[j].first : UINT32_MAX;
+    std::uint32_t ea = va <= vb ? fa[i].second : 0;
+    std::uint32_t eb = vb <= va ? fb[j].second : 0;
+    if (ea != eb) return ea > eb;
+    if (va <= vb) ++i;
+    if (vb <= va) ++j;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::pair<Monomial, GiNaC::ex>> Polynomial::ordered_terms() const {
+  std::vector<std::pair<Monomial, GiNaC::ex>> ordered(terms_.begin(), terms_.end());
+  std::stable_sort(ordered.begin(), ordered.end(),
+                   [](const auto& a, const auto& b) { return displays_before(a.first, b.first); });
+  return ordered;
+}
+
 Polynomial Polynomial::constant(const GiNaC::ex& c) {
   Polynomial p;
   p.add_term(Monomial(), c);

@@ -5,25 +5,6 @@
 namespace pfgen {
 namespace {
 
-// Polynomial term order: total degree descending, then the exponent of the
-// lowest-numbered variable where two monomials differ, larger first.
-bool prints_before(const Monomial& a, const Monomial& b) {
-  if (a.degree() != b.degree()) return a.degree() > b.degree();
-  const auto& fa = a.factors();
-  const auto& fb = b.factors();
-  std::size_t i = 0, j = 0;
-  while (i < fa.size() || j < fb.size()) {
-    std::uint32_t va = i < fa.size() ? fa[i].first : UINT32_MAX;
-    std::uint32_t vb = j < fb.size() ? fb[j].first : UINT32_MAX;
-    std::uint32_t ea = va <= vb ? fa[i].second : 0;
-    std::uint32_t eb = vb <= va ? fb[j].second : 0;
-    if (ea != eb) return ea > eb;
-    if (va <= vb) ++i;
-    if (vb <= va) ++j;
-  }
-  return false;
-}
-
 bool is_negative_integer_power(const GiNaC::ex& e) {
   return GiNaC::is_exactly_a<GiNaC::power>(e) && e.op(1).info(GiNaC::info_flags::negint);
 }
@@ -47,11 +28,8 @@ std::string ExpressionPrinter::print(const GiNaC::ex& e) const {
 }
 
 std::string ExpressionPrinter::print(const Polynomial& p, const VariableNamer& name) const {
-  std::vector<std::pair<Monomial, GiNaC::ex>> ordered(p.terms().begin(), p.terms().end());
-  std::stable_sort(ordered.begin(), ordered.end(),
-                   [](const auto& a, const auto& b) { return prints_before(a.first, b.first); });
   std::vector<Term> terms;
-  for (const auto& [monomial, coefficient] : ordered) {
+  for (const auto& [monomial, coefficient] : p.ordered_terms()) {
     Term term;
     if (GiNaC::is_exactly_a<GiNaC::add>(coefficient)) {
       term.numerator_factors.push_back(parenthesized(print(coefficient)));

@@ -89,7 +89,7 @@ void Json::write(std::string& out, int indent) const {
       out += scalar_;
       return;
     case Kind::Array: {
-      if (is_scalar_array()) {
+      if (is_scalar_array() || indent < 0) {
         out += "[";
         for (std::size_t k = 0; k < items_.size(); ++k) {
           if (k) out += ", ";
@@ -112,6 +112,15 @@ void Json::write(std::string& out, int indent) const {
         out += "{}";
         return;
       }
+      if (indent < 0) {
+        out += "{";
+        for (std::size_t k = 0; k < items_.size(); ++k) {
+          out += (k ? ", " : "") + json_quote(keys_[k]) + ": ";
+          items_[k].write(out, -1);
+        }
+        out += "}";
+        return;
+      }
       out += "{\n";
       for (std::size_t k = 0; k < items_.size(); ++k) {
         out += pad + json_quote(keys_[k]) + ": ";
@@ -122,6 +131,12 @@ void Json::write(std::string& out, int indent) const {
       return;
     }
   }
+}
+
+std::string Json::dump_line() const {
+  std::string out;
+  write(out, -1);
+  return out + "\n";
 }
 
 std::string Json::dump() const {

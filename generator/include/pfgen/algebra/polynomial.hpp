@@ -47,6 +47,10 @@ class Polynomial {
   GiNaC::ex to_ex(const std::vector<GiNaC::ex>& variables) const;
 
   const Terms& terms() const { return terms_; }
+  // The terms in pfgen's canonical display order: total degree descending,
+  // then the exponent of the lowest-numbered variable where two monomials
+  // differ, larger first. Printers and the code generator both use it.
+  std::vector<std::pair<Monomial, GiNaC::ex>> ordered_terms() const;
   bool is_zero() const { return terms_.empty(); }
   std::uint32_t degree() const;
 

@@ -20,10 +20,12 @@ class Json {
 
   // Pretty-printed: one member per line; arrays of scalars stay on one line.
   std::string dump() const;
+  // On one line, for JSON Lines output (one object per line).
+  std::string dump_line() const;
 
  private:
   enum class Kind { String, Number, Boolean, Array, Object };
-  void write(std::string& out, int indent) const;
+  void write(std::string& out, int indent) const;  // indent < 0: compact
   bool is_scalar_array() const;
   Kind kind_ = Kind::Object;
   std::string scalar_;

@@ -1,0 +1,38 @@
+#pragma once
+// Generates the header-only C++ of one filter kind from templates/cpp/filter.hpp.tmpl.
+// Generated API (namespace <NS>::<model>::<kind>, kind with '-' written '_'):
+//   n, p, state_size; Params<Scalar>; derivatives(); gain(); predicted_observation();
+//   initial_state(); step()  -- see the template for their contracts.
+#include <string>
+
+#include "pfgen/codegen/cpp_emitter.hpp"
+#include "pfgen/derivation/filter_equations.hpp"
+
+namespace pfgen::codegen {
+
+struct CodegenOptions {
+  ScalarMode scalar = ScalarMode::Template;
+  std::string name_space = "pfgen_models";
+  bool eliminate_common_subexpressions = true;  // false only for the benchmark's baseline
+};
+
+struct FunctionStats {
+  std::string function;  // derivatives, gain, predicted_observation
+  OpCounts naive;        // every output evaluated as its own expression tree
+  OpCounts cse;          // after common-subexpression elimination
+};
+
+struct GeneratedFilter {
+  FilterKind kind;
+  std::string relative_path;   // "<model>/<kind>.hpp"
+  std::string contents;
+  std::vector<FunctionStats> functions;
+  OpCounts naive_total() const;
+  OpCounts cse_total() const;
+};
+
+std::string kind_identifier(FilterKind kind);  // "ekf-additive" -> "ekf_additive"
+
+GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
+
+}  // namespace pfgen::codegen

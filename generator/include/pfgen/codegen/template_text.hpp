@@ -1,0 +1,16 @@
+#pragma once
+// Fills `{{key}}` placeholders in a template. Every placeholder must have a
+// value and every value a placeholder: a mismatch is a programming error in
+// pfgen, reported rather than silently producing broken code.
+#include <map>
+#include <string>
+
+namespace pfgen::codegen {
+
+std::string fill_template(const std::string& name, const std::string& text,
+                          const std::map<std::string, std::string>& values);
+
+// The template files of templates/, compiled into pfgen (see generator/CMakeLists.txt).
+const std::string& embedded_template(const std::string& relative_path);
+
+}  // namespace pfgen::codegen

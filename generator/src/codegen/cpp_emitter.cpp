@@ -1,0 +1,107 @@
+#include "pfgen/codegen/cpp_emitter.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+
+#include "pfgen/notation/number_format.hpp"
+
+namespace pfgen::codegen {
+namespace {
+
+std::string with_point(std::string text) {
+  if (text.find_first_of(".eE") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string shortest_float(float value) {
+  char buffer[40];
+  for (int precision = 1; precision <= 9; ++precision) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", precision, static_cast<double>(value));
+    if (std::strtof(buffer, nullptr) == value) break;
+  }
+  return buffer;
+}
+
+}  // namespace
+
+std::string scalar_mode_name(ScalarMode mode) {
+  switch (mode) {
+    case ScalarMode::Template: return "template";
+    case ScalarMode::Float: return "float";
+    case ScalarMode::Double: return "double";
+  }
+  return "?";
+}
+
+std::string CppEmitter::literal(const GiNaC::numeric& value) const {
+  const double d = value.to_double();
+  std::string text;
+  switch (mode_) {
+    case ScalarMode::Float: text = with_point(shortest_float(static_cast<float>(d))) + "f"; break;
+    case ScalarMode::Double: text = with_point(shortest_double(d)); break;
+    case ScalarMode::Template:
+      text = value.is_integer() && GiNaC::abs(value) < 1000000 ? "Scalar(" + shortest_double(d) + ")"
+                                                              : "Scalar(" + with_point(shortest_double(d)) + ")";
+      break;
+  }
+  return d < 0 ? "(" + text + ")" : text;
+}
+
+std::string CppEmitter::operation(const ExpressionGraph&, const Node& node,
+                                  const std::vector<std::string>& a) const {
+  switch (node.kind) {
+    case OpKind::Add: return a[0] + " + " + a[1];
+    case OpKind::Sub: return a[0] + " - " + a[1];
+    case OpKind::Mul: return a[0] + " * " + a[1];
+    case OpKind::Div: return a[0] + " / " + a[1];
+    case OpKind::Neg: return "-" + a[0];
+    case OpKind::Call: {
+      std::string out = node.name + "(";
+      for (std::size_t k = 0; k < a.size(); ++k) out += (k ? ", " : "") + a[k];
+      return out + ")";
+    }
+    case OpKind::Input: return node.name;
+    case OpKind::Constant: return literal(node.value);
+  }
+  return "?";
+}
+
+std::string CppEmitter::shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                                    const std::string& target) const {
+  std::map<std::size_t, std::string> names;
+  auto spell = [&](std::size_t id) {
+    if (graph.is_leaf(id)) return operation(graph, graph.node(id), {});
+    return names.at(id);
+  };
+  std::string body;
+  for (std::size_t id : graph.needed_operations(outputs)) {
+    const Node& node = graph.node(id);
+    std::vector<std::string> operands;
+    for (std::size_t arg : node.args) operands.push_back(spell(arg));
+    std::string name = "tmp" + std::to_string(names.size());
+    body += "  const Scalar " + name + " = " + operation(graph, node, operands) + ";\n";
+    names[id] = name;
+  }
+  for (std::size_t k = 0; k < outputs.size(); ++k)
+    body += "  " + target + "[" + std::to_string(k) + "] = " + spell(outputs[k]) + ";\n";
+  return body;
+}
+
+std::string CppEmitter::tree_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                                  const std::string& target) const {
+  std::function<std::string(std::size_t)> spell = [&](std::size_t id) -> std::string {
+    const Node& node = graph.node(id);
+    if (graph.is_leaf(id)) return operation(graph, node, {});
+    std::vector<std::string> operands;
+    for (std::size_t arg : node.args) operands.push_back(spell(arg));
+    std::string text = operation(graph, node, operands);
+    return node.kind == OpKind::Call ? text : "(" + text + ")";
+  };
+  std::string body;
+  for (std::size_t k = 0; k < outputs.size(); ++k)
+    body += "  " + target + "[" + std::to_string(k) + "] = " + spell(outputs[k]) + ";\n";
+  return body;
+}
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,94 @@
+#include "pfgen/codegen/expression_graph.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+namespace pfgen::codegen {
+namespace {
+
+OpCounts own_cost(const Node& node) {
+  OpCounts c;
+  switch (node.kind) {
+    case OpKind::Add: case OpKind::Sub: case OpKind::Neg: c.adds = 1; break;
+    case OpKind::Mul: c.muls = 1; break;
+    case OpKind::Div: c.divs = 1; break;
+    case OpKind::Call: c.calls = 1; break;
+    case OpKind::Input: case OpKind::Constant: break;
+  }
+  return c;
+}
+
+}  // namespace
+
+OpCounts& OpCounts::operator+=(const OpCounts& other) {
+  adds += other.adds;
+  muls += other.muls;
+  divs += other.divs;
+  calls += other.calls;
+  return *this;
+}
+
+std::size_t ExpressionGraph::intern(Node node) {
+  std::ostringstream value;
+  if (node.kind == OpKind::Constant) value << node.value;
+  Key key{static_cast<int>(node.kind), node.name, value.str(), node.args};
+  auto it = index_.find(key);
+  if (it != index_.end()) return it->second;
+  nodes_.push_back(std::move(node));
+  index_.emplace(std::move(key), nodes_.size() - 1);
+  return nodes_.size() - 1;
+}
+
+std::size_t ExpressionGraph::input(const std::string& spelling) { return intern(Node{OpKind::Input, spelling, 0, {}}); }
+
+std::size_t ExpressionGraph::constant(const GiNaC::numeric& value) { return intern(Node{OpKind::Constant, "", value, {}}); }
+
+// Commutative operations list their operands in a fixed order, so a*b and b*a share a node.
+std::size_t ExpressionGraph::add(std::size_t a, std::size_t b) {
+  return intern(Node{OpKind::Add, "", 0, {std::min(a, b), std::max(a, b)}});
+}
+std::size_t ExpressionGraph::sub(std::size_t a, std::size_t b) { return intern(Node{OpKind::Sub, "", 0, {a, b}}); }
+std::size_t ExpressionGraph::mul(std::size_t a, std::size_t b) {
+  return intern(Node{OpKind::Mul, "", 0, {std::min(a, b), std::max(a, b)}});
+}
+std::size_t ExpressionGraph::div(std::size_t a, std::size_t b) { return intern(Node{OpKind::Div, "", 0, {a, b}}); }
+std::size_t ExpressionGraph::neg(std::size_t a) { return intern(Node{OpKind::Neg, "", 0, {a}}); }
+std::size_t ExpressionGraph::call(const std::string& function, const std::vector<std::size_t>& args) {
+  return intern(Node{OpKind::Call, function, 0, args});
+}
+
+bool ExpressionGraph::is_leaf(std::size_t id) const {
+  return nodes_[id].kind == OpKind::Input || nodes_[id].kind == OpKind::Constant;
+}
+
+std::vector<std::size_t> ExpressionGraph::needed_operations(const std::vector<std::size_t>& outputs) const {
+  std::vector<bool> needed(nodes_.size(), false);
+  for (std::size_t out : outputs) needed[out] = true;
+  // Operands have smaller numbers than their users: one backward sweep marks everything needed.
+  for (std::size_t id = nodes_.size(); id-- > 0;)
+    if (needed[id])
+      for (std::size_t arg : nodes_[id].args) needed[arg] = true;
+  std::vector<std::size_t> order;
+  for (std::size_t id = 0; id < nodes_.size(); ++id)
+    if (needed[id] && !is_leaf(id)) order.push_back(id);
+  return order;
+}
+
+OpCounts ExpressionGraph::shared_counts(const std::vector<std::size_t>& outputs) const {
+  OpCounts total;
+  for (std::size_t id : needed_operations(outputs)) total += own_cost(nodes_[id]);
+  return total;
+}
+
+OpCounts ExpressionGraph::tree_counts(const std::vector<std::size_t>& outputs) const {
+  std::vector<OpCounts> tree(nodes_.size());
+  for (std::size_t id = 0; id < nodes_.size(); ++id) {
+    tree[id] = own_cost(nodes_[id]);
+    for (std::size_t arg : nodes_[id].args) tree[id] += tree[arg];
+  }
+  OpCounts total;
+  for (std::size_t out : outputs) total += tree[out];
+  return total;
+}
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,129 @@
+#include "pfgen/codegen/graph_builder.hpp"
+
+#include <algorithm>
+
+#include "pfgen/notation/text_printer.hpp"
+
+namespace pfgen::codegen {
+namespace {
+
+// GiNaC functions that have a <cmath> counterpart of the same meaning.
+const std::map<std::string, std::string> kFunctions = {
+    {"sin", "std::sin"},   {"cos", "std::cos"},   {"tan", "std::tan"},   {"exp", "std::exp"},
+    {"log", "std::log"},   {"sinh", "std::sinh"}, {"cosh", "std::cosh"}, {"tanh", "std::tanh"},
+    {"asin", "std::asin"}, {"acos", "std::acos"}, {"atan", "std::atan"}, {"abs", "std::abs"}};
+
+// Operands of sums and products in the order of their canonical text, so the
+// generated code does not depend on GiNaC's address-seeded term order.
+std::vector<GiNaC::ex> canonical_operands(const GiNaC::ex& e) {
+  std::vector<std::pair<std::string, GiNaC::ex>> keyed;
+  TextPrinter printer;
+  for (std::size_t k = 0; k < e.nops(); ++k) keyed.emplace_back(printer.print(e.op(k)), e.op(k));
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<GiNaC::ex> out;
+  for (auto& k : keyed) out.push_back(k.second);
+  return out;
+}
+
+}  // namespace
+
+GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, const FilterVariables& variables)
+    : graph_(graph) {
+  for (const auto& p : model.parameters) symbols_[p.symbol] = graph_.input("params." + p.name);
+  symbols_[model.time] = graph_.input("t");
+  for (std::size_t v = 0; v < variables.count(); ++v)
+    graph_.input("state[" + std::to_string(v) + "]");  // created in order: node v+offset is state[v]
+}
+
+std::size_t GraphBuilder::variable_power(std::uint32_t variable, std::uint32_t exponent) {
+  return integer_power(graph_.input("state[" + std::to_string(variable) + "]"), exponent);
+}
+
+std::size_t GraphBuilder::integer_power(std::size_t base, long exponent) {
+  if (exponent < 0) return graph_.div(graph_.constant(1), integer_power(base, -exponent));
+  if (exponent == 0) return graph_.constant(1);
+  if (exponent == 1) return base;
+  std::size_t half = integer_power(base, exponent / 2);
+  std::size_t square = graph_.mul(half, half);
+  return exponent % 2 ? graph_.mul(square, base) : square;
+}
+
+std::size_t GraphBuilder::monomial(const Monomial& m) {
+  std::size_t product = 0;
+  bool first = true;
+  for (const auto& [variable, exponent] : m.factors()) {
+    std::size_t power = variable_power(variable, exponent);
+    product = first ? power : graph_.mul(product, power);
+    first = false;
+  }
+  return first ? graph_.constant(1) : product;
+}
+
+std::size_t GraphBuilder::polynomial(const Polynomial& p) {
+  std::size_t sum = 0;
+  bool first = true;
+  for (const auto& [m, coefficient] : p.ordered_terms()) {
+    bool negative = false;
+    std::size_t term;
+    if (GiNaC::is_exactly_a<GiNaC::numeric>(coefficient)) {
+      GiNaC::numeric c = GiNaC::ex_to<GiNaC::numeric>(coefficient);
+      negative = c.is_negative();
+      if (negative) c = -c;
+      term = m.is_one() ? graph_.constant(c) : (c == 1 ? monomial(m) : graph_.mul(graph_.constant(c), monomial(m)));
+    } else {
+      term = m.is_one() ? expression(coefficient) : graph_.mul(expression(coefficient), monomial(m));
+    }
+    if (first) {
+      sum = negative ? graph_.neg(term) : term;
+      first = false;
+    } else {
+      sum = negative ? graph_.sub(sum, term) : graph_.add(sum, term);
+    }
+  }
+  return first ? graph_.constant(0) : sum;
+}
+
+std::size_t GraphBuilder::expression(const GiNaC::ex& e) {
+  if (GiNaC::is_exactly_a<GiNaC::numeric>(e)) {
+    const GiNaC::numeric& value = GiNaC::ex_to<GiNaC::numeric>(e);
+    if (!value.is_real()) throw CodegenError("complex number in a coefficient");
+    return value.is_negative() ? graph_.neg(graph_.constant(-value)) : graph_.constant(value);
+  }
+  if (GiNaC::is_exactly_a<GiNaC::symbol>(e)) {
+    auto it = symbols_.find(e);
+    if (it == symbols_.end()) throw CodegenError("unknown symbol in a coefficient");
+    return it->second;
+  }
+  if (GiNaC::is_exactly_a<GiNaC::add>(e)) {
+    std::vector<GiNaC::ex> ops = canonical_operands(e);
+    std::size_t sum = expression(ops[0]);
+    for (std::size_t k = 1; k < ops.size(); ++k) sum = graph_.add(sum, expression(ops[k]));
+    return sum;
+  }
+  if (GiNaC::is_exactly_a<GiNaC::mul>(e)) {
+    std::vector<GiNaC::ex> ops = canonical_operands(e);
+    std::size_t product = expression(ops[0]);
+    for (std::size_t k = 1; k < ops.size(); ++k) product = graph_.mul(product, expression(ops[k]));
+    return product;
+  }
+  if (GiNaC::is_exactly_a<GiNaC::power>(e)) {
+    const GiNaC::ex& exponent = e.op(1);
+    std::size_t base = expression(e.op(0));
+    if (exponent.info(GiNaC::info_flags::integer))
+      return integer_power(base, GiNaC::ex_to<GiNaC::numeric>(exponent).to_long());
+    if (exponent == GiNaC::numeric(1, 2)) return graph_.call("std::sqrt", {base});
+    return graph_.call("std::pow", {base, expression(exponent)});
+  }
+  if (GiNaC::is_a<GiNaC::function>(e)) {
+    std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+    auto it = kFunctions.find(name);
+    if (it == kFunctions.end()) throw CodegenError("function '" + name + "' has no C++ counterpart in <cmath>");
+    std::vector<std::size_t> args;
+    for (std::size_t k = 0; k < e.nops(); ++k) args.push_back(expression(e.op(k)));
+    return graph_.call(it->second, args);
+  }
+  if (GiNaC::is_exactly_a<GiNaC::constant>(e)) return graph_.constant(GiNaC::ex_to<GiNaC::numeric>(e.evalf()));
+  throw CodegenError("cannot generate code for '" + TextPrinter().print(e) + "'");
+}
+
+}  // namespace pfgen::codegen
