@@ -16,7 +16,7 @@ std::string ops_comment(const FunctionStats& s) {
   return "Ops: " + counts_text(s.naive) + " without CSE, " + counts_text(s.cse) + " with CSE.";
 }
 
-// Builds one function's graph from its outputs and writes its body.
+// One generated function: its statistics and its body.
 struct FunctionCode {
   FunctionStats stats;
   std::string body;
@@ -34,6 +34,51 @@ FunctionCode function_code(const std::string& function, const std::vector<Polyno
   code.stats = FunctionStats{function, graph.tree_counts(roots), graph.shared_counts(roots)};
   code.body = options.eliminate_common_subexpressions ? emitter.shared_body(graph, roots, target)
                                                       : emitter.tree_body(graph, roots, target);
+  return code;
+}
+
+// derivatives() may also be built from the derivation's structure: the P
+// moment terms are sum_k P_ik J_jk + J_ik P_kj, so each entry of J (E[d_k f_j]
+// or its EKF stand-in) is computed once and shared by every P equation,
+// instead of being expanded into each. The naive count stays that of the
+// expanded equations; the emitted graph is whichever of the two forms needs
+// fewer operations after sharing.
+FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n();
+  std::vector<Polynomial> expanded = eq.m_drift;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) expanded.push_back(eq.P_drift(i, j));
+  FunctionCode flat = function_code("derivatives", expanded, "out", model, vars, options);
+  if (!options.eliminate_common_subexpressions) return flat;
+
+  ExpressionGraph graph;
+  GraphBuilder builder(graph, model, vars);
+  std::vector<std::size_t> roots;
+  for (const auto& p : eq.m_drift) roots.push_back(builder.polynomial(p));
+  std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t k = 0; k < n; ++k)
+      if (!eq.jacobian_term[j][k].is_zero()) J[j][k] = builder.polynomial(eq.jacobian_term[j][k]);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      const std::size_t u = vars.upper_index(i, j);
+      std::vector<std::size_t> terms;
+      for (std::size_t k = 0; k < n; ++k) {
+        if (!eq.jacobian_term[j][k].is_zero()) terms.push_back(graph.mul(builder.variable(vars.P(i, k)), J[j][k]));
+        if (!eq.jacobian_term[i][k].is_zero()) terms.push_back(graph.mul(J[i][k], builder.variable(vars.P(k, j))));
+      }
+      if (!eq.P_diffusion[u].is_zero()) terms.push_back(builder.polynomial(eq.P_diffusion[u]));
+      std::size_t sum = terms.empty() ? graph.constant(0) : terms[0];
+      for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
+      if (!eq.P_correction[u].is_zero()) sum = graph.sub(sum, builder.polynomial(eq.P_correction[u]));
+      roots.push_back(sum);
+    }
+  OpCounts structured = graph.shared_counts(roots);
+  if (structured.total() >= flat.stats.cse.total()) return flat;
+  FunctionCode code;
+  code.stats = FunctionStats{"derivatives", flat.stats.naive, structured};
+  code.body = CppEmitter(options.scalar).shared_body(graph, roots, "out");
   return code;
 }
 
@@ -75,13 +120,10 @@ std::string kind_identifier(FilterKind kind) {
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
-  std::vector<Polynomial> derivative_outputs = eq.m_drift;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j) derivative_outputs.push_back(eq.P_drift(i, j));
   std::vector<Polynomial> gain_outputs;
   for (const auto& row : eq.gain) gain_outputs.insert(gain_outputs.end(), row.begin(), row.end());
 
-  FunctionCode derivatives = function_code("derivatives", derivative_outputs, "out", model, vars, options);
+  FunctionCode derivatives = derivatives_code(model, eq, options);
   FunctionCode gain = function_code("gain", gain_outputs, "K", model, vars, options);
   FunctionCode observation =
       function_code("predicted_observation", predicted_observation(model, vars), "h", model, vars, options);

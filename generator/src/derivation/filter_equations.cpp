@@ -67,7 +67,7 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
     throw std::invalid_argument("filter '" + filter_kind_name(kind) + "' needs additive_diffusion or "
                                 "additive_diffusion_covariance in the model");
   const std::size_t n = model.n();
-  FilterEquations eq{kind, FilterVariables(n), model.p(), {}, {}, {}, {}, {}, assess_exactness(model, kind)};
+  FilterEquations eq{kind, FilterVariables(n), model.p(), {}, {}, {}, {}, {}, {}, assess_exactness(model, kind)};
   const FilterVariables& vars = eq.variables;
   auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
 
@@ -85,6 +85,7 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
       }
       eq.P_moment.push_back(std::move(moment));
     }
+  eq.jacobian_term = std::move(terms.jacobian);
 
   ObservationTerms obs = observation_terms(model);
   eq.gain.assign(n, std::vector<Polynomial>(eq.p));

@@ -24,6 +24,7 @@ class GraphBuilder {
   GraphBuilder(ExpressionGraph& graph, const Model& model, const FilterVariables& variables);
 
   std::size_t polynomial(const Polynomial& p);
+  std::size_t variable(std::uint32_t variable) { return variable_power(variable, 1); }
   std::size_t expression(const GiNaC::ex& e);
 
  private:

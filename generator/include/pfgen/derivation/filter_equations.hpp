@@ -21,6 +21,10 @@ struct FilterEquations {
   std::size_t p = 0;
   std::vector<Polynomial> m_drift;              // n
   std::vector<std::vector<Polynomial>> gain;    // n x p
+  // The matrix standing for the Jacobian: E[d_k f_j] (optimal, additive) or
+  // d_k f_j at m (EKF kinds), entry [j][k]; P_moment_ij = sum_k P_ik J_jk + J_ik P_kj.
+  // Kept so that code generation can compute P_moment from it, sharing its entries.
+  std::vector<std::vector<Polynomial>> jacobian_term;  // n x n
   std::vector<Polynomial> P_moment;             // n(n+1)/2, upper triangle
   std::vector<Polynomial> P_diffusion;          // n(n+1)/2
   std::vector<Polynomial> P_correction;         // n(n+1)/2, subtracted
