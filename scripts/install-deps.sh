@@ -4,11 +4,14 @@
 set -euo pipefail
 packages=(
   g++ make cmake pkg-config            # toolchain
+  clang                                # tests compile generated code with clang++ as well as g++
   libginac-dev libcln-dev              # symbolic derivation
   libeigen3-dev                        # numerics in the validator (and the runtime to come)
   libyaml-cpp-dev libcli11-dev         # model files, command line
   catch2                               # tests
   texlive-latex-base                   # pdflatex for `pfgen latex` documents
+  gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # embedded proof:
+  qemu-system-arm                      # Cortex-M4F cross-compiler and emulator (embedded-check.sh)
 )
 missing=()
 for p in "${packages[@]}"; do

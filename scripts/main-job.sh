@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The README's main job, as far as pfgen goes today: install missing packages,
 # build, derive paper 000's example filters (Basin, Perez, Skliar 2006, eqs
-# 21-26), print them, and typeset them as a PDF. Simulation against a truth
+# 21-26), print them, typeset them as a PDF and generate their C++. Simulation against a truth
 # comes with the runtime (issue 5).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -21,3 +21,5 @@ done
 echo "================================================================"
 echo "LaTeX: $out/basin2006_quadratic.tex"
 echo "PDF:   $out/basin2006_quadratic.pdf"
+"$pfgen" codegen "$model" -o "$out/generated" --stats
+echo "C++:   $out/generated/basin2006_quadratic/*.hpp"

@@ -56,6 +56,7 @@ int run_codegen(const CodegenCliOptions& options) {
                                                         : codegen::ScalarMode::Template;
   codegen_options.name_space = options.name_space;
   codegen_options.eliminate_common_subexpressions = !options.no_cse;
+  codegen_options.eigen_wrapper = options.eigen;
   // Everything is generated in memory first: a failure leaves no partial output.
   std::vector<codegen::GeneratedFilter> files;
   for (FilterKind kind : parse_filter_list(options.filters, model))
@@ -67,6 +68,9 @@ int run_codegen(const CodegenCliOptions& options) {
       std::filesystem::create_directories(path.parent_path(), error);
       if (error) throw CliValueError("-o: cannot create directory '" + path.parent_path().string() + "'");
       write_file_atomically(path.string(), file.contents);
+      if (!file.eigen_relative_path.empty())
+        write_file_atomically((std::filesystem::path(options.output_dir) / file.eigen_relative_path).string(),
+                              file.eigen_contents);
     }
   }
   if (options.stats) {

@@ -35,6 +35,7 @@ struct CodegenCliOptions {
   std::string name_space = "pfgen_models";
   bool stats = false;
   bool no_cse = false;     // benchmark baseline only
+  bool eigen = false;      // also write <kind>_eigen.hpp
 };
 
 int run_codegen(const CodegenCliOptions& options);

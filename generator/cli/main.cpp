@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   codegen_cmd->add_option("--namespace", codegen.name_space, "Outer C++ namespace")->capture_default_str();
   codegen_cmd->add_flag("--stats", codegen.stats, "Print operation counts as JSON, one line per filter kind");
+  codegen_cmd->add_flag("--eigen", codegen.eigen,
+                        "Also write DIR/<model>/<filter>_eigen.hpp: wrappers taking m and P as Eigen matrices");
   codegen_cmd->add_flag("--no-cse", codegen.no_cse, "Emit without common-subexpression elimination (benchmark baseline)");
 
   try {

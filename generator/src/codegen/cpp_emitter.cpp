@@ -1,9 +1,11 @@
 #include "pfgen/codegen/cpp_emitter.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
 
+#include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/notation/number_format.hpp"
 
 namespace pfgen::codegen {
@@ -36,6 +38,11 @@ std::string scalar_mode_name(ScalarMode mode) {
 
 std::string CppEmitter::literal(const GiNaC::numeric& value) const {
   const double d = value.to_double();
+  // A constant beyond the scalar's range would print as `inf`, which is no C++ literal.
+  if (!std::isfinite(d)) throw CodegenError("a constant is out of the range of double (above 1.8e308 in magnitude)");
+  if (mode_ == ScalarMode::Float && !std::isfinite(static_cast<float>(d)))
+    throw CodegenError("the constant " + shortest_double(d) +
+                       " is out of the range of float (above 3.4e38 in magnitude); use --scalar double or template");
   std::string text;
   switch (mode_) {
     case ScalarMode::Float: text = with_point(shortest_float(static_cast<float>(d))) + "f"; break;

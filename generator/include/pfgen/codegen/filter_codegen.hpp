@@ -3,6 +3,8 @@
 // Generated API (namespace <NS>::<model>::<kind>, kind with '-' written '_'):
 //   n, p, state_size; Params<Scalar>; derivatives(); gain(); predicted_observation();
 //   initial_state(); step()  -- see the template for their contracts.
+// With CodegenOptions::eigen_wrapper, also <kind>_eigen.hpp: pack()/unpack() between the flat
+// state and Eigen m, P, and overloads of the functions above taking them.
 #include <string>
 
 #include "pfgen/codegen/cpp_emitter.hpp"
@@ -14,6 +16,7 @@ struct CodegenOptions {
   ScalarMode scalar = ScalarMode::Template;
   std::string name_space = "pfgen_models";
   bool eliminate_common_subexpressions = true;  // false only for the benchmark's baseline
+  bool eigen_wrapper = false;                   // also write <kind>_eigen.hpp (templates/cpp/filter_eigen.hpp.tmpl)
 };
 
 struct FunctionStats {
@@ -26,6 +29,8 @@ struct GeneratedFilter {
   FilterKind kind;
   std::string relative_path;   // "<model>/<kind>.hpp"
   std::string contents;
+  std::string eigen_relative_path;  // "<model>/<kind>_eigen.hpp", empty unless options.eigen_wrapper
+  std::string eigen_contents;       // Eigen wrappers (m, P as Eigen matrices) around contents
   std::vector<FunctionStats> functions;
   OpCounts naive_total() const;
   OpCounts cse_total() const;

@@ -1,0 +1,44 @@
+#pragma once
+// Continuous linear observations dy = (A0(t) + A(t) x) dt + B(t) dW2 on the truth's grid.
+#include <cstddef>
+#include <functional>
+
+#include <Eigen/Core>
+
+namespace pfgen_runtime {
+
+class LinearObservation {
+ public:
+  // Fills A0 (p), A (p x n) and B (p x r) at time t; the arguments arrive sized.
+  using Coefficients = std::function<void(double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B)>;
+
+  // Constant coefficients.
+  LinearObservation(Eigen::VectorXd A0, Eigen::MatrixXd A, Eigen::MatrixXd B);
+  // Time-varying coefficients: p observations of n states with r noise dimensions.
+  LinearObservation(std::size_t p, std::size_t n, std::size_t r, Coefficients coefficients);
+
+  std::size_t p() const { return p_; }
+  std::size_t n() const { return n_; }
+  std::size_t r() const { return r_; }
+
+  // The increment over [t, t + dt] given the truth at both ends and dW2 (r entries):
+  //   dy = 1/2 [(A0 + A x)(t) + (A0 + A x)(t + dt)] dt + B(t) dW2.
+  // The trapezoid integrates the drift to O(dt^1.5) strongly, as accurate as the truth itself;
+  // B(t) at the left end keeps the noise term Ito. Not thread-safe (work arrays): copy per thread.
+  void increment(double t, double dt, const Eigen::Ref<const Eigen::VectorXd>& x_start,
+                 const Eigen::Ref<const Eigen::VectorXd>& x_end, const Eigen::Ref<const Eigen::VectorXd>& dW2,
+                 Eigen::Ref<Eigen::VectorXd> dy);
+
+  // h(t, x) = A0(t) + A(t) x, the observation rate.
+  Eigen::VectorXd rate(double t, const Eigen::Ref<const Eigen::VectorXd>& x);
+
+ private:
+  void evaluate(double t);
+  std::size_t p_, n_, r_;
+  Coefficients coefficients_;  // empty for constant coefficients
+  Eigen::VectorXd A0_;
+  Eigen::MatrixXd A_, B_;
+  Eigen::VectorXd work_;
+};
+
+}  // namespace pfgen_runtime

@@ -1,0 +1,41 @@
+#pragma once
+// The truth SDE of a model, dx = f(t, x) dt + g(t, x) dW (Ito), as plain callbacks over raw
+// arrays, the calling convention of generated code.
+#include <cstddef>
+#include <functional>
+
+#include <Eigen/Core>
+
+namespace pfgen_runtime {
+
+struct SdeSystem {
+  // f: n entries.
+  using Drift = std::function<void(double t, const double* x, double* f)>;
+  // g: n x q, row-major (g[i * q + j]).
+  using Diffusion = std::function<void(double t, const double* x, double* g)>;
+  // dg[(i * q + j) * n + l] = d g_ij / d x_l (n x q x n); needed by Milstein only.
+  using DiffusionJacobian = std::function<void(double t, const double* x, double* dg)>;
+
+  std::size_t n = 0;  // states
+  std::size_t q = 0;  // Wiener processes (0: a deterministic truth)
+  Drift drift;
+  Diffusion diffusion;                   // may be empty when q == 0
+  DiffusionJacobian diffusion_jacobian;  // optional
+
+  // Throws std::invalid_argument when n == 0, the drift is missing, or q > 0 without a diffusion.
+  void validate() const;
+};
+
+// A diffusion g with g g^T = G(t, x), for models that give only G (n x n, row-major, symmetric
+// positive semi-definite): the symmetric square root by eigen-decomposition, negative round-off
+// eigenvalues clipped to 0. Then q = n. It has no Jacobian; use a derivative-free scheme.
+using CovarianceCallback = std::function<void(double t, const double* x, double* G)>;
+SdeSystem::Diffusion diffusion_from_covariance(std::size_t n, CovarianceCallback G);
+
+// The largest |L^j g_k - L^k g_j| over all i, j, k at (t, x), where (L^j g_k)_i =
+// sum_l g_lj d g_ik / d x_l: zero exactly when the noise is commutative at (t, x), the condition
+// under which the Milstein and derivative-free order-1 schemes here have strong order 1.
+// Needs the diffusion Jacobian (std::invalid_argument otherwise).
+double commutativity_defect(const SdeSystem& system, double t, const Eigen::Ref<const Eigen::VectorXd>& x);
+
+}  // namespace pfgen_runtime

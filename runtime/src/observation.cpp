@@ -1,0 +1,63 @@
+#include "pfgen_runtime/observation.hpp"
+
+#include <stdexcept>
+#include <utility>
+
+namespace pfgen_runtime {
+
+LinearObservation::LinearObservation(Eigen::VectorXd A0, Eigen::MatrixXd A, Eigen::MatrixXd B)
+    : p_(static_cast<std::size_t>(A.rows())), n_(static_cast<std::size_t>(A.cols())),
+      r_(static_cast<std::size_t>(B.cols())), A0_(std::move(A0)), A_(std::move(A)), B_(std::move(B)), work_(p_) {
+  if (p_ == 0 || n_ == 0) throw std::invalid_argument("observation: A must be p x n with p, n >= 1");
+  if (A0_.size() != A_.rows() || B_.rows() != A_.rows())
+    throw std::invalid_argument("observation: A0 must have p entries and B p rows");
+}
+
+LinearObservation::LinearObservation(std::size_t p, std::size_t n, std::size_t r, Coefficients coefficients)
+    : p_(p), n_(n), r_(r), coefficients_(std::move(coefficients)), A0_(Eigen::VectorXd::Zero(p)),
+      A_(Eigen::MatrixXd::Zero(p, n)), B_(Eigen::MatrixXd::Zero(p, r)), work_(p) {
+  if (p_ == 0 || n_ == 0) throw std::invalid_argument("observation: p and n must be at least 1");
+  if (!coefficients_) throw std::invalid_argument("observation: the coefficient callback is missing");
+}
+
+void LinearObservation::evaluate(double t) {
+  if (!coefficients_) return;
+  coefficients_(t, A0_, A_, B_);
+  if (A0_.size() != static_cast<Eigen::Index>(p_) || A_.rows() != static_cast<Eigen::Index>(p_) ||
+      A_.cols() != static_cast<Eigen::Index>(n_) || B_.rows() != static_cast<Eigen::Index>(p_) ||
+      B_.cols() != static_cast<Eigen::Index>(r_))
+    throw std::logic_error("observation: the coefficient callback resized A0, A or B");
+}
+
+void LinearObservation::increment(double t, double dt, const Eigen::Ref<const Eigen::VectorXd>& x_start,
+                                  const Eigen::Ref<const Eigen::VectorXd>& x_end,
+                                  const Eigen::Ref<const Eigen::VectorXd>& dW2, Eigen::Ref<Eigen::VectorXd> dy) {
+  if (x_start.size() != static_cast<Eigen::Index>(n_) || x_end.size() != static_cast<Eigen::Index>(n_) ||
+      dW2.size() != static_cast<Eigen::Index>(r_) || dy.size() != static_cast<Eigen::Index>(p_))
+    throw std::invalid_argument("observation: x must have n entries, dW2 r and dy p");
+  // Plain loops: p, n and r are small, where Eigen's dynamic-size products cost more than the
+  // arithmetic.
+  const Eigen::Index p = static_cast<Eigen::Index>(p_), n = static_cast<Eigen::Index>(n_),
+                     r = static_cast<Eigen::Index>(r_);
+  evaluate(t + dt);
+  for (Eigen::Index i = 0; i < p; ++i) {
+    double value = A0_[i];
+    for (Eigen::Index j = 0; j < n; ++j) value += A_(i, j) * x_end[j];
+    work_[i] = value;
+  }
+  evaluate(t);
+  for (Eigen::Index i = 0; i < p; ++i) {
+    double value = work_[i] + A0_[i];
+    for (Eigen::Index j = 0; j < n; ++j) value += A_(i, j) * x_start[j];
+    value *= 0.5 * dt;
+    for (Eigen::Index j = 0; j < r; ++j) value += B_(i, j) * dW2[j];
+    dy[i] = value;
+  }
+}
+
+Eigen::VectorXd LinearObservation::rate(double t, const Eigen::Ref<const Eigen::VectorXd>& x) {
+  evaluate(t);
+  return A0_ + A_ * x;
+}
+
+}  // namespace pfgen_runtime

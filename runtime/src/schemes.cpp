@@ -1,0 +1,254 @@
+#include "pfgen_runtime/schemes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace pfgen_runtime {
+
+namespace {
+
+void check_dimensions(const SdeSystem& system, Eigen::Index x_size, Eigen::Index dW_size) {
+  if (x_size != static_cast<Eigen::Index>(system.n) || dW_size != static_cast<Eigen::Index>(system.q))
+    throw std::invalid_argument("truth scheme: x must have n entries and dW q entries");
+}
+
+// out = f h + g dW with plain loops: the systems are small, and Eigen's dynamic-size product
+// costs more than the arithmetic at these sizes.
+template <class G, class W>
+void euler_increment(const Eigen::VectorXd& f, double h, const G& g, const W& dW, Eigen::VectorXd& out) {
+  const Eigen::Index n = f.size(), q = dW.size();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double value = f[i] * h;
+    for (Eigen::Index j = 0; j < q; ++j) value += g(i, j) * dW[j];
+    out[i] = value;
+  }
+}
+
+}  // namespace
+
+TruthScheme::TruthScheme(SdeSystem system)
+    : system_(std::move(system)), f_(Eigen::VectorXd::Zero(system_.n)), g_(system_.n, system_.q),
+      increment_(system_.n) {
+  system_.validate();
+  g_.setZero();
+}
+
+void TruthScheme::evaluate_drift(double t, const Eigen::Ref<const Eigen::VectorXd>& x) {
+  system_.drift(t, x.data(), f_.data());
+}
+
+void TruthScheme::evaluate_diffusion(double t, const Eigen::Ref<const Eigen::VectorXd>& x) {
+  if (system_.q > 0) system_.diffusion(t, x.data(), g_.data());
+}
+
+// --- Euler-Maruyama ---------------------------------------------------------------------------
+
+EulerMaruyama::EulerMaruyama(SdeSystem system) : TruthScheme(std::move(system)) {}
+
+void EulerMaruyama::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) {
+  check_dimensions(system_, x.size(), dW.size());
+  evaluate_drift(t, x);
+  evaluate_diffusion(t, x);
+  euler_increment(f_, dt, g_, dW, increment_);
+  x += increment_;
+}
+
+std::unique_ptr<TruthScheme> EulerMaruyama::clone() const { return std::make_unique<EulerMaruyama>(system_); }
+
+// --- Milstein ---------------------------------------------------------------------------------
+
+Milstein::Milstein(SdeSystem system) : TruthScheme(std::move(system)), jacobian_(system_.n * system_.q * system_.n) {
+  if (system_.q > 0 && !system_.diffusion_jacobian)
+    throw std::invalid_argument("Milstein: the diffusion Jacobian is missing (use derivative-free-milstein)");
+}
+
+void Milstein::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) {
+  check_dimensions(system_, x.size(), dW.size());
+  const std::size_t n = system_.n, q = system_.q;
+  evaluate_drift(t, x);
+  evaluate_diffusion(t, x);
+  increment_.noalias() = f_ * dt;
+  if (q > 0) {
+    increment_.noalias() += g_ * dW;
+    system_.diffusion_jacobian(t, x.data(), jacobian_.data());
+    for (std::size_t j = 0; j < q; ++j) {
+      for (std::size_t k = 0; k < q; ++k) {
+        const double w = 0.5 * (dW[j] * dW[k] - (j == k ? dt : 0.0));
+        for (std::size_t i = 0; i < n; ++i) {
+          double Ljgk = 0;  // (L^j g_k)_i
+          for (std::size_t l = 0; l < n; ++l) Ljgk += g_(l, j) * jacobian_[(i * q + k) * n + l];
+          increment_[i] += Ljgk * w;
+        }
+      }
+    }
+  }
+  x += increment_;
+}
+
+std::unique_ptr<TruthScheme> Milstein::clone() const { return std::make_unique<Milstein>(system_); }
+
+// --- derivative-free Milstein (Kloeden-Platen 11.1) -------------------------------------------
+
+DerivativeFreeMilstein::DerivativeFreeMilstein(SdeSystem system)
+    : TruthScheme(std::move(system)), support_(system_.n), g_support_(system_.n, system_.q) {}
+
+void DerivativeFreeMilstein::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt,
+                                  const Eigen::Ref<const Eigen::VectorXd>& dW) {
+  check_dimensions(system_, x.size(), dW.size());
+  const std::size_t q = system_.q;
+  evaluate_drift(t, x);
+  evaluate_diffusion(t, x);
+  increment_.noalias() = f_ * dt;
+  if (q > 0) {
+    increment_.noalias() += g_ * dW;
+    const double root_dt = std::sqrt(dt);
+    for (std::size_t j = 0; j < q; ++j) {
+      support_ = x + f_ * dt + g_.col(j) * root_dt;
+      system_.diffusion(t, support_.data(), g_support_.data());
+      for (std::size_t k = 0; k < q; ++k) {
+        const double w = (dW[j] * dW[k] - (j == k ? dt : 0.0)) / (2.0 * root_dt);
+        increment_ += (g_support_.col(k) - g_.col(k)) * w;
+      }
+    }
+  }
+  x += increment_;
+}
+
+std::unique_ptr<TruthScheme> DerivativeFreeMilstein::clone() const {
+  return std::make_unique<DerivativeFreeMilstein>(system_);
+}
+
+// --- increment-tamed Euler --------------------------------------------------------------------
+
+IncrementTamedEuler::IncrementTamedEuler(SdeSystem system) : TruthScheme(std::move(system)) {}
+
+void IncrementTamedEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt,
+                               const Eigen::Ref<const Eigen::VectorXd>& dW) {
+  check_dimensions(system_, x.size(), dW.size());
+  evaluate_drift(t, x);
+  evaluate_diffusion(t, x);
+  euler_increment(f_, dt, g_, dW, increment_);
+  const double size = dt * increment_.norm();
+  // A non-finite increment stays non-finite, so the divergence guard sees it.
+  if (size > 1.0)
+    x += increment_ / size;
+  else
+    x += increment_;
+}
+
+std::unique_ptr<TruthScheme> IncrementTamedEuler::clone() const {
+  return std::make_unique<IncrementTamedEuler>(system_);
+}
+
+// --- adaptive Euler with Brownian-bridge substeps ---------------------------------------------
+
+AdaptiveEuler::AdaptiveEuler(SdeSystem system) : AdaptiveEuler(std::move(system), Options()) {}
+
+AdaptiveEuler::AdaptiveEuler(SdeSystem system, Options options)
+    : TruthScheme(std::move(system)), options_(options), bridge_stream_(0, 0, substream::truth_refinement),
+      increment_dW_(system_.q) {
+  if (!(options_.tolerance > 0) || !(options_.scale > 0) || options_.max_depth < 0 || options_.max_depth > 62)
+    throw std::invalid_argument("adaptive Euler: need tolerance > 0, scale > 0 and 0 <= max_depth <= 62");
+}
+
+void AdaptiveEuler::start_run(std::uint64_t seed, std::uint64_t run) {
+  bridge_stream_ = RandomStream(seed, run, substream::truth_refinement);
+}
+
+void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) {
+  check_dimensions(system_, x.size(), dW.size());
+  const std::size_t n = system_.n, q = system_.q;
+  // Pending intervals, the leftmost on top; bridge_ holds their increments in the same order.
+  stack_.clear();
+  bridge_.clear();
+  stack_.push_back({t, dt, 0, 0});
+  bridge_.insert(bridge_.end(), dW.data(), dW.data() + q);
+  Eigen::VectorXd& increment_dW = increment_dW_;
+  while (!stack_.empty()) {
+    const Pending interval = stack_.back();
+    stack_.pop_back();
+    for (std::size_t j = 0; j < q; ++j) increment_dW[j] = bridge_[interval.offset + j];
+    bridge_.resize(bridge_.size() - q);
+
+    evaluate_drift(interval.t, x);
+    evaluate_diffusion(interval.t, x);
+    // The size test uses x and h only, never the increment itself: refining the intervals whose
+    // increments came out large would shrink the sampled quadratic variation below the elapsed
+    // time and bias the Ito correction (for paper 000's state, towards blow-up). With a
+    // previsible test the substep ends are stopping times and sum dW^2 is unbiased.
+    const double root_h = std::sqrt(interval.h);
+    bool small = true;  // NaN compares false, so a non-finite state is stepped and the guard sees it
+    for (std::size_t i = 0; i < n && small; ++i) {
+      const double spread = q > 0 ? g_.row(static_cast<Eigen::Index>(i)).norm() * root_h : 0.0;
+      if (std::abs(f_[i]) * interval.h + spread > options_.tolerance * (std::abs(x[i]) + options_.scale))
+        small = false;
+    }
+    if (small || interval.depth >= options_.max_depth) {
+      euler_increment(f_, interval.h, g_, increment_dW, increment_);
+      if (!small) {
+        // At the depth limit: no substep changes an entry by more than its size (plus scale).
+        ++depth_hits_;
+        double ratio = 0;
+        for (std::size_t i = 0; i < n; ++i)
+          ratio = std::max(ratio, std::abs(increment_[i]) / (std::abs(x[i]) + options_.scale));
+        if (ratio > 1.0) increment_ /= ratio;
+      }
+      x += increment_;
+      ++substeps_;
+      continue;
+    }
+    // Bisect: W(s + h/2) - W(s) given W(s + h) - W(s) = dW is N(dW/2, h/4 I).
+    const double half = 0.5 * interval.h, spread = 0.5 * std::sqrt(interval.h);
+    const Eigen::Index right_offset = interval.offset, left_offset = interval.offset + static_cast<Eigen::Index>(q);
+    bridge_.resize(bridge_.size() + 2 * q);
+    for (std::size_t j = 0; j < q; ++j) {
+      const double left = 0.5 * increment_dW[j] + spread * bridge_stream_.normal();
+      bridge_[left_offset + j] = left;
+      bridge_[right_offset + j] = increment_dW[j] - left;
+    }
+    stack_.push_back({interval.t + half, half, interval.depth + 1, right_offset});
+    stack_.push_back({interval.t, half, interval.depth + 1, left_offset});
+  }
+}
+
+std::unique_ptr<TruthScheme> AdaptiveEuler::clone() const {
+  auto copy = std::make_unique<AdaptiveEuler>(system_, options_);
+  copy->bridge_stream_ = bridge_stream_;
+  return copy;
+}
+
+// --- names and factory ------------------------------------------------------------------------
+
+std::string to_string(SchemeKind kind) {
+  switch (kind) {
+    case SchemeKind::euler_maruyama: return "euler-maruyama";
+    case SchemeKind::milstein: return "milstein";
+    case SchemeKind::derivative_free_milstein: return "derivative-free-milstein";
+    case SchemeKind::tamed_euler: return "tamed-euler";
+    case SchemeKind::adaptive_euler: return "adaptive-euler";
+  }
+  throw std::invalid_argument("unknown scheme kind");
+}
+
+SchemeKind scheme_kind_from_string(const std::string& name) {
+  for (SchemeKind kind : {SchemeKind::euler_maruyama, SchemeKind::milstein, SchemeKind::derivative_free_milstein,
+                          SchemeKind::tamed_euler, SchemeKind::adaptive_euler})
+    if (to_string(kind) == name) return kind;
+  throw std::invalid_argument("unknown truth scheme '" + name +
+                              "' (euler-maruyama, milstein, derivative-free-milstein, tamed-euler, adaptive-euler)");
+}
+
+std::unique_ptr<TruthScheme> make_scheme(SchemeKind kind, SdeSystem system) {
+  switch (kind) {
+    case SchemeKind::euler_maruyama: return std::make_unique<EulerMaruyama>(std::move(system));
+    case SchemeKind::milstein: return std::make_unique<Milstein>(std::move(system));
+    case SchemeKind::derivative_free_milstein: return std::make_unique<DerivativeFreeMilstein>(std::move(system));
+    case SchemeKind::tamed_euler: return std::make_unique<IncrementTamedEuler>(std::move(system));
+    case SchemeKind::adaptive_euler: return std::make_unique<AdaptiveEuler>(std::move(system));
+  }
+  throw std::invalid_argument("unknown scheme kind");
+}
+
+}  // namespace pfgen_runtime

@@ -1,0 +1,125 @@
+#include "pfgen_runtime/simulation.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "pfgen_runtime/random.hpp"
+
+namespace pfgen_runtime {
+
+TimeGrid TimeGrid::to_horizon(double t0, double T, double dt) {
+  if (!(dt > 0) || !(T > t0) || !std::isfinite(T) || !std::isfinite(t0))
+    throw std::invalid_argument("time grid: need dt > 0 and a finite T > t0");
+  TimeGrid grid;
+  grid.t0 = t0;
+  grid.dt = dt;
+  grid.steps = static_cast<std::size_t>(std::llround((T - t0) / dt));
+  if (grid.steps == 0) grid.steps = 1;
+  return grid;
+}
+
+TruthRun simulate_truth(TruthScheme& scheme, LinearObservation& observation, const Eigen::VectorXd& x0,
+                        const TimeGrid& grid, std::uint64_t seed, std::uint64_t run, const DivergenceGuard& guard) {
+  const SdeSystem& system = scheme.system();
+  if (x0.size() != static_cast<Eigen::Index>(system.n) || observation.n() != system.n)
+    throw std::invalid_argument("simulate_truth: x0 and the observation must have the system's n states");
+  if (!(grid.dt > 0)) throw std::invalid_argument("simulate_truth: dt must be positive");
+
+  TruthRun result;
+  result.grid = grid;
+  result.x.resize(static_cast<Eigen::Index>(system.n), static_cast<Eigen::Index>(grid.steps + 1));
+  result.dy.resize(static_cast<Eigen::Index>(observation.p()), static_cast<Eigen::Index>(grid.steps));
+
+  scheme.start_run(seed, run);
+  RandomStream truth_noise(seed, run, substream::truth_noise);
+  RandomStream observation_noise(seed, run, substream::observation_noise);
+  Eigen::VectorXd x = x0, dW(system.q), dW2(observation.r()), dy(observation.p());
+
+  result.divergence = guard.check(grid.t0, x);
+  const bool initial_ok = !result.divergence;
+  if (initial_ok) {
+    result.x.col(0) = x;
+    for (std::size_t k = 0; k < grid.steps; ++k) {
+      const double t = grid.time(k);
+      truth_noise.wiener_increment(grid.dt, dW);
+      observation_noise.wiener_increment(grid.dt, dW2);
+      scheme.step(t, x, grid.dt, dW);
+      if (auto event = guard.check(grid.time(k + 1), x)) {
+        result.divergence = event;
+        break;
+      }
+      observation.increment(t, grid.dt, result.x.col(static_cast<Eigen::Index>(k)), x, dW2, dy);
+      result.x.col(static_cast<Eigen::Index>(k + 1)) = x;
+      result.dy.col(static_cast<Eigen::Index>(k)) = dy;
+      result.completed_steps = k + 1;
+    }
+  }
+  // An invalid x0 leaves no state on record.
+  result.x.conservativeResize(Eigen::NoChange,
+                              initial_ok ? static_cast<Eigen::Index>(result.completed_steps + 1) : 0);
+  result.dy.conservativeResize(Eigen::NoChange, static_cast<Eigen::Index>(result.completed_steps));
+  return result;
+}
+
+namespace {
+
+// The first guard failure of a filter state at time t, if any.
+std::optional<DivergenceEvent> check_filter_state(const FilterGuardOptions& options, double t, const double* state,
+                                                  std::size_t n) {
+  if (auto event = options.estimate_guard.check(t, state, n)) return event;
+  if (auto event = options.covariance_guard.check(t, state + n, packed_size(n))) {
+    event->index += n;  // index into the whole filter state
+    return event;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const FilterGuardOptions& options) {
+  if (!filter.step || !filter.initial_state || filter.n == 0)
+    throw std::invalid_argument("run_filter: filter '" + filter.name + "' lacks n, initial_state or step");
+  if (truth.dy.rows() != static_cast<Eigen::Index>(filter.p))
+    throw std::invalid_argument("run_filter: filter '" + filter.name + "' expects p observations");
+  const std::size_t size = filter.state_size();
+  const TimeGrid& grid = truth.grid;
+
+  FilterRun result;
+  result.name = filter.name;
+  result.state.resize(static_cast<Eigen::Index>(size), static_cast<Eigen::Index>(truth.completed_steps + 1));
+  Eigen::VectorXd state(size);
+  filter.initial_state(state.data());
+
+  // True while the run may go on. Events are written only when they happen.
+  auto guard = [&](double t) {
+    if (auto event = check_filter_state(options, t, state.data(), filter.n)) {
+      result.divergence = event;
+      return false;
+    }
+    if (options.check_psd && !result.psd_loss) {
+      const CovarianceCheck check = options.psd.check_filter_state(state.data(), filter.n);
+      if (!check.ok) {
+        result.psd_loss = CovarianceEvent{t, check};
+        if (options.stop_on_psd_loss) return false;
+      }
+    }
+    return true;
+  };
+
+  bool going = guard(grid.t0);
+  const bool initial_ok = !result.divergence;  // a PSD loss at t0 keeps P0 on record
+  if (initial_ok) result.state.col(0) = state;
+  for (std::size_t k = 0; going && k < truth.completed_steps; ++k) {
+    filter.step(state.data(), grid.time(k), grid.dt, truth.dy.col(static_cast<Eigen::Index>(k)).data());
+    going = guard(grid.time(k + 1));
+    if (result.divergence) break;  // a diverged state is not stored
+    result.state.col(static_cast<Eigen::Index>(k + 1)) = state;
+    result.completed_steps = k + 1;
+  }
+  result.stopped = !going;
+  result.state.conservativeResize(Eigen::NoChange,
+                                  initial_ok ? static_cast<Eigen::Index>(result.completed_steps + 1) : 0);
+  return result;
+}
+
+}  // namespace pfgen_runtime
