@@ -2,7 +2,6 @@
 
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/codegen/template_text.hpp"
-#include "pfgen/printing/equation_report.hpp"
 
 namespace pfgen::codegen {
 namespace {

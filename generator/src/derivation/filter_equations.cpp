@@ -103,4 +103,14 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
   return eq;
 }
 
+std::vector<Polynomial> predicted_observation(const Model& model, const FilterVariables& vars) {
+  std::vector<Polynomial> out;
+  for (std::size_t r = 0; r < model.p(); ++r) {
+    Polynomial h = Polynomial::constant(model.observation.A0[r]);
+    for (std::size_t k = 0; k < model.n(); ++k) h.add_term(Monomial::variable(vars.m(k)), model.observation.A[r][k]);
+    out.push_back(h);
+  }
+  return out;
+}
+
 }  // namespace pfgen

@@ -35,6 +35,9 @@ struct FilterEquations {
   Polynomial P_drift(std::size_t i, std::size_t j) const;
 };
 
+// The predicted observation rate A0 + A m, one polynomial per observation row.
+std::vector<Polynomial> predicted_observation(const Model& model, const FilterVariables& vars);
+
 // Derives the filter; throws std::invalid_argument if the model lacks what the
 // kind needs (an additive kind without additive_diffusion).
 FilterEquations derive_filter(const Model& model, FilterKind kind);

@@ -17,7 +17,4 @@ std::string equations_text(const Model& model, const FilterEquations& eq);
 std::string equations_latex(const Model& model, const FilterEquations& eq);
 Json equations_json(const Model& model, const FilterEquations& eq);
 
-// The predicted observation A0 + A m, one polynomial per observation row.
-std::vector<Polynomial> predicted_observation(const Model& model, const FilterVariables& vars);
-
 }  // namespace pfgen
