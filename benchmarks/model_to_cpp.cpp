@@ -16,17 +16,13 @@
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
+#include "pfgen/notation/number_format.hpp"
 
 namespace {
 
 // The shortest decimal that reads back as `value`, as one would type it.
 std::string number(double value) {
-  char buffer[40];
-  for (int precision = 1; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  std::string text = buffer;
+  std::string text = pfgen::shortest_double(value);
   if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
   return text;
 }

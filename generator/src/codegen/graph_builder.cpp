@@ -32,7 +32,7 @@ GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, const Fil
   for (const auto& p : model.parameters) symbols_[p.symbol] = graph_.input("params." + p.name);
   symbols_[model.time] = graph_.input("t");
   for (std::size_t v = 0; v < variables.count(); ++v)
-    graph_.input("state[" + std::to_string(v) + "]");  // created in order: node v+offset is state[v]
+    graph_.input("state[" + std::to_string(v) + "]");  // inputs first, in layout order
 }
 
 std::size_t GraphBuilder::variable_power(std::uint32_t variable, std::uint32_t exponent) {

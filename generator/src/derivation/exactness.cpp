@@ -24,11 +24,6 @@ struct ModelFacts {
     for (const auto& e : m.drift) f.push_back(Polynomial::from_ex(e, m.states));
   }
 
-  bool depends_on_states(const GiNaC::ex& e) const {
-    for (const auto& s : model.states)
-      if (e.has(s)) return true;
-    return false;
-  }
   std::string nonaffine_drift() const {
     for (std::size_t i = 0; i < f.size(); ++i)
       if (f[i].degree() > 1) return "drift of " + model.state_names[i] + " has degree " + std::to_string(f[i].degree());
@@ -37,7 +32,7 @@ struct ModelFacts {
   std::string state_dependent_noise() const {
     for (const auto& row : diffusion.G)
       for (const auto& e : row)
-        if (depends_on_states(e)) return "the diffusion depends on the state (multiplicative noise)";
+        if (depends_on_states(model, e)) return "the diffusion depends on the state (multiplicative noise)";
     return {};
   }
   std::string nonaffine_noise() const {

@@ -17,4 +17,10 @@ ExMatrix multiply_by_transpose(const ExMatrix& g) {
   return G;
 }
 
+bool depends_on_states(const Model& model, const GiNaC::ex& e) {
+  for (const auto& s : model.states)
+    if (e.has(s)) return true;
+  return false;
+}
+
 }  // namespace pfgen

@@ -1,24 +1,16 @@
 #include "pfgen/model/model_builder.hpp"
 
-#include <cstdio>
-#include <cstdlib>
 
 #include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/model_validator.hpp"
+#include "pfgen/notation/number_format.hpp"
 
 namespace pfgen {
 namespace {
 
 // Shortest decimal that reads back as the same double, as an exact rational.
-GiNaC::numeric exact_from_double(double value) {
-  char buffer[40];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return *parse_exact_number(buffer);
-}
+GiNaC::numeric exact_from_double(double value) { return *parse_exact_number(shortest_double(value)); }
 
 struct ExactRationals : GiNaC::map_function {
   GiNaC::ex operator()(const GiNaC::ex& e) override {

@@ -20,12 +20,6 @@ GiNaC::lst state_list(const Model& model) {
   return states;
 }
 
-bool depends_on_states(const Model& model, const GiNaC::ex& e) {
-  for (const auto& s : model.states)
-    if (e.has(s)) return true;
-  return false;
-}
-
 // Row and column are reported 1-based, as a user counts them in the file.
 std::optional<int> one_based(std::size_t index) { return static_cast<int>(index + 1); }
 

@@ -55,5 +55,6 @@ struct Model {
 };
 
 ExMatrix multiply_by_transpose(const ExMatrix& g);  // g g^T, expanded
+bool depends_on_states(const Model& model, const GiNaC::ex& e);
 
 }  // namespace pfgen
