@@ -8,6 +8,12 @@ foreach(relative IN LISTS template_files)
   file(READ "${TEMPLATE_DIR}/${relative}" text)
   string(APPEND body "      {\"${relative}\", R\"pfgen_template(${text})pfgen_template\"},\n")
 endforeach()
+# EXTRA_FILES (relative to EXTRA_ROOT, optional): other files pfgen writes out, such as the plugin
+# ABI header that the runtime also includes, so that both share one definition.
+foreach(relative IN LISTS EXTRA_FILES)
+  file(READ "${EXTRA_ROOT}/${relative}" text)
+  string(APPEND body "      {\"${relative}\", R\"pfgen_template(${text})pfgen_template\"},\n")
+endforeach()
 file(WRITE "${OUTPUT}.tmp" "// Generated from templates/ at build time. Do not edit.
 #include \"pfgen/codegen/template_text.hpp\"
 

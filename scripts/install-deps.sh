@@ -6,10 +6,11 @@ packages=(
   g++ make cmake pkg-config            # toolchain
   clang                                # tests compile generated code with clang++ as well as g++
   libginac-dev libcln-dev              # symbolic derivation
-  libeigen3-dev                        # numerics in the validator (and the runtime to come)
+  libeigen3-dev                        # numerics in the validator and the simulation runtime
   libyaml-cpp-dev libcli11-dev         # model files, command line
   catch2                               # tests
   texlive-latex-base                   # pdflatex for `pfgen latex` documents
+  gnuplot-nox                          # `pfgen simulate --plot` (error plots, PNG via cairo or SVG)
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # embedded proof:
   qemu-system-arm                      # Cortex-M4F cross-compiler and emulator (embedded-check.sh)
 )

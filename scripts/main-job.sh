@@ -12,7 +12,7 @@ pfgen="$build/generator/pfgen"
 model="$root/examples/basin2006_quadratic.yaml"
 out="$build/main-job"
 mkdir -p "$out"
-for filter in optimal additive ekf-additive ekf; do
+for filter in optimal additive ekf-additive ekf ekf-printed; do
   echo "================================================================ $filter"
   "$pfgen" derive "$model" --filter "$filter"
 done

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "pfgen/model/decimal_literals.hpp"
+#include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model.hpp"
 
 namespace pfgen::cli {
@@ -46,19 +47,24 @@ std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& optio
   return {text.substr(0, eq), parse_number(option, text.substr(eq + 1))};
 }
 
-std::vector<FilterKind> parse_filter_list(const std::string& text, const Model& model) {
-  std::vector<FilterKind> supported = supported_filter_kinds(model);
-  if (text.empty()) return supported;
-  std::vector<FilterKind> out;
+std::vector<std::string> parse_filter_list(const std::string& text, const Model& model) {
+  std::vector<std::string> available = available_filter_names(model);
+  if (text.empty()) return available;
+  std::vector<std::string> out;
   for (const auto& name : split(text, ',')) {
-    auto kind = parse_filter_kind(name);
-    if (!kind) throw CliValueError("--filter: unknown filter kind '" + name + "' (known: optimal, ekf, additive, ekf-additive)");
     bool ok = false;
-    for (FilterKind k : supported) ok = ok || k == *kind;
-    if (!ok)
+    for (const auto& a : available) ok = ok || a == name;
+    if (ok) {
+      out.push_back(name);
+      continue;
+    }
+    if (parse_filter_kind(name))
       throw CliValueError("--filter: '" + name + "' needs additive_diffusion or additive_diffusion_covariance in model " +
                           model.name);
-    out.push_back(*kind);
+    std::string user;
+    for (const auto& filter : model.user_filters) user += ", " + filter.name;
+    throw CliValueError("--filter: unknown filter kind '" + name + "' (known: optimal, ekf, additive, ekf-additive" +
+                        (user.empty() ? "" : "; model " + model.name + " also defines " + user.substr(2)) + ")");
   }
   return out;
 }

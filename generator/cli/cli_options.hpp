@@ -19,7 +19,9 @@ std::vector<GiNaC::numeric> parse_number_list(const std::string& option, const s
 std::vector<std::vector<GiNaC::numeric>> parse_number_matrix(const std::string& option, const std::string& text);
 GiNaC::numeric parse_number(const std::string& option, const std::string& text);
 std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& option, const std::string& text);
-// "optimal,ekf" -> kinds, each supported by the model; empty text -> every supported kind.
-std::vector<FilterKind> parse_filter_list(const std::string& text, const Model& model);
+// "optimal,ekf-printed" -> filter names, each a built-in kind the model supports or one of
+// its user filters (`filters:`); empty text -> every filter the model offers
+// (available_filter_names: the supported kinds, then the user filters in file order).
+std::vector<std::string> parse_filter_list(const std::string& text, const Model& model);
 
 }  // namespace pfgen::cli

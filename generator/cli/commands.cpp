@@ -19,10 +19,10 @@
 namespace pfgen::cli {
 namespace {
 
-FilterKind single_filter(const std::string& name, const Model& model) {
-  std::vector<FilterKind> kinds = parse_filter_list(name, model);
-  if (kinds.size() != 1) throw CliValueError("--filter: give exactly one filter kind");
-  return kinds.front();
+std::string single_filter(const std::string& name, const Model& model) {
+  std::vector<std::string> names = parse_filter_list(name, model);
+  if (names.size() != 1) throw CliValueError("--filter: give exactly one filter");
+  return names.front();
 }
 
 }  // namespace
@@ -59,8 +59,8 @@ int run_codegen(const CodegenCliOptions& options) {
   codegen_options.eigen_wrapper = options.eigen;
   // Everything is generated in memory first: a failure leaves no partial output.
   std::vector<codegen::GeneratedFilter> files;
-  for (FilterKind kind : parse_filter_list(options.filters, model))
-    files.push_back(codegen::generate_filter_code(model, derive_filter(model, kind), codegen_options));
+  for (const std::string& name : parse_filter_list(options.filters, model))
+    files.push_back(codegen::generate_filter_code(model, derive_named_filter(model, name), codegen_options));
   if (!options.output_dir.empty()) {
     for (const auto& file : files) {
       std::filesystem::path path = std::filesystem::path(options.output_dir) / file.relative_path;
@@ -94,7 +94,7 @@ int run_codegen(const CodegenCliOptions& options) {
       }
       Json out = Json::object();
       out.add("model", Json::string(model.name));
-      out.add("filter", Json::string(filter_kind_name(file.kind)));
+      out.add("filter", Json::string(file.name));
       out.add("ops_naive", Json::number(static_cast<double>(file.naive_total().total())));
       out.add("ops_cse", Json::number(static_cast<double>(file.cse_total().total())));
       out.add("naive", counts(file.naive_total()));
@@ -108,7 +108,7 @@ int run_codegen(const CodegenCliOptions& options) {
 
 int run_derive(const DeriveOptions& options) {
   Model model = load_model_file(options.model_path);
-  FilterEquations eq = derive_filter(model, single_filter(options.filter, model));
+  FilterEquations eq = derive_named_filter(model, single_filter(options.filter, model));
   if (options.format == "text") {
     std::cout << equations_text(model, eq);
   } else if (options.format == "latex") {
@@ -122,14 +122,15 @@ int run_derive(const DeriveOptions& options) {
 int run_latex(const LatexOptions& options) {
   Model model = load_model_file(options.model_path);
   std::vector<FilterEquations> filters;
-  for (FilterKind kind : parse_filter_list(options.filters, model)) filters.push_back(derive_filter(model, kind));
+  for (const std::string& name : parse_filter_list(options.filters, model))
+    filters.push_back(derive_named_filter(model, name));
   write_file_atomically(options.output_path, latex_document(model, filters));
   return 0;
 }
 
 int run_eval(const EvalOptions& options) {
   Model model = load_model_file(options.model_path);
-  FilterEquations eq = derive_filter(model, single_filter(options.filter, model));
+  FilterEquations eq = derive_named_filter(model, single_filter(options.filter, model));
   EvaluationPoint point;
   point.t = parse_number("--t", options.t);
   point.m = parse_number_list("--m", options.m);
@@ -149,7 +150,7 @@ int run_eval(const EvalOptions& options) {
   };
   Json out = Json::object();
   out.add("model", Json::string(model.name));
-  out.add("filter", Json::string(filter_kind_name(eq.kind)));
+  out.add("filter", Json::string(eq.name));
   out.add("m_drift", vector_json(value.m_drift));
   out.add("gain", matrix_json(value.gain));
   out.add("P_drift", matrix_json(value.P_drift));

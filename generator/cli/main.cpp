@@ -6,6 +6,7 @@
 
 #include "cli_options.hpp"
 #include "commands.hpp"
+#include "simulate_command.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/model_error.hpp"
 
@@ -67,6 +68,38 @@ int main(int argc, char** argv) {
                         "Also write DIR/<model>/<filter>_eigen.hpp: wrappers taking m and P as Eigen matrices");
   codegen_cmd->add_flag("--no-cse", codegen.no_cse, "Emit without common-subexpression elimination (benchmark baseline)");
 
+  SimulateOptions simulate;
+  SimulationOverrides& so = simulate.overrides;
+  CLI::App* simulate_cmd = app.add_subcommand(
+      "simulate", "Compile a model's filters and run them against a simulated truth (Monte Carlo)");
+  simulate_cmd->add_option("MODEL", simulate.model_path, "Model file (YAML)")->required();
+  simulate_cmd->add_option("--filters", so.filters,
+                           "Comma-separated filters, built-in kinds or the model's own (default: simulation.filters, "
+                           "else every filter of the model)");
+  simulate_cmd->add_option("--T", so.T, "Horizon (default: simulation.T)");
+  simulate_cmd->add_option("--dt", so.dt, "Time step of the truth and the filters (default: simulation.dt, else 1e-3)");
+  simulate_cmd->add_option("--runs", so.runs, "Monte Carlo runs (default: simulation.runs, else 100)");
+  simulate_cmd->add_option("--seed", so.seed, "Seed; run r uses streams derived from (seed, r) (default 1)");
+  simulate_cmd->add_option("--threads", simulate.threads, "Worker threads, 0 = every core; results do not depend on it")
+      ->capture_default_str();
+  simulate_cmd->add_option("--scheme", so.scheme,
+                           "Truth scheme: auto | euler-maruyama | milstein | derivative-free-milstein | tamed-euler | "
+                           "adaptive-euler | rk4");
+  simulate_cmd->add_option("--report-times", so.report_times, "Times for the error columns, e.g. 5,6,6.5");
+  simulate_cmd->add_option("--windows", so.windows, "RMS windows a:b, comma-separated, e.g. 0:4,4:9.2");
+  simulate_cmd->add_option("--record-points", so.record_points, "Points of the time series (CSV, plot); default 1000");
+  simulate_cmd->add_option("--shown-run", so.shown_run, "The run whose path goes into the CSV and plot (default 0)");
+  simulate_cmd->add_option("--bound", so.bound, "A run stops when |x|, |m| exceed this (default 1e8)");
+  simulate_cmd->add_option("-o,--output", simulate.csv_path, "CSV of time series");
+  simulate_cmd->add_option("--plot", simulate.plot_path, "Plot of the errors, FILE.png or FILE.svg (gnuplot)");
+  simulate_cmd->add_option("--plot-ylim", simulate.plot_ylim,
+                           "Fix the plot's y range to [-Y, Y] so one diverging filter does not flatten the rest");
+  simulate_cmd->add_option("--cache-dir", simulate.cache_dir,
+                           "Compiled plugins (default: $PFGEN_CACHE_DIR, $XDG_CACHE_HOME/pfgen, ~/.cache/pfgen)");
+  simulate_cmd->add_option("--compiler", simulate.compiler, "C++ compiler for the plugin (default: $CXX, else c++)");
+  simulate_cmd->add_option("--timing", simulate.timing_path, "Write phase times as JSON to FILE");
+  simulate_cmd->add_flag("-q,--quiet", simulate.quiet, "No plugin and timing lines on stderr");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -77,6 +110,7 @@ int main(int argc, char** argv) {
     if (*codegen_cmd) return run_codegen(codegen);
     if (*latex_cmd) return run_latex(latex);
     if (*eval_cmd) return run_eval(eval);
+    if (*simulate_cmd) return run_simulate(simulate);
   } catch (const pfgen::ModelError& e) {
     std::cerr << "pfgen: " << one_line(e.what()) << "\n";
   } catch (const CliValueError& e) {

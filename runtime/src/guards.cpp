@@ -85,9 +85,91 @@ CovarianceCheck CovarianceGuard::check_matrix(const Eigen::Ref<const Eigen::Matr
   return result;
 }
 
+namespace {
+
+// Eigenvalue check of a packed P on stack-sized matrices (MaxN >= n): same algorithm as
+// check_matrix (Eigen's self-adjoint solver), without heap allocation.
+template <int MaxN>
+CovarianceCheck check_packed_bounded(const double* P, std::size_t n, double relative_tolerance,
+                                     double absolute_tolerance) {
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaxN, MaxN>;
+  CovarianceCheck result;
+  const auto size = static_cast<Eigen::Index>(n);
+  Matrix symmetric(size, size);
+  std::size_t k = 0;
+  for (Eigen::Index i = 0; i < size; ++i)
+    for (Eigen::Index j = i; j < size; ++j, ++k) {
+      if (!std::isfinite(P[k])) {
+        result.ok = false;
+        result.finite = false;
+        result.min_eigenvalue = std::numeric_limits<double>::quiet_NaN();
+        return result;
+      }
+      symmetric(i, j) = symmetric(j, i) = P[k];
+    }
+  Eigen::SelfAdjointEigenSolver<Matrix> solver(symmetric, Eigen::EigenvaluesOnly);
+  const auto& eigenvalues = solver.eigenvalues();  // ascending
+  result.min_eigenvalue = eigenvalues[0];
+  result.max_abs_eigenvalue = eigenvalues.cwiseAbs().maxCoeff();
+  result.threshold = absolute_tolerance + relative_tolerance * result.max_abs_eigenvalue;
+  result.ok = result.min_eigenvalue >= -result.threshold;
+  return result;
+}
+
+}  // namespace
+
+bool CovarianceGuard::passes_filter_state_general(const double* state, std::size_t n) const {
+  constexpr std::size_t max_n = 16;
+  const double* P = state + n;
+  if (n >= 2 && n <= max_n) {
+    // Any eigenvalue bounds |P_ii| (Rayleigh quotient of e_i), so floor <= the threshold.
+    double max_diagonal = 0;
+    for (std::size_t i = 0, d = 0; i < n; d += n - i, ++i) max_diagonal = std::max(max_diagonal, std::abs(P[d]));
+    const double floor = absolute_tolerance_ + relative_tolerance_ * max_diagonal;
+    const double shift = 0.25 * floor;
+    // A Cholesky factorisation that completes in floating point factors P + shift I + E exactly,
+    // |E_ij| <= gamma_(n+1) sqrt(a_ii a_jj), so ||E||_2 <= n gamma_(n+1) max a_ii (Higham,
+    // Accuracy and Stability, Thm 10.5); 3 n (n + 1) u covers gamma_(n+1) = (n+1)u / (1 - (n+1)u)
+    // with room for the rounding of a_ii + shift. With it below the shift,
+    // lambda_min(P) >= -2 shift = -floor / 2: a verdict of ok with room to spare for the
+    // eigen-solver's own round-off.
+    const double size = static_cast<double>(n);
+    const double roundoff = 3.0 * size * (size + 1) * 0x1p-53 * (max_diagonal + shift);
+    if (roundoff <= shift && max_diagonal <= std::numeric_limits<double>::max()) {
+      if (n == 2) {  // the same test without a square root: a > 0 and det > 0
+        const double a = P[0] + shift, d = P[2] + shift;
+        if (a > 0 && a * d - P[1] * P[1] > 0) return true;  // NaN fails
+      } else {
+        double L[max_n * max_n];  // row-major, lower triangle used
+        bool certified = true;
+        // Row j of P's packed upper triangle starts at offset_j and holds P(j, j), P(j, j + 1), ...
+        for (std::size_t j = 0, offset_j = 0; j < n && certified; offset_j += n - j, ++j) {
+          for (std::size_t i = j; i < n; ++i) {
+            double s = P[offset_j + (i - j)];  // P(j, i) = P(i, j)
+            if (i == j) s += shift;
+            for (std::size_t k = 0; k < j; ++k) s -= L[i * max_n + k] * L[j * max_n + k];
+            if (i == j) {
+              if (!(s > 0)) {  // NaN fails too
+                certified = false;
+                break;
+              }
+              L[j * max_n + j] = std::sqrt(s);
+            } else {
+              L[i * max_n + j] = s / L[j * max_n + j];
+            }
+          }
+        }
+        if (certified) return true;
+      }
+    }
+  }
+  return check_filter_state(state, n).ok;
+}
+
 CovarianceCheck CovarianceGuard::check_filter_state(const double* state, std::size_t n) const {
   const double* P = state + n;
-  if (n > 2) return check_matrix(unpack_symmetric(P, n));
+  if (n > 8) return check_matrix(unpack_symmetric(P, n));
+  if (n > 2) return check_packed_bounded<8>(P, n, relative_tolerance_, absolute_tolerance_);
   // n = 1, 2: closed-form eigenvalues, no allocation (this runs after every filter step).
   CovarianceCheck result;
   for (std::size_t k = 0; k < packed_size(n); ++k)

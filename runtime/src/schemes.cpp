@@ -219,6 +219,32 @@ std::unique_ptr<TruthScheme> AdaptiveEuler::clone() const {
   return copy;
 }
 
+// --- classical Runge-Kutta 4 (deterministic truths) -------------------------------------------
+
+RungeKutta4::RungeKutta4(SdeSystem system)
+    : TruthScheme(std::move(system)), k1_(system_.n), k2_(system_.n), k3_(system_.n), k4_(system_.n),
+      stage_(system_.n) {
+  if (system_.q > 0)
+    throw std::invalid_argument("rk4: for deterministic truths only (q = 0); this system has " +
+                                std::to_string(system_.q) + " Wiener processes");
+}
+
+void RungeKutta4::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) {
+  check_dimensions(system_, x.size(), dW.size());
+  const Eigen::Index n = x.size();
+  const double half = 0.5 * dt;
+  system_.drift(t, x.data(), k1_.data());
+  for (Eigen::Index i = 0; i < n; ++i) stage_[i] = x[i] + half * k1_[i];
+  system_.drift(t + half, stage_.data(), k2_.data());
+  for (Eigen::Index i = 0; i < n; ++i) stage_[i] = x[i] + half * k2_[i];
+  system_.drift(t + half, stage_.data(), k3_.data());
+  for (Eigen::Index i = 0; i < n; ++i) stage_[i] = x[i] + dt * k3_[i];
+  system_.drift(t + dt, stage_.data(), k4_.data());
+  for (Eigen::Index i = 0; i < n; ++i) x[i] += dt / 6.0 * (k1_[i] + 2.0 * (k2_[i] + k3_[i]) + k4_[i]);
+}
+
+std::unique_ptr<TruthScheme> RungeKutta4::clone() const { return std::make_unique<RungeKutta4>(system_); }
+
 // --- names and factory ------------------------------------------------------------------------
 
 std::string to_string(SchemeKind kind) {
@@ -228,16 +254,17 @@ std::string to_string(SchemeKind kind) {
     case SchemeKind::derivative_free_milstein: return "derivative-free-milstein";
     case SchemeKind::tamed_euler: return "tamed-euler";
     case SchemeKind::adaptive_euler: return "adaptive-euler";
+    case SchemeKind::rk4: return "rk4";
   }
   throw std::invalid_argument("unknown scheme kind");
 }
 
 SchemeKind scheme_kind_from_string(const std::string& name) {
   for (SchemeKind kind : {SchemeKind::euler_maruyama, SchemeKind::milstein, SchemeKind::derivative_free_milstein,
-                          SchemeKind::tamed_euler, SchemeKind::adaptive_euler})
+                          SchemeKind::tamed_euler, SchemeKind::adaptive_euler, SchemeKind::rk4})
     if (to_string(kind) == name) return kind;
   throw std::invalid_argument("unknown truth scheme '" + name +
-                              "' (euler-maruyama, milstein, derivative-free-milstein, tamed-euler, adaptive-euler)");
+                              "' (euler-maruyama, milstein, derivative-free-milstein, tamed-euler, adaptive-euler, rk4)");
 }
 
 std::unique_ptr<TruthScheme> make_scheme(SchemeKind kind, SdeSystem system) {
@@ -247,6 +274,7 @@ std::unique_ptr<TruthScheme> make_scheme(SchemeKind kind, SdeSystem system) {
     case SchemeKind::derivative_free_milstein: return std::make_unique<DerivativeFreeMilstein>(std::move(system));
     case SchemeKind::tamed_euler: return std::make_unique<IncrementTamedEuler>(std::move(system));
     case SchemeKind::adaptive_euler: return std::make_unique<AdaptiveEuler>(std::move(system));
+    case SchemeKind::rk4: return std::make_unique<RungeKutta4>(std::move(system));
   }
   throw std::invalid_argument("unknown scheme kind");
 }

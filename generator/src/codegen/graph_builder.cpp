@@ -1,6 +1,7 @@
 #include "pfgen/codegen/graph_builder.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "pfgen/notation/text_printer.hpp"
 
@@ -28,15 +29,22 @@ std::vector<GiNaC::ex> canonical_operands(const GiNaC::ex& e) {
 }  // namespace
 
 GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, const FilterVariables& variables)
-    : graph_(graph) {
+    : GraphBuilder(graph, model, variables.count(), "state") {}
+
+GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, std::size_t count, std::string array)
+    : graph_(graph), array_(std::move(array)) {
   for (const auto& p : model.parameters) symbols_[p.symbol] = graph_.input("params." + p.name);
   symbols_[model.time] = graph_.input("t");
-  for (std::size_t v = 0; v < variables.count(); ++v)
-    graph_.input("state[" + std::to_string(v) + "]");  // inputs first, in layout order
+  for (std::size_t v = 0; v < count; ++v)
+    graph_.input(input_name(static_cast<std::uint32_t>(v)));  // inputs first, in layout order
+}
+
+std::string GraphBuilder::input_name(std::uint32_t variable) const {
+  return array_ + "[" + std::to_string(variable) + "]";
 }
 
 std::size_t GraphBuilder::variable_power(std::uint32_t variable, std::uint32_t exponent) {
-  return integer_power(graph_.input("state[" + std::to_string(variable) + "]"), exponent);
+  return integer_power(graph_.input(input_name(variable)), exponent);
 }
 
 std::size_t GraphBuilder::integer_power(std::size_t base, long exponent) {

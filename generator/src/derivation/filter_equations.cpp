@@ -67,7 +67,13 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
     throw std::invalid_argument("filter '" + filter_kind_name(kind) + "' needs additive_diffusion or "
                                 "additive_diffusion_covariance in the model");
   const std::size_t n = model.n();
-  FilterEquations eq{kind, FilterVariables(n), model.p(), {}, {}, {}, {}, {}, {}, assess_exactness(model, kind)};
+  FilterEquations eq;
+  eq.name = filter_kind_name(kind);
+  eq.description = filter_kind_description(kind);
+  eq.kind = kind;
+  eq.variables = FilterVariables(n);
+  eq.p = model.p();
+  eq.exactness = assess_exactness(model, kind);
   const FilterVariables& vars = eq.variables;
   auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
 
@@ -101,6 +107,49 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
       eq.P_correction.push_back(std::move(correction));
     }
   return eq;
+}
+
+FilterEquations derive_user_filter(const Model& model, const UserFilter& filter) {
+  const std::size_t n = model.n();
+  FilterEquations eq;
+  eq.name = filter.name;
+  eq.description = filter.description.empty() ? "user-defined filter given by its equations in the model file"
+                                               : filter.description;
+  eq.variables = FilterVariables(n);
+  eq.p = model.p();
+  eq.exactness.exact = false;
+  eq.exactness.condition = "user-defined";
+  eq.exactness.explanation = "given by its equations in the model file; not derived by pfgen";
+  // The model room names its symbols as FilterVariables does, in the same order
+  // (validate_model checked), so symbol k is variable index k.
+  auto polynomial = [&](const GiNaC::ex& e) { return Polynomial::from_ex(e, filter.variables); };
+  for (const auto& e : filter.m_drift) eq.m_drift.push_back(polynomial(e));
+  eq.gain.assign(n, std::vector<Polynomial>(eq.p));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t r = 0; r < eq.p; ++r) eq.gain[i][r] = polynomial(filter.gain[i][r]);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      eq.P_moment.push_back(polynomial(filter.P_drift[i][j]));
+      eq.P_diffusion.emplace_back();
+      eq.P_correction.emplace_back();
+    }
+  return eq;
+}
+
+std::vector<std::string> available_filter_names(const Model& model) {
+  std::vector<std::string> names;
+  for (FilterKind kind : supported_filter_kinds(model)) names.push_back(filter_kind_name(kind));
+  for (const auto& filter : model.user_filters) names.push_back(filter.name);
+  return names;
+}
+
+FilterEquations derive_named_filter(const Model& model, const std::string& name) {
+  for (const auto& filter : model.user_filters)
+    if (filter.name == name) return derive_user_filter(model, filter);
+  if (auto kind = parse_filter_kind(name)) return derive_filter(model, *kind);
+  std::string known;
+  for (const auto& n : available_filter_names(model)) known += (known.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("model " + model.name + " has no filter '" + name + "' (known: " + known + ")");
 }
 
 std::vector<Polynomial> predicted_observation(const Model& model, const FilterVariables& vars) {

@@ -139,6 +139,45 @@ GiNaC::symtab ModelBuilder::symbols() const {
   return table;
 }
 
+const std::vector<GiNaC::symbol>& ModelBuilder::filter_variables() {
+  // Made once the states are known; a state declared later makes them stale, which
+  // build() reports (validate_model checks the names against the states).
+  if (filter_variables_.empty())
+    for (const auto& name : filter_variable_names(model_.states.size())) filter_variables_.emplace_back(name);
+  return filter_variables_;
+}
+
+GiNaC::symtab ModelBuilder::filter_symbols() {
+  GiNaC::symtab table = symbols();
+  const std::vector<GiNaC::symbol>& variables = filter_variables();
+  const std::size_t n = model_.states.size();
+  const bool separate = n >= 10;
+  for (const auto& v : variables) table[v.get_name()] = v;
+  std::size_t index = n;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j, ++index)
+      table["P" + std::to_string(j + 1) + (separate ? "_" : "") + std::to_string(i + 1)] = variables.at(index);
+  return table;
+}
+
+ModelBuilder& ModelBuilder::user_filter(const std::string& name, const ExVector& m_drift, const ExMatrix& P_drift,
+                                        const ExMatrix& gain, const std::string& description) {
+  UserFilter filter;
+  filter.name = name;
+  filter.description = description;
+  filter.variables = filter_variables();
+  filter.m_drift = exact_vector(m_drift);
+  filter.P_drift = exact_matrix(P_drift);
+  filter.gain = exact_matrix(gain);
+  model_.user_filters.push_back(std::move(filter));
+  return *this;
+}
+
+ModelBuilder& ModelBuilder::simulation(const SimulationSection& settings) {
+  model_.simulation = settings;
+  return *this;
+}
+
 Model ModelBuilder::build() const {
   if (!has_drift_) throw ModelError("drift", "missing required field");
   if (!has_diffusion_)

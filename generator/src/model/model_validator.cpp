@@ -1,9 +1,13 @@
 #include "pfgen/model/model_validator.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <map>
 #include <regex>
 #include <set>
+#include <sstream>
 
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/notation/text_printer.hpp"
@@ -23,6 +27,23 @@ GiNaC::lst state_list(const Model& model) {
 // Row and column are reported 1-based, as a user counts them in the file.
 std::optional<int> one_based(std::size_t index) { return static_cast<int>(index + 1); }
 
+// The closure's moments grow with the degree: x^(10^10) must be refused, not exhaust memory.
+void require_bounded_degree(const GiNaC::ex& e, const GiNaC::symbol& variable, const std::string& what,
+                            const std::string& field, std::optional<int> row, std::optional<int> column) {
+  constexpr int kMaxDegree = 1000;
+  int degree = kMaxDegree + 1;
+  try {
+    degree = e.degree(variable);
+  } catch (const std::exception&) {
+    // The exponent does not even fit an int.
+  }
+  if (degree > kMaxDegree)
+    throw ModelError(field,
+                     "'" + to_text(e) + "' has a degree in " + what + " above the limit of " +
+                         std::to_string(kMaxDegree),
+                     row, column);
+}
+
 void require_polynomial(const Model& model, const GiNaC::ex& e, const std::string& field,
                         std::optional<int> row, std::optional<int> column) {
   if (!e.is_polynomial(state_list(model)))
@@ -30,21 +51,8 @@ void require_polynomial(const Model& model, const GiNaC::ex& e, const std::strin
                      "'" + to_text(e) + "' is not polynomial in the states (only non-negative "
                      "integer powers of states are allowed; sin(x), 1/x, x^0.5 are not)",
                      row, column);
-  // The closure's moments grow with the degree: x^(10^10) must be refused, not exhaust memory.
-  constexpr int kMaxDegree = 1000;
-  for (std::size_t k = 0; k < model.states.size(); ++k) {
-    int degree = kMaxDegree + 1;
-    try {
-      degree = e.degree(model.states[k]);
-    } catch (const std::exception&) {
-      // The exponent does not even fit an int.
-    }
-    if (degree > kMaxDegree)
-      throw ModelError(field,
-                       "'" + to_text(e) + "' has a degree in state '" + model.state_names[k] +
-                           "' above the limit of " + std::to_string(kMaxDegree),
-                       row, column);
-  }
+  for (std::size_t k = 0; k < model.states.size(); ++k)
+    require_bounded_degree(e, model.states[k], "state '" + model.state_names[k] + "'", field, row, column);
 }
 
 void require_state_free(const Model& model, const GiNaC::ex& e, const std::string& field,
@@ -209,7 +217,181 @@ void validate_initial(const Model& model) {
                                        std::to_string(eigen.eigenvalues().minCoeff()) + ")");
 }
 
+// A double as the user wrote it, near enough: shortest round-trip is not needed in messages.
+std::string number_text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+void require_polynomial_in(const std::vector<GiNaC::symbol>& variables, const GiNaC::ex& e, const std::string& field,
+                           std::optional<int> row, std::optional<int> column) {
+  GiNaC::lst list;
+  for (const auto& v : variables) list.append(v);
+  if (!e.is_polynomial(list))
+    throw ModelError(field,
+                     "'" + to_text(e) + "' is not polynomial in the filter's m and P entries (only non-negative "
+                     "integer powers of m1, P11, ... are allowed)",
+                     row, column);
+  for (const auto& v : variables) require_bounded_degree(e, v, "'" + v.get_name() + "'", field, row, column);
+}
+
+void validate_user_filter_entry(const Model& model, const UserFilter& filter, const GiNaC::ex& e,
+                                const std::string& field, std::optional<int> row, std::optional<int> column) {
+  if (depends_on_states(model, e))
+    throw ModelError(field,
+                     "'" + to_text(e) + "' depends on the states; a filter is written in its own variables "
+                     "(m1, P11, ...), t and the parameters",
+                     row, column);
+  require_polynomial_in(filter.variables, e, field, row, column);
+}
+
+void validate_user_filters(const Model& model) {
+  const std::size_t n = model.n();
+  const std::vector<std::string> names = filter_variable_names(n);
+  const std::regex filter_name("^[A-Za-z][A-Za-z0-9_-]*$");
+  // Every C++ identifier taken so far, with the filter that took it (file names
+  // <identifier>.hpp and <identifier>_eigen.hpp derive from it too).
+  std::map<std::string, std::string> identifiers;
+  for (const auto& builtin : builtin_filter_names()) identifiers[filter_identifier(builtin.name)] = builtin.name;
+  for (const UserFilter& filter : model.user_filters) {
+    const std::string field = "filters." + filter.name;
+    if (!std::regex_match(filter.name, filter_name))
+      throw ModelError(field, "'" + filter.name +
+                                  "' is not a filter name (a letter, then letters, digits, '_' or '-')");
+    for (const auto& builtin : builtin_filter_names())
+      if (builtin.name == filter.name)
+        throw ModelError(field, "'" + filter.name + "' is a built-in filter kind; give the model's filter another name");
+    const std::string identifier = filter_identifier(filter.name);
+    for (const auto& [taken, owner] : identifiers) {
+      if (taken == identifier)
+        throw ModelError(field, "its C++ identifier '" + identifier + "' is also that of filter '" + owner + "'");
+      if (identifier == taken + "_eigen" || taken == identifier + "_eigen")
+        throw ModelError(field, "its C++ identifier '" + identifier + "' would clash with filter '" + owner +
+                                    "' in the file names of `pfgen codegen --eigen` (<name>_eigen.hpp)");
+    }
+    identifiers[identifier] = filter.name;
+    for (char c : filter.description)
+      if (static_cast<unsigned char>(c) < 0x20)
+        throw ModelError(field + ".description", "must be one line of text (no line breaks or control characters)");
+
+    std::vector<std::string> given;
+    for (const auto& v : filter.variables) given.push_back(v.get_name());
+    if (given != names)
+      throw ModelError(field, "the filter's variables must be m1..m" + std::to_string(n) +
+                                  " and the upper triangle of P (" + names.back() + " last), " +
+                                  std::to_string(names.size()) + " symbols, found " + std::to_string(given.size()));
+    const std::string m_field = field + ".m_drift";
+    if (filter.m_drift.size() != n)
+      throw ModelError(m_field, "expected " + std::to_string(n) + " entries (one per state), found " +
+                                    std::to_string(filter.m_drift.size()));
+    for (std::size_t i = 0; i < n; ++i)
+      validate_user_filter_entry(model, filter, filter.m_drift[i], m_field, one_based(i), std::nullopt);
+    const std::string P_field = field + ".P_drift";
+    require_shape(filter.P_drift, n, n, P_field, "P_drift is n x n with n = number of states");
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j)
+        validate_user_filter_entry(model, filter, filter.P_drift[i][j], P_field, one_based(i), one_based(j));
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j)
+        if (!(filter.P_drift[i][j] - filter.P_drift[j][i]).expand().is_zero())
+          throw ModelError(P_field,
+                           "not symmetric: entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
+                               ") is '" + to_text(filter.P_drift[i][j]) + "' but entry (" + std::to_string(j + 1) +
+                               "," + std::to_string(i + 1) + ") is '" + to_text(filter.P_drift[j][i]) + "'",
+                           one_based(i), one_based(j));
+    const std::string K_field = field + ".gain";
+    require_shape(filter.gain, n, model.p(), K_field, "gain is n x p: one row per state, one column per observation");
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t r = 0; r < model.p(); ++r)
+        validate_user_filter_entry(model, filter, filter.gain[i][r], K_field, one_based(i), one_based(r));
+  }
+}
+
+void validate_simulation(const Model& model) {
+  const SimulationSection& s = model.simulation;
+  auto positive = [](const std::optional<double>& value, const std::string& field, const std::string& what) {
+    if (value && !(std::isfinite(*value) && *value > 0))
+      throw ModelError(field, what + " must be a number greater than 0, found " + number_text(*value));
+  };
+  positive(s.T, "simulation.T", "the horizon T (the simulation starts at t = 0)");
+  positive(s.dt, "simulation.dt", "the step dt");
+  positive(s.bound, "simulation.bound", "the divergence bound");
+  if (s.T && s.dt && !(*s.dt < *s.T))
+    throw ModelError("simulation.dt", "the step dt = " + number_text(*s.dt) + " must be smaller than T = " +
+                                          number_text(*s.T));
+  if (s.runs && *s.runs < 1) throw ModelError("simulation.runs", "at least 1 run is required");
+  if (s.record_points && *s.record_points < 2)
+    throw ModelError("simulation.record_points", "at least 2 record points are required, found " +
+                                                     std::to_string(*s.record_points));
+  if (s.shown_run && s.runs && !(*s.shown_run < *s.runs))
+    throw ModelError("simulation.shown_run", "run " + std::to_string(*s.shown_run) + " is not among the " +
+                                                 std::to_string(*s.runs) + " runs (numbered from 0)");
+  if (s.scheme) {
+    const auto& schemes = simulation_schemes();
+    if (std::find(schemes.begin(), schemes.end(), *s.scheme) == schemes.end()) {
+      std::string known;
+      for (const auto& scheme : schemes) known += (known.empty() ? "" : ", ") + scheme;
+      throw ModelError("simulation.scheme", "unknown scheme '" + *s.scheme + "' (known: " + known + ")");
+    }
+  }
+  if (s.filters) {
+    if (s.filters->empty())
+      throw ModelError("simulation.filters", "give at least one filter, or leave the field out for every filter");
+    std::set<std::string> seen;
+    for (std::size_t k = 0; k < s.filters->size(); ++k) {
+      const std::string& name = (*s.filters)[k];
+      bool known = false;
+      for (const auto& builtin : builtin_filter_names()) {
+        if (builtin.name != name) continue;
+        known = true;
+        if (builtin.needs_additive_diffusion && !model.additive_diffusion)
+          throw ModelError("simulation.filters",
+                           "'" + name + "' needs additive_diffusion or additive_diffusion_covariance in the model",
+                           one_based(k));
+      }
+      for (const auto& filter : model.user_filters) known = known || filter.name == name;
+      if (!known) {
+        std::string list;
+        for (const auto& builtin : builtin_filter_names())
+          if (!builtin.needs_additive_diffusion || model.additive_diffusion)
+            list += (list.empty() ? "" : ", ") + builtin.name;
+        for (const auto& filter : model.user_filters) list += ", " + filter.name;
+        throw ModelError("simulation.filters", "unknown filter '" + name + "' (known: " + list + ")", one_based(k));
+      }
+      if (!seen.insert(name).second)
+        throw ModelError("simulation.filters", "filter '" + name + "' is listed twice", one_based(k));
+    }
+  }
+  for (std::size_t k = 0; k < s.report_times.size(); ++k) {
+    double time = s.report_times[k];
+    if (!(std::isfinite(time) && time > 0))
+      throw ModelError("simulation.report_times", "report time " + number_text(time) + " must be greater than 0",
+                       one_based(k));
+    if (s.T && time > *s.T)
+      throw ModelError("simulation.report_times",
+                       "report time " + number_text(time) + " is after the horizon T = " + number_text(*s.T),
+                       one_based(k));
+  }
+  for (std::size_t k = 0; k < s.windows.size(); ++k) {
+    auto [a, b] = s.windows[k];
+    const std::string window = "window [" + number_text(a) + ", " + number_text(b) + "]";
+    if (!(std::isfinite(a) && std::isfinite(b) && a < b))
+      throw ModelError("simulation.windows", window + ": the start must be before the end", one_based(k));
+    if (a < 0) throw ModelError("simulation.windows", window + " starts before t = 0", one_based(k));
+    if (s.T && b > *s.T)
+      throw ModelError("simulation.windows", window + " ends after the horizon T = " + number_text(*s.T),
+                       one_based(k));
+  }
+}
+
 }  // namespace
+
+const std::vector<BuiltinFilterName>& builtin_filter_names() {
+  static const std::vector<BuiltinFilterName> names = {
+      {"optimal", false}, {"ekf", false}, {"additive", true}, {"ekf-additive", true}};
+  return names;
+}
 
 bool is_valid_identifier(const std::string& name) {
   if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))) return false;
@@ -231,6 +413,8 @@ void validate_model(const Model& model) {
                        "additive_diffusion_covariance", true);
   validate_observation(model);
   validate_initial(model);
+  validate_user_filters(model);
+  validate_simulation(model);
 }
 
 }  // namespace pfgen

@@ -2,9 +2,13 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -19,7 +23,11 @@ namespace {
 const std::set<std::string> kTopLevelFields = {
     "name",      "states",      "parameters",         "time",
     "drift",     "diffusion",   "diffusion_covariance", "additive_diffusion",
-    "additive_diffusion_covariance", "observation", "initial"};
+    "additive_diffusion_covariance", "observation", "initial", "filters", "simulation"};
+
+const char* const kUserFilterFields = "m_drift, P_drift, gain, description";
+const char* const kSimulationFields =
+    "T, dt, runs, seed, filters, scheme, report_times, windows, record_points, bound, shown_run";
 
 // Where each field and matrix entry sits in the file, for error messages.
 class LocationIndex {
@@ -30,9 +38,15 @@ class LocationIndex {
     if (mark.line < 0) return;
     marks_[key(field, row, column)] = SourceLocation{mark.line + 1, mark.column + 1};
   }
+  // The entry itself, else its row, else the field, else the field's enclosing fields
+  // ("filters.mine.gain", then "filters.mine", then "filters").
   SourceLocation find(const ModelError& e) const {
-    for (const auto& k : {key(e.field(), e.row(), e.column()), key(e.field(), e.row(), {}),
-                          key(e.field(), {}, {}), key(top_field(e.field()), {}, {})}) {
+    std::vector<std::string> keys = {key(e.field(), e.row(), e.column()), key(e.field(), e.row(), {})};
+    for (std::string field = e.field();; field = field.substr(0, field.rfind('.'))) {
+      keys.push_back(key(field, {}, {}));
+      if (field.find('.') == std::string::npos) break;
+    }
+    for (const auto& k : keys) {
       auto it = marks_.find(k);
       if (it != marks_.end()) return it->second;
     }
@@ -43,7 +57,6 @@ class LocationIndex {
   static std::string key(const std::string& field, std::optional<int> row, std::optional<int> column) {
     return field + "#" + (row ? std::to_string(*row) : "") + "#" + (column ? std::to_string(*column) : "");
   }
-  static std::string top_field(const std::string& field) { return field.substr(0, field.find('.')); }
   std::map<std::string, SourceLocation> marks_;
 };
 
@@ -59,7 +72,7 @@ class Loader {
       if (!kTopLevelFields.count(key)) {
         ModelError e(key, "unknown field (known: name, states, parameters, time, drift, diffusion, "
                           "diffusion_covariance, additive_diffusion, additive_diffusion_covariance, "
-                          "observation, initial)");
+                          "observation, initial, filters, simulation)");
         e.set_location(SourceLocation{entry.first.Mark().line + 1, entry.first.Mark().column + 1});
         throw e;
       }
@@ -73,6 +86,8 @@ class Loader {
     read_diffusion(builder, parser, "additive_diffusion", "additive_diffusion_covariance", false);
     read_observation(builder, parser);
     read_initial(builder);
+    read_filters(builder);
+    read_simulation(builder);
     return builder.build();
   }
 
@@ -221,6 +236,122 @@ class Loader {
     for (std::size_t i = 0; i < rows.size(); ++i)
       ic.P0.push_back(number_list(rows[i], "initial.P0", static_cast<int>(i + 1)));
     builder.initial(ic);
+  }
+
+  // filters: {NAME: {m_drift: [...], P_drift: [[...]], gain: [[...]], description: "..."}}
+  void read_filters(ModelBuilder& builder) {
+    YAML::Node filters = root_["filters"];
+    if (!filters || filters.IsNull()) return;
+    if (!filters.IsMap())
+      throw ModelError("filters", "expected a mapping of filter names to {m_drift, P_drift, gain}");
+    ExpressionParser parser(builder.filter_symbols());
+    for (const auto& entry : filters) {
+      if (!entry.first.IsScalar()) {
+        index_.record("filters", entry.first);
+        throw ModelError("filters", "a filter's name must be a single value");
+      }
+      const std::string name = entry.first.Scalar();
+      const std::string field = "filters." + name;
+      index_.record(field, entry.first);
+      const YAML::Node body = entry.second;
+      if (!body.IsMap())
+        throw ModelError(field, std::string("expected a mapping with ") + kUserFilterFields);
+      for (const auto& item : body) {
+        std::string key = item.first.IsScalar() ? item.first.Scalar() : "?";
+        if (key != "m_drift" && key != "P_drift" && key != "gain" && key != "description") {
+          index_.record(field + "." + key, item.first);
+          throw ModelError(field + "." + key, std::string("unknown field (known: ") + kUserFilterFields + ")");
+        }
+        index_.record(field + "." + key, item.first);
+      }
+      for (const char* key : {"m_drift", "P_drift", "gain"})
+        if (!body[key] || body[key].IsNull()) throw ModelError(field + "." + key, "missing required field");
+      std::string description;
+      if (YAML::Node d = body["description"]; d && !d.IsNull()) description = scalar(d, field + ".description");
+      ExVector m_drift = vector_field(body["m_drift"], field + ".m_drift", parser);
+      ExMatrix P_drift = matrix_field(body["P_drift"], field + ".P_drift", parser);
+      ExMatrix gain = matrix_field(body["gain"], field + ".gain", parser);
+      builder.user_filter(name, m_drift, P_drift, gain, description);
+    }
+  }
+
+  // A plain real number (double) of the simulation section.
+  double real_number(const YAML::Node& node, const std::string& field, std::optional<int> row = {},
+                     std::optional<int> column = {}) {
+    std::string text = scalar(node, field, row, column);
+    // parse_exact_number decides what a number is (no nan, inf, hex); strtod rounds it.
+    if (!parse_exact_number(text)) throw ModelError(field, "'" + text + "' is not a number", row, column);
+    double value = std::strtod(text.c_str(), nullptr);
+    if (!std::isfinite(value)) throw ModelError(field, "'" + text + "' is out of range", row, column);
+    return value;
+  }
+
+  std::uint64_t whole_number(const YAML::Node& node, const std::string& field, std::uint64_t max) {
+    std::string text = scalar(node, field);
+    static const std::regex digits("^[0-9]+$");
+    if (!std::regex_match(text, digits))
+      throw ModelError(field, "'" + text + "' is not a whole number (0, 1, 2, ...)");
+    std::uint64_t value = 0;
+    for (char c : text) {
+      const std::uint64_t digit = static_cast<std::uint64_t>(c - '0');
+      if (value > (max - digit) / 10) throw ModelError(field, "'" + text + "' is too large");
+      value = value * 10 + digit;
+    }
+    return value;
+  }
+
+  void read_simulation(ModelBuilder& builder) {
+    YAML::Node sim = root_["simulation"];
+    if (!sim || sim.IsNull()) return;
+    if (!sim.IsMap()) throw ModelError("simulation", std::string("expected a mapping of settings (") + kSimulationFields + ")");
+    SimulationSection s;
+    s.source = path_;
+    const auto size_max = static_cast<std::uint64_t>(std::numeric_limits<std::size_t>::max());
+    for (const auto& entry : sim) {
+      const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
+      const std::string field = "simulation." + key;
+      index_.record(field, entry.first);
+      s.locations[key] = SourceLocation{entry.first.Mark().line + 1, entry.first.Mark().column + 1};
+      const YAML::Node value = entry.second;
+      if (!value || value.IsNull()) throw ModelError(field, "missing value");
+      if (key == "T") {
+        s.T = real_number(value, field);
+      } else if (key == "dt") {
+        s.dt = real_number(value, field);
+      } else if (key == "bound") {
+        s.bound = real_number(value, field);
+      } else if (key == "runs") {
+        s.runs = static_cast<std::size_t>(whole_number(value, field, size_max));
+      } else if (key == "record_points") {
+        s.record_points = static_cast<std::size_t>(whole_number(value, field, size_max));
+      } else if (key == "shown_run") {
+        s.shown_run = static_cast<std::size_t>(whole_number(value, field, size_max));
+      } else if (key == "seed") {
+        s.seed = whole_number(value, field, std::numeric_limits<std::uint64_t>::max());
+      } else if (key == "scheme") {
+        s.scheme = scalar(value, field);
+      } else if (key == "filters") {
+        YAML::Node list = sequence(value, field);
+        s.filters.emplace();
+        for (std::size_t k = 0; k < list.size(); ++k) s.filters->push_back(scalar(list[k], field, static_cast<int>(k + 1)));
+      } else if (key == "report_times") {
+        YAML::Node list = sequence(value, field);
+        for (std::size_t k = 0; k < list.size(); ++k)
+          s.report_times.push_back(real_number(list[k], field, static_cast<int>(k + 1)));
+      } else if (key == "windows") {
+        YAML::Node list = sequence(value, field);
+        for (std::size_t k = 0; k < list.size(); ++k) {
+          const int row = static_cast<int>(k + 1);
+          YAML::Node pair = sequence(list[k], field, row);
+          if (pair.size() != 2)
+            throw ModelError(field, "a window is [start, end], found " + std::to_string(pair.size()) + " values", row);
+          s.windows.emplace_back(real_number(pair[0], field, row, 1), real_number(pair[1], field, row, 2));
+        }
+      } else {
+        throw ModelError(field, std::string("unknown field (known: ") + kSimulationFields + ")");
+      }
+    }
+    builder.simulation(s);
   }
 
   YAML::Node root_;

@@ -48,7 +48,7 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
 
   std::string out;
   out += "model: " + model.name + "\n";
-  out += "filter: " + filter_kind_name(eq.kind) + " (" + filter_kind_description(eq.kind) + ")\n";
+  out += "filter: " + eq.name + " (" + eq.description + ")\n";
   out += "exactness: " + exactness_line(eq.exactness) + "\n";
   out += "variables: ";
   for (std::size_t i = 0; i < n; ++i)
@@ -56,7 +56,8 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
   out += "; P = covariance of (";
   for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
   out += ")\n";
-  out += "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [P A^T (B B^T)^-1 A P]\n\n";
+  out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
+                              : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [P A^T (B B^T)^-1 A P]\n\n";
   for (std::size_t i = 0; i < n; ++i) {
     std::string line = "dm" + std::to_string(i + 1) + " = (" + printer.print(eq.m_drift[i], name) + ") dt";
     for (std::size_t r = 0; r < eq.p; ++r) {
@@ -147,8 +148,8 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
 
   Json out = Json::object();
   out.add("model", Json::string(model.name));
-  out.add("filter", Json::string(filter_kind_name(eq.kind)));
-  out.add("description", Json::string(filter_kind_description(eq.kind)));
+  out.add("filter", Json::string(eq.name));
+  out.add("description", Json::string(eq.description));
   out.add("exactness", exactness);
   out.add("variables", variables);
   out.add("m_drift", m_drift);

@@ -77,13 +77,19 @@ std::string latex_document(const Model& model, const std::vector<FilterEquations
   out += "\\title{Filter equations for \\texttt{" + latex_escape_text(model.name) + "}}\n";
   out += "\\author{pfgen " PFGEN_VERSION "}\n\\date{}\n\\maketitle\n";
   out += model_section(model);
+  bool any_user_filter = false;
+  for (const auto& eq : filters) any_user_filter = any_user_filter || eq.is_user_filter();
   out += "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state, $P_{ij}$ the error covariance, "
          "$K$ the gain $P A^{T}(B B^{T})^{-1}$ and $dy_{r}$ the observation increments. Each $dP$ is written as "
          "$E[(x-m)f^{T}] + E[f(x-m)^{T}]$, then the diffusion term, then $-P A^{T}(B B^{T})^{-1} A P$, "
-         "without merging like terms across the three parts.\n";
+         "without merging like terms across the three parts.";
+  if (any_user_filter)
+    out += " A filter defined in the model file has its $dm$, $K$ and $dP$ as given there, not derived by pfgen.";
+  out += "\n";
   for (const auto& eq : filters) {
-    out += "\\section*{Filter \\texttt{" + latex_escape_text(filter_kind_name(eq.kind)) + "}}\n";
-    out += latex_escape_text(filter_kind_description(eq.kind)) + ".\n\n";
+    out += "\\section*{Filter \\texttt{" + latex_escape_text(eq.name) + "}}\n";
+    const bool has_stop = !eq.description.empty() && eq.description.back() == '.';
+    out += latex_escape_text(eq.description) + (has_stop ? "\n\n" : ".\n\n");
     out += equations_latex(model, eq);
   }
   out += "\\end{document}\n";

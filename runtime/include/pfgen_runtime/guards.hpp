@@ -9,6 +9,7 @@
 // of P row by row: (0,0), (0,1), ..., (0,n-1), (1,1), ..., (n-1,n-1).
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -74,10 +75,26 @@ class CovarianceGuard {
   // definiteness goes negative by a sizeable fraction of |P|.
   explicit CovarianceGuard(double relative_tolerance = 1e-4, double absolute_tolerance = 1e-12);
   CovarianceCheck check_matrix(const Eigen::Ref<const Eigen::MatrixXd>& P) const;
-  // P from a packed filter state [m (n), P upper triangle].
+  // P from a packed filter state [m (n), P upper triangle]. Closed form for n <= 2, stack-sized
+  // matrices up to n = 8: no heap allocation there.
   CovarianceCheck check_filter_state(const double* state, std::size_t n) const;
+  // The verdict of check_filter_state(state, n).ok, cheaply enough to run after every filter
+  // step: first a Cholesky certificate (P + c I factors with positive pivots, c a quarter of the
+  // least possible threshold, with the factorisation's round-off bounded below c; then
+  // lambda_min(P) >= -threshold / 2), allocation-free for n <= 16 and a few ns for n = 1, 2. Only
+  // when it fails (P indefinite or near the threshold, non-finite, or tolerances too tight for a
+  // certificate) does it fall back to the eigenvalues of check_filter_state.
+  bool passes_filter_state(const double* state, std::size_t n) const {
+    if (n == 1) {  // check_filter_state's own closed form, inline
+      const double P = state[1];
+      return std::abs(P) <= std::numeric_limits<double>::max() &&
+             P >= -(absolute_tolerance_ + relative_tolerance_ * std::abs(P));
+    }
+    return passes_filter_state_general(state, n);
+  }
 
  private:
+  bool passes_filter_state_general(const double* state, std::size_t n) const;
   double relative_tolerance_;
   double absolute_tolerance_;
 };

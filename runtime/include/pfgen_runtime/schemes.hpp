@@ -13,6 +13,7 @@
 // |                        |              | 2015): no step moves x by more than 1/dt            |
 // | AdaptiveEuler          | 0.5 (in the  | superlinear f and g: Euler-Maruyama on Brownian-    |
 // |                        | substeps)    | bridge substeps sized to the local coefficients     |
+// | RungeKutta4            | 4 (ODE)      | deterministic truths only (q == 0): classical RK4   |
 //
 // Scheme objects keep work arrays: use one per thread (clone()).
 #include <cstdint>
@@ -164,8 +165,25 @@ class AdaptiveEuler : public TruthScheme {
   std::uint64_t depth_hits_ = 0;
 };
 
-enum class SchemeKind { euler_maruyama, milstein, derivative_free_milstein, tamed_euler, adaptive_euler };
-// "euler-maruyama", "milstein", "derivative-free-milstein", "tamed-euler", "adaptive-euler".
+// Classical fourth-order Runge-Kutta on the drift, for deterministic truths dx = f(t, x) dt
+// (paper 001's state has no process noise). It refuses systems with q > 0 rather than silently
+// dropping their noise: a caller whose diffusion is identically zero passes q = 0. The Euler
+// schemes integrate such a truth to order 1 only; with RK4 (global error O(dt^4)) the truth's own
+// error is negligible next to the filters'.
+class RungeKutta4 : public TruthScheme {
+ public:
+  explicit RungeKutta4(SdeSystem system);  // std::invalid_argument when system.q > 0
+  std::string name() const override { return "rk4"; }
+  double strong_order() const override { return 4.0; }
+  void step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) override;
+  std::unique_ptr<TruthScheme> clone() const override;
+
+ private:
+  Eigen::VectorXd k1_, k2_, k3_, k4_, stage_;
+};
+
+enum class SchemeKind { euler_maruyama, milstein, derivative_free_milstein, tamed_euler, adaptive_euler, rk4 };
+// "euler-maruyama", "milstein", "derivative-free-milstein", "tamed-euler", "adaptive-euler", "rk4".
 std::string to_string(SchemeKind kind);
 SchemeKind scheme_kind_from_string(const std::string& name);  // std::invalid_argument if unknown
 std::unique_ptr<TruthScheme> make_scheme(SchemeKind kind, SdeSystem system);

@@ -1,9 +1,10 @@
 #pragma once
-// Generates the header-only C++ of one filter kind from templates/cpp/filter.hpp.tmpl.
-// Generated API (namespace <NS>::<model>::<kind>, kind with '-' written '_'):
+// Generates the header-only C++ of one filter (a built-in kind or a user filter of the model
+// file) from templates/cpp/filter.hpp.tmpl.
+// Generated API (namespace <NS>::<model>::<filter>, the filter's name with '-' written '_'):
 //   n, p, state_size; Params<Scalar>; derivatives(); gain(); predicted_observation();
 //   initial_state(); step()  -- see the template for their contracts.
-// With CodegenOptions::eigen_wrapper, also <kind>_eigen.hpp: pack()/unpack() between the flat
+// With CodegenOptions::eigen_wrapper, also <filter>_eigen.hpp: pack()/unpack() between the flat
 // state and Eigen m, P, and overloads of the functions above taking them.
 #include <string>
 
@@ -26,17 +27,15 @@ struct FunctionStats {
 };
 
 struct GeneratedFilter {
-  FilterKind kind;
-  std::string relative_path;   // "<model>/<kind>.hpp"
+  std::string name;            // the filter's name: "ekf-additive", or a user filter's
+  std::string relative_path;   // "<model>/<identifier>.hpp", identifier = filter_identifier(name)
   std::string contents;
-  std::string eigen_relative_path;  // "<model>/<kind>_eigen.hpp", empty unless options.eigen_wrapper
+  std::string eigen_relative_path;  // "<model>/<identifier>_eigen.hpp", empty unless options.eigen_wrapper
   std::string eigen_contents;       // Eigen wrappers (m, P as Eigen matrices) around contents
   std::vector<FunctionStats> functions;
   OpCounts naive_total() const;
   OpCounts cse_total() const;
 };
-
-std::string kind_identifier(FilterKind kind);  // "ekf-additive" -> "ekf_additive"
 
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
 

@@ -1,10 +1,15 @@
 #pragma once
-// The closed equations of one filter kind for one model:
+// The closed equations of one filter for one model:
 //   dm = m_drift dt + gain (dy - (A0 + A m) dt)
 //   dP = (P_moment + P_diffusion - P_correction) dt
-// with P_moment = E[(x-m)f^T] + E[f(x-m)^T] (or its EKF form), P_diffusion =
-// E[g g^T] (or g(m)g(m)^T, or the additive G), P_correction = P A^T R^-1 A P.
-// P entries are stored as the upper triangle, row by row (FilterVariables).
+// For a built-in kind, P_moment = E[(x-m)f^T] + E[f(x-m)^T] (or its EKF form),
+// P_diffusion = E[g g^T] (or g(m)g(m)^T, or the additive G), P_correction =
+// P A^T R^-1 A P. A user filter (the model file's `filters:`) is not split into
+// parts: its P drift, as given, is P_moment, the other two parts are zero and it
+// has no jacobian_term. P entries are stored as the upper triangle, row by row
+// (FilterVariables).
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "pfgen/algebra/polynomial.hpp"
@@ -16,7 +21,9 @@
 namespace pfgen {
 
 struct FilterEquations {
-  FilterKind kind;
+  std::string name;          // the kind's name ("ekf-additive") or the user filter's
+  std::string description;   // one line: the kind's description or the user filter's
+  std::optional<FilterKind> kind;  // empty for a user filter
   FilterVariables variables;
   std::size_t p = 0;
   std::vector<Polynomial> m_drift;              // n
@@ -24,6 +31,7 @@ struct FilterEquations {
   // The matrix standing for the Jacobian: E[d_k f_j] (optimal, additive) or
   // d_k f_j at m (EKF kinds), entry [j][k]; P_moment_ij = sum_k P_ik J_jk + J_ik P_kj.
   // Kept so that code generation can compute P_moment from it, sharing its entries.
+  // Empty for a user filter.
   std::vector<std::vector<Polynomial>> jacobian_term;  // n x n
   std::vector<Polynomial> P_moment;             // n(n+1)/2, upper triangle
   std::vector<Polynomial> P_diffusion;          // n(n+1)/2
@@ -31,6 +39,7 @@ struct FilterEquations {
   ExactnessReport exactness;
 
   std::size_t n() const { return variables.n(); }
+  bool is_user_filter() const { return !kind.has_value(); }
   // The dt-coefficient of dP_ij, all parts combined (i, j in either order).
   Polynomial P_drift(std::size_t i, std::size_t j) const;
 };
@@ -41,5 +50,17 @@ std::vector<Polynomial> predicted_observation(const Model& model, const FilterVa
 // Derives the filter; throws std::invalid_argument if the model lacks what the
 // kind needs (an additive kind without additive_diffusion).
 FilterEquations derive_filter(const Model& model, FilterKind kind);
+
+// A user filter's equations as FilterEquations (not derived: converted to polynomials
+// in the filter variables). Exactness: not exact, condition "user-defined".
+FilterEquations derive_user_filter(const Model& model, const UserFilter& filter);
+
+// Every filter the model offers, by name: the built-in kinds it supports in their
+// canonical order (supported_filter_kinds), then its user filters in file order.
+std::vector<std::string> available_filter_names(const Model& model);
+
+// The built-in kind or user filter of that name; throws std::invalid_argument if the
+// model offers no filter of that name (see available_filter_names).
+FilterEquations derive_named_filter(const Model& model, const std::string& name);
 
 }  // namespace pfgen

@@ -4,6 +4,8 @@
 // derivation (Polynomial variable indices), every printer and the generated
 // code's state layout. m_i has index i, the same index as state x_i, so an
 // x-polynomial read as an m-polynomial needs no renumbering (f(m) in the EKF).
+// Text names come from the model room's filter_variable_names(), which user
+// filters (Model::user_filters) are written in.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,7 +16,7 @@ namespace pfgen {
 
 class FilterVariables {
  public:
-  explicit FilterVariables(std::size_t n);
+  explicit FilterVariables(std::size_t n = 0);
 
   std::size_t n() const { return n_; }
   std::size_t count() const { return n_ + n_ * (n_ + 1) / 2; }

@@ -4,9 +4,15 @@
 // A Model is plain data; ModelBuilder and the YAML loader create it, and
 // validate_model() guarantees every invariant documented here.
 #include <ginac/ginac.h>
+#include <cstddef>
+#include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "pfgen/model/model_error.hpp"
 
 namespace pfgen {
 
@@ -37,6 +43,50 @@ struct InitialConditions {
   std::vector<std::vector<GiNaC::numeric>> P0;
 };
 
+// A filter the model file gives by its equations (`filters:`), not derived by pfgen:
+//   dm = m_drift dt + gain (dy - (A0 + A m) dt),   dP = P_drift dt,
+// with the model's own observation for the predicted A0 + A m. Its expressions are
+// polynomials in the filter's variables (t and parameters may appear, states may not).
+struct UserFilter {
+  std::string name;         // [A-Za-z][A-Za-z0-9_-]*, not a built-in kind; '-' is '_' in C++
+  std::string description;  // may be empty
+  // m1..mn, then P11, P12, ..., P1n, P22, ... (upper triangle, row by row), named
+  // as filter_variable_names(n); P21 in the file is the symbol of P12.
+  std::vector<GiNaC::symbol> variables;
+  ExVector m_drift;  // n
+  ExMatrix P_drift;  // n x n, symmetric
+  ExMatrix gain;     // n x p
+};
+
+// Defaults for `pfgen simulate` from the model file's `simulation:` section; every
+// field is optional (unset: the command line or pfgen's defaults decide). Plain
+// numbers (doubles), not exact rationals. validate_model() checks each field alone
+// and against the others given here (dt < T, report times and windows within T,
+// shown_run < runs, filters the model offers); the command line checks the
+// combination with its own options, naming the field's place through location_of().
+struct SimulationSection {
+  std::optional<double> T;                       // horizon, > 0 (t0 = 0)
+  std::optional<double> dt;                      // step, > 0 and < T
+  std::optional<std::size_t> runs;               // >= 1
+  std::optional<std::uint64_t> seed;
+  std::optional<std::vector<std::string>> filters;  // built-in kinds the model supports or user filter names
+  std::optional<std::string> scheme;             // one of simulation_schemes()
+  std::vector<double> report_times;               // each in (0, T]; empty when not given
+  std::vector<std::pair<double, double>> windows;  // a < b, within [0, T]; empty when not given
+  std::optional<std::size_t> record_points;      // >= 2
+  std::optional<double> bound;                   // divergence bound, > 0
+  std::optional<std::size_t> shown_run;          // < runs
+
+  // Where each given field sits in the model file ("T", "windows", ...); empty from the C++ API.
+  std::string source;
+  std::map<std::string, SourceLocation> locations;
+  // "FILE:LINE:COL" of the field, as ModelError prints it ("FILE" alone when unknown).
+  std::string location_of(const std::string& field) const;
+};
+
+// The values `scheme:` accepts: auto, euler-maruyama, milstein, ...
+const std::vector<std::string>& simulation_schemes();
+
 struct Model {
   std::string name;
   std::string source;  // file the model came from, or "<api>"
@@ -49,10 +99,21 @@ struct Model {
   std::optional<Diffusion> additive_diffusion;  // constant diffusion for the `additive` kinds
   Observation observation;
   std::optional<InitialConditions> initial;
+  std::vector<UserFilter> user_filters;  // in file order
+  SimulationSection simulation;
 
   std::size_t n() const { return states.size(); }
   std::size_t p() const { return observation.A.size(); }
 };
+
+// The text names of the filter's variables for n states, in their order: m1..mn, then the
+// upper triangle of P row by row, P11, P12, ...; from n = 10 on the P indices are
+// separated (P1_10). The derivation's FilterVariables uses the same names.
+std::vector<std::string> filter_variable_names(std::size_t n);
+
+// A filter's name as a C++ identifier, used for generated namespaces and file names:
+// '-' becomes '_' ("ekf-additive" -> "ekf_additive", "ekf-printed" -> "ekf_printed").
+std::string filter_identifier(const std::string& name);
 
 ExMatrix multiply_by_transpose(const ExMatrix& g);  // g g^T, expanded
 bool depends_on_states(const Model& model, const GiNaC::ex& e);

@@ -36,8 +36,24 @@ class ModelBuilder {
   ModelBuilder& observation(const ExVector& A0, const ExMatrix& A, const ExMatrix& B);
   ModelBuilder& initial(const InitialConditions& initial);
 
+  // The filter's own variables for user filters, once every state is declared: m1..mn,
+  // then P11, P12, ..., P1n, P22, ... (upper triangle; see filter_variable_names). The
+  // same symbols on every call, so all user filters share them.
+  const std::vector<GiNaC::symbol>& filter_variables();
+  // Adds a filter given by its equations (see UserFilter), written in filter_variables(),
+  // the time symbol and the parameters; checked by build() like the model's expressions.
+  //   auto v = b.filter_variables();   // n = 1: m1, P11
+  //   b.user_filter("ekf-printed", {0.1 * pow(v[0], 2)}, {{0.4 * v[1] + 0.01 - pow(v[1], 2)}}, {{v[1]}});
+  ModelBuilder& user_filter(const std::string& name, const ExVector& m_drift, const ExMatrix& P_drift,
+                            const ExMatrix& gain, const std::string& description = "");
+  // The model file's `simulation:` defaults (checked by build()).
+  ModelBuilder& simulation(const SimulationSection& settings);
+
   // Every name an expression of this model may use: states, parameters, time.
   GiNaC::symtab symbols() const;
+  // What a user filter's expressions may use: symbols() and filter_variables(), with P21
+  // (P2_1 from n = 10 on) naming the same symbol as P12 (P1_2).
+  GiNaC::symtab filter_symbols();
 
   // Validates and returns the model; throws ModelError on the first problem.
   Model build() const;
@@ -47,6 +63,7 @@ class ModelBuilder {
   bool has_drift_ = false;
   bool has_diffusion_ = false;
   bool has_observation_ = false;
+  std::vector<GiNaC::symbol> filter_variables_;
 };
 
 // Replaces floating-point numerics by exact rationals (see ModelBuilder).

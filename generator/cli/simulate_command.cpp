@@ -1,0 +1,151 @@
+#include "simulate_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "cli_options.hpp"
+#include "commands.hpp"
+#include "progress_bar.hpp"
+#include "pfgen/codegen/simulation_plugin.hpp"
+#include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/model/yaml_model_loader.hpp"
+#include "pfgen/toolchain/plugin_compiler.hpp"
+#include "pfgen_runtime/gnuplot_plot.hpp"
+#include "pfgen_runtime/monte_carlo.hpp"
+#include "pfgen_runtime/results_csv.hpp"
+#include "pfgen_runtime/simulation_plugin.hpp"
+#include "pfgen_runtime/summary_table.hpp"
+
+namespace pfgen::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+unsigned thread_count(unsigned requested) {
+  if (requested > 0) return requested;
+  const unsigned cores = std::thread::hardware_concurrency();
+  return cores > 0 ? cores : 1;
+}
+
+// The CSV the plot reads: -o's file, or one beside the plot.
+std::string csv_for_plot(const SimulateOptions& options) {
+  if (!options.csv_path.empty()) return options.csv_path;
+  return std::filesystem::path(options.plot_path).replace_extension(".csv").string();
+}
+
+void check_output_paths(const SimulateOptions& options) {
+  if (!(options.plot_ylim >= 0) || !std::isfinite(options.plot_ylim))
+    throw CliValueError("--plot-ylim: must be a finite number >= 0");
+  if (!options.plot_path.empty()) {
+    std::string ext = std::filesystem::path(options.plot_path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".png" && ext != ".svg")
+      throw CliValueError("--plot: '" + options.plot_path + "' must end in .png or .svg");
+  }
+  for (const std::string* path : {&options.csv_path, &options.plot_path}) {
+    if (path->empty()) continue;
+    const auto parent = std::filesystem::path(*path).parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent))
+      throw CliValueError("'" + *path + "': directory '" + parent.string() + "' does not exist");
+  }
+}
+
+std::string timing_json(const pfgen_runtime::MonteCarloResult& result, const toolchain::PluginBuild& build,
+                        double derive_seconds, double total_seconds) {
+  double filter_seconds = 0;
+  for (double s : result.timing.filter_seconds) filter_seconds += s;
+  std::ostringstream out;
+  out.precision(6);
+  out << "{\"threads\": " << result.timing.threads << ", \"runs\": " << result.runs
+      << ", \"steps\": " << result.grid.steps << ", \"derive_seconds\": " << derive_seconds
+      << ", \"cache_hit\": " << (build.cache_hit ? "true" : "false")
+      << ", \"compile_seconds\": " << build.compile_seconds << ", \"wall_seconds\": " << result.timing.wall_seconds
+      << ", \"truth_seconds\": " << result.timing.truth_seconds << ", \"filter_seconds\": " << filter_seconds
+      << ", \"total_seconds\": " << total_seconds << "}\n";
+  return out.str();
+}
+
+}  // namespace
+
+int run_simulate(const SimulateOptions& options) {
+  const Clock::time_point start = Clock::now();
+  check_output_paths(options);
+  const Model model = load_model_file(options.model_path);
+  const SimulationSettings settings = resolve_simulation_settings(model, options.overrides);
+
+  // Derive and generate: deterministic text, whose hash keys the compiled plugin in the cache.
+  std::vector<FilterEquations> filters;
+  for (const std::string& name : settings.filters.empty() ? available_filter_names(model) : settings.filters)
+    filters.push_back(derive_named_filter(model, name));
+  const std::string source = codegen::generate_simulation_plugin(model, filters);
+  const double derive_seconds = seconds_since(start);
+
+  toolchain::PluginBuildOptions build_options;
+  build_options.cache_dir = options.cache_dir;
+  build_options.compiler = options.compiler;
+  const toolchain::PluginBuild build = toolchain::build_plugin(source, build_options);
+  if (!options.quiet)
+    std::cerr << "pfgen: plugin " << build.path << (build.cache_hit ? " (cached)" : "") << "\n";
+  const pfgen_runtime::SimulationPlugin plugin(build.path);
+  if (!plugin.has_truth_initial_state())
+    throw CliValueError(options.model_path + ": initial: the model gives no x0, the truth's initial state");
+
+  const std::string scheme_name = settings.scheme == "auto" ? choose_truth_scheme(model) : settings.scheme;
+  const auto scheme = pfgen_runtime::make_scheme(pfgen_runtime::scheme_kind_from_string(scheme_name), plugin.system());
+
+  pfgen_runtime::MonteCarloOptions mc;
+  mc.grid = pfgen_runtime::TimeGrid::to_horizon(0.0, settings.T, settings.dt);
+  mc.runs = settings.runs;
+  mc.seed = settings.seed;
+  mc.threads = thread_count(options.threads);
+  mc.record_points = settings.record_points;
+  mc.shown_run = settings.shown_run;
+  mc.report_times = settings.report_times;
+  mc.windows = settings.windows;
+  mc.truth_guard = pfgen_runtime::DivergenceGuard(settings.bound);
+  mc.filter_guards.estimate_guard = pfgen_runtime::DivergenceGuard(settings.bound);
+  mc.filter_guards.covariance_guard = pfgen_runtime::DivergenceGuard(std::max(1e16, settings.bound * settings.bound));
+  ProgressBar progress("simulate", settings.runs);
+  mc.on_run_finished = [&progress](std::size_t finished, std::size_t) { progress.update(finished); };
+
+  const pfgen_runtime::MonteCarloResult result =
+      pfgen_runtime::run_monte_carlo(*scheme, plugin.observation(), plugin.truth_initial_state(), plugin.filters(), mc);
+  progress.finish();
+
+  // Files first, table last: a failed write must not follow a printed result.
+  if (!options.csv_path.empty() || !options.plot_path.empty())
+    pfgen_runtime::write_results_csv(csv_for_plot(options), result, model.state_names);
+  if (!options.plot_path.empty()) {
+    try {
+      pfgen_runtime::write_error_plot(options.plot_path, csv_for_plot(options), result, model.state_names,
+                                      model.name + ": estimation errors x - m", options.plot_ylim);
+    } catch (...) {
+      if (options.csv_path.empty()) std::remove(csv_for_plot(options).c_str());  // ours, not asked for
+      throw;
+    }
+  }
+
+  std::cout << "model: " << model.name << " (" << options.model_path << ")\n"
+            << pfgen_runtime::format_summary_table(result, model.state_names);
+  if (!options.csv_path.empty()) std::cout << "csv: " << options.csv_path << "\n";
+  if (!options.plot_path.empty()) {
+    if (options.csv_path.empty()) std::cout << "csv: " << csv_for_plot(options) << "\n";
+    std::cout << "plot: " << options.plot_path << "\n";
+  }
+  const double total_seconds = seconds_since(start);
+  if (!options.quiet) std::cerr << pfgen_runtime::format_timing(result);
+  if (!options.timing_path.empty())
+    write_file_atomically(options.timing_path, timing_json(result, build, derive_seconds, total_seconds));
+  return 0;
+}
+
+}  // namespace pfgen::cli

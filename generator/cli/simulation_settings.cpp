@@ -1,0 +1,144 @@
+#include "simulation_settings.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "cli_options.hpp"
+#include "pfgen/algebra/polynomial.hpp"
+#include "pfgen/model/model.hpp"
+#include "pfgen/notation/number_format.hpp"
+
+namespace pfgen::cli {
+namespace {
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  if (!text.empty() && text.back() == separator) parts.push_back("");
+  return parts;
+}
+
+double parse_double(const std::string& option, const std::string& text) {
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(value))
+    throw CliValueError(option + ": '" + text + "' is not a finite number");
+  return value;
+}
+
+std::string number_text(double value) { return shortest_double(value); }
+
+// Where a setting came from, for error messages.
+std::string origin(bool from_command_line, const std::string& option, const Model& model, const std::string& field) {
+  return from_command_line ? option : model.simulation.location_of(field) + ": simulation." + field;
+}
+
+}  // namespace
+
+SimulationSettings resolve_simulation_settings(const Model& model, const SimulationOverrides& cli) {
+  const auto& file = model.simulation;
+  SimulationSettings s;
+
+  if (cli.T) s.T = *cli.T;
+  else if (file.T) s.T = *file.T;
+  else throw CliValueError("--T: no horizon; give --T or simulation.T in " + model.source);
+  const std::string T_origin = origin(cli.T.has_value(), "--T", model, "T");
+  if (!(s.T > 0) || !std::isfinite(s.T)) throw CliValueError(T_origin + ": the horizon must be a positive number");
+
+  if (cli.dt) s.dt = *cli.dt;
+  else if (file.dt) s.dt = *file.dt;
+  const std::string dt_origin = origin(cli.dt.has_value(), "--dt", model, "dt");
+  if (!(s.dt > 0) || !(s.dt < s.T)) throw CliValueError(dt_origin + ": the step must be positive and below T = " + number_text(s.T));
+  if (s.T / s.dt > 1e9) throw CliValueError(dt_origin + ": more than 1e9 steps to T = " + number_text(s.T));
+
+  if (cli.runs) s.runs = *cli.runs;
+  else if (file.runs) s.runs = *file.runs;
+  if (s.runs == 0) throw CliValueError(origin(cli.runs.has_value(), "--runs", model, "runs") + ": at least one run");
+
+  if (cli.seed) s.seed = *cli.seed;
+  else if (file.seed) s.seed = *file.seed;
+
+  if (cli.filters) s.filters = parse_filter_list(*cli.filters, model);
+  else if (file.filters) s.filters = *file.filters;
+
+  if (cli.scheme) s.scheme = *cli.scheme;
+  else if (file.scheme) s.scheme = *file.scheme;
+  bool known = false;
+  std::string known_list;
+  for (const std::string& name : simulation_schemes()) {
+    known = known || s.scheme == name;
+    known_list += (known_list.empty() ? "" : ", ") + name;
+  }
+  if (!known)
+    throw CliValueError(origin(cli.scheme.has_value(), "--scheme", model, "scheme") + ": unknown scheme '" + s.scheme +
+                        "' (" + known_list + ")");
+
+  if (cli.report_times) {
+    for (const auto& part : split(*cli.report_times, ',')) s.report_times.push_back(parse_double("--report-times", part));
+  } else {
+    s.report_times = file.report_times;
+  }
+  for (double t : s.report_times)
+    if (!(t >= 0 && t <= s.T))
+      throw CliValueError(origin(cli.report_times.has_value(), "--report-times", model, "report_times") + ": " +
+                          number_text(t) + " is outside [0, T = " + number_text(s.T) + "]");
+
+  if (cli.windows) {
+    for (const auto& part : split(*cli.windows, ',')) {
+      const auto ends = split(part, ':');
+      if (ends.size() != 2) throw CliValueError("--windows: '" + part + "' is not a:b");
+      s.windows.emplace_back(parse_double("--windows", ends[0]), parse_double("--windows", ends[1]));
+    }
+  } else {
+    s.windows = file.windows;
+  }
+  for (const auto& [a, b] : s.windows)
+    if (!(a >= 0 && a < b && b <= s.T))
+      throw CliValueError(origin(cli.windows.has_value(), "--windows", model, "windows") + ": [" + number_text(a) + ", " +
+                          number_text(b) + "] is not a window a < b within [0, T = " + number_text(s.T) + "]");
+
+  if (cli.record_points) s.record_points = *cli.record_points;
+  else if (file.record_points) s.record_points = *file.record_points;
+  if (s.record_points < 2)
+    throw CliValueError(origin(cli.record_points.has_value(), "--record-points", model, "record_points") +
+                        ": at least 2 points");
+
+  if (cli.bound) s.bound = *cli.bound;
+  else if (file.bound) s.bound = *file.bound;
+  if (!(s.bound > 0)) throw CliValueError(origin(cli.bound.has_value(), "--bound", model, "bound") + ": must be positive");
+
+  if (cli.shown_run) s.shown_run = *cli.shown_run;
+  else if (file.shown_run) s.shown_run = *file.shown_run;
+  if (s.shown_run >= s.runs)
+    throw CliValueError(origin(cli.shown_run.has_value(), "--shown-run", model, "shown_run") + ": run " +
+                        std::to_string(s.shown_run) + " does not exist with " + std::to_string(s.runs) + " runs");
+  return s;
+}
+
+std::string choose_truth_scheme(const Model& model) {
+  const std::vector<GiNaC::symbol>& x = model.states;
+  auto degree = [&x](const GiNaC::ex& e) { return Polynomial::from_ex(e.expand(), x).degree(); };
+  std::uint32_t drift_degree = 0, diffusion_degree = 0;
+  bool noise = false;
+  for (const auto& f : model.drift) drift_degree = std::max(drift_degree, degree(f));
+  // G = g g^T has twice g's degree; either form tells whether the noise is zero.
+  for (const auto& row : model.diffusion.G)
+    for (const auto& entry : row) {
+      if (entry.expand().is_zero()) continue;
+      noise = true;
+      diffusion_degree = std::max(diffusion_degree, (degree(entry) + 1) / 2);
+    }
+  if (!noise) return "rk4";
+  if (drift_degree > 1 || diffusion_degree > 1) return "adaptive-euler";
+  if (diffusion_degree == 1) return model.diffusion.g ? "milstein" : "derivative-free-milstein";
+  return "euler-maruyama";
+}
+
+}  // namespace pfgen::cli

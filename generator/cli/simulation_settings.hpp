@@ -1,0 +1,53 @@
+#pragma once
+// The settings of one `pfgen simulate` job: the command line overrides the model file's
+// `simulation:` section, which overrides pfgen's defaults. Resolution also checks the combined
+// settings (a --T shorter than a window of the model file is an error naming both).
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pfgen {
+struct Model;
+}
+
+namespace pfgen::cli {
+
+// What the command line gave; unset fields fall back to the model file, then to defaults.
+struct SimulationOverrides {
+  std::optional<double> T, dt, bound;
+  std::optional<std::size_t> runs, record_points, shown_run;
+  std::optional<std::uint64_t> seed;
+  std::optional<std::string> filters;       // comma-separated names
+  std::optional<std::string> scheme;
+  std::optional<std::string> report_times;  // "5,6,6.5"
+  std::optional<std::string> windows;       // "0:4,4:9.2"
+};
+
+struct SimulationSettings {
+  double T = 0;
+  double dt = 1e-3;
+  std::size_t runs = 100;
+  std::uint64_t seed = 1;
+  std::vector<std::string> filters;  // empty: every filter of the model
+  std::string scheme = "auto";
+  std::vector<double> report_times;
+  std::vector<std::pair<double, double>> windows;
+  std::size_t record_points = 1000;
+  double bound = 1e8;
+  std::size_t shown_run = 0;
+};
+
+// Throws CliValueError naming the option (or the model file's field) and what is wrong.
+SimulationSettings resolve_simulation_settings(const Model& model, const SimulationOverrides& overrides);
+
+// The truth scheme `auto` stands for: rk4 for a deterministic truth (g identically zero);
+// adaptive-euler when the drift or the diffusion is superlinear in the states (Euler-Maruyama and
+// Milstein overshoot and overflow there where the true process does not: DESIGN-NOTES 5);
+// milstein when g depends on the states linearly; euler-maruyama for additive noise (then it has
+// strong order 1).
+std::string choose_truth_scheme(const Model& model);
+
+}  // namespace pfgen::cli

@@ -1,0 +1,23 @@
+#pragma once
+// The C++ source of a simulation plugin: one self-contained translation unit holding a model's
+// truth (truth_codegen.hpp), its filters (filter_codegen.hpp, double) and the table of the
+// plugin ABI (runtime/include/pfgen_runtime/plugin_abi.h, pasted in verbatim), for
+// `pfgen simulate` to compile into a shared object (toolchain/plugin_compiler.hpp) and load
+// (pfgen_runtime::SimulationPlugin). The text is deterministic: it is the cache key's input.
+#include <string>
+#include <vector>
+
+#include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/model/model.hpp"
+
+namespace pfgen::codegen {
+
+// The filters in the given order, each named by its own name (FilterEquations::name, e.g.
+// "ekf-additive") for the runtime and by filter_identifier(name) in the C++. Throws
+// CodegenError when two filters share an identifier, or for what the code generator cannot write.
+std::string generate_simulation_plugin(const Model& model, const std::vector<FilterEquations>& filters);
+
+// The text of pfgen_runtime/plugin_abi.h, compiled into pfgen at build time.
+const std::string& plugin_abi_header();
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,35 @@
+#pragma once
+// C++ (double, with common-subexpression elimination) of what a simulation needs of the model
+// itself besides its filters: the truth dx = f dt + g dW1, the observation coefficients and x0,
+// all at the parameters' default values. The simulation plugin (simulation_plugin.hpp) places
+// these definitions in a namespace of its own; they read the state as x[i] (state x_i).
+#include <cstddef>
+#include <string>
+
+#include "pfgen/model/model.hpp"
+
+namespace pfgen::codegen {
+
+struct TruthCode {
+  std::size_t n = 0;  // states
+  std::size_t q = 0;  // Wiener processes of the truth: columns of g, n when only G is given, 0 when g = 0
+  std::size_t p = 0;  // observations
+  std::size_t r = 0;  // columns of B
+  bool diffusion_is_zero = false;        // g identically zero: no diffusion functions at all
+  bool diffusion_is_covariance = false;  // only G = g g^T given: diffusion_covariance(), no g, no Jacobian
+  bool observation_is_constant = true;   // A0, A, B free of the time symbol
+  bool has_initial_state = false;        // the model gives initial.x0
+  // Definitions, in this order (bracketed ones only when they exist):
+  //   using Scalar = double;  struct Params { <parameters with defaults> };
+  //   void drift(double t, const double* x, double* f);                      // f: n
+  //   [void diffusion(double t, const double* x, double* g);]                // n x q row-major
+  //   [void diffusion_jacobian(double t, const double* x, double* dg);]     // dg[(i*q+j)*n+l] = dg_ij/dx_l
+  //   [void diffusion_covariance(double t, const double* x, double* G);]    // n x n row-major
+  //   void observation(double t, double* A0, double* A, double* B);         // p, p x n, p x r
+  //   [void initial_state(double* x0);]                                     // initial.x0
+  std::string definitions;
+};
+
+TruthCode generate_truth_code(const Model& model);
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,27 @@
+#pragma once
+// The estimation errors of all filters against time, drawn by gnuplot from the results CSV.
+#include <string>
+#include <vector>
+
+#include "pfgen_runtime/monte_carlo.hpp"
+
+namespace pfgen_runtime {
+
+// The gnuplot script that draws, per state component, two panels: the shown run's errors x - m
+// of every filter (like the papers' figures), and each filter's median error over the runs with
+// its 5-95 % band (transparent). It reads csv_path as write_results_csv writes it (columns by
+// position) and writes plot_path with the pngcairo or svg terminal, by plot_path's extension
+// (.png or .svg, any case; std::invalid_argument otherwise). Fixed size, fonts and colors, so the
+// same inputs give the same script (and the same SVG). y_limit > 0 fixes every panel's y range to
+// [-y_limit, y_limit] (curves beyond it are clipped, and the titles say so); 0 autoscales.
+std::string gnuplot_error_script(const std::string& plot_path, const std::string& csv_path,
+                                 const MonteCarloResult& result, const std::vector<std::string>& state_names,
+                                 const std::string& title, double y_limit = 0);
+
+// Writes that script to plot_path + ".gp" and runs gnuplot on it (posix_spawnp, no shell).
+// std::runtime_error when gnuplot is not on PATH (install it: scripts/install-deps.sh), when it
+// fails (with its error output), or when it leaves no plot file.
+void write_error_plot(const std::string& plot_path, const std::string& csv_path, const MonteCarloResult& result,
+                      const std::vector<std::string>& state_names, const std::string& title, double y_limit = 0);
+
+}  // namespace pfgen_runtime

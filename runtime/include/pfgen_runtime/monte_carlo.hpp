@@ -1,0 +1,144 @@
+#pragma once
+// Monte Carlo runs of a truth and any number of filters on its observations, across threads.
+//
+// Run r draws from RandomStream(seed, r, substream), so it is the same run whichever thread makes
+// it; runs are taken from an atomic counter, each run's results go into the slot of its index,
+// and all statistics are folded in run order after every run has finished. The result is
+// therefore bitwise identical for any thread count (timing aside).
+//
+// Per run a thread simulates the truth into its own reusable buffers (the x path and the dy
+// increments of one run, exactly as simulate_truth does), then steps each filter over them in
+// turn, accumulating the run's error statistics on the fly and recording values only at the
+// record times: no run's full path outlives the run, and nothing is allocated per step.
+//
+// Undefined numbers (no run alive at a time, no run reached a window's end, ...) are NaN here;
+// the writers print them as '-' or empty cells, never as "nan".
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "pfgen_runtime/guards.hpp"
+#include "pfgen_runtime/observation.hpp"
+#include "pfgen_runtime/schemes.hpp"
+#include "pfgen_runtime/simulation.hpp"
+
+namespace pfgen_runtime {
+
+struct MonteCarloOptions {
+  TimeGrid grid;
+  std::size_t runs = 100;
+  std::uint64_t seed = 1;
+  unsigned threads = 1;              // >= 1; more threads than runs are not started
+  std::size_t record_points = 1000;  // series at every max(1, steps / record_points)-th grid point, plus the last
+  std::size_t shown_run = 0;         // the run whose truth, estimates and P diagonals go into the series
+  std::vector<double> report_times;  // snapped to the nearest grid time; must lie in [t0, T]
+  std::vector<std::pair<double, double>> windows;  // [a, b] in [t0, T], a < b, snapped to the grid
+  DivergenceGuard truth_guard{1e8};
+  FilterGuardOptions filter_guards;
+  // Called from worker threads (must be thread-safe) after each finished run with the number of
+  // runs finished so far.
+  std::function<void(std::size_t finished, std::size_t total)> on_run_finished;
+};
+
+// The per-run mean of e^2 over a window's grid points, averaged over the runs in which neither
+// the truth nor the filter stopped before the window's end.
+struct WindowStatistics {
+  double a = 0, b = 0;              // grid times of the first and last point
+  std::size_t first = 0, last = 0;  // their grid indices
+  std::size_t runs = 0;             // runs that entered
+  std::vector<double> rms;          // per state component: sqrt(mean over runs); NaN when runs == 0
+};
+
+struct ReportStatistics {
+  double t = 0;  // the grid time the requested time snapped to
+  std::size_t index = 0;
+  std::size_t alive = 0;                // runs with truth and filter alive at t
+  std::vector<double> mean_abs, rms;    // per component, over those runs; NaN when alive == 0
+};
+
+struct RunEvent {
+  std::size_t run = 0;
+  double t = 0;
+};
+
+struct EventSummary {
+  std::vector<RunEvent> events;  // in run order, at most one per run
+  std::size_t count() const { return events.size(); }
+  double earliest() const;  // NaN when there are none
+  double median() const;    // of the times; NaN when there are none
+};
+
+struct FilterStatistics {
+  std::string name;
+  WindowStatistics horizon;              // [t0, T]; horizon.runs runs completed
+  std::vector<WindowStatistics> windows;  // as MonteCarloOptions::windows
+  std::vector<ReportStatistics> reports;  // as MonteCarloOptions::report_times
+  std::vector<double> peak_median, peak_q95;  // of max_t |e| over completed runs, per component
+  EventSummary divergences;  // m or P non-finite or beyond its bound (the guard's event time)
+  EventSummary psd_losses;   // the first time P failed the PSD check, per run
+};
+
+// Across runs at each record time, per component; NaN where no run is alive.
+struct SeriesStatistics {
+  Eigen::MatrixXd mean, q05, q50, q95;  // records x n
+};
+
+struct FilterSeries {
+  Eigen::MatrixXd m, P_diagonal;  // records x n: the shown run; NaN where it had stopped
+  SeriesStatistics error;         // e = x - m over the runs alive
+  std::vector<std::size_t> alive;  // per record time
+};
+
+struct MonteCarloSeries {
+  std::vector<std::size_t> index;  // grid indices of the record times
+  std::vector<double> t;
+  std::size_t shown_run = 0;
+  Eigen::MatrixXd truth;            // records x n: the shown run's x; NaN where it had stopped
+  SeriesStatistics truth_statistics;
+  std::vector<std::size_t> truth_alive;
+  std::vector<FilterSeries> filters;  // as the filters passed in
+};
+
+// Wall time of the whole call, and per phase the elapsed (steady_clock) and CPU seconds of the
+// threads summed over threads, measured per run, not per step. Elapsed exceeds CPU time when
+// other processes share the cores. The only part of a result that differs between identical
+// calls.
+struct MonteCarloTiming {
+  unsigned threads = 1;
+  double wall_seconds = 0;
+  double truth_seconds = 0, truth_cpu_seconds = 0;
+  std::uint64_t truth_steps = 0;  // steps taken, over all runs
+  std::vector<double> filter_seconds, filter_cpu_seconds;
+  std::vector<std::uint64_t> filter_steps;
+  double aggregation_seconds = 0;  // folding the runs into statistics, after they finished
+};
+
+struct MonteCarloResult {
+  TimeGrid grid;
+  std::size_t runs = 0;
+  std::uint64_t seed = 0;
+  std::string scheme;  // the truth scheme's name()
+  std::size_t n = 0;   // state components
+  std::vector<FilterStatistics> filters;
+  EventSummary truth_divergences;  // the truth guard's event time
+  MonteCarloSeries series;
+  MonteCarloTiming timing;
+};
+
+// Runs options.runs runs of the truth (scheme from x0, observation) and steps every filter on
+// each. Each thread works on its own clone of the scheme and copies of the observation and of
+// the filters. Run r reproduces simulate_truth(scheme, observation, x0, grid, seed, r,
+// truth_guard) and run_filter(filter, truth, filter_guards) bit for bit. Filters must have the
+// truth's n states and the observation's p, distinct non-empty names. std::invalid_argument for
+// inconsistent inputs or options; an exception thrown by a callback in a worker stops the other
+// workers and is rethrown here.
+MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const LinearObservation& observation,
+                                 const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters,
+                                 const MonteCarloOptions& options);
+
+}  // namespace pfgen_runtime

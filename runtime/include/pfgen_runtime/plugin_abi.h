@@ -1,0 +1,68 @@
+/* The door between a compiled simulation plugin and the pfgen runtime: plain C, so that it
+ * means the same to every compiler and to C and C++ alike.
+ *
+ * A plugin is a shared object built by `pfgen simulate` from one model: its truth
+ * dx = f(x,t) dt + g(x,t) dW1, its observation dy = (A0(t) + A(t) x) dt + B(t) dW2, and any
+ * number of generated filters, all at the model's default parameter values. It exports one
+ * function, PFGEN_PLUGIN_ENTRY_NAME, returning a table that lives as long as the plugin is loaded.
+ *
+ * This file is the one definition of the ABI: the runtime includes it, and pfgen embeds its text
+ * at build time and pastes it into every plugin source it generates. Any change of layout or
+ * meaning must raise PFGEN_PLUGIN_ABI_VERSION; abi_version stays the first member forever, so
+ * that a loader can reject any other version before reading anything else.
+ *
+ * Arrays are row-major; every function is reentrant (no state), so threads may share a plugin.
+ */
+#ifndef PFGEN_PLUGIN_ABI_H
+#define PFGEN_PLUGIN_ABI_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PFGEN_PLUGIN_ABI_VERSION 1u
+#define PFGEN_PLUGIN_ENTRY_NAME "pfgen_plugin_entry"
+
+/* One filter over its packed state [m (n entries), upper triangle of P row by row]. */
+typedef struct pfgen_plugin_filter {
+  const char* name;
+  size_t n, p;
+  size_t state_size; /* n + n(n+1)/2 */
+  void (*initial_state)(double* state);                                 /* from the model's m0, P0 */
+  void (*step)(double* state, double t, double dt, const double* dy);   /* over [t, t+dt], dy: p */
+} pfgen_plugin_filter;
+
+typedef struct pfgen_plugin {
+  unsigned abi_version; /* PFGEN_PLUGIN_ABI_VERSION of the generator that wrote the plugin */
+  const char* model_name;
+  const char* pfgen_version;
+  size_t n; /* states */
+  size_t q; /* truth Wiener processes: columns of g, or n when only G is given; 0 iff diffusion_is_zero */
+  size_t p; /* observations */
+  size_t r; /* observation Wiener processes: columns of B */
+  int diffusion_is_zero;       /* g identically zero: a deterministic truth, no diffusion functions */
+  int diffusion_is_covariance; /* the model gives only G = g g^T: diffusion_covariance is set,
+                                  diffusion and diffusion_jacobian are NULL */
+  int observation_is_constant; /* A0, A, B do not depend on t */
+  /* The model's initial.x0 (n entries); NULL when the model gives none. */
+  void (*truth_initial_state)(double* x0);
+  void (*drift)(double t, const double* x, double* f);                /* f: n */
+  void (*diffusion)(double t, const double* x, double* g);            /* g: n x q, or NULL */
+  /* dg[(i*q + j)*n + l] = d g_ij / d x_l, or NULL */
+  void (*diffusion_jacobian)(double t, const double* x, double* dg);
+  void (*diffusion_covariance)(double t, const double* x, double* G); /* G: n x n, or NULL */
+  void (*observation)(double t, double* A0, double* A, double* B);    /* A0: p, A: p x n, B: p x r */
+  size_t filter_count;
+  const pfgen_plugin_filter* filters; /* filter_count entries (NULL when 0) */
+} pfgen_plugin;
+
+/* The exported entry point: const pfgen_plugin* pfgen_plugin_entry(void). */
+typedef const pfgen_plugin* (*pfgen_plugin_entry_function)(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PFGEN_PLUGIN_ABI_H */

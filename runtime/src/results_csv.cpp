@@ -1,0 +1,131 @@
+#include "pfgen_runtime/results_csv.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <stdexcept>
+#include <system_error>
+
+namespace pfgen_runtime {
+
+namespace {
+
+struct Column {
+  std::string name;
+  std::function<double(Eigen::Index row)> value;  // NaN: an empty cell
+};
+
+// Header and cells come from one list, so they cannot disagree.
+std::vector<Column> make_columns(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
+  if (state_names.size() != result.n) throw std::invalid_argument("results CSV: need one name per state component");
+  const MonteCarloSeries& series = result.series;
+  const auto n = static_cast<Eigen::Index>(result.n);
+  std::vector<Column> columns;
+  columns.push_back({"t", [&series](Eigen::Index r) { return series.t[static_cast<std::size_t>(r)]; }});
+  for (Eigen::Index i = 0; i < n; ++i)
+    columns.push_back({"truth_" + state_names[i], [&series, i](Eigen::Index r) { return series.truth(r, i); }});
+  for (std::size_t f = 0; f < result.filters.size(); ++f) {
+    const std::string& name = result.filters[f].name;
+    const FilterSeries& filter = series.filters[f];
+    for (Eigen::Index i = 0; i < n; ++i)
+      columns.push_back({name + "_m_" + state_names[i], [&filter, i](Eigen::Index r) { return filter.m(r, i); }});
+    for (Eigen::Index i = 0; i < n; ++i)
+      columns.push_back(
+          {name + "_P_" + state_names[i], [&filter, i](Eigen::Index r) { return filter.P_diagonal(r, i); }});
+    for (Eigen::Index i = 0; i < n; ++i)
+      columns.push_back({name + "_err_" + state_names[i],
+                         [&series, &filter, i](Eigen::Index r) { return series.truth(r, i) - filter.m(r, i); }});
+  }
+  auto add_statistics = [&columns, n, &state_names](const std::string& prefix, const SeriesStatistics& s) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const std::string stem = prefix + state_names[i];
+      columns.push_back({stem + "_mean", [&s, i](Eigen::Index r) { return s.mean(r, i); }});
+      columns.push_back({stem + "_q05", [&s, i](Eigen::Index r) { return s.q05(r, i); }});
+      columns.push_back({stem + "_q50", [&s, i](Eigen::Index r) { return s.q50(r, i); }});
+      columns.push_back({stem + "_q95", [&s, i](Eigen::Index r) { return s.q95(r, i); }});
+    }
+  };
+  auto add_alive = [&columns](const std::string& name, const std::vector<std::size_t>& alive) {
+    columns.push_back({name, [&alive](Eigen::Index r) { return static_cast<double>(alive[static_cast<std::size_t>(r)]); }});
+  };
+  add_statistics("truth_", series.truth_statistics);
+  add_alive("truth_alive", series.truth_alive);
+  for (std::size_t f = 0; f < result.filters.size(); ++f) {
+    add_statistics(result.filters[f].name + "_err_", series.filters[f].error);
+    add_alive(result.filters[f].name + "_alive", series.filters[f].alive);
+  }
+  return columns;
+}
+
+// Shortest decimal that reads back to the same double; empty for NaN and inf.
+void append_number(std::string& out, double value) {
+  if (!std::isfinite(value)) return;
+  char buffer[32];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  if (error != std::errc()) throw std::logic_error("results CSV: to_chars failed");
+  out.append(buffer, end);
+}
+
+void append_field(std::string& out, const std::string& field) {
+  if (field.find_first_of(",\"\r\n") == std::string::npos) {
+    out += field;
+    return;
+  }
+  out += '"';
+  for (char c : field) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  out += '"';
+}
+
+}  // namespace
+
+std::vector<std::string> results_csv_columns(const MonteCarloResult& result,
+                                             const std::vector<std::string>& state_names) {
+  std::vector<std::string> names;
+  for (const Column& column : make_columns(result, state_names)) names.push_back(column.name);
+  return names;
+}
+
+std::string format_results_csv(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
+  const std::vector<Column> columns = make_columns(result, state_names);
+  std::string out;
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    if (c > 0) out += ',';
+    append_field(out, columns[c].name);
+  }
+  out += '\n';
+  const auto rows = static_cast<Eigen::Index>(result.series.t.size());
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (c > 0) out += ',';
+      append_number(out, columns[c].value(r));
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+void write_results_csv(const std::string& path, const MonteCarloResult& result,
+                       const std::vector<std::string>& state_names) {
+  const std::string text = format_results_csv(result, state_names);
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    if (file) file.write(text.data(), static_cast<std::streamsize>(text.size()));
+    file.close();
+    if (!file) {
+      std::remove(temporary.c_str());
+      throw std::runtime_error("cannot write the results CSV '" + path + "'");
+    }
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    throw std::runtime_error("cannot write the results CSV '" + path + "' (renaming " + temporary + " failed)");
+  }
+}
+
+}  // namespace pfgen_runtime

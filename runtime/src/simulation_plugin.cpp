@@ -1,0 +1,126 @@
+#include "pfgen_runtime/simulation_plugin.hpp"
+
+#include <dlfcn.h>
+
+#include "pfgen_runtime/guards.hpp"
+
+namespace pfgen_runtime {
+namespace {
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+void require(bool condition, const std::string& path, const std::string& what) {
+  if (!condition) throw PluginLoadError("simulation plugin " + path + " is inconsistent: " + what);
+}
+
+// Everything the runtime relies on, checked once here rather than trusted at every call.
+void check_table(const pfgen_plugin& t, const std::string& path) {
+  require(t.n >= 1 && t.p >= 1 && t.r >= 1, path, "n, p and r must be at least 1");
+  require(t.model_name && t.pfgen_version, path, "the model name or pfgen version is missing");
+  require(t.drift && t.observation, path, "the drift or the observation is missing");
+  require((t.q == 0) == (t.diffusion_is_zero != 0), path, "q must be 0 exactly when the diffusion is zero");
+  if (!t.diffusion_is_zero) {
+    if (t.diffusion_is_covariance)
+      require(t.diffusion_covariance && t.q == t.n, path, "a diffusion given as G needs G and q = n");
+    else
+      require(t.diffusion != nullptr, path, "the diffusion g is missing");
+  }
+  require(t.filter_count == 0 || t.filters, path, "the filter table is missing");
+  for (std::size_t k = 0; k < t.filter_count; ++k) {
+    const pfgen_plugin_filter& f = t.filters[k];
+    require(f.name && f.initial_state && f.step, path, "filter " + std::to_string(k) + " lacks a name or function");
+    require(f.n == t.n && f.p == t.p && f.state_size == filter_state_size(t.n), path,
+            "filter " + std::string(f.name) + " has other dimensions than the model");
+  }
+}
+
+}  // namespace
+
+SimulationPlugin::SimulationPlugin(const std::string& path) : path_(path) {
+  // RTLD_NOW: a missing symbol fails here, not in the middle of a run. RTLD_LOCAL: two plugins
+  // (two models, or two versions of one) never resolve symbols against each other.
+  void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    const char* error = ::dlerror();
+    throw PluginLoadError("cannot load simulation plugin " + path + ": " + (error ? error : "unknown error"));
+  }
+  library_ = std::shared_ptr<void>(handle, [](void* h) { ::dlclose(h); });
+  void* symbol = ::dlsym(handle, PFGEN_PLUGIN_ENTRY_NAME);
+  if (!symbol)
+    throw PluginLoadError(path + " is not a pfgen simulation plugin: it has no " PFGEN_PLUGIN_ENTRY_NAME "()");
+  auto entry = reinterpret_cast<pfgen_plugin_entry_function>(symbol);
+  const pfgen_plugin* table = entry();
+  if (!table) throw PluginLoadError("simulation plugin " + path + " returned no table");
+  // abi_version is the first member in every version: nothing else is read before it matches.
+  if (table->abi_version != PFGEN_PLUGIN_ABI_VERSION)
+    throw PluginLoadError("simulation plugin " + path + " was built for plugin ABI version " +
+                          std::to_string(table->abi_version) + ", this runtime reads version " +
+                          std::to_string(PFGEN_PLUGIN_ABI_VERSION) + "; delete it to have it rebuilt");
+  check_table(*table, path);
+  table_ = table;
+}
+
+SdeSystem SimulationPlugin::system() const {
+  SdeSystem system;
+  system.n = table_->n;
+  system.q = table_->q;
+  const std::shared_ptr<void> library = library_;
+  system.drift = [library, f = table_->drift](double t, const double* x, double* out) { f(t, x, out); };
+  if (table_->diffusion)
+    system.diffusion = [library, g = table_->diffusion](double t, const double* x, double* out) { g(t, x, out); };
+  if (table_->diffusion_jacobian)
+    system.diffusion_jacobian = [library, dg = table_->diffusion_jacobian](double t, const double* x, double* out) {
+      dg(t, x, out);
+    };
+  if (!table_->diffusion_is_zero && table_->diffusion_is_covariance)
+    system.diffusion = diffusion_from_covariance(
+        table_->n, [library, G = table_->diffusion_covariance](double t, const double* x, double* out) { G(t, x, out); });
+  return system;
+}
+
+LinearObservation SimulationPlugin::observation() const {
+  const std::size_t n = table_->n, p = table_->p, r = table_->r;
+  const std::shared_ptr<void> library = library_;
+  // The ABI's matrices are row-major, Eigen's column-major: copy through row-major buffers.
+  auto coefficients = [library, fill = table_->observation, A0_rows = Eigen::VectorXd(p), A_rows = RowMajor(p, n),
+                       B_rows = RowMajor(p, r)](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A,
+                                                Eigen::MatrixXd& B) mutable {
+    fill(t, A0_rows.data(), A_rows.data(), B_rows.data());
+    A0 = A0_rows;
+    A = A_rows;
+    B = B_rows;
+  };
+  if (!table_->observation_is_constant) return LinearObservation(p, n, r, coefficients);
+  Eigen::VectorXd A0(p);
+  Eigen::MatrixXd A(p, n), B(p, r);
+  coefficients(0.0, A0, A, B);
+  return LinearObservation(A0, A, B);
+}
+
+Eigen::VectorXd SimulationPlugin::truth_initial_state() const {
+  if (!table_->truth_initial_state)
+    throw PluginLoadError("model " + model_name() + " gives no initial.x0 for the truth");
+  Eigen::VectorXd x0(table_->n);
+  table_->truth_initial_state(x0.data());
+  return x0;
+}
+
+std::vector<FilterModel> SimulationPlugin::filters() const {
+  std::vector<FilterModel> out;
+  const std::shared_ptr<void> library = library_;
+  for (std::size_t k = 0; k < table_->filter_count; ++k) {
+    const pfgen_plugin_filter& f = table_->filters[k];
+    FilterModel model;
+    model.name = f.name;
+    model.n = f.n;
+    model.p = f.p;
+    model.initial_state = [library, init = f.initial_state](double* state) { init(state); };
+    model.step = [library, step = f.step](double* state, double t, double dt, const double* dy) {
+      step(state, t, dt, dy);
+    };
+    out.push_back(std::move(model));
+  }
+  return out;
+}
+
+}  // namespace pfgen_runtime

@@ -1,0 +1,132 @@
+#include "pfgen_runtime/summary_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace pfgen_runtime {
+
+namespace {
+
+// printf-style formatting of one finite number; '-' for anything undefined.
+std::string number(double value, const char* format = "%.4g") {
+  if (!std::isfinite(value)) return "-";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+std::string time(double t) { return number(t, "%.6g"); }
+
+std::string count(std::size_t value) { return std::to_string(value); }
+
+// Rows of cells, first column left-aligned, the rest right-aligned, two spaces between.
+std::string align(const std::vector<std::vector<std::string>>& rows) {
+  std::vector<std::size_t> width;
+  for (const auto& row : rows)
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      if (width.size() <= c) width.push_back(0);
+      width[c] = std::max(width[c], row[c].size());
+    }
+  std::ostringstream out;
+  for (const auto& row : rows) {
+    std::string line;
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      const std::string pad(width[c] - row[c].size(), ' ');
+      if (c > 0) line += "  ";
+      line += c == 0 ? row[c] + pad : pad + row[c];
+    }
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out << line << '\n';
+  }
+  return out.str();
+}
+
+std::string events_line(const char* what, const EventSummary& events, std::size_t runs) {
+  std::ostringstream out;
+  out << what << ": ";
+  if (events.count() == 0)
+    out << "no run";
+  else
+    out << events.count() << " of " << runs << " runs, first at t = " << time(events.earliest())
+        << ", median t = " << time(events.median());
+  return out.str();
+}
+
+}  // namespace
+
+std::string format_summary_table(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
+  if (state_names.size() != result.n)
+    throw std::invalid_argument("summary table: need one name per state component");
+  std::ostringstream out;
+  out << "Monte Carlo: " << result.runs << " runs, t in [" << time(result.grid.t0) << ", " << time(result.grid.end())
+      << "], dt = " << time(result.grid.dt) << " (" << result.grid.steps << " steps), seed " << result.seed
+      << ", truth scheme " << result.scheme << "\n";
+  if (result.filters.empty()) {
+    out << "(no filters)\n";
+  } else {
+    // Column headers from the first filter: every filter has the same windows and report times.
+    const FilterStatistics& first = result.filters.front();
+    auto window_header = [](const WindowStatistics& w) { return "RMS[" + time(w.a) + "," + time(w.b) + "]"; };
+    std::vector<std::string> header{"filter", "state", window_header(first.horizon)};
+    for (const WindowStatistics& w : first.windows) header.push_back(window_header(w));
+    for (const ReportStatistics& r : first.reports) header.push_back("|e|@" + time(r.t));
+    for (const char* h : {"peak|e| med", "diverged", "div first t", "div median t", "PSD loss", "PSD first t"})
+      header.push_back(h);
+    std::vector<std::vector<std::string>> rows{header};
+    std::vector<std::vector<std::string>> counts{{"filter", "completed"}};
+    for (const WindowStatistics& w : first.windows) counts.front().push_back(window_header(w));
+    for (const ReportStatistics& r : first.reports) counts.front().push_back("|e|@" + time(r.t));
+
+    for (const FilterStatistics& filter : result.filters) {
+      for (std::size_t i = 0; i < result.n; ++i) {
+        std::vector<std::string> row{filter.name, state_names[i], number(filter.horizon.rms[i])};
+        for (const WindowStatistics& w : filter.windows) row.push_back(number(w.rms[i]));
+        for (const ReportStatistics& r : filter.reports) row.push_back(number(r.mean_abs[i]));
+        row.push_back(number(filter.peak_median[i]));
+        row.push_back(count(filter.divergences.count()));
+        row.push_back(time(filter.divergences.earliest()));
+        row.push_back(time(filter.divergences.median()));
+        row.push_back(count(filter.psd_losses.count()));
+        row.push_back(time(filter.psd_losses.earliest()));
+        rows.push_back(std::move(row));
+      }
+      std::vector<std::string> row{filter.name, count(filter.horizon.runs)};
+      for (const WindowStatistics& w : filter.windows) row.push_back(count(w.runs));
+      for (const ReportStatistics& r : filter.reports) row.push_back(count(r.alive));
+      counts.push_back(std::move(row));
+    }
+    out << align(rows);
+    out << "\nRuns counted (truth and filter alive to the window's end, or at the report time):\n" << align(counts);
+  }
+  out << "\n" << events_line("Truth diverged", result.truth_divergences, result.runs) << "\n";
+  return out.str();
+}
+
+std::string format_timing(const MonteCarloResult& result) {
+  const MonteCarloTiming& timing = result.timing;
+  // "1.234 thread-s, 56.7 ns/step (CPU 55.1 ns/step)": elapsed and CPU time per step.
+  auto phase = [](double seconds, double cpu_seconds, std::uint64_t steps) {
+    std::string text = number(seconds, "%.3f") + " thread-s";
+    if (steps > 0) {
+      const double per_step = 1e9 / static_cast<double>(steps);
+      text += ", " + number(seconds * per_step, "%.1f") + " ns/step (CPU " + number(cpu_seconds * per_step, "%.1f") +
+              " ns/step)";
+    }
+    return text;
+  };
+  std::ostringstream out;
+  out << "Timing: " << number(timing.wall_seconds, "%.3f") << " s wall on " << timing.threads << " thread"
+      << (timing.threads == 1 ? "" : "s") << "\n  truth: "
+      << phase(timing.truth_seconds, timing.truth_cpu_seconds, timing.truth_steps) << "\n";
+  for (std::size_t f = 0; f < result.filters.size() && f < timing.filter_seconds.size(); ++f)
+    out << "  " << result.filters[f].name << ": "
+        << phase(timing.filter_seconds[f], timing.filter_cpu_seconds[f], timing.filter_steps[f]) << "\n";
+  out << "  statistics: " << number(timing.aggregation_seconds, "%.3f") << " s\n";
+  return out.str();
+}
+
+}  // namespace pfgen_runtime

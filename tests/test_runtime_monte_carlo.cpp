@@ -1,0 +1,712 @@
+// The Monte Carlo engine and its reports: results bitwise identical for any thread count and
+// equal to simulate_truth + run_filter run by run; a hand-written Kalman-Bucy filter's RMS error
+// matches the stationary Riccati solution; diverging filters, PSD losses and a blowing-up truth
+// are reported with their times and never print NaN or inf; the table and CSV are deterministic
+// and well-formed; gnuplot draws the plot. Also the RK4 truth scheme's order and the cheap PSD
+// check's agreement with the eigenvalue check.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <Eigen/Core>
+
+#include "pfgen_runtime/gnuplot_plot.hpp"
+#include "pfgen_runtime/guards.hpp"
+#include "pfgen_runtime/monte_carlo.hpp"
+#include "pfgen_runtime/results_csv.hpp"
+#include "pfgen_runtime/schemes.hpp"
+#include "pfgen_runtime/simulation.hpp"
+#include "pfgen_runtime/summary_table.hpp"
+
+using namespace pfgen_runtime;
+
+namespace {
+
+// dx = -a x dt + s dW1, dy = x dt + r dW2.
+struct ScalarLinear {
+  double a = 1.0, s = 0.8, r = 0.5, m0 = 0.0, P0 = 1.0;
+  double P_inf() const { return r * r * (-a + std::sqrt(a * a + s * s / (r * r))); }
+};
+
+SdeSystem scalar_linear_system(const ScalarLinear& model) {
+  SdeSystem system;
+  system.n = 1;
+  system.q = 1;
+  system.drift = [a = model.a](double, const double* x, double* f) { f[0] = -a * x[0]; };
+  system.diffusion = [s = model.s](double, const double*, double* g) { g[0] = s; };
+  return system;
+}
+
+LinearObservation scalar_observation(double r) {
+  return LinearObservation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Constant(1, 1, r));
+}
+
+// The Kalman-Bucy filter written out by hand, in the generated calling convention; `gain_sign`
+// -1 makes it deliberately wrong: the innovation pushes m away from x and m runs off like e^(9t).
+FilterModel kalman_bucy(const ScalarLinear& model, const std::string& name, double gain_sign = 1.0,
+                        double gain = 0.0) {
+  FilterModel filter;
+  filter.name = name;
+  filter.n = 1;
+  filter.p = 1;
+  filter.initial_state = [model](double* state) {
+    state[0] = model.m0;
+    state[1] = model.P0;
+  };
+  filter.step = [model, gain_sign, gain](double* state, double, double dt, const double* dy) {
+    const double m = state[0], P = state[1];
+    const double K = gain > 0 ? gain : P / (model.r * model.r);
+    state[0] = m - model.a * m * dt + gain_sign * K * (dy[0] - m * dt);
+    state[1] = P + (-2 * model.a * P + model.s * model.s - P * P / (model.r * model.r)) * dt;
+  };
+  return filter;
+}
+
+// m stays 0, P = 0.5 - t: P loses definiteness just after t = 0.5.
+FilterModel shrinking() {
+  FilterModel filter;
+  filter.name = "shrinking";
+  filter.n = 1;
+  filter.p = 1;
+  filter.initial_state = [](double* state) {
+    state[0] = 0.0;
+    state[1] = 0.5;
+  };
+  filter.step = [](double* state, double, double dt, const double*) { state[1] -= dt; };
+  return filter;
+}
+
+// Every number of a result except its timing, in a fixed order, for bitwise comparison.
+std::vector<double> flatten(const MonteCarloResult& result) {
+  std::vector<double> out{static_cast<double>(result.runs), static_cast<double>(result.n)};
+  auto add = [&out](const std::vector<double>& v) { out.insert(out.end(), v.begin(), v.end()); };
+  auto add_matrix = [&out](const Eigen::MatrixXd& m) { out.insert(out.end(), m.data(), m.data() + m.size()); };
+  auto add_counts = [&out](const std::vector<std::size_t>& v) {
+    for (std::size_t c : v) out.push_back(static_cast<double>(c));
+  };
+  auto add_events = [&out](const EventSummary& events) {
+    out.push_back(static_cast<double>(events.count()));
+    for (const RunEvent& e : events.events) {
+      out.push_back(static_cast<double>(e.run));
+      out.push_back(e.t);
+    }
+    out.push_back(events.earliest());
+    out.push_back(events.median());
+  };
+  auto add_window = [&](const WindowStatistics& w) {
+    out.insert(out.end(), {w.a, w.b, static_cast<double>(w.first), static_cast<double>(w.last),
+                           static_cast<double>(w.runs)});
+    add(w.rms);
+  };
+  for (const FilterStatistics& f : result.filters) {
+    add_window(f.horizon);
+    for (const WindowStatistics& w : f.windows) add_window(w);
+    for (const ReportStatistics& r : f.reports) {
+      out.insert(out.end(), {r.t, static_cast<double>(r.index), static_cast<double>(r.alive)});
+      add(r.mean_abs);
+      add(r.rms);
+    }
+    add(f.peak_median);
+    add(f.peak_q95);
+    add_events(f.divergences);
+    add_events(f.psd_losses);
+  }
+  add_events(result.truth_divergences);
+  const MonteCarloSeries& s = result.series;
+  add_counts(s.index);
+  add(s.t);
+  add_matrix(s.truth);
+  for (const SeriesStatistics* stats : {&s.truth_statistics}) {
+    add_matrix(stats->mean);
+    add_matrix(stats->q05);
+    add_matrix(stats->q50);
+    add_matrix(stats->q95);
+  }
+  add_counts(s.truth_alive);
+  for (const FilterSeries& f : s.filters) {
+    add_matrix(f.m);
+    add_matrix(f.P_diagonal);
+    add_matrix(f.error.mean);
+    add_matrix(f.error.q05);
+    add_matrix(f.error.q50);
+    add_matrix(f.error.q95);
+    add_counts(f.alive);
+  }
+  return out;
+}
+
+bool bitwise_equal(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+bool mentions_nan_or_inf(const std::string& text) {
+  const std::string lower = lowercase(text);
+  return lower.find("nan") != std::string::npos || lower.find("inf") != std::string::npos;
+}
+
+// The OU truth of ScalarLinear with three filters: the right one, a diverging one and one that
+// loses definiteness; the truth guard at 1.6 stops some runs early, so partial runs are covered.
+struct Scenario {
+  ScalarLinear model;
+  std::vector<FilterModel> filters{kalman_bucy(model, "kalman-bucy"), kalman_bucy(model, "wrong", -1.0, 10.0),
+                                   shrinking()};
+  MonteCarloOptions options;
+  Scenario() {
+    options.grid = TimeGrid::to_horizon(0.0, 3.0, 0.01);
+    options.runs = 23;
+    options.seed = 77;
+    options.record_points = 40;
+    options.shown_run = 4;
+    options.report_times = {0.5, 1.0, 3.0};
+    options.windows = {{0.5, 1.5}, {2.0, 3.0}};
+    options.truth_guard = DivergenceGuard(1.6);
+  }
+};
+
+std::string temporary_directory() {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("pfgen-montecarlo-" + std::to_string(static_cast<long>(getpid())));
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+bool gnuplot_on_path() {
+  const char* path = std::getenv("PATH");
+  std::stringstream entries(path ? path : "");
+  std::string entry;
+  while (std::getline(entries, entry, ':'))
+    if (!entry.empty() && access((entry + "/gnuplot").c_str(), X_OK) == 0) return true;
+  return false;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "[montecarlo][runtime]") {
+  Scenario scenario;
+  EulerMaruyama scheme(scalar_linear_system(scenario.model));
+  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
+
+  std::vector<double> reference;
+  std::string reference_table, reference_csv;
+  for (unsigned threads : {1u, 2u, 3u}) {
+    scenario.options.threads = threads;
+    const MonteCarloResult result = run_monte_carlo(scheme, observation, x0, scenario.filters, scenario.options);
+    CHECK(result.timing.threads == threads);
+    const std::vector<double> numbers = flatten(result);
+    const std::string table = format_summary_table(result, {"x"});
+    const std::string csv = format_results_csv(result, {"x"});
+    if (threads == 1) {
+      reference = numbers;
+      reference_table = table;
+      reference_csv = csv;
+      // The scenario covers what it should: some truths stopped, every wrong filter diverged.
+      CHECK(result.truth_divergences.count() > 0);
+      CHECK(result.truth_divergences.count() < result.runs);
+      CHECK(result.filters[1].divergences.count() > 0);
+      CHECK(result.filters[2].psd_losses.count() > 0);
+      continue;
+    }
+    INFO("threads = " << threads);
+    CHECK(bitwise_equal(numbers, reference));
+    CHECK(table == reference_table);
+    CHECK(csv == reference_csv);
+  }
+}
+
+TEST_CASE("monte carlo: each run equals simulate_truth + run_filter bit for bit", "[montecarlo][runtime]") {
+  Scenario scenario;
+  ScalarLinear& model = scenario.model;
+  // The adaptive scheme draws from a stream of its own (start_run): the engine must reseed it.
+  AdaptiveEuler scheme(scalar_linear_system(model), AdaptiveEuler::Options{0.02, 0.1, 20});
+  LinearObservation observation = scalar_observation(model.r);
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, -0.2);
+  MonteCarloOptions& options = scenario.options;
+  options.threads = 2;
+  options.record_points = options.grid.steps;  // every grid point
+
+  for (std::size_t shown : {std::size_t{4}, std::size_t{0}}) {
+    options.shown_run = shown;
+    const MonteCarloResult result = run_monte_carlo(scheme, observation, x0, scenario.filters, options);
+    REQUIRE(result.series.t.size() == options.grid.steps + 1);
+
+    std::size_t truth_events = 0;
+    std::vector<std::size_t> divergence_events(scenario.filters.size(), 0), psd_events(scenario.filters.size(), 0);
+    for (std::size_t run = 0; run < options.runs; ++run) {
+      auto own_scheme = scheme.clone();
+      const TruthRun truth = simulate_truth(*own_scheme, observation, x0, options.grid, options.seed, run,
+                                            options.truth_guard);
+      INFO("run " << run);
+      if (truth.diverged()) {
+        REQUIRE(truth_events < result.truth_divergences.count());
+        const RunEvent& event = result.truth_divergences.events[truth_events++];
+        CHECK(event.run == run);
+        CHECK(same_bits(event.t, truth.divergence->t));
+      }
+      for (std::size_t f = 0; f < scenario.filters.size(); ++f) {
+        const FilterRun filtered = run_filter(scenario.filters[f], truth, options.filter_guards);
+        const FilterStatistics& stats = result.filters[f];
+        if (filtered.divergence) {
+          REQUIRE(divergence_events[f] < stats.divergences.count());
+          const RunEvent& event = stats.divergences.events[divergence_events[f]++];
+          CHECK(event.run == run);
+          CHECK(same_bits(event.t, filtered.divergence->t));
+        }
+        if (filtered.psd_loss) {
+          REQUIRE(psd_events[f] < stats.psd_losses.count());
+          const RunEvent& event = stats.psd_losses.events[psd_events[f]++];
+          CHECK(event.run == run);
+          CHECK(same_bits(event.t, filtered.psd_loss->t));
+        }
+        if (run != shown) continue;
+        const FilterSeries& series = result.series.filters[f];
+        for (Eigen::Index k = 0; k <= static_cast<Eigen::Index>(options.grid.steps); ++k) {
+          if (k < filtered.state.cols()) {
+            CHECK(same_bits(series.m(k, 0), filtered.state(0, k)));
+            CHECK(same_bits(series.P_diagonal(k, 0), filtered.state(1, k)));
+          } else {
+            CHECK(std::isnan(series.m(k, 0)));
+          }
+        }
+      }
+      if (run == shown) {
+        for (Eigen::Index k = 0; k <= static_cast<Eigen::Index>(options.grid.steps); ++k) {
+          if (k < truth.x.cols())
+            CHECK(same_bits(result.series.truth(k, 0), truth.x(0, k)));
+          else
+            CHECK(std::isnan(result.series.truth(k, 0)));
+        }
+      }
+    }
+    CHECK(truth_events == result.truth_divergences.count());
+    for (std::size_t f = 0; f < scenario.filters.size(); ++f) {
+      CHECK(divergence_events[f] == result.filters[f].divergences.count());
+      CHECK(psd_events[f] == result.filters[f].psd_losses.count());
+    }
+  }
+}
+
+TEST_CASE("monte carlo: Kalman-Bucy RMS error is sqrt(P_inf); wrong filters are reported with times",
+          "[montecarlo][runtime]") {
+  const ScalarLinear model;
+  EulerMaruyama scheme(scalar_linear_system(model));
+  const LinearObservation observation = scalar_observation(model.r);
+  MonteCarloOptions options;
+  options.grid = TimeGrid::to_horizon(0.0, 10.0, 2e-3);
+  options.runs = 1000;
+  options.seed = 2024;
+  options.threads = 2;
+  options.record_points = 100;
+  options.windows = {{2.0, 10.0}, {0.0, 0.4}};
+  options.report_times = {10.0, 0.3};
+  // Called from the worker threads: count there, assert here (Catch's macros are not thread-safe).
+  std::atomic<std::size_t> calls{0}, largest{0}, wrong_totals{0};
+  options.on_run_finished = [&](std::size_t finished, std::size_t total) {
+    ++calls;
+    std::size_t seen = largest.load();
+    while (finished > seen && !largest.compare_exchange_weak(seen, finished)) {
+    }
+    if (total != 1000) ++wrong_totals;
+  };
+  // The truth starts at the filter's mean 0 (the error is then only the filter's, not the prior's).
+  const std::vector<FilterModel> filters{kalman_bucy(model, "kalman-bucy"), kalman_bucy(model, "wrong", -1.0, 10.0),
+                                         shrinking()};
+  const MonteCarloResult result = run_monte_carlo(scheme, observation, Eigen::VectorXd::Zero(1), filters, options);
+  CHECK(calls == 1000);
+  CHECK(largest == 1000);
+  CHECK(wrong_totals == 0);
+
+  // Euler steps of the truth and of the filter shift the stationary error variance by O(dt).
+  const double root_P = std::sqrt(model.P_inf());
+  const FilterStatistics& kb = result.filters[0];
+  INFO("sqrt(P_inf) = " << root_P << ", RMS over [2, 10] " << kb.windows[0].rms[0] << ", RMS at 10 "
+                        << kb.reports[0].rms[0] << ", mean |e| at 10 " << kb.reports[0].mean_abs[0]);
+  CHECK(kb.windows[0].runs == 1000);
+  // About 15 independent samples per run over [2, 10]: relative sd of the RMS ~0.6 %.
+  CHECK(kb.windows[0].rms[0] == Approx(root_P).epsilon(0.03));
+  // 1000 samples at t = 10: relative sd of the RMS ~2.2 %.
+  CHECK(kb.reports[0].alive == 1000);
+  CHECK(kb.reports[0].rms[0] == Approx(root_P).epsilon(0.09));
+  CHECK(kb.reports[0].mean_abs[0] == Approx(std::sqrt(2 / 3.14159265358979323846) * root_P).epsilon(0.09));
+  // The transient (P0 = 1 > P_inf, but x0 = m0) has smaller error than the stationary phase.
+  CHECK(kb.windows[1].rms[0] < root_P);
+  CHECK(kb.horizon.runs == 1000);
+  CHECK(kb.divergences.count() == 0);
+  CHECK(kb.psd_losses.count() == 0);
+  CHECK(kb.peak_median[0] > 2 * root_P);
+  CHECK(kb.peak_q95[0] > kb.peak_median[0]);
+  // The series' median error hovers around 0 and its band spans about +-1.645 sqrt(P).
+  const FilterSeries& kb_series = result.series.filters[0];
+  const Eigen::Index last = kb_series.error.q95.rows() - 1;
+  CHECK(kb_series.alive[static_cast<std::size_t>(last)] == 1000);
+  CHECK(kb_series.error.q95(last, 0) - kb_series.error.q05(last, 0) == Approx(2 * 1.645 * root_P).epsilon(0.15));
+  CHECK(std::abs(kb_series.error.q50(last, 0)) < 0.15 * root_P);
+
+  // m' = 9 m + noise: |m| reaches 1e8 around t ~ 2 in every run.
+  const FilterStatistics& wrong = result.filters[1];
+  CHECK(wrong.divergences.count() == 1000);
+  CHECK(wrong.horizon.runs == 0);
+  CHECK(std::isnan(wrong.horizon.rms[0]));
+  CHECK(wrong.divergences.earliest() > 0.5);
+  CHECK(wrong.divergences.earliest() <= wrong.divergences.median());
+  CHECK(wrong.divergences.median() < 4.0);
+  CHECK(wrong.windows[1].runs == 1000);  // [0, 0.4]: before any divergence
+  CHECK(std::isfinite(wrong.windows[1].rms[0]));
+  CHECK(result.series.filters[1].alive.back() == 0);
+  CHECK(std::isnan(result.series.filters[1].error.q50(last, 0)));
+
+  // P = 0.5 - t: within tolerance at t = 0.5 (round-off), lost at 0.502; the run goes on.
+  const FilterStatistics& shrink = result.filters[2];
+  CHECK(shrink.psd_losses.count() == 1000);
+  CHECK(shrink.psd_losses.earliest() == Approx(0.502).margin(1e-9));
+  CHECK(shrink.divergences.count() == 0);
+  CHECK(shrink.horizon.runs == 1000);
+  CHECK(result.truth_divergences.count() == 0);
+
+  const std::string table = format_summary_table(result, {"x"});
+  INFO(table);
+  CHECK_FALSE(mentions_nan_or_inf(table));
+  CHECK(table.find("RMS[2,10]") != std::string::npos);
+  CHECK(table.find("|e|@0.3") != std::string::npos);
+  CHECK_FALSE(mentions_nan_or_inf(format_results_csv(result, {"x"})));
+  const std::string timing = format_timing(result);
+  CHECK(timing.find("ns/step") != std::string::npos);
+  CHECK(result.timing.truth_steps == 1000 * options.grid.steps);
+}
+
+TEST_CASE("monte carlo: a truth that blows up is reported near t = 1 and nothing prints nan or inf",
+          "[montecarlo][runtime]") {
+  // x' = x^2 from x0 = 1: x = 1 / (1 - t), beyond the 1e8 bound at t = 1 - 1e-8.
+  SdeSystem system;
+  system.n = 1;
+  system.q = 0;
+  system.drift = [](double, const double* x, double* f) { f[0] = x[0] * x[0]; };
+  const RungeKutta4 scheme(system);
+  const ScalarLinear model;
+  MonteCarloOptions options;
+  options.grid = TimeGrid::to_horizon(0.0, 2.0, 1e-3);
+  options.runs = 7;
+  options.threads = 2;
+  options.record_points = 50;
+  options.windows = {{0.0, 0.5}};
+  options.report_times = {0.5, 1.5};
+  const std::vector<FilterModel> filters{kalman_bucy(model, "kalman-bucy"), shrinking()};
+  const MonteCarloResult result =
+      run_monte_carlo(scheme, scalar_observation(model.r), Eigen::VectorXd::Ones(1), filters, options);
+
+  REQUIRE(result.truth_divergences.count() == 7);
+  CHECK(result.truth_divergences.earliest() == Approx(1.0).margin(2e-3));
+  CHECK(result.truth_divergences.median() == Approx(1.0).margin(2e-3));
+  CHECK(result.scheme == "rk4");
+  for (const FilterStatistics& filter : result.filters) {
+    CHECK(filter.horizon.runs == 0);
+    CHECK(filter.windows[0].runs == 7);
+    CHECK(std::isfinite(filter.windows[0].rms[0]));
+    CHECK(filter.reports[1].alive == 0);
+    CHECK(std::isnan(filter.reports[1].mean_abs[0]));
+    CHECK(std::isnan(filter.peak_median[0]));
+  }
+  CHECK(result.series.truth_alive.back() == 0);
+
+  const std::string table = format_summary_table(result, {"x"});
+  const std::string csv = format_results_csv(result, {"x"});
+  INFO(table);
+  CHECK_FALSE(mentions_nan_or_inf(table));
+  CHECK_FALSE(mentions_nan_or_inf(csv));
+  CHECK(table.find("Truth diverged: 7 of 7 runs, first at t = 1") != std::string::npos);
+  // The undefined cells: '-' in the table, empty in the CSV (the last row is all empty but t and
+  // the alive counts, which are 0).
+  CHECK(table.find(" - ") != std::string::npos);
+  const std::string last_row = csv.substr(csv.rfind('\n', csv.size() - 2) + 1);
+  CHECK(last_row.rfind("2,,", 0) == 0);
+}
+
+TEST_CASE("monte carlo: the table and CSV are byte-identical across calls and the CSV is well-formed",
+          "[montecarlo][runtime]") {
+  Scenario scenario;
+  EulerMaruyama scheme(scalar_linear_system(scenario.model));
+  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
+  scenario.options.threads = 2;
+  const MonteCarloResult first = run_monte_carlo(scheme, observation, x0, scenario.filters, scenario.options);
+  scenario.options.threads = 1;
+  const MonteCarloResult second = run_monte_carlo(scheme, observation, x0, scenario.filters, scenario.options);
+
+  const std::string dir = temporary_directory();
+  const std::string path_a = dir + "/a.csv", path_b = dir + "/b.csv";
+  write_results_csv(path_a, first, {"x"});
+  write_results_csv(path_b, second, {"x"});
+  const std::string csv = read_file(path_a);
+  CHECK(csv == read_file(path_b));
+  CHECK_FALSE(std::filesystem::exists(path_a + ".tmp"));
+  CHECK(format_summary_table(first, {"x"}) == format_summary_table(second, {"x"}));
+
+  // Constant column count, every cell empty or a number that reads back completely.
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);
+  const std::vector<std::string> columns = results_csv_columns(first, {"x"});
+  CHECK(std::count(line.begin(), line.end(), ',') + 1 == static_cast<long>(columns.size()));
+  CHECK(line.rfind("t,truth_x,kalman-bucy_m_x,kalman-bucy_P_x,kalman-bucy_err_x,", 0) == 0);
+  CHECK(line.find(",truth_x_mean,truth_x_q05,truth_x_q50,truth_x_q95,truth_alive,") != std::string::npos);
+  const std::string last_column = ",shrinking_alive";
+  CHECK(line.size() > last_column.size());
+  CHECK(line.compare(line.size() - last_column.size(), last_column.size(), last_column) == 0);
+  std::size_t rows = 0, empty = 0;
+  while (std::getline(lines, line)) {
+    ++rows;
+    std::stringstream cells(line + ",");
+    std::string cell;
+    std::size_t count = 0;
+    while (std::getline(cells, cell, ',')) {
+      ++count;
+      if (cell.empty()) {
+        ++empty;
+        continue;
+      }
+      char* end = nullptr;
+      const double value = std::strtod(cell.c_str(), &end);
+      CHECK(*end == '\0');
+      CHECK(std::isfinite(value));
+    }
+    CHECK(count == columns.size());
+  }
+  CHECK(rows == first.series.t.size());
+  CHECK(empty > 0);  // the stopped truths and the diverged filter leave empty cells
+
+  // A failed write names the path and leaves nothing behind.
+  const std::string bad = dir + "/no-such-dir/out.csv";
+  try {
+    write_results_csv(bad, first, {"x"});
+    FAIL("writing into a missing directory succeeded");
+  } catch (const std::runtime_error& error) {
+    CHECK(std::string(error.what()).find(bad) != std::string::npos);
+  }
+  CHECK_THROWS_AS(format_summary_table(first, {"x", "y"}), std::invalid_argument);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("monte carlo: gnuplot draws the error plot as SVG and PNG", "[montecarlo][runtime][gnuplot]") {
+  if (!gnuplot_on_path()) {
+    WARN("gnuplot is not on PATH: plot test skipped (scripts/install-deps.sh installs it)");
+    return;
+  }
+  Scenario scenario;
+  EulerMaruyama scheme(scalar_linear_system(scenario.model));
+  scenario.options.threads = 2;
+  const MonteCarloResult result = run_monte_carlo(scheme, scalar_observation(scenario.model.r),
+                                                  Eigen::VectorXd::Constant(1, 0.3), scenario.filters, scenario.options);
+  const std::string dir = temporary_directory();
+  const std::string csv = dir + "/results.csv", svg = dir + "/errors.svg", png = dir + "/errors.PNG";
+  write_results_csv(csv, result, {"x"});
+  write_error_plot(svg, csv, result, {"x"}, "scalar OU, it's a test");
+  const std::string drawing = read_file(svg);
+  CHECK(drawing.rfind("<?xml", 0) == 0);
+  CHECK(drawing.find("<path") != std::string::npos);
+  // The first filter's curve in its fixed colour (#0072B2), and its name in the key.
+  CHECK(drawing.find("rgb(  0, 114, 178)") != std::string::npos);
+  CHECK(drawing.find("<text>kalman-bucy</text>") != std::string::npos);
+  CHECK(std::filesystem::exists(svg + ".gp"));
+  write_error_plot(svg, csv, result, {"x"}, "scalar OU, it's a test");
+  CHECK(read_file(svg) == drawing);  // deterministic
+
+  write_error_plot(png, csv, result, {"x"}, "scalar OU");
+  CHECK(read_file(png).rfind("\x89PNG", 0) == 0);
+
+  CHECK_THROWS_AS(write_error_plot(dir + "/errors.pdf", csv, result, {"x"}, "t"), std::invalid_argument);
+  // gnuplot failing (no CSV to read) is reported, and leaves no plot.
+  CHECK_THROWS_AS(write_error_plot(dir + "/missing.svg", dir + "/missing.csv", result, {"x"}, "t"),
+                  std::runtime_error);
+  CHECK_FALSE(std::filesystem::exists(dir + "/missing.svg"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("monte carlo: inconsistent inputs are rejected and a worker's exception reaches the caller",
+          "[montecarlo][runtime]") {
+  Scenario scenario;
+  EulerMaruyama scheme(scalar_linear_system(scenario.model));
+  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(1);
+  auto rejects = [&](auto change) {
+    Scenario copy = scenario;
+    change(copy);
+    CHECK_THROWS_AS(run_monte_carlo(scheme, observation, x0, copy.filters, copy.options), std::invalid_argument);
+  };
+  rejects([](Scenario& s) { s.options.threads = 0; });
+  rejects([](Scenario& s) { s.options.runs = 0; });
+  rejects([](Scenario& s) { s.options.shown_run = s.options.runs; });
+  rejects([](Scenario& s) { s.options.record_points = 0; });
+  rejects([](Scenario& s) { s.options.report_times = {3.5}; });
+  rejects([](Scenario& s) { s.options.windows = {{1.0, 1.0}}; });
+  rejects([](Scenario& s) { s.options.windows = {{-1.0, 1.0}}; });
+  rejects([](Scenario& s) { s.filters[1].name = s.filters[0].name; });
+  rejects([](Scenario& s) { s.filters[0].n = 2; });
+
+  Scenario failing = scenario;
+  failing.options.threads = 3;
+  failing.filters[0].step = [](double* state, double t, double, const double*) {
+    if (t > 1.0) throw std::runtime_error("filter failed on purpose");
+    state[0] += 0.0;
+  };
+  CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, failing.filters, failing.options),
+                    "filter failed on purpose");
+}
+
+TEST_CASE("runtime: RK4 integrates paper 001's deterministic state to order 4", "[montecarlo][runtime][schemes]") {
+  SdeSystem system;
+  system.n = 2;
+  system.q = 0;
+  system.drift = [](double, const double* x, double* f) {
+    f[0] = 0.1 * (x[0] * x[0] + x[1]);
+    f[1] = 0.1 * x[1];
+  };
+  auto scheme = make_scheme(scheme_kind_from_string("rk4"), system);
+  CHECK(scheme->name() == "rk4");
+  const double T = 4.0;
+  auto solve = [&](double dt) {
+    Eigen::VectorXd x(2), dW(0);
+    x << 1.1, 1.1;
+    const auto steps = static_cast<int>(std::lround(T / dt));
+    for (int k = 0; k < steps; ++k) scheme->step(k * dt, x, dt, dW);
+    return x;
+  };
+  const Eigen::VectorXd reference = solve(1e-3);  // error ~ 1e-15
+  // x2 = 1.1 e^(0.1 t) exactly.
+  CHECK(reference[1] == Approx(1.1 * std::exp(0.1 * T)).epsilon(1e-13));
+  std::vector<double> errors;
+  for (double dt : {0.4, 0.2, 0.1, 0.05}) errors.push_back((solve(dt) - reference).cwiseAbs().maxCoeff());
+  for (std::size_t i = 0; i + 1 < errors.size(); ++i) {
+    const double order = std::log2(errors[i] / errors[i + 1]);
+    INFO("dt = " << 0.4 / std::pow(2.0, static_cast<double>(i)) << ": error " << errors[i] << ", observed order "
+                 << order);
+    CHECK(order > 3.7);
+    CHECK(order < 4.3);
+  }
+  // A noisy system is refused rather than its noise silently dropped.
+  system.q = 1;
+  system.diffusion = [](double, const double*, double* g) { g[0] = g[1] = 0.0; };
+  CHECK_THROWS_AS(RungeKutta4(system), std::invalid_argument);
+}
+
+TEST_CASE("runtime: the cheap PSD check gives the eigenvalue check's verdict", "[montecarlo][runtime][guards]") {
+  std::mt19937_64 random(12345);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const std::vector<CovarianceGuard> guards{CovarianceGuard(), CovarianceGuard(0.0, 0.0), CovarianceGuard(1e-2, 0.0),
+                                            CovarianceGuard(0.0, 1e-6)};
+  std::size_t passed = 0, failed = 0;
+
+  // P = Q diag(lambda) Q^T with random Q and eigenvalues of every kind.
+  auto check_all = [&](const Eigen::MatrixXd& P, const std::string& what) {
+    const auto n = static_cast<std::size_t>(P.rows());
+    Eigen::VectorXd state(static_cast<Eigen::Index>(filter_state_size(n)));
+    state.head(P.rows()).setConstant(0.25);
+    state.tail(static_cast<Eigen::Index>(packed_size(n))) = pack_upper(P);
+    for (std::size_t g = 0; g < guards.size(); ++g) {
+      const CovarianceCheck exact = guards[g].check_filter_state(state.data(), n);
+      INFO(what << ", n = " << n << ", guard " << g << ": " << exact.describe() << "\nP =\n" << P);
+      CHECK(guards[g].passes_filter_state(state.data(), n) == exact.ok);
+      (exact.ok ? passed : failed) += 1;
+      // For n > 2 the stack-sized eigenvalues agree with check_matrix's.
+      if (n > 2 && P.allFinite()) {
+        const CovarianceCheck reference = guards[g].check_matrix(unpack_symmetric(pack_upper(P).data(), n));
+        const double scale = std::max(1e-300, reference.max_abs_eigenvalue);
+        CHECK(std::abs(exact.min_eigenvalue - reference.min_eigenvalue) <= 1e-12 * scale);
+        if (std::abs(reference.min_eigenvalue + reference.threshold) > 1e-9 * scale) CHECK(exact.ok == reference.ok);
+      }
+    }
+  };
+  for (std::size_t n = 1; n <= 7; ++n) {
+    const auto N = static_cast<Eigen::Index>(n);
+    for (int trial = 0; trial < 60; ++trial) {
+      Eigen::MatrixXd M(N, N);
+      for (Eigen::Index i = 0; i < M.size(); ++i) M.data()[i] = normal(random);
+      // Gram-Schmidt on a Gaussian matrix: a random orthogonal Q.
+      Eigen::MatrixXd Q = M;
+      for (Eigen::Index j = 0; j < N; ++j) {
+        for (Eigen::Index k = 0; k < j; ++k) Q.col(j) -= Q.col(k).dot(Q.col(j)) * Q.col(k);
+        Q.col(j).normalize();
+      }
+      Eigen::VectorXd lambda(N);
+      const double scale = std::pow(10.0, 6.0 * (uniform(random) - 0.5));
+      for (Eigen::Index i = 0; i < N; ++i) lambda[i] = scale * uniform(random);
+      switch (trial % 6) {
+        case 0: break;                                                 // positive definite
+        case 1: lambda[0] = 0; break;                                  // singular
+        case 2: lambda[0] = -1e-3 * scale * uniform(random); break;    // around the 1e-4 tolerance
+        case 3: lambda[0] = -scale * uniform(random); break;           // clearly indefinite
+        case 4: lambda.setZero(); lambda[N - 1] = scale; break;        // rank 1
+        case 5: lambda[0] = -1e-8 * scale; break;                      // integrator noise on a zero
+      }
+      check_all(Q * lambda.asDiagonal() * Q.transpose(), "random case " + std::to_string(trial % 6));
+    }
+    // Edge matrices: zero, all ones (paper 001's P0), tiny and huge scales, non-finite entries,
+    // eigenvalue exactly at the default threshold.
+    check_all(Eigen::MatrixXd::Zero(N, N), "zero");
+    check_all(Eigen::MatrixXd::Ones(N, N), "all ones");
+    check_all(1e-200 * Eigen::MatrixXd::Identity(N, N), "tiny");
+    check_all(1e200 * Eigen::MatrixXd::Ones(N, N), "huge");
+    check_all(-1e-13 * Eigen::MatrixXd::Identity(N, N), "tiny negative");
+    Eigen::MatrixXd boundary = Eigen::MatrixXd::Identity(N, N);
+    boundary(0, 0) = -(1e-12 + 1e-4);
+    check_all(boundary, "at the threshold");
+    for (double bad : {nan, inf, -inf}) {
+      Eigen::MatrixXd P = Eigen::MatrixXd::Identity(N, N);
+      P(N - 1, 0) = P(0, N - 1) = bad;
+      check_all(P, "non-finite entry");
+    }
+  }
+  CHECK(passed > 500);
+  CHECK(failed > 500);
+}
+
+// Not run by default: `pfgen_tests "[montecarlo-benchmark]"`. The speed target's shape: a scalar
+// model, 3 trivial filters, 90,000 steps per run, 2 threads.
+TEST_CASE("monte carlo benchmark: 100 runs x 90,000 steps, scalar model, 3 filters, 2 threads",
+          "[.][montecarlo-benchmark]") {
+  const ScalarLinear model;
+  EulerMaruyama scheme(scalar_linear_system(model));
+  MonteCarloOptions options;
+  options.grid = TimeGrid::to_horizon(0.0, 9.0, 1e-4);
+  options.runs = 100;
+  options.threads = 2;
+  options.windows = {{1.0, 9.0}};
+  options.report_times = {1.0, 5.0, 9.0};
+  const std::vector<FilterModel> filters{kalman_bucy(model, "kalman-bucy"), kalman_bucy(model, "fixed-gain", 1.0, 2.0),
+                                         kalman_bucy(model, "copy")};
+  const MonteCarloResult result =
+      run_monte_carlo(scheme, scalar_observation(model.r), Eigen::VectorXd::Zero(1), filters, options);
+  WARN(format_timing(result));
+  WARN(format_summary_table(result, {"x"}));
+}
