@@ -81,6 +81,8 @@ int run_simulate(const SimulateOptions& options) {
   check_output_paths(options);
   const Model model = load_model_file(options.model_path);
   const SimulationSettings settings = resolve_simulation_settings(model, options.overrides);
+  if (!model.initial || model.initial->x0.empty())
+    throw CliValueError(model.source + ": initial: the model gives no x0, the truth's initial state");
 
   // Derive and generate: deterministic text, whose hash keys the compiled plugin in the cache.
   std::vector<FilterEquations> filters;
@@ -96,8 +98,6 @@ int run_simulate(const SimulateOptions& options) {
   if (!options.quiet)
     std::cerr << "pfgen: plugin " << build.path << (build.cache_hit ? " (cached)" : "") << "\n";
   const pfgen_runtime::SimulationPlugin plugin(build.path);
-  if (!plugin.has_truth_initial_state())
-    throw CliValueError(options.model_path + ": initial: the model gives no x0, the truth's initial state");
 
   const std::string scheme_name = settings.scheme == "auto" ? choose_truth_scheme(model) : settings.scheme;
   const auto scheme = pfgen_runtime::make_scheme(pfgen_runtime::scheme_kind_from_string(scheme_name), plugin.system());

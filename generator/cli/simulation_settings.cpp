@@ -1,12 +1,13 @@
 #include "simulation_settings.hpp"
 
+#include <charconv>
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 #include "cli_options.hpp"
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/model/model.hpp"
-#include "pfgen/notation/number_format.hpp"
 
 namespace pfgen::cli {
 namespace {
@@ -33,11 +34,35 @@ double parse_double(const std::string& option, const std::string& text) {
   return value;
 }
 
-std::string number_text(double value) { return shortest_double(value); }
+// Shortest round-trip text, fixed or scientific whichever is shorter ("20", not "2e+01").
+std::string number_text(double value) {
+  char buffer[64];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
+  return std::string(buffer, end);
+}
 
 // Where a setting came from, for error messages.
 std::string origin(bool from_command_line, const std::string& option, const Model& model, const std::string& field) {
   return from_command_line ? option : model.simulation.location_of(field) + ": simulation." + field;
+}
+
+// The model file's report times and windows are defaults for its own horizon: with a shorter
+// --T, those beyond it are left out (said on stderr) rather than refused, so that a quick
+// `--T 1` run of any model just works. Within one source (the file alone) they stay errors.
+template <class Item, class End, class Text>
+void drop_beyond_horizon(std::vector<Item>& items, double T, bool T_from_command_line, const std::string& field,
+                         End end, Text text) {
+  if (!T_from_command_line) return;
+  std::vector<Item> kept;
+  std::string dropped;
+  for (const Item& item : items) {
+    if (end(item) <= T) kept.push_back(item);
+    else dropped += (dropped.empty() ? "" : ", ") + text(item);
+  }
+  if (!dropped.empty())
+    std::cerr << "pfgen: note: simulation." << field << " " << dropped << " beyond --T " << number_text(T)
+              << " left out\n";
+  items = std::move(kept);
 }
 
 }  // namespace
@@ -84,6 +109,8 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
     for (const auto& part : split(*cli.report_times, ',')) s.report_times.push_back(parse_double("--report-times", part));
   } else {
     s.report_times = file.report_times;
+    drop_beyond_horizon(s.report_times, s.T, cli.T.has_value(), "report_times",
+                        [](double t) { return t; }, [](double t) { return number_text(t); });
   }
   for (double t : s.report_times)
     if (!(t >= 0 && t <= s.T))
@@ -98,6 +125,11 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
     }
   } else {
     s.windows = file.windows;
+    drop_beyond_horizon(s.windows, s.T, cli.T.has_value(), "windows",
+                        [](const std::pair<double, double>& w) { return w.second; },
+                        [](const std::pair<double, double>& w) {
+                          return "[" + number_text(w.first) + ", " + number_text(w.second) + "]";
+                        });
   }
   for (const auto& [a, b] : s.windows)
     if (!(a >= 0 && a < b && b <= s.T))

@@ -113,6 +113,7 @@ struct RunResult {
   bool truth_diverged = false;
   double truth_divergence_t = nan;
   std::vector<double> truth_record;  // records x n
+  std::vector<double> truth_report;  // reports x n; NaN where the truth had stopped
   std::vector<FilterRunResult> filters;
 };
 
@@ -205,6 +206,10 @@ class Worker {
     for (std::size_t r = 0; r < plan_.records.size(); ++r)
       if (static_cast<std::ptrdiff_t>(plan_.records[r]) <= out.truth_last)
         for (std::size_t i = 0; i < n; ++i) out.truth_record[r * n + i] = path_(i, plan_.records[r]);
+    out.truth_report.assign(plan_.reports.size() * n, nan);
+    for (std::size_t q = 0; q < plan_.reports.size(); ++q)
+      if (static_cast<std::ptrdiff_t>(plan_.reports[q]) <= out.truth_last)
+        for (std::size_t i = 0; i < n; ++i) out.truth_report[q * n + i] = path_(i, plan_.reports[q]);
   }
 
   // run_filter (simulation.cpp) over the thread's truth buffers, with the run's statistics
@@ -386,6 +391,25 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
 
   for (std::size_t r = 0; r < runs.size(); ++r)
     if (runs[r].truth_diverged) result.truth_divergences.events.push_back({r, runs[r].truth_divergence_t});
+
+  for (std::size_t q = 0; q < plan.reports.size(); ++q) {
+    TruthReportStatistics report;
+    report.index = plan.reports[q];
+    report.t = plan.grid.time(report.index);
+    for (std::size_t i = 0; i < n; ++i) {
+      values.clear();
+      for (const RunResult& run : runs)
+        if (run.truth_last >= static_cast<std::ptrdiff_t>(report.index)) values.push_back(run.truth_report[q * n + i]);
+      report.alive = values.size();
+      double sum = 0;
+      for (double v : values) sum += v;
+      report.mean.push_back(values.empty() ? nan : sum / static_cast<double>(values.size()));
+      report.q05.push_back(values.empty() ? nan : quantile(values, 0.05));
+      report.q50.push_back(values.empty() ? nan : quantile(values, 0.5));
+      report.q95.push_back(values.empty() ? nan : quantile(values, 0.95));
+    }
+    result.truth_reports.push_back(std::move(report));
+  }
 
   for (std::size_t f = 0; f < filters.size(); ++f) {
     FilterStatistics stats;

@@ -103,6 +103,14 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
     out << "\nRuns counted (truth and filter alive to the window's end, or at the report time):\n" << align(counts);
   }
   out << "\n" << events_line("Truth diverged", result.truth_divergences, result.runs) << "\n";
+  if (!result.truth_reports.empty()) {
+    std::vector<std::vector<std::string>> rows{{"truth at", "state", "runs", "mean", "q05", "median", "q95"}};
+    for (const TruthReportStatistics& report : result.truth_reports)
+      for (std::size_t i = 0; i < result.n; ++i)
+        rows.push_back({"t = " + time(report.t), state_names[i], count(report.alive), number(report.mean[i]),
+                        number(report.q05[i]), number(report.q50[i]), number(report.q95[i])});
+    out << "\nTruth at the report times (over the runs whose truth is alive there):\n" << align(rows);
+  }
   return out.str();
 }
 

@@ -61,6 +61,15 @@ struct ReportStatistics {
   std::vector<double> mean_abs, rms;    // per component, over those runs; NaN when alive == 0
 };
 
+// The truth itself at a report time, over the runs whose truth is alive there (a paper's
+// printed state values can be checked against it).
+struct TruthReportStatistics {
+  double t = 0;
+  std::size_t index = 0;
+  std::size_t alive = 0;
+  std::vector<double> mean, q05, q50, q95;  // per component; NaN when alive == 0
+};
+
 struct RunEvent {
   std::size_t run = 0;
   double t = 0;
@@ -126,6 +135,7 @@ struct MonteCarloResult {
   std::size_t n = 0;   // state components
   std::vector<FilterStatistics> filters;
   EventSummary truth_divergences;  // the truth guard's event time
+  std::vector<TruthReportStatistics> truth_reports;  // as MonteCarloOptions::report_times
   MonteCarloSeries series;
   MonteCarloTiming timing;
 };

@@ -1,0 +1,196 @@
+// `pfgen simulate` end to end: the real program derives, compiles (into a per-test cache) and
+// runs the example models. Short horizons and few runs keep each case to a few seconds; the
+// full reproductions are commands of their own (README, "Reproductions").
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "support/cli_helpers.hpp"
+
+using namespace pfgen_test;
+
+namespace {
+
+// The "Truth at the report times" rows of the summary: (t, state) -> {runs, mean, q05, median, q95}.
+std::map<std::pair<std::string, std::string>, std::vector<double>> truth_rows(const std::string& table) {
+  std::map<std::pair<std::string, std::string>, std::vector<double>> rows;
+  const std::regex row(R"(^t = (\S+)\s+(\S+)\s+(\d+)\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)$)");
+  std::istringstream in(table);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (!std::regex_match(line, m, row)) continue;
+    std::vector<double> values;
+    for (int i = 3; i <= 7; ++i) values.push_back(m[i].str() == "-" ? std::nan("") : std::stod(m[i].str()));
+    rows[{m[1].str(), m[2].str()}] = values;
+  }
+  return rows;
+}
+
+std::vector<std::string> simulate_args(const std::string& model, const TempDir& dir,
+                                       std::initializer_list<std::string> more) {
+  std::vector<std::string> args{"simulate", example(model), "--cache-dir", dir.file("cache")};
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+bool has_nan_or_inf(const std::string& text) {
+  return std::regex_search(text, std::regex(R"((^|[^A-Za-z])(nan|inf)([^A-Za-z]|$))", std::regex::icase));
+}
+
+}  // namespace
+
+TEST_CASE("paper 001 truth: x2 = 1.1 exp(0.1 t) gives 1.81, 2.00, 2.11 at t = 5, 6, 6.5", "[simulate][paper001]") {
+  TempDir dir;
+  const auto result = run_pfgen(simulate_args("basin_skliar_partial.yaml", dir,
+                                              {"--runs", "3", "--dt", "1e-3", "--report-times", "5,6,6.5", "-q"}));
+  REQUIRE(result.exit_code == 0);
+  INFO(result.out);
+  const auto rows = truth_rows(result.out);
+  REQUIRE(rows.size() == 6);
+  const std::map<std::string, std::string> printed{{"5", "1.81"}, {"6", "2.00"}, {"6.5", "2.11"}};
+  for (const auto& [t, text] : printed) {
+    const std::vector<double>& x2 = rows.at({t, "x2"});
+    CHECK(x2[0] == 3);                                               // every run's truth alive
+    CHECK(x2[1] == Approx(1.1 * std::exp(0.1 * std::stod(t))).epsilon(1e-3));  // 4 digits printed
+    char rounded[16];
+    std::snprintf(rounded, sizeof rounded, "%.2f", x2[1]);
+    CHECK(std::string(rounded) == text);  // the paper's printed values
+    CHECK(x2[2] == x2[4]);  // no process noise: every run has the same truth
+  }
+  // x1 (no closed form): careful integration gives 4.847 and 9.83, not the paper's 6.05 and 16.05.
+  CHECK(rows.at({"5", "x1"})[1] == Approx(4.847).margin(0.002));
+  CHECK(rows.at({"6", "x1"})[1] == Approx(9.83).margin(0.01));
+}
+
+TEST_CASE("paper 001 beyond the blow-up: the truth is stopped and reported, nothing non-finite printed",
+          "[simulate][paper001]") {
+  TempDir dir;
+  const auto result = run_pfgen(simulate_args("basin_skliar_partial.yaml", dir,
+                                              {"--runs", "2", "--T", "7.5", "--dt", "1e-3", "--report-times", "7.2",
+                                               "--windows", "0:5", "-o", dir.file("r.csv"), "-q"}));
+  REQUIRE(result.exit_code == 0);
+  INFO(result.out);
+  const std::smatch m = [&] {
+    std::smatch match;
+    std::regex_search(result.out, match, std::regex(R"(Truth diverged: 2 of 2 runs, first at t = (\S+),)"));
+    return match;
+  }();
+  REQUIRE(m.size() == 2);
+  CHECK(std::stod(m[1].str()) == Approx(7.01).margin(0.02));  // x1 of paper 001 blows up near t = 7.01
+  CHECK_FALSE(has_nan_or_inf(result.out));
+  CHECK_FALSE(has_nan_or_inf(read_file(dir.file("r.csv"))));
+  // The window before the blow-up still has every run; the report time after it has none.
+  CHECK(truth_rows(result.out).at({"7.2", "x1"})[0] == 0);
+}
+
+TEST_CASE("simulate: identical output for any thread count, and the second run uses the cached plugin",
+          "[simulate]") {
+  TempDir dir;
+  auto run = [&](const std::string& threads, const std::string& csv) {
+    return run_pfgen(simulate_args("basin2006_quadratic.yaml", dir,
+                                   {"--runs", "5", "--T", "2", "--dt", "1e-3", "--threads", threads, "-o",
+                                    dir.file(csv)}));
+  };
+  const auto one = run("1", "one.csv");
+  const auto three = run("3", "three.csv");
+  REQUIRE(one.exit_code == 0);
+  REQUIRE(three.exit_code == 0);
+  CHECK(one.out.find("(cached)") == std::string::npos);
+  CHECK(one.err.find("(cached)") == std::string::npos);
+  CHECK(three.err.find("(cached)") != std::string::npos);
+  // stdout names the CSV: the same apart from that line.
+  auto without_csv_line = [](std::string text) { return std::regex_replace(text, std::regex("csv: .*\n"), ""); };
+  CHECK(without_csv_line(one.out) == without_csv_line(three.out));
+  CHECK(read_file(dir.file("one.csv")) == read_file(dir.file("three.csv")));
+  CHECK(one.out.find("ekf-printed") != std::string::npos);  // the model's own filter ran too
+}
+
+TEST_CASE("simulate --plot draws an SVG with gnuplot, next to its CSV", "[simulate][gnuplot]") {
+  TempDir dir;
+  const auto result = run_pfgen(simulate_args(
+      "basin2006_quadratic.yaml", dir,
+      {"--runs", "3", "--T", "1", "--dt", "1e-3", "--filters", "optimal,ekf", "--plot", dir.file("e.svg"), "-q"}));
+  REQUIRE(result.exit_code == 0);
+  const std::string svg = read_file(dir.file("e.svg"));
+  CHECK(svg.find("<svg") != std::string::npos);
+  CHECK(svg.find("optimal") != std::string::npos);
+  CHECK(read_file(dir.file("e.csv")).rfind("t,truth_x,", 0) == 0);
+}
+
+TEST_CASE("simulate: bad settings are one-line errors naming the option or field, with no output files",
+          "[simulate][bad_input]") {
+  TempDir dir;
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases{
+      {{"--T", "-1"}, "--T: the horizon must be a positive number"},
+      {{"--dt", "5", "--T", "2"}, "--dt: the step must be positive and below T = 2"},
+      {{"--windows", "0:20"}, "--windows: [0, 20] is not a window"},
+      {{"--windows", "1-2"}, "--windows: '1-2' is not a:b"},
+      {{"--report-times", "1,x"}, "--report-times: 'x' is not a finite number"},
+      {{"--filters", "optimal,kalman"}, "unknown filter kind 'kalman'"},
+      {{"--scheme", "heun"}, "--scheme: unknown scheme 'heun'"},
+      {{"--runs", "0"}, "--runs: at least one run"},
+      {{"--shown-run", "300"}, "--shown-run: run 300 does not exist with 200 runs"},
+      {{"--plot", dir.file("e.pdf")}, "--plot: '" + dir.file("e.pdf") + "' must end in .png or .svg"},
+      {{"-o", dir.file("missing/r.csv")}, "does not exist"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args{"simulate", example("basin2006_quadratic.yaml"), "--cache-dir", dir.file("cache")};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const auto result = run_pfgen(args);
+    INFO(result.err);
+    CHECK(result.exit_code != 0);
+    CHECK(result.out.empty());
+    CHECK(count_lines(result.err) == 1);
+    CHECK(result.err.find(c.message) != std::string::npos);
+  }
+  CHECK(dir.entries() == std::vector<std::string>{});  // not even a cache: every check precedes the build
+
+  // The model file's own inconsistent settings are refused at the field's place.
+  const std::string model = dir.file("bad_window.yaml");
+  write_file(model, read_file(example("basin2006_quadratic.yaml")) + "\n");
+  std::string text = read_file(model);
+  text = std::regex_replace(text, std::regex("windows: .*"), "windows: [[0, 4], [4, 12]]");
+  write_file(model, text);
+  const auto result = run_pfgen({"simulate", model, "--cache-dir", dir.file("cache")});
+  INFO(result.err);
+  CHECK(result.exit_code != 0);
+  CHECK(std::regex_search(result.err, std::regex("bad_window.yaml:[0-9]+:[0-9]+:")));
+  CHECK(result.err.find("windows") != std::string::npos);
+  CHECK(count_lines(result.err) == 1);
+}
+
+TEST_CASE("simulate: a shorter --T leaves out the model file's later report times and windows, and says so",
+          "[simulate]") {
+  TempDir dir;
+  const auto result = run_pfgen(simulate_args("basin2006_quadratic.yaml", dir,
+                                              {"--T", "3", "--runs", "2", "--dt", "1e-3", "--filters", "optimal", "-q"}));
+  INFO(result.err);
+  REQUIRE(result.exit_code == 0);
+  CHECK(result.err.find("note: simulation.report_times 4, 6, 8, 9.2 beyond --T 3 left out") != std::string::npos);
+  CHECK(result.err.find("note: simulation.windows [0, 4], [4, 9.2] beyond --T 3 left out") != std::string::npos);
+  CHECK(result.out.find("|e|@2") != std::string::npos);
+  CHECK(result.out.find("RMS[0,4]") == std::string::npos);
+  CHECK(result.out.find("|e|@4") == std::string::npos);
+}
+
+TEST_CASE("simulate: a model without a truth initial state is refused", "[simulate][bad_input]") {
+  TempDir dir;
+  const std::string model = dir.file("no_x0.yaml");
+  write_file(model,
+             "name: no_x0\nstates: [x]\ndrift: [\"-x\"]\ndiffusion: [[\"1\"]]\n"
+             "observation: {A0: [\"0\"], A: [[\"1\"]], B: [[\"1\"]]}\n"
+             "initial: {m0: [0], P0: [[1]]}\nsimulation: {T: 1}\n");
+  const auto result = run_pfgen({"simulate", model, "--cache-dir", dir.file("cache")});
+  INFO(result.err);
+  CHECK(result.exit_code != 0);
+  CHECK(result.out.empty());
+  CHECK(result.err.find("x0") != std::string::npos);
+}
