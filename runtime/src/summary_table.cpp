@@ -56,6 +56,17 @@ std::string events_line(const char* what, const EventSummary& events, std::size_
   return out.str();
 }
 
+// "  optimal: 17 at 8.346, 143 at 8.721, ... (67 runs)": the first few runs in run order.
+std::string run_list(const std::string& label, const EventSummary& events) {
+  constexpr std::size_t shown = 8;
+  std::ostringstream out;
+  out << label << ":";
+  for (std::size_t k = 0; k < events.events.size() && k < shown; ++k)
+    out << (k ? ", " : " ") << events.events[k].run << " at " << time(events.events[k].t);
+  if (events.events.size() > shown) out << ", ... (" << events.events.size() << " runs)";
+  return out.str();
+}
+
 }  // namespace
 
 std::string format_summary_table(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
@@ -101,6 +112,11 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
     }
     out << align(rows);
     out << "\nRuns counted (truth and filter alive to the window's end, or at the report time):\n" << align(counts);
+    // Which runs stopped, so that one can be looked at (--shown-run) and replayed.
+    std::ostringstream stopped;
+    for (const FilterStatistics& filter : result.filters)
+      if (filter.divergences.count() > 0) stopped << run_list("  " + filter.name, filter.divergences) << "\n";
+    if (!stopped.str().empty()) out << "\nDiverged runs (run index at t):\n" << stopped.str();
   }
   out << "\n" << events_line("Truth diverged", result.truth_divergences, result.runs) << "\n";
   if (!result.truth_reports.empty()) {
