@@ -4,7 +4,8 @@
 #
 # Prints, from one invocation of this script:
 #   - the cold compile of the generated plugin (fresh cache directory; not part of the target),
-#   - the median wall time of REPEATS warm runs on 2 threads, and on 1 thread as the baseline
+#   - the median wall time (whole command, warm plugin cache: derivation, loading, the runs and
+#     the statistics) of REPEATS runs on 2 threads, and on 1 thread as the baseline
 #     measured in the same script run (ratio = thread speed-up),
 #   - the ratio of filter-stepping time to truth-simulation time (thread-seconds, from pfgen's
 #     own --timing report, which times each phase of each run).
@@ -17,8 +18,8 @@ pfgen="$build/generator/pfgen"
 [ -x "$pfgen" ] || { echo "bench_simulate: build pfgen first (scripts/build.sh)" >&2; exit 1; }
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-job=("$root/examples/basin2006_quadratic.yaml" --filters optimal,additive,ekf-printed --runs 1000 --T 9 --dt 1e-4
-     --seed 1 --cache-dir "$work/cache")
+job=("$root/examples/basin2006_quadratic.yaml" --filters optimal,additive,ekf-printed --T 9 --dt 1e-4
+     --seed 1 --report-times 2,4,6,8,9 --windows 0:4,4:9 --cache-dir "$work/cache" -q)
 
 field() {  # field FILE NAME: a number from pfgen's flat --timing JSON
   sed -n "s/.*\"$2\": *\([-0-9.eE+]*\).*/\1/p" "$1"
@@ -30,8 +31,8 @@ echo "cold compile of the plugin: $(field "$work/cold.json" compile_seconds) s (
 run_series() {  # run_series THREADS: prints the median wall time of $repeats runs
   local threads=$1 times=()
   for i in $(seq 1 "$repeats"); do
-    "$pfgen" simulate "${job[@]}" --threads "$threads" --timing "$work/t$threads-$i.json" >"$work/table-$threads-$i.txt"
-    times+=("$(field "$work/t$threads-$i.json" wall_seconds)")
+    "$pfgen" simulate "${job[@]}" --runs 1000 --threads "$threads" --timing "$work/t$threads-$i.json" >"$work/table-$threads-$i.txt"
+    times+=("$(field "$work/t$threads-$i.json" total_seconds)")
   done
   printf '%s\n' "${times[@]}" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'
 }

@@ -85,7 +85,7 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
     std::vector<std::string> header{"filter", "state", window_header(first.horizon)};
     for (const WindowStatistics& w : first.windows) header.push_back(window_header(w));
     for (const ReportStatistics& r : first.reports) header.push_back("|e|@" + time(r.t));
-    for (const char* h : {"peak|e| med", "diverged", "div first t", "div median t", "PSD loss", "PSD first t"})
+    for (const char* h : {"peak|e| med", "peak|e| q95", "diverged", "div first t", "div median t", "PSD loss", "PSD first t"})
       header.push_back(h);
     std::vector<std::vector<std::string>> rows{header};
     std::vector<std::vector<std::string>> counts{{"filter", "completed"}};
@@ -98,6 +98,7 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
         for (const WindowStatistics& w : filter.windows) row.push_back(number(w.rms[i]));
         for (const ReportStatistics& r : filter.reports) row.push_back(number(r.mean_abs[i]));
         row.push_back(number(filter.peak_median[i]));
+        row.push_back(number(filter.peak_q95[i]));
         row.push_back(count(filter.divergences.count()));
         row.push_back(time(filter.divergences.earliest()));
         row.push_back(time(filter.divergences.median()));

@@ -13,7 +13,7 @@ namespace pfgen_runtime {
 
 // A header line (runs, horizon, dt, seed, truth scheme), then one row per filter and state
 // component: RMS error over [t0, T] and over each window ("RMS[a,b]"), mean |e| at each report
-// time ("|e|@t"), the median over completed runs of the peak |e|, divergences (count, earliest and
+// time ("|e|@t"), the median and 95 % quantile over completed runs of the peak |e|, divergences (count, earliest and
 // median time) and PSD losses (count, earliest time); then how many runs each statistic counted,
 // and a line on the truth's divergences. state_names: one per state component
 // (std::invalid_argument otherwise).
