@@ -104,6 +104,7 @@ struct FilterRunResult {
   std::vector<double> mean_square;   // (1 + windows) x n, the horizon first; NaN unless reached
   std::vector<double> report_error;  // reports x n; NaN where not alive
   std::vector<double> peak;          // n: max |e| over the stored states
+  std::uint64_t refined_steps = 0;   // grid steps the FilterStepper split
   std::vector<double> error_record;  // records x n
   std::vector<double> m_record, P_record;  // records x n, the shown run only
 };
@@ -138,7 +139,7 @@ class Worker {
       : scheme_(scheme.clone()), observation_(observation), filters_(filters), x0_(x0), plan_(plan),
         options_(options), path_(plan.n, plan.grid.steps + 1), dy_(plan.p, plan.grid.steps),
         x_(plan.n), dW_(scheme.system().q), dW2_(observation.r()), error_(plan.n),
-        sums_((1 + plan.windows.size()) * plan.n) {
+        sums_((1 + plan.windows.size()) * plan.n), stepper_(plan.n, plan.p, options.filter_guards.stepping) {
     filter_seconds.assign(filters.size(), 0.0);
     filter_cpu_seconds.assign(filters.size(), 0.0);
     filter_steps.assign(filters.size(), 0);
@@ -253,9 +254,10 @@ class Worker {
     visit(0, state, shown, out);
     out.last = 0;
     std::uint64_t steps = 0;
+    const std::uint64_t refined_before = stepper_.refined_steps();
     const double* dy = dy_.data();
     for (std::size_t k = 0; going && static_cast<std::ptrdiff_t>(k) < run.truth_last; ++k) {
-      filter.step(state, grid.time(k), grid.dt, dy + k * plan_.p);
+      stepper_.advance(filter.step, state, grid.time(k), grid.dt, dy + k * plan_.p);
       ++steps;
       going = guard(grid.time(k + 1));
       if (out.diverged) break;  // a diverged state is not stored
@@ -263,6 +265,7 @@ class Worker {
       out.last = static_cast<std::ptrdiff_t>(k + 1);
     }
     filter_steps[f] += steps;
+    out.refined_steps = stepper_.refined_steps() - refined_before;
     if (out.last == static_cast<std::ptrdiff_t>(grid.steps))
       for (std::size_t i = 0; i < n; ++i) out.mean_square[i] = sums_[i] / static_cast<double>(grid.steps + 1);
   }
@@ -316,6 +319,7 @@ class Worker {
   Eigen::MatrixXd dy_;    // p x steps
   Eigen::VectorXd x_, dW_, dW2_;
   std::vector<double> state_, error_, sums_;
+  FilterStepper stepper_;
   std::vector<std::size_t> active_;  // windows open at the current grid point
   std::size_t next_open_ = 0, next_event_ = 0;
 };
@@ -468,6 +472,8 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       const FilterRunResult& filter = runs[r].filters[f];
       if (filter.diverged) stats.divergences.events.push_back({r, filter.divergence_t});
       if (filter.psd_lost) stats.psd_losses.events.push_back({r, filter.psd_t});
+      stats.refined_steps += filter.refined_steps;
+      stats.refined_runs += filter.refined_steps > 0;
     }
     result.filters.push_back(std::move(stats));
   }

@@ -106,17 +106,19 @@ FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const Fil
     return true;
   };
 
+  FilterStepper stepper(filter.n, filter.p, options.stepping);
   bool going = guard(grid.t0);
   const bool initial_ok = !result.divergence;  // a PSD loss at t0 keeps P0 on record
   if (initial_ok) result.state.col(0) = state;
   for (std::size_t k = 0; going && k < truth.completed_steps; ++k) {
-    filter.step(state.data(), grid.time(k), grid.dt, truth.dy.col(static_cast<Eigen::Index>(k)).data());
+    stepper.advance(filter.step, state.data(), grid.time(k), grid.dt, truth.dy.col(static_cast<Eigen::Index>(k)).data());
     going = guard(grid.time(k + 1));
     if (result.divergence) break;  // a diverged state is not stored
     result.state.col(static_cast<Eigen::Index>(k + 1)) = state;
     result.completed_steps = k + 1;
   }
   result.stopped = !going;
+  result.refined_steps = stepper.refined_steps();
   result.state.conservativeResize(Eigen::NoChange,
                                   initial_ok ? static_cast<Eigen::Index>(result.completed_steps + 1) : 0);
   return result;

@@ -118,6 +118,13 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
     for (const FilterStatistics& filter : result.filters)
       if (filter.divergences.count() > 0) stopped << run_list("  " + filter.name, filter.divergences) << "\n";
     if (!stopped.str().empty()) out << "\nDiverged runs (run index at t):\n" << stopped.str();
+    std::ostringstream refined;
+    for (const FilterStatistics& filter : result.filters)
+      if (filter.refined_steps > 0)
+        refined << "  " << filter.name << ": " << filter.refined_steps << " steps in " << filter.refined_runs << " runs\n";
+    if (!refined.str().empty())
+      out << "\nGrid steps integrated in sub-steps (one step would have changed P by more than its tolerance):\n"
+          << refined.str();
   }
   out << "\n" << events_line("Truth diverged", result.truth_divergences, result.runs) << "\n";
   if (!result.truth_reports.empty()) {

@@ -90,6 +90,8 @@ struct FilterStatistics {
   std::vector<double> peak_median, peak_q95;  // of max_t |e| over completed runs, per component
   EventSummary divergences;  // m or P non-finite or beyond its bound (the guard's event time)
   EventSummary psd_losses;   // the first time P failed the PSD check, per run
+  std::uint64_t refined_steps = 0;  // grid steps taken in sub-steps (FilterStepper), all runs
+  std::size_t refined_runs = 0;     // runs with at least one
 };
 
 // Across runs at each record time, per component; NaN where no run is alive.

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "pfgen_runtime/filter_stepping.hpp"
 #include "pfgen_runtime/guards.hpp"
 #include "pfgen_runtime/observation.hpp"
 #include "pfgen_runtime/schemes.hpp"
@@ -81,6 +82,7 @@ struct FilterGuardOptions {
   CovarianceGuard psd = CovarianceGuard();  // P symmetric positive semi-definite
   bool check_psd = true;
   bool stop_on_psd_loss = false;  // by default record the first loss and go on
+  FilterStepControl stepping;     // grid steps refined where one step would be unstable
 };
 
 struct CovarianceEvent {
@@ -95,6 +97,7 @@ struct FilterRun {
   std::optional<DivergenceEvent> divergence;  // m or P non-finite or beyond its bound
   std::optional<CovarianceEvent> psd_loss;    // first time P failed the PSD check
   bool stopped = false;  // by a divergence, or by a PSD loss with stop_on_psd_loss
+  std::uint64_t refined_steps = 0;  // grid steps taken in sub-steps (FilterStepper)
 };
 
 // Steps the filter from its initial state over every increment of the truth run (or until a
