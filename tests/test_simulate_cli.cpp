@@ -140,6 +140,7 @@ TEST_CASE("simulate: bad settings are one-line errors naming the option or field
       {{"--shown-run", "300"}, "--shown-run: run 300 does not exist with 200 runs"},
       {{"--plot", dir.file("e.pdf")}, "--plot: '" + dir.file("e.pdf") + "' must end in .png or .svg"},
       {{"-o", dir.file("missing/r.csv")}, "does not exist"},
+      {{"--dt", "1e-8", "--threads", "2"}, "the job needs about 27.4 GiB"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> args{"simulate", example("basin2006_quadratic.yaml"), "--cache-dir", dir.file("cache")};

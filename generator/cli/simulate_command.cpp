@@ -59,6 +59,26 @@ void check_output_paths(const SimulateOptions& options) {
   }
 }
 
+// Each thread keeps one run's truth path and observation increments; the statistics keep the
+// recorded points of every run. Refuse a job that would not fit instead of dying in bad_alloc.
+void check_memory(const Model& model, const SimulationSettings& s, unsigned threads, std::size_t filters) {
+  const double steps = std::floor(s.T / s.dt + 0.5);
+  const double per_thread = (steps + 1) * static_cast<double>(model.n() + model.p()) * sizeof(double);
+  const double records = std::min(steps + 1, static_cast<double>(s.record_points) + 1);
+  const double statistics = static_cast<double>(s.runs) * records * static_cast<double>((filters + 1) * model.n()) *
+                            sizeof(double);
+  const double bytes = per_thread * threads + statistics;
+  constexpr double limit = 8.0 * 1024 * 1024 * 1024;
+  if (bytes > limit) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "the job needs about %.1f GiB (%.3g steps per run on %u threads, %zu runs x %.0f recorded points); "
+                  "the limit is 8 GiB: raise --dt or lower --runs, --record-points or --threads",
+                  bytes / (1024.0 * 1024 * 1024), steps, threads, s.runs, records);
+    throw CliValueError(text);
+  }
+}
+
 std::string timing_json(const pfgen_runtime::MonteCarloResult& result, const toolchain::PluginBuild& build,
                         double derive_seconds, double total_seconds) {
   double filter_seconds = 0;
@@ -88,6 +108,7 @@ int run_simulate(const SimulateOptions& options) {
   std::vector<FilterEquations> filters;
   for (const std::string& name : settings.filters.empty() ? available_filter_names(model) : settings.filters)
     filters.push_back(derive_named_filter(model, name));
+  check_memory(model, settings, thread_count(options.threads), filters.size());
   const std::string source = codegen::generate_simulation_plugin(model, filters);
   const double derive_seconds = seconds_since(start);
 
