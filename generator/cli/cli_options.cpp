@@ -7,7 +7,6 @@
 #include "pfgen/model/model.hpp"
 
 namespace pfgen::cli {
-namespace {
 
 std::vector<std::string> split(const std::string& text, char separator) {
   std::vector<std::string> parts;
@@ -17,8 +16,6 @@ std::vector<std::string> split(const std::string& text, char separator) {
   if (!text.empty() && text.back() == separator) parts.push_back("");
   return parts;
 }
-
-}  // namespace
 
 GiNaC::numeric parse_number(const std::string& option, const std::string& text) {
   auto value = parse_exact_number(text);

@@ -15,6 +15,8 @@ class CliValueError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// "a,b,,c" -> {"a", "b", "", "c"}; a trailing separator gives a last empty part.
+std::vector<std::string> split(const std::string& text, char separator);
 std::vector<GiNaC::numeric> parse_number_list(const std::string& option, const std::string& text);
 std::vector<std::vector<GiNaC::numeric>> parse_number_matrix(const std::string& option, const std::string& text);
 GiNaC::numeric parse_number(const std::string& option, const std::string& text);

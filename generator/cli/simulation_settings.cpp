@@ -12,15 +12,6 @@
 namespace pfgen::cli {
 namespace {
 
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::string part;
-  std::istringstream in(text);
-  while (std::getline(in, part, separator)) parts.push_back(part);
-  if (!text.empty() && text.back() == separator) parts.push_back("");
-  return parts;
-}
-
 double parse_double(const std::string& option, const std::string& text) {
   std::size_t used = 0;
   double value = 0;
