@@ -22,11 +22,18 @@ bool FilterStepper::acceptable(const double* before, const double* after) const 
     if (!std::isfinite(after[i])) return false;
   const double* P0 = before + n_;
   const double* P1 = after + n_;
+  const double tolerance = control_.tolerance, floor = control_.floor;
   for (std::size_t i = 0, k = 0; i < n_; ++i)
     for (std::size_t j = i; j < n_; ++j, ++k) {
       if (!std::isfinite(P1[k])) return false;
-      const double scale = std::sqrt(std::abs(before[diagonal_[i]] * before[diagonal_[j]])) + control_.floor;
-      if (std::abs(P1[k] - P0[k]) > control_.tolerance * scale) return false;
+      const double change = std::abs(P1[k] - P0[k]);
+      if (i == j) {  // scale |P_ii| + floor
+        if (change > tolerance * (std::abs(P0[k]) + floor)) return false;
+        continue;
+      }
+      // change <= tolerance (sqrt|P_ii P_jj| + floor), without a square root on every step.
+      const double excess = change / tolerance - floor;
+      if (excess > 0 && excess * excess > std::abs(before[diagonal_[i]] * before[diagonal_[j]])) return false;
     }
   return true;
 }
