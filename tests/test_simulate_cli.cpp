@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -141,6 +142,19 @@ TEST_CASE("simulate: bad settings are one-line errors naming the option or field
       {{"--plot", dir.file("e.pdf")}, "--plot: '" + dir.file("e.pdf") + "' must end in .png or .svg"},
       {{"-o", dir.file("missing/r.csv")}, "does not exist"},
       {{"--dt", "1e-8", "--threads", "2"}, "the job needs about 27.4 GiB"},
+      // Review: a T that is no whole number of steps used to run to another horizon (T = 1, dt = 0.3
+      // ran to 0.9); a window within one step failed after the build, naming no option; unsigned
+      // options took -1 as 2^64 - 1 and saturated overflows; a repeated filter and a scheme the
+      // model cannot use failed late, without the option's name.
+      {{"--T", "1", "--dt", "0.3"}, "--dt: T = 1 is not a whole number of steps of 0.3"},
+      {{"--dt", "1e-3", "--windows", "9.1996:9.2"}, "--windows: [9.1996, 9.2] is shorter than a step dt = 0.001"},
+      {{"--seed", "-1"}, "--seed: '-1' is not a whole number"},
+      {{"--seed", "18446744073709551616"}, "--seed: '18446744073709551616' is not a whole number"},
+      {{"--runs", "-1"}, "--runs: '-1' is not a whole number"},
+      {{"--record-points", "1e3"}, "--record-points: '1e3' is not a whole number"},
+      {{"--filters", "optimal,optimal"}, "--filters: 'optimal' is given twice"},
+      {{"--filters", "optimal,kalman"}, "--filters: unknown filter kind 'kalman'"},
+      {{"--scheme", "rk4"}, "--scheme: rk4 is for deterministic truths only"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> args{"simulate", example("basin2006_quadratic.yaml"), "--cache-dir", dir.file("cache")};
@@ -194,4 +208,89 @@ TEST_CASE("simulate: a model without a truth initial state is refused", "[simula
   CHECK(result.exit_code != 0);
   CHECK(result.out.empty());
   CHECK(result.err.find("x0") != std::string::npos);
+}
+
+// Review cases on a model of its own: n = 3, G-only diffusion, time-varying observation, p = 2,
+// no simulation: section (so that dt is pfgen's default).
+namespace {
+const char* const kCovarianceModel =
+    "name: review_cov3\nstates: [x, y, z]\nparameters: {a: 0.5}\n"
+    "drift: [\"-a*x + y\", \"-y + 0.1*x*z\", \"-z\"]\n"
+    "diffusion_covariance: [[\"1\", \"0.5\", \"0\"], [\"0.5\", \"1\", \"0\"], [\"0\", \"0\", \"0.25\"]]\n"
+    "observation: {A0: [\"sin(t)\", \"0\"], A: [[\"1\", \"0\", \"0\"], [\"0\", \"cos(t)\", \"1\"]], "
+    "B: [[\"1\", \"0\"], [\"0\", \"2\"]]}\n"
+    "initial: {x0: [1, 0, -1], m0: [0, 0, 0], P0: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}\n";
+}  // namespace
+
+TEST_CASE("simulate: settings refused before the build name the option, also for defaults and output paths",
+          "[simulate][bad_input]") {
+  TempDir dir;
+  const std::string model = dir.file("cov3.yaml");
+  write_file(model, kCovarianceModel);
+  std::filesystem::create_directory(dir.file("out.png"));
+  std::filesystem::create_directory(dir.file("out.csv"));
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases{
+      // The default dt, not a field of a file without a simulation: section ("<model>: simulation.dt").
+      {{"--T", "1e-6"}, "--dt (default 0.001): the step must be positive and below T = 1e-06"},
+      {{"--T", "1", "--scheme", "milstein"}, "--scheme: milstein needs the diffusion g"},
+      {{"--T", "1", "--bound", "0.5"}, "cov3.yaml: initial.x0, entry 1: 1 is beyond the divergence bound 0.5"},
+      {{"--T", "1", "-o", dir.file("out.csv")}, "-o: '" + dir.file("out.csv") + "' is a directory"},
+      {{"--T", "1", "--plot", dir.file("out.png")}, "--plot: '" + dir.file("out.png") + "' is a directory"},
+      {{"--T", "1", "--timing", dir.file("out.csv")}, "--timing: '" + dir.file("out.csv") + "' is a directory"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args{"simulate", model, "--cache-dir", dir.file("cache")};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const auto result = run_pfgen(args);
+    INFO(result.err);
+    CHECK(result.exit_code != 0);
+    CHECK(result.out.empty());
+    CHECK(count_lines(result.err) == 1);
+    CHECK(result.err.find(c.message) != std::string::npos);
+  }
+  CHECK(std::filesystem::is_directory(dir.file("out.png")));  // was removed as a "stale plot"
+  CHECK_FALSE(std::filesystem::exists(dir.file("cache")));    // every check precedes the build
+}
+
+TEST_CASE("simulate: n = 3 with G-only diffusion and p = 2 runs; a failed --timing prints no table; "
+          "a corrupt cached plugin is rebuilt",
+          "[simulate]") {
+  TempDir dir;
+  const std::string model = dir.file("cov3.yaml");
+  write_file(model, kCovarianceModel);
+  auto run = [&](std::vector<std::string> more) {
+    std::vector<std::string> args{"simulate", model, "--cache-dir", dir.file("cache"), "--T", "0.5", "--runs", "3",
+                                  "-q"};
+    args.insert(args.end(), more.begin(), more.end());
+    return run_pfgen(args);
+  };
+  // Only min(threads, runs) threads start: a large --threads is not refused for memory.
+  const auto first = run({"--threads", "1000000", "-o", dir.file("a.csv")});
+  INFO(first.err);
+  REQUIRE(first.exit_code == 0);
+  CHECK_FALSE(has_nan_or_inf(first.out));
+  CHECK(first.out.find("derivative-free-milstein") == std::string::npos);  // auto: adaptive-euler (x z)
+
+  // A --timing that cannot be written fails before the table is printed.
+  const auto timing = run({"--timing", "/proc/pfgen-review-timing.json"});
+  CHECK(timing.exit_code != 0);
+  CHECK(timing.out.empty());
+  CHECK(timing.err.find("--timing: cannot write") != std::string::npos);
+
+  // Truncate the cached plugin: the next run rebuilds it and gives the same bytes.
+  std::string library;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir.file("cache")))
+    if (entry.path().filename() == "plugin.so") library = entry.path().string();
+  REQUIRE(!library.empty());
+  write_file(library, "");
+  const auto again = run({"--threads", "2", "-o", dir.file("b.csv")});
+  INFO(again.err);
+  REQUIRE(again.exit_code == 0);
+  auto without_csv_line = [](std::string text) { return std::regex_replace(text, std::regex("csv: .*\n"), ""); };
+  CHECK(without_csv_line(again.out) == without_csv_line(first.out));
+  CHECK(read_file(dir.file("a.csv")) == read_file(dir.file("b.csv")));
 }

@@ -1,6 +1,8 @@
 // pfgen: derive, print and evaluate optimal filters for polynomial stochastic systems.
 #include <CLI/CLI.hpp>
 
+#include <charconv>
+#include <cstdint>
 #include <iostream>
 #include <string>
 
@@ -68,6 +70,20 @@ int main(int argc, char** argv) {
                         "Also write DIR/<model>/<filter>_eigen.hpp: wrappers taking m and P as Eigen matrices");
   codegen_cmd->add_flag("--no-cse", codegen.no_cse, "Emit without common-subexpression elimination (benchmark baseline)");
 
+  // CLI11 reads unsigned options with strtoull, which takes "-1" as 2^64 - 1 and saturates an
+  // overflow at 2^64 - 1 without a word (--seed -1 and --seed 18446744073709551616 both ran with
+  // seed 18446744073709551615; --runs -1 asked for 1.8e19 runs). Only plain digits that fit pass.
+  const CLI::Validator whole_number(
+      [](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (text.empty() || error != std::errc() || stop != end)
+          return "'" + text + "' is not a whole number from 0 to 18446744073709551615";
+        return std::string();
+      },
+      "UINT");
+
   SimulateOptions simulate;
   SimulationOverrides& so = simulate.overrides;
   CLI::App* simulate_cmd = app.add_subcommand(
@@ -78,17 +94,22 @@ int main(int argc, char** argv) {
                            "else every filter of the model)");
   simulate_cmd->add_option("--T", so.T, "Horizon (default: simulation.T)");
   simulate_cmd->add_option("--dt", so.dt, "Time step of the truth and the filters (default: simulation.dt, else 1e-3)");
-  simulate_cmd->add_option("--runs", so.runs, "Monte Carlo runs (default: simulation.runs, else 100)");
-  simulate_cmd->add_option("--seed", so.seed, "Seed; run r uses streams derived from (seed, r) (default 1)");
+  simulate_cmd->add_option("--runs", so.runs, "Monte Carlo runs (default: simulation.runs, else 100)")
+      ->check(whole_number);
+  simulate_cmd->add_option("--seed", so.seed, "Seed; run r uses streams derived from (seed, r) (default 1)")
+      ->check(whole_number);
   simulate_cmd->add_option("--threads", simulate.threads, "Worker threads, 0 = every core; results do not depend on it")
+      ->check(whole_number)
       ->capture_default_str();
   simulate_cmd->add_option("--scheme", so.scheme,
                            "Truth scheme: auto | euler-maruyama | milstein | derivative-free-milstein | tamed-euler | "
                            "adaptive-euler | rk4");
   simulate_cmd->add_option("--report-times", so.report_times, "Times for the error columns, e.g. 5,6,6.5");
   simulate_cmd->add_option("--windows", so.windows, "RMS windows a:b, comma-separated, e.g. 0:4,4:9.2");
-  simulate_cmd->add_option("--record-points", so.record_points, "Points of the time series (CSV, plot); default 1000");
-  simulate_cmd->add_option("--shown-run", so.shown_run, "The run whose path goes into the CSV and plot (default 0)");
+  simulate_cmd->add_option("--record-points", so.record_points, "Points of the time series (CSV, plot); default 1000")
+      ->check(whole_number);
+  simulate_cmd->add_option("--shown-run", so.shown_run, "The run whose path goes into the CSV and plot (default 0)")
+      ->check(whole_number);
   simulate_cmd->add_option("--bound", so.bound, "A run stops when |x|, |m| exceed this (default 1e8)");
   simulate_cmd->add_option("-o,--output", simulate.csv_path, "CSV of time series");
   simulate_cmd->add_option("--plot", simulate.plot_path, "Plot of the errors, FILE.png or FILE.svg (gnuplot)");

@@ -51,11 +51,18 @@ void check_output_paths(const SimulateOptions& options) {
     if (ext != ".png" && ext != ".svg")
       throw CliValueError("--plot: '" + options.plot_path + "' must end in .png or .svg");
   }
-  for (const std::string* path : {&options.csv_path, &options.plot_path}) {
+  // --timing too: it is written last, and a failure there used to follow a printed table.
+  const std::pair<const std::string*, const char*> outputs[] = {
+      {&options.csv_path, "-o"}, {&options.plot_path, "--plot"}, {&options.timing_path, "--timing"}};
+  for (const auto& [path, option] : outputs) {
     if (path->empty()) continue;
     const auto parent = std::filesystem::path(*path).parent_path();
     if (!parent.empty() && !std::filesystem::is_directory(parent))
       throw CliValueError("'" + *path + "': directory '" + parent.string() + "' does not exist");
+    // A directory is no output file: -o DIR failed only after the whole run, and --plot DIR.png
+    // removed an empty DIR.png (the stale-plot removal) before gnuplot failed on it.
+    if (std::filesystem::is_directory(*path))
+      throw CliValueError(std::string(option) + ": '" + *path + "' is a directory, not a file");
   }
 }
 
@@ -67,7 +74,8 @@ void check_memory(const Model& model, const SimulationSettings& s, unsigned thre
   const double records = std::min(steps + 1, static_cast<double>(s.record_points) + 1);
   const double statistics = static_cast<double>(s.runs) * records * static_cast<double>((filters + 1) * model.n()) *
                             sizeof(double);
-  const double bytes = per_thread * threads + statistics;
+  // Only min(threads, runs) threads are started (run_monte_carlo): --threads 1000000 --runs 2 is fine.
+  const double bytes = per_thread * static_cast<double>(std::min<std::size_t>(threads, s.runs)) + statistics;
   constexpr double limit = 8.0 * 1024 * 1024 * 1024;
   if (bytes > limit) {
     char text[200];
@@ -103,6 +111,18 @@ int run_simulate(const SimulateOptions& options) {
   const SimulationSettings settings = resolve_simulation_settings(model, options.overrides);
   if (!model.initial || model.initial->x0.empty())
     throw CliValueError(model.source + ": initial: the model gives no x0, the truth's initial state");
+  // An x0 or m0 beyond the divergence bound stops every run at t = 0: the table was all '-'
+  // with "Truth diverged: 3 of 3 runs, first at t = 0" and no hint why. Say so instead.
+  const std::pair<const char*, const std::vector<GiNaC::numeric>*> starts[] = {{"x0", &model.initial->x0},
+                                                                               {"m0", &model.initial->m0}};
+  for (const auto& [field, values] : starts)
+    for (std::size_t i = 0; i < values->size(); ++i)
+      if (!(std::abs((*values)[i].to_double()) <= settings.bound)) {
+        char text[160];
+        std::snprintf(text, sizeof text, "initial.%s, entry %zu: %g is beyond the divergence bound %g", field, i + 1,
+                      (*values)[i].to_double(), settings.bound);
+        throw CliValueError(model.source + ": " + text + "; every run would stop at t = 0 (raise --bound)");
+      }
 
   // Derive and generate: deterministic text, whose hash keys the compiled plugin in the cache.
   std::vector<FilterEquations> filters;
@@ -115,10 +135,23 @@ int run_simulate(const SimulateOptions& options) {
   toolchain::PluginBuildOptions build_options;
   build_options.cache_dir = options.cache_dir;
   build_options.compiler = options.compiler;
-  const toolchain::PluginBuild build = toolchain::build_plugin(source, build_options);
+  toolchain::PluginBuild build = toolchain::build_plugin(source, build_options);
   if (!options.quiet)
     std::cerr << "pfgen: plugin " << build.path << (build.cache_hit ? " (cached)" : "") << "\n";
-  const pfgen_runtime::SimulationPlugin plugin(build.path);
+  const pfgen_runtime::SimulationPlugin plugin = [&] {
+    try {
+      return pfgen_runtime::SimulationPlugin(build.path);
+    } catch (const pfgen_runtime::PluginLoadError&) {
+      if (!build.cache_hit) throw;
+      // A cached plugin that does not load (truncated by a full disk or a killed copy) failed
+      // every later run until deleted by hand: remove it and build it once more.
+      std::error_code ignored;
+      std::filesystem::remove(build.path, ignored);
+      build = toolchain::build_plugin(source, build_options);
+      if (!options.quiet) std::cerr << "pfgen: the cached plugin did not load; rebuilt " << build.path << "\n";
+      return pfgen_runtime::SimulationPlugin(build.path);
+    }
+  }();
 
   const std::string scheme_name = settings.scheme == "auto" ? choose_truth_scheme(model) : settings.scheme;
   const auto scheme = pfgen_runtime::make_scheme(pfgen_runtime::scheme_kind_from_string(scheme_name), plugin.system());
@@ -155,6 +188,19 @@ int run_simulate(const SimulateOptions& options) {
     }
   }
 
+  // Before the table, like the other files: a failed write must not follow a printed result.
+  // (write_file_atomically's own messages name codegen's -o.)
+  if (!options.timing_path.empty()) {
+    try {
+      write_file_atomically(options.timing_path,
+                            timing_json(result, build, derive_seconds, seconds_since(start)));
+    } catch (const CliValueError&) {
+      throw CliValueError("--timing: cannot write '" + options.timing_path + "'");
+    }
+  }
+
+  // Timing first (stderr), so that the output ends with the table and the paths of the files.
+  if (!options.quiet) std::cerr << pfgen_runtime::format_timing(result) << std::flush;
   std::cout << "model: " << model.name << " (" << options.model_path << ")\n"
             << pfgen_runtime::format_summary_table(result, model.state_names);
   if (!options.csv_path.empty()) std::cout << "csv: " << options.csv_path << "\n";
@@ -162,10 +208,6 @@ int run_simulate(const SimulateOptions& options) {
     if (options.csv_path.empty()) std::cout << "csv: " << csv_for_plot(options) << "\n";
     std::cout << "plot: " << options.plot_path << "\n";
   }
-  const double total_seconds = seconds_since(start);
-  if (!options.quiet) std::cerr << pfgen_runtime::format_timing(result);
-  if (!options.timing_path.empty())
-    write_file_atomically(options.timing_path, timing_json(result, build, derive_seconds, total_seconds));
   return 0;
 }
 

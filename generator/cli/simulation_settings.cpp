@@ -32,9 +32,22 @@ std::string number_text(double value) {
   return std::string(buffer, end);
 }
 
-// Where a setting came from, for error messages.
-std::string origin(bool from_command_line, const std::string& option, const Model& model, const std::string& field) {
-  return from_command_line ? option : model.simulation.location_of(field) + ": simulation." + field;
+// Where a setting came from, for error messages. A setting neither the command line nor the
+// model file gave is pfgen's default: name the option, not a place in a file that lacks it
+// (`--T 1e-6` alone used to blame "<model>: simulation.dt" for the default dt).
+std::string origin(bool from_command_line, bool from_file, const std::string& option, const Model& model,
+                   const std::string& field) {
+  if (from_command_line) return option;
+  if (!from_file) return option + " (default)";
+  return model.simulation.location_of(field) + ": simulation." + field;
+}
+
+// Whether the model's diffusion is identically zero (a deterministic truth).
+bool noise_free(const Model& model) {
+  for (const auto& row : model.diffusion.G)
+    for (const auto& entry : row)
+      if (!entry.expand().is_zero()) return false;
+  return true;
 }
 
 // The model file's report times and windows are defaults for its own horizon: with a shorter
@@ -61,27 +74,61 @@ void drop_beyond_horizon(std::vector<Item>& items, double T, bool T_from_command
 SimulationSettings resolve_simulation_settings(const Model& model, const SimulationOverrides& cli) {
   const auto& file = model.simulation;
   SimulationSettings s;
+  auto origin_of = [&model](bool from_command_line, bool from_file, const char* option, const char* field) {
+    return origin(from_command_line, from_file, option, model, field);
+  };
+  const std::string runs_origin = origin_of(cli.runs.has_value(), file.runs.has_value(), "--runs", "runs");
+  const std::string scheme_origin = origin_of(cli.scheme.has_value(), file.scheme.has_value(), "--scheme", "scheme");
+  const std::string report_times_origin =
+      origin_of(cli.report_times.has_value(), !file.report_times.empty(), "--report-times", "report_times");
+  const std::string windows_origin = origin_of(cli.windows.has_value(), !file.windows.empty(), "--windows", "windows");
+  const std::string record_points_origin =
+      origin_of(cli.record_points.has_value(), file.record_points.has_value(), "--record-points", "record_points");
+  const std::string bound_origin = origin_of(cli.bound.has_value(), file.bound.has_value(), "--bound", "bound");
+  const std::string shown_run_origin =
+      origin_of(cli.shown_run.has_value(), file.shown_run.has_value(), "--shown-run", "shown_run");
 
   if (cli.T) s.T = *cli.T;
   else if (file.T) s.T = *file.T;
   else throw CliValueError("--T: no horizon; give --T or simulation.T in " + model.source);
-  const std::string T_origin = origin(cli.T.has_value(), "--T", model, "T");
+  const std::string T_origin = origin(cli.T.has_value(), file.T.has_value(), "--T", model, "T");
   if (!(s.T > 0) || !std::isfinite(s.T)) throw CliValueError(T_origin + ": the horizon must be a positive number");
 
   if (cli.dt) s.dt = *cli.dt;
   else if (file.dt) s.dt = *file.dt;
-  const std::string dt_origin = origin(cli.dt.has_value(), "--dt", model, "dt");
+  const std::string dt_origin = cli.dt || file.dt ? origin(cli.dt.has_value(), file.dt.has_value(), "--dt", model, "dt")
+                                                  : "--dt (default " + number_text(s.dt) + ")";
   if (!(s.dt > 0) || !(s.dt < s.T)) throw CliValueError(dt_origin + ": the step must be positive and below T = " + number_text(s.T));
   if (s.T / s.dt > 1e9) throw CliValueError(dt_origin + ": more than 1e9 steps to T = " + number_text(s.T));
+  // The grid has round(T / dt) steps of dt: a T that is not a whole number of steps would
+  // silently become another horizon (T = 1, dt = 0.7 ran to t = 0.7 and labelled it [0, 0.7]).
+  // The slack covers the rounding of a decimal T and dt (9.2 / 1e-4 = 91999.99999999999).
+  const double steps = s.T / s.dt;
+  if (std::abs(steps - std::round(steps)) > 1e-6 + 1e-12 * steps)
+    throw CliValueError(dt_origin + ": T = " + number_text(s.T) + " is not a whole number of steps of " +
+                        number_text(s.dt) + " (T / dt = " + number_text(steps) + "); choose a dt that divides T");
 
   if (cli.runs) s.runs = *cli.runs;
   else if (file.runs) s.runs = *file.runs;
-  if (s.runs == 0) throw CliValueError(origin(cli.runs.has_value(), "--runs", model, "runs") + ": at least one run");
+  if (s.runs == 0) throw CliValueError(runs_origin + ": at least one run");
 
   if (cli.seed) s.seed = *cli.seed;
   else if (file.seed) s.seed = *file.seed;
 
-  if (cli.filters) s.filters = parse_filter_list(*cli.filters, model);
+  if (cli.filters) {
+    // parse_filter_list names latex's and codegen's --filter; simulate's option is --filters.
+    try {
+      s.filters = parse_filter_list(*cli.filters, model);
+    } catch (const CliValueError& e) {
+      const std::string message = e.what();
+      throw CliValueError(message.rfind("--filter:", 0) == 0 ? "--filters:" + message.substr(9) : message);
+    }
+    // A filter named twice used to fail in code generation ("given twice for one plugin"),
+    // without naming the option.
+    for (std::size_t k = 0; k < s.filters.size(); ++k)
+      for (std::size_t j = 0; j < k; ++j)
+        if (s.filters[j] == s.filters[k]) throw CliValueError("--filters: '" + s.filters[k] + "' is given twice");
+  }
   else if (file.filters) s.filters = *file.filters;
 
   if (cli.scheme) s.scheme = *cli.scheme;
@@ -93,8 +140,17 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
     known_list += (known_list.empty() ? "" : ", ") + name;
   }
   if (!known)
-    throw CliValueError(origin(cli.scheme.has_value(), "--scheme", model, "scheme") + ": unknown scheme '" + s.scheme +
+    throw CliValueError(scheme_origin + ": unknown scheme '" + s.scheme +
                         "' (" + known_list + ")");
+  // What the schemes need of the model, checked here, before anything is compiled (the runtime
+  // used to refuse these only after the plugin was built, without naming the option).
+  if (s.scheme == "rk4" && !noise_free(model))
+    throw CliValueError(scheme_origin +
+                        ": rk4 is for deterministic truths only, and this model's diffusion is not zero");
+  if (s.scheme == "milstein" && !noise_free(model) && !model.diffusion.g)
+    throw CliValueError(scheme_origin +
+                        ": milstein needs the diffusion g, and this model gives diffusion_covariance; use "
+                        "derivative-free-milstein");
 
   if (cli.report_times) {
     for (const auto& part : split(*cli.report_times, ',')) s.report_times.push_back(parse_double("--report-times", part));
@@ -105,7 +161,7 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
   }
   for (double t : s.report_times)
     if (!(t >= 0 && t <= s.T))
-      throw CliValueError(origin(cli.report_times.has_value(), "--report-times", model, "report_times") + ": " +
+      throw CliValueError(report_times_origin + ": " +
                           number_text(t) + " is outside [0, T = " + number_text(s.T) + "]");
 
   if (cli.windows) {
@@ -122,25 +178,32 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
                           return "[" + number_text(w.first) + ", " + number_text(w.second) + "]";
                         });
   }
-  for (const auto& [a, b] : s.windows)
+  for (const auto& [a, b] : s.windows) {
     if (!(a >= 0 && a < b && b <= s.T))
-      throw CliValueError(origin(cli.windows.has_value(), "--windows", model, "windows") + ": [" + number_text(a) + ", " +
+      throw CliValueError(windows_origin + ": [" + number_text(a) + ", " +
                           number_text(b) + "] is not a window a < b within [0, T = " + number_text(s.T) + "]");
+    // The Monte Carlo snaps both ends to the nearest grid point (as it does); a window whose ends
+    // snap to the same one used to fail after the build with "monte carlo: a window is shorter
+    // than a grid step", naming neither the option nor the window.
+    if (std::llround(a / s.dt) == std::llround(b / s.dt))
+      throw CliValueError(windows_origin + ": [" + number_text(a) + ", " +
+                          number_text(b) + "] is shorter than a step dt = " + number_text(s.dt));
+  }
 
   if (cli.record_points) s.record_points = *cli.record_points;
   else if (file.record_points) s.record_points = *file.record_points;
   if (s.record_points < 2)
-    throw CliValueError(origin(cli.record_points.has_value(), "--record-points", model, "record_points") +
+    throw CliValueError(record_points_origin +
                         ": at least 2 points");
 
   if (cli.bound) s.bound = *cli.bound;
   else if (file.bound) s.bound = *file.bound;
-  if (!(s.bound > 0)) throw CliValueError(origin(cli.bound.has_value(), "--bound", model, "bound") + ": must be positive");
+  if (!(s.bound > 0)) throw CliValueError(bound_origin + ": must be positive");
 
   if (cli.shown_run) s.shown_run = *cli.shown_run;
   else if (file.shown_run) s.shown_run = *file.shown_run;
   if (s.shown_run >= s.runs)
-    throw CliValueError(origin(cli.shown_run.has_value(), "--shown-run", model, "shown_run") + ": run " +
+    throw CliValueError(shown_run_origin + ": run " +
                         std::to_string(s.shown_run) + " does not exist with " + std::to_string(s.runs) + " runs");
   return s;
 }
