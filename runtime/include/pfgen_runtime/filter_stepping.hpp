@@ -19,6 +19,7 @@
 //
 // The scale of P_ij is sqrt(|P_ii P_jj|) (its Cauchy-Schwarz bound) plus `floor`, so an
 // off-diagonal entry passing through zero, or a singular P (paper 001's P0), is not refined.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -40,18 +41,21 @@ class FilterStepper {
   // step() calls that were kept (1 unless the step was refined).
   template <class Step>
   std::uint64_t advance(const Step& step, double* state, double t, double dt, const double* dy) {
-    return advance_at(step, state, t, dt, dy, 0);
+    // The common case inline: save, step, check. Only a rejected step goes through advance_at.
+    double* saved = saved_.data();
+    for (std::size_t i = 0; i < size_; ++i) saved[i] = state[i];
+    step(state, t, dt, dy);
+    if (!control_.adaptive || control_.max_depth == 0 || acceptable(saved, state)) return 1;
+    ++refined_;
+    return split(step, state, t, dt, dy, 0);
   }
   std::uint64_t refined_steps() const { return refined_; }  // grid steps that needed sub-steps
 
  private:
+  // Undoes the step taken at `depth` (its start is saved there) and takes two halves with dy / 2.
   template <class Step>
-  std::uint64_t advance_at(const Step& step, double* state, double t, double dt, const double* dy, int depth) {
-    double* saved = saved_.data() + static_cast<std::size_t>(depth) * size_;
-    for (std::size_t i = 0; i < size_; ++i) saved[i] = state[i];
-    step(state, t, dt, dy);
-    if (!control_.adaptive || depth >= control_.max_depth || acceptable(saved, state)) return 1;
-    if (depth == 0) ++refined_;
+  std::uint64_t split(const Step& step, double* state, double t, double dt, const double* dy, int depth) {
+    const double* saved = saved_.data() + static_cast<std::size_t>(depth) * size_;
     for (std::size_t i = 0; i < size_; ++i) state[i] = saved[i];
     double* half_dy = half_dy_.data() + static_cast<std::size_t>(depth) * p_;
     for (std::size_t i = 0; i < p_; ++i) half_dy[i] = 0.5 * dy[i];
@@ -59,7 +63,35 @@ class FilterStepper {
     const std::uint64_t first = advance_at(step, state, t, half, half_dy, depth + 1);
     return first + advance_at(step, state, t + half, half, half_dy, depth + 1);
   }
-  bool acceptable(const double* before, const double* after) const;
+  template <class Step>
+  std::uint64_t advance_at(const Step& step, double* state, double t, double dt, const double* dy, int depth) {
+    double* saved = saved_.data() + static_cast<std::size_t>(depth) * size_;
+    for (std::size_t i = 0; i < size_; ++i) saved[i] = state[i];
+    step(state, t, dt, dy);
+    if (depth >= control_.max_depth || acceptable(saved, state)) return 1;
+    return split(step, state, t, dt, dy, depth);
+  }
+  // Every entry finite, and no P_ij changed by more than tolerance (sqrt|P_ii P_jj| + floor).
+  bool acceptable(const double* before, const double* after) const {
+    for (std::size_t i = 0; i < n_; ++i)
+      if (!std::isfinite(after[i])) return false;
+    const double* P0 = before + n_;
+    const double* P1 = after + n_;
+    const double tolerance = control_.tolerance, floor = control_.floor;
+    for (std::size_t i = 0, k = 0; i < n_; ++i)
+      for (std::size_t j = i; j < n_; ++j, ++k) {
+        if (!std::isfinite(P1[k])) return false;
+        const double change = std::abs(P1[k] - P0[k]);
+        if (i == j) {  // scale |P_ii| + floor
+          if (change > tolerance * (std::abs(P0[k]) + floor)) return false;
+          continue;
+        }
+        // change <= tolerance (sqrt|P_ii P_jj| + floor), without a square root on every step.
+        const double excess = change / tolerance - floor;
+        if (excess > 0 && excess * excess > std::abs(before[diagonal_[i]] * before[diagonal_[j]])) return false;
+      }
+    return true;
+  }
 
   std::size_t n_, p_, size_;
   FilterStepControl control_;
