@@ -1,0 +1,183 @@
+#include "aggregate.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "parallel_for.hpp"
+#include "pfgen_runtime/statistics.hpp"
+
+namespace pfgen_runtime::monte_carlo_detail {
+
+namespace {
+
+// Mean and 5/50/95 % quantiles of `values` into row `row`, column `i`; NaN when empty.
+void summarize(std::vector<double>& values, SeriesStatistics& out, Eigen::Index row, Eigen::Index i) {
+  if (values.empty()) {
+    out.mean(row, i) = out.q05(row, i) = out.q50(row, i) = out.q95(row, i) = nan;
+    return;
+  }
+  double sum = 0;
+  for (double v : values) sum += v;  // in run order
+  out.mean(row, i) = sum / static_cast<double>(values.size());
+  std::sort(values.begin(), values.end());  // quantile sorts its copy again, now cheaply
+  out.q05(row, i) = quantile(values, 0.05);
+  out.q50(row, i) = quantile(values, 0.50);
+  out.q95(row, i) = quantile(values, 0.95);
+}
+
+SeriesStatistics make_series_statistics(std::size_t records, std::size_t n) {
+  const auto rows = static_cast<Eigen::Index>(records), cols = static_cast<Eigen::Index>(n);
+  return {Eigen::MatrixXd(rows, cols), Eigen::MatrixXd(rows, cols), Eigen::MatrixXd(rows, cols),
+          Eigen::MatrixXd(rows, cols)};
+}
+
+Eigen::MatrixXd records_matrix(const std::vector<double>& values, std::size_t records, std::size_t n) {
+  Eigen::MatrixXd matrix(static_cast<Eigen::Index>(records), static_cast<Eigen::Index>(n));
+  for (std::size_t r = 0; r < records; ++r)
+    for (std::size_t i = 0; i < n; ++i)
+      matrix(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i)) = values[r * n + i];
+  return matrix;
+}
+
+}  // namespace
+
+void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const std::vector<RunResult>& runs,
+               const MonteCarloOptions& options, unsigned threads, MonteCarloResult& result) {
+  const std::size_t n = plan.n, records = plan.records.size();
+  const auto steps = static_cast<std::ptrdiff_t>(plan.grid.steps);
+  std::vector<double> values;
+  values.reserve(runs.size());
+
+  for (std::size_t r = 0; r < runs.size(); ++r)
+    if (runs[r].truth_diverged) result.truth_divergences.events.push_back({r, runs[r].truth_divergence_t});
+
+  for (std::size_t q = 0; q < plan.reports.size(); ++q) {
+    TruthReportStatistics report;
+    report.index = plan.reports[q];
+    report.t = plan.grid.time(report.index);
+    for (std::size_t i = 0; i < n; ++i) {
+      values.clear();
+      for (const RunResult& run : runs)
+        if (run.truth_last >= static_cast<std::ptrdiff_t>(report.index)) values.push_back(run.truth_report[q * n + i]);
+      report.alive = values.size();
+      double sum = 0;
+      for (double v : values) sum += v;
+      report.mean.push_back(values.empty() ? nan : sum / static_cast<double>(values.size()));
+      report.q05.push_back(values.empty() ? nan : quantile(values, 0.05));
+      report.q50.push_back(values.empty() ? nan : quantile(values, 0.5));
+      report.q95.push_back(values.empty() ? nan : quantile(values, 0.95));
+    }
+    result.truth_reports.push_back(std::move(report));
+  }
+
+  for (std::size_t f = 0; f < filters.size(); ++f) {
+    FilterStatistics stats;
+    stats.name = filters[f].name;
+    // Window 0 is the horizon.
+    for (std::size_t w = 0; w <= plan.windows.size(); ++w) {
+      WindowStatistics window;
+      window.first = w == 0 ? 0 : plan.windows[w - 1].first;
+      window.last = w == 0 ? plan.grid.steps : plan.windows[w - 1].second;
+      window.a = plan.grid.time(window.first);
+      window.b = plan.grid.time(window.last);
+      std::vector<double> sum(n, 0.0);
+      for (const RunResult& run : runs) {
+        const FilterRunResult& filter = run.filters[f];
+        if (filter.last < static_cast<std::ptrdiff_t>(window.last)) continue;
+        ++window.runs;
+        for (std::size_t i = 0; i < n; ++i) sum[i] += filter.mean_square[w * n + i];
+      }
+      for (std::size_t i = 0; i < n; ++i)
+        window.rms.push_back(window.runs > 0 ? std::sqrt(sum[i] / static_cast<double>(window.runs)) : nan);
+      if (w == 0)
+        stats.horizon = std::move(window);
+      else
+        stats.windows.push_back(std::move(window));
+    }
+    for (std::size_t q = 0; q < plan.reports.size(); ++q) {
+      ReportStatistics report;
+      report.index = plan.reports[q];
+      report.t = plan.grid.time(report.index);
+      std::vector<double> sum_abs(n, 0.0), sum_square(n, 0.0);
+      for (const RunResult& run : runs) {
+        const FilterRunResult& filter = run.filters[f];
+        if (filter.last < static_cast<std::ptrdiff_t>(report.index)) continue;
+        ++report.alive;
+        for (std::size_t i = 0; i < n; ++i) {
+          const double e = filter.report_error[q * n + i];
+          sum_abs[i] += std::abs(e);
+          sum_square[i] += e * e;
+        }
+      }
+      const double alive = static_cast<double>(report.alive);
+      for (std::size_t i = 0; i < n; ++i) {
+        report.mean_abs.push_back(report.alive > 0 ? sum_abs[i] / alive : nan);
+        report.rms.push_back(report.alive > 0 ? std::sqrt(sum_square[i] / alive) : nan);
+      }
+      stats.reports.push_back(std::move(report));
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      values.clear();
+      for (const RunResult& run : runs)
+        if (run.filters[f].last == steps) values.push_back(run.filters[f].peak[i]);
+      stats.peak_median.push_back(values.empty() ? nan : quantile(values, 0.5));
+      stats.peak_q95.push_back(values.empty() ? nan : quantile(values, 0.95));
+    }
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      const FilterRunResult& filter = runs[r].filters[f];
+      if (filter.diverged) stats.divergences.events.push_back({r, filter.divergence_t});
+      if (filter.psd_lost) stats.psd_losses.events.push_back({r, filter.psd_t});
+      stats.refined_steps += filter.refined_steps;
+      stats.refined_runs += filter.refined_steps > 0;
+    }
+    result.filters.push_back(std::move(stats));
+  }
+
+  MonteCarloSeries& series = result.series;
+  series.index = plan.records;
+  for (std::size_t k : plan.records) series.t.push_back(plan.grid.time(k));
+  series.shown_run = options.shown_run;
+  const RunResult& shown = runs[options.shown_run];
+  series.truth = records_matrix(shown.truth_record, records, n);
+  series.truth_statistics = make_series_statistics(records, n);
+  series.truth_alive.assign(records, 0);
+  for (std::size_t f = 0; f < filters.size(); ++f) {
+    FilterSeries filter;
+    filter.m = records_matrix(shown.filters[f].m_record, records, n);
+    filter.P_diagonal = records_matrix(shown.filters[f].P_record, records, n);
+    filter.error = make_series_statistics(records, n);
+    filter.alive.assign(records, 0);
+    series.filters.push_back(std::move(filter));
+  }
+  // Across runs at each record time. Record times are independent (each writes its own rows), so
+  // they are shared among threads without changing a bit; the sorting for the quantiles is most
+  // of the statistics' time.
+  auto scratch = [&runs](unsigned) {
+    std::vector<double> values;
+    values.reserve(runs.size());
+    return values;
+  };
+  parallel_for(records, threads, scratch, [&](std::size_t r, std::vector<double>& values) {
+    const auto index = static_cast<std::ptrdiff_t>(plan.records[r]);
+    const auto row = static_cast<Eigen::Index>(r);
+    for (std::size_t i = 0; i < n; ++i) {
+      values.clear();
+      for (const RunResult& run : runs)
+        if (run.truth_last >= index) values.push_back(run.truth_record[r * n + i]);
+      series.truth_alive[r] = values.size();
+      summarize(values, series.truth_statistics, row, static_cast<Eigen::Index>(i));
+    }
+    for (std::size_t f = 0; f < filters.size(); ++f) {
+      FilterSeries& filter = series.filters[f];
+      for (std::size_t i = 0; i < n; ++i) {
+        values.clear();
+        for (const RunResult& run : runs)
+          if (run.filters[f].last >= index) values.push_back(run.filters[f].error_record[r * n + i]);
+        filter.alive[r] = values.size();
+        summarize(values, filter.error, row, static_cast<Eigen::Index>(i));
+      }
+    }
+  });
+}
+
+}  // namespace pfgen_runtime::monte_carlo_detail

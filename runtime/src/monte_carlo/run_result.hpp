@@ -1,0 +1,37 @@
+#pragma once
+// What one Monte Carlo run leaves behind for the statistics: no paths, only values at the plan's
+// points and the run's own sums. The worker that made the run writes it into the slot of the
+// run's number; the aggregation reads all slots in run order once every run has finished, which
+// is what makes the result independent of the thread count.
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace pfgen_runtime::monte_carlo_detail {
+
+// Marks what a run did not reach (the writers print it as '-' or an empty cell).
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+struct FilterRunResult {
+  std::ptrdiff_t last = -1;  // last grid index with a stored filter state; -1: none
+  bool diverged = false, psd_lost = false;
+  double divergence_t = nan, psd_t = nan;
+  std::vector<double> mean_square;   // (1 + windows) x n, the horizon first; NaN unless reached
+  std::vector<double> report_error;  // reports x n; NaN where not alive
+  std::vector<double> peak;          // n: max |e| over the stored states
+  std::uint64_t refined_steps = 0;   // grid steps the FilterStepper split
+  std::vector<double> error_record;  // records x n
+  std::vector<double> m_record, P_record;  // records x n, the shown run only
+};
+
+struct RunResult {
+  std::ptrdiff_t truth_last = -1;  // last grid index with a stored truth state; -1: none
+  bool truth_diverged = false;
+  double truth_divergence_t = nan;
+  std::vector<double> truth_record;  // records x n
+  std::vector<double> truth_report;  // reports x n; NaN where the truth had stopped
+  std::vector<FilterRunResult> filters;
+};
+
+}  // namespace pfgen_runtime::monte_carlo_detail

@@ -1,0 +1,197 @@
+#include "worker.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "clock.hpp"
+#include "pfgen_runtime/random.hpp"
+
+namespace pfgen_runtime::monte_carlo_detail {
+
+namespace {
+
+// The same first guard failure as run_filter's (simulation.cpp): m, then P's entries.
+bool state_diverged(const FilterGuardOptions& guards, double t, const double* state, std::size_t n, double& at) {
+  if (auto event = guards.estimate_guard.check(t, state, n)) {
+    at = event->t;
+    return true;
+  }
+  if (auto event = guards.covariance_guard.check(t, state + n, packed_size(n))) {
+    at = event->t;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, const std::vector<FilterModel>& filters,
+               const Eigen::VectorXd& x0, const Plan& plan, const MonteCarloOptions& options)
+    : scheme_(scheme.clone()), observation_(observation), filters_(filters), x0_(x0), plan_(plan),
+      options_(options), path_(plan.n, plan.grid.steps + 1), dy_(plan.p, plan.grid.steps),
+      x_(plan.n), dW_(scheme.system().q), dW2_(observation.r()), error_(plan.n),
+      sums_((1 + plan.windows.size()) * plan.n), stepper_(plan.n, plan.p, options.filter_guards.stepping) {
+  filter_seconds.assign(filters.size(), 0.0);
+  filter_cpu_seconds.assign(filters.size(), 0.0);
+  filter_steps.assign(filters.size(), 0);
+  std::size_t largest = 0;
+  for (const FilterModel& filter : filters_) largest = std::max(largest, filter.state_size());
+  state_.resize(largest);
+  active_.reserve(plan.windows.size());
+}
+
+void Worker::run(std::size_t run, RunResult& out) {
+  Clock::time_point start = Clock::now();
+  double cpu_start = thread_cpu_seconds();
+  simulate_truth(run, out);
+  truth_seconds += seconds_since(start);
+  truth_cpu_seconds += thread_cpu_seconds() - cpu_start;
+  out.filters.resize(filters_.size());
+  for (std::size_t f = 0; f < filters_.size(); ++f) {
+    start = Clock::now();
+    cpu_start = thread_cpu_seconds();
+    step_filter(f, run == options_.shown_run, out, out.filters[f]);
+    filter_seconds[f] += seconds_since(start);
+    filter_cpu_seconds[f] += thread_cpu_seconds() - cpu_start;
+  }
+}
+
+// simulate_truth (simulation.cpp) into the thread's buffers: the same streams, draws, order
+// of operations and guard, so the same bits.
+void Worker::simulate_truth(std::size_t run, RunResult& out) {
+  const TimeGrid& grid = plan_.grid;
+  scheme_->start_run(options_.seed, run);
+  RandomStream truth_noise(options_.seed, run, substream::truth_noise);
+  RandomStream observation_noise(options_.seed, run, substream::observation_noise);
+  x_ = x0_;
+  if (auto event = options_.truth_guard.check(grid.t0, x_)) {
+    out.truth_diverged = true;
+    out.truth_divergence_t = event->t;
+  } else {
+    path_.col(0) = x_;
+    out.truth_last = 0;
+    for (std::size_t k = 0; k < grid.steps; ++k) {
+      const double t = grid.time(k);
+      truth_noise.wiener_increment(grid.dt, dW_);
+      observation_noise.wiener_increment(grid.dt, dW2_);
+      scheme_->step(t, x_, grid.dt, dW_);
+      ++truth_steps;
+      if (auto event = options_.truth_guard.check(grid.time(k + 1), x_)) {
+        out.truth_diverged = true;
+        out.truth_divergence_t = event->t;
+        break;
+      }
+      const auto column = static_cast<Eigen::Index>(k);
+      observation_.increment(t, grid.dt, path_.col(column), x_, dW2_, dy_.col(column));
+      path_.col(column + 1) = x_;
+      out.truth_last = static_cast<std::ptrdiff_t>(k + 1);
+    }
+  }
+  const std::size_t n = plan_.n;
+  out.truth_record.assign(plan_.records.size() * n, nan);
+  for (std::size_t r = 0; r < plan_.records.size(); ++r)
+    if (static_cast<std::ptrdiff_t>(plan_.records[r]) <= out.truth_last)
+      for (std::size_t i = 0; i < n; ++i) out.truth_record[r * n + i] = path_(i, plan_.records[r]);
+  out.truth_report.assign(plan_.reports.size() * n, nan);
+  for (std::size_t q = 0; q < plan_.reports.size(); ++q)
+    if (static_cast<std::ptrdiff_t>(plan_.reports[q]) <= out.truth_last)
+      for (std::size_t i = 0; i < n; ++i) out.truth_report[q * n + i] = path_(i, plan_.reports[q]);
+}
+
+// run_filter (simulation.cpp) over the thread's truth buffers, with the run's statistics
+// accumulated as it goes.
+void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, FilterRunResult& out) {
+  const FilterModel& filter = filters_[f];
+  const FilterGuardOptions& guards = options_.filter_guards;
+  const TimeGrid& grid = plan_.grid;
+  const std::size_t n = plan_.n;
+  out.mean_square.assign(sums_.size(), nan);
+  out.report_error.assign(plan_.reports.size() * n, nan);
+  out.peak.assign(n, 0.0);
+  out.error_record.assign(plan_.records.size() * n, nan);
+  if (shown) {
+    out.m_record.assign(plan_.records.size() * n, nan);
+    out.P_record.assign(plan_.records.size() * n, nan);
+  }
+  if (run.truth_last < 0) return;  // no truth to compare with
+
+  double* state = state_.data();
+  std::fill(sums_.begin(), sums_.end(), 0.0);
+  active_.clear();
+  next_open_ = next_event_ = 0;
+  // True while the run may go on, as in run_filter; events are written when they happen.
+  auto guard = [&](double t) {
+    if (state_diverged(guards, t, state, n, out.divergence_t)) {
+      out.diverged = true;
+      return false;
+    }
+    if (guards.check_psd && !out.psd_lost && !guards.psd.passes_filter_state(state, n)) {
+      out.psd_lost = true;
+      out.psd_t = t;
+      if (guards.stop_on_psd_loss) return false;
+    }
+    return true;
+  };
+
+  filter.initial_state(state);
+  bool going = guard(grid.t0);
+  if (out.diverged) return;
+  visit(0, state, shown, out);
+  out.last = 0;
+  std::uint64_t steps = 0;
+  const std::uint64_t refined_before = stepper_.refined_steps();
+  const double* dy = dy_.data();
+  for (std::size_t k = 0; going && static_cast<std::ptrdiff_t>(k) < run.truth_last; ++k) {
+    stepper_.advance(filter.step, state, grid.time(k), grid.dt, dy + k * plan_.p);
+    ++steps;
+    going = guard(grid.time(k + 1));
+    if (out.diverged) break;  // a diverged state is not stored
+    visit(k + 1, state, shown, out);
+    out.last = static_cast<std::ptrdiff_t>(k + 1);
+  }
+  filter_steps[f] += steps;
+  out.refined_steps = stepper_.refined_steps() - refined_before;
+  if (out.last == static_cast<std::ptrdiff_t>(grid.steps))
+    for (std::size_t i = 0; i < n; ++i) out.mean_square[i] = sums_[i] / static_cast<double>(grid.steps + 1);
+}
+
+// Grid point j of a filter pass: the error, its sums, and whatever the plan has at j.
+void Worker::visit(std::size_t j, const double* state, bool shown, FilterRunResult& out) {
+  const std::size_t n = plan_.n;
+  while (next_open_ < plan_.opens.size() && plan_.opens[next_open_].first == j)
+    active_.push_back(plan_.opens[next_open_++].second);
+  const double* x = path_.data() + j * n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double e = x[i] - state[i], square = e * e;
+    error_[i] = e;
+    sums_[i] += square;
+    out.peak[i] = std::max(out.peak[i], std::abs(e));
+    for (std::size_t w : active_) sums_[(1 + w) * n + i] += square;
+  }
+  while (next_event_ < plan_.events.size() && plan_.events[next_event_].index == j) {
+    const Plan::Event& event = plan_.events[next_event_++];
+    const std::size_t slot = event.slot;
+    switch (event.kind) {
+      case Plan::Kind::record:
+        for (std::size_t i = 0; i < n; ++i) out.error_record[slot * n + i] = error_[i];
+        if (shown)
+          for (std::size_t i = 0; i < n; ++i) {
+            out.m_record[slot * n + i] = state[i];
+            out.P_record[slot * n + i] = state[plan_.diagonal[i]];
+          }
+        break;
+      case Plan::Kind::report:
+        for (std::size_t i = 0; i < n; ++i) out.report_error[slot * n + i] = error_[i];
+        break;
+      case Plan::Kind::window_close: {
+        const auto& [first, last] = plan_.windows[slot];
+        for (std::size_t i = 0; i < n; ++i)
+          out.mean_square[(1 + slot) * n + i] = sums_[(1 + slot) * n + i] / static_cast<double>(last - first + 1);
+        active_.erase(std::find(active_.begin(), active_.end(), slot));
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace pfgen_runtime::monte_carlo_detail

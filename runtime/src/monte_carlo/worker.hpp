@@ -1,0 +1,56 @@
+#pragma once
+// One thread's share of the Monte Carlo runs. A Worker owns its own clone of the scheme and
+// copies of the observation and filters (they hold work arrays, so threads cannot share them)
+// and buffers for one run's truth, reused run after run: nothing is allocated per step, and no
+// run's path outlives the run. Per run it simulates the truth into the buffers, then steps each
+// filter over them in turn, accumulating the run's error statistics as it goes and keeping values
+// only at the plan's points.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "pfgen_runtime/monte_carlo.hpp"
+#include "plan.hpp"
+#include "run_result.hpp"
+
+namespace pfgen_runtime::monte_carlo_detail {
+
+class Worker {
+ public:
+  // Keeps references to plan and options: both must outlive the worker.
+  Worker(const TruthScheme& scheme, const LinearObservation& observation, const std::vector<FilterModel>& filters,
+         const Eigen::VectorXd& x0, const Plan& plan, const MonteCarloOptions& options);
+
+  // Run number `run` (its random streams depend on the number alone) into `out`.
+  void run(std::size_t run, RunResult& out);
+
+  // Summed over this worker's runs (MonteCarloTiming sums them over workers).
+  double truth_seconds = 0, truth_cpu_seconds = 0;
+  std::uint64_t truth_steps = 0;
+  std::vector<double> filter_seconds, filter_cpu_seconds;
+  std::vector<std::uint64_t> filter_steps;
+
+ private:
+  void simulate_truth(std::size_t run, RunResult& out);
+  void step_filter(std::size_t f, bool shown, const RunResult& run, FilterRunResult& out);
+  void visit(std::size_t j, const double* state, bool shown, FilterRunResult& out);
+
+  std::unique_ptr<TruthScheme> scheme_;
+  LinearObservation observation_;
+  std::vector<FilterModel> filters_;
+  Eigen::VectorXd x0_;
+  const Plan& plan_;
+  const MonteCarloOptions& options_;
+  Eigen::MatrixXd path_;  // n x (steps + 1): x at the grid times of the current run
+  Eigen::MatrixXd dy_;    // p x steps
+  Eigen::VectorXd x_, dW_, dW2_;
+  std::vector<double> state_, error_, sums_;
+  FilterStepper stepper_;
+  std::vector<std::size_t> active_;  // windows open at the current grid point
+  std::size_t next_open_ = 0, next_event_ = 0;
+};
+
+}  // namespace pfgen_runtime::monte_carlo_detail
