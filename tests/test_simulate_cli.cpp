@@ -294,3 +294,28 @@ TEST_CASE("simulate: n = 3 with G-only diffusion and p = 2 runs; a failed --timi
   CHECK(without_csv_line(again.out) == without_csv_line(first.out));
   CHECK(read_file(dir.file("a.csv")) == read_file(dir.file("b.csv")));
 }
+
+TEST_CASE("simulate --set gives a parameter its value for the job (truth and filters)", "[simulate]") {
+  TempDir dir;
+  const std::string model = dir.file("growth.yaml");
+  write_file(model,
+             "name: growth\nstates: [x]\nparameters: {a: 0.1}\ndrift: [\"a*x\"]\ndiffusion: [[\"0\"]]\n"
+             "observation: {A0: [\"0\"], A: [[\"1\"]], B: [[\"1\"]]}\n"
+             "initial: {x0: [1], m0: [0], P0: [[1]]}\nsimulation: {T: 1, dt: 0.001, runs: 2, report_times: [1]}\n");
+  auto truth_at_1 = [&](std::initializer_list<std::string> more) {
+    std::vector<std::string> args{"simulate", model, "--cache-dir", dir.file("cache"), "-q"};
+    args.insert(args.end(), more.begin(), more.end());
+    const auto result = run_pfgen(args);
+    INFO(result.err);
+    REQUIRE(result.exit_code == 0);
+    return truth_rows(result.out).at({"1", "x"})[1];
+  };
+  CHECK(truth_at_1({}) == Approx(std::exp(0.1)).epsilon(1e-3));
+  CHECK(truth_at_1({"--set", "a=0.2"}) == Approx(std::exp(0.2)).epsilon(1e-3));
+  CHECK(truth_at_1({"--set", "a=-0.5"}) == Approx(std::exp(-0.5)).epsilon(1e-3));
+
+  const auto bad = run_pfgen({"simulate", model, "--cache-dir", dir.file("cache"), "--set", "b=1"});
+  CHECK(bad.exit_code != 0);
+  CHECK(bad.out.empty());
+  CHECK(bad.err.find("--set: model growth has no parameter 'b'") != std::string::npos);
+}

@@ -119,6 +119,7 @@ int main(int argc, char** argv) {
                            "Compiled plugins (default: $PFGEN_CACHE_DIR, $XDG_CACHE_HOME/pfgen, ~/.cache/pfgen)");
   simulate_cmd->add_option("--compiler", simulate.compiler, "C++ compiler for the plugin (default: $CXX, else c++)");
   simulate_cmd->add_option("--timing", simulate.timing_path, "Write phase times as JSON to FILE");
+  simulate_cmd->add_option("--set", simulate.assignments, "Parameter value for this job, name=value (repeatable)");
   simulate_cmd->add_flag("-q,--quiet", simulate.quiet, "No plugin and timing lines on stderr");
 
   try {

@@ -3,6 +3,7 @@
 // and run them against the simulated truth in Monte Carlo; a summary table on stdout, optionally
 // a CSV of time series and a gnuplot plot.
 #include <string>
+#include <vector>
 
 #include "simulation_settings.hpp"
 
@@ -19,6 +20,7 @@ struct SimulateOptions {
   std::string compiler;       // empty: $CXX or c++
   std::string timing_path;    // --timing FILE: phase times as JSON (for benchmarks)
   bool quiet = false;         // no compile/timing lines on stderr
+  std::vector<std::string> assignments;  // --set name=value: parameter values for this job
 };
 
 int run_simulate(const SimulateOptions& options);
