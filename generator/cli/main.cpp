@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   DeriveOptions derive;
   CLI::App* derive_cmd = app.add_subcommand("derive", "Print the closed filter equations of a model");
   derive_cmd->add_option("MODEL", derive.model_path, "Model file (YAML)")->required();
-  derive_cmd->add_option("--filter", derive.filter, "optimal | ekf | additive | ekf-additive")->capture_default_str();
+  derive_cmd->add_option("--filter", derive.filter, "optimal | ekf | additive | ekf-additive | a filter of the model's filters: section")->capture_default_str();
   derive_cmd->add_option("--format", derive.format, "text | latex | json")
       ->check(CLI::IsMember({"text", "latex", "json"}))
       ->capture_default_str();
@@ -45,12 +45,12 @@ int main(int argc, char** argv) {
   CLI::App* latex_cmd = app.add_subcommand("latex", "Write a standalone LaTeX document of the model and its filters");
   latex_cmd->add_option("MODEL", latex.model_path, "Model file (YAML)")->required();
   latex_cmd->add_option("-o,--output", latex.output_path, "Output .tex file")->required();
-  latex_cmd->add_option("--filter", latex.filters, "Comma-separated filter kinds (default: every kind the model supports)");
+  latex_cmd->add_option("--filter", latex.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports, then its own)");
 
   EvalOptions eval;
   CLI::App* eval_cmd = app.add_subcommand("eval", "Evaluate a filter's m drift, gain and P drift at one point (JSON)");
   eval_cmd->add_option("MODEL", eval.model_path, "Model file (YAML)")->required();
-  eval_cmd->add_option("--filter", eval.filter, "optimal | ekf | additive | ekf-additive")->required();
+  eval_cmd->add_option("--filter", eval.filter, "optimal | ekf | additive | ekf-additive | a filter of the model's filters: section")->required();
   eval_cmd->add_option("--t", eval.t, "Time")->capture_default_str();
   eval_cmd->add_option("--m", eval.m, "Estimate, comma-separated: --m=-1.5,2")->required();
   eval_cmd->add_option("--P", eval.P, "Covariance, rows separated by ';': --P '1,0;0,1'")->required();
@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   CLI::App* codegen_cmd = app.add_subcommand("codegen", "Write header-only C++ of a model's filters");
   codegen_cmd->add_option("MODEL", codegen.model_path, "Model file (YAML)")->required();
   codegen_cmd->add_option("-o,--output", codegen.output_dir, "Output directory; files go to DIR/<model>/<filter>.hpp");
-  codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filter kinds (default: every kind the model supports)");
+  codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports, then its own)");
   codegen_cmd->add_option("--scalar", codegen.scalar, "float | double | template")
       ->check(CLI::IsMember({"float", "double", "template"}))
       ->capture_default_str();
