@@ -13,7 +13,6 @@ FilterStepper::FilterStepper(std::size_t n, std::size_t p, const FilterStepContr
   const auto levels = static_cast<std::size_t>(control.max_depth) + 1;
   saved_.assign(levels * size_, 0.0);
   half_dy_.assign(levels * p_, 0.0);
-  for (std::size_t i = 0, offset = n; i < n; offset += n - i, ++i) diagonal_.push_back(offset);
 }
 
 }  // namespace pfgen_runtime

@@ -124,7 +124,7 @@ bool CovarianceGuard::passes_filter_state_general(const double* state, std::size
   if (n >= 2 && n <= max_n) {
     // Any eigenvalue bounds |P_ii| (Rayleigh quotient of e_i), so floor <= the threshold.
     double max_diagonal = 0;
-    for (std::size_t i = 0, d = 0; i < n; d += n - i, ++i) max_diagonal = std::max(max_diagonal, std::abs(P[d]));
+    for (std::size_t i = 0; i < n; ++i) max_diagonal = std::max(max_diagonal, std::abs(P[packed_diagonal(n, i)]));
     const double floor = absolute_tolerance_ + relative_tolerance_ * max_diagonal;
     const double shift = 0.25 * floor;
     // A Cholesky factorisation that completes in floating point factors P + shift I + E exactly,

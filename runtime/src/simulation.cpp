@@ -29,52 +29,42 @@ TruthRun simulate_truth(TruthScheme& scheme, LinearObservation& observation, con
   result.grid = grid;
   result.x.resize(static_cast<Eigen::Index>(system.n), static_cast<Eigen::Index>(grid.steps + 1));
   result.dy.resize(static_cast<Eigen::Index>(observation.p()), static_cast<Eigen::Index>(grid.steps));
-
-  scheme.start_run(seed, run);
-  RandomStream truth_noise(seed, run, substream::truth_noise);
-  RandomStream observation_noise(seed, run, substream::observation_noise);
-  Eigen::VectorXd x = x0, dW(system.q), dW2(observation.r()), dy(observation.p());
-
-  result.divergence = guard.check(grid.t0, x);
-  const bool initial_ok = !result.divergence;
-  if (initial_ok) {
-    result.x.col(0) = x;
-    for (std::size_t k = 0; k < grid.steps; ++k) {
-      const double t = grid.time(k);
-      truth_noise.wiener_increment(grid.dt, dW);
-      observation_noise.wiener_increment(grid.dt, dW2);
-      scheme.step(t, x, grid.dt, dW);
-      if (auto event = guard.check(grid.time(k + 1), x)) {
-        result.divergence = event;
-        break;
-      }
-      observation.increment(t, grid.dt, result.x.col(static_cast<Eigen::Index>(k)), x, dW2, dy);
-      result.x.col(static_cast<Eigen::Index>(k + 1)) = x;
-      result.dy.col(static_cast<Eigen::Index>(k)) = dy;
-      result.completed_steps = k + 1;
-    }
-  }
+  const std::ptrdiff_t last =
+      simulate_truth_into(scheme, observation, x0, grid, seed, run, guard, result.x, result.dy, result.divergence);
+  result.completed_steps = last > 0 ? static_cast<std::size_t>(last) : 0;
   // An invalid x0 leaves no state on record.
-  result.x.conservativeResize(Eigen::NoChange,
-                              initial_ok ? static_cast<Eigen::Index>(result.completed_steps + 1) : 0);
+  result.x.conservativeResize(Eigen::NoChange, static_cast<Eigen::Index>(last + 1));
   result.dy.conservativeResize(Eigen::NoChange, static_cast<Eigen::Index>(result.completed_steps));
   return result;
 }
 
-namespace {
+std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& observation, const Eigen::VectorXd& x0,
+                                   const TimeGrid& grid, std::uint64_t seed, std::uint64_t run,
+                                   const DivergenceGuard& guard, Eigen::MatrixXd& path,
+                                   Eigen::MatrixXd& dy, std::optional<DivergenceEvent>& divergence) {
+  scheme.start_run(seed, run);
+  RandomStream truth_noise(seed, run, substream::truth_noise);
+  RandomStream observation_noise(seed, run, substream::observation_noise);
+  Eigen::VectorXd x = x0, dW(scheme.system().q), dW2(observation.r());
 
-// The first guard failure of a filter state at time t, if any.
-std::optional<DivergenceEvent> check_filter_state(const FilterGuardOptions& options, double t, const double* state,
-                                                  std::size_t n) {
-  if (auto event = options.estimate_guard.check(t, state, n)) return event;
-  if (auto event = options.covariance_guard.check(t, state + n, packed_size(n))) {
-    event->index += n;  // index into the whole filter state
-    return event;
+  divergence = guard.check(grid.t0, x);
+  if (divergence) return -1;
+  path.col(0) = x;
+  for (std::size_t k = 0; k < grid.steps; ++k) {
+    const double t = grid.time(k);
+    truth_noise.wiener_increment(grid.dt, dW);
+    observation_noise.wiener_increment(grid.dt, dW2);
+    scheme.step(t, x, grid.dt, dW);
+    if (auto event = guard.check(grid.time(k + 1), x)) {
+      divergence = event;
+      return static_cast<std::ptrdiff_t>(k);
+    }
+    const auto column = static_cast<Eigen::Index>(k);
+    observation.increment(t, grid.dt, path.col(column), x, dW2, dy.col(column));
+    path.col(column + 1) = x;
   }
-  return std::nullopt;
+  return static_cast<std::ptrdiff_t>(grid.steps);
 }
-
-}  // namespace
 
 FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const FilterGuardOptions& options) {
   if (!filter.step || !filter.initial_state || filter.n == 0)
@@ -92,7 +82,7 @@ FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const Fil
 
   // True while the run may go on. Events are written only when they happen.
   auto guard = [&](double t) {
-    if (auto event = check_filter_state(options, t, state.data(), filter.n)) {
+    if (auto event = check_filter_divergence(options, t, state.data(), filter.n)) {
       result.divergence = event;
       return false;
     }

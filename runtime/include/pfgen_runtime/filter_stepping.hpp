@@ -24,6 +24,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "pfgen_runtime/guards.hpp"
+
 
 namespace pfgen_runtime {
 
@@ -88,7 +90,8 @@ class FilterStepper {
         }
         // change <= tolerance (sqrt|P_ii P_jj| + floor), without a square root on every step.
         const double excess = change / tolerance - floor;
-        if (excess > 0 && excess * excess > std::abs(before[diagonal_[i]] * before[diagonal_[j]])) return false;
+        if (excess > 0 && excess * excess > std::abs(P0[packed_diagonal(n_, i)] * P0[packed_diagonal(n_, j)]))
+          return false;
       }
     return true;
   }
@@ -97,7 +100,6 @@ class FilterStepper {
   FilterStepControl control_;
   std::vector<double> saved_;    // (max_depth + 1) states
   std::vector<double> half_dy_;  // (max_depth + 1) increments
-  std::vector<std::size_t> diagonal_;  // position of P_ii in the packed state
   std::uint64_t refined_ = 0;
 };
 

@@ -48,6 +48,9 @@ class DivergenceGuard {
 
 inline constexpr std::size_t packed_size(std::size_t n) { return n * (n + 1) / 2; }
 inline constexpr std::size_t filter_state_size(std::size_t n) { return n + packed_size(n); }
+// Where P(i, i) sits in the packed upper triangle: after rows 0..i-1 of n, n-1, ... entries.
+// In a whole filter state it is at n + packed_diagonal(n, i).
+inline constexpr std::size_t packed_diagonal(std::size_t n, std::size_t i) { return i * (2 * n - i + 1) / 2; }
 
 // The full symmetric n x n matrix from its packed upper triangle (n(n+1)/2 entries).
 Eigen::MatrixXd unpack_symmetric(const double* upper, std::size_t n);

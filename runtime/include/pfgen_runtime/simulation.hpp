@@ -47,6 +47,16 @@ TruthRun simulate_truth(TruthScheme& scheme, LinearObservation& observation, con
                         const TimeGrid& grid, std::uint64_t seed, std::uint64_t run,
                         const DivergenceGuard& guard = DivergenceGuard());
 
+// simulate_truth's loop into storage the caller keeps across runs (the Monte Carlo engine reuses
+// one per thread, so a run allocates no path): path is n x (steps + 1), dy p x steps, both sized
+// by the caller. Returns the last grid index whose state is stored in path (-1 when the guard
+// rejects x0); `divergence` is the guard's event when it stopped the run. No argument checks:
+// simulate_truth makes them.
+std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& observation, const Eigen::VectorXd& x0,
+                                   const TimeGrid& grid, std::uint64_t seed, std::uint64_t run,
+                                   const DivergenceGuard& guard, Eigen::MatrixXd& path,
+                                   Eigen::MatrixXd& dy, std::optional<DivergenceEvent>& divergence);
+
 // A filter as plain functions over its packed state [m (n), P upper triangle], the calling
 // convention of generated headers. `step` advances the state over [t, t + dt] given dy (p).
 struct FilterModel {
@@ -84,6 +94,20 @@ struct FilterGuardOptions {
   bool stop_on_psd_loss = false;  // by default record the first loss and go on
   FilterStepControl stepping;     // grid steps refined where one step would be unstable
 };
+
+// The first divergence of a filter state at time t, if any: an entry of m beyond the estimate
+// guard, then an entry of P beyond the covariance guard (the event's index counts into the
+// whole state). run_filter and the Monte Carlo engine both stop on it.
+// Inline: it runs after every filter step.
+inline std::optional<DivergenceEvent> check_filter_divergence(const FilterGuardOptions& options, double t,
+                                                              const double* state, std::size_t n) {
+  if (auto event = options.estimate_guard.check(t, state, n)) return event;
+  if (auto event = options.covariance_guard.check(t, state + n, packed_size(n))) {
+    event->index += n;  // index into the whole filter state
+    return event;
+  }
+  return std::nullopt;
+}
 
 struct CovarianceEvent {
   double t = 0;

@@ -48,7 +48,6 @@ Plan make_plan(std::size_t n, std::size_t p, const MonteCarloOptions& options) {
   std::stable_sort(plan.events.begin(), plan.events.end(),
                    [](const Plan::Event& x, const Plan::Event& y) { return x.index < y.index; });
   std::stable_sort(plan.opens.begin(), plan.opens.end());
-  for (std::size_t i = 0, offset = n; i < n; offset += n - i, ++i) plan.diagonal.push_back(offset);
   return plan;
 }
 

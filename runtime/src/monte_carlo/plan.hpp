@@ -25,7 +25,6 @@ struct Plan {
   std::vector<std::pair<std::size_t, std::size_t>> windows;    // first, last grid index
   std::vector<Event> events;                                   // by grid index
   std::vector<std::pair<std::size_t, std::size_t>> opens;      // (first index, window), by index
-  std::vector<std::size_t> diagonal;                           // offsets of P(i, i) in a filter state
 };
 
 // The plan for n states and p observations. Report times and window ends are snapped to the

@@ -4,32 +4,14 @@
 #include <cmath>
 
 #include "clock.hpp"
-#include "pfgen_runtime/random.hpp"
 
 namespace pfgen_runtime::monte_carlo_detail {
-
-namespace {
-
-// The same first guard failure as run_filter's (simulation.cpp): m, then P's entries.
-bool state_diverged(const FilterGuardOptions& guards, double t, const double* state, std::size_t n, double& at) {
-  if (auto event = guards.estimate_guard.check(t, state, n)) {
-    at = event->t;
-    return true;
-  }
-  if (auto event = guards.covariance_guard.check(t, state + n, packed_size(n))) {
-    at = event->t;
-    return true;
-  }
-  return false;
-}
-
-}  // namespace
 
 Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, const std::vector<FilterModel>& filters,
                const Eigen::VectorXd& x0, const Plan& plan, const MonteCarloOptions& options)
     : scheme_(scheme.clone()), observation_(observation), filters_(filters), x0_(x0), plan_(plan),
       options_(options), path_(plan.n, plan.grid.steps + 1), dy_(plan.p, plan.grid.steps),
-      x_(plan.n), dW_(scheme.system().q), dW2_(observation.r()), error_(plan.n),
+      error_(plan.n),
       sums_((1 + plan.windows.size()) * plan.n), stepper_(plan.n, plan.p, options.filter_guards.stepping) {
   filter_seconds.assign(filters.size(), 0.0);
   filter_cpu_seconds.assign(filters.size(), 0.0);
@@ -56,37 +38,18 @@ void Worker::run(std::size_t run, RunResult& out) {
   }
 }
 
-// simulate_truth (simulation.cpp) into the thread's buffers: the same streams, draws, order
-// of operations and guard, so the same bits.
+// simulate_truth's loop (simulation.cpp) into the thread's buffers, so the same bits.
 void Worker::simulate_truth(std::size_t run, RunResult& out) {
-  const TimeGrid& grid = plan_.grid;
-  scheme_->start_run(options_.seed, run);
-  RandomStream truth_noise(options_.seed, run, substream::truth_noise);
-  RandomStream observation_noise(options_.seed, run, substream::observation_noise);
-  x_ = x0_;
-  if (auto event = options_.truth_guard.check(grid.t0, x_)) {
+  std::optional<DivergenceEvent> divergence;
+  out.truth_last = simulate_truth_into(*scheme_, observation_, x0_, plan_.grid, options_.seed, run,
+                                       options_.truth_guard, path_, dy_, divergence);
+  if (divergence) {
     out.truth_diverged = true;
-    out.truth_divergence_t = event->t;
-  } else {
-    path_.col(0) = x_;
-    out.truth_last = 0;
-    for (std::size_t k = 0; k < grid.steps; ++k) {
-      const double t = grid.time(k);
-      truth_noise.wiener_increment(grid.dt, dW_);
-      observation_noise.wiener_increment(grid.dt, dW2_);
-      scheme_->step(t, x_, grid.dt, dW_);
-      ++truth_steps;
-      if (auto event = options_.truth_guard.check(grid.time(k + 1), x_)) {
-        out.truth_diverged = true;
-        out.truth_divergence_t = event->t;
-        break;
-      }
-      const auto column = static_cast<Eigen::Index>(k);
-      observation_.increment(t, grid.dt, path_.col(column), x_, dW2_, dy_.col(column));
-      path_.col(column + 1) = x_;
-      out.truth_last = static_cast<std::ptrdiff_t>(k + 1);
-    }
+    out.truth_divergence_t = divergence->t;
   }
+  // Steps taken: the stored ones, and the one the guard stopped (none when x0 was rejected).
+  truth_steps += static_cast<std::uint64_t>(std::max<std::ptrdiff_t>(out.truth_last, 0)) +
+                 (divergence && out.truth_last >= 0 ? 1 : 0);
   const std::size_t n = plan_.n;
   out.truth_record.assign(plan_.records.size() * n, nan);
   for (std::size_t r = 0; r < plan_.records.size(); ++r)
@@ -121,8 +84,9 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, Filter
   next_open_ = next_event_ = 0;
   // True while the run may go on, as in run_filter; events are written when they happen.
   auto guard = [&](double t) {
-    if (state_diverged(guards, t, state, n, out.divergence_t)) {
+    if (auto event = check_filter_divergence(guards, t, state, n)) {  // as run_filter does
       out.diverged = true;
+      out.divergence_t = event->t;
       return false;
     }
     if (guards.check_psd && !out.psd_lost && !guards.psd.passes_filter_state(state, n)) {
@@ -177,7 +141,7 @@ void Worker::visit(std::size_t j, const double* state, bool shown, FilterRunResu
         if (shown)
           for (std::size_t i = 0; i < n; ++i) {
             out.m_record[slot * n + i] = state[i];
-            out.P_record[slot * n + i] = state[plan_.diagonal[i]];
+            out.P_record[slot * n + i] = state[n + packed_diagonal(n, i)];
           }
         break;
       case Plan::Kind::report:

@@ -46,7 +46,6 @@ class Worker {
   const MonteCarloOptions& options_;
   Eigen::MatrixXd path_;  // n x (steps + 1): x at the grid times of the current run
   Eigen::MatrixXd dy_;    // p x steps
-  Eigen::VectorXd x_, dW_, dW2_;
   std::vector<double> state_, error_, sums_;
   FilterStepper stepper_;
   std::vector<std::size_t> active_;  // windows open at the current grid point
