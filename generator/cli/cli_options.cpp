@@ -44,7 +44,7 @@ std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& optio
   return {text.substr(0, eq), parse_number(option, text.substr(eq + 1))};
 }
 
-std::vector<std::string> parse_filter_list(const std::string& text, const Model& model) {
+std::vector<std::string> parse_filter_list(const std::string& option, const std::string& text, const Model& model) {
   std::vector<std::string> available = available_filter_names(model);
   if (text.empty()) return available;
   std::vector<std::string> out;
@@ -56,11 +56,11 @@ std::vector<std::string> parse_filter_list(const std::string& text, const Model&
       continue;
     }
     if (parse_filter_kind(name))
-      throw CliValueError("--filter: '" + name + "' needs additive_diffusion or additive_diffusion_covariance in model " +
+      throw CliValueError(option + ": '" + name + "' needs additive_diffusion or additive_diffusion_covariance in model " +
                           model.name);
     std::string user;
     for (const auto& filter : model.user_filters) user += ", " + filter.name;
-    throw CliValueError("--filter: unknown filter kind '" + name + "' (known: optimal, ekf, additive, ekf-additive" +
+    throw CliValueError(option + ": unknown filter kind '" + name + "' (known: optimal, ekf, additive, ekf-additive" +
                         (user.empty() ? "" : "; model " + model.name + " also defines " + user.substr(2)) + ")");
   }
   return out;

@@ -24,6 +24,7 @@ std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& optio
 // "optimal,ekf-printed" -> filter names, each a built-in kind the model supports or one of
 // its user filters (`filters:`); empty text -> every filter the model offers
 // (available_filter_names: the supported kinds, then the user filters in file order).
-std::vector<std::string> parse_filter_list(const std::string& text, const Model& model);
+// Errors name `option` (--filter, or simulate's --filters).
+std::vector<std::string> parse_filter_list(const std::string& option, const std::string& text, const Model& model);
 
 }  // namespace pfgen::cli

@@ -20,7 +20,7 @@ namespace pfgen::cli {
 namespace {
 
 std::string single_filter(const std::string& name, const Model& model) {
-  std::vector<std::string> names = parse_filter_list(name, model);
+  std::vector<std::string> names = parse_filter_list("--filter", name, model);
   if (names.size() != 1) throw CliValueError("--filter: give exactly one filter");
   return names.front();
 }
@@ -59,7 +59,7 @@ int run_codegen(const CodegenCliOptions& options) {
   codegen_options.eigen_wrapper = options.eigen;
   // Everything is generated in memory first: a failure leaves no partial output.
   std::vector<codegen::GeneratedFilter> files;
-  for (const std::string& name : parse_filter_list(options.filters, model))
+  for (const std::string& name : parse_filter_list("--filter", options.filters, model))
     files.push_back(codegen::generate_filter_code(model, derive_named_filter(model, name), codegen_options));
   if (!options.output_dir.empty()) {
     for (const auto& file : files) {
@@ -122,7 +122,7 @@ int run_derive(const DeriveOptions& options) {
 int run_latex(const LatexOptions& options) {
   Model model = load_model_file(options.model_path);
   std::vector<FilterEquations> filters;
-  for (const std::string& name : parse_filter_list(options.filters, model))
+  for (const std::string& name : parse_filter_list("--filter", options.filters, model))
     filters.push_back(derive_named_filter(model, name));
   write_file_atomically(options.output_path, latex_document(model, filters));
   return 0;

@@ -42,6 +42,13 @@ std::string origin(bool from_command_line, bool from_file, const std::string& op
   return model.simulation.location_of(field) + ": simulation." + field;
 }
 
+// The command line's value, else the model file's, else `value` keeps pfgen's default.
+template <class T>
+void take(T& value, const std::optional<T>& command_line, const std::optional<T>& file) {
+  if (command_line) value = *command_line;
+  else if (file) value = *file;
+}
+
 // Whether the model's diffusion is identically zero (a deterministic truth).
 bool noise_free(const Model& model) {
   for (const auto& row : model.diffusion.G)
@@ -94,8 +101,7 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
   const std::string T_origin = origin(cli.T.has_value(), file.T.has_value(), "--T", model, "T");
   if (!(s.T > 0) || !std::isfinite(s.T)) throw CliValueError(T_origin + ": the horizon must be a positive number");
 
-  if (cli.dt) s.dt = *cli.dt;
-  else if (file.dt) s.dt = *file.dt;
+  take(s.dt, cli.dt, file.dt);
   const std::string dt_origin = cli.dt || file.dt ? origin(cli.dt.has_value(), file.dt.has_value(), "--dt", model, "dt")
                                                   : "--dt (default " + number_text(s.dt) + ")";
   if (!(s.dt > 0) || !(s.dt < s.T)) throw CliValueError(dt_origin + ": the step must be positive and below T = " + number_text(s.T));
@@ -108,21 +114,13 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
     throw CliValueError(dt_origin + ": T = " + number_text(s.T) + " is not a whole number of steps of " +
                         number_text(s.dt) + " (T / dt = " + number_text(steps) + "); choose a dt that divides T");
 
-  if (cli.runs) s.runs = *cli.runs;
-  else if (file.runs) s.runs = *file.runs;
+  take(s.runs, cli.runs, file.runs);
   if (s.runs == 0) throw CliValueError(runs_origin + ": at least one run");
 
-  if (cli.seed) s.seed = *cli.seed;
-  else if (file.seed) s.seed = *file.seed;
+  take(s.seed, cli.seed, file.seed);
 
   if (cli.filters) {
-    // parse_filter_list names latex's and codegen's --filter; simulate's option is --filters.
-    try {
-      s.filters = parse_filter_list(*cli.filters, model);
-    } catch (const CliValueError& e) {
-      const std::string message = e.what();
-      throw CliValueError(message.rfind("--filter:", 0) == 0 ? "--filters:" + message.substr(9) : message);
-    }
+    s.filters = parse_filter_list("--filters", *cli.filters, model);
     // A filter named twice used to fail in code generation ("given twice for one plugin"),
     // without naming the option.
     for (std::size_t k = 0; k < s.filters.size(); ++k)
@@ -131,8 +129,7 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
   }
   else if (file.filters) s.filters = *file.filters;
 
-  if (cli.scheme) s.scheme = *cli.scheme;
-  else if (file.scheme) s.scheme = *file.scheme;
+  take(s.scheme, cli.scheme, file.scheme);
   bool known = false;
   std::string known_list;
   for (const std::string& name : simulation_schemes()) {
@@ -190,18 +187,15 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
                           number_text(b) + "] is shorter than a step dt = " + number_text(s.dt));
   }
 
-  if (cli.record_points) s.record_points = *cli.record_points;
-  else if (file.record_points) s.record_points = *file.record_points;
+  take(s.record_points, cli.record_points, file.record_points);
   if (s.record_points < 2)
     throw CliValueError(record_points_origin +
                         ": at least 2 points");
 
-  if (cli.bound) s.bound = *cli.bound;
-  else if (file.bound) s.bound = *file.bound;
+  take(s.bound, cli.bound, file.bound);
   if (!(s.bound > 0)) throw CliValueError(bound_origin + ": must be positive");
 
-  if (cli.shown_run) s.shown_run = *cli.shown_run;
-  else if (file.shown_run) s.shown_run = *file.shown_run;
+  take(s.shown_run, cli.shown_run, file.shown_run);
   if (s.shown_run >= s.runs)
     throw CliValueError(shown_run_origin + ": run " +
                         std::to_string(s.shown_run) + " does not exist with " + std::to_string(s.runs) + " runs");
@@ -211,17 +205,13 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
 std::string choose_truth_scheme(const Model& model) {
   const std::vector<GiNaC::symbol>& x = model.states;
   auto degree = [&x](const GiNaC::ex& e) { return Polynomial::from_ex(e.expand(), x).degree(); };
+  if (noise_free(model)) return "rk4";
   std::uint32_t drift_degree = 0, diffusion_degree = 0;
-  bool noise = false;
   for (const auto& f : model.drift) drift_degree = std::max(drift_degree, degree(f));
-  // G = g g^T has twice g's degree; either form tells whether the noise is zero.
+  // G = g g^T has twice g's degree, and is given whichever form the model file uses.
   for (const auto& row : model.diffusion.G)
-    for (const auto& entry : row) {
-      if (entry.expand().is_zero()) continue;
-      noise = true;
-      diffusion_degree = std::max(diffusion_degree, (degree(entry) + 1) / 2);
-    }
-  if (!noise) return "rk4";
+    for (const auto& entry : row)
+      if (!entry.expand().is_zero()) diffusion_degree = std::max(diffusion_degree, (degree(entry) + 1) / 2);
   if (drift_degree > 1 || diffusion_degree > 1) return "adaptive-euler";
   if (diffusion_degree == 1) return model.diffusion.g ? "milstein" : "derivative-free-milstein";
   return "euler-maruyama";
