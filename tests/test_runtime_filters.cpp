@@ -11,15 +11,13 @@
 #include "generated/basin_skliar_partial/optimal.hpp"
 #include "pfgen_runtime/random.hpp"
 #include "pfgen_runtime/simulation.hpp"
+#include "support/scalar_linear_system.hpp"
 
 using namespace pfgen_runtime;
+using pfgen_test::ScalarLinear;
+using pfgen_test::scalar_linear_system;
 
 namespace {
-
-// dx = -a x dt + s dW1, dy = x dt + r dW2.
-struct ScalarLinear {
-  double a = 1.0, s = 0.8, r = 0.5, m0 = 0.0, P0 = 1.0;
-};
 
 // The Kalman-Bucy filter written out by hand, in the generated calling convention.
 void kalman_bucy_initial(double* state) {
@@ -35,14 +33,6 @@ void kalman_bucy_step(double* state, double, double dt, const double* dy, const 
   state[1] = P + (-2 * model.a * P + model.s * model.s - P * P / (model.r * model.r)) * dt;
 }
 
-SdeSystem scalar_linear_system(const ScalarLinear& model) {
-  SdeSystem system;
-  system.n = 1;
-  system.q = 1;
-  system.drift = [a = model.a](double, const double* x, double* f) { f[0] = -a * x[0]; };
-  system.diffusion = [s = model.s](double, const double*, double* g) { g[0] = s; };
-  return system;
-}
 
 // A filter whose P drift is -1: P = P0 - t becomes negative at t = P0.
 void shrinking_initial(double* state) {
@@ -130,7 +120,7 @@ TEST_CASE("runtime: a Kalman-Bucy filter stepped on simulated observations has e
     sum_square += error * error;
     P_end = result.state(1, result.state.cols() - 1);
   }
-  const double P_inf = model.r * model.r * (-model.a + std::sqrt(model.a * model.a + model.s * model.s / (model.r * model.r)));
+  const double P_inf = model.P_inf();
   const double mean = sum_error / runs, mse = sum_square / runs;
   INFO("P(3) = " << P_end << " (stationary " << P_inf << "), Monte Carlo error mean " << mean << ", mean square " << mse);
   CHECK(P_end == Approx(P_inf).epsilon(1e-3));

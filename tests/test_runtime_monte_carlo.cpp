@@ -32,30 +32,15 @@
 #include "pfgen_runtime/results_csv.hpp"
 #include "pfgen_runtime/schemes.hpp"
 #include "pfgen_runtime/simulation.hpp"
+#include "support/scalar_linear_system.hpp"
 #include "pfgen_runtime/summary_table.hpp"
 
 using namespace pfgen_runtime;
+using pfgen_test::ScalarLinear;
+using pfgen_test::scalar_linear_system;
+using pfgen_test::scalar_observation;
 
 namespace {
-
-// dx = -a x dt + s dW1, dy = x dt + r dW2.
-struct ScalarLinear {
-  double a = 1.0, s = 0.8, r = 0.5, m0 = 0.0, P0 = 1.0;
-  double P_inf() const { return r * r * (-a + std::sqrt(a * a + s * s / (r * r))); }
-};
-
-SdeSystem scalar_linear_system(const ScalarLinear& model) {
-  SdeSystem system;
-  system.n = 1;
-  system.q = 1;
-  system.drift = [a = model.a](double, const double* x, double* f) { f[0] = -a * x[0]; };
-  system.diffusion = [s = model.s](double, const double*, double* g) { g[0] = s; };
-  return system;
-}
-
-LinearObservation scalar_observation(double r) {
-  return LinearObservation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Constant(1, 1, r));
-}
 
 // The Kalman-Bucy filter written out by hand, in the generated calling convention; `gain_sign`
 // -1 makes it deliberately wrong: the innovation pushes m away from x and m runs off like e^(9t).
