@@ -352,7 +352,7 @@ TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line",
   SECTION("--filter unknown or not supported by the model") {
     check_option_error(run_pfgen({"eval", example("basin_skliar_partial.yaml"), "--filter", "kalman", "--m=1,2",
                                   good_P}),
-                       {"--filter", "unknown filter kind 'kalman'"});
+                       {"--filter", "unknown filter 'kalman'"});
     check_option_error(run_pfgen({"eval", example("basin_skliar_partial.yaml"), "--filter", "additive",
                                   "--m=1,2", good_P}),
                        {"--filter", "needs additive_diffusion"});
@@ -373,6 +373,6 @@ TEST_CASE("latex -o to an unwritable place gives one error line and leaves nothi
   CHECK(std::filesystem::is_empty(dir.file("taken.tex")));
   check_option_error(run_pfgen({"latex", example("basin2006_quadratic.yaml"), "--filter", "optimal,bogus", "-o",
                                 dir.file("out.tex")}),
-                     {"--filter", "unknown filter kind 'bogus'"});
+                     {"--filter", "unknown filter 'bogus'"});
   CHECK(dir.entries() == std::vector<std::string>{"taken.tex"});
 }

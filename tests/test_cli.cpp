@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "pfgen/kinds/filter_kinds.hpp"
 #include "support/cli_helpers.hpp"
 
 using namespace pfgen_test;
@@ -213,7 +214,8 @@ void check_close(double actual, double expected, const std::string& what) {
   CHECK(std::fabs(actual - expected) <= 1e-12);
 }
 
-const std::vector<std::string> kAllKinds = {"optimal", "ekf", "additive", "ekf-additive"};
+// Every built-in kind, from the registry: a new kind is covered (or these tests fail) at once.
+const std::vector<std::string> kAllKinds = pfgen::filter_kind_names();
 
 }  // namespace
 
@@ -233,6 +235,9 @@ TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed
       {"additive", 0.1 * (m * m + P), P, 0.4 * m * P + 0.01 - P * P},
       {"ekf-additive", 0.1 * m * m, P, 2 * 0.2 * m * P + 0.01 - P * P},
   };
+  std::vector<std::string> covered;
+  for (const auto& c : cases) covered.push_back(c.kind);
+  CHECK(covered == kAllKinds);  // a kind added to the registry needs its hand-computed values here
   for (const auto& c : cases) {
     INFO("filter " << c.kind);
     Evaluated e = eval({model, "--filter", c.kind, "--m=-1.5", "--P", "0.5"});

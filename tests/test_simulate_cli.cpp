@@ -130,15 +130,15 @@ TEST_CASE("simulate: bad settings are one-line errors naming the option or field
     std::string message;
   };
   const std::vector<Case> cases{
-      {{"--T", "-1"}, "--T: the horizon must be a positive number"},
-      {{"--dt", "5", "--T", "2"}, "--dt: the step must be positive and below T = 2"},
-      {{"--windows", "0:20"}, "--windows: [0, 20] is not a window"},
+      {{"--T", "-1"}, "--T: the horizon T (the simulation starts at t = 0) must be a number greater than 0, found -1"},
+      {{"--dt", "5", "--T", "2"}, "--dt: the step dt = 5 must be smaller than T = 2"},
+      {{"--windows", "0:20"}, "--windows: window [0, 20] ends after the horizon T = 9.2"},
       {{"--windows", "1-2"}, "--windows: '1-2' is not a:b"},
       {{"--report-times", "1,x"}, "--report-times: 'x' is not a finite number"},
-      {{"--filters", "optimal,kalman"}, "unknown filter kind 'kalman'"},
+      {{"--filters", "optimal,kalman"}, "unknown filter 'kalman'"},
       {{"--scheme", "heun"}, "--scheme: unknown scheme 'heun'"},
-      {{"--runs", "0"}, "--runs: at least one run"},
-      {{"--shown-run", "300"}, "--shown-run: run 300 does not exist with 200 runs"},
+      {{"--runs", "0"}, "--runs: at least 1 run is required"},
+      {{"--shown-run", "300"}, "--shown-run: run 300 is not among the 200 runs (numbered from 0)"},
       {{"--plot", dir.file("e.pdf")}, "--plot: '" + dir.file("e.pdf") + "' must end in .png or .svg"},
       {{"-o", dir.file("missing/r.csv")}, "does not exist"},
       {{"--dt", "1e-8", "--threads", "2"}, "the job needs about 27.4 GiB"},
@@ -147,13 +147,13 @@ TEST_CASE("simulate: bad settings are one-line errors naming the option or field
       // options took -1 as 2^64 - 1 and saturated overflows; a repeated filter and a scheme the
       // model cannot use failed late, without the option's name.
       {{"--T", "1", "--dt", "0.3"}, "--dt: T = 1 is not a whole number of steps of 0.3"},
-      {{"--dt", "1e-3", "--windows", "9.1996:9.2"}, "--windows: [9.1996, 9.2] is shorter than a step dt = 0.001"},
+      {{"--dt", "1e-3", "--windows", "9.1996:9.2"}, "--windows: window [9.1996, 9.2] is shorter than a step dt = 0.001"},
       {{"--seed", "-1"}, "--seed: '-1' is not a whole number"},
       {{"--seed", "18446744073709551616"}, "--seed: '18446744073709551616' is not a whole number"},
       {{"--runs", "-1"}, "--runs: '-1' is not a whole number"},
       {{"--record-points", "1e3"}, "--record-points: '1e3' is not a whole number"},
-      {{"--filters", "optimal,optimal"}, "--filters: 'optimal' is given twice"},
-      {{"--filters", "optimal,kalman"}, "--filters: unknown filter kind 'kalman'"},
+      {{"--filters", "optimal,optimal"}, "--filters: filter 'optimal' is listed twice"},
+      {{"--filters", "optimal,kalman"}, "--filters: unknown filter 'kalman'"},
       {{"--scheme", "rk4"}, "--scheme: rk4 is for deterministic truths only"},
   };
   for (const Case& c : cases) {
@@ -235,7 +235,7 @@ TEST_CASE("simulate: settings refused before the build name the option, also for
   };
   const std::vector<Case> cases{
       // The default dt, not a field of a file without a simulation: section ("<model>: simulation.dt").
-      {{"--T", "1e-6"}, "--dt (default 0.001): the step must be positive and below T = 1e-06"},
+      {{"--T", "1e-6"}, "--dt (default 0.001): the step dt = 0.001 must be smaller than T = 1e-06"},
       {{"--T", "1", "--scheme", "milstein"}, "--scheme: milstein needs the diffusion g"},
       {{"--T", "1", "--bound", "0.5"}, "cov3.yaml: initial.x0, entry 1: 1 is beyond the divergence bound 0.5"},
       {{"--T", "1", "-o", dir.file("out.csv")}, "-o: '" + dir.file("out.csv") + "' is a directory"},

@@ -5,6 +5,7 @@
 #include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model.hpp"
+#include "pfgen/model/model_filters.hpp"
 
 namespace pfgen::cli {
 
@@ -15,6 +16,12 @@ std::vector<std::string> split(const std::string& text, char separator) {
   while (std::getline(in, part, separator)) parts.push_back(part);
   if (!text.empty() && text.back() == separator) parts.push_back("");
   return parts;
+}
+
+std::string join(const std::vector<std::string>& parts, const std::string& separator) {
+  std::string out;
+  for (std::size_t k = 0; k < parts.size(); ++k) out += (k ? separator : "") + parts[k];
+  return out;
 }
 
 GiNaC::numeric parse_number(const std::string& option, const std::string& text) {
@@ -45,23 +52,11 @@ std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& optio
 }
 
 std::vector<std::string> parse_filter_list(const std::string& option, const std::string& text, const Model& model) {
-  std::vector<std::string> available = available_filter_names(model);
-  if (text.empty()) return available;
+  if (text.empty()) return available_filter_names(model);
   std::vector<std::string> out;
   for (const auto& name : split(text, ',')) {
-    bool ok = false;
-    for (const auto& a : available) ok = ok || a == name;
-    if (ok) {
-      out.push_back(name);
-      continue;
-    }
-    if (parse_filter_kind(name))
-      throw CliValueError(option + ": '" + name + "' needs additive_diffusion or additive_diffusion_covariance in model " +
-                          model.name);
-    std::string user;
-    for (const auto& filter : model.user_filters) user += ", " + filter.name;
-    throw CliValueError(option + ": unknown filter kind '" + name + "' (known: optimal, ekf, additive, ekf-additive" +
-                        (user.empty() ? "" : "; model " + model.name + " also defines " + user.substr(2)) + ")");
+    if (auto problem = filter_name_problem(model, name)) throw CliValueError(option + ": " + *problem);
+    out.push_back(name);
   }
   return out;
 }

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "pfgen/derivation/filter_kind.hpp"
+#include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 
 namespace pfgen::cli {
@@ -17,6 +17,8 @@ class CliValueError : public std::runtime_error {
 
 // "a,b,,c" -> {"a", "b", "", "c"}; a trailing separator gives a last empty part.
 std::vector<std::string> split(const std::string& text, char separator);
+// {"a", "b"}, " | " -> "a | b".
+std::string join(const std::vector<std::string>& parts, const std::string& separator);
 std::vector<GiNaC::numeric> parse_number_list(const std::string& option, const std::string& text);
 std::vector<std::vector<GiNaC::numeric>> parse_number_matrix(const std::string& option, const std::string& text);
 GiNaC::numeric parse_number(const std::string& option, const std::string& text);

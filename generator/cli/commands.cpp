@@ -112,7 +112,7 @@ int run_derive(const DeriveOptions& options) {
   if (options.format == "text") {
     std::cout << equations_text(model, eq);
   } else if (options.format == "latex") {
-    std::cout << equations_latex(model, eq);
+    std::cout << equations_latex(eq);
   } else {
     std::cout << equations_json(model, eq).dump();
   }

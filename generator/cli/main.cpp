@@ -10,6 +10,8 @@
 #include "commands.hpp"
 #include "simulate_command.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
+#include "pfgen/kinds/filter_kinds.hpp"
+#include "pfgen/model/model.hpp"
 #include "pfgen/model/model_error.hpp"
 
 namespace {
@@ -33,10 +35,15 @@ int main(int argc, char** argv) {
   });
   app.set_version_flag("--version", "pfgen " PFGEN_VERSION);
 
+  // Option texts list the registries' names (kinds/filter_kinds.hpp, the truth schemes), so that
+  // the help never disagrees with what the options accept.
+  const std::string one_filter_help = join(pfgen::filter_kind_names(), " | ") + " | a filter of the model's filters: section";
+  const std::string scheme_help = "Truth scheme: " + join(pfgen::simulation_schemes(), " | ");
+
   DeriveOptions derive;
   CLI::App* derive_cmd = app.add_subcommand("derive", "Print the closed filter equations of a model");
   derive_cmd->add_option("MODEL", derive.model_path, "Model file (YAML)")->required();
-  derive_cmd->add_option("--filter", derive.filter, "optimal | ekf | additive | ekf-additive | a filter of the model's filters: section")->capture_default_str();
+  derive_cmd->add_option("--filter", derive.filter, one_filter_help)->capture_default_str();
   derive_cmd->add_option("--format", derive.format, "text | latex | json")
       ->check(CLI::IsMember({"text", "latex", "json"}))
       ->capture_default_str();
@@ -50,7 +57,7 @@ int main(int argc, char** argv) {
   EvalOptions eval;
   CLI::App* eval_cmd = app.add_subcommand("eval", "Evaluate a filter's m drift, gain and P drift at one point (JSON)");
   eval_cmd->add_option("MODEL", eval.model_path, "Model file (YAML)")->required();
-  eval_cmd->add_option("--filter", eval.filter, "optimal | ekf | additive | ekf-additive | a filter of the model's filters: section")->required();
+  eval_cmd->add_option("--filter", eval.filter, one_filter_help)->required();
   eval_cmd->add_option("--t", eval.t, "Time")->capture_default_str();
   eval_cmd->add_option("--m", eval.m, "Estimate, comma-separated: --m=-1.5,2")->required();
   eval_cmd->add_option("--P", eval.P, "Covariance, rows separated by ';': --P '1,0;0,1'")->required();
@@ -102,8 +109,7 @@ int main(int argc, char** argv) {
       ->check(whole_number)
       ->capture_default_str();
   simulate_cmd->add_option("--scheme", so.scheme,
-                           "Truth scheme: auto | euler-maruyama | milstein | derivative-free-milstein | tamed-euler | "
-                           "adaptive-euler | rk4");
+                           scheme_help);
   simulate_cmd->add_option("--report-times", so.report_times, "Times for the error columns, e.g. 5,6,6.5");
   simulate_cmd->add_option("--windows", so.windows, "RMS windows a:b, comma-separated, e.g. 0:4,4:9.2");
   simulate_cmd->add_option("--record-points", so.record_points, "Points of the time series (CSV, plot); default 1000")

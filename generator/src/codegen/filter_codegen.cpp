@@ -119,7 +119,7 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
   FunctionCode derivatives = derivatives_code(model, eq, options);
   FunctionCode gain = function_code("gain", gain_outputs, "K", model, vars, options);
   FunctionCode observation =
-      function_code("predicted_observation", predicted_observation(model, vars), "h", model, vars, options);
+      function_code("predicted_observation", eq.predicted_observation, "h", model, vars, options);
 
   const std::string identifier = filter_identifier(eq.name);
   GeneratedFilter result;

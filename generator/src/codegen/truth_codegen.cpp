@@ -36,7 +36,7 @@ std::string function(const std::string& signature, const std::string& body) {
 // Each matrix of the observation in its own block: the three are separate outputs, and blocks
 // keep their temporaries apart.
 std::string observation_function(const Model& model) {
-  const Observation& o = model.observation;
+  const ContinuousObservation& o = model.observation.continuous();
   std::string body;
   const std::pair<const char*, std::vector<Polynomial>> parts[] = {
       {"A0", in_states(model, ExMatrix{o.A0})}, {"A", in_states(model, o.A)}, {"B", in_states(model, o.B)}};
@@ -76,13 +76,13 @@ TruthCode generate_truth_code(const Model& model) {
   TruthCode code;
   code.n = model.n();
   code.p = model.p();
-  code.r = model.observation.B.empty() ? 0 : model.observation.B.front().size();
+  const ContinuousObservation& observation = model.observation.continuous();
+  code.r = observation.B.empty() ? 0 : observation.B.front().size();
   code.diffusion_is_zero = d.g ? all_zero(*d.g) : all_zero(d.G);
   code.diffusion_is_covariance = !code.diffusion_is_zero && !d.g;
   code.q = code.diffusion_is_zero ? 0 : d.g ? d.g->front().size() : code.n;
-  code.observation_is_constant = !depends_on_time(model, ExMatrix{model.observation.A0}) &&
-                                 !depends_on_time(model, model.observation.A) &&
-                                 !depends_on_time(model, model.observation.B);
+  code.observation_is_constant = !depends_on_time(model, ExMatrix{observation.A0}) &&
+                                 !depends_on_time(model, observation.A) && !depends_on_time(model, observation.B);
   code.has_initial_state = model.initial && !model.initial->x0.empty();
 
   CppEmitter emitter(ScalarMode::Double);

@@ -62,7 +62,7 @@ std::string square_invertible_A(const Model& model) {
     return "A is " + std::to_string(model.p()) + " x " + std::to_string(model.n()) + ", not square";
   std::vector<std::size_t> all(model.n());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-  if (determinant(model.observation.A, all, all).is_zero()) return "A is singular";
+  if (determinant(model.observation.continuous().A, all, all).is_zero()) return "A is singular";
   return {};
 }
 
@@ -98,7 +98,7 @@ std::string partially_measured_split(const ModelFacts& facts) {
   if (x2.empty()) return "no components with their own linear dynamics to leave unmeasured";
   if (std::string noise = facts.state_dependent_noise(); !noise.empty()) return noise;
 
-  const ExMatrix& A = model.observation.A;
+  const ExMatrix& A = model.observation.continuous().A;
   std::vector<std::size_t> rows1, rows2;
   for (std::size_t r = 0; r < model.p(); ++r) {
     bool sees_x1 = false, sees_x2 = false;
@@ -113,7 +113,7 @@ std::string partially_measured_split(const ModelFacts& facts) {
     return "the nonlinear components (" + join_indices(x1, model) + ") are seen by " + std::to_string(rows1.size()) +
            " observation rows, so A1 is not square";
   if (determinant(A, rows1, x1).is_zero()) return "the block A1 measuring (" + join_indices(x1, model) + ") is singular";
-  ExMatrix R = multiply_by_transpose(model.observation.B);
+  ExMatrix R = multiply_by_transpose(model.observation.continuous().B);
   for (std::size_t a : rows1)
     for (std::size_t b : rows2)
       if (!R[a][b].is_zero()) return "observation noises of y1 and y2 are correlated (B B^T not block-diagonal)";

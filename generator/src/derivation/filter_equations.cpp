@@ -55,6 +55,17 @@ MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariab
   return out;
 }
 
+// What every filter of the model shares: its variables, its observation kind and the predicted
+// observation its innovation subtracts (the model's own, for user filters too).
+FilterEquations equations_frame(const Model& model) {
+  FilterEquations eq;
+  eq.observation = model.observation.kind();
+  eq.variables = FilterVariables(model.n());
+  eq.p = model.p();
+  eq.predicted_observation = predicted_observation(model.observation.continuous(), eq.variables);
+  return eq;
+}
+
 }  // namespace
 
 Polynomial FilterEquations::P_drift(std::size_t i, std::size_t j) const {
@@ -63,16 +74,13 @@ Polynomial FilterEquations::P_drift(std::size_t i, std::size_t j) const {
 }
 
 FilterEquations derive_filter(const Model& model, FilterKind kind) {
-  if (uses_additive_diffusion(kind) && !model.additive_diffusion)
-    throw std::invalid_argument("filter '" + filter_kind_name(kind) + "' needs additive_diffusion or "
-                                "additive_diffusion_covariance in the model");
+  if (auto reason = unsupported_reason(model, kind))
+    throw std::invalid_argument("filter '" + filter_kind_name(kind) + "' " + *reason + " in the model");
   const std::size_t n = model.n();
-  FilterEquations eq;
+  FilterEquations eq = equations_frame(model);
   eq.name = filter_kind_name(kind);
   eq.description = filter_kind_description(kind);
   eq.kind = kind;
-  eq.variables = FilterVariables(n);
-  eq.p = model.p();
   eq.exactness = assess_exactness(model, kind);
   const FilterVariables& vars = eq.variables;
   auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
@@ -93,30 +101,18 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
     }
   eq.jacobian_term = std::move(terms.jacobian);
 
-  ObservationTerms obs = observation_terms(model);
-  eq.gain.assign(n, std::vector<Polynomial>(eq.p));
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < eq.p; ++r)
-      for (std::size_t k = 0; k < n; ++k) eq.gain[i][r].add_term(P(i, k), obs.At_Rinv[k][r]);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j) {
-      Polynomial correction;
-      for (std::size_t k = 0; k < n; ++k)
-        for (std::size_t l = 0; l < n; ++l)
-          if (!obs.At_Rinv_A[k][l].is_zero()) correction.add_term(P(i, k) * P(l, j), obs.At_Rinv_A[k][l]);
-      eq.P_correction.push_back(std::move(correction));
-    }
+  ObservationCorrection correction = observation_correction(model.observation.continuous(), vars);
+  eq.gain = std::move(correction.gain);
+  eq.P_correction = std::move(correction.P_correction);
   return eq;
 }
 
 FilterEquations derive_user_filter(const Model& model, const UserFilter& filter) {
   const std::size_t n = model.n();
-  FilterEquations eq;
+  FilterEquations eq = equations_frame(model);
   eq.name = filter.name;
   eq.description = filter.description.empty() ? "user-defined filter given by its equations in the model file"
                                                : filter.description;
-  eq.variables = FilterVariables(n);
-  eq.p = model.p();
   eq.exactness.exact = false;
   eq.exactness.condition = "user-defined";
   eq.exactness.explanation = "given by its equations in the model file; not derived by pfgen";
@@ -136,13 +132,6 @@ FilterEquations derive_user_filter(const Model& model, const UserFilter& filter)
   return eq;
 }
 
-std::vector<std::string> available_filter_names(const Model& model) {
-  std::vector<std::string> names;
-  for (FilterKind kind : supported_filter_kinds(model)) names.push_back(filter_kind_name(kind));
-  for (const auto& filter : model.user_filters) names.push_back(filter.name);
-  return names;
-}
-
 FilterEquations derive_named_filter(const Model& model, const std::string& name) {
   for (const auto& filter : model.user_filters)
     if (filter.name == name) return derive_user_filter(model, filter);
@@ -150,16 +139,6 @@ FilterEquations derive_named_filter(const Model& model, const std::string& name)
   std::string known;
   for (const auto& n : available_filter_names(model)) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("model " + model.name + " has no filter '" + name + "' (known: " + known + ")");
-}
-
-std::vector<Polynomial> predicted_observation(const Model& model, const FilterVariables& vars) {
-  std::vector<Polynomial> out;
-  for (std::size_t r = 0; r < model.p(); ++r) {
-    Polynomial h = Polynomial::constant(model.observation.A0[r]);
-    for (std::size_t k = 0; k < model.n(); ++k) h.add_term(Monomial::variable(vars.m(k)), model.observation.A[r][k]);
-    out.push_back(h);
-  }
-  return out;
 }
 
 }  // namespace pfgen

@@ -21,12 +21,42 @@ ExMatrix from_matrix(const GiNaC::matrix& m) {
 
 }  // namespace
 
-ObservationTerms observation_terms(const Model& model) {
-  GiNaC::matrix A = to_matrix(model.observation.A);
-  GiNaC::matrix R = to_matrix(multiply_by_transpose(model.observation.B));
+ObservationTerms observation_terms(const ContinuousObservation& observation) {
+  GiNaC::matrix A = to_matrix(observation.A);
+  GiNaC::matrix R = to_matrix(multiply_by_transpose(observation.B));
   GiNaC::matrix At_Rinv = A.transpose().mul(R.inverse());
   GiNaC::matrix At_Rinv_A = At_Rinv.mul(A);
   return ObservationTerms{from_matrix(At_Rinv), from_matrix(At_Rinv_A)};
+}
+
+std::vector<Polynomial> predicted_observation(const ContinuousObservation& observation, const FilterVariables& vars) {
+  std::vector<Polynomial> out;
+  for (std::size_t r = 0; r < observation.A.size(); ++r) {
+    Polynomial h = Polynomial::constant(observation.A0[r]);
+    for (std::size_t k = 0; k < vars.n(); ++k) h.add_term(Monomial::variable(vars.m(k)), observation.A[r][k]);
+    out.push_back(h);
+  }
+  return out;
+}
+
+ObservationCorrection observation_correction(const ContinuousObservation& observation, const FilterVariables& vars) {
+  const std::size_t n = vars.n(), p = observation.A.size();
+  auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
+  ObservationTerms obs = observation_terms(observation);
+  ObservationCorrection out;
+  out.gain.assign(n, std::vector<Polynomial>(p));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t r = 0; r < p; ++r)
+      for (std::size_t k = 0; k < n; ++k) out.gain[i][r].add_term(P(i, k), obs.At_Rinv[k][r]);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      Polynomial correction;
+      for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t l = 0; l < n; ++l)
+          if (!obs.At_Rinv_A[k][l].is_zero()) correction.add_term(P(i, k) * P(l, j), obs.At_Rinv_A[k][l]);
+      out.P_correction.push_back(std::move(correction));
+    }
+  return out;
 }
 
 }  // namespace pfgen

@@ -121,7 +121,7 @@ ModelBuilder& ModelBuilder::additive_diffusion_covariance(const ExMatrix& G) {
 }
 
 ModelBuilder& ModelBuilder::observation(const ExVector& A0, const ExMatrix& A, const ExMatrix& B) {
-  model_.observation = Observation{exact_vector(A0), exact_matrix(A), exact_matrix(B)};
+  model_.observation = ContinuousObservation{exact_vector(A0), exact_matrix(A), exact_matrix(B)};
   has_observation_ = true;
   return *this;
 }

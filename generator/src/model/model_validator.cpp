@@ -9,7 +9,10 @@
 #include <set>
 #include <sstream>
 
+#include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model_error.hpp"
+#include "pfgen/model/model_filters.hpp"
+#include "pfgen/model/simulation_rules.hpp"
 #include "pfgen/notation/text_printer.hpp"
 
 namespace pfgen {
@@ -141,7 +144,7 @@ void validate_diffusion(const Model& model, const Diffusion& d, const std::strin
 }
 
 void validate_observation(const Model& model) {
-  const Observation& obs = model.observation;
+  const ContinuousObservation& obs = model.observation.continuous();
   std::size_t p = obs.A.size();
   if (p == 0) throw ModelError("observation.A", "at least one observation row is required");
   require_shape(obs.A, p, model.n(), "observation.A", "p x n with n = number of states");
@@ -218,12 +221,6 @@ void validate_initial(const Model& model) {
 }
 
 // A double as the user wrote it, near enough: shortest round-trip is not needed in messages.
-std::string number_text(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 void require_polynomial_in(const std::vector<GiNaC::symbol>& variables, const GiNaC::ex& e, const std::string& field,
                            std::optional<int> row, std::optional<int> column) {
   GiNaC::lst list;
@@ -253,14 +250,13 @@ void validate_user_filters(const Model& model) {
   // Every C++ identifier taken so far, with the filter that took it (file names
   // <identifier>.hpp and <identifier>_eigen.hpp derive from it too).
   std::map<std::string, std::string> identifiers;
-  for (const auto& builtin : builtin_filter_names()) identifiers[filter_identifier(builtin.name)] = builtin.name;
+  for (const auto& builtin : filter_kinds()) identifiers[filter_identifier(builtin.name)] = builtin.name;
   for (const UserFilter& filter : model.user_filters) {
     const std::string field = "filters." + filter.name;
     if (!std::regex_match(filter.name, filter_name))
       throw ModelError(field, "'" + filter.name +
                                   "' is not a filter name (a letter, then letters, digits, '_' or '-')");
-    for (const auto& builtin : builtin_filter_names())
-      if (builtin.name == filter.name)
+    if (parse_filter_kind(filter.name))
         throw ModelError(field, "'" + filter.name + "' is a built-in filter kind; give the model's filter another name");
     const std::string identifier = filter_identifier(filter.name);
     for (const auto& [taken, owner] : identifiers) {
@@ -308,90 +304,14 @@ void validate_user_filters(const Model& model) {
   }
 }
 
+// The rules live in simulation_rules.cpp, shared with the command line.
 void validate_simulation(const Model& model) {
-  const SimulationSection& s = model.simulation;
-  auto positive = [](const std::optional<double>& value, const std::string& field, const std::string& what) {
-    if (value && !(std::isfinite(*value) && *value > 0))
-      throw ModelError(field, what + " must be a number greater than 0, found " + number_text(*value));
-  };
-  positive(s.T, "simulation.T", "the horizon T (the simulation starts at t = 0)");
-  positive(s.dt, "simulation.dt", "the step dt");
-  positive(s.bound, "simulation.bound", "the divergence bound");
-  if (s.T && s.dt && !(*s.dt < *s.T))
-    throw ModelError("simulation.dt", "the step dt = " + number_text(*s.dt) + " must be smaller than T = " +
-                                          number_text(*s.T));
-  if (s.runs && *s.runs < 1) throw ModelError("simulation.runs", "at least 1 run is required");
-  if (s.record_points && *s.record_points < 2)
-    throw ModelError("simulation.record_points", "at least 2 record points are required, found " +
-                                                     std::to_string(*s.record_points));
-  if (s.shown_run && s.runs && !(*s.shown_run < *s.runs))
-    throw ModelError("simulation.shown_run", "run " + std::to_string(*s.shown_run) + " is not among the " +
-                                                 std::to_string(*s.runs) + " runs (numbered from 0)");
-  if (s.scheme) {
-    const auto& schemes = simulation_schemes();
-    if (std::find(schemes.begin(), schemes.end(), *s.scheme) == schemes.end()) {
-      std::string known;
-      for (const auto& scheme : schemes) known += (known.empty() ? "" : ", ") + scheme;
-      throw ModelError("simulation.scheme", "unknown scheme '" + *s.scheme + "' (known: " + known + ")");
-    }
-  }
-  if (s.filters) {
-    if (s.filters->empty())
-      throw ModelError("simulation.filters", "give at least one filter, or leave the field out for every filter");
-    std::set<std::string> seen;
-    for (std::size_t k = 0; k < s.filters->size(); ++k) {
-      const std::string& name = (*s.filters)[k];
-      bool known = false;
-      for (const auto& builtin : builtin_filter_names()) {
-        if (builtin.name != name) continue;
-        known = true;
-        if (builtin.needs_additive_diffusion && !model.additive_diffusion)
-          throw ModelError("simulation.filters",
-                           "'" + name + "' needs additive_diffusion or additive_diffusion_covariance in the model",
-                           one_based(k));
-      }
-      for (const auto& filter : model.user_filters) known = known || filter.name == name;
-      if (!known) {
-        std::string list;
-        for (const auto& builtin : builtin_filter_names())
-          if (!builtin.needs_additive_diffusion || model.additive_diffusion)
-            list += (list.empty() ? "" : ", ") + builtin.name;
-        for (const auto& filter : model.user_filters) list += ", " + filter.name;
-        throw ModelError("simulation.filters", "unknown filter '" + name + "' (known: " + list + ")", one_based(k));
-      }
-      if (!seen.insert(name).second)
-        throw ModelError("simulation.filters", "filter '" + name + "' is listed twice", one_based(k));
-    }
-  }
-  for (std::size_t k = 0; k < s.report_times.size(); ++k) {
-    double time = s.report_times[k];
-    if (!(std::isfinite(time) && time > 0))
-      throw ModelError("simulation.report_times", "report time " + number_text(time) + " must be greater than 0",
-                       one_based(k));
-    if (s.T && time > *s.T)
-      throw ModelError("simulation.report_times",
-                       "report time " + number_text(time) + " is after the horizon T = " + number_text(*s.T),
-                       one_based(k));
-  }
-  for (std::size_t k = 0; k < s.windows.size(); ++k) {
-    auto [a, b] = s.windows[k];
-    const std::string window = "window [" + number_text(a) + ", " + number_text(b) + "]";
-    if (!(std::isfinite(a) && std::isfinite(b) && a < b))
-      throw ModelError("simulation.windows", window + ": the start must be before the end", one_based(k));
-    if (a < 0) throw ModelError("simulation.windows", window + " starts before t = 0", one_based(k));
-    if (s.T && b > *s.T)
-      throw ModelError("simulation.windows", window + " ends after the horizon T = " + number_text(*s.T),
-                       one_based(k));
-  }
+  if (auto breach = check_simulation_settings(model, model.simulation))
+    throw ModelError("simulation." + breach->field, breach->message,
+                     breach->entry ? one_based(*breach->entry) : std::nullopt);
 }
 
 }  // namespace
-
-const std::vector<BuiltinFilterName>& builtin_filter_names() {
-  static const std::vector<BuiltinFilterName> names = {
-      {"optimal", false}, {"ekf", false}, {"additive", true}, {"ekf-additive", true}};
-  return names;
-}
 
 bool is_valid_identifier(const std::string& name) {
   if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))) return false;

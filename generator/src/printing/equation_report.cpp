@@ -44,7 +44,7 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.text_name(v); };
   const std::size_t n = eq.n();
-  std::vector<Polynomial> h = predicted_observation(model, vars);
+  const std::vector<Polynomial>& h = eq.predicted_observation;
 
   std::string out;
   out += "model: " + model.name + "\n";
@@ -78,12 +78,12 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
   return out;
 }
 
-std::string equations_latex(const Model& model, const FilterEquations& eq) {
+std::string equations_latex(const FilterEquations& eq) {
   LatexPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.latex_name(v); };
   const std::size_t n = eq.n();
-  std::vector<Polynomial> h = predicted_observation(model, vars);
+  const std::vector<Polynomial>& h = eq.predicted_observation;
   auto K = [](std::size_t i, std::size_t r) { return "K_{" + std::to_string(i + 1) + "," + std::to_string(r + 1) + "}"; };
 
   std::string out = "\\noindent\\textbf{Exactness:} " + latex_escape_text(eq.exactness.explanation) + ".\n";
@@ -144,7 +144,7 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
     P_drift.push(row);
   }
   Json predicted = Json::array();
-  for (const auto& h : predicted_observation(model, vars)) predicted.push(Json::string(printer.print(h, name)));
+  for (const auto& h : eq.predicted_observation) predicted.push(Json::string(printer.print(h, name)));
 
   Json out = Json::object();
   out.add("model", Json::string(model.name));

@@ -53,8 +53,9 @@ std::string model_section(const Model& model) {
     out += (d.g ? "g_{\\mathrm{add}} &= " + bmatrix(printer, *d.g) : "G_{\\mathrm{add}} &= " + bmatrix(printer, d.G)) +
            " \\\\\n";
   }
-  out += "A_0 &= " + bmatrix(printer, column(model.observation.A0)) + ", \\quad A = " +
-         bmatrix(printer, model.observation.A) + ", \\quad B = " + bmatrix(printer, model.observation.B);
+  const ContinuousObservation& observation = model.observation.continuous();
+  out += "A_0 &= " + bmatrix(printer, column(observation.A0)) + ", \\quad A = " + bmatrix(printer, observation.A) +
+         ", \\quad B = " + bmatrix(printer, observation.B);
   if (model.initial) {
     const InitialConditions& ic = *model.initial;
     out += " \\\\\n";
@@ -90,7 +91,7 @@ std::string latex_document(const Model& model, const std::vector<FilterEquations
     out += "\\section*{Filter \\texttt{" + latex_escape_text(eq.name) + "}}\n";
     const bool has_stop = !eq.description.empty() && eq.description.back() == '.';
     out += latex_escape_text(eq.description) + (has_stop ? "\n\n" : ".\n\n");
-    out += equations_latex(model, eq);
+    out += equations_latex(eq);
   }
   out += "\\end{document}\n";
   return out;

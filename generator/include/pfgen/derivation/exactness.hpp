@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "pfgen/derivation/filter_kind.hpp"
+#include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model.hpp"
 
 namespace pfgen {

@@ -1,6 +1,6 @@
 #pragma once
-// The closed equations of one filter for one model:
-//   dm = m_drift dt + gain (dy - (A0 + A m) dt)
+// The closed equations of one filter for one model, with continuous observations:
+//   dm = m_drift dt + gain (dy - predicted_observation dt),   predicted_observation = A0 + A m
 //   dP = (P_moment + P_diffusion - P_correction) dt
 // For a built-in kind, P_moment = E[(x-m)f^T] + E[f(x-m)^T] (or its EKF form),
 // P_diffusion = E[g g^T] (or g(m)g(m)^T, or the additive G), P_correction =
@@ -14,9 +14,10 @@
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/derivation/exactness.hpp"
-#include "pfgen/derivation/filter_kind.hpp"
 #include "pfgen/derivation/filter_variables.hpp"
+#include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model.hpp"
+#include "pfgen/model/model_filters.hpp"
 
 namespace pfgen {
 
@@ -24,10 +25,14 @@ struct FilterEquations {
   std::string name;          // the kind's name ("ekf-additive") or the user filter's
   std::string description;   // one line: the kind's description or the user filter's
   std::optional<FilterKind> kind;  // empty for a user filter
+  ObservationKind observation = ObservationKind::Continuous;  // the model's, which the equations are for
   FilterVariables variables;
   std::size_t p = 0;
   std::vector<Polynomial> m_drift;              // n
   std::vector<std::vector<Polynomial>> gain;    // n x p
+  // What the filter predicts the observation rate to be, A0 + A m (p entries): the innovation
+  // is dy - predicted_observation dt. Derived once here; printers and emitters read it.
+  std::vector<Polynomial> predicted_observation;
   // The matrix standing for the Jacobian: E[d_k f_j] (optimal, additive) or
   // d_k f_j at m (EKF kinds), entry [j][k]; P_moment_ij = sum_k P_ik J_jk + J_ik P_kj.
   // Kept so that code generation can compute P_moment from it, sharing its entries.
@@ -44,23 +49,16 @@ struct FilterEquations {
   Polynomial P_drift(std::size_t i, std::size_t j) const;
 };
 
-// The predicted observation rate A0 + A m, one polynomial per observation row.
-std::vector<Polynomial> predicted_observation(const Model& model, const FilterVariables& vars);
-
 // Derives the filter; throws std::invalid_argument if the model lacks what the
-// kind needs (an additive kind without additive_diffusion).
+// kind needs (unsupported_reason: an additive kind without additive_diffusion).
 FilterEquations derive_filter(const Model& model, FilterKind kind);
 
 // A user filter's equations as FilterEquations (not derived: converted to polynomials
 // in the filter variables). Exactness: not exact, condition "user-defined".
 FilterEquations derive_user_filter(const Model& model, const UserFilter& filter);
 
-// Every filter the model offers, by name: the built-in kinds it supports in their
-// canonical order (supported_filter_kinds), then its user filters in file order.
-std::vector<std::string> available_filter_names(const Model& model);
-
 // The built-in kind or user filter of that name; throws std::invalid_argument if the
-// model offers no filter of that name (see available_filter_names).
+// model offers no filter of that name (available_filter_names, model/model_filters.hpp).
 FilterEquations derive_named_filter(const Model& model, const std::string& name);
 
 }  // namespace pfgen

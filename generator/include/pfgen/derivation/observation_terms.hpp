@@ -1,6 +1,11 @@
 #pragma once
-// The observation's contribution to the filter: A^T R^-1 (the gain is
-// P A^T R^-1) and A^T R^-1 A (the correction is P A^T R^-1 A P), R = B B^T.
+// What a continuous observation dy = (A0 + A x) dt + B dW2 contributes to a filter, R = B B^T:
+// the gain P A^T R^-1, the correction P A^T R^-1 A P subtracted from the P drift, and the
+// predicted observation rate A0 + A m. Each observation kind has such a part of its own.
+#include <vector>
+
+#include "pfgen/algebra/polynomial.hpp"
+#include "pfgen/derivation/filter_variables.hpp"
 #include "pfgen/model/model.hpp"
 
 namespace pfgen {
@@ -10,6 +15,16 @@ struct ObservationTerms {
   ExMatrix At_Rinv_A;   // n x n, symmetric
 };
 
-ObservationTerms observation_terms(const Model& model);
+ObservationTerms observation_terms(const ContinuousObservation& observation);
+
+// A0 + A m, one polynomial per observation row, in the filter's variables.
+std::vector<Polynomial> predicted_observation(const ContinuousObservation& observation, const FilterVariables& vars);
+
+// The gain (n x p) and the correction (upper triangle) of a derived filter.
+struct ObservationCorrection {
+  std::vector<std::vector<Polynomial>> gain;
+  std::vector<Polynomial> P_correction;
+};
+ObservationCorrection observation_correction(const ContinuousObservation& observation, const FilterVariables& vars);
 
 }  // namespace pfgen

@@ -1,6 +1,7 @@
 #pragma once
-// The model of a polynomial stochastic system with linear continuous observations:
-//   dx = f(x,t) dt + g(x,t) dW1,   dy = (A0 + A x) dt + B dW2.
+// The model of a polynomial stochastic system with linear observations:
+//   dx = f(x,t) dt + g(x,t) dW1, observed as its ObservationModel says (observation_model.hpp;
+//   today continuously: dy = (A0 + A x) dt + B dW2).
 // A Model is plain data; ModelBuilder and the YAML loader create it, and
 // validate_model() guarantees every invariant documented here.
 #include <ginac/ginac.h>
@@ -12,23 +13,16 @@
 #include <utility>
 #include <vector>
 
+#include "pfgen/model/expression_matrix.hpp"
 #include "pfgen/model/model_error.hpp"
+#include "pfgen/model/observation_model.hpp"
 
 namespace pfgen {
-
-using ExVector = std::vector<GiNaC::ex>;
-using ExMatrix = std::vector<std::vector<GiNaC::ex>>;  // row-major, rows of equal length
 
 struct Parameter {
   std::string name;
   GiNaC::symbol symbol;
   GiNaC::numeric default_value;
-};
-
-struct Observation {
-  ExVector A0;  // p entries, independent of the states
-  ExMatrix A;   // p x n
-  ExMatrix B;   // p x r, with B B^T positive definite
 };
 
 // A diffusion given either as g (n x q) or directly as G = g g^T (n x n, symmetric).
@@ -97,13 +91,13 @@ struct Model {
   ExVector drift;                          // n entries, polynomial in the states
   Diffusion diffusion;                     // state-dependent (multiplicative) diffusion
   std::optional<Diffusion> additive_diffusion;  // constant diffusion for the `additive` kinds
-  Observation observation;
+  ObservationModel observation;           // its kind is chosen when the model file is read
   std::optional<InitialConditions> initial;
   std::vector<UserFilter> user_filters;  // in file order
   SimulationSection simulation;
 
   std::size_t n() const { return states.size(); }
-  std::size_t p() const { return observation.A.size(); }
+  std::size_t p() const { return observation.p(); }
 };
 
 // The text names of the filter's variables for n states, in their order: m1..mn, then the

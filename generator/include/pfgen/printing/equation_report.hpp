@@ -14,7 +14,7 @@
 namespace pfgen {
 
 std::string equations_text(const Model& model, const FilterEquations& eq);
-std::string equations_latex(const Model& model, const FilterEquations& eq);
+std::string equations_latex(const FilterEquations& eq);
 Json equations_json(const Model& model, const FilterEquations& eq);
 
 }  // namespace pfgen

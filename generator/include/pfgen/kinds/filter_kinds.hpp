@@ -1,0 +1,62 @@
+#pragma once
+// The one table of pfgen's built-in filter kinds. Every list of kind names is read from it: the
+// model validator's (user filter names, simulation.filters), the command line's help texts and
+// checks, the default filters of derive/latex/codegen/simulate, and the tests;
+// tests/test_kind_registry.cpp fails if any list, or the README's table, disagrees with it.
+// The two axes say how a kind's equations are formed (derivation/filter_equations.cpp reads
+// them); adding a kind is a row here, and DESIGN.md's recipe says what else changes.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pfgen/kinds/observation_kinds.hpp"
+
+namespace pfgen {
+
+enum class FilterKind { Optimal, Ekf, Additive, EkfAdditive };
+
+// How a kind takes the expectations of f, of its Jacobian and of g g^T.
+enum class ExpectationRule {
+  Gaussian,  // E[.] over x ~ N(m, P), expanded exactly: the Gaussian closure
+  AtMean,    // evaluated at x = m: the extended Kalman-Bucy filter
+};
+
+// Which diffusion a kind puts into its P equation.
+enum class DiffusionSource {
+  Model,     // the model's g (or G = g g^T), which may depend on the states
+  Additive,  // the model's constant additive_diffusion, which the model file must give
+};
+
+struct FilterKindInfo {
+  FilterKind kind;
+  std::string name;         // the --filter name, and (with '-' as '_') the generated code's
+  std::string description;  // one line
+  ExpectationRule expectation;
+  DiffusionSource diffusion;
+  std::vector<ObservationKind> observations;  // the observation models it is derived for
+};
+
+// Every built-in kind, in the canonical order in which commands list and default to them.
+const std::vector<FilterKindInfo>& filter_kinds();
+const FilterKindInfo& filter_kind_info(FilterKind kind);
+std::optional<FilterKind> parse_filter_kind(const std::string& name);
+std::vector<std::string> filter_kind_names();  // canonical order
+
+// What a model must offer for a kind, as plain facts (the model room supplies them).
+struct FilterKindNeeds {
+  bool has_additive_diffusion = false;
+  ObservationKind observation = ObservationKind::Continuous;
+};
+// Why the kind cannot be derived for such a model ("needs additive_diffusion or ..."), or
+// nothing when it can.
+std::optional<std::string> unsupported_reason(const FilterKindInfo& kind, const FilterKindNeeds& model);
+
+// Convenience readings of the table.
+inline const std::string& filter_kind_name(FilterKind kind) { return filter_kind_info(kind).name; }
+inline const std::string& filter_kind_description(FilterKind kind) { return filter_kind_info(kind).description; }
+inline bool uses_additive_diffusion(FilterKind kind) {
+  return filter_kind_info(kind).diffusion == DiffusionSource::Additive;
+}
+inline bool is_extended_kalman(FilterKind kind) { return filter_kind_info(kind).expectation == ExpectationRule::AtMean; }
+
+}  // namespace pfgen

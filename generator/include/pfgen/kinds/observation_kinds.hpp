@@ -1,0 +1,24 @@
+#pragma once
+// The observation models pfgen knows, as plain names: the kind registry says which of them each
+// filter kind supports, and the model room's ObservationModel (model/observation_model.hpp)
+// holds one of them. A new observation model is one row here and one alternative there.
+#include <string>
+#include <vector>
+
+namespace pfgen {
+
+enum class ObservationKind {
+  Continuous,  // dy = (A0 + A x) dt + B dW2
+};
+
+struct ObservationKindInfo {
+  ObservationKind kind;
+  std::string name;         // as printed in messages: "continuous"
+  std::string description;  // one line, the observation equation
+};
+
+// Every observation model, in a fixed order.
+const std::vector<ObservationKindInfo>& observation_kinds();
+const ObservationKindInfo& observation_kind_info(ObservationKind kind);
+
+}  // namespace pfgen

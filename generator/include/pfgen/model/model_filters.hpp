@@ -1,0 +1,31 @@
+#pragma once
+// The filters a model offers, by name: the built-in kinds of the registry
+// (kinds/filter_kinds.hpp) that it supports, then its own filters (`filters:`) in file order.
+// The validator, the derivation and the command line all ask here, so they agree.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pfgen/kinds/filter_kinds.hpp"
+#include "pfgen/model/model.hpp"
+
+namespace pfgen {
+
+// What the registry's rules need to know of the model.
+FilterKindNeeds filter_kind_needs(const Model& model);
+
+// Why `kind` cannot be derived for this model, or nothing.
+std::optional<std::string> unsupported_reason(const Model& model, FilterKind kind);
+
+// Every kind the model supports, in the registry's order.
+std::vector<FilterKind> supported_filter_kinds(const Model& model);
+
+// The names of supported_filter_kinds(), then the model's user filters in file order.
+std::vector<std::string> available_filter_names(const Model& model);
+
+// Why `name` is not a filter of the model, in the words every command and the validator use
+// ("unknown filter 'kalman' (known: optimal, ekf)", "'additive' needs additive_diffusion or
+// additive_diffusion_covariance in model m"), or nothing when it is one.
+std::optional<std::string> filter_name_problem(const Model& model, const std::string& name);
+
+}  // namespace pfgen

@@ -1,0 +1,30 @@
+#pragma once
+// The rules of `pfgen simulate`'s settings, in one place. The model file's `simulation:` section
+// (validate_model) and the command line over the file over pfgen's defaults
+// (cli/simulation_settings) check their values here, so both say the same words; only where a
+// value came from, which the caller puts in front, differs. A rule applies when the values it
+// needs are known: a file that gives dt but no T is checked for dt > 0, and for dt < T only once
+// the command line gives T. The runtime's own checks are preconditions for library users; the
+// command line never reaches them with settings these rules refuse.
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "pfgen/model/model.hpp"
+
+namespace pfgen {
+
+struct SimulationRuleBreach {
+  std::string field;                 // the setting, as the model file names it: "dt", "windows", ...
+  std::optional<std::size_t> entry;  // 0-based entry of a list setting
+  std::string message;               // what is wrong, without the place
+};
+
+// The first rule the settings break, in a fixed order (T, dt, runs, record points, bound, shown
+// run, scheme, filters, report times, windows), or nothing.
+std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model, const SimulationSection& settings);
+
+// Whether the model's diffusion is identically zero (a deterministic truth).
+bool diffusion_is_zero(const Model& model);
+
+}  // namespace pfgen

@@ -1,0 +1,54 @@
+#include "pfgen/kinds/filter_kinds.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace pfgen {
+
+const std::vector<FilterKindInfo>& filter_kinds() {
+  using E = ExpectationRule;
+  using D = DiffusionSource;
+  const std::vector<ObservationKind> continuous = {ObservationKind::Continuous};
+  static const std::vector<FilterKindInfo> kinds = {
+      {FilterKind::Optimal, "optimal",
+       "Gaussian-closure optimal filter: E[f], E[(x-m)f^T] + E[f(x-m)^T], E[g g^T] expanded exactly", E::Gaussian,
+       D::Model, continuous},
+      {FilterKind::Ekf, "ekf", "extended Kalman-Bucy filter (textbook): f(m), Jacobian of f at m, g(m) g(m)^T",
+       E::AtMean, D::Model, continuous},
+      {FilterKind::Additive, "additive",
+       "Gaussian-closure filter with the model's additive (state-independent) diffusion in place of g", E::Gaussian,
+       D::Additive, continuous},
+      {FilterKind::EkfAdditive, "ekf-additive",
+       "extended Kalman-Bucy filter with the model's additive (state-independent) diffusion in place of g",
+       E::AtMean, D::Additive, continuous},
+  };
+  return kinds;
+}
+
+const FilterKindInfo& filter_kind_info(FilterKind kind) {
+  for (const auto& info : filter_kinds())
+    if (info.kind == kind) return info;
+  throw std::logic_error("filter kind missing from the registry");
+}
+
+std::optional<FilterKind> parse_filter_kind(const std::string& name) {
+  for (const auto& info : filter_kinds())
+    if (info.name == name) return info.kind;
+  return std::nullopt;
+}
+
+std::vector<std::string> filter_kind_names() {
+  std::vector<std::string> names;
+  for (const auto& info : filter_kinds()) names.push_back(info.name);
+  return names;
+}
+
+std::optional<std::string> unsupported_reason(const FilterKindInfo& kind, const FilterKindNeeds& model) {
+  if (kind.diffusion == DiffusionSource::Additive && !model.has_additive_diffusion)
+    return std::string("needs additive_diffusion or additive_diffusion_covariance");
+  if (std::find(kind.observations.begin(), kind.observations.end(), model.observation) == kind.observations.end())
+    return "is not derived for " + observation_kind_info(model.observation).name + " observations";
+  return std::nullopt;
+}
+
+}  // namespace pfgen

@@ -1,0 +1,20 @@
+#include "pfgen/kinds/observation_kinds.hpp"
+
+#include <stdexcept>
+
+namespace pfgen {
+
+const std::vector<ObservationKindInfo>& observation_kinds() {
+  static const std::vector<ObservationKindInfo> kinds = {
+      {ObservationKind::Continuous, "continuous", "dy = (A0 + A x) dt + B dW2"},
+  };
+  return kinds;
+}
+
+const ObservationKindInfo& observation_kind_info(ObservationKind kind) {
+  for (const auto& info : observation_kinds())
+    if (info.kind == kind) return info;
+  throw std::logic_error("observation kind missing from the registry");
+}
+
+}  // namespace pfgen

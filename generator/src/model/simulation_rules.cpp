@@ -1,0 +1,135 @@
+#include "pfgen/model/simulation_rules.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <set>
+
+#include "pfgen/model/model_filters.hpp"
+
+namespace pfgen {
+namespace {
+
+// Shortest round-trip text ("20", "9.2", "1e-06").
+std::string number_text(double value) {
+  char buffer[64];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
+  return std::string(buffer, end);
+}
+
+std::string window_text(const std::pair<double, double>& w) {
+  return "window [" + number_text(w.first) + ", " + number_text(w.second) + "]";
+}
+
+using Breach = std::optional<SimulationRuleBreach>;
+
+Breach breach(const std::string& field, const std::string& message, std::optional<std::size_t> entry = {}) {
+  return SimulationRuleBreach{field, entry, message};
+}
+
+Breach positive(const std::optional<double>& value, const std::string& field, const std::string& what) {
+  if (value && !(std::isfinite(*value) && *value > 0))
+    return breach(field, what + " must be a number greater than 0, found " + number_text(*value));
+  return {};
+}
+
+Breach check_grid(const SimulationSection& s) {
+  if (auto b = positive(s.T, "T", "the horizon T (the simulation starts at t = 0)")) return b;
+  if (auto b = positive(s.dt, "dt", "the step dt")) return b;
+  if (!s.T || !s.dt) return {};
+  const double T = *s.T, dt = *s.dt;
+  if (!(dt < T)) return breach("dt", "the step dt = " + number_text(dt) + " must be smaller than T = " + number_text(T));
+  const double steps = T / dt;
+  if (steps > 1e9) return breach("dt", "more than 1e9 steps of dt = " + number_text(dt) + " to T = " + number_text(T));
+  // The grid has round(T / dt) steps of dt: a T that is not a whole number of steps would
+  // silently become another horizon (T = 1, dt = 0.7 ran to t = 0.7 and labelled it [0, 0.7]).
+  // The slack covers the rounding of a decimal T and dt (9.2 / 1e-4 = 91999.99999999999).
+  if (std::abs(steps - std::round(steps)) > 1e-6 + 1e-12 * steps)
+    return breach("dt", "T = " + number_text(T) + " is not a whole number of steps of " + number_text(dt) +
+                            " (T / dt = " + number_text(steps) + "); choose a dt that divides T");
+  return {};
+}
+
+Breach check_counts(const SimulationSection& s) {
+  if (s.runs && *s.runs < 1) return breach("runs", "at least 1 run is required");
+  if (s.record_points && *s.record_points < 2)
+    return breach("record_points", "at least 2 record points are required, found " + std::to_string(*s.record_points));
+  if (auto b = positive(s.bound, "bound", "the divergence bound")) return b;
+  if (s.shown_run && s.runs && !(*s.shown_run < *s.runs))
+    return breach("shown_run", "run " + std::to_string(*s.shown_run) + " is not among the " + std::to_string(*s.runs) +
+                                   " runs (numbered from 0)");
+  return {};
+}
+
+Breach check_scheme(const Model& model, const SimulationSection& s) {
+  if (!s.scheme) return {};
+  const auto& schemes = simulation_schemes();
+  if (std::find(schemes.begin(), schemes.end(), *s.scheme) == schemes.end()) {
+    std::string known;
+    for (const auto& scheme : schemes) known += (known.empty() ? "" : ", ") + scheme;
+    return breach("scheme", "unknown scheme '" + *s.scheme + "' (known: " + known + ")");
+  }
+  // What the schemes need of the model, so that a job is refused before anything is compiled.
+  if (*s.scheme == "rk4" && !diffusion_is_zero(model))
+    return breach("scheme", "rk4 is for deterministic truths only, and this model's diffusion is not zero");
+  if (*s.scheme == "milstein" && !diffusion_is_zero(model) && !model.diffusion.g)
+    return breach("scheme",
+                  "milstein needs the diffusion g, and this model gives diffusion_covariance; use "
+                  "derivative-free-milstein");
+  return {};
+}
+
+Breach check_filters(const Model& model, const SimulationSection& s) {
+  if (!s.filters) return {};
+  if (s.filters->empty()) return breach("filters", "give at least one filter, or leave the field out for every filter");
+  std::set<std::string> seen;
+  for (std::size_t k = 0; k < s.filters->size(); ++k) {
+    const std::string& name = (*s.filters)[k];
+    if (auto problem = filter_name_problem(model, name)) return breach("filters", *problem, k);
+    if (!seen.insert(name).second) return breach("filters", "filter '" + name + "' is listed twice", k);
+  }
+  return {};
+}
+
+Breach check_times(const SimulationSection& s) {
+  for (std::size_t k = 0; k < s.report_times.size(); ++k) {
+    const double time = s.report_times[k];
+    if (!(std::isfinite(time) && time > 0))
+      return breach("report_times", "report time " + number_text(time) + " must be greater than 0", k);
+    if (s.T && time > *s.T)
+      return breach("report_times",
+                    "report time " + number_text(time) + " is after the horizon T = " + number_text(*s.T), k);
+  }
+  for (std::size_t k = 0; k < s.windows.size(); ++k) {
+    const auto [a, b] = s.windows[k];
+    const std::string window = window_text(s.windows[k]);
+    if (!(std::isfinite(a) && std::isfinite(b) && a < b))
+      return breach("windows", window + ": the start must be before the end", k);
+    if (a < 0) return breach("windows", window + " starts before t = 0", k);
+    if (s.T && b > *s.T) return breach("windows", window + " ends after the horizon T = " + number_text(*s.T), k);
+    // The Monte Carlo snaps both ends to the nearest grid point; a window whose ends snap to the
+    // same one has no step in it.
+    if (s.dt && std::llround(a / *s.dt) == std::llround(b / *s.dt))
+      return breach("windows", window + " is shorter than a step dt = " + number_text(*s.dt), k);
+  }
+  return {};
+}
+
+}  // namespace
+
+std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model, const SimulationSection& settings) {
+  if (auto b = check_grid(settings)) return b;
+  if (auto b = check_counts(settings)) return b;
+  if (auto b = check_scheme(model, settings)) return b;
+  if (auto b = check_filters(model, settings)) return b;
+  return check_times(settings);
+}
+
+bool diffusion_is_zero(const Model& model) {
+  for (const auto& row : model.diffusion.G)
+    for (const auto& entry : row)
+      if (!entry.expand().is_zero()) return false;
+  return true;
+}
+
+}  // namespace pfgen

@@ -1,0 +1,169 @@
+// The kind registry (kinds/filter_kinds.hpp) is the one list of built-in filter kinds: every
+// other list a user or a test sees must agree with it, and these tests fail when one does not.
+// (The truth schemes have their own registry; tests/test_scheme_registry.cpp.)
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/kinds/filter_kinds.hpp"
+#include "pfgen/model/model_filters.hpp"
+#include "pfgen/model/yaml_model_loader.hpp"
+#include "support/cli_helpers.hpp"
+
+using namespace pfgen;
+using namespace pfgen_test;
+
+namespace {
+
+// The rows of the README's "Filter kinds" table: the cells of each row, backticks removed.
+std::vector<std::vector<std::string>> readme_kind_table() {
+  const std::string readme = read_file(source_dir() + "/README.md");
+  const std::size_t header = readme.find("| `--filter` | expectations |");
+  REQUIRE(header != std::string::npos);
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(readme.substr(header));
+  std::string line;
+  std::getline(in, line);  // header
+  std::getline(in, line);  // |---|
+  while (std::getline(in, line) && !line.empty() && line[0] == '|') {
+    std::vector<std::string> cells;
+    std::string cell;
+    std::istringstream cells_in(line.substr(1));
+    while (std::getline(cells_in, cell, '|')) {
+      cell.erase(std::remove(cell.begin(), cell.end(), '`'), cell.end());
+      const auto first = cell.find_first_not_of(' '), last = cell.find_last_not_of(' ');
+      cells.push_back(first == std::string::npos ? "" : cell.substr(first, last - first + 1));
+    }
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+std::string expectation_words(ExpectationRule rule) {
+  return rule == ExpectationRule::Gaussian ? "Gaussian" : "at the mean";
+}
+
+std::string diffusion_words(DiffusionSource source) {
+  return source == DiffusionSource::Model ? "model" : "additive";
+}
+
+std::string observation_words(const std::vector<ObservationKind>& kinds) {
+  std::string out;
+  for (ObservationKind kind : kinds) out += (out.empty() ? "" : ", ") + observation_kind_info(kind).name;
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("kind registry: names are unique, valid, and parse back to their kind", "[unit][kinds]") {
+  std::set<std::string> names, identifiers;
+  REQUIRE(!filter_kinds().empty());
+  for (const auto& info : filter_kinds()) {
+    INFO(info.name);
+    CHECK(std::regex_match(info.name, std::regex("^[a-z][a-z0-9-]*$")));
+    CHECK(names.insert(info.name).second);
+    CHECK(identifiers.insert(filter_identifier(info.name)).second);  // generated file and namespace
+    CHECK(parse_filter_kind(info.name) == info.kind);
+    CHECK(&filter_kind_info(info.kind) == &info);
+    CHECK(!info.description.empty());
+    CHECK(info.description.find('\n') == std::string::npos);
+    CHECK(!info.observations.empty());
+  }
+  REQUIRE(filter_kind_names().size() == filter_kinds().size());
+  for (std::size_t k = 0; k < filter_kinds().size(); ++k) CHECK(filter_kind_names()[k] == filter_kinds()[k].name);
+  CHECK(!parse_filter_kind("Optimal"));
+  CHECK(!parse_filter_kind(""));
+}
+
+TEST_CASE("kind registry: the README's table is the registry written out", "[unit][kinds]") {
+  const auto rows = readme_kind_table();
+  REQUIRE(rows.size() == filter_kinds().size());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const FilterKindInfo& info = filter_kinds()[k];
+    INFO("README row " << k + 1 << ", kind " << info.name);
+    REQUIRE(rows[k].size() >= 7);
+    CHECK(rows[k][0] == info.name);
+    CHECK(rows[k][1] == expectation_words(info.expectation));
+    CHECK(rows[k][2] == diffusion_words(info.diffusion));
+    CHECK(rows[k][3] == observation_words(info.observations));
+    // The formula columns follow the two axes.
+    CHECK(rows[k][4] == (info.expectation == ExpectationRule::Gaussian ? "E[f]" : "f(m)"));
+    CHECK((rows[k][6].find("additive") != std::string::npos) == (info.diffusion == DiffusionSource::Additive));
+  }
+}
+
+TEST_CASE("kind registry: the model room and the derivation offer exactly the kinds the registry allows",
+          "[unit][kinds]") {
+  // basin2006_quadratic gives additive_diffusion; basin_skliar_partial does not.
+  for (const std::string file : {"basin2006_quadratic.yaml", "basin_skliar_partial.yaml"}) {
+    INFO(file);
+    const Model model = load_model_file(example(file));
+    std::vector<std::string> expected;
+    for (const auto& info : filter_kinds()) {
+      const bool supported = !unsupported_reason(info, filter_kind_needs(model));
+      if (supported) expected.push_back(info.name);
+      // Deriving an unsupported kind fails with the registry's reason; a supported one follows
+      // the registry's axes.
+      if (!supported) {
+        CHECK_THROWS_WITH(derive_filter(model, info.kind), Catch::Contains(*unsupported_reason(model, info.kind)));
+        continue;
+      }
+      const FilterEquations eq = derive_filter(model, info.kind);
+      CHECK(eq.name == info.name);
+      CHECK(eq.description == info.description);
+      CHECK(eq.observation == model.observation.kind());
+      CHECK(eq.predicted_observation.size() == model.p());
+    }
+    CHECK((model.additive_diffusion.has_value() ? expected.size() == filter_kinds().size()
+                                                 : expected.size() < filter_kinds().size()));
+    for (const auto& filter : model.user_filters) expected.push_back(filter.name);
+    CHECK(available_filter_names(model) == expected);
+  }
+}
+
+TEST_CASE("kind registry: command-line help, errors and defaults list the registry's kinds", "[integration][kinds]") {
+  const std::string model = example("basin2006_quadratic.yaml");  // supports every kind
+  std::string bar, comma;
+  for (const auto& name : filter_kind_names()) {
+    bar += (bar.empty() ? "" : " | ") + name;
+    comma += (comma.empty() ? "" : ", ") + name;
+  }
+  for (const char* command : {"derive", "eval"}) {
+    ProcessResult help = run_pfgen({command, "--help"});
+    INFO(command << " --help: " << help.out);
+    CHECK(help.out.find(bar) != std::string::npos);
+  }
+  ProcessResult unknown = run_pfgen({"codegen", model, "--stats", "--filter", "no-such-kind"});
+  CHECK(unknown.exit_code != 0);
+  CHECK(unknown.err.find("(known: " + comma) != std::string::npos);
+
+  // Defaults of latex and codegen: every kind the model supports, then its own filters.
+  const Model loaded = load_model_file(model);
+  TempDir dir;
+  ProcessResult codegen = run_pfgen({"codegen", model, "-o", dir.path()});
+  REQUIRE(codegen.exit_code == 0);
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.file(loaded.name)))
+    files.push_back(entry.path().filename().string());
+  std::sort(files.begin(), files.end());
+  std::vector<std::string> expected;
+  for (const auto& name : available_filter_names(loaded)) expected.push_back(filter_identifier(name) + ".hpp");
+  std::sort(expected.begin(), expected.end());
+  CHECK(files == expected);
+
+  ProcessResult latex = run_pfgen({"latex", model, "-o", dir.file("doc.tex")});
+  REQUIRE(latex.exit_code == 0);
+  const std::string document = read_file(dir.file("doc.tex"));
+  std::size_t last = 0;
+  for (const auto& name : available_filter_names(loaded)) {
+    INFO("latex section for " << name);
+    const std::size_t at = document.find("\\section*{Filter \\texttt{" + name + "}}");
+    REQUIRE(at != std::string::npos);
+    CHECK(at >= last);  // in the registry's order
+    last = at;
+  }
+}
