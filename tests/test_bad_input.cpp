@@ -234,11 +234,11 @@ void check_bad_model(const std::string& path, const BadModel& expected) {
 
 }  // namespace
 
-TEST_CASE("every bad model file gives one error line naming file, field, row and column", "[cli][bad_input]") {
+TEST_CASE("every bad model file gives one error line naming file, field, row and column", "[cli][bad_input][integration]") {
   for (const auto& expected : bad_models()) check_bad_model(test_data_dir() + "/bad/" + expected.file, expected);
 }
 
-TEST_CASE("every file in tests/data/bad is covered by the bad-input table", "[cli][bad_input]") {
+TEST_CASE("every file in tests/data/bad is covered by the bad-input table", "[cli][bad_input][unit]") {
   std::set<std::string> listed;
   for (const auto& expected : bad_models()) {
     CHECK(listed.insert(expected.file).second);  // no file listed twice
@@ -251,7 +251,7 @@ TEST_CASE("every file in tests/data/bad is covered by the bad-input table", "[cl
   CHECK(listed.size() >= 70);
 }
 
-TEST_CASE("binary files, directories and missing files are refused with one line", "[cli][bad_input]") {
+TEST_CASE("binary files, directories and missing files are refused with one line", "[cli][bad_input][integration]") {
   TempDir dir;
   std::string random_bytes;
   unsigned state = 12345;
@@ -280,7 +280,7 @@ TEST_CASE("binary files, directories and missing files are refused with one line
   for (const auto& [name, phrase] : cases) check_bad_model(dir.file(name), BadModel{name, "", 0, 0, 0, phrase});
 }
 
-TEST_CASE("error lines are the same in separate runs", "[cli][bad_input]") {
+TEST_CASE("error lines are the same in separate runs", "[cli][bad_input][integration]") {
   // Messages quote expressions; GiNaC's own printing order changes between processes.
   for (const std::string file : {"covariance_asymmetric_symbolic.yaml", "nonpoly_state_in_observation_B.yaml",
                                  "nonpoly_rational_power.yaml"}) {
@@ -314,7 +314,7 @@ ProcessResult eval_partial(std::vector<std::string> options) {
 
 }  // namespace
 
-TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line", "[cli][bad_input]") {
+TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line", "[cli][bad_input][integration]") {
   const std::string good_P = "--P=0.5,-0.2;-0.2,0.3";
   SECTION("--m with the wrong count") {
     check_option_error(eval_partial({"--m=-1.5", good_P}), {"--m", "expected 2 values, found 1"});
@@ -362,7 +362,7 @@ TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line",
   }
 }
 
-TEST_CASE("latex -o to an unwritable place gives one error line and leaves nothing", "[cli][bad_input]") {
+TEST_CASE("latex -o to an unwritable place gives one error line and leaves nothing", "[cli][bad_input][integration]") {
   TempDir dir;
   check_option_error(run_pfgen({"latex", example("basin2006_quadratic.yaml"), "-o", dir.file("no/such/dir/out.tex")}),
                      {"-o", "cannot write"});

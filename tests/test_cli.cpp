@@ -219,7 +219,7 @@ const std::vector<std::string> kAllKinds = pfgen::filter_kind_names();
 
 }  // namespace
 
-TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed filters", "[cli]") {
+TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed filters", "[cli][integration]") {
   const std::string model = example("basin2006_quadratic.yaml");
   const double m = -1.5, P = 0.5;
   struct Expected {
@@ -256,7 +256,7 @@ TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed
   check_close(optimal.m_drift[0], 0.275, "optimal m_drift");
 }
 
-TEST_CASE("eval accepts negative numbers in every spelling of the options", "[cli]") {
+TEST_CASE("eval accepts negative numbers in every spelling of the options", "[cli][integration]") {
   const std::string model = example("basin2006_quadratic.yaml");
   ProcessResult joined = run_pfgen({"eval", model, "--filter", "optimal", "--m=-1.5", "--P=0.5", "--t=-2"});
   ProcessResult separate = run_pfgen({"eval", model, "--filter", "optimal", "--m", "-1.5", "--P", "0.5", "--t", "-2"});
@@ -271,7 +271,7 @@ TEST_CASE("eval accepts negative numbers in every spelling of the options", "[cl
   CHECK(parse_json(joined.out)["m_drift"][0].number == Approx(0.275).margin(1e-15));
 }
 
-TEST_CASE("eval of basin_skliar_partial with negative entries matches the hand-computed filter", "[cli]") {
+TEST_CASE("eval of basin_skliar_partial with negative entries matches the hand-computed filter", "[cli][integration]") {
   // dx1 = 0.1 (x1^2 + x2) dt, dx2 = 0.1 x2 dt, dy = x1 dt + dW2 (paper 001).
   const double m1 = -1.5, m2 = 2, P11 = 0.5, P12 = -0.2, P22 = 0.3;
   Evaluated e = eval({example("basin_skliar_partial.yaml"), "--filter", "optimal", "--m=-1.5,2",
@@ -296,7 +296,7 @@ TEST_CASE("eval of basin_skliar_partial with negative entries matches the hand-c
   check_close(e.P_drift[0][1], 0.17, "P_drift[1][2] written out");
 }
 
-TEST_CASE("eval --set overrides parameter defaults, negative values included", "[cli]") {
+TEST_CASE("eval --set overrides parameter defaults, negative values included", "[cli][integration]") {
   TempDir dir;
   // Kalman-Bucy: dx = a x dt + s dW1, dy = c x dt + dW2.
   write_file(dir.file("kb.yaml"),
@@ -321,7 +321,7 @@ TEST_CASE("eval --set overrides parameter defaults, negative values included", "
   check(eval({dir.file("kb.yaml"), "--filter", "ekf", "--m=-0.75", "--P=0.4", "--set=s=1.5"}), -1, 1.5, 2);
 }
 
-TEST_CASE("derive --format json is a JSON object with the documented keys", "[cli]") {
+TEST_CASE("derive --format json is a JSON object with the documented keys", "[cli][integration]") {
   struct Case {
     std::string file;
     std::vector<std::string> kinds;
@@ -366,7 +366,7 @@ TEST_CASE("derive --format json is a JSON object with the documented keys", "[cl
   CHECK(j["exactness"]["exact"].boolean);
 }
 
-TEST_CASE("derive, latex and eval are byte-identical across separate processes", "[cli][determinism]") {
+TEST_CASE("derive, latex and eval are byte-identical across separate processes", "[cli][determinism][integration]") {
   struct Case {
     std::string file;
     std::vector<std::string> kinds;
@@ -418,7 +418,7 @@ TEST_CASE("derive, latex and eval are byte-identical across separate processes",
   }
 }
 
-TEST_CASE("latex --filter writes the requested filters only, and overwrites atomically", "[cli]") {
+TEST_CASE("latex --filter writes the requested filters only, and overwrites atomically", "[cli][integration]") {
   TempDir dir;
   const std::string out = dir.file("doc.tex");
   write_file(out, "old contents\n");

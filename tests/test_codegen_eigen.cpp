@@ -147,7 +147,7 @@ int main() {
 
 }  // namespace
 
-TEST_CASE("pfgen codegen writes the Eigen wrappers only with --eigen", "[codegen][eigen]") {
+TEST_CASE("pfgen codegen writes the Eigen wrappers only with --eigen", "[codegen][eigen][integration]") {
   TempDir dir;
   write_file(dir.file("three_two.yaml"), kModel);
   ProcessResult plain = run_pfgen({"codegen", dir.file("three_two.yaml"), "-o", dir.file("plain")});
@@ -178,8 +178,7 @@ TEST_CASE("pfgen codegen writes the Eigen wrappers only with --eigen", "[codegen
   CHECK(files == 4);
 }
 
-TEST_CASE("Eigen wrappers compile warning-free, pack/unpack round-trip and agree with the flat API",
-          "[codegen][eigen]") {
+TEST_CASE("Eigen wrappers compile warning-free, pack/unpack round-trip and agree with the flat API", "[codegen][eigen][compiler]") {
   TempDir dir;
   write_file(dir.file("three_two.yaml"), kModel);
   using Mode = std::pair<std::string, std::string>;  // --scalar, --namespace

@@ -257,7 +257,7 @@ std::vector<std::string> float_clean_models(const TempDir& dir) {
 
 }  // namespace
 
-TEST_CASE("the float-cleanliness scan finds double code", "[codegen][float]") {
+TEST_CASE("the float-cleanliness scan finds double code", "[codegen][float][unit]") {
   CHECK(float_problems("  const Scalar tmp0 = state[0] * 0.5f + 1e-3f + tmp12;\n  out[3] = std::pow(t, 0.33333334f);\n")
             .empty());
   CHECK(float_problems("// a comment may say double and 0.1\nconst Scalar x = 2;\n").empty());
@@ -274,7 +274,7 @@ TEST_CASE("the float-cleanliness scan finds double code", "[codegen][float]") {
   CHECK(template_problems("const Scalar x = y * Scalar(0.1f);\n").size() == 1);
 }
 
-TEST_CASE("the compilers used below reject double promotion with these flags", "[codegen][float]") {
+TEST_CASE("the compilers used below reject double promotion with these flags", "[codegen][float][compiler]") {
   TempDir dir;
   write_file(dir.file("promotes.cpp"), "float scale(float x);\nfloat scale(float x) { return x * 0.1; }\n");
   for (const std::string compiler : {"g++", "clang++"}) {
@@ -287,7 +287,7 @@ TEST_CASE("the compilers used below reject double promotion with these flags", "
   }
 }
 
-TEST_CASE("generated float code is float-clean and compiles warning-free under g++ and clang++", "[codegen][float]") {
+TEST_CASE("generated float code is float-clean and compiles warning-free under g++ and clang++", "[codegen][float][compiler]") {
   require_compiler("g++");
   require_compiler("clang++");
   TempDir dir;
@@ -326,7 +326,7 @@ TEST_CASE("generated float code is float-clean and compiles warning-free under g
   CHECK(pow_calls > 0);  // the fractional power of the time-varying model: the pow() check ran
 }
 
-TEST_CASE("float codegen refuses a constant beyond float's range instead of writing inf", "[codegen][float]") {
+TEST_CASE("float codegen refuses a constant beyond float's range instead of writing inf", "[codegen][float][integration]") {
   TempDir dir;
   write_file(dir.file("huge.yaml"), "name: huge\nstates: [x]\ndrift: [\"1e40*x\"]\ndiffusion: [[\"0\"]]\n"
                                     "observation:\n  A: [[\"1\"]]\n  B: [[\"1\"]]\n");

@@ -45,7 +45,7 @@ Model dense_cubic(std::size_t n, unsigned seed) {
 
 }  // namespace
 
-TEST_CASE("CSE op count is at most 60% of the naive count on dense cubic models", "[codegen][cse]") {
+TEST_CASE("CSE op count is at most 60% of the naive count on dense cubic models", "[codegen][cse][unit]") {
   for (std::size_t n : {4, 6}) {
     Model model = dense_cubic(n, 7);
     codegen::GeneratedFilter code =

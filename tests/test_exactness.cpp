@@ -152,7 +152,7 @@ std::string compact_json(const std::string& json) {
 // Kalman-Bucy: f affine, g free of x (time-dependent coefficients allowed),
 // exact for any A, here a non-square one; the EKF coincides with it.
 // ---------------------------------------------------------------------------
-TEST_CASE("exactness: Kalman-Bucy for affine f and state-free g", "[exactness]") {
+TEST_CASE("exactness: Kalman-Bucy for affine f and state-free g", "[exactness][unit]") {
   ModelBuilder b("kalman_bucy");
   GiNaC::symbol x1 = b.state("x1"), x2 = b.state("x2");
   GiNaC::symbol t = b.time();
@@ -176,7 +176,7 @@ TEST_CASE("exactness: Kalman-Bucy for affine f and state-free g", "[exactness]")
 // ---------------------------------------------------------------------------
 // Paper 000: any polynomial f and g when A is square and invertible.
 // ---------------------------------------------------------------------------
-TEST_CASE("exactness: paper 000 for quadratic f and g with square invertible A", "[exactness]") {
+TEST_CASE("exactness: paper 000 for quadratic f and g with square invertible A", "[exactness][unit]") {
   ModelBuilder b("paper000_square");
   GiNaC::symbol x1 = b.state("x1"), x2 = b.state("x2");
   b.drift({tenth * x1 * x1, x1 * x2})
@@ -191,7 +191,7 @@ TEST_CASE("exactness: paper 000 for quadratic f and g with square invertible A",
   require_exact(assess_exactness(example, FilterKind::Additive), "paper 000");
 }
 
-TEST_CASE("exactness: a square but singular A fails paper 000", "[exactness]") {
+TEST_CASE("exactness: a square but singular A fails paper 000", "[exactness][unit]") {
   ModelBuilder b("paper000_singular");
   GiNaC::symbol x1 = b.state("x1"), x2 = b.state("x2");
   // Both rows see x1 only: A is singular, and the paper-001 block A1 (the rows
@@ -208,7 +208,7 @@ TEST_CASE("exactness: a square but singular A fails paper 000", "[exactness]") {
 // ---------------------------------------------------------------------------
 // Paper 000 linear case (eqs 10-11): f affine and g affine, for any A.
 // ---------------------------------------------------------------------------
-TEST_CASE("exactness: paper 000 linear case for affine f and affine multiplicative g", "[exactness]") {
+TEST_CASE("exactness: paper 000 linear case for affine f and affine multiplicative g", "[exactness][unit]") {
   ModelBuilder b("paper000_linear");
   GiNaC::symbol x1 = b.state("x1"), x2 = b.state("x2");
   b.drift({x2, -x1 + 1}).diffusion({{tenth * x1 + 1}, {numeric(1, 5) * x2}}).observation({0}, {{1, 0}}, {{1}});
@@ -219,7 +219,7 @@ TEST_CASE("exactness: paper 000 linear case for affine f and affine multiplicati
                         {{"Kalman-Bucy", "the diffusion depends on the state (multiplicative noise)"}});
 }
 
-TEST_CASE("exactness: paper 000 linear case with G = g g^T given directly", "[exactness]") {
+TEST_CASE("exactness: paper 000 linear case with G = g g^T given directly", "[exactness][unit]") {
   SECTION("G of degree 2 (g affine) is exact") {
     ModelBuilder b("paper000_linear_G");
     GiNaC::symbol x1 = b.state("x1"), x2 = b.state("x2");
@@ -240,7 +240,7 @@ TEST_CASE("exactness: paper 000 linear case with G = g g^T given directly", "[ex
   }
 }
 
-TEST_CASE("exactness: affine f with quadratic g and non-square A is an approximation", "[exactness]") {
+TEST_CASE("exactness: affine f with quadratic g and non-square A is an approximation", "[exactness][unit]") {
   ModelBuilder b("linear_quadratic_noise");
   GiNaC::symbol x1 = b.state("x1"), x2 = b.state("x2");
   b.drift({x2, -x1}).diffusion({{tenth * x1 * x1}, {0}}).observation({0}, {{1, 0}}, {{1}});
@@ -255,7 +255,7 @@ TEST_CASE("exactness: affine f with quadratic g and non-square A is an approxima
 // Paper 001: nonlinear x1 measured through a square invertible block, linear
 // self-contained x2, block-diagonal A and B B^T, additive noise.
 // ---------------------------------------------------------------------------
-TEST_CASE("exactness: paper 001 for the example file", "[exactness]") {
+TEST_CASE("exactness: paper 001 for the example file", "[exactness][unit]") {
   Model model = load_model_file(pfgen_test::example("basin_skliar_partial.yaml"));
   require_exact(assess_exactness(model, FilterKind::Optimal), "paper 001");
   CHECK(derive_filter(model, FilterKind::Optimal).exactness.condition == "paper 001");
@@ -263,7 +263,7 @@ TEST_CASE("exactness: paper 001 for the example file", "[exactness]") {
   require_exact(assess_exactness(paper001_variant({}), FilterKind::Optimal), "paper 001");
 }
 
-TEST_CASE("exactness: paper 001 allows f1 nonlinear in x2 and a partly measured linear block", "[exactness]") {
+TEST_CASE("exactness: paper 001 allows f1 nonlinear in x2 and a partly measured linear block", "[exactness][unit]") {
   ModelBuilder b("paper001_three_states");
   GiNaC::symbol x1 = b.state("x1"), x2 = b.state("x2"), x3 = b.state("x3");
   // x1 nonlinear (also in x2), (x2, x3) linear and self-contained; y1 sees x1,
@@ -274,7 +274,7 @@ TEST_CASE("exactness: paper 001 allows f1 nonlinear in x2 and a partly measured 
   require_exact(assess_exactness(b.build(), FilterKind::Optimal), "paper 001");
 }
 
-TEST_CASE("exactness: paper 001 variants that break one condition each", "[exactness]") {
+TEST_CASE("exactness: paper 001 variants that break one condition each", "[exactness][unit]") {
   const Failure kalman{"Kalman-Bucy", "drift of x1 has degree 2"};
   const Failure p000{"paper 000", "A is 1 x 2, not square"};
   const Failure p000_linear{"paper 000 linear case", "drift of x1 has degree 2"};
@@ -313,7 +313,7 @@ TEST_CASE("exactness: paper 001 variants that break one condition each", "[exact
   }
 }
 
-TEST_CASE("exactness: paper 001 fails on a singular A1 block and on correlated observation noise", "[exactness]") {
+TEST_CASE("exactness: paper 001 fails on a singular A1 block and on correlated observation noise", "[exactness][unit]") {
   SECTION("A1 singular") {
     ModelBuilder b("paper001_singular_block");
     GiNaC::symbol x1 = b.state("x1"), x2 = b.state("x2"), x3 = b.state("x3");
@@ -343,7 +343,7 @@ TEST_CASE("exactness: paper 001 fails on a singular A1 block and on correlated o
 // ---------------------------------------------------------------------------
 // No condition holds: the report names each failed condition.
 // ---------------------------------------------------------------------------
-TEST_CASE("exactness: approximation names every failed condition", "[exactness]") {
+TEST_CASE("exactness: approximation names every failed condition", "[exactness][unit]") {
   Model model = load_model_text(approximation_yaml, "<approximation>");
   require_approximation(assess_exactness(model, FilterKind::Optimal), approximation_failures);
   // The same model built in code gives the same report.
@@ -359,7 +359,7 @@ TEST_CASE("exactness: approximation names every failed condition", "[exactness]"
 // Extended Kalman-Bucy kinds: exact only in the Kalman-Bucy case, even where
 // the optimal filter is exact under paper 000 or 001.
 // ---------------------------------------------------------------------------
-TEST_CASE("exactness: ekf kinds are approximations unless Kalman-Bucy", "[exactness][ekf]") {
+TEST_CASE("exactness: ekf kinds are approximations unless Kalman-Bucy", "[exactness][ekf][unit]") {
   Model p000 = load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
   for (FilterKind kind : {FilterKind::Ekf, FilterKind::EkfAdditive}) {
     INFO("kind " << filter_kind_name(kind));
@@ -374,7 +374,7 @@ TEST_CASE("exactness: ekf kinds are approximations unless Kalman-Bucy", "[exactn
 // ---------------------------------------------------------------------------
 // The diagnostic as `pfgen derive` prints it.
 // ---------------------------------------------------------------------------
-TEST_CASE("exactness: pfgen derive prints the diagnostic in text, latex and json", "[exactness][cli]") {
+TEST_CASE("exactness: pfgen derive prints the diagnostic in text, latex and json", "[exactness][cli][integration]") {
   TemporaryModelFile approximation(approximation_yaml);
   const std::string paper000 = pfgen_test::example("basin2006_quadratic.yaml");
 

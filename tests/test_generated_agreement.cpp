@@ -82,7 +82,7 @@ void check_close(const std::vector<double>& generated, const std::vector<double>
 
 }  // namespace
 
-TEST_CASE("generated derivatives and gain agree with pfgen's exact evaluation", "[codegen][agreement]") {
+TEST_CASE("generated derivatives and gain agree with pfgen's exact evaluation", "[codegen][agreement][unit]") {
   PFGEN_CHECK_AGREEMENT(pfgen_models::basin2006_quadratic::optimal, "basin2006_quadratic.yaml", Optimal)
   PFGEN_CHECK_AGREEMENT(pfgen_models::basin2006_quadratic::ekf, "basin2006_quadratic.yaml", Ekf)
   PFGEN_CHECK_AGREEMENT(pfgen_models::basin2006_quadratic::additive, "basin2006_quadratic.yaml", Additive)

@@ -24,7 +24,7 @@ std::set<std::string> header_files(const fs::path& root) {
 
 }  // namespace
 
-TEST_CASE("generated/ matches a fresh pfgen codegen of every example byte for byte", "[codegen][golden]") {
+TEST_CASE("generated/ matches a fresh pfgen codegen of every example byte for byte", "[codegen][golden][integration]") {
   TempDir out;
   for (const auto& entry : fs::directory_iterator(source_dir() + "/examples")) {
     if (entry.path().extension() != ".yaml") continue;
@@ -43,7 +43,7 @@ TEST_CASE("generated/ matches a fresh pfgen codegen of every example byte for by
   }
 }
 
-TEST_CASE("pfgen codegen output is identical across separate processes", "[codegen][determinism]") {
+TEST_CASE("pfgen codegen output is identical across separate processes", "[codegen][determinism][integration]") {
   std::string model = example("basin_skliar_partial.yaml");
   std::vector<std::string> runs;
   for (const char* scalar : {"template", "float", "double", "template", "float", "double"}) {

@@ -34,7 +34,7 @@ std::string mismatch(const GiNaC::ex& expected, const GiNaC::ex& derived) {
 
 // The reference must itself be right before it can judge anything: check it
 // on moments known in closed form.
-TEST_CASE("Isserlis reference reproduces known Gaussian moments", "[isserlis][derivation]") {
+TEST_CASE("Isserlis reference reproduces known Gaussian moments", "[isserlis][derivation][unit]") {
   SECTION("scalar moments of x ~ N(m, P)") {
     FilterVariables vars(1);
     GiNaC::symbol x("x");
@@ -151,8 +151,7 @@ static int check_against_reference(const pfgen_test::RandomSystem& s, const std:
 // columns, A identity or random integer rows (p = 1..n+1), B = I, some
 // coefficients scaled by the parameter a or by sin(t). Fixed seeds: the test
 // is deterministic.
-TEST_CASE("optimal filter agrees exactly with the Isserlis reference on random systems",
-          "[isserlis][derivation]") {
+TEST_CASE("optimal filter agrees exactly with the Isserlis reference on random systems", "[isserlis][derivation][unit]") {
   constexpr int kSystems = 128;
   int checked = 0;
   for (int k = 0; k < kSystems; ++k) {
@@ -175,8 +174,7 @@ TEST_CASE("optimal filter agrees exactly with the Isserlis reference on random s
 // Dense systems: every monomial of degree <= 4 in each drift entry (70 terms
 // for n = 4) and of degree <= 2 in each entry of g, so every moment pattern up
 // to degree 5 (E[(x-m) f]) and 4 (E[g g^T]) is exercised.
-TEST_CASE("optimal filter agrees exactly with the Isserlis reference on dense quartic systems",
-          "[isserlis][derivation]") {
+TEST_CASE("optimal filter agrees exactly with the Isserlis reference on dense quartic systems", "[isserlis][derivation][unit]") {
   for (std::size_t n = 1; n <= 4; ++n) {
     std::mt19937 rng(777u + static_cast<unsigned>(n));
     pfgen_test::RandomSystemOptions options;

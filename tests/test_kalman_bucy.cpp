@@ -188,7 +188,7 @@ void check_kalman_bucy(const LinearCase& c, const FilterEquations& eq) {
 
 }  // namespace
 
-TEST_CASE("optimal filter of a linear model is exactly the Kalman-Bucy filter", "[kalman][derivation]") {
+TEST_CASE("optimal filter of a linear model is exactly the Kalman-Bucy filter", "[kalman][derivation][unit]") {
   for (const LinearCase& c : linear_cases()) {
     INFO("case " << c.name);
     const FilterEquations eq = derive_filter(c.model, FilterKind::Optimal);
@@ -199,7 +199,7 @@ TEST_CASE("optimal filter of a linear model is exactly the Kalman-Bucy filter", 
   }
 }
 
-TEST_CASE("extended Kalman-Bucy filter of a linear model equals the Kalman-Bucy filter", "[kalman][derivation]") {
+TEST_CASE("extended Kalman-Bucy filter of a linear model equals the Kalman-Bucy filter", "[kalman][derivation][unit]") {
   for (const LinearCase& c : linear_cases()) {
     INFO("case " << c.name);
     const FilterEquations ekf = derive_filter(c.model, FilterKind::Ekf);

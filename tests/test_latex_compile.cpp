@@ -66,13 +66,13 @@ void check_compiles(const std::string& model, const std::string& filters, const 
 
 }  // namespace
 
-TEST_CASE("pdflatex is installed for the LaTeX tests", "[latex][pdflatex]") {
+TEST_CASE("pdflatex is installed for the LaTeX tests", "[latex][pdflatex][compiler]") {
   if (!pdflatex_available())
     FAIL("pdflatex is not on PATH: the LaTeX compile tests need it (install texlive-latex-base)");
   SUCCEED("pdflatex found");
 }
 
-TEST_CASE("pfgen latex documents of the examples compile with pdflatex", "[latex][pdflatex]") {
+TEST_CASE("pfgen latex documents of the examples compile with pdflatex", "[latex][pdflatex][compiler]") {
   if (!pdflatex_available())
     FAIL("pdflatex is not on PATH: the LaTeX compile tests need it (install texlive-latex-base)");
   TempDir dir;
@@ -84,7 +84,7 @@ TEST_CASE("pfgen latex documents of the examples compile with pdflatex", "[latex
   check_compiles(example("basin_skliar_partial.yaml"), "ekf", dir, "skliar_ekf");
 }
 
-TEST_CASE("pfgen latex compiles for names, parameters and matrices that need escaping", "[latex][pdflatex]") {
+TEST_CASE("pfgen latex compiles for names, parameters and matrices that need escaping", "[latex][pdflatex][compiler]") {
   if (!pdflatex_available())
     FAIL("pdflatex is not on PATH: the LaTeX compile tests need it (install texlive-latex-base)");
   TempDir dir;

@@ -10,7 +10,7 @@
 
 using namespace pfgen;
 
-TEST_CASE("ModelBuilder with C++ doubles matches the YAML example exactly", "[model][api]") {
+TEST_CASE("ModelBuilder with C++ doubles matches the YAML example exactly", "[model][api][unit]") {
   ModelBuilder builder("basin2006_quadratic");
   GiNaC::symbol x = builder.state("x");
   builder.drift({0.1 * GiNaC::pow(x, 2)});
@@ -26,7 +26,7 @@ TEST_CASE("ModelBuilder with C++ doubles matches the YAML example exactly", "[mo
   }
 }
 
-TEST_CASE("ModelBuilder validates like the loader", "[model][api]") {
+TEST_CASE("ModelBuilder validates like the loader", "[model][api][unit]") {
   ModelBuilder builder("bad");
   GiNaC::symbol x = builder.state("x");
   builder.drift({GiNaC::sin(x)});
@@ -42,7 +42,7 @@ TEST_CASE("ModelBuilder validates like the loader", "[model][api]") {
   }
 }
 
-TEST_CASE("parameters and time stay symbolic", "[model][api]") {
+TEST_CASE("parameters and time stay symbolic", "[model][api][unit]") {
   ModelBuilder builder("symbolic");
   GiNaC::symbol x = builder.state("x");
   GiNaC::symbol a = builder.parameter("a", GiNaC::numeric(1, 5));

@@ -84,7 +84,7 @@ struct McCase {
 
 }  // namespace
 
-TEST_CASE("derived expectations agree with Monte Carlo sampling of N(m, P)", "[montecarlo][derivation]") {
+TEST_CASE("derived expectations agree with Monte Carlo sampling of N(m, P)", "[montecarlo][derivation][statistical]") {
   const McCase cases[] = {{101, 2, 2}, {202, 2, 1}, {303, 3, 2}, {404, 3, 3}};
   constexpr std::size_t kSamples = 1000000;
 

@@ -148,8 +148,7 @@ std::string param_name(const std::string& stem, std::initializer_list<std::size_
 //   (b1 P b1^T)_ij = sum_{k,l,p} b1_ikl P_lp b1_jkp  (b1^T: b1 with its two
 //   rightmost indices transposed, contracted over both).
 // ---------------------------------------------------------------------------
-TEST_CASE("paper 000 eqs 10-11: linear state, linear multiplicative noise, n = 2",
-          "[published][paper000]") {
+TEST_CASE("paper 000 eqs 10-11: linear state, linear multiplicative noise, n = 2", "[published][paper000][unit]") {
   constexpr std::size_t n = 2, qn = 2;
   ModelBuilder b("paper000_linear_case");
   std::vector<GiNaC::symbol> x{b.state("x1"), b.state("x2")};
@@ -224,7 +223,7 @@ TEST_CASE("paper 000 eqs 10-11: linear state, linear multiplicative noise, n = 2
 // Eq (11) holds "for any A" (the paper's remark after eq 11): the same linear
 // model with a 1 x 2 observation still gives (10)-(11), now with gain P A^T R^-1
 // for a symbolic A = [c1 c2] and B = [s].
-TEST_CASE("paper 000 eqs 10-11 with a non-square symbolic observation", "[published][paper000]") {
+TEST_CASE("paper 000 eqs 10-11 with a non-square symbolic observation", "[published][paper000][unit]") {
   ModelBuilder b("paper000_linear_case_partial");
   GiNaC::symbol x1 = b.state("x1"), x2 = b.state("x2");
   GiNaC::symbol a11 = b.parameter("a11", 1), a12 = b.parameter("a12", 2), a21 = b.parameter("a21", 3),
@@ -262,7 +261,7 @@ TEST_CASE("paper 000 eqs 10-11 with a non-square symbolic observation", "[publis
 // is garbled; the reading used is spelled out below), agrees with this
 // derivation; both are checked.
 // ---------------------------------------------------------------------------
-TEST_CASE("paper 000 eqs 14-18, scalar bilinear state with bilinear noise", "[published][paper000]") {
+TEST_CASE("paper 000 eqs 14-18, scalar bilinear state with bilinear noise", "[published][paper000][unit]") {
   ModelBuilder b("paper000_bilinear_scalar");
   GiNaC::symbol x = b.state("x");
   GiNaC::symbol a0 = b.parameter("a0", 1), a1 = b.parameter("a1", 2), a2 = b.parameter("a2", 3),
@@ -307,7 +306,7 @@ TEST_CASE("paper 000 eqs 14-18, scalar bilinear state with bilinear noise", "[pu
 // symmetric in its two rightmost indices (harmless: x x^T is symmetric, so
 // only that part of a2 matters). Derived: E[f_k (x_j - m_j)] = sum_{i,l}
 // (a2_kil + a2_kli) m_i P_lj.
-TEST_CASE("paper 000 eqs 14-15 for n = 2 with a general quadratic tensor", "[published][paper000]") {
+TEST_CASE("paper 000 eqs 14-15 for n = 2 with a general quadratic tensor", "[published][paper000][unit]") {
   constexpr std::size_t n = 2;
   ModelBuilder b("paper000_bilinear_vector");
   std::vector<GiNaC::symbol> x{b.state("x1"), b.state("x2")};
@@ -368,7 +367,7 @@ TEST_CASE("paper 000 eqs 14-15 for n = 2 with a general quadratic tensor", "[pub
 // ---------------------------------------------------------------------------
 // Paper 000, section 4: dx = 0.1 x^2 dt + 0.1 x^2 dW1, dy = x dt + dW2.
 // ---------------------------------------------------------------------------
-TEST_CASE("paper 000 example: eqs 21-22 (optimal) and 23-24 (additive noise)", "[published][paper000]") {
+TEST_CASE("paper 000 example: eqs 21-22 (optimal) and 23-24 (additive noise)", "[published][paper000][unit]") {
   Model model = load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
 
   FilterEquations opt = derive_filter(model, FilterKind::Optimal);
@@ -400,8 +399,7 @@ TEST_CASE("paper 000 example: eqs 21-22 (optimal) and 23-24 (additive noise)", "
 //   m_K' = 0.1 m_K^2 + P_K (y - m_K),  P_K' = 0.4 P_K + 0.01 - P_K^2.
 // The Jacobian of 0.1 x^2 is 0.2 x, so the textbook filter has 0.4 m_K P_K:
 // pfgen implements the textbook form; (26) as printed is recorded as a typo.
-TEST_CASE("paper 000 example: ekf and ekf-additive against a Jacobian derivation (eqs 25-26)",
-          "[published][paper000][ekf]") {
+TEST_CASE("paper 000 example: ekf and ekf-additive against a Jacobian derivation (eqs 25-26)", "[published][paper000][ekf][unit]") {
   Model model = load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
 
   FilterEquations ekf = derive_filter(model, FilterKind::Ekf);
@@ -428,7 +426,7 @@ TEST_CASE("paper 000 example: ekf and ekf-additive against a Jacobian derivation
 // Paper 001, section IV: x1' = 0.1 (x1^2 + x2), x2' = 0.1 x2, y = x1 + noise.
 // Eqs (17)-(19); the OCR prints "P_2" for P22 in the P12 equation.
 // ---------------------------------------------------------------------------
-TEST_CASE("paper 001 example: eqs 17-19", "[published][paper001]") {
+TEST_CASE("paper 001 example: eqs 17-19", "[published][paper001][unit]") {
   Model model = load_model_file(pfgen_test::example("basin_skliar_partial.yaml"));
   FilterEquations eq = derive_filter(model, FilterKind::Optimal);
   Vars v{eq};
@@ -452,7 +450,7 @@ TEST_CASE("paper 001 example: eqs 17-19", "[published][paper001]") {
 // J(m) = [0.2 m1, 0.1; 0, 0.1], so the textbook filter has 0.4 m1 P11 in P11'
 // and 0.2 m1 P12 in P12' (the same as the optimal filter here, since J is
 // affine). (22) is exactly what J(m) with its 0.2 m1 entry dropped gives.
-TEST_CASE("paper 001 example: ekf against a Jacobian derivation (eqs 20-22)", "[published][paper001][ekf]") {
+TEST_CASE("paper 001 example: ekf against a Jacobian derivation (eqs 20-22)", "[published][paper001][ekf][unit]") {
   Model model = load_model_file(pfgen_test::example("basin_skliar_partial.yaml"));
   FilterEquations ekf = derive_filter(model, FilterKind::Ekf);
   check_filter(ekf, textbook_ekf(model, *model.diffusion.g, ekf));

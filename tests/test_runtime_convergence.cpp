@@ -139,7 +139,7 @@ Eigen::VectorXd commuting_exact(const Eigen::VectorXd& x0, const Eigen::VectorXd
 
 }  // namespace
 
-TEST_CASE("runtime: strong orders on geometric Brownian motion", "[runtime][convergence]") {
+TEST_CASE("runtime: strong orders on geometric Brownian motion", "[runtime][convergence][statistical]") {
   const std::vector<int> levels = {5, 6, 7, 8, 9, 10};  // dt = 2^-5 ... 2^-10
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 1.0);
   const int paths = 4000;
@@ -162,7 +162,7 @@ TEST_CASE("runtime: strong orders on geometric Brownian motion", "[runtime][conv
   }
 }
 
-TEST_CASE("runtime: strong order 1 with commutative non-diagonal noise", "[runtime][convergence]") {
+TEST_CASE("runtime: strong order 1 with commutative non-diagonal noise", "[runtime][convergence][statistical]") {
   const SdeSystem system = commuting_linear();
   Eigen::VectorXd x0(2);
   x0 << 1.0, 0.5;
@@ -195,8 +195,7 @@ TEST_CASE("runtime: strong order 1 with commutative non-diagonal noise", "[runti
   }
 }
 
-TEST_CASE("runtime: adaptive Euler's Brownian-bridge substeps follow the grid's Brownian path",
-          "[runtime][convergence]") {
+TEST_CASE("runtime: adaptive Euler's Brownian-bridge substeps follow the grid's Brownian path", "[runtime][convergence][statistical]") {
   // On a coarse grid (dt = 1/4) the adaptive scheme substeps to h ~ tolerance^2; its error against
   // the exact solution on the *grid's* W(T) must fall like the tolerance (strong order 1/2 in h).
   // A bridge that did not reproduce the grid increments would leave an O(1) error.
@@ -231,7 +230,7 @@ TEST_CASE("runtime: adaptive Euler's Brownian-bridge substeps follow the grid's 
   CHECK(errors.back() < 0.1 * gbm_exact(x0, Eigen::VectorXd::Zero(1))[0]);
 }
 
-TEST_CASE("runtime: scheme names and preconditions and g from a covariance G", "[runtime][convergence]") {
+TEST_CASE("runtime: scheme names and preconditions and g from a covariance G", "[runtime][convergence][unit]") {
   for (SchemeKind kind : {SchemeKind::euler_maruyama, SchemeKind::milstein, SchemeKind::derivative_free_milstein,
                           SchemeKind::tamed_euler, SchemeKind::adaptive_euler}) {
     CHECK(scheme_kind_from_string(to_string(kind)) == kind);

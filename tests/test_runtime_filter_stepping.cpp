@@ -37,8 +37,7 @@ double riccati(double q, double r, double P0, double t) {
 
 }  // namespace
 
-TEST_CASE("FilterStepper keeps a stiff Riccati equation stable and accurate where a fixed step explodes",
-          "[runtime][stepping]") {
+TEST_CASE("FilterStepper keeps a stiff Riccati equation stable and accurate where a fixed step explodes", "[runtime][stepping][unit]") {
   const ScalarKalmanBucy filter{1.0, 1e-4};  // P0 = 100: P dt / r = 1e4 at dt = 1e-2
   const double dt = 1e-2, dy = 0.0;
   FilterStepControl fixed;
@@ -59,7 +58,7 @@ TEST_CASE("FilterStepper keeps a stiff Riccati equation stable and accurate wher
   CHECK(stepper.refined_steps() < 100);  // once P has settled, single steps are stable again
 }
 
-TEST_CASE("FilterStepper takes exactly the plain step where nothing is stiff", "[runtime][stepping]") {
+TEST_CASE("FilterStepper takes exactly the plain step where nothing is stiff", "[runtime][stepping][unit]") {
   const ScalarKalmanBucy filter{0.5, 1.0};
   std::vector<double> a{0.3, 2.0}, b{0.3, 2.0};
   FilterStepControl off;
@@ -74,8 +73,7 @@ TEST_CASE("FilterStepper takes exactly the plain step where nothing is stiff", "
   CHECK(adaptive.refined_steps() == 0);
 }
 
-TEST_CASE("FilterStepper sub-steps share dy evenly: the estimate follows a constant observation rate",
-          "[runtime][stepping]") {
+TEST_CASE("FilterStepper sub-steps share dy evenly: the estimate follows a constant observation rate", "[runtime][stepping][unit]") {
   // Stiff from the start (P0 = 100, r = 1e-4), observations at the constant rate v: dy = v dt.
   // dm = (P / r)(v - m) dt drives m to v whatever P does, but only if each sub-step of length h
   // gets v h: any other split of dy would move the limit.

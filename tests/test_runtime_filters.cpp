@@ -62,7 +62,7 @@ TruthRun quiet_truth(double T, double dt) {
 
 }  // namespace
 
-TEST_CASE("runtime: observations dy = (A0 + A x) dt + B dW2 on the truth's grid", "[runtime][filters]") {
+TEST_CASE("runtime: observations dy = (A0 + A x) dt + B dW2 on the truth's grid", "[runtime][filters][unit]") {
   // Time-varying A0, A, B; the truth is deterministic (x = e^t), so dy - drift part is B dW2
   // with dW2 from the run's observation stream.
   SdeSystem system;
@@ -94,8 +94,7 @@ TEST_CASE("runtime: observations dy = (A0 + A x) dt + B dW2 on the truth's grid"
   }
 }
 
-TEST_CASE("runtime: a Kalman-Bucy filter stepped on simulated observations has error variance P",
-          "[runtime][filters]") {
+TEST_CASE("runtime: a Kalman-Bucy filter stepped on simulated observations has error variance P", "[runtime][filters][statistical]") {
   const ScalarLinear model;
   const FilterModel filter = make_filter_model("kalman-bucy", 1, 1, &kalman_bucy_initial, &kalman_bucy_step, model);
   CHECK(filter.state_size() == 2);
@@ -129,7 +128,7 @@ TEST_CASE("runtime: a Kalman-Bucy filter stepped on simulated observations has e
   CHECK(std::abs(mean) < 5 * std::sqrt(P_end / runs));
 }
 
-TEST_CASE("runtime: filter guards stop runs at the time P loses definiteness or m runs away", "[runtime][filters]") {
+TEST_CASE("runtime: filter guards stop runs at the time P loses definiteness or m runs away", "[runtime][filters][unit]") {
   const TruthRun truth = quiet_truth(2.0, 0.01);
   REQUIRE(truth.completed_steps == 200);
 
@@ -167,7 +166,7 @@ TEST_CASE("runtime: filter guards stop runs at the time P loses definiteness or 
   CHECK(run.state.row(0).maxCoeff() <= 1e8);
 }
 
-TEST_CASE("runtime: a generated filter plugs in and paper 001's singular P0 is legal at t = 0", "[runtime][filters]") {
+TEST_CASE("runtime: a generated filter plugs in and paper 001's singular P0 is legal at t = 0", "[runtime][filters][unit]") {
   namespace F = pfgen_models::basin_skliar_partial::optimal;
   const FilterModel filter = make_filter_model("optimal", F::n, F::p, &F::initial_state<double>, &F::step<double>);
   REQUIRE(filter.state_size() == F::state_size);

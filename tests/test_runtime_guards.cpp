@@ -45,7 +45,7 @@ SdeSystem paper001() {
 
 }  // namespace
 
-TEST_CASE("runtime: the divergence guard reports NaN and inf and runaway values", "[runtime][guards]") {
+TEST_CASE("runtime: the divergence guard reports NaN and inf and runaway values", "[runtime][guards][unit]") {
   const DivergenceGuard guard(1e6);
   const double fine[] = {1.0, -1e6, 3.0};
   CHECK_FALSE(guard.check(0.5, fine, 3).has_value());
@@ -73,7 +73,7 @@ TEST_CASE("runtime: the divergence guard reports NaN and inf and runaway values"
   CHECK_THROWS_AS(DivergenceGuard(0.0), std::invalid_argument);
 }
 
-TEST_CASE("runtime: a NaN in the truth stops the run at the grid time it appears", "[runtime][guards]") {
+TEST_CASE("runtime: a NaN in the truth stops the run at the grid time it appears", "[runtime][guards][unit]") {
   SdeSystem system;
   system.n = 1;
   system.q = 1;
@@ -103,7 +103,7 @@ TEST_CASE("runtime: a NaN in the truth stops the run at the grid time it appears
   CHECK(bad_start.x.cols() == 0);
 }
 
-TEST_CASE("runtime: paper 000's noise-free state blows up at t = 1/0.11", "[runtime][guards]") {
+TEST_CASE("runtime: paper 000's noise-free state blows up at t = 1/0.11", "[runtime][guards][unit]") {
   const double blow_up = 1.0 / 0.11;  // 9.0909...
   LinearObservation observation = observe_first(1);
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 9.2, 1e-4);
@@ -125,7 +125,7 @@ TEST_CASE("runtime: paper 000's noise-free state blows up at t = 1/0.11", "[runt
   }
 }
 
-TEST_CASE("runtime: paper 001's truth x2 = 1.1 e^{0.1 t} and x1 blows up near t = 7.01", "[runtime][guards]") {
+TEST_CASE("runtime: paper 001's truth x2 = 1.1 e^{0.1 t} and x1 blows up near t = 7.01", "[runtime][guards][unit]") {
   LinearObservation observation = observe_first(2);
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 8.0, 1e-4);
   Eigen::VectorXd x0(2);
@@ -147,7 +147,7 @@ TEST_CASE("runtime: paper 001's truth x2 = 1.1 e^{0.1 t} and x1 blows up near t 
   CHECK(run.divergence->index == 0);
 }
 
-TEST_CASE("runtime: the covariance guard accepts singular PSD P and rejects indefinite P", "[runtime][guards]") {
+TEST_CASE("runtime: the covariance guard accepts singular PSD P and rejects indefinite P", "[runtime][guards][unit]") {
   const CovarianceGuard guard;
 
   // Paper 001's P0: all ones, eigenvalues 0 and 2. Packed filter state [m1, m2, P11, P12, P22].

@@ -196,7 +196,7 @@ std::string read_file(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "[montecarlo][runtime]") {
+TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   EulerMaruyama scheme(scalar_linear_system(scenario.model));
   const LinearObservation observation = scalar_observation(scenario.model.r);
@@ -229,7 +229,7 @@ TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "
   }
 }
 
-TEST_CASE("monte carlo: each run equals simulate_truth + run_filter bit for bit", "[montecarlo][runtime]") {
+TEST_CASE("monte carlo: each run equals simulate_truth + run_filter bit for bit", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   ScalarLinear& model = scenario.model;
   // The adaptive scheme draws from a stream of its own (start_run): the engine must reseed it.
@@ -301,8 +301,7 @@ TEST_CASE("monte carlo: each run equals simulate_truth + run_filter bit for bit"
   }
 }
 
-TEST_CASE("monte carlo: Kalman-Bucy RMS error is sqrt(P_inf); wrong filters are reported with times",
-          "[montecarlo][runtime]") {
+TEST_CASE("monte carlo: Kalman-Bucy RMS error is sqrt(P_inf); wrong filters are reported with times", "[montecarlo][runtime][statistical]") {
   const ScalarLinear model;
   EulerMaruyama scheme(scalar_linear_system(model));
   const LinearObservation observation = scalar_observation(model.r);
@@ -389,8 +388,7 @@ TEST_CASE("monte carlo: Kalman-Bucy RMS error is sqrt(P_inf); wrong filters are 
   CHECK(result.timing.truth_steps == 1000 * options.grid.steps);
 }
 
-TEST_CASE("monte carlo: a truth that blows up is reported near t = 1 and nothing prints nan or inf",
-          "[montecarlo][runtime]") {
+TEST_CASE("monte carlo: a truth that blows up is reported near t = 1 and nothing prints nan or inf", "[montecarlo][runtime][unit]") {
   // x' = x^2 from x0 = 1: x = 1 / (1 - t), beyond the 1e8 bound at t = 1 - 1e-8.
   SdeSystem system;
   system.n = 1;
@@ -436,8 +434,7 @@ TEST_CASE("monte carlo: a truth that blows up is reported near t = 1 and nothing
   CHECK(last_row.rfind("2,,", 0) == 0);
 }
 
-TEST_CASE("monte carlo: the table and CSV are byte-identical across calls and the CSV is well-formed",
-          "[montecarlo][runtime]") {
+TEST_CASE("monte carlo: the table and CSV are byte-identical across calls and the CSV is well-formed", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   EulerMaruyama scheme(scalar_linear_system(scenario.model));
   const LinearObservation observation = scalar_observation(scenario.model.r);
@@ -501,7 +498,7 @@ TEST_CASE("monte carlo: the table and CSV are byte-identical across calls and th
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("monte carlo: gnuplot draws the error plot as SVG and PNG", "[montecarlo][runtime][gnuplot]") {
+TEST_CASE("monte carlo: gnuplot draws the error plot as SVG and PNG", "[montecarlo][runtime][gnuplot][compiler]") {
   if (!gnuplot_on_path()) {
     WARN("gnuplot is not on PATH: plot test skipped (scripts/install-deps.sh installs it)");
     return;
@@ -536,8 +533,7 @@ TEST_CASE("monte carlo: gnuplot draws the error plot as SVG and PNG", "[montecar
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("monte carlo: inconsistent inputs are rejected and a worker's exception reaches the caller",
-          "[montecarlo][runtime]") {
+TEST_CASE("monte carlo: inconsistent inputs are rejected and a worker's exception reaches the caller", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   EulerMaruyama scheme(scalar_linear_system(scenario.model));
   const LinearObservation observation = scalar_observation(scenario.model.r);
@@ -567,7 +563,7 @@ TEST_CASE("monte carlo: inconsistent inputs are rejected and a worker's exceptio
                     "filter failed on purpose");
 }
 
-TEST_CASE("runtime: RK4 integrates paper 001's deterministic state to order 4", "[montecarlo][runtime][schemes]") {
+TEST_CASE("runtime: RK4 integrates paper 001's deterministic state to order 4", "[montecarlo][runtime][schemes][unit]") {
   SdeSystem system;
   system.n = 2;
   system.q = 0;
@@ -603,7 +599,7 @@ TEST_CASE("runtime: RK4 integrates paper 001's deterministic state to order 4", 
   CHECK_THROWS_AS(RungeKutta4(system), std::invalid_argument);
 }
 
-TEST_CASE("runtime: the cheap PSD check gives the eigenvalue check's verdict", "[montecarlo][runtime][guards]") {
+TEST_CASE("runtime: the cheap PSD check gives the eigenvalue check's verdict", "[montecarlo][runtime][guards][unit]") {
   std::mt19937_64 random(12345);
   std::normal_distribution<double> normal;
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -678,8 +674,7 @@ TEST_CASE("runtime: the cheap PSD check gives the eigenvalue check's verdict", "
 
 // Not run by default: `pfgen_tests "[montecarlo-benchmark]"`. The speed target's shape: a scalar
 // model, 3 trivial filters, 90,000 steps per run, 2 threads.
-TEST_CASE("monte carlo benchmark: 100 runs x 90,000 steps, scalar model, 3 filters, 2 threads",
-          "[.][montecarlo-benchmark]") {
+TEST_CASE("monte carlo benchmark: 100 runs x 90,000 steps, scalar model, 3 filters, 2 threads", "[.][montecarlo-benchmark][statistical]") {
   const ScalarLinear model;
   EulerMaruyama scheme(scalar_linear_system(model));
   MonteCarloOptions options;

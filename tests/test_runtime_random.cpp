@@ -14,7 +14,7 @@
 
 using namespace pfgen_runtime;
 
-TEST_CASE("runtime: SplitMix64 and xoshiro256 star-star give the published sequences", "[runtime][random]") {
+TEST_CASE("runtime: SplitMix64 and xoshiro256 star-star give the published sequences", "[runtime][random][unit]") {
   SplitMix64 splitmix(0);
   CHECK(splitmix.next() == 0xE220A8397B1DCDAFULL);
   CHECK(splitmix.next() == 0x6E789E6AA1B965F4ULL);
@@ -29,7 +29,7 @@ TEST_CASE("runtime: SplitMix64 and xoshiro256 star-star give the published seque
   CHECK_THROWS_AS(Xoshiro256StarStar(Xoshiro256StarStar::State{0, 0, 0, 0}), std::invalid_argument);
 }
 
-TEST_CASE("runtime: a run's stream is fixed by its seed and run and substream", "[runtime][random]") {
+TEST_CASE("runtime: a run's stream is fixed by its seed and run and substream", "[runtime][random][unit]") {
   // Values from an independent Python implementation of the derivation documented in random.cpp.
   CHECK(RandomStream::derive_key(42, 7, 1) == 0xA011CA63C3D7166FULL);
   RandomStream raw(42, 7, 1);
@@ -57,7 +57,7 @@ TEST_CASE("runtime: a run's stream is fixed by its seed and run and substream", 
   CHECK(first != d.next_u64());
 }
 
-TEST_CASE("runtime: polar normals have the standard normal law", "[runtime][random]") {
+TEST_CASE("runtime: polar normals have the standard normal law", "[runtime][random][statistical]") {
   RandomStream stream(2024, 0);
   const int N = 1000000;
   double sum = 0, sum2 = 0, sum3 = 0, sum4 = 0;
@@ -130,7 +130,7 @@ bool identical(const TruthRun& a, const TruthRun& b) {
 
 }  // namespace
 
-TEST_CASE("runtime: runs are identical whatever order or thread generates them", "[runtime][random]") {
+TEST_CASE("runtime: runs are identical whatever order or thread generates them", "[runtime][random][unit]") {
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 2.0, 0.01);
   const int runs = 24;
   Eigen::VectorXd x0(2);

@@ -78,8 +78,7 @@ std::vector<double> simulate_via_z(double dt, int runs) {
 
 }  // namespace
 
-TEST_CASE("runtime: paper 000's Ito state makes fixed-step Euler overflow but not tamed or adaptive Euler",
-          "[runtime][superlinear]") {
+TEST_CASE("runtime: paper 000's Ito state makes fixed-step Euler overflow but not tamed or adaptive Euler", "[runtime][superlinear][statistical]") {
   const int runs = 2000;
   const Sample em = simulate_x(SchemeKind::euler_maruyama, 1e-3, runs, 5);
   const Sample tamed = simulate_x(SchemeKind::tamed_euler, 1e-3, runs, 5);
@@ -97,8 +96,7 @@ TEST_CASE("runtime: paper 000's Ito state makes fixed-step Euler overflow but no
   CHECK(adaptive.negative == 0);
 }
 
-TEST_CASE("runtime: adaptive Euler's law of x(9.2) agrees with the simulation of z = 10/x",
-          "[runtime][superlinear]") {
+TEST_CASE("runtime: adaptive Euler's law of x(9.2) agrees with the simulation of z = 10/x", "[runtime][superlinear][statistical]") {
   // Two-sample Kolmogorov-Smirnov tests at level alpha = 0.001. The reference: 10000 runs of z.
   const std::vector<double> reference = simulate_via_z(1e-3, 10000);
   const double reference_median = quantile(reference, 0.5);
@@ -140,7 +138,7 @@ TEST_CASE("runtime: adaptive Euler's law of x(9.2) agrees with the simulation of
   CHECK(tamed_test.p_value < 0.001);
 }
 
-TEST_CASE("runtime: quantiles and the two-sample Kolmogorov-Smirnov test", "[runtime][superlinear]") {
+TEST_CASE("runtime: quantiles and the two-sample Kolmogorov-Smirnov test", "[runtime][superlinear][unit]") {
   CHECK(quantile({4, 1, 3, 2}, 0.5) == 2.5);
   CHECK(quantile({4, 1, 3, 2}, 0.0) == 1.0);
   CHECK(quantile({4, 1, 3, 2}, 1.0) == 4.0);

@@ -44,7 +44,7 @@ bool has_nan_or_inf(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("paper 001 truth: x2 = 1.1 exp(0.1 t) gives 1.81, 2.00, 2.11 at t = 5, 6, 6.5", "[simulate][paper001]") {
+TEST_CASE("paper 001 truth: x2 = 1.1 exp(0.1 t) gives 1.81, 2.00, 2.11 at t = 5, 6, 6.5", "[simulate][paper001][compiler]") {
   TempDir dir;
   const auto result = run_pfgen(simulate_args("basin_skliar_partial.yaml", dir,
                                               {"--runs", "3", "--dt", "1e-3", "--report-times", "5,6,6.5", "-q"}));
@@ -67,8 +67,7 @@ TEST_CASE("paper 001 truth: x2 = 1.1 exp(0.1 t) gives 1.81, 2.00, 2.11 at t = 5,
   CHECK(rows.at({"6", "x1"})[1] == Approx(9.83).margin(0.01));
 }
 
-TEST_CASE("paper 001 beyond the blow-up: the truth is stopped and reported, nothing non-finite printed",
-          "[simulate][paper001]") {
+TEST_CASE("paper 001 beyond the blow-up: the truth is stopped and reported, nothing non-finite printed", "[simulate][paper001][compiler]") {
   TempDir dir;
   const auto result = run_pfgen(simulate_args("basin_skliar_partial.yaml", dir,
                                               {"--runs", "2", "--T", "7.5", "--dt", "1e-3", "--report-times", "7.2",
@@ -88,8 +87,7 @@ TEST_CASE("paper 001 beyond the blow-up: the truth is stopped and reported, noth
   CHECK(truth_rows(result.out).at({"7.2", "x1"})[0] == 0);
 }
 
-TEST_CASE("simulate: identical output for any thread count, and the second run uses the cached plugin",
-          "[simulate]") {
+TEST_CASE("simulate: identical output for any thread count, and the second run uses the cached plugin", "[simulate][compiler]") {
   TempDir dir;
   auto run = [&](const std::string& threads, const std::string& csv) {
     return run_pfgen(simulate_args("basin2006_quadratic.yaml", dir,
@@ -110,7 +108,7 @@ TEST_CASE("simulate: identical output for any thread count, and the second run u
   CHECK(one.out.find("ekf-printed") != std::string::npos);  // the model's own filter ran too
 }
 
-TEST_CASE("simulate --plot draws an SVG with gnuplot, next to its CSV", "[simulate][gnuplot]") {
+TEST_CASE("simulate --plot draws an SVG with gnuplot, next to its CSV", "[simulate][gnuplot][compiler]") {
   TempDir dir;
   const auto result = run_pfgen(simulate_args(
       "basin2006_quadratic.yaml", dir,
@@ -122,8 +120,7 @@ TEST_CASE("simulate --plot draws an SVG with gnuplot, next to its CSV", "[simula
   CHECK(read_file(dir.file("e.csv")).rfind("t,truth_x,", 0) == 0);
 }
 
-TEST_CASE("simulate: bad settings are one-line errors naming the option or field, with no output files",
-          "[simulate][bad_input]") {
+TEST_CASE("simulate: bad settings are one-line errors naming the option or field, with no output files", "[simulate][bad_input][integration]") {
   TempDir dir;
   struct Case {
     std::vector<std::string> args;
@@ -182,8 +179,7 @@ TEST_CASE("simulate: bad settings are one-line errors naming the option or field
   CHECK(count_lines(result.err) == 1);
 }
 
-TEST_CASE("simulate: a shorter --T leaves out the model file's later report times and windows, and says so",
-          "[simulate]") {
+TEST_CASE("simulate: a shorter --T leaves out the model file's later report times and windows, and says so", "[simulate][compiler]") {
   TempDir dir;
   const auto result = run_pfgen(simulate_args("basin2006_quadratic.yaml", dir,
                                               {"--T", "3", "--runs", "2", "--dt", "1e-3", "--filters", "optimal", "-q"}));
@@ -196,7 +192,7 @@ TEST_CASE("simulate: a shorter --T leaves out the model file's later report time
   CHECK(result.out.find("|e|@4") == std::string::npos);
 }
 
-TEST_CASE("simulate: a model without a truth initial state is refused", "[simulate][bad_input]") {
+TEST_CASE("simulate: a model without a truth initial state is refused", "[simulate][bad_input][integration]") {
   TempDir dir;
   const std::string model = dir.file("no_x0.yaml");
   write_file(model,
@@ -222,8 +218,7 @@ const char* const kCovarianceModel =
     "initial: {x0: [1, 0, -1], m0: [0, 0, 0], P0: [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}\n";
 }  // namespace
 
-TEST_CASE("simulate: settings refused before the build name the option, also for defaults and output paths",
-          "[simulate][bad_input]") {
+TEST_CASE("simulate: settings refused before the build name the option, also for defaults and output paths", "[simulate][bad_input][integration]") {
   TempDir dir;
   const std::string model = dir.file("cov3.yaml");
   write_file(model, kCovarianceModel);
@@ -257,8 +252,7 @@ TEST_CASE("simulate: settings refused before the build name the option, also for
 }
 
 TEST_CASE("simulate: n = 3 with G-only diffusion and p = 2 runs; a failed --timing prints no table; "
-          "a corrupt cached plugin is rebuilt",
-          "[simulate]") {
+          "a corrupt cached plugin is rebuilt", "[simulate][compiler]") {
   TempDir dir;
   const std::string model = dir.file("cov3.yaml");
   write_file(model, kCovarianceModel);
@@ -295,7 +289,7 @@ TEST_CASE("simulate: n = 3 with G-only diffusion and p = 2 runs; a failed --timi
   CHECK(read_file(dir.file("a.csv")) == read_file(dir.file("b.csv")));
 }
 
-TEST_CASE("simulate --set gives a parameter its value for the job (truth and filters)", "[simulate]") {
+TEST_CASE("simulate --set gives a parameter its value for the job (truth and filters)", "[simulate][compiler]") {
   TempDir dir;
   const std::string model = dir.file("growth.yaml");
   write_file(model,

@@ -346,7 +346,7 @@ ReferenceStep header_step(void (*step)(double*, double, double, const double*, c
 
 }  // namespace
 
-TEST_CASE("plugin: paper 000's model compiles, loads and agrees with the model and generated/", "[plugin]") {
+TEST_CASE("plugin: paper 000's model compiles, loads and agrees with the model and generated/", "[plugin][compiler]") {
   const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
   const auto filters = all_filters(model);
   const Built& b = built("paper 000", model, filters);
@@ -369,7 +369,7 @@ TEST_CASE("plugin: paper 000's model compiles, loads and agrees with the model a
                  {"ekf-additive", header_step(&gen::ekf_additive::step<double>)}});
 }
 
-TEST_CASE("plugin: paper 001's noise-free truth has q = 0 and no diffusion", "[plugin]") {
+TEST_CASE("plugin: paper 001's noise-free truth has q = 0 and no diffusion", "[plugin][compiler]") {
   const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("basin_skliar_partial.yaml"));
   const auto filters = all_filters(model);
   const SimulationPlugin plugin(built("paper 001", model, filters).build.path);
@@ -387,7 +387,7 @@ TEST_CASE("plugin: paper 001's noise-free truth has q = 0 and no diffusion", "[p
                 {{"optimal", header_step(&gen::optimal::step<double>)}, {"ekf", header_step(&gen::ekf::step<double>)}});
 }
 
-TEST_CASE("plugin: a random cubic system with multiplicative noise and a time-varying observation", "[plugin]") {
+TEST_CASE("plugin: a random cubic system with multiplicative noise and a time-varying observation", "[plugin][compiler]") {
   std::mt19937 rng(7);
   pfgen_test::RandomSystemOptions options;
   options.n = 3;
@@ -409,7 +409,7 @@ TEST_CASE("plugin: a random cubic system with multiplicative noise and a time-va
   check_filters(s.model, filters, plugin);
 }
 
-TEST_CASE("plugin: a diffusion given only as G, and a plugin without filters", "[plugin]") {
+TEST_CASE("plugin: a diffusion given only as G, and a plugin without filters", "[plugin][compiler]") {
   const pfgen::Model model = covariance_model();
   const SimulationPlugin plugin(built("covariance", model, {}).build.path);
   CHECK(plugin.table().diffusion_is_covariance);
@@ -421,7 +421,7 @@ TEST_CASE("plugin: a diffusion given only as G, and a plugin without filters", "
   check_initial_states(model, plugin);
 }
 
-TEST_CASE("plugin: what the runtime gets outlives the SimulationPlugin and simulates", "[plugin]") {
+TEST_CASE("plugin: what the runtime gets outlives the SimulationPlugin and simulates", "[plugin][compiler]") {
   const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
   std::vector<pfgen_runtime::FilterModel> filters;
   pfgen_runtime::SdeSystem system;
@@ -442,7 +442,7 @@ TEST_CASE("plugin: what the runtime gets outlives the SimulationPlugin and simul
   CHECK(f == Approx(0.4).epsilon(1e-15));
 }
 
-TEST_CASE("plugin: the cache", "[plugin]") {
+TEST_CASE("plugin: the cache", "[plugin][compiler]") {
   Workspace& w = workspace();
   const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
   const Built& first = built("paper 000", model, all_filters(model));

@@ -7,7 +7,7 @@
 
 using namespace pfgen;
 
-TEST_CASE("paper 000 example file gives eqs 21-22", "[derivation][paper000]") {
+TEST_CASE("paper 000 example file gives eqs 21-22", "[derivation][paper000][unit]") {
   Model model = load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
   FilterEquations eq = derive_filter(model, FilterKind::Optimal);
   GiNaC::symbol m("m"), P("P");

@@ -36,7 +36,7 @@ double distance(const std::array<double, filter::state_size>& a, const std::arra
 
 }  // namespace
 
-TEST_CASE("generated step converges with order 2 on the deterministic part", "[codegen][step]") {
+TEST_CASE("generated step converges with order 2 on the deterministic part", "[codegen][step][unit]") {
   const double T = 2.0;
   // Reference: the same scheme at a step 64 times smaller than the finest tested
   // (its own error is ~4000 times smaller than the errors measured).

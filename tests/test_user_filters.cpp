@@ -88,11 +88,11 @@ std::string with_equations_as_user_filter(const std::string& base, const std::st
 
 }  // namespace
 
-TEST_CASE("user filters: a filter's C++ identifier has '_' for '-'", "[userfilter]") {
+TEST_CASE("user filters: a filter's C++ identifier has '_' for '-'", "[userfilter][unit]") {
   CHECK(filter_identifier("ekf-printed") == "ekf_printed");
 }
 
-TEST_CASE("user filters: the variables are named as FilterVariables names them", "[userfilter]") {
+TEST_CASE("user filters: the variables are named as FilterVariables names them", "[userfilter][unit]") {
   for (std::size_t n : {1, 2, 3, 9, 10, 12}) {
     FilterVariables vars(n);
     std::vector<std::string> names = filter_variable_names(n);
@@ -103,7 +103,7 @@ TEST_CASE("user filters: the variables are named as FilterVariables names them",
   CHECK(filter_variable_names(10)[10 + 9] == "P1_10");
 }
 
-TEST_CASE("user filters: paper 000's printed comparator (eqs 25-26) as written", "[userfilter][published]") {
+TEST_CASE("user filters: paper 000's printed comparator (eqs 25-26) as written", "[userfilter][published][unit]") {
   Model model = load_model_file(example("basin2006_quadratic.yaml"));
   REQUIRE(model.user_filters.size() == 1);
   FilterEquations printed = derive_named_filter(model, "ekf-printed");
@@ -140,7 +140,7 @@ TEST_CASE("user filters: paper 000's printed comparator (eqs 25-26) as written",
   CHECK(K[0] == 0.5);
 }
 
-TEST_CASE("user filters: paper 001's printed comparator (eqs 20-22) as written", "[userfilter][published]") {
+TEST_CASE("user filters: paper 001's printed comparator (eqs 20-22) as written", "[userfilter][published][unit]") {
   Model model = load_model_file(example("basin_skliar_partial.yaml"));
   FilterEquations printed = derive_named_filter(model, "ekf-printed");
   CHECK(printed.m_drift[0] == poly(printed, "1/10*m1^2 + 1/10*m2"));
@@ -180,7 +180,7 @@ TEST_CASE("user filters: paper 001's printed comparator (eqs 20-22) as written",
   CHECK(std::vector<double>(initial, initial + 5) == std::vector<double>{0.1, 0.1, 1, 1, 1});
 }
 
-TEST_CASE("user filters: the textbook EKF written as a user filter is the built-in ekf", "[userfilter]") {
+TEST_CASE("user filters: the textbook EKF written as a user filter is the built-in ekf", "[userfilter][compiler]") {
   Model base = load_model_text(kRichModel, "rich.yaml");
   FilterEquations ekf = derive_filter(base, FilterKind::Ekf);
   const std::string text = with_equations_as_user_filter(kRichModel, "textbook-ekf", ekf);
@@ -272,7 +272,7 @@ int main() {
   }
 }
 
-TEST_CASE("user filters: every command takes them by name, after the built-in kinds", "[userfilter][cli]") {
+TEST_CASE("user filters: every command takes them by name, after the built-in kinds", "[userfilter][cli][integration]") {
   const std::string model = example("basin_skliar_partial.yaml");
   SECTION("codegen: default set, paths, namespaces, --stats order") {
     TempDir dir;
@@ -341,7 +341,7 @@ TEST_CASE("user filters: every command takes them by name, after the built-in ki
   }
 }
 
-TEST_CASE("user filters: output is byte-identical across separate processes", "[userfilter][determinism]") {
+TEST_CASE("user filters: output is byte-identical across separate processes", "[userfilter][determinism][integration]") {
   const std::string model = example("basin2006_quadratic.yaml");
   std::vector<std::string> runs;
   for (int run = 0; run < 3; ++run) {
@@ -357,7 +357,7 @@ TEST_CASE("user filters: output is byte-identical across separate processes", "[
   CHECK(runs[0] == runs[2]);
 }
 
-TEST_CASE("user filters: P21 names P12, and from n = 10 on P10_1 names P1_10", "[userfilter]") {
+TEST_CASE("user filters: P21 names P12, and from n = 10 on P10_1 names P1_10", "[userfilter][unit]") {
   const std::string two = R"yaml(name: two
 states: [x1, x2]
 drift: ["-x1", "-x2"]
@@ -409,7 +409,7 @@ filters:
   CHECK_THROWS_WITH(load_model_text(bad, "ten.yaml"), Contains("unknown symbol 'P110'"));
 }
 
-TEST_CASE("user filters: ModelBuilder adds them with the same checks", "[userfilter][api]") {
+TEST_CASE("user filters: ModelBuilder adds them with the same checks", "[userfilter][api][unit]") {
   auto builder = [] {
     ModelBuilder b("api_model");
     GiNaC::symbol x = b.state("x");
@@ -468,7 +468,7 @@ TEST_CASE("user filters: ModelBuilder adds them with the same checks", "[userfil
   }
 }
 
-TEST_CASE("simulation: the examples' sections are read, with their places in the file", "[userfilter][simulation]") {
+TEST_CASE("simulation: the examples' sections are read, with their places in the file", "[userfilter][simulation][unit]") {
   Model p000 = load_model_file(example("basin2006_quadratic.yaml"));
   const SimulationSection& s = p000.simulation;
   REQUIRE(s.T);
@@ -505,7 +505,7 @@ TEST_CASE("simulation: the examples' sections are read, with their places in the
   CHECK(none.user_filters.empty());
 }
 
-TEST_CASE("simulation: every field and its bounds", "[userfilter][simulation]") {
+TEST_CASE("simulation: every field and its bounds", "[userfilter][simulation][unit]") {
   const std::string head = "name: m\nstates: [x]\ndrift: [\"-x\"]\ndiffusion: [[\"1\"]]\nadditive_diffusion: [[\"1\"]]\n"
                            "observation: {A: [[\"1\"]], B: [[\"1\"]]}\n";
   Model all = load_model_text(head + R"yaml(simulation:
