@@ -126,7 +126,9 @@ std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model
 }
 
 bool diffusion_is_zero(const Model& model) {
-  for (const auto& row : model.diffusion.G)
+  // g when the model gives it: the validator runs before ModelBuilder computes G = g g^T.
+  const ExMatrix& diffusion = model.diffusion.g ? *model.diffusion.g : model.diffusion.G;
+  for (const auto& row : diffusion)
     for (const auto& entry : row)
       if (!entry.expand().is_zero()) return false;
   return true;

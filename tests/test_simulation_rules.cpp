@@ -1,0 +1,117 @@
+// `pfgen simulate`'s settings obey one set of rules (model/simulation_rules.hpp): a value broken
+// in the model file's `simulation:` section and the same value given on the command line are
+// refused with the same words, and only the place in front differs (the field's file:line:col,
+// or the option).
+#include <catch2/catch.hpp>
+
+#include <regex>
+
+#include "pfgen/model/model_builder.hpp"
+#include "pfgen/model/simulation_rules.hpp"
+#include "pfgen/model/yaml_model_loader.hpp"
+#include "support/cli_helpers.hpp"
+
+using namespace pfgen;
+using namespace pfgen_test;
+
+namespace {
+
+Model example_model() { return load_model_file(example("basin2006_quadratic.yaml")); }
+
+}  // namespace
+
+TEST_CASE("simulation rules: each rule names its field and entry, and applies once its inputs are known",
+          "[unit][simulation]") {
+  const Model model = example_model();
+  auto breach_of = [&model](const SimulationSection& s) { return check_simulation_settings(model, s); };
+
+  SimulationSection s;
+  CHECK(!breach_of(s));  // nothing given, nothing to break
+  s.dt = 0.3;
+  CHECK(!breach_of(s));  // no T yet: "a whole number of steps" cannot apply
+  s.T = 1;
+  auto whole = breach_of(s);
+  REQUIRE(whole);
+  CHECK(whole->field == "dt");
+  CHECK(whole->message == "T = 1 is not a whole number of steps of 0.3 (T / dt = 3.3333333333333335); choose a dt "
+                          "that divides T");
+  s.dt = 0.25;
+  CHECK(!breach_of(s));
+
+  s.windows = {{0, 0.5}, {0.5, 2}};
+  auto window = breach_of(s);
+  REQUIRE(window);
+  CHECK(window->field == "windows");
+  CHECK(window->entry == std::optional<std::size_t>(1));
+  CHECK(window->message == "window [0.5, 2] ends after the horizon T = 1");
+  s.windows = {{0.5, 0.6}};  // both ends snap to the grid point 0.5
+  window = breach_of(s);
+  REQUIRE(window);
+  CHECK(window->message == "window [0.5, 0.6] is shorter than a step dt = 0.25");
+  s.windows.clear();
+
+  s.filters = std::vector<std::string>{"optimal", "kalman"};
+  auto filter = breach_of(s);
+  REQUIRE(filter);
+  CHECK(filter->field == "filters");
+  CHECK(filter->entry == std::optional<std::size_t>(1));
+  CHECK(filter->message == "unknown filter 'kalman' (known: optimal, ekf, additive, ekf-additive, ekf-printed)");
+  s.filters = std::vector<std::string>{"ekf", "ekf"};
+  REQUIRE(breach_of(s));
+  CHECK(breach_of(s)->message == "filter 'ekf' is listed twice");
+  s.filters.reset();
+
+  s.scheme = "rk4";  // paper 000's diffusion is not zero
+  REQUIRE(breach_of(s));
+  CHECK(breach_of(s)->message == "rk4 is for deterministic truths only, and this model's diffusion is not zero");
+  s.scheme = "adaptive-euler";
+  s.runs = 3;
+  s.shown_run = 3;
+  REQUIRE(breach_of(s));
+  CHECK(breach_of(s)->field == "shown_run");
+  s.shown_run = 2;
+  CHECK(!breach_of(s));
+}
+
+TEST_CASE("simulation rules: the model file and the command line refuse a value with the same words",
+          "[integration][simulation]") {
+  TempDir dir;
+  const std::string original = read_file(example("basin2006_quadratic.yaml"));
+  struct Case {
+    std::string field_line;  // replaces the field's line in the example's simulation: section
+    std::vector<std::string> option;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {"  T: -1", {"--T", "-1"}, "the horizon T (the simulation starts at t = 0) must be a number greater than 0, found -1"},
+      {"  dt: 0.3", {"--dt", "0.3"}, "T = 9.2 is not a whole number of steps of 0.3"},
+      {"  runs: 0", {"--runs", "0"}, "at least 1 run is required"},
+      {"  scheme: rk4", {"--scheme", "rk4"}, "rk4 is for deterministic truths only"},
+      {"  scheme: heun", {"--scheme", "heun"}, "unknown scheme 'heun' (known: auto, euler-maruyama,"},
+      {"  filters: [optimal, kalman]", {"--filters", "optimal,kalman"}, "unknown filter 'kalman' (known: optimal,"},
+      {"  filters: [ekf, ekf]", {"--filters", "ekf,ekf"}, "filter 'ekf' is listed twice"},
+      {"  report_times: [2, 10]", {"--report-times", "2,10"}, "report time 10 is after the horizon T = 9.2"},
+      {"  windows: [[0, 4], [4, 10]]", {"--windows", "0:4,4:10"}, "window [4, 10] ends after the horizon T = 9.2"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.field_line);
+    const std::string key = c.field_line.substr(0, c.field_line.find(':') + 1);
+    const std::string text = std::regex_replace(original, std::regex("\n" + key + "[^\n]*"), "\n" + c.field_line);
+    REQUIRE(text != original);
+    write_file(dir.file("m.yaml"), text);
+    ProcessResult from_file = run_pfgen({"derive", dir.file("m.yaml")});
+    INFO("file: " << from_file.err);
+    CHECK(from_file.exit_code != 0);
+    CHECK(std::regex_search(from_file.err, std::regex("m\\.yaml:[0-9]+:[0-9]+: error: field 'simulation\\.")));
+    CHECK(from_file.err.find(c.message) != std::string::npos);
+
+    std::vector<std::string> args{"simulate", example("basin2006_quadratic.yaml"), "--cache-dir", dir.file("cache")};
+    args.insert(args.end(), c.option.begin(), c.option.end());
+    ProcessResult from_command_line = run_pfgen(args);
+    INFO("command line: " << from_command_line.err);
+    CHECK(from_command_line.exit_code != 0);
+    CHECK(from_command_line.err.find("pfgen: error: " + c.option[0] + ": ") == 0);
+    CHECK(from_command_line.err.find(c.message) != std::string::npos);
+  }
+  CHECK_FALSE(std::filesystem::exists(dir.file("cache")));  // refused before anything is compiled
+}
