@@ -1,4 +1,4 @@
-// DESIGN-NOTES §2: for affine f = a0 + a1 x and state-independent diffusion
+// docs/theory.md §4: for affine f = a0 + a1 x and state-independent diffusion
 // the optimal filter is exactly the Kalman-Bucy filter,
 //   dm/dt (drift part) = a0 + a1 m,
 //   dP/dt = a1 P + P a1^T + G - P A^T R^-1 A P,   gain = P A^T R^-1,

@@ -20,7 +20,7 @@ using namespace pfgen;
 namespace {
 
 // f and g in double precision, with the parameter and time already applied:
-// evaluating through GiNaC 10^6 times would take minutes (DESIGN-NOTES §4).
+// evaluating through GiNaC 10^6 times would take minutes (docs/theory.md §9.2).
 struct FastPolynomial {
   struct Term {
     double coefficient;

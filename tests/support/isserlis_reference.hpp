@@ -2,7 +2,7 @@
 // A brute-force reference for Gaussian expectations of polynomials, written
 // independently of pfgen::GaussianExpectation (which uses a Stein-lemma
 // recursion) so that the tests can check the derivation against a second,
-// unrelated code path (DESIGN-NOTES §2, "Isserlis / Wick").
+// unrelated code path (docs/theory.md §3.3 and §3.5, "Isserlis / Wick").
 //
 // For x ~ N(m, P) and a GiNaC polynomial p in the state symbols x:
 //   1. substitute x = m + e with fresh symbols e and expand in e;

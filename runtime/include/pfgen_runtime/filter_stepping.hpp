@@ -10,7 +10,7 @@
 // it and take two half steps, each with half of dy, recursively. Halving dy is exact for the
 // filter's equations: y enters only through dm = ... + K(P) dy, and K depends on P alone, which
 // has no dy term, so the Ito and Stratonovich forms agree and y may be taken as linear across the
-// step (DESIGN-NOTES 5). The refinement is deterministic (no random numbers) and costs one copy of
+// step (docs/theory.md §7). The refinement is deterministic (no random numbers) and costs one copy of
 // the state and one comparison per step where nothing happens.
 //
 // It guards stability, not accuracy: a step that changes P little is kept even where

@@ -1,6 +1,6 @@
 #pragma once
 // Which published condition makes the Gaussian closure exact for a model
-// (DESIGN-NOTES §2), or which condition failed, so that a user knows whether
+// (docs/theory.md §4), or which condition failed, so that a user knows whether
 // the derived filter is optimal or a Gaussian assumed-density approximation.
 #include <string>
 #include <vector>

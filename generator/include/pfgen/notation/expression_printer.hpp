@@ -1,6 +1,6 @@
 #pragma once
 // Canonical printing of expressions and polynomials. GiNaC's own printers
-// follow its hash order, which changes from run to run (DESIGN-NOTES §4); this
+// follow its hash order, which changes from run to run (docs/theory.md §9.1); this
 // printer puts every sum and product in an order of pfgen's own:
 //   - polynomial terms by total degree (highest first), then by exponents in
 //     variable order (m1, ..., mn, P11, P12, ...), higher exponents first;
