@@ -1,6 +1,5 @@
 #include "simulation_settings.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -8,6 +7,7 @@
 #include "cli_options.hpp"
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/model/model.hpp"
+#include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::cli {
 namespace {
@@ -26,11 +26,7 @@ double parse_double(const std::string& option, const std::string& text) {
 }
 
 // Shortest round-trip text, fixed or scientific whichever is shorter ("20", not "2e+01").
-std::string number_text(double value) {
-  char buffer[64];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
-  return std::string(buffer, end);
-}
+std::string number_text(double value) { return pfgen_support::shortest_chars(value); }
 
 // Where a setting came from, for error messages. A setting neither the command line nor the
 // model file gave is pfgen's default: name the option, not a place in a file that lacks it
