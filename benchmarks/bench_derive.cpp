@@ -1,6 +1,7 @@
 // Derivation time of the optimal filter for a dense random cubic drift (every
 // monomial up to degree 3 in every component) with linear multiplicative
-// diffusion g = diag(c_i0 + sum_k c_ik x_k), over one observation per state.
+// diffusion g = diag(c_i0 + sum_k c_ik x_k), over one observation per state
+// (tests/support/dense_cubic_system.hpp: the models of benchmarks/models/).
 //
 // Baseline measured in the same run: the heat-operator formula
 //   E[p] = sum_k (1/k!) (1/2 sum_ij P_ij d_i d_j)^k p  evaluated at m,
@@ -12,55 +13,18 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
-#include "pfgen/model/model_builder.hpp"
+#include "pfgen/model/model.hpp"
+#include "support/dense_cubic_model.hpp"  // tests/support, shared with the tests
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// Coefficients are small random rationals k/10, k in [-9, 9] \ {0}, seeded by n.
-GiNaC::numeric random_coefficient(std::mt19937& rng) {
-  std::uniform_int_distribution<int> k(1, 9);
-  std::bernoulli_distribution negative(0.5);
-  return GiNaC::numeric(negative(rng) ? -k(rng) : k(rng), 10);
-}
-
-void monomials_up_to(std::size_t n, int degree, std::size_t first, const GiNaC::ex& current,
-                     const std::vector<GiNaC::symbol>& x, std::vector<GiNaC::ex>& out) {
-  out.push_back(current);
-  if (degree == 0) return;
-  for (std::size_t k = first; k < n; ++k) monomials_up_to(n, degree - 1, k, current * x[k], x, out);
-}
-
-pfgen::Model dense_cubic_model(std::size_t n) {
-  std::mt19937 rng(static_cast<unsigned>(1000 + n));
-  pfgen::ModelBuilder b("dense_cubic_" + std::to_string(n));
-  std::vector<GiNaC::symbol> x;
-  for (std::size_t i = 0; i < n; ++i) x.push_back(b.state("x" + std::to_string(i + 1)));
-  std::vector<GiNaC::ex> monomials;
-  monomials_up_to(n, 3, 0, 1, x, monomials);
-  pfgen::ExVector f;
-  pfgen::ExMatrix g(n, pfgen::ExVector(n, 0)), A(n, pfgen::ExVector(n, 0)), B(n, pfgen::ExVector(n, 0));
-  for (std::size_t i = 0; i < n; ++i) {
-    GiNaC::ex fi = 0;
-    for (const auto& mono : monomials) fi += random_coefficient(rng) * mono;
-    f.push_back(fi);
-    GiNaC::ex gi = random_coefficient(rng);
-    for (std::size_t k = 0; k < n; ++k) gi += random_coefficient(rng) * x[k];
-    g[i][i] = gi;
-    A[i][i] = 1;
-    B[i][i] = 1;
-  }
-  b.drift(f).diffusion(g).observation(pfgen::ExVector(n, 0), A, B);
-  return b.build();
-}
 
 // The baseline: heat-operator series with GiNaC differentiation, E[f] only.
 double baseline_expected_drift_seconds(const pfgen::Model& model) {
@@ -107,7 +71,7 @@ int main(int argc, char** argv) {
   std::printf("%4s %10s %12s %14s %16s %14s %10s\n", "n", "drift_terms", "P_terms", "derive_s(med)",
               "E[f]_pfgen_s", "E[f]_heat_s", "ratio");
   for (std::size_t n : sizes) {
-    pfgen::Model model = dense_cubic_model(n);
+    pfgen::Model model = pfgen_test::dense_cubic_model(n);
     std::vector<double> times;
     std::size_t P_terms = 0, drift_terms = 0;
     for (int r = 0; r < repeats; ++r) {

@@ -3,40 +3,21 @@
 // diffusion g = diag(c_i0 + sum_k c_ik x_k), one observation per state
 // (A = B = identity, A0 = 0).
 //
-// The coefficients are exactly those of bench_derive.cpp's dense_cubic_model(n):
-// the same generator (std::mt19937 seeded 1000 + n), the same draw order
-// (for each component: the drift monomials in depth-first order 1, x1, x1^2,
-// x1^3, x1^2 x2, ..., then c_i0, c_i1 .. c_in), the same values k/10 with
-// k in [-9, 9] \ {0}. Written as decimals, which pfgen reads as exact rationals.
+// The system is tests/support/dense_cubic_system.hpp's, the one bench_derive and
+// the tests use: coefficients k/10 with k in [-9, 9] \ {0}, written as decimals,
+// which pfgen reads as exact rationals.
 //
 // The model files in benchmarks/models/ are committed; regenerate them with
 //   build/benchmarks/dense_cubic_yaml 4 > benchmarks/models/dense_cubic_4.yaml
 //   build/benchmarks/dense_cubic_yaml 8 > benchmarks/models/dense_cubic_8.yaml
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <string>
 #include <vector>
 
+#include "support/dense_cubic_system.hpp"  // tests/support, shared with bench_derive and the tests
+
 namespace {
-
-int random_tenths(std::mt19937& rng) {
-  std::uniform_int_distribution<int> k(1, 9);
-  std::bernoulli_distribution negative(0.5);
-  return negative(rng) ? -k(rng) : k(rng);
-}
-
-// Monomials as lists of state indices (with repetition), in bench_derive's order.
-void monomials_up_to(std::size_t n, int degree, std::size_t first, const std::vector<std::size_t>& current,
-                     std::vector<std::vector<std::size_t>>& out) {
-  out.push_back(current);
-  if (degree == 0) return;
-  for (std::size_t k = first; k < n; ++k) {
-    std::vector<std::size_t> next = current;
-    next.push_back(k);
-    monomials_up_to(n, degree - 1, k, next, out);
-  }
-}
 
 std::string decimal(int tenths) {
   std::string text = tenths < 0 ? "-" : "";
@@ -74,19 +55,15 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::size_t n = static_cast<std::size_t>(std::atoi(argv[1]));
-  std::mt19937 rng(static_cast<unsigned>(1000 + n));
-  std::vector<std::vector<std::size_t>> monomials, linear{{}};
-  monomials_up_to(n, 3, 0, {}, monomials);
+  const pfgen_test::DenseCubicSystem system = pfgen_test::dense_cubic_system(n);
+  const std::vector<std::vector<std::size_t>>& monomials = system.monomials;
+  std::vector<std::vector<std::size_t>> linear{{}};
   for (std::size_t k = 0; k < n; ++k) linear.push_back({k});
 
   std::vector<std::string> drift, diffusion;
   for (std::size_t i = 0; i < n; ++i) {
-    std::vector<int> f;
-    for (std::size_t t = 0; t < monomials.size(); ++t) f.push_back(random_tenths(rng));
-    drift.push_back(polynomial(f, monomials));
-    std::vector<int> g;
-    for (std::size_t t = 0; t <= n; ++t) g.push_back(random_tenths(rng));
-    diffusion.push_back(polynomial(g, linear));
+    drift.push_back(polynomial(system.drift_tenths[i], monomials));
+    diffusion.push_back(polynomial(system.diffusion_tenths[i], linear));
   }
 
   auto row = [n](std::size_t i, const std::string& diagonal) {

@@ -1,6 +1,6 @@
 // The kind registry (kinds/filter_kinds.hpp) is the one list of built-in filter kinds: every
 // other list a user or a test sees must agree with it, and these tests fail when one does not.
-// (The truth schemes have their own registry; tests/test_scheme_registry.cpp.)
+// The same holds for the truth schemes' table (pfgen_support/truth_schemes.hpp).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -12,6 +12,8 @@
 #include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
+#include "pfgen_runtime/schemes.hpp"
+#include "pfgen_support/truth_schemes.hpp"
 #include "support/cli_helpers.hpp"
 
 using namespace pfgen;
@@ -166,4 +168,41 @@ TEST_CASE("kind registry: command-line help, errors and defaults list the regist
     CHECK(at >= last);  // in the registry's order
     last = at;
   }
+}
+
+TEST_CASE("scheme registry: the runtime, the model file, the command line and the README name the same schemes",
+          "[integration][kinds]") {
+  namespace rt = pfgen_runtime;
+  const auto& schemes = pfgen_support::truth_schemes();
+  REQUIRE(!schemes.empty());
+  // A scalar SDE every scheme can step (rk4 needs q = 0).
+  rt::SdeSystem noisy;
+  noisy.n = 1;
+  noisy.q = 1;
+  noisy.drift = [](double, const double* x, double* f) { f[0] = -x[0]; };
+  noisy.diffusion = [](double, const double* x, double* g) { g[0] = 0.1 * x[0]; };
+  noisy.diffusion_jacobian = [](double, const double*, double* dg) { dg[0] = 0.1; };
+  rt::SdeSystem deterministic = noisy;
+  deterministic.q = 0;
+  for (std::size_t k = 0; k < schemes.size(); ++k) {
+    INFO(schemes[k].name);
+    const rt::SchemeKind kind = rt::scheme_kind_from_string(schemes[k].name);
+    CHECK(static_cast<std::size_t>(kind) == k);
+    CHECK(rt::to_string(kind) == schemes[k].name);
+    const auto scheme = rt::make_scheme(kind, schemes[k].name == "rk4" ? deterministic : noisy);
+    CHECK(scheme->name() == schemes[k].name);  // each scheme class's own name agrees
+  }
+  CHECK_THROWS(rt::scheme_kind_from_string("auto"));  // auto is pfgen's choice, not a scheme
+
+  const std::vector<std::string> choices = pfgen_support::truth_scheme_choices();
+  CHECK(simulation_schemes() == choices);
+  std::string bar, readme_cell;
+  for (const auto& name : choices) {
+    bar += (bar.empty() ? "" : " | ") + name;
+    readme_cell += (readme_cell.empty() ? "" : ", ") + ("`" + name + "`");
+  }
+  const ProcessResult help = run_pfgen({"simulate", "--help"});
+  CHECK(help.out.find(bar) != std::string::npos);
+  const std::string readme = read_file(source_dir() + "/README.md");
+  CHECK(readme.find("| `scheme` | truth scheme | " + readme_cell + " |") != std::string::npos);
 }

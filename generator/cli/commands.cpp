@@ -5,7 +5,6 @@
 #include <regex>
 #include <fstream>
 #include <iostream>
-#include <unistd.h>
 
 #include "cli_options.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
@@ -15,6 +14,7 @@
 #include "pfgen/printing/equation_report.hpp"
 #include "pfgen/printing/json_writer.hpp"
 #include "pfgen/printing/latex_document.hpp"
+#include "pfgen_support/atomic_file.hpp"
 
 namespace pfgen::cli {
 namespace {
@@ -28,19 +28,9 @@ std::string single_filter(const std::string& name, const Model& model) {
 }  // namespace
 
 void write_file_atomically(const std::string& path, const std::string& contents) {
-  const std::string temporary = path + ".pfgen-tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw CliValueError("-o: cannot write '" + path + "'");
-    out << contents;
-    out.close();
-    if (!out) {
-      std::remove(temporary.c_str());
-      throw CliValueError("-o: cannot write '" + path + "'");
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
+  try {
+    pfgen_support::write_file_atomically(path, contents);
+  } catch (const pfgen_support::AtomicWriteError&) {
     throw CliValueError("-o: cannot write '" + path + "'");
   }
 }

@@ -1,6 +1,5 @@
 #include "simulation_settings.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -10,6 +9,7 @@
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/simulation_rules.hpp"
+#include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::cli {
 namespace {
@@ -28,11 +28,7 @@ double parse_double(const std::string& option, const std::string& text) {
 }
 
 // Shortest round-trip text, fixed or scientific whichever is shorter ("20", not "2e+01").
-std::string number_text(double value) {
-  char buffer[64];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
-  return std::string(buffer, end);
-}
+std::string number_text(double value) { return pfgen_support::shortest_chars(value); }
 
 // The command line's value, else the model file's, else `value` keeps pfgen's default.
 template <class T>

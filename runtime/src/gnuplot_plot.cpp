@@ -6,19 +6,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "pfgen_runtime/results_csv.hpp"
-
-extern char** environ;
+#include "pfgen_support/atomic_file.hpp"
+#include "pfgen_support/process.hpp"
 
 namespace pfgen_runtime {
 
@@ -51,7 +46,8 @@ std::string terminal_for(const std::string& plot_path, int width, int height) {
   throw std::invalid_argument("plot '" + plot_path + "': the file name must end in .png or .svg");
 }
 
-// A double as gnuplot reads it back exactly.
+// A double as gnuplot reads it back exactly. %.17g, not the shortest form
+// (pfgen_support::shortest_double): the script is kept beside the plot, and its text is stable.
 std::string exact(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.17g", value);
@@ -65,45 +61,28 @@ std::size_t column(const std::vector<std::string>& columns, const std::string& n
   return static_cast<std::size_t>(it - columns.begin()) + 1;
 }
 
-// Runs gnuplot on the script; returns its exit status and collects its error output.
+// Runs gnuplot on the script (pfgen_support::run_program: no shell, stdin /dev/null); returns its
+// exit status (128 + the signal that ended it) and collects its output, where its errors go.
 int run_gnuplot(const std::string& script, std::string& errors) {
-  int pipe_ends[2];
-  if (pipe(pipe_ends) != 0) throw std::runtime_error(std::string("plot: pipe failed: ") + std::strerror(errno));
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], 1);
-  posix_spawn_file_actions_adddup2(&actions, pipe_ends[1], 2);
-  posix_spawn_file_actions_addclose(&actions, pipe_ends[0]);
-  posix_spawn_file_actions_addclose(&actions, pipe_ends[1]);
-  char program[] = "gnuplot";
-  std::string script_argument = script;
-  char* argv[] = {program, script_argument.data(), nullptr};
-  pid_t pid = 0;
-  const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
-  posix_spawn_file_actions_destroy(&actions);
-  close(pipe_ends[1]);
-  if (spawned != 0) {
-    close(pipe_ends[0]);
-    if (spawned == ENOENT)
-      throw std::runtime_error("gnuplot is not on PATH: install gnuplot (scripts/install-deps.sh installs gnuplot-nox) "
-                               "to draw plots");
-    throw std::runtime_error(std::string("plot: cannot start gnuplot: ") + std::strerror(spawned));
+  using pfgen_support::ProcessError;
+  pfgen_support::ProcessResult result;
+  try {
+    result = pfgen_support::run_program({"gnuplot", script});
+  } catch (const ProcessError& e) {
+    const std::string reason = std::strerror(e.error_number());
+    switch (e.stage()) {
+      case ProcessError::Stage::pipe: throw std::runtime_error("plot: pipe failed: " + reason);
+      case ProcessError::Stage::spawn:
+        if (e.error_number() == ENOENT)
+          throw std::runtime_error("gnuplot is not on PATH: install gnuplot (scripts/install-deps.sh installs "
+                                   "gnuplot-nox) to draw plots");
+        throw std::runtime_error("plot: cannot start gnuplot: " + reason);
+      case ProcessError::Stage::wait: break;
+    }
+    throw std::runtime_error("plot: waiting for gnuplot failed: " + reason);
   }
-  char buffer[4096];
-  for (;;) {  // read to EOF before waiting, so a chatty gnuplot cannot block on a full pipe
-    const ssize_t count = read(pipe_ends[0], buffer, sizeof buffer);
-    if (count > 0)
-      errors.append(buffer, static_cast<std::size_t>(count));
-    else if (count == 0 || errno != EINTR)
-      break;
-  }
-  close(pipe_ends[0]);
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw std::runtime_error(std::string("plot: waiting for gnuplot failed: ") + std::strerror(errno));
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  errors += result.output;
+  return result.signal ? 128 + result.signal : result.exit_status;
 }
 
 }  // namespace
@@ -158,11 +137,10 @@ void write_error_plot(const std::string& plot_path, const std::string& csv_path,
                       const std::vector<std::string>& state_names, const std::string& title, double y_limit) {
   const std::string script = gnuplot_error_script(plot_path, csv_path, result, state_names, title, y_limit);
   const std::string script_path = plot_path + ".gp";
-  {
-    std::ofstream file(script_path, std::ios::binary | std::ios::trunc);
-    file << script;
-    file.close();
-    if (!file) throw std::runtime_error("cannot write the gnuplot script '" + script_path + "'");
+  try {
+    pfgen_support::write_file_atomically(script_path, script);
+  } catch (const pfgen_support::AtomicWriteError&) {
+    throw std::runtime_error("cannot write the gnuplot script '" + script_path + "'");
   }
   std::remove(plot_path.c_str());  // so a stale plot cannot pass for this one
   std::string errors;

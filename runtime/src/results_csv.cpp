@@ -1,12 +1,11 @@
 #include "pfgen_runtime/results_csv.hpp"
 
-#include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
 #include <functional>
 #include <stdexcept>
-#include <system_error>
+
+#include "pfgen_support/atomic_file.hpp"
+#include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen_runtime {
 
@@ -59,13 +58,9 @@ std::vector<Column> make_columns(const MonteCarloResult& result, const std::vect
   return columns;
 }
 
-// Shortest decimal that reads back to the same double; empty for NaN and inf.
+// Shortest decimal that reads back to the same double (std::to_chars); empty for NaN and inf.
 void append_number(std::string& out, double value) {
-  if (!std::isfinite(value)) return;
-  char buffer[32];
-  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  if (error != std::errc()) throw std::logic_error("results CSV: to_chars failed");
-  out.append(buffer, end);
+  if (std::isfinite(value)) out += pfgen_support::shortest_chars(value);
 }
 
 void append_field(std::string& out, const std::string& field) {
@@ -112,19 +107,12 @@ std::string format_results_csv(const MonteCarloResult& result, const std::vector
 void write_results_csv(const std::string& path, const MonteCarloResult& result,
                        const std::vector<std::string>& state_names) {
   const std::string text = format_results_csv(result, state_names);
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    if (file) file.write(text.data(), static_cast<std::streamsize>(text.size()));
-    file.close();
-    if (!file) {
-      std::remove(temporary.c_str());
+  try {
+    pfgen_support::write_file_atomically(path, text);
+  } catch (const pfgen_support::AtomicWriteError& e) {
+    if (e.stage() == pfgen_support::AtomicWriteError::Stage::write)
       throw std::runtime_error("cannot write the results CSV '" + path + "'");
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw std::runtime_error("cannot write the results CSV '" + path + "' (renaming " + temporary + " failed)");
+    throw std::runtime_error("cannot write the results CSV '" + path + "' (renaming " + e.temporary() + " failed)");
   }
 }
 

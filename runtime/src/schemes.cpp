@@ -1,5 +1,7 @@
 #include "pfgen_runtime/schemes.hpp"
 
+#include "pfgen_support/truth_schemes.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -247,24 +249,23 @@ std::unique_ptr<TruthScheme> RungeKutta4::clone() const { return std::make_uniqu
 
 // --- names and factory ------------------------------------------------------------------------
 
+// The names are the support library's table (pfgen_support/truth_schemes.hpp), whose rows are in
+// the order of SchemeKind.
 std::string to_string(SchemeKind kind) {
-  switch (kind) {
-    case SchemeKind::euler_maruyama: return "euler-maruyama";
-    case SchemeKind::milstein: return "milstein";
-    case SchemeKind::derivative_free_milstein: return "derivative-free-milstein";
-    case SchemeKind::tamed_euler: return "tamed-euler";
-    case SchemeKind::adaptive_euler: return "adaptive-euler";
-    case SchemeKind::rk4: return "rk4";
-  }
-  throw std::invalid_argument("unknown scheme kind");
+  const auto& schemes = pfgen_support::truth_schemes();
+  const auto index = static_cast<std::size_t>(kind);
+  if (index >= schemes.size()) throw std::invalid_argument("unknown scheme kind");
+  return schemes[index].name;
 }
 
 SchemeKind scheme_kind_from_string(const std::string& name) {
-  for (SchemeKind kind : {SchemeKind::euler_maruyama, SchemeKind::milstein, SchemeKind::derivative_free_milstein,
-                          SchemeKind::tamed_euler, SchemeKind::adaptive_euler, SchemeKind::rk4})
-    if (to_string(kind) == name) return kind;
-  throw std::invalid_argument("unknown truth scheme '" + name +
-                              "' (euler-maruyama, milstein, derivative-free-milstein, tamed-euler, adaptive-euler, rk4)");
+  const auto& schemes = pfgen_support::truth_schemes();
+  std::string known;
+  for (std::size_t k = 0; k < schemes.size(); ++k) {
+    if (schemes[k].name == name) return static_cast<SchemeKind>(k);
+    known += (known.empty() ? "" : ", ") + schemes[k].name;
+  }
+  throw std::invalid_argument("unknown truth scheme '" + name + "' (" + known + ")");
 }
 
 std::unique_ptr<TruthScheme> make_scheme(SchemeKind kind, SdeSystem system) {

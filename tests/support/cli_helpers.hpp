@@ -69,17 +69,15 @@ inline std::size_t count_lines(const std::string& text) {
   return lines;
 }
 
-// `pfgen ARG...`, each argument quoted for the shell.
-inline ProcessResult run_pfgen(std::initializer_list<std::string> arguments) {
-  std::string command = shell_quote(pfgen_executable());
-  for (const auto& argument : arguments) command += " " + shell_quote(argument);
-  return run_process(command);
+// `pfgen ARG...`, without a shell.
+inline ProcessResult run_pfgen(const std::vector<std::string>& arguments) {
+  std::vector<std::string> argv{pfgen_executable()};
+  argv.insert(argv.end(), arguments.begin(), arguments.end());
+  return run_program(argv);
 }
 
-inline ProcessResult run_pfgen(const std::vector<std::string>& arguments) {
-  std::string command = shell_quote(pfgen_executable());
-  for (const auto& argument : arguments) command += " " + shell_quote(argument);
-  return run_process(command);
+inline ProcessResult run_pfgen(std::initializer_list<std::string> arguments) {
+  return run_pfgen(std::vector<std::string>(arguments));
 }
 
 }  // namespace pfgen_test

@@ -3,19 +3,16 @@
 #include <stdexcept>
 
 #include "pfgen/model/model.hpp"
+#include "pfgen_support/variable_names.hpp"
 
 namespace pfgen {
 
 FilterVariables::FilterVariables(std::size_t n) : n_(n), text_names_(filter_variable_names(n)) {
-  // Indices run together (P12) while every index is one digit; from n = 10 on
-  // they are separated (P1_10 in text, P_{1,10} in LaTeX) to stay unambiguous.
-  const bool separate = n >= 10;
-  for (std::size_t i = 0; i < n; ++i) latex_names_.push_back("m_{" + std::to_string(i + 1) + "}");
+  // The naming rule (P1_10 and P_{1,10} from n = 10 on) is pfgen_support's.
+  for (std::size_t i = 0; i < n; ++i) latex_names_.push_back(pfgen_support::mean_latex_name(i));
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = i; j < n; ++j) {
-      std::string a = std::to_string(i + 1);
-      std::string b = std::to_string(j + 1);
-      latex_names_.push_back("P_{" + a + (separate ? "," : "") + b + "}");
+      latex_names_.push_back(pfgen_support::covariance_latex_name(i, j, n));
       P_entries_.emplace_back(i, j);
     }
   }

@@ -1,5 +1,7 @@
 #include "pfgen/model/model.hpp"
 
+#include "pfgen_support/truth_schemes.hpp"
+
 #include <algorithm>
 
 namespace pfgen {
@@ -15,18 +17,6 @@ ExMatrix multiply_by_transpose(const ExMatrix& g) {
     }
   }
   return G;
-}
-
-std::vector<std::string> filter_variable_names(std::size_t n) {
-  // Indices run together (P12) while every index is one digit; from n = 10 on
-  // they are separated (P1_10) to stay unambiguous.
-  const bool separate = n >= 10;
-  std::vector<std::string> names;
-  for (std::size_t i = 0; i < n; ++i) names.push_back("m" + std::to_string(i + 1));
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j)
-      names.push_back("P" + std::to_string(i + 1) + (separate ? "_" : "") + std::to_string(j + 1));
-  return names;
 }
 
 std::string filter_identifier(const std::string& name) {
@@ -46,8 +36,7 @@ std::string SimulationSection::location_of(const std::string& field) const {
 }
 
 const std::vector<std::string>& simulation_schemes() {
-  static const std::vector<std::string> schemes = {"auto",        "euler-maruyama", "milstein", "derivative-free-milstein",
-                                                   "tamed-euler", "adaptive-euler", "rk4"};
+  static const std::vector<std::string> schemes = pfgen_support::truth_scheme_choices();
   return schemes;
 }
 

@@ -5,6 +5,7 @@
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/model_validator.hpp"
 #include "pfgen/notation/number_format.hpp"
+#include "pfgen_support/variable_names.hpp"
 
 namespace pfgen {
 namespace {
@@ -151,12 +152,11 @@ GiNaC::symtab ModelBuilder::filter_symbols() {
   GiNaC::symtab table = symbols();
   const std::vector<GiNaC::symbol>& variables = filter_variables();
   const std::size_t n = model_.states.size();
-  const bool separate = n >= 10;
   for (const auto& v : variables) table[v.get_name()] = v;
   std::size_t index = n;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j, ++index)
-      table["P" + std::to_string(j + 1) + (separate ? "_" : "") + std::to_string(i + 1)] = variables.at(index);
+      table[pfgen_support::covariance_name(j, i, n)] = variables.at(index);
   return table;
 }
 

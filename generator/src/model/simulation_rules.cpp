@@ -1,21 +1,17 @@
 #include "pfgen/model/simulation_rules.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <set>
 
 #include "pfgen/model/model_filters.hpp"
+#include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen {
 namespace {
 
 // Shortest round-trip text ("20", "9.2", "1e-06").
-std::string number_text(double value) {
-  char buffer[64];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
-  return std::string(buffer, end);
-}
+std::string number_text(double value) { return pfgen_support::shortest_chars(value); }
 
 std::string window_text(const std::pair<double, double>& w) {
   return "window [" + number_text(w.first) + ", " + number_text(w.second) + "]";

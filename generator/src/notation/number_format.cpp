@@ -1,8 +1,6 @@
 #include "pfgen/notation/number_format.hpp"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <sstream>
 
 namespace pfgen {
@@ -25,16 +23,6 @@ std::string exact_decimal(const GiNaC::numeric& value) {
     digits.insert(digits.size() - places, ".");
   }
   return (value.is_negative() ? "-" : "") + digits;
-}
-
-std::string shortest_double(double value) {
-  if (value == 0) return "0";
-  char buffer[40];
-  for (int precision = 1; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  return buffer;
 }
 
 }  // namespace pfgen

@@ -1,6 +1,5 @@
 #include "pfgen/toolchain/plugin_compiler.hpp"
 
-#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -9,9 +8,9 @@
 #include <mutex>
 #include <sstream>
 #include <system_error>
-#include <unistd.h>
 
 #include "pfgen/toolchain/content_hash.hpp"
+#include "pfgen_support/atomic_file.hpp"
 
 namespace pfgen::toolchain {
 namespace {
@@ -86,25 +85,14 @@ bool read_file(const fs::path& path, std::string& text) {
   return true;
 }
 
-// A name no other thread or process uses at the same time, in the directory of `target`, so
-// that the final rename() stays within one file system and is atomic.
-fs::path temporary_beside(const fs::path& target) {
-  static std::atomic<unsigned long> counter{0};
-  return target.string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-}
-
+// Writes through the support library's unique temporary and rename(), so that concurrent
+// processes filling the same cache entry never see a partial file.
 void write_atomically(const fs::path& path, const std::string& text) {
-  const fs::path temporary = temporary_beside(path);
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << text;
-    if (!out.flush()) throw ToolchainError("cannot write " + temporary.string());
-  }
-  std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error) {
-    fs::remove(temporary, error);
-    throw ToolchainError("cannot write " + path.string());
+  try {
+    pfgen_support::write_file_atomically(path.string(), text);
+  } catch (const pfgen_support::AtomicWriteError& e) {
+    throw ToolchainError("cannot write " +
+                         (e.stage() == pfgen_support::AtomicWriteError::Stage::write ? e.temporary() : path.string()));
   }
 }
 
@@ -168,7 +156,7 @@ PluginBuild build_plugin(const std::string& source, const PluginBuildOptions& op
   if (error) throw ToolchainError("cannot create the plugin cache directory " + dir.string() + ": " + error.message());
   write_atomically(source_path, source);
 
-  const fs::path temporary = temporary_beside(library);
+  const fs::path temporary = pfgen_support::unique_temporary_path(library.string());
   std::vector<std::string> argv = compiler;
   argv.insert(argv.end(), flags.begin(), flags.end());
   argv.insert(argv.end(), {"-o", temporary.string(), source_path.string()});

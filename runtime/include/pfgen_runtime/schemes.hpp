@@ -182,6 +182,7 @@ class RungeKutta4 : public TruthScheme {
   Eigen::VectorXd k1_, k2_, k3_, k4_, stage_;
 };
 
+// In the order of the names in pfgen_support::truth_schemes() (the one table of scheme names).
 enum class SchemeKind { euler_maruyama, milstein, derivative_free_milstein, tamed_euler, adaptive_euler, rk4 };
 // "euler-maruyama", "milstein", "derivative-free-milstein", "tamed-euler", "adaptive-euler", "rk4".
 std::string to_string(SchemeKind kind);

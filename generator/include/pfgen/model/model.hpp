@@ -16,6 +16,7 @@
 #include "pfgen/model/expression_matrix.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/observation_model.hpp"
+#include "pfgen_support/variable_names.hpp"
 
 namespace pfgen {
 
@@ -102,8 +103,9 @@ struct Model {
 
 // The text names of the filter's variables for n states, in their order: m1..mn, then the
 // upper triangle of P row by row, P11, P12, ...; from n = 10 on the P indices are
-// separated (P1_10). The derivation's FilterVariables uses the same names.
-std::vector<std::string> filter_variable_names(std::size_t n);
+// separated (P1_10). The naming rule is the support library's (pfgen_support/variable_names.hpp);
+// the derivation's FilterVariables uses the same names.
+using pfgen_support::filter_variable_names;
 
 // A filter's name as a C++ identifier, used for generated namespaces and file names:
 // '-' becomes '_' ("ekf-additive" -> "ekf_additive", "ekf-printed" -> "ekf_printed").

@@ -2,6 +2,8 @@
 #include <ginac/ginac.h>
 #include <string>
 
+#include "pfgen_support/shortest_double.hpp"
+
 namespace pfgen {
 
 // A rational whose denominator has only the prime factors 2 and 5 (3/100,
@@ -9,7 +11,8 @@ namespace pfgen {
 // return an empty string and are printed as fractions by the caller.
 std::string exact_decimal(const GiNaC::numeric& value);
 
-// A double as the shortest text that reads back as the same double ("%.17g" at most).
-std::string shortest_double(double value);
+// A double as the shortest text that reads back as the same double ("%.17g" at most): the
+// support library's (pfgen_support/shortest_double.hpp), shared with the runtime.
+using pfgen_support::shortest_double;
 
 }  // namespace pfgen
