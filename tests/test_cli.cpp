@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "pfgen/kinds/filter_kinds.hpp"
+#include "pfgen/model/model_filters.hpp"
+#include "pfgen/model/yaml_model_loader.hpp"
 #include "support/cli_helpers.hpp"
 
 using namespace pfgen_test;
@@ -217,6 +219,15 @@ void check_close(double actual, double expected, const std::string& what) {
 // Every built-in kind, from the registry: a new kind is covered (or these tests fail) at once.
 const std::vector<std::string> kAllKinds = pfgen::filter_kind_names();
 
+// The built-in kinds a model file supports, from the registry's rules (no additive diffusion:
+// fewer kinds).
+std::vector<std::string> supported_kinds(const std::string& file) {
+  std::vector<std::string> names;
+  for (pfgen::FilterKind kind : pfgen::supported_filter_kinds(pfgen::load_model_file(example(file))))
+    names.push_back(pfgen::filter_kind_name(kind));
+  return names;
+}
+
 }  // namespace
 
 TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed filters", "[cli][integration]") {
@@ -328,7 +339,7 @@ TEST_CASE("derive --format json is a JSON object with the documented keys", "[cl
     std::size_t n, p;
   };
   for (const auto& c : {Case{"basin2006_quadratic.yaml", kAllKinds, 1, 1},
-                        Case{"basin_skliar_partial.yaml", {"optimal", "ekf"}, 2, 1}}) {
+                        Case{"basin_skliar_partial.yaml", supported_kinds("basin_skliar_partial.yaml"), 2, 1}}) {
     for (const auto& kind : c.kinds) {
       INFO(c.file << " --filter " << kind);
       ProcessResult r = run_pfgen({"derive", example(c.file), "--filter", kind, "--format", "json"});
@@ -374,7 +385,7 @@ TEST_CASE("derive, latex and eval are byte-identical across separate processes",
   };
   const std::vector<Case> cases = {
       {"basin2006_quadratic.yaml", kAllKinds, "--m=-1.5", "--P=0.5"},
-      {"basin_skliar_partial.yaml", {"optimal", "ekf"}, "--m=-1.5,2", "--P=0.5,-0.2;-0.2,0.3"},
+      {"basin_skliar_partial.yaml", supported_kinds("basin_skliar_partial.yaml"), "--m=-1.5,2", "--P=0.5,-0.2;-0.2,0.3"},
   };
   auto same_three_times = [](const std::vector<std::string>& args) {
     std::vector<ProcessResult> runs;
