@@ -21,19 +21,24 @@ template <class Scalar>
 struct Params {
 };
 
+// derivatives(), gain() and predicted_observation() first name each input they read as the
+// equations name it: the filter variables in state order (m1, ..., mn, P11, P12, ..., from n = 10
+// on P1_10), then the parameters in the model's order; the time argument has the model's name.
+
 // out = [m_drift, P_drift upper triangle]: the same quantities as `pfgen eval`,
 // so that dm = m_drift dt + K (dy - h dt) and dP = P_drift dt.
 // Ops: 7 (2 add, 5 mul, 0 div, 0 call) without CSE, 7 (2 add, 5 mul, 0 div, 0 call) with CSE.
 template <class Scalar>
 inline void derivatives(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* out) {
   (void)t;
-  (void)state;
   (void)params;
-  const Scalar tmp0 = state[0] * state[0];
+  const Scalar m1 = state[0];
+  const Scalar P11 = state[1];
+  const Scalar tmp0 = m1 * m1;
   const Scalar tmp1 = tmp0 * Scalar(0.1);
-  const Scalar tmp2 = state[0] * state[1];
+  const Scalar tmp2 = m1 * P11;
   const Scalar tmp3 = tmp2 * Scalar(0.4);
-  const Scalar tmp4 = state[1] * state[1];
+  const Scalar tmp4 = P11 * P11;
   const Scalar tmp5 = tmp3 - tmp4;
   const Scalar tmp6 = tmp5 + Scalar(0.01);
   out[0] = tmp1;
@@ -45,9 +50,9 @@ inline void derivatives(Scalar t, const Scalar* state, const Params<Scalar>& par
 template <class Scalar>
 inline void gain(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* K) {
   (void)t;
-  (void)state;
   (void)params;
-  K[0] = state[1];
+  const Scalar P11 = state[1];
+  K[0] = P11;
 }
 
 // h (p entries) = A0 + A m, the rate of the predicted observation.
@@ -55,9 +60,9 @@ inline void gain(Scalar t, const Scalar* state, const Params<Scalar>& params, Sc
 template <class Scalar>
 inline void predicted_observation(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* h) {
   (void)t;
-  (void)state;
   (void)params;
-  h[0] = state[0];
+  const Scalar m1 = state[0];
+  h[0] = m1;
 }
 
 // The filter state at t = 0 from the model's initial m0 and P0 (zeros if it gives none).

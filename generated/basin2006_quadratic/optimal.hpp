@@ -21,27 +21,32 @@ template <class Scalar>
 struct Params {
 };
 
+// derivatives(), gain() and predicted_observation() first name each input they read as the
+// equations name it: the filter variables in state order (m1, ..., mn, P11, P12, ..., from n = 10
+// on P1_10), then the parameters in the model's order; the time argument has the model's name.
+
 // out = [m_drift, P_drift upper triangle]: the same quantities as `pfgen eval`,
 // so that dm = m_drift dt + K (dy - h dt) and dP = P_drift dt.
 // Ops: 18 (4 add, 14 mul, 0 div, 0 call) without CSE, 15 (4 add, 11 mul, 0 div, 0 call) with CSE.
 template <class Scalar>
 inline void derivatives(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* out) {
   (void)t;
-  (void)state;
   (void)params;
-  const Scalar tmp0 = state[0] * state[0];
+  const Scalar m1 = state[0];
+  const Scalar P11 = state[1];
+  const Scalar tmp0 = m1 * m1;
   const Scalar tmp1 = tmp0 * Scalar(0.1);
-  const Scalar tmp2 = state[1] * Scalar(0.1);
+  const Scalar tmp2 = P11 * Scalar(0.1);
   const Scalar tmp3 = tmp1 + tmp2;
   const Scalar tmp4 = tmp0 * tmp0;
   const Scalar tmp5 = tmp4 * Scalar(0.01);
-  const Scalar tmp6 = state[1] * tmp0;
+  const Scalar tmp6 = P11 * tmp0;
   const Scalar tmp7 = tmp6 * Scalar(0.06);
   const Scalar tmp8 = tmp5 + tmp7;
-  const Scalar tmp9 = state[0] * state[1];
+  const Scalar tmp9 = m1 * P11;
   const Scalar tmp10 = tmp9 * Scalar(0.4);
   const Scalar tmp11 = tmp8 + tmp10;
-  const Scalar tmp12 = state[1] * state[1];
+  const Scalar tmp12 = P11 * P11;
   const Scalar tmp13 = tmp12 * Scalar(0.97);
   const Scalar tmp14 = tmp11 - tmp13;
   out[0] = tmp3;
@@ -53,9 +58,9 @@ inline void derivatives(Scalar t, const Scalar* state, const Params<Scalar>& par
 template <class Scalar>
 inline void gain(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* K) {
   (void)t;
-  (void)state;
   (void)params;
-  K[0] = state[1];
+  const Scalar P11 = state[1];
+  K[0] = P11;
 }
 
 // h (p entries) = A0 + A m, the rate of the predicted observation.
@@ -63,9 +68,9 @@ inline void gain(Scalar t, const Scalar* state, const Params<Scalar>& params, Sc
 template <class Scalar>
 inline void predicted_observation(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* h) {
   (void)t;
-  (void)state;
   (void)params;
-  h[0] = state[0];
+  const Scalar m1 = state[0];
+  h[0] = m1;
 }
 
 // The filter state at t = 0 from the model's initial m0 and P0 (zeros if it gives none).

@@ -22,31 +22,39 @@ template <class Scalar>
 struct Params {
 };
 
+// derivatives(), gain() and predicted_observation() first name each input they read as the
+// equations name it: the filter variables in state order (m1, ..., mn, P11, P12, ..., from n = 10
+// on P1_10), then the parameters in the model's order; the time argument has the model's name.
+
 // out = [m_drift, P_drift upper triangle]: the same quantities as `pfgen eval`,
 // so that dm = m_drift dt + K (dy - h dt) and dP = P_drift dt.
 // Ops: 19 (8 add, 11 mul, 0 div, 0 call) without CSE, 18 (8 add, 10 mul, 0 div, 0 call) with CSE.
 template <class Scalar>
 inline void derivatives(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* out) {
   (void)t;
-  (void)state;
   (void)params;
-  const Scalar tmp0 = state[0] * state[0];
+  const Scalar m1 = state[0];
+  const Scalar m2 = state[1];
+  const Scalar P11 = state[2];
+  const Scalar P12 = state[3];
+  const Scalar P22 = state[4];
+  const Scalar tmp0 = m1 * m1;
   const Scalar tmp1 = tmp0 * Scalar(0.1);
-  const Scalar tmp2 = state[1] * Scalar(0.1);
+  const Scalar tmp2 = m2 * Scalar(0.1);
   const Scalar tmp3 = tmp1 + tmp2;
-  const Scalar tmp4 = state[2] * state[2];
+  const Scalar tmp4 = P11 * P11;
   const Scalar tmp5 = -tmp4;
-  const Scalar tmp6 = state[3] * Scalar(0.2);
+  const Scalar tmp6 = P12 * Scalar(0.2);
   const Scalar tmp7 = tmp5 + tmp6;
-  const Scalar tmp8 = state[2] * state[3];
+  const Scalar tmp8 = P11 * P12;
   const Scalar tmp9 = -tmp8;
-  const Scalar tmp10 = state[3] * Scalar(0.1);
+  const Scalar tmp10 = P12 * Scalar(0.1);
   const Scalar tmp11 = tmp9 + tmp10;
-  const Scalar tmp12 = state[4] * Scalar(0.1);
+  const Scalar tmp12 = P22 * Scalar(0.1);
   const Scalar tmp13 = tmp11 + tmp12;
-  const Scalar tmp14 = state[3] * state[3];
+  const Scalar tmp14 = P12 * P12;
   const Scalar tmp15 = -tmp14;
-  const Scalar tmp16 = state[4] * Scalar(0.2);
+  const Scalar tmp16 = P22 * Scalar(0.2);
   const Scalar tmp17 = tmp15 + tmp16;
   out[0] = tmp3;
   out[1] = tmp2;
@@ -60,10 +68,11 @@ inline void derivatives(Scalar t, const Scalar* state, const Params<Scalar>& par
 template <class Scalar>
 inline void gain(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* K) {
   (void)t;
-  (void)state;
   (void)params;
-  K[0] = state[2];
-  K[1] = state[3];
+  const Scalar P11 = state[2];
+  const Scalar P12 = state[3];
+  K[0] = P11;
+  K[1] = P12;
 }
 
 // h (p entries) = A0 + A m, the rate of the predicted observation.
@@ -71,9 +80,9 @@ inline void gain(Scalar t, const Scalar* state, const Params<Scalar>& params, Sc
 template <class Scalar>
 inline void predicted_observation(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* h) {
   (void)t;
-  (void)state;
   (void)params;
-  h[0] = state[0];
+  const Scalar m1 = state[0];
+  h[0] = m1;
 }
 
 // The filter state at t = 0 from the model's initial m0 and P0 (zeros if it gives none).

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <map>
 
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/notation/number_format.hpp"
@@ -23,6 +24,13 @@ std::string shortest_float(float value) {
     if (std::strtof(buffer, nullptr) == value) break;
   }
   return buffer;
+}
+
+// target[0], target[1], ...
+std::vector<std::string> indexed(const std::string& target, std::size_t count) {
+  std::vector<std::string> out;
+  for (std::size_t k = 0; k < count; ++k) out.push_back(target + "[" + std::to_string(k) + "]");
+  return out;
 }
 
 }  // namespace
@@ -74,8 +82,25 @@ std::string CppEmitter::operation(const ExpressionGraph&, const Node& node,
   return "?";
 }
 
+std::string CppEmitter::input_declarations(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                                           const std::vector<std::size_t>& order) const {
+  const std::vector<bool> needed = graph.needed(outputs);
+  std::string text;
+  for (std::size_t id : order) {
+    const Node& node = graph.node(id);
+    if (needed.at(id) && node.kind == OpKind::Input && !node.source.empty())
+      text += "  const Scalar " + node.name + " = " + node.source + ";\n";
+  }
+  return text;
+}
+
 std::string CppEmitter::shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                                     const std::string& target) const {
+  return shared_body(graph, outputs, indexed(target, outputs.size()));
+}
+
+std::string CppEmitter::shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                                    const std::vector<std::string>& destinations) const {
   std::map<std::size_t, std::string> names;
   auto spell = [&](std::size_t id) {
     if (graph.is_leaf(id)) return operation(graph, graph.node(id), {});
@@ -86,12 +111,12 @@ std::string CppEmitter::shared_body(const ExpressionGraph& graph, const std::vec
     const Node& node = graph.node(id);
     std::vector<std::string> operands;
     for (std::size_t arg : node.args) operands.push_back(spell(arg));
-    std::string name = "tmp" + std::to_string(names.size());
+    std::string name = temporary_prefix_ + std::to_string(names.size());
     body += "  const Scalar " + name + " = " + operation(graph, node, operands) + ";\n";
     names[id] = name;
   }
   for (std::size_t k = 0; k < outputs.size(); ++k)
-    body += "  " + target + "[" + std::to_string(k) + "] = " + spell(outputs[k]) + ";\n";
+    body += "  " + destinations.at(k) + " = " + spell(outputs[k]) + ";\n";
   return body;
 }
 
@@ -106,8 +131,8 @@ std::string CppEmitter::tree_body(const ExpressionGraph& graph, const std::vecto
     return node.kind == OpKind::Call ? text : "(" + text + ")";
   };
   std::string body;
-  for (std::size_t k = 0; k < outputs.size(); ++k)
-    body += "  " + target + "[" + std::to_string(k) + "] = " + spell(outputs[k]) + ";\n";
+  const std::vector<std::string> destinations = indexed(target, outputs.size());
+  for (std::size_t k = 0; k < outputs.size(); ++k) body += "  " + destinations[k] + " = " + spell(outputs[k]) + ";\n";
   return body;
 }
 

@@ -39,35 +39,44 @@ std::size_t ExpressionGraph::intern(Node node) {
   return nodes_.size() - 1;
 }
 
-std::size_t ExpressionGraph::input(const std::string& spelling) { return intern(Node{OpKind::Input, spelling, 0, {}}); }
+std::size_t ExpressionGraph::input(const std::string& name, const std::string& source) {
+  return intern(Node{OpKind::Input, name, source, 0, {}});
+}
 
-std::size_t ExpressionGraph::constant(const GiNaC::numeric& value) { return intern(Node{OpKind::Constant, "", value, {}}); }
+std::size_t ExpressionGraph::constant(const GiNaC::numeric& value) {
+  return intern(Node{OpKind::Constant, "", "", value, {}});
+}
 
 // Commutative operations list their operands in a fixed order, so a*b and b*a share a node.
 std::size_t ExpressionGraph::add(std::size_t a, std::size_t b) {
-  return intern(Node{OpKind::Add, "", 0, {std::min(a, b), std::max(a, b)}});
+  return intern(Node{OpKind::Add, "", "", 0, {std::min(a, b), std::max(a, b)}});
 }
-std::size_t ExpressionGraph::sub(std::size_t a, std::size_t b) { return intern(Node{OpKind::Sub, "", 0, {a, b}}); }
+std::size_t ExpressionGraph::sub(std::size_t a, std::size_t b) { return intern(Node{OpKind::Sub, "", "", 0, {a, b}}); }
 std::size_t ExpressionGraph::mul(std::size_t a, std::size_t b) {
-  return intern(Node{OpKind::Mul, "", 0, {std::min(a, b), std::max(a, b)}});
+  return intern(Node{OpKind::Mul, "", "", 0, {std::min(a, b), std::max(a, b)}});
 }
-std::size_t ExpressionGraph::div(std::size_t a, std::size_t b) { return intern(Node{OpKind::Div, "", 0, {a, b}}); }
-std::size_t ExpressionGraph::neg(std::size_t a) { return intern(Node{OpKind::Neg, "", 0, {a}}); }
+std::size_t ExpressionGraph::div(std::size_t a, std::size_t b) { return intern(Node{OpKind::Div, "", "", 0, {a, b}}); }
+std::size_t ExpressionGraph::neg(std::size_t a) { return intern(Node{OpKind::Neg, "", "", 0, {a}}); }
 std::size_t ExpressionGraph::call(const std::string& function, const std::vector<std::size_t>& args) {
-  return intern(Node{OpKind::Call, function, 0, args});
+  return intern(Node{OpKind::Call, function, "", 0, args});
 }
 
 bool ExpressionGraph::is_leaf(std::size_t id) const {
   return nodes_[id].kind == OpKind::Input || nodes_[id].kind == OpKind::Constant;
 }
 
-std::vector<std::size_t> ExpressionGraph::needed_operations(const std::vector<std::size_t>& outputs) const {
+std::vector<bool> ExpressionGraph::needed(const std::vector<std::size_t>& outputs) const {
   std::vector<bool> needed(nodes_.size(), false);
-  for (std::size_t out : outputs) needed[out] = true;
+  for (std::size_t out : outputs) needed.at(out) = true;
   // Operands have smaller numbers than their users: one backward sweep marks everything needed.
   for (std::size_t id = nodes_.size(); id-- > 0;)
     if (needed[id])
       for (std::size_t arg : nodes_[id].args) needed[arg] = true;
+  return needed;
+}
+
+std::vector<std::size_t> ExpressionGraph::needed_operations(const std::vector<std::size_t>& outputs) const {
+  const std::vector<bool> needed = this->needed(outputs);
   std::vector<std::size_t> order;
   for (std::size_t id = 0; id < nodes_.size(); ++id)
     if (needed[id] && !is_leaf(id)) order.push_back(id);

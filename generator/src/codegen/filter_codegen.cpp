@@ -1,5 +1,6 @@
 #include "pfgen/codegen/filter_codegen.hpp"
 
+#include "pfgen/codegen/cpp_names.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/codegen/template_text.hpp"
 
@@ -15,6 +16,38 @@ std::string ops_comment(const FunctionStats& s) {
   return "Ops: " + counts_text(s.naive) + " without CSE, " + counts_text(s.cse) + " with CSE.";
 }
 
+// The arguments of derivatives(), gain() and predicted_observation() and their temporaries,
+// named clear of the model's names (cpp_names.hpp). The time argument has the model's name.
+struct FunctionNames {
+  std::string time, state, params, out, K, h, temporary_prefix;
+};
+
+FunctionNames function_names(const Model& model) {
+  CppNames names(filter_input_names(model));
+  FunctionNames f;
+  f.time = model.time.get_name();
+  f.state = names.take("state");
+  f.params = names.take("params");
+  f.out = names.take("out");
+  f.K = names.take("K");
+  f.h = names.take("h");
+  f.temporary_prefix = names.temporary_prefix();
+  return f;
+}
+
+// The top of a function's body: `(void)` for each argument its outputs do not read (the
+// functions share one signature, and -Wunused-parameter must stay quiet), then each input it
+// reads, named once.
+std::string prologue(const ExpressionGraph& graph, const GraphBuilder& builder, const std::vector<std::size_t>& roots,
+                     const FunctionNames& names, const CppEmitter& emitter) {
+  const InputUse use = builder.uses(roots);
+  std::string text;
+  if (!use.time) text += "  (void)" + names.time + ";\n";
+  if (!use.variables) text += "  (void)" + names.state + ";\n";
+  if (!use.parameters) text += "  (void)" + names.params + ";\n";
+  return text + emitter.input_declarations(graph, roots, builder.declaration_order());
+}
+
 // One generated function: its statistics and its body.
 struct FunctionCode {
   FunctionStats stats;
@@ -23,16 +56,17 @@ struct FunctionCode {
 
 FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
                            const std::string& target, const Model& model, const FilterVariables& vars,
-                           const CodegenOptions& options) {
+                           const CodegenOptions& options, const FunctionNames& names) {
   ExpressionGraph graph;
-  GraphBuilder builder(graph, model, vars);
+  GraphBuilder builder(graph, model, vars, names.state, names.params);
   std::vector<std::size_t> roots;
   for (const auto& p : outputs) roots.push_back(builder.polynomial(p));
-  CppEmitter emitter(options.scalar);
+  CppEmitter emitter(options.scalar, names.temporary_prefix);
   FunctionCode code;
   code.stats = FunctionStats{function, graph.tree_counts(roots), graph.shared_counts(roots)};
-  code.body = options.eliminate_common_subexpressions ? emitter.shared_body(graph, roots, target)
-                                                      : emitter.tree_body(graph, roots, target);
+  code.body = prologue(graph, builder, roots, names, emitter) +
+              (options.eliminate_common_subexpressions ? emitter.shared_body(graph, roots, target)
+                                                       : emitter.tree_body(graph, roots, target));
   return code;
 }
 
@@ -43,17 +77,18 @@ FunctionCode function_code(const std::string& function, const std::vector<Polyno
 // expanded equations; the emitted graph is whichever of the two forms needs
 // fewer operations after sharing. A user filter has no Jacobian term (its P
 // drift is given whole), so it always takes the expanded form.
-FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
+FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                              const FunctionNames& names) {
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
   std::vector<Polynomial> expanded = eq.m_drift;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) expanded.push_back(eq.P_drift(i, j));
-  FunctionCode flat = function_code("derivatives", expanded, "out", model, vars, options);
+  FunctionCode flat = function_code("derivatives", expanded, names.out, model, vars, options, names);
   if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty()) return flat;
 
   ExpressionGraph graph;
-  GraphBuilder builder(graph, model, vars);
+  GraphBuilder builder(graph, model, vars, names.state, names.params);
   std::vector<std::size_t> roots;
   for (const auto& p : eq.m_drift) roots.push_back(builder.polynomial(p));
   std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
@@ -78,7 +113,8 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
   if (structured.total() >= flat.stats.cse.total()) return flat;
   FunctionCode code;
   code.stats = FunctionStats{"derivatives", flat.stats.naive, structured};
-  code.body = CppEmitter(options.scalar).shared_body(graph, roots, "out");
+  const CppEmitter emitter(options.scalar, names.temporary_prefix);
+  code.body = prologue(graph, builder, roots, names, emitter) + emitter.shared_body(graph, roots, names.out);
   return code;
 }
 
@@ -116,10 +152,11 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
   std::vector<Polynomial> gain_outputs;
   for (const auto& row : eq.gain) gain_outputs.insert(gain_outputs.end(), row.begin(), row.end());
 
-  FunctionCode derivatives = derivatives_code(model, eq, options);
-  FunctionCode gain = function_code("gain", gain_outputs, "K", model, vars, options);
+  const FunctionNames names = function_names(model);
+  FunctionCode derivatives = derivatives_code(model, eq, options, names);
+  FunctionCode gain = function_code("gain", gain_outputs, names.K, model, vars, options, names);
   FunctionCode observation =
-      function_code("predicted_observation", eq.predicted_observation, "h", model, vars, options);
+      function_code("predicted_observation", eq.predicted_observation, names.h, model, vars, options, names);
 
   const std::string identifier = filter_identifier(eq.name);
   GeneratedFilter result;
@@ -151,6 +188,12 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
       {"scalar_alias", templated ? "" : "\nusing Scalar = " + scalar_mode_name(options.scalar) + ";\n"},
       {"template_prefix", templated ? "template <class Scalar>\n" : ""},
       {"params_members", params},
+      {"t", names.time},
+      {"state", names.state},
+      {"params", names.params},
+      {"out", names.out},
+      {"K", names.K},
+      {"h", names.h},
       {"derivatives_ops", ops_comment(derivatives.stats)},
       {"derivatives_body", derivatives.body},
       {"gain_meaning", eq.is_user_filter() ? "as given in the model file" : "P A^T (B B^T)^-1"},

@@ -26,25 +26,55 @@ std::vector<GiNaC::ex> canonical_operands(const GiNaC::ex& e) {
   return out;
 }
 
-}  // namespace
-
-GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, const FilterVariables& variables)
-    : GraphBuilder(graph, model, variables.count(), "state") {}
-
-GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, std::size_t count, std::string array)
-    : graph_(graph), array_(std::move(array)) {
-  for (const auto& p : model.parameters) symbols_[p.symbol] = graph_.input("params." + p.name);
-  symbols_[model.time] = graph_.input("t");
-  for (std::size_t v = 0; v < count; ++v)
-    graph_.input(input_name(static_cast<std::uint32_t>(v)));  // inputs first, in layout order
+std::vector<std::string> text_names(const FilterVariables& variables) {
+  std::vector<std::string> names;
+  for (std::size_t v = 0; v < variables.count(); ++v)
+    names.push_back(variables.text_name(static_cast<std::uint32_t>(v)));
+  return names;
 }
 
-std::string GraphBuilder::input_name(std::uint32_t variable) const {
-  return array_ + "[" + std::to_string(variable) + "]";
+}  // namespace
+
+GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, const FilterVariables& variables,
+                           const std::string& array, const std::string& params)
+    : GraphBuilder(graph, model, text_names(variables), array, params) {}
+
+// The inputs are created first, parameters, time, then the variables in their order, so that
+// node numbers (and with them the operand order of every commutative operation) do not depend
+// on which input an equation happens to read first.
+GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, std::vector<std::string> names,
+                           const std::string& array, const std::string& params)
+    : graph_(graph) {
+  for (const auto& p : model.parameters) {
+    parameter_inputs_.push_back(graph_.input(p.name, params + "." + p.name));
+    symbols_[p.symbol] = parameter_inputs_.back();
+  }
+  time_input_ = graph_.input(model.time.get_name());
+  symbols_[model.time] = time_input_;
+  for (std::size_t v = 0; v < names.size(); ++v)
+    variable_inputs_.push_back(graph_.input(names[v], array + "[" + std::to_string(v) + "]"));
+}
+
+std::vector<std::size_t> GraphBuilder::declaration_order() const {
+  std::vector<std::size_t> order = variable_inputs_;
+  order.insert(order.end(), parameter_inputs_.begin(), parameter_inputs_.end());
+  return order;
+}
+
+InputUse GraphBuilder::uses(const std::vector<std::size_t>& outputs) const {
+  const std::vector<bool> needed = graph_.needed(outputs);
+  auto any = [&](const std::vector<std::size_t>& ids) {
+    return std::any_of(ids.begin(), ids.end(), [&](std::size_t id) { return needed[id]; });
+  };
+  InputUse use;
+  use.variables = any(variable_inputs_);
+  use.parameters = any(parameter_inputs_);
+  use.time = needed[time_input_];
+  return use;
 }
 
 std::size_t GraphBuilder::variable_power(std::uint32_t variable, std::uint32_t exponent) {
-  return integer_power(graph_.input(input_name(variable)), exponent);
+  return integer_power(variable_inputs_.at(variable), exponent);
 }
 
 std::size_t GraphBuilder::integer_power(std::size_t base, long exponent) {

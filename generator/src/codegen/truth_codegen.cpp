@@ -4,20 +4,27 @@
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/codegen/cpp_emitter.hpp"
+#include "pfgen/codegen/cpp_names.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 
 namespace pfgen::codegen {
 namespace {
 
-// One graph for all outputs of a function, so subexpressions shared between entries (the
-// powers of x in f and in g, sin(t)) are computed once; outputs are written target[k].
-std::string shared_body(const Model& model, const std::vector<Polynomial>& outputs, const std::string& target) {
-  ExpressionGraph graph;
-  GraphBuilder builder(graph, model, model.n(), "x");
-  std::vector<std::size_t> roots;
-  for (const auto& p : outputs) roots.push_back(builder.polynomial(p));
-  return CppEmitter(ScalarMode::Double).shared_body(graph, roots, target);
-}
+// The truth functions' arguments, their local `params` and their temporaries, named clear of the
+// model's states, parameters and time (cpp_names.hpp); the time argument has the model's name.
+struct TruthNames {
+  explicit TruthNames(const Model& model)
+      : cpp(truth_input_names(model)),
+        time(model.time.get_name()),
+        x(cpp.take("x")),
+        params(cpp.take("params")),
+        temporary_prefix(cpp.temporary_prefix()) {}
+  // An output argument: `preferred` unless the model or an earlier argument took it.
+  std::string take(const std::string& preferred) { return cpp.take(preferred); }
+
+  CppNames cpp;  // first: the names below are taken from it
+  const std::string time, x, params, temporary_prefix;
+};
 
 std::vector<Polynomial> in_states(const Model& model, const ExMatrix& rows) {
   std::vector<Polynomial> out;
@@ -26,33 +33,56 @@ std::vector<Polynomial> in_states(const Model& model, const ExMatrix& rows) {
   return out;
 }
 
-// A function of (t, x) at the default parameters. Unused arguments are cast to void so that
-// the plugin compiles without warnings whatever the model leaves out.
-std::string function(const std::string& signature, const std::string& body) {
-  return "inline void " + signature + " {\n  const Params params{};\n  (void)params;\n  (void)t;\n  (void)x;\n" +
-         body + "}\n\n";
+// One function of (t, x) at the default parameters, all outputs in one graph so that
+// subexpressions shared between entries (the powers of x in f and in g, sin(t)) are computed
+// once; output k is written to destinations[k]. The body first names each input it reads
+// (states, then parameters, as in the model), and casts the arguments it does not read to void
+// so that the plugin compiles without warnings whatever the model leaves out.
+std::string function(const Model& model, TruthNames& names, const std::string& signature, bool reads_x,
+                     const std::vector<Polynomial>& outputs, const std::vector<std::string>& destinations) {
+  ExpressionGraph graph;
+  GraphBuilder builder(graph, model, model.state_names, names.x, names.params);
+  std::vector<std::size_t> roots;
+  for (const auto& p : outputs) roots.push_back(builder.polynomial(p));
+  const CppEmitter emitter(ScalarMode::Double, names.temporary_prefix);
+  const InputUse use = builder.uses(roots);
+  std::string body;
+  if (use.parameters) body += "  const Params " + names.params + "{};\n";
+  if (!use.time) body += "  (void)" + names.time + ";\n";
+  if (reads_x && !use.variables) body += "  (void)" + names.x + ";\n";
+  body += emitter.input_declarations(graph, roots, builder.declaration_order());
+  body += emitter.shared_body(graph, roots, destinations);
+  return "inline void " + signature + " {\n" + body + "}\n\n";
 }
 
-// Each matrix of the observation in its own block: the three are separate outputs, and blocks
-// keep their temporaries apart.
-std::string observation_function(const Model& model) {
+// A function of (t, x) writing output k to target[k].
+std::string state_function(const Model& model, TruthNames& names, const std::string& function_name,
+                           const std::string& preferred_target, const std::vector<Polynomial>& outputs) {
+  const std::string target = names.take(preferred_target);
+  std::vector<std::string> destinations;
+  for (std::size_t k = 0; k < outputs.size(); ++k) destinations.push_back(target + "[" + std::to_string(k) + "]");
+  const std::string signature =
+      function_name + "(double " + names.time + ", const double* " + names.x + ", double* " + target + ")";
+  return function(model, names, signature, true, outputs, destinations);
+}
+
+// A0, A and B in one function of t: entry k of A0, then of A, then of B.
+std::string observation_function(const Model& model, TruthNames& names) {
   const ContinuousObservation& o = model.observation.continuous();
-  std::string body;
+  std::vector<Polynomial> outputs;
+  std::vector<std::string> destinations;
+  std::string signature = "observation(double " + names.time;
   const std::pair<const char*, std::vector<Polynomial>> parts[] = {
       {"A0", in_states(model, ExMatrix{o.A0})}, {"A", in_states(model, o.A)}, {"B", in_states(model, o.B)}};
-  for (const auto& [target, outputs] : parts) {
-    std::string block = shared_body(model, outputs, target);
-    body += "  {\n";
-    for (std::size_t start = 0; start < block.size();) {
-      std::size_t end = block.find('\n', start);
-      body += "  " + block.substr(start, end - start + 1);
-      start = end + 1;
+  for (const auto& [preferred, part] : parts) {
+    const std::string target = names.take(preferred);
+    signature += ", double* " + target;
+    for (std::size_t k = 0; k < part.size(); ++k) {
+      outputs.push_back(part[k]);
+      destinations.push_back(target + "[" + std::to_string(k) + "]");
     }
-    body += "  }\n";
   }
-  return "inline void observation(double t, double* A0, double* A, double* B) {\n"
-         "  const Params params{};\n  (void)params;\n  (void)t;\n" +
-         body + "}\n\n";
+  return function(model, names, signature + ")", false, outputs, destinations);
 }
 
 bool all_zero(const ExMatrix& m) {
@@ -91,19 +121,19 @@ TruthCode generate_truth_code(const Model& model) {
   for (const auto& p : model.parameters) out += "  Scalar " + p.name + " = " + emitter.literal(p.default_value) + ";\n";
   out += "};\n\n";
 
-  out += function("drift(double t, const double* x, double* f)", shared_body(model, in_states(model, {model.drift}), "f"));
+  TruthNames names(model);
+  out += state_function(model, names, "drift", "f", in_states(model, {model.drift}));
   if (!code.diffusion_is_zero && d.g) {
     const std::vector<Polynomial> g = in_states(model, *d.g);
-    out += function("diffusion(double t, const double* x, double* g)", shared_body(model, g, "g"));
+    out += state_function(model, names, "diffusion", "g", g);
     std::vector<Polynomial> dg;  // [(i*q + j)*n + l]: g is row-major, so entry k = i*q + j
     for (const auto& entry : g)
       for (std::size_t l = 0; l < code.n; ++l) dg.push_back(entry.derivative(static_cast<std::uint32_t>(l)));
-    out += function("diffusion_jacobian(double t, const double* x, double* dg)", shared_body(model, dg, "dg"));
+    out += state_function(model, names, "diffusion_jacobian", "dg", dg);
   }
   if (code.diffusion_is_covariance)
-    out += function("diffusion_covariance(double t, const double* x, double* G)",
-                    shared_body(model, in_states(model, d.G), "G"));
-  out += observation_function(model);
+    out += state_function(model, names, "diffusion_covariance", "G", in_states(model, d.G));
+  out += observation_function(model, names);
   if (code.has_initial_state) {
     out += "inline void initial_state(double* x0) {\n";
     for (std::size_t i = 0; i < code.n; ++i)

@@ -3,6 +3,7 @@
 // mode so that float code stays float: `0.1f` (float), `0.1` (double) or
 // `Scalar(0.1)` (template), never a bare double in float code.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pfgen/codegen/expression_graph.hpp"
@@ -15,14 +16,26 @@ std::string scalar_mode_name(ScalarMode mode);  // "template", "float", "double"
 
 class CppEmitter {
  public:
-  explicit CppEmitter(ScalarMode mode) : mode_(mode) {}
+  // Temporaries are named temporary_prefix + 0, 1, ... (CppNames::temporary_prefix keeps them
+  // apart from the model's names).
+  explicit CppEmitter(ScalarMode mode, std::string temporary_prefix = "tmp")
+      : mode_(mode), temporary_prefix_(std::move(temporary_prefix)) {}
 
   std::string literal(const GiNaC::numeric& value) const;
+
+  // `const Scalar <name> = <source>;` for each input of `order` that the outputs read, in that
+  // order: the top of a function, so that its body reads each input by its own name. Inputs
+  // without a source (arguments read directly) are skipped.
+  std::string input_declarations(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                                 const std::vector<std::size_t>& order) const;
 
   // Temporaries for every needed operation, each computed once, then
   // `target[k] = ...;` for output k. Indented by two spaces.
   std::string shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                           const std::string& target) const;
+  // The same with `destinations[k] = ...;` for output k.
+  std::string shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                          const std::vector<std::string>& destinations) const;
   // Every output as one nested expression, without temporaries: the same
   // equations with no common-subexpression elimination (benchmark baseline).
   std::string tree_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
@@ -32,6 +45,7 @@ class CppEmitter {
   std::string operation(const ExpressionGraph& graph, const Node& node,
                         const std::vector<std::string>& operand_text) const;
   ScalarMode mode_;
+  std::string temporary_prefix_;
 };
 
 }  // namespace pfgen::codegen

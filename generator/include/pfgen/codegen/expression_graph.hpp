@@ -19,7 +19,9 @@ enum class OpKind { Input, Constant, Add, Sub, Mul, Div, Neg, Call };
 
 struct Node {
   OpKind kind;
-  std::string name;           // Input: its C++ spelling ("state[3]", "t", "params.a"); Call: function name
+  std::string name;           // Input: its C++ name in the function ("P12", "a", "t"); Call: function name
+  std::string source;         // Input: what the function reads it from ("state[3]", "params.a"); empty
+                              // when the name is itself an argument of the function (the time)
   GiNaC::numeric value;       // Constant only (exact rational or float)
   std::vector<std::size_t> args;
 };
@@ -35,7 +37,8 @@ struct OpCounts {
 
 class ExpressionGraph {
  public:
-  std::size_t input(const std::string& spelling);
+  // The same name always gives the same node: its source is that of its first creation.
+  std::size_t input(const std::string& name, const std::string& source = "");
   std::size_t constant(const GiNaC::numeric& value);
   std::size_t add(std::size_t a, std::size_t b);
   std::size_t sub(std::size_t a, std::size_t b);
@@ -54,6 +57,8 @@ class ExpressionGraph {
   OpCounts tree_counts(const std::vector<std::size_t>& outputs) const;
   // Nodes the outputs need, in topological order (leaves excluded).
   std::vector<std::size_t> needed_operations(const std::vector<std::size_t>& outputs) const;
+  // Whether the outputs need node `id` (an output needs itself).
+  std::vector<bool> needed(const std::vector<std::size_t>& outputs) const;
 
  private:
   using Key = std::tuple<int, std::string, std::string, std::vector<std::size_t>>;

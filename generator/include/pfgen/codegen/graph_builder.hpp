@@ -4,8 +4,10 @@
 // Sums follow the canonical term order; integer powers become products
 // (x^4 = (x*x)*(x*x)), never pow(); monomials are built variable by variable,
 // so monomials with a common prefix share its product.
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/codegen/expression_graph.hpp"
@@ -19,27 +21,43 @@ class CodegenError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What a function's outputs read of its arguments.
+struct InputUse {
+  bool variables = false;   // the array of variables (the filter state, the truth's x)
+  bool parameters = false;
+  bool time = false;
+};
+
 class GraphBuilder {
  public:
-  // Filter variable v reads state[v]; parameters read params.<name>; time reads t.
-  GraphBuilder(ExpressionGraph& graph, const Model& model, const FilterVariables& variables);
-  // Variable v < count reads array[v]: the truth's x[i] (state x_i is polynomial variable i,
-  // Polynomial::from_ex(e, model.states)), so truth code reads as the model is written.
-  GraphBuilder(ExpressionGraph& graph, const Model& model, std::size_t count, std::string array);
+  // Inputs are named as the equations name them. Filter variable v is named as printed
+  // (variables.text_name(v): m1, P12, P1_10) and read from array[v]; parameter a is named a and
+  // read from params.a; the time is named as in the model and is the function's argument itself.
+  GraphBuilder(ExpressionGraph& graph, const Model& model, const FilterVariables& variables,
+               const std::string& array = "state", const std::string& params = "params");
+  // Variable v < names.size() is named names[v] and read from array[v]: the truth reads state
+  // x_i (polynomial variable i, Polynomial::from_ex(e, model.states)) from x[i] as its own name.
+  GraphBuilder(ExpressionGraph& graph, const Model& model, std::vector<std::string> names,
+               const std::string& array, const std::string& params);
 
   std::size_t polynomial(const Polynomial& p);
   std::size_t variable(std::uint32_t variable) { return variable_power(variable, 1); }
   std::size_t expression(const GiNaC::ex& e);
+
+  // The inputs read from an argument, in the order a function declares them: the variables in
+  // their order, then the parameters in the model's order.
+  std::vector<std::size_t> declaration_order() const;
+  InputUse uses(const std::vector<std::size_t>& outputs) const;
 
  private:
   std::size_t variable_power(std::uint32_t variable, std::uint32_t exponent);
   std::size_t integer_power(std::size_t base, long exponent);
   std::size_t monomial(const Monomial& m);
 
-  std::string input_name(std::uint32_t variable) const;
-
   ExpressionGraph& graph_;
-  std::string array_;
+  std::vector<std::size_t> variable_inputs_;
+  std::vector<std::size_t> parameter_inputs_;
+  std::size_t time_input_;
   std::map<GiNaC::ex, std::size_t, GiNaC::ex_is_less> symbols_;
 };
 

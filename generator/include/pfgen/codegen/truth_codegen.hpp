@@ -2,7 +2,9 @@
 // C++ (double, with common-subexpression elimination) of what a simulation needs of the model
 // itself besides its filters: the truth dx = f dt + g dW1, the observation coefficients and x0,
 // all at the parameters' default values. The simulation plugin (simulation_plugin.hpp) places
-// these definitions in a namespace of its own; they read the state as x[i] (state x_i).
+// these definitions in a namespace of its own. Each function names the inputs it reads at its top,
+// as the model does (`const Scalar y = x[1];`, `const Scalar a = params.a;`); its arguments and
+// temporaries keep clear of those names (cpp_names.hpp), the time argument has the model's name.
 #include <cstddef>
 #include <string>
 
@@ -19,7 +21,8 @@ struct TruthCode {
   bool diffusion_is_covariance = false;  // only G = g g^T given: diffusion_covariance(), no g, no Jacobian
   bool observation_is_constant = true;   // A0, A, B free of the time symbol
   bool has_initial_state = false;        // the model gives initial.x0
-  // Definitions, in this order (bracketed ones only when they exist):
+  // Definitions, in this order (bracketed ones only when they exist; argument names as below
+  // unless the model uses them, see cpp_names.hpp):
   //   using Scalar = double;  struct Params { <parameters with defaults> };
   //   void drift(double t, const double* x, double* f);                      // f: n
   //   [void diffusion(double t, const double* x, double* g);]                // n x q row-major

@@ -1,0 +1,61 @@
+// fill_template and embedded_template (codegen/template_text.hpp): every `{{key}}` is replaced
+// by its value; a placeholder without a value, a value without a placeholder and an unterminated
+// placeholder are errors, never half-filled code; the templates compiled into pfgen are the
+// files of templates/.
+#include <catch2/catch.hpp>
+
+#include <stdexcept>
+
+#include "pfgen/codegen/template_text.hpp"
+#include "support/cli_helpers.hpp"
+
+using pfgen::codegen::embedded_template;
+using pfgen::codegen::fill_template;
+
+namespace {
+
+// The message of the std::logic_error that `fill` throws, or "" when it throws none.
+template <class F>
+std::string logic_error_of(F fill) {
+  try {
+    fill();
+  } catch (const std::logic_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("template filler: every placeholder gets its value, as often as it appears", "[unit][codegen]") {
+  CHECK(fill_template("t", "inline void {{name}}(Scalar {{t}}) { {{body}}}\n// {{name}}",
+                      {{"name", "gain"}, {"t", "tau"}, {"body", "x = 1; "}}) ==
+        "inline void gain(Scalar tau) { x = 1; }\n// gain");
+  CHECK(fill_template("t", "no placeholders", {}) == "no placeholders");
+  CHECK(fill_template("t", "{{a}}{{b}}", {{"a", "{{b}}"}, {"b", ""}}) == "{{b}}");  // values are not re-read
+  CHECK(fill_template("t", "{{empty}}", {{"empty", ""}}).empty());
+}
+
+TEST_CASE("template filler: a placeholder without value, a value without placeholder, an open brace are errors",
+          "[unit][codegen]") {
+  const std::string unknown = logic_error_of([] { fill_template("cpp/x.tmpl", "a {{what}} b", {{"other", "1"}}); });
+  CHECK(unknown.find("cpp/x.tmpl") != std::string::npos);
+  CHECK(unknown.find("no value for placeholder {{what}}") != std::string::npos);
+
+  const std::string unused =
+      logic_error_of([] { fill_template("cpp/x.tmpl", "a {{k}} b", {{"k", "1"}, {"spare", "2"}}); });
+  CHECK(unused.find("value for {{spare}} has no placeholder") != std::string::npos);
+
+  const std::string open = logic_error_of([] { fill_template("cpp/x.tmpl", "a {{k b", {{"k", "1"}}); });
+  CHECK(open.find("unterminated placeholder") != std::string::npos);
+}
+
+TEST_CASE("embedded templates are the files of templates/", "[unit][codegen]") {
+  for (const char* file : {"cpp/filter.hpp.tmpl", "cpp/filter_eigen.hpp.tmpl", "cpp/simulation_plugin.cpp.tmpl"}) {
+    INFO(file);
+    CHECK(embedded_template(file) == pfgen_test::read_file(pfgen_test::source_dir() + "/templates/" + file));
+  }
+  CHECK(embedded_template("pfgen_runtime/plugin_abi.h") ==
+        pfgen_test::read_file(pfgen_test::source_dir() + "/runtime/include/pfgen_runtime/plugin_abi.h"));
+  CHECK_THROWS_AS(embedded_template("cpp/missing.tmpl"), std::logic_error);
+}
