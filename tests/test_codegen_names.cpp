@@ -25,14 +25,14 @@ using namespace pfgen_test;
 namespace {
 
 // Every name a generated function declares, taken by the model (each model name is marked `@`
-// here, the time `TAU`): `t` is a parameter, the time is `tau`. std, n, p, dt, dy name things the
-// generated code uses too (namespace, constants, step()'s arguments).
+// here, the time `TAU`): `t` is a parameter, the time is `tau`. std, n, p, rates, dy name things the
+// generated code uses too (namespace, constants, step()'s locals and arguments; dt is refused: printed equations use it).
 const char* const kModelTemplate = R"model(name: NAME
 states: [@x, @f, @g]
 time: TAU
 parameters: {@tmp0: 0.5, @tmp_1: 0.25, @state: 1.5, @state_: 0.75, @params: 2, @out: 0.3, @K: 1.25, @h: 0.2,
-             @t: 0.1, @dt: 0.4, @dy: 0.6, @std: 0.7, @n: 0.8, @p: 0.9, @A0: 0.05, @dg: 0.15, @x_: 0.35, @B: 1.1}
-drift: ["-@tmp0*@x + @state*@f*@g + sin(TAU)*@t", "-@params*@f + @out*@x^2 + @tmp_1", "-@K*@g + @h*@x*@f + @state_*@dt"]
+             @t: 0.1, @rates: 0.4, @dy: 0.6, @std: 0.7, @n: 0.8, @p: 0.9, @A0: 0.05, @dg: 0.15, @x_: 0.35, @B: 1.1}
+drift: ["-@tmp0*@x + @state*@f*@g + sin(TAU)*@t", "-@params*@f + @out*@x^2 + @tmp_1", "-@K*@g + @h*@x*@f + @state_*@rates"]
 diffusion: [["0.1*@x + @dy", "0"], ["0", "@std*@f"], ["@n*@g", "@p"]]
 additive_diffusion: [["@dy", "0"], ["0", "@std"], ["@n", "@p"]]
 observation:

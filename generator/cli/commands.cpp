@@ -10,6 +10,7 @@
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
+#include "pfgen/model/reserved_names.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 #include "pfgen/printing/equation_report.hpp"
 #include "pfgen/printing/json_writer.hpp"
@@ -40,6 +41,8 @@ int run_codegen(const CodegenCliOptions& options) {
   if (options.output_dir.empty() && !options.stats) throw CliValueError("-o: give an output directory (or --stats)");
   if (!std::regex_match(options.name_space, std::regex("[A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)*")))
     throw CliValueError("--namespace: '" + options.name_space + "' is not a C++ namespace name");
+  for (const auto& part : split(std::regex_replace(options.name_space, std::regex("::"), ":"), ':'))
+    if (auto problem = namespace_name_problem(part)) throw CliValueError("--namespace: " + *problem);
   codegen::CodegenOptions codegen_options;
   codegen_options.scalar = options.scalar == "float"    ? codegen::ScalarMode::Float
                            : options.scalar == "double" ? codegen::ScalarMode::Double

@@ -12,6 +12,7 @@
 #include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/model_filters.hpp"
+#include "pfgen/model/reserved_names.hpp"
 #include "pfgen/model/simulation_rules.hpp"
 #include "pfgen/notation/text_printer.hpp"
 
@@ -92,15 +93,13 @@ void validate_names(const Model& model) {
   if (!is_valid_identifier(model.name))
     throw ModelError("name", "'" + model.name +
                                  "' is not an identifier (letters, digits, _; not starting with a digit)");
+  if (auto problem = namespace_name_problem(model.name)) throw ModelError("name", *problem);
   if (model.states.empty()) throw ModelError("states", "at least one state is required");
   std::set<std::string> seen;
-  // m1, P12, m_1, P_1_2 are the filter's own variables in printed equations.
-  const std::regex reserved("^(m|P)_?[0-9][0-9_]*$");
   auto check = [&](const std::string& name, const std::string& field, std::optional<int> index) {
     if (!is_valid_identifier(name))
       throw ModelError(field, "'" + name + "' is not an identifier", index);
-    if (std::regex_match(name, reserved))
-      throw ModelError(field, "'" + name + "' is reserved for the filter's m and P entries", index);
+    if (auto problem = symbol_name_problem(name)) throw ModelError(field, *problem, index);
     if (!seen.insert(name).second)
       throw ModelError(field, "name '" + name + "' is used twice", index);
   };
@@ -259,6 +258,7 @@ void validate_user_filters(const Model& model) {
     if (parse_filter_kind(filter.name))
         throw ModelError(field, "'" + filter.name + "' is a built-in filter kind; give the model's filter another name");
     const std::string identifier = filter_identifier(filter.name);
+    if (auto problem = namespace_name_problem(identifier)) throw ModelError(field, *problem);
     for (const auto& [taken, owner] : identifiers) {
       if (taken == identifier)
         throw ModelError(field, "its C++ identifier '" + identifier + "' is also that of filter '" + owner + "'");
