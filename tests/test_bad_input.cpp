@@ -119,6 +119,11 @@ const std::vector<BadModel>& bad_models() {
       {"yaml_comments_only.yaml", "", 0, 0, 0, "the model file is empty"},
       {"empty_file.yaml", "", 0, 0, 0, "the model file is empty"},
       {"not_utf8_latin1.yaml", "", 0, 0, 0, "not UTF-8 text"},
+      // A key given twice (yaml-cpp kept the first silently) and a second document (ignored).
+      {"duplicate_key_name.yaml", "name", 0, 0, 2, "given twice in one mapping (first at line 1)"},
+      {"duplicate_key_simulation_T.yaml", "simulation.T", 0, 0, 6, "given twice in one mapping (first at line 6)"},
+      {"duplicate_key_in_filter.yaml", "filters.mine.gain", 0, 0, 7, "given twice in one mapping"},
+      {"second_yaml_document.yaml", "", 0, 0, 7, "the file holds 2 YAML documents"},
       // filters: (user filters given by their equations)
       {"filter_P_drift_asymmetric.yaml", "filters.mine.P_drift", 1, 2, 12,
        "not symmetric: entry (1,2) is 'P12*m1' but entry (2,1) is 'P12*m2'"},

@@ -1,11 +1,14 @@
 #include "cli_options.hpp"
 
+#include <algorithm>
+#include <set>
 #include <sstream>
 
 #include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/model_filters.hpp"
+#include "pfgen/model/model_validator.hpp"
 
 namespace pfgen::cli {
 
@@ -49,6 +52,28 @@ std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& optio
   if (eq == std::string::npos || eq == 0)
     throw CliValueError(option + ": expected name=value, got '" + text + "'");
   return {text.substr(0, eq), parse_number(option, text.substr(eq + 1))};
+}
+
+void apply_parameter_assignments(Model& model, const std::vector<std::string>& assignments) {
+  std::set<std::string> given;
+  for (const std::string& text : assignments) {
+    const auto [name, value] = parse_assignment("--set", text);
+    auto parameter = std::find_if(model.parameters.begin(), model.parameters.end(),
+                                  [&name = name](const Parameter& p) { return p.name == name; });
+    if (parameter == model.parameters.end())
+      throw CliValueError("--set: model " + model.name + " has no parameter '" + name + "'");
+    if (!given.insert(name).second) throw CliValueError("--set: parameter '" + name + "' is given twice");
+    parameter->default_value = value;
+  }
+  if (assignments.empty()) return;
+  try {
+    validate_model(model);
+  } catch (const ModelError& e) {
+    std::string where = "field '" + e.field() + "'";
+    if (e.row()) where += ", row " + std::to_string(*e.row());
+    if (e.column()) where += ", column " + std::to_string(*e.column());
+    throw CliValueError("--set: with these values " + model.source + " is not valid: " + where + ": " + e.message());
+  }
 }
 
 std::vector<std::string> parse_filter_list(const std::string& option, const std::string& text, const Model& model) {

@@ -23,6 +23,10 @@ std::vector<GiNaC::numeric> parse_number_list(const std::string& option, const s
 std::vector<std::vector<GiNaC::numeric>> parse_number_matrix(const std::string& option, const std::string& text);
 GiNaC::numeric parse_number(const std::string& option, const std::string& text);
 std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& option, const std::string& text);
+// --set a=0.2 ...: gives each named parameter its value as the model's default, refuses unknown
+// and repeated names, and checks the model again with the new values (B B^T must stay positive
+// definite, ...). eval and simulate both use it, so they read --set alike.
+void apply_parameter_assignments(Model& model, const std::vector<std::string>& assignments);
 // "optimal,ekf-printed" -> filter names, each a built-in kind the model supports or one of
 // its user filters (`filters:`); empty text -> every filter the model offers
 // (available_filter_names: the supported kinds, then the user filters in file order).

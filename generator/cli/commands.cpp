@@ -123,12 +123,12 @@ int run_latex(const LatexOptions& options) {
 
 int run_eval(const EvalOptions& options) {
   Model model = load_model_file(options.model_path);
+  apply_parameter_assignments(model, options.assignments);
   FilterEquations eq = derive_named_filter(model, single_filter(options.filter, model));
   EvaluationPoint point;
   point.t = parse_number("--t", options.t);
   point.m = parse_number_list("--m", options.m);
   point.P = parse_number_matrix("--P", options.P);
-  for (const auto& assignment : options.assignments) point.parameters.insert(parse_assignment("--set", assignment));
   EvaluatedFilter value = evaluate_at(model, eq, point);
 
   auto vector_json = [](const std::vector<double>& v) {

@@ -88,19 +88,6 @@ void check_memory(const Model& model, const SimulationSettings& s, unsigned thre
   }
 }
 
-// --set a=0.2: the job's value of parameter a, compiled into the plugin as its default (so a
-// new value is a new source, and a new cache entry).
-void set_parameters(Model& model, const std::vector<std::string>& assignments) {
-  for (const std::string& text : assignments) {
-    const auto [name, value] = parse_assignment("--set", text);
-    auto parameter = std::find_if(model.parameters.begin(), model.parameters.end(),
-                                  [&name = name](const Parameter& p) { return p.name == name; });
-    if (parameter == model.parameters.end())
-      throw CliValueError("--set: model " + model.name + " has no parameter '" + name + "'");
-    parameter->default_value = value;
-  }
-}
-
 std::string timing_json(const pfgen_runtime::MonteCarloResult& result, const toolchain::PluginBuild& build,
                         double derive_seconds, double total_seconds) {
   double filter_seconds = 0;
@@ -122,7 +109,9 @@ int run_simulate(const SimulateOptions& options) {
   const Clock::time_point start = Clock::now();
   check_output_paths(options);
   Model model = load_model_file(options.model_path);
-  set_parameters(model, options.assignments);
+  // --set a=0.2: the job's value of a, compiled into the plugin as its default (so a new value
+  // is a new source, and a new cache entry).
+  apply_parameter_assignments(model, options.assignments);
   const SimulationSettings settings = resolve_simulation_settings(model, options.overrides);
   if (!model.initial || model.initial->x0.empty())
     throw CliValueError(model.source + ": initial: the model gives no x0, the truth's initial state");

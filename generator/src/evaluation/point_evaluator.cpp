@@ -1,5 +1,8 @@
 #include "pfgen/evaluation/point_evaluator.hpp"
 
+#include <Eigen/Dense>
+#include <algorithm>
+
 #include <cmath>
 
 namespace pfgen {
@@ -56,6 +59,13 @@ void check_point(const Model& model, const EvaluationPoint& point) {
     for (std::size_t j = i + 1; j < n; ++j)
       if (point.P[i][j] != point.P[j][i])
         throw EvaluationError("--P: not symmetric, row " + std::to_string(i + 1) + " column " + std::to_string(j + 1));
+  // A covariance: symmetric (above) and positive semi-definite, up to rounding.
+  Eigen::MatrixXd P(n, n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) P(i, j) = point.P[i][j].to_double();
+  const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(P).eigenvalues().minCoeff();
+  if (smallest < -1e-12 * std::max(1.0, P.cwiseAbs().maxCoeff()))
+    throw EvaluationError("--P: not positive semi-definite (smallest eigenvalue " + std::to_string(smallest) + ")");
   for (const auto& [name, value] : point.parameters) {
     bool known = false;
     for (const auto& p : model.parameters) known = known || p.name == name;

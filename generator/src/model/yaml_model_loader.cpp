@@ -380,6 +380,42 @@ ModelError located(ModelError e, const std::string& path, SourceLocation where) 
   return e;
 }
 
+// yaml-cpp keeps the first of two equal keys in a mapping and drops the second without a word
+// (a second `drift:` was ignored), and YAML::Load reads only the first document of a file. Both
+// would run a model other than the one written: refuse them. `field` is the dotted path so far.
+void refuse_duplicate_keys(const YAML::Node& node, const std::string& field, const std::string& path, int depth) {
+  if (depth > 64) return;  // no model is this deep; the loader refuses such a file on its own terms
+  if (node.IsSequence()) {
+    for (const auto& item : node) refuse_duplicate_keys(item, field, path, depth + 1);
+    return;
+  }
+  if (!node.IsMap()) return;
+  std::map<std::string, YAML::Mark> seen;
+  for (const auto& entry : node) {
+    const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
+    const std::string here = field.empty() ? key : field + "." + key;
+    const auto [first, inserted] = seen.emplace(key, entry.first.Mark());
+    if (!inserted)
+      throw located(ModelError(here, "given twice in one mapping (first at line " +
+                                         std::to_string(first->second.line + 1) + "); keep one"),
+                    path, {entry.first.Mark().line + 1, entry.first.Mark().column + 1});
+    refuse_duplicate_keys(entry.second, here, path, depth + 1);
+  }
+}
+
+void refuse_second_document(const std::string& text, const std::string& path) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::Exception&) {
+    return;  // the first document's parse reports it
+  }
+  if (documents.size() > 1)
+    throw located(ModelError("", "the file holds " + std::to_string(documents.size()) +
+                                     " YAML documents (separated by ---); a model file is one document"),
+                  path, {documents[1].Mark().line + 1, documents[1].Mark().column + 1});
+}
+
 }  // namespace
 
 Model load_model_text(const std::string& text, const std::string& path) {
@@ -391,6 +427,8 @@ Model load_model_text(const std::string& text, const std::string& path) {
     throw located(ModelError("", "not valid YAML: " + e.msg), path, {e.mark.line + 1, e.mark.column + 1});
   }
   if (!root || root.IsNull()) throw located(ModelError("", "the model file is empty"), path, {});
+  refuse_second_document(text, path);
+  refuse_duplicate_keys(root, "", path, 0);
   Loader loader(root, path);
   try {
     return loader.load();
