@@ -448,4 +448,9 @@ TEST_CASE("latex --filter writes the requested filters only, and overwrites atom
   CHECK(bad.exit_code != 0);
   CHECK(read_file(out) == tex);
   CHECK(dir.entries() == std::vector<std::string>{"doc.tex"});
+  // The document is LaTeX source; an output named .pdf is refused before anything is written.
+  ProcessResult pdf = run_pfgen({"latex", example("basin2006_quadratic.yaml"), "-o", out + ".pdf"});
+  CHECK(pdf.exit_code == 1);
+  CHECK(pdf.err.find("must end in .tex") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out + ".pdf"));
 }

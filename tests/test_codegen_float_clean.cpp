@@ -339,3 +339,21 @@ TEST_CASE("float codegen refuses a constant beyond float's range instead of writ
   CHECK(as_double.exit_code == 0);
   CHECK(read_file(dir.file("out/huge/optimal.hpp")).find("1e+40") != std::string::npos);
 }
+
+TEST_CASE("float codegen refuses a nonzero constant that would become 0, as it refuses one beyond range",
+          "[codegen][float][integration]") {
+  TempDir dir;
+  write_file(dir.file("tiny.yaml"), "name: tiny\nstates: [x]\ndrift: [\"-1e-50*x\"]\ndiffusion: [[\"0\"]]\n"
+                                    "observation:\n  A: [[\"1\"]]\n  B: [[\"1\"]]\n");
+  ProcessResult r = run_pfgen({"codegen", dir.file("tiny.yaml"), "-o", dir.file("out"), "--scalar", "float"});
+  INFO(r.err);
+  CHECK(r.exit_code == 1);
+  CHECK(count_lines(r.err) == 1);
+  CHECK(r.err.find("the constant 1e-50 is below the smallest positive float") != std::string::npos);
+  CHECK(!fs::exists(dir.file("out/tiny")));
+  // Double holds it: the same model generates, with the constant as written.
+  ProcessResult as_double = run_pfgen({"codegen", dir.file("tiny.yaml"), "-o", dir.file("out"), "--scalar", "double"});
+  INFO(as_double.err);
+  CHECK(as_double.exit_code == 0);
+  CHECK(read_file(dir.file("out/tiny/optimal.hpp")).find("1e-50") != std::string::npos);
+}

@@ -113,6 +113,9 @@ int run_derive(const DeriveOptions& options) {
 }
 
 int run_latex(const LatexOptions& options) {
+  // The document is LaTeX source: a name such as x.pdf would hold text that no PDF viewer opens.
+  if (std::filesystem::path(options.output_path).extension() != ".tex")
+    throw CliValueError("-o: '" + options.output_path + "' must end in .tex (pdflatex makes the PDF from it)");
   Model model = load_model_file(options.model_path);
   std::vector<FilterEquations> filters;
   for (const std::string& name : parse_filter_list("--filter", options.filters, model))

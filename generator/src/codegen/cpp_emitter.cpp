@@ -51,6 +51,14 @@ std::string CppEmitter::literal(const GiNaC::numeric& value) const {
   if (mode_ == ScalarMode::Float && !std::isfinite(static_cast<float>(d)))
     throw CodegenError("the constant " + shortest_double(d) +
                        " is out of the range of float (above 3.4e38 in magnitude); use --scalar double or template");
+  // Nor may a nonzero constant become 0 unnoticed: below float's (or double's) smallest
+  // subnormal it would, which changes the equations rather than rounding them.
+  if (!value.is_zero() && d == 0)
+    throw CodegenError("a nonzero constant is below the smallest positive double (4.9e-324 in magnitude) and would be 0");
+  if (mode_ == ScalarMode::Float && d != 0 && static_cast<float>(d) == 0.0f)
+    throw CodegenError("the constant " + shortest_double(d) +
+                       " is below the smallest positive float (1.4e-45 in magnitude) and would be 0; use --scalar "
+                       "double or template");
   std::string text;
   switch (mode_) {
     case ScalarMode::Float: text = with_point(shortest_float(static_cast<float>(d))) + "f"; break;

@@ -140,6 +140,23 @@ void validate_diffusion(const Model& model, const Diffusion& d, const std::strin
                              std::to_string(i + 1) + ") is '" + to_text(d.G[j][i]) + "'",
                          one_based(i), one_based(j));
     }
+  // A covariance that depends on neither the states nor t must be positive semi-definite: a
+  // negative one was accepted and the truth then ran with zero noise in its place.
+  bool constant = true;
+  for (const auto& row : d.G)
+    for (const auto& e : row) constant = constant && !depends_on_states(model, e) && !e.has(model.time);
+  if (!constant) return;
+  Eigen::MatrixXd G(n, n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      const GiNaC::ex value = at_defaults(model, d.G[i][j]);
+      if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real()) return;
+      G(i, j) = GiNaC::ex_to<GiNaC::numeric>(value).to_double();
+    }
+  const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(G).eigenvalues().minCoeff();
+  if (smallest < -1e-12 * std::max(1.0, G.cwiseAbs().maxCoeff()))
+    throw ModelError(G_field, "not positive semi-definite at the parameter defaults (smallest eigenvalue " +
+                                  std::to_string(smallest) + "): a covariance cannot be negative");
 }
 
 void validate_observation(const Model& model) {

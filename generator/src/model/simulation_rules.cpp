@@ -95,6 +95,11 @@ Breach check_times(const SimulationSection& s) {
     if (s.T && time > *s.T)
       return breach("report_times",
                     "report time " + number_text(time) + " is after the horizon T = " + number_text(*s.T), k);
+    // The table has one column per report time, in order: a repeated or earlier time is a slip.
+    if (k > 0 && !(time > s.report_times[k - 1]))
+      return breach("report_times", "report time " + number_text(time) + " is not after the previous one, " +
+                                        number_text(s.report_times[k - 1]) + "; give them in increasing order",
+                    k);
   }
   for (std::size_t k = 0; k < s.windows.size(); ++k) {
     const auto [a, b] = s.windows[k];
@@ -107,6 +112,8 @@ Breach check_times(const SimulationSection& s) {
     // same one has no step in it.
     if (s.dt && std::llround(a / *s.dt) == std::llround(b / *s.dt))
       return breach("windows", window + " is shorter than a step dt = " + number_text(*s.dt), k);
+    for (std::size_t j = 0; j < k; ++j)
+      if (s.windows[j] == s.windows[k]) return breach("windows", window + " is given twice", k);
   }
   return {};
 }
