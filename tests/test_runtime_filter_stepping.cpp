@@ -85,3 +85,28 @@ TEST_CASE("FilterStepper sub-steps share dy evenly: the estimate follows a const
   CHECK(stepper.refined_steps() > 0);
   CHECK(s[0] == Approx(v).epsilon(1e-9));
 }
+
+TEST_CASE("FilterStepper stops a grid step that would need more sub-steps than its budget", "[runtime][stepping][unit]") {
+  // A "filter" whose P doubles on every step, however short: no sub-step is ever acceptable, as
+  // for a filter that blows up within the grid step. Without a budget the stepper would take
+  // 2^max_depth calls on each grid step.
+  std::uint64_t calls = 0;
+  auto exploding = [&calls](double* s, double, double, const double*) {
+    ++calls;
+    s[1] *= 2;
+  };
+  FilterStepControl control;
+  control.max_substeps = 100;
+  FilterStepper stepper(1, 1, control);
+  std::vector<double> s{0.0, 1.0};
+  const double dy = 0;
+  CHECK(stepper.advance(exploding, s.data(), 0.0, 0.1, &dy) == 0);  // the run must stop
+  CHECK(calls <= control.max_substeps + 1);                          // the first try, then at most the budget
+  CHECK(calls > control.max_substeps / 2);
+
+  // A step that settles after a few splits is within the budget and reported as usual.
+  ScalarKalmanBucy stiff{1.0, 1e-4};
+  FilterStepper fine(1, 1, FilterStepControl{});
+  std::vector<double> k{0.0, 1.0};
+  CHECK(fine.advance(stiff, k.data(), 0.0, 0.01, &dy) > 1);
+}

@@ -13,6 +13,10 @@ namespace pfgen_runtime {
 std::string DivergenceEvent::describe() const {
   std::ostringstream out;
   out.precision(10);
+  if (kind == DivergenceKind::too_stiff) {
+    out << "a grid step needs more sub-steps than allowed at t = " << t << " (too stiff for this dt)";
+    return out.str();
+  }
   out << "entry " << index << " is " << value;
   if (kind == DivergenceKind::bound_exceeded) out << " (beyond the bound)";
   out << " at t = " << t;

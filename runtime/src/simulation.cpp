@@ -101,7 +101,12 @@ FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const Fil
   const bool initial_ok = !result.divergence;  // a PSD loss at t0 keeps P0 on record
   if (initial_ok) result.state.col(0) = state;
   for (std::size_t k = 0; going && k < truth.completed_steps; ++k) {
-    stepper.advance(filter.step, state.data(), grid.time(k), grid.dt, truth.dy.col(static_cast<Eigen::Index>(k)).data());
+    if (stepper.advance(filter.step, state.data(), grid.time(k), grid.dt,
+                        truth.dy.col(static_cast<Eigen::Index>(k)).data()) == 0) {
+      result.divergence = DivergenceEvent{grid.time(k), 0, 0.0, DivergenceKind::too_stiff};
+      going = false;
+      break;
+    }
     going = guard(grid.time(k + 1));
     if (result.divergence) break;  // a diverged state is not stored
     result.state.col(static_cast<Eigen::Index>(k + 1)) = state;

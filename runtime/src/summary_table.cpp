@@ -125,6 +125,13 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
     if (!refined.str().empty())
       out << "\nGrid steps integrated in sub-steps (one step would have changed P by more than its tolerance):\n"
           << refined.str();
+    std::ostringstream stiff;
+    for (const FilterStatistics& filter : result.filters)
+      if (filter.too_stiff_runs > 0) stiff << "  " << filter.name << ": " << filter.too_stiff_runs << " runs\n";
+    if (!stiff.str().empty())
+      out << "\nRuns stopped as too stiff for dt (a grid step needed more filter sub-steps than allowed; "
+             "counted as diverged):\n"
+          << stiff.str();
   }
   out << "\n" << events_line("Truth diverged", result.truth_divergences, result.runs) << "\n";
   if (!result.truth_reports.empty()) {

@@ -17,7 +17,8 @@
 
 namespace pfgen_runtime {
 
-enum class DivergenceKind { non_finite, bound_exceeded };
+// too_stiff: a grid step of the filter would need more sub-steps than FilterStepControl allows.
+enum class DivergenceKind { non_finite, bound_exceeded, too_stiff };
 
 struct DivergenceEvent {
   double t = 0;           // the grid time at which the offending value was first seen

@@ -92,6 +92,7 @@ struct FilterStatistics {
   EventSummary psd_losses;   // the first time P failed the PSD check, per run
   std::uint64_t refined_steps = 0;  // grid steps taken in sub-steps (FilterStepper), all runs
   std::size_t refined_runs = 0;     // runs with at least one
+  std::size_t too_stiff_runs = 0;   // runs stopped (and counted as diverged) for want of sub-steps
 };
 
 // Across runs at each record time, per component; NaN where no run is alive.

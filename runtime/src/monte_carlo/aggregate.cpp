@@ -129,6 +129,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       if (filter.psd_lost) stats.psd_losses.events.push_back({r, filter.psd_t});
       stats.refined_steps += filter.refined_steps;
       stats.refined_runs += filter.refined_steps > 0;
+      stats.too_stiff_runs += filter.too_stiff;
     }
     result.filters.push_back(std::move(stats));
   }
