@@ -172,3 +172,27 @@ TEST_CASE("runtime: quantiles and the two-sample Kolmogorov-Smirnov test", "[run
   for (double& v : b) v += 0.1;
   CHECK(ks_two_sample(a, b).p_value < 1e-6);
 }
+
+TEST_CASE("runtime: adaptive Euler stops a grid step short when it would need more substeps than allowed",
+          "[runtime][superlinear][unit]") {
+  // Paper 000's state; a grid step of 50 from x = 1.1 crosses the noise-free blow-up at t = 9.09.
+  pfgen_runtime::SdeSystem system;
+  system.n = 1;
+  system.q = 1;
+  system.drift = [](double, const double* x, double* f) { f[0] = 0.1 * x[0] * x[0]; };
+  system.diffusion = [](double, const double* x, double* g) { g[0] = 0.1 * x[0] * x[0]; };
+  pfgen_runtime::AdaptiveEuler::Options options;
+  options.max_substeps = 1000;
+  pfgen_runtime::AdaptiveEuler scheme(system, options);
+  scheme.start_run(1, 0);
+  Eigen::VectorXd x(1), dW(1);
+  x << 1.1;
+  dW << 0.0;
+  scheme.step(0.0, x, 50.0, dW);
+  CHECK(scheme.last_step_incomplete());
+  CHECK(scheme.substeps() <= options.max_substeps);
+  // An ordinary step is complete, and the next step starts a new budget.
+  x << 1.1;
+  scheme.step(0.0, x, 1e-3, dW);
+  CHECK_FALSE(scheme.last_step_incomplete());
+}

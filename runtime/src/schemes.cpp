@@ -168,7 +168,13 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
   stack_.push_back({t, dt, 0, 0});
   bridge_.insert(bridge_.end(), dW.data(), dW.data() + q);
   Eigen::VectorXd& increment_dW = increment_dW_;
+  incomplete_ = false;
+  const std::uint64_t budget_end = substeps_ + options_.max_substeps;
   while (!stack_.empty()) {
+    if (substeps_ >= budget_end) {
+      incomplete_ = true;
+      return;
+    }
     const Pending interval = stack_.back();
     stack_.pop_back();
     for (std::size_t j = 0; j < q; ++j) increment_dW[j] = bridge_[interval.offset + j];

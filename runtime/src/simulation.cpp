@@ -55,6 +55,10 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
     truth_noise.wiener_increment(grid.dt, dW);
     observation_noise.wiener_increment(grid.dt, dW2);
     scheme.step(t, x, grid.dt, dW);
+    if (scheme.last_step_incomplete()) {
+      divergence = DivergenceEvent{t, 0, 0.0, DivergenceKind::too_stiff};
+      return static_cast<std::ptrdiff_t>(k);
+    }
     if (auto event = guard.check(grid.time(k + 1), x)) {
       divergence = event;
       return static_cast<std::ptrdiff_t>(k);

@@ -39,6 +39,9 @@ class TruthScheme {
   // x(t) -> x(t + dt) in place; dW has q entries, the increment of W over [t, t + dt].
   virtual void step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) = 0;
   virtual std::unique_ptr<TruthScheme> clone() const = 0;
+  // True when the last step() stopped short of t + dt because it would have needed more work than
+  // the scheme allows (AdaptiveEuler's substep budget); x is then not x(t + dt) and the run stops.
+  virtual bool last_step_incomplete() const { return false; }
   // Called before the first step of each Monte Carlo run; schemes that draw random numbers of
   // their own (AdaptiveEuler's Brownian bridge) take them from the run's streams.
   virtual void start_run(std::uint64_t seed, std::uint64_t run) {
@@ -136,6 +139,9 @@ class AdaptiveEuler : public TruthScheme {
     double tolerance = 0.05;   // relative change of x allowed per substep
     double scale = 1.0;        // |x| floor of the relative test
     int max_depth = 40;        // substeps no shorter than dt / 2^max_depth
+    // Substeps one grid step may take; beyond, the step stops short and the run is reported
+    // (--T 1e20 --dt 1e19 used to spin for minutes towards 2^max_depth substeps a step).
+    std::uint64_t max_substeps = std::uint64_t(1) << 20;
   };
   explicit AdaptiveEuler(SdeSystem system);
   AdaptiveEuler(SdeSystem system, Options options);
@@ -148,6 +154,7 @@ class AdaptiveEuler : public TruthScheme {
   const Options& options() const { return options_; }
   std::uint64_t substeps() const { return substeps_; }        // taken since construction
   std::uint64_t depth_limit_hits() const { return depth_hits_; }  // substeps forced at the limit
+  bool last_step_incomplete() const override { return incomplete_; }
 
  private:
   struct Pending {
@@ -163,6 +170,7 @@ class AdaptiveEuler : public TruthScheme {
   Eigen::VectorXd increment_dW_;
   std::uint64_t substeps_ = 0;
   std::uint64_t depth_hits_ = 0;
+  bool incomplete_ = false;
 };
 
 // Classical fourth-order Runge-Kutta on the drift, for deterministic truths dx = f(t, x) dt
