@@ -114,7 +114,8 @@ class Estimator {
       // parameter a, which no degree limit bounds. (x^(2^40) has one coefficient, 1, and is left
       // to the degree limit.)
       if (exponent.constant) {
-        const double times = std::fabs(exponent.value);
+        // NaN (1e400 - 1e399 in doubles) is an exponent too large to know: count it as infinite.
+        const double times = std::isnan(exponent.value) ? HUGE_VAL : std::fabs(exponent.value);
         const double per_factor = base.digits + std::log10(base.terms);
         base.digits = per_factor > 0 ? per_factor * times : 0;
         base.terms = base.terms > 1 ? std::pow(base.terms, times) : 1;
@@ -166,13 +167,15 @@ class Estimator {
   // A literal such as 12.5e-3 = 125/10^4: digits of the mantissa plus the power of ten.
   Estimate number() {
     const std::size_t from = at_;
-    double mantissa = 0;
+    double leading = 0;  // the first 15 significant digits
+    int significant = 0;
     long shift = 0;
     bool dot = false;
     for (; at_ < text_.size() && (std::isdigit(static_cast<unsigned char>(text_[at_])) || text_[at_] == '.'); ++at_) {
       if (text_[at_] == '.') { dot = true; continue; }
-      mantissa = mantissa * 10 + (text_[at_] - '0');
       if (dot) --shift;
+      if (significant == 0 && text_[at_] == '0') continue;
+      if (++significant <= 15) leading = leading * 10 + (text_[at_] - '0');
     }
     if (at_ < text_.size() && (text_[at_] == 'e' || text_[at_] == 'E')) {
       std::size_t j = at_ + 1;
@@ -192,7 +195,8 @@ class Estimator {
     Estimate e;
     e.constant = true;
     e.value = std::strtod(text_.substr(from, at_ - from).c_str(), nullptr);
-    e.digits = (mantissa > 1 ? std::log10(mantissa) : 0) + std::fabs(static_cast<double>(shift));
+    const double mantissa_digits = significant <= 15 ? (leading > 1 ? std::log10(leading) : 0) : significant;
+    e.digits = mantissa_digits + std::fabs(static_cast<double>(shift));
     return e;
   }
 
