@@ -48,7 +48,7 @@ TEST_CASE("expression limits: digits of numbers, estimated before GiNaC computes
   CHECK(problem("x*" + repeat("7", 9000)) == "none");
   CHECK(problem("x*" + repeat("7", 10001)).find("gives a number of about 1e+04 digits") != std::string::npos);
   CHECK(problem("x*0." + repeat("0", 4000) + "1") == "none");
-  CHECK(problem("2^(1e400 - 1e399)*x").find("'2^(1e400 - 1e399)' gives a number of about inf digits") == 0);
+  CHECK(problem("2^(1e400 - 1e399)*x").find("'2^(1e400 - 1e399)' gives a number of more than 1e+308 digits") == 0);
   // Rationals count numerator and denominator: 1.0000001^100000 = 10000001^100000 / 10^700000.
   CHECK(problem("1.0000001^500*x") == "none");  // about 7000 digits
   CHECK(problem("1.0000001^100000*x").find("gives a number of about 1.4e+06 digits") != std::string::npos);

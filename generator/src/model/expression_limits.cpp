@@ -52,7 +52,7 @@ class Estimator {
     if (failed_ || !(e.digits > kMaxConstantDigits)) return;
     std::string part = text_.substr(from, at_ - from);
     if (part.size() > 60) part = part.substr(0, 57) + "...";
-    problem_ = "'" + part + "' gives a number of about " + number_text(e.digits) +
+    problem_ = "'" + part + "' gives a number of " + (std::isfinite(e.digits) ? "about " + number_text(e.digits) : "more than 1e+308") +
                " digits; numbers are limited to " + std::to_string(static_cast<long>(kMaxConstantDigits)) + " digits";
     failed_ = true;
   }
