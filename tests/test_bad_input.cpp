@@ -37,6 +37,17 @@ const std::vector<BadModel>& bad_models() {
       {"syntax_division_by_zero.yaml", "diffusion", 1, 1, 5, "division by zero"},
       {"complex_coefficient.yaml", "drift", 1, 0, 4, "is not real"},
       {"huge_exponent_literal.yaml", "drift", 1, 0, 4, "exponent of '1e99999999999' is too large"},
+      // limits on one expression, checked before GiNaC parses it (README, "Model file reference")
+      {"nesting_parentheses.yaml", "drift", 1, 0, 4, "expression nests deeper than 256 parentheses"},
+      {"nesting_unary_minus.yaml", "diffusion", 1, 1, 5, "expression nests signs and exponents deeper than 256 levels"},
+      {"nesting_power_chain.yaml", "drift", 1, 0, 4, "expression nests signs and exponents deeper than 256 levels"},
+      {"nesting_yaml_collections.yaml", "", 0, 0, 4, "not valid YAML: collections nest too deeply"},
+      {"constant_power_tower.yaml", "drift", 1, 0, 4,
+       "'2^(2^40)' gives a number of about 3.31e+11 digits; numbers are limited to 10000 digits"},
+      {"constant_power_of_ten.yaml", "diffusion", 1, 1, 5, "'10^(10^10)' gives a number of about 1e+10 digits"},
+      {"constant_power_of_power.yaml", "drift", 1, 0, 4, "'2^1000000' gives a number of about 3.01e+05 digits"},
+      {"constant_literal_power.yaml", "observation.A0", 1, 0, 9, "'(1e9999)^1000' gives a number of about 1e+07 digits"},
+      {"constant_zeta.yaml", "drift", 1, 0, 4, "'zeta(100000)' gives a number of about 5e+05 digits"},
       // unknown symbols
       {"unknown_symbol_drift.yaml", "drift", 1, 0, 4, "unknown symbol 'a'"},
       {"unknown_symbol_observation_B.yaml", "observation.B", 1, 1, 9, "unknown symbol 'sigma'"},
@@ -54,7 +65,9 @@ const std::vector<BadModel>& bad_models() {
       {"nonpoly_state_in_observation_B.yaml", "observation.B", 1, 1, 8, "must not depend on the states"},
       {"nonpoly_state_in_additive_diffusion.yaml", "additive_diffusion", 1, 1, 6, "must not depend on the states"},
       {"huge_degree.yaml", "drift", 1, 0, 4, "above the limit"},
-      {"huge_degree_in_diffusion_covariance.yaml", "diffusion_covariance", 1, 1, 5, "above the limit"},
+      // (1 + x)^(10^9): its binomial coefficients are refused before its degree (expression_limits).
+      {"huge_degree_in_diffusion_covariance.yaml", "diffusion_covariance", 1, 1, 5,
+       "gives a number of about 3.01e+08 digits"},
       // wrong dimensions
       {"dims_drift_too_few.yaml", "drift", 0, 0, 4, "expected 2 entries (one per state), found 1"},
       {"dims_drift_too_many.yaml", "drift", 0, 0, 4, "expected 1 entries (one per state), found 2"},

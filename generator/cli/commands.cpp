@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "cli_options.hpp"
+#include "output_paths.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
@@ -37,8 +38,8 @@ void write_file_atomically(const std::string& path, const std::string& contents)
 }
 
 int run_codegen(const CodegenCliOptions& options) {
-  Model model = load_model_file(options.model_path);
   if (options.output_dir.empty() && !options.stats) throw CliValueError("-o: give an output directory (or --stats)");
+  Model model = load_model_file(options.model_path);
   if (!std::regex_match(options.name_space, std::regex("[A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)*")))
     throw CliValueError("--namespace: '" + options.name_space + "' is not a C++ namespace name");
   for (const auto& part : split(std::regex_replace(options.name_space, std::regex("::"), ":"), ':'))
@@ -50,12 +51,32 @@ int run_codegen(const CodegenCliOptions& options) {
   codegen_options.name_space = options.name_space;
   codegen_options.eliminate_common_subexpressions = !options.no_cse;
   codegen_options.eigen_wrapper = options.eigen;
+  const std::vector<std::string> names = parse_filter_list("--filter", options.filters, model);
+  // The files' names follow from the model's and the filters' names (GeneratedFilter's
+  // relative_path), so they are checked before any derivation: a header must not replace the
+  // model file, nor one filter's header another's (a user filter `optimal-eigen` and optimal's
+  // Eigen wrapper are both optimal_eigen.hpp).
+  std::vector<NamedPath> written;
+  std::vector<std::string> relative_paths;
+  if (!options.output_dir.empty())
+    for (const std::string& name : names) {
+      const std::string stem = model.name + "/" + filter_identifier(name);
+      relative_paths.push_back(stem + ".hpp");
+      written.push_back({"-o (filter " + name + ")", (std::filesystem::path(options.output_dir) / (stem + ".hpp")).string()});
+      if (options.eigen)
+        written.push_back({"-o (filter " + name + ", --eigen)",
+                           (std::filesystem::path(options.output_dir) / (stem + "_eigen.hpp")).string()});
+    }
+  check_distinct_outputs({{"the model file", options.model_path}}, written);
   // Everything is generated in memory first: a failure leaves no partial output.
   std::vector<codegen::GeneratedFilter> files;
-  for (const std::string& name : parse_filter_list("--filter", options.filters, model))
+  for (const std::string& name : names)
     files.push_back(codegen::generate_filter_code(model, derive_named_filter(model, name), codegen_options));
   if (!options.output_dir.empty()) {
-    for (const auto& file : files) {
+    for (std::size_t k = 0; k < files.size(); ++k) {
+      const auto& file = files[k];
+      if (file.relative_path != relative_paths[k])
+        throw std::logic_error("codegen: " + file.relative_path + " is not the checked path " + relative_paths[k]);
       std::filesystem::path path = std::filesystem::path(options.output_dir) / file.relative_path;
       std::error_code error;
       std::filesystem::create_directories(path.parent_path(), error);
@@ -113,6 +134,7 @@ int run_derive(const DeriveOptions& options) {
 }
 
 int run_latex(const LatexOptions& options) {
+  check_distinct_outputs({{"the model file", options.model_path}}, {{"-o", options.output_path}});
   // The document is LaTeX source: a name such as x.pdf would hold text that no PDF viewer opens.
   if (std::filesystem::path(options.output_path).extension() != ".tex")
     throw CliValueError("-o: '" + options.output_path + "' must end in .tex (pdflatex makes the PDF from it)");

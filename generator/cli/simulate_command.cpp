@@ -11,6 +11,7 @@
 
 #include "cli_options.hpp"
 #include "commands.hpp"
+#include "output_paths.hpp"
 #include "progress_bar.hpp"
 #include "pfgen/codegen/simulation_plugin.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
@@ -52,6 +53,16 @@ void check_output_paths(const SimulateOptions& options) {
     if (ext != ".png" && ext != ".svg")
       throw CliValueError("--plot: '" + options.plot_path + "' must end in .png or .svg");
   }
+  // Every file the run writes, the CSV beside a plot and the plot's gnuplot script included.
+  std::vector<NamedPath> written;
+  if (!options.csv_path.empty()) written.push_back({"-o", options.csv_path});
+  if (!options.plot_path.empty()) {
+    if (options.csv_path.empty()) written.push_back({"--plot's CSV", csv_for_plot(options)});
+    written.push_back({"--plot", options.plot_path});
+    written.push_back({"--plot's gnuplot script", pfgen_runtime::gnuplot_script_path(options.plot_path)});
+  }
+  if (!options.timing_path.empty()) written.push_back({"--timing", options.timing_path});
+  check_distinct_outputs({{"the model file", options.model_path}}, written);
   // --timing too: it is written last, and a failure there used to follow a printed table.
   const std::pair<const std::string*, const char*> outputs[] = {
       {&options.csv_path, "-o"}, {&options.plot_path, "--plot"}, {&options.timing_path, "--timing"}};

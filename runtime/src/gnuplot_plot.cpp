@@ -133,10 +133,12 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
   return out.str();
 }
 
+std::string gnuplot_script_path(const std::string& plot_path) { return plot_path + ".gp"; }
+
 void write_error_plot(const std::string& plot_path, const std::string& csv_path, const MonteCarloResult& result,
                       const std::vector<std::string>& state_names, const std::string& title, double y_limit) {
   const std::string script = gnuplot_error_script(plot_path, csv_path, result, state_names, title, y_limit);
-  const std::string script_path = plot_path + ".gp";
+  const std::string script_path = gnuplot_script_path(plot_path);
   try {
     pfgen_support::write_file_atomically(script_path, script);
   } catch (const pfgen_support::AtomicWriteError&) {

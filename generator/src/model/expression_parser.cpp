@@ -3,6 +3,7 @@
 #include <cctype>
 
 #include "pfgen/model/decimal_literals.hpp"
+#include "pfgen/model/expression_limits.hpp"
 #include "pfgen/model/model_error.hpp"
 
 namespace pfgen {
@@ -68,6 +69,8 @@ GiNaC::ex ExpressionParser::parse(const std::string& text, const ExpressionSite&
     if (static_cast<unsigned char>(c) < 0x20 && c != ' ' && c != '\t')
       throw fail("expression contains a control character");
   }
+  // Before GiNaC's parser, which recurses per nesting level and evaluates numeric powers at once.
+  if (auto problem = expression_limit_problem(text)) throw fail(*problem);
   std::string unknown = first_identifier_not_in(text, symbols_);
   if (!unknown.empty()) throw fail("unknown symbol '" + unknown + "' in '" + text + "'");
   GiNaC::parser reader(symbols_, /*strict=*/true);

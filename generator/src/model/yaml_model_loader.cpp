@@ -1,5 +1,6 @@
 #include "pfgen/model/yaml_model_loader.hpp"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -423,6 +424,11 @@ Model load_model_text(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp's own bound on its recursion (a few hundred nested collections); its message is
+    // only "bad file".
+    throw located(ModelError("", "not valid YAML: collections nest too deeply"), path,
+                  {e.mark.line + 1, e.mark.column + 1});
   } catch (const YAML::Exception& e) {
     throw located(ModelError("", "not valid YAML: " + e.msg), path, {e.mark.line + 1, e.mark.column + 1});
   }

@@ -18,7 +18,11 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
                                  const MonteCarloResult& result, const std::vector<std::string>& state_names,
                                  const std::string& title, double y_limit = 0);
 
-// Writes that script to plot_path + ".gp" and runs gnuplot on it (pfgen_support::run_program: no shell).
+// Where write_error_plot keeps the script: plot_path + ".gp" (the command line checks that it
+// is neither an input nor another output).
+std::string gnuplot_script_path(const std::string& plot_path);
+
+// Writes that script to gnuplot_script_path(plot_path) and runs gnuplot on it (pfgen_support::run_program: no shell).
 // std::runtime_error when gnuplot is not on PATH (install it: scripts/install-deps.sh), when it
 // fails (with its error output), or when it leaves no plot file.
 void write_error_plot(const std::string& plot_path, const std::string& csv_path, const MonteCarloResult& result,

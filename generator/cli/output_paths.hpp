@@ -1,0 +1,25 @@
+#pragma once
+// Output files never replace an input or each other. Each command lists the files it reads and
+// the files it will write, and this check runs before any work: `simulate m.yaml -o m.yaml` wrote
+// the CSV over the model with exit 0, and `-o p.png --plot p.png` lost the CSV after the whole
+// run. Two spellings name the same file when they are the same existing file
+// (std::filesystem::equivalent: ./x, a/../x, symbolic and hard links), or, when not both exist,
+// when their weakly_canonical absolute paths are equal.
+#include <string>
+#include <vector>
+
+namespace pfgen::cli {
+
+struct NamedPath {
+  std::string role;  // how the message names it: "the model file", "-o", "--plot's gnuplot script"
+  std::string path;
+};
+
+bool same_file(const std::string& a, const std::string& b);
+
+// Throws CliValueError (one line, naming both roles) when an output is the same file as an input
+// or as another output, or when the nearest existing directory above an output is a file
+// ("-o file/x.csv" with `file` a regular file).
+void check_distinct_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
+
+}  // namespace pfgen::cli

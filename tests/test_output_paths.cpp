@@ -1,0 +1,114 @@
+// Output files never replace the model file or each other (generator/cli/output_paths): every
+// spelling of the same file is refused before any work, with one line on stderr, a non-zero
+// exit, nothing written and the model byte-identical.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "support/cli_helpers.hpp"
+
+using namespace pfgen_test;
+
+namespace {
+
+struct Case {
+  std::vector<std::string> args;  // after the subcommand; "M" stands for the model's path
+  std::string message;
+};
+
+// Runs each case in a fresh directory holding the model m.yaml (plus a link, a hard link, a
+// subdirectory and a plain file to spell paths with) and checks the refusal.
+void check_refused(const std::string& command, const std::vector<Case>& cases) {
+  const std::string original = read_file(example("basin2006_quadratic.yaml"));
+  for (const Case& c : cases) {
+    TempDir dir;
+    const std::string model = dir.file("m.yaml");
+    write_file(model, original);
+    std::filesystem::create_directory(dir.file("sub"));
+    std::filesystem::create_symlink(model, dir.file("link.yaml"));
+    std::filesystem::create_hard_link(model, dir.file("hard.yaml"));
+    write_file(dir.file("file"), "a file, not a directory\n");
+    const auto before = dir.entries();
+    std::vector<std::string> args{command};
+    for (const std::string& a : c.args) args.push_back(a == "M" ? model : a.rfind("@", 0) == 0 ? dir.file(a.substr(1)) : a);
+    args.insert(args.end(), {"--cache-dir", dir.file("cache")});
+    if (command != "simulate") args.erase(args.end() - 2, args.end());
+    const auto result = run_pfgen(args);
+    INFO(command << " " << c.args.back() << ": " << result.err);
+    CHECK(result.exit_code == 1);
+    CHECK(result.out.empty());
+    CHECK(count_lines(result.err) == 1);
+    CHECK(result.err.find(c.message) != std::string::npos);
+    CHECK(read_file(model) == original);
+    CHECK(dir.entries() == before);  // nothing written, not even the plugin cache
+    CHECK(std::filesystem::is_empty(dir.file("sub")));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("simulate refuses outputs that are the model file or each other, in any spelling", "[output_paths][integration]") {
+  check_refused("simulate",
+                {
+                    {{"M", "-o", "@m.yaml"}, "-o: '"},
+                    {{"M", "-o", "@m.yaml"}, "' is the model file '"},
+                    {{"M", "--timing", "@m.yaml"}, "--timing: '"},
+                    {{"M", "--timing", "@sub/../m.yaml"}, "pfgen does not overwrite its input"},
+                    {{"M", "-o", "@./link.yaml"}, "is the model file"},
+                    {{"M", "-o", "@hard.yaml"}, "is the model file"},
+                    {{"M", "--plot", "@m.png", "-o", "@sub/../m.yaml"}, "is the model file"},
+                    {{"M", "-o", "@p.png", "--plot", "@p.png"}, "-o and --plot would both write"},
+                    {{"M", "-o", "@X", "--timing", "@./X"}, "-o and --timing would both write"},
+                    // The gnuplot script beside the plot, and the CSV beside it when -o is not given.
+                    {{"M", "-o", "@p.png.gp", "--plot", "@p.png"}, "-o and --plot's gnuplot script would both write"},
+                    {{"M", "--plot", "@p.png", "--timing", "@sub/../p.csv"},
+                     "--plot's CSV and --timing would both write"},
+                    {{"M", "-o", "@file/x.csv"}, "is a file, not a directory"},
+                    {{"M", "--timing", "@file/t.json"}, "is a file, not a directory"},
+                });
+}
+
+TEST_CASE("latex refuses an output that is the model file, in any spelling", "[output_paths][integration]") {
+  check_refused("latex", {
+                             {{"M", "-o", "@m.yaml"}, "-o: '"},
+                             {{"M", "-o", "@m.yaml"}, "' is the model file '"},
+                             {{"M", "-o", "@sub/../m.yaml"}, "is the model file"},
+                             {{"M", "-o", "@link.yaml"}, "is the model file"},
+                             {{"M", "-o", "@hard.yaml"}, "is the model file"},
+                             {{"M", "-o", "@file/x.tex"}, "-o: '"},
+                             {{"M", "-o", "@file/x.tex"}, "file' is a file, not a directory"},
+                         });
+}
+
+TEST_CASE("codegen refuses a header that would replace the model file or another header", "[output_paths][integration]") {
+  const std::string original = read_file(example("basin2006_quadratic.yaml"));
+  TempDir dir;
+  // The model file sits where codegen -o DIR would put optimal's header.
+  std::filesystem::create_directories(dir.file("out/basin2006_quadratic"));
+  const std::string model = dir.file("out/basin2006_quadratic/optimal.hpp");
+  write_file(model, original);
+  write_file(dir.file("file"), "a file\n");
+  const struct {
+    std::vector<std::string> args;
+    std::string message;
+  } cases[] = {
+      {{"codegen", model, "-o", dir.file("out")}, "-o (filter optimal): '"},
+      {{"codegen", model, "-o", dir.file("out")}, "' is the model file '"},
+      {{"codegen", model, "-o", dir.file("out/basin2006_quadratic/..")}, "is the model file"},
+      {{"codegen", model, "-o", dir.file("file/x")}, "'" + dir.file("file") + "' is a file, not a directory"},
+      // The same filter twice would write one header twice.
+      {{"codegen", model, "-o", dir.file("gen"), "--filter", "optimal,optimal"},
+       "-o (filter optimal) and -o (filter optimal) would both write"},
+  };
+  for (const auto& c : cases) {
+    const auto result = run_pfgen(c.args);
+    INFO(c.args.back() << ": " << result.err);
+    CHECK(result.exit_code == 1);
+    CHECK(count_lines(result.err) == 1);
+    CHECK(result.err.find(c.message) != std::string::npos);
+    CHECK(read_file(model) == original);
+    CHECK_FALSE(std::filesystem::exists(dir.file("gen")));
+  }
+  CHECK(std::vector<std::string>{"basin2006_quadratic"} ==
+        std::vector<std::string>{std::filesystem::directory_iterator(dir.file("out"))->path().filename().string()});
+}
