@@ -65,6 +65,7 @@ const std::vector<BadModel>& bad_models() {
       {"nonpoly_state_in_observation_B.yaml", "observation.B", 1, 1, 8, "must not depend on the states"},
       {"nonpoly_state_in_additive_diffusion.yaml", "additive_diffusion", 1, 1, 6, "must not depend on the states"},
       {"huge_degree.yaml", "drift", 1, 0, 4, "above the limit"},
+      {"fuzz_degree_wraps_int.yaml", "drift", 1, 0, 4, "has a degree in state 'x' above the limit of 1000"},
       // (1 + x)^(10^9): its binomial coefficients are refused before its degree (expression_limits).
       {"huge_degree_in_diffusion_covariance.yaml", "diffusion_covariance", 1, 1, 5,
        "gives a number of about 3.01e+08 digits"},
