@@ -48,6 +48,7 @@ const std::vector<BadModel>& bad_models() {
       {"constant_power_of_power.yaml", "drift", 1, 0, 4, "'2^1000000' gives a number of about 3.01e+05 digits"},
       {"constant_literal_power.yaml", "observation.A0", 1, 0, 9, "'(1e9999)^1000' gives a number of about 1e+07 digits"},
       {"constant_zeta.yaml", "drift", 1, 0, 4, "'zeta(100000)' gives a number of about 2.5e+10 digits"},
+      {"fuzz_function_without_argument.yaml", "diffusion", 1, 2, 5, "'exp()': a function needs an argument"},
       {"fuzz_zeta_bernoulli.yaml", "drift", 1, 0, 4, "'zeta(66*040)' gives a number of about 1.19e+07 digits"},
       // unknown symbols
       {"unknown_symbol_drift.yaml", "drift", 1, 0, 4, "unknown symbol 'a'"},

@@ -138,6 +138,13 @@ class Estimator {
       if (peek() != '(') return e;  // a state, parameter, time or constant such as Pi
       // A call: GiNaC keeps sin(2^x) and the like symbolic; its arguments are checked.
       ++at_;
+      // GiNaC's parser finds a function of no arguments (exp(), found by scripts/fuzz.sh) and
+      // evaluating it dereferences a null pointer (signal 11). No function of a model has none.
+      if (peek() == ')') {
+        problem_ = "'" + name + "()': a function needs an argument";
+        failed_ = true;
+        return e;
+      }
       double largest = 0;  // the largest constant argument
       do {
         if (peek() == ',') ++at_;
