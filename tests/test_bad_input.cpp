@@ -47,7 +47,9 @@ const std::vector<BadModel>& bad_models() {
       {"constant_power_of_ten.yaml", "diffusion", 1, 1, 5, "'10^(10^10)' gives a number of about 1e+10 digits"},
       {"constant_power_of_power.yaml", "drift", 1, 0, 4, "'2^1000000' gives a number of about 3.01e+05 digits"},
       {"constant_literal_power.yaml", "observation.A0", 1, 0, 9, "'(1e9999)^1000' gives a number of about 1e+07 digits"},
-      {"constant_zeta.yaml", "drift", 1, 0, 4, "'zeta(100000)' gives a number of about 5e+05 digits"},
+      {"constant_zeta.yaml", "drift", 1, 0, 4, "'zeta(100000)' gives a number of about 2.5e+10 digits"},
+      {"fuzz_function_without_argument.yaml", "diffusion", 1, 2, 5, "'exp()': a function needs an argument"},
+      {"fuzz_zeta_bernoulli.yaml", "drift", 1, 0, 4, "'zeta(66*040)' gives a number of about 1.19e+07 digits"},
       // unknown symbols
       {"unknown_symbol_drift.yaml", "drift", 1, 0, 4, "unknown symbol 'a'"},
       {"unknown_symbol_observation_B.yaml", "observation.B", 1, 1, 9, "unknown symbol 'sigma'"},
@@ -65,6 +67,7 @@ const std::vector<BadModel>& bad_models() {
       {"nonpoly_state_in_observation_B.yaml", "observation.B", 1, 1, 8, "must not depend on the states"},
       {"nonpoly_state_in_additive_diffusion.yaml", "additive_diffusion", 1, 1, 6, "must not depend on the states"},
       {"huge_degree.yaml", "drift", 1, 0, 4, "above the limit"},
+      {"fuzz_degree_wraps_int.yaml", "drift", 1, 0, 4, "has a degree in state 'x' above the limit of 1000"},
       // (1 + x)^(10^9): its binomial coefficients are refused before its degree (expression_limits).
       {"huge_degree_in_diffusion_covariance.yaml", "diffusion_covariance", 1, 1, 5,
        "gives a number of about 3.01e+08 digits"},

@@ -63,7 +63,12 @@ TEST_CASE("expression limits: digits of numbers, estimated before GiNaC computes
   CHECK(problem("factorial(1000)*x") == "none");
   CHECK(problem("factorial(100000)*x").find("'factorial(100000)' gives a number of about 5e+05 digits") == 0);
   CHECK(problem("zeta(100000)").find("'zeta(100000)'") == 0);
+  CHECK(problem("zeta(60)*x") == "none");
+  CHECK(problem("zeta(66*040)*x").find("'zeta(66*040)' gives a number of about 1.19e+07 digits") == 0);
   CHECK(problem("sin(100000)") == "none");
+  // A call without arguments crashed GiNaC's evaluation.
+  CHECK(problem("x + exp()") == "'exp()': a function needs an argument");
+  CHECK(problem("sin( )*x") == "'sin()': a function needs an argument");
   // Not an expression: GiNaC's parser names the syntax error.
   CHECK(problem("x +* 2") == "none");
   CHECK(problem("-(x + 1") == "none");
