@@ -6,6 +6,7 @@
 #include "pfgen/codegen/cpp_emitter.hpp"
 #include "pfgen/codegen/cpp_names.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
+#include "pfgen/model/simulation_rules.hpp"
 
 namespace pfgen::codegen {
 namespace {
@@ -85,13 +86,6 @@ std::string observation_function(const Model& model, TruthNames& names) {
   return function(model, names, signature + ")", false, outputs, destinations);
 }
 
-bool all_zero(const ExMatrix& m) {
-  for (const auto& row : m)
-    for (const auto& e : row)
-      if (!e.expand().is_zero()) return false;
-  return true;
-}
-
 bool depends_on_time(const Model& model, const ExMatrix& m) {
   for (const auto& row : m)
     for (const auto& e : row)
@@ -108,7 +102,7 @@ TruthCode generate_truth_code(const Model& model) {
   code.p = model.p();
   const ContinuousObservation& observation = model.observation.continuous();
   code.r = observation.B.empty() ? 0 : observation.B.front().size();
-  code.diffusion_is_zero = d.g ? all_zero(*d.g) : all_zero(d.G);
+  code.diffusion_is_zero = diffusion_is_zero(model);
   code.diffusion_is_covariance = !code.diffusion_is_zero && !d.g;
   code.q = code.diffusion_is_zero ? 0 : d.g ? d.g->front().size() : code.n;
   code.observation_is_constant = !depends_on_time(model, ExMatrix{observation.A0}) &&
