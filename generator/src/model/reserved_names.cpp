@@ -47,7 +47,8 @@ std::optional<std::string> cpp_name_problem(const std::string& name) {
     return "'" + name + "' is a macro of the C/C++ library headers the generated code includes";
   if (generated_code_types().count(name)) return "'" + name + "' is a type the generated code uses";
   if (name.rfind("PFGEN_", 0) == 0) return "'" + name + "' starts with PFGEN_, the prefix of pfgen's own macros";
-  if (name.find("__") != std::string::npos || std::regex_search(name, std::regex("^_[A-Z]")))
+  static const std::regex underscore_capital("^_[A-Z]");
+  if (name.find("__") != std::string::npos || std::regex_search(name, underscore_capital))
     return "'" + name + "' is reserved in C++ (a double underscore, or an underscore and a capital letter first)";
   return std::nullopt;
 }
