@@ -169,9 +169,22 @@ int run_eval(const EvalOptions& options) {
   Json out = Json::object();
   out.add("model", Json::string(model.name));
   out.add("filter", Json::string(eq.name));
-  out.add("m_drift", vector_json(value.m_drift));
-  out.add("gain", matrix_json(value.gain));
-  out.add("P_drift", matrix_json(value.P_drift));
+  if (eq.is_sampled()) {
+    // Prediction and update kept apart, as `derive` shows them.
+    Json prediction = Json::object();
+    prediction.add("m_drift", vector_json(value.m_drift));
+    prediction.add("P_drift", matrix_json(value.P_drift));
+    if (!value.P_dt2.empty()) prediction.add("P_dt2", matrix_json(value.P_dt2));
+    Json update = Json::object();
+    update.add("innovation_covariance", matrix_json(value.innovation_covariance));
+    update.add("gain", matrix_json(value.gain));
+    out.add("prediction", prediction);
+    out.add("update", update);
+  } else {
+    out.add("m_drift", vector_json(value.m_drift));
+    out.add("gain", matrix_json(value.gain));
+    out.add("P_drift", matrix_json(value.P_drift));
+  }
   std::cout << out.dump();
   return 0;
 }

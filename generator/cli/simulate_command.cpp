@@ -120,6 +120,11 @@ int run_simulate(const SimulateOptions& options) {
   const Clock::time_point start = Clock::now();
   check_output_paths(options);
   Model model = load_model_file(options.model_path);
+  // The runtime simulates continuous observations only; sampled ones need samples y_k drawn from the
+  // truth at t_k and the filters' predict/update API (issue 11, deliverable 4).
+  if (model.observation.is_sampled())
+    throw CliValueError(model.source + ": observation: simulate does not yet run models with sampled observations "
+                        "(derive, latex, eval and codegen do)");
   // --set a=0.2: the job's value of a, compiled into the plugin as its default (so a new value
   // is a new source, and a new cache entry).
   apply_parameter_assignments(model, options.assignments);

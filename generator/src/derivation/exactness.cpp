@@ -120,10 +120,44 @@ std::string partially_measured_split(const ModelFacts& facts) {
   return {};
 }
 
+// Sampled observations: the update is the Kalman update, optimal when x given the past samples
+// is Gaussian. That holds when f is affine and g does not depend on x (the model sampled is then
+// linear Gaussian); cd-euler is then the Kalman filter of the Euler-discretised model.
+ExactnessReport sampled_exactness(const ModelFacts& facts, FilterKind kind) {
+  ExactnessReport report;
+  const std::string nonaffine = facts.nonaffine_drift();
+  const std::string multiplicative = facts.state_dependent_noise();
+  const std::string failure = !nonaffine.empty() ? nonaffine : multiplicative;
+  if (failure.empty()) {
+    report.exact = true;
+    report.condition = uses_euler_map(kind) ? "Kalman (Euler model)" : "Kalman";
+    report.explanation =
+        uses_euler_map(kind)
+            ? "exact for the Euler-discretised model: f is affine and g does not depend on x, so this is the "
+              "Kalman filter of x' = x + f dt + g sqrt(dt) xi sampled every sub-step"
+            : "exact: f is affine and g does not depend on x, so this is the Kalman filter of the sampled linear "
+              "system (up to the sub-steps' integration error)";
+    return report;
+  }
+  report.condition = "none";
+  if (uses_euler_map(kind) && nonaffine.empty())
+    report.explanation = "linear minimum-variance filter (paper 003): with affine f the predicted m and P are the "
+                         "exact moments of the Euler-discretised model, but x is not Gaussian, so the update is "
+                         "the best linear one, not the optimal one";
+  else if (is_extended_kalman(kind))
+    report.explanation = "approximation: the extended Kalman filter linearises f at m; it is exact only in the "
+                         "linear Gaussian case";
+  else
+    report.explanation = "approximation: Gaussian assumed density between samples and a Kalman update at each";
+  report.failed.push_back("Kalman: " + failure);
+  return report;
+}
+
 }  // namespace
 
 ExactnessReport assess_exactness(const Model& model, FilterKind kind) {
   ModelFacts facts(model, kind);
+  if (model.observation.is_sampled()) return sampled_exactness(facts, kind);
   ExactnessReport report;
   const std::string nonaffine = facts.nonaffine_drift();
   const std::string multiplicative = facts.state_dependent_noise();

@@ -55,6 +55,20 @@ MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariab
   return out;
 }
 
+// Cov(f)_ij = E[f_i f_j] - E[f_i] E[f_j] under x ~ N(m, P), upper triangle: the dt^2 term of the
+// covariance of one Euler step x + f(x) dt + g(x) sqrt(dt) xi (docs/theory.md). The cross term
+// E[(x - m + f dt - E[f] dt) g sqrt(dt) xi] vanishes because xi is independent of x with mean 0.
+std::vector<Polynomial> euler_square_term(const Model& model, const FilterVariables& vars) {
+  const std::vector<Polynomial> f = state_polynomials(model.drift, model);
+  GaussianExpectation E(vars);
+  std::vector<Polynomial> Ef;
+  for (const auto& fi : f) Ef.push_back(E.of(fi));
+  std::vector<Polynomial> out;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    for (std::size_t j = i; j < f.size(); ++j) out.push_back(E.of(f[i] * f[j]) - Ef[i] * Ef[j]);
+  return out;
+}
+
 // What every filter of the model shares: its variables, its observation kind and the predicted
 // observation its innovation subtracts (the model's own, for user filters too).
 FilterEquations equations_frame(const Model& model) {
@@ -62,7 +76,12 @@ FilterEquations equations_frame(const Model& model) {
   eq.observation = model.observation.kind();
   eq.variables = FilterVariables(model.n());
   eq.p = model.p();
-  eq.predicted_observation = predicted_observation(model.observation.continuous(), eq.variables);
+  if (model.observation.is_sampled()) {
+    eq.predicted_observation = predicted_sample(model.observation.sampled(), eq.variables);
+    eq.update = sampled_update(model.observation.sampled(), eq.variables);
+  } else {
+    eq.predicted_observation = predicted_observation(model.observation.continuous(), eq.variables);
+  }
   return eq;
 }
 
@@ -101,6 +120,12 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
     }
   eq.jacobian_term = std::move(terms.jacobian);
 
+  if (eq.is_sampled()) {
+    // Between samples there is no observation term; the update is eq.update (equations_frame).
+    eq.P_correction.assign(eq.P_moment.size(), Polynomial());
+    if (uses_euler_map(kind)) eq.P_euler = euler_square_term(model, vars);
+    return eq;
+  }
   ObservationCorrection correction = observation_correction(model.observation.continuous(), vars);
   eq.gain = std::move(correction.gain);
   eq.P_correction = std::move(correction.P_correction);

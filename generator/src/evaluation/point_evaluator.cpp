@@ -23,7 +23,8 @@ class PolynomialEvaluator {
     }
   }
 
-  double operator()(const Polynomial& p, const std::string& what) const {
+  // The value before rounding: exact where the inputs are.
+  GiNaC::ex exact(const Polynomial& p) const {
     GiNaC::ex sum = 0;
     for (const auto& [monomial, coefficient] : p.terms()) {
       GiNaC::ex term = coefficient.subs(coefficient_values_);
@@ -31,7 +32,13 @@ class PolynomialEvaluator {
         term *= GiNaC::pow(variable_values_[variable], exponent);
       sum += term;
     }
-    GiNaC::ex value = sum.evalf();
+    return sum;
+  }
+
+  double operator()(const Polynomial& p, const std::string& what) const { return rounded(exact(p), what); }
+
+  static double rounded(const GiNaC::ex& exact_value, const std::string& what) {
+    GiNaC::ex value = exact_value.evalf();
     if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real())
       throw EvaluationError(what + " does not evaluate to a real number at this point");
     double result = GiNaC::ex_to<GiNaC::numeric>(value).to_double();
@@ -73,6 +80,44 @@ void check_point(const Model& model, const EvaluationPoint& point) {
   }
 }
 
+std::string at(const std::string& what, std::size_t i, std::size_t j) {
+  return what + "[" + std::to_string(i + 1) + "][" + std::to_string(j + 1) + "]";
+}
+
+// The sampled kinds' update at the point: S = C P C^T + R and K = P C^T S^-1, formed exactly
+// (GiNaC's rational matrix inverse) and rounded once; cd-euler's dt^2 term Cov(f).
+void evaluate_sampled(const FilterEquations& eq, const PolynomialEvaluator& value, EvaluatedFilter& out) {
+  const std::size_t n = eq.n();
+  const SampledUpdate& u = eq.update;
+  const std::size_t r = u.r();
+  if (!eq.P_euler.empty()) {
+    out.P_dt2.assign(n, std::vector<double>(n));
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j)
+        out.P_dt2[i][j] = out.P_dt2[j][i] = value(eq.P_euler[eq.variables.upper_index(i, j)], at("P_dt2", i, j));
+  }
+  GiNaC::matrix S(static_cast<unsigned>(r), static_cast<unsigned>(r));
+  GiNaC::matrix PCt(static_cast<unsigned>(n), static_cast<unsigned>(r));
+  out.innovation_covariance.assign(r, std::vector<double>(r));
+  for (unsigned a = 0; a < r; ++a)
+    for (unsigned b = 0; b < r; ++b) {
+      S(a, b) = value.exact(u.S[u.upper_index(a, b)]);
+      out.innovation_covariance[a][b] = PolynomialEvaluator::rounded(S(a, b), at("innovation_covariance", a, b));
+    }
+  for (unsigned i = 0; i < n; ++i)
+    for (unsigned a = 0; a < r; ++a) PCt(i, a) = value.exact(u.PCt[i][a]);
+  GiNaC::matrix S_inverse;
+  try {
+    S_inverse = S.inverse();
+  } catch (const std::exception&) {
+    throw EvaluationError("the innovation covariance C P C^T + Uv Uv^T is singular at this point");
+  }
+  const GiNaC::matrix K = PCt.mul(S_inverse);
+  out.gain.assign(n, std::vector<double>(r));
+  for (unsigned i = 0; i < n; ++i)
+    for (unsigned a = 0; a < r; ++a) out.gain[i][a] = PolynomialEvaluator::rounded(K(i, a), at("gain", i, a));
+}
+
 }  // namespace
 
 EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const EvaluationPoint& point) {
@@ -82,15 +127,19 @@ EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const
   const std::size_t n = eq.n();
   EvaluatedFilter out;
   for (std::size_t i = 0; i < n; ++i) out.m_drift.push_back(value(eq.m_drift[i], "m_drift[" + std::to_string(i + 1) + "]"));
-  out.gain.assign(n, std::vector<double>(eq.p));
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < eq.p; ++r)
-      out.gain[i][r] = value(eq.gain[i][r], "gain[" + std::to_string(i + 1) + "][" + std::to_string(r + 1) + "]");
   out.P_drift.assign(n, std::vector<double>(n));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j)
       out.P_drift[i][j] = out.P_drift[j][i] =
           value(eq.P_drift(i, j), "P_drift[" + std::to_string(i + 1) + "][" + std::to_string(j + 1) + "]");
+  if (eq.is_sampled()) {
+    evaluate_sampled(eq, value, out);
+    return out;
+  }
+  out.gain.assign(n, std::vector<double>(eq.p));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t r = 0; r < eq.p; ++r)
+      out.gain[i][r] = value(eq.gain[i][r], "gain[" + std::to_string(i + 1) + "][" + std::to_string(r + 1) + "]");
   return out;
 }
 

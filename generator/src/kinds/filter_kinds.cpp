@@ -9,6 +9,7 @@ const std::vector<FilterKindInfo>& filter_kinds() {
   using E = ExpectationRule;
   using D = DiffusionSource;
   const std::vector<ObservationKind> continuous = {ObservationKind::Continuous};
+  const std::vector<ObservationKind> sampled = {ObservationKind::Sampled};
   static const std::vector<FilterKindInfo> kinds = {
       {FilterKind::Optimal, "optimal",
        "Gaussian-closure optimal filter: E[f], E[(x-m)f^T] + E[f(x-m)^T], E[g g^T] expanded exactly", E::Gaussian,
@@ -21,6 +22,15 @@ const std::vector<FilterKindInfo>& filter_kinds() {
       {FilterKind::EkfAdditive, "ekf-additive",
        "extended Kalman-Bucy filter with the model's additive (state-independent) diffusion in place of g",
        E::AtMean, D::Additive, continuous},
+      {FilterKind::CdOptimal, "cd-optimal",
+       "continuous-discrete Gaussian-closure filter: the closed moment ODEs between samples, Kalman update at each",
+       E::Gaussian, D::Model, sampled, Prediction::Ode},
+      {FilterKind::CdEkf, "cd-ekf",
+       "continuous-discrete extended Kalman filter: f(m), Jacobian at m, g(m) g(m)^T between samples, Kalman update",
+       E::AtMean, D::Model, sampled, Prediction::Ode},
+      {FilterKind::CdEuler, "cd-euler",
+       "exact Gaussian-closure moments of the Euler-discretised model per sub-step, Kalman update (paper 003's CDF)",
+       E::Gaussian, D::Model, sampled, Prediction::EulerMap},
   };
   return kinds;
 }

@@ -166,7 +166,38 @@ void validate_diffusion(const Model& model, const Diffusion& d, const std::strin
                                   std::to_string(smallest) + "): a covariance cannot be negative");
 }
 
-void validate_observation(const Model& model) {
+// N N^T must be positive definite: numerically, at the parameters' defaults and t = 0. `name` is
+// the matrix's name in messages (B, Uv), `field` its place in the model file.
+void require_positive_definite_noise(const Model& model, const ExMatrix& N, const std::string& field,
+                                     const std::string& name) {
+  const std::size_t p = N.size();
+  const std::string NNt = name + " " + name + "^T";
+  Eigen::MatrixXd R(p, p);
+  ExMatrix Rsym = multiply_by_transpose(N);
+  for (std::size_t i = 0; i < p; ++i)
+    for (std::size_t j = 0; j < p; ++j) {
+      GiNaC::ex value = at_defaults(model, Rsym[i][j]);
+      if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real())
+        throw ModelError(field, NNt + " entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
+                                    ") is not a real number at the parameter defaults");
+      R(i, j) = GiNaC::ex_to<GiNaC::numeric>(value).to_double();
+    }
+  for (std::size_t i = 0; i < p; ++i)
+    if (R(i, i) <= 0)
+      throw ModelError(field,
+                       "row is zero at the parameter defaults and t = 0, so observation " + std::to_string(i + 1) +
+                           " has no noise and " + NNt + " is not positive definite",
+                       one_based(i));
+  Eigen::LLT<Eigen::MatrixXd> cholesky(R);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(R);
+  if (cholesky.info() != Eigen::Success || eigen.eigenvalues().minCoeff() <= 1e-12 * std::max(1.0, R.norm()))
+    throw ModelError(field,
+                     NNt + " is not positive definite (smallest eigenvalue " +
+                         std::to_string(eigen.eigenvalues().minCoeff()) +
+                         " at the parameter defaults and t = 0); every observation needs its own noise");
+}
+
+void validate_continuous_observation(const Model& model) {
   const ContinuousObservation& obs = model.observation.continuous();
   std::size_t p = obs.A.size();
   if (p == 0) throw ModelError("observation.A", "at least one observation row is required");
@@ -183,32 +214,34 @@ void validate_observation(const Model& model) {
     for (std::size_t j = 0; j < obs.B[i].size(); ++j)
       require_state_free(model, obs.B[i][j], "observation.B", one_based(i), one_based(j));
   }
-  // R = B B^T must be positive definite: symbolically not singular, and
-  // numerically positive definite at the parameters' defaults and t = 0.
-  Eigen::MatrixXd R(p, p);
-  ExMatrix Rsym = multiply_by_transpose(obs.B);
-  for (std::size_t i = 0; i < p; ++i)
-    for (std::size_t j = 0; j < p; ++j) {
-      GiNaC::ex value = at_defaults(model, Rsym[i][j]);
-      if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real())
-        throw ModelError("observation.B", "B B^T entry (" + std::to_string(i + 1) + "," +
-                                              std::to_string(j + 1) +
-                                              ") is not a real number at the parameter defaults");
-      R(i, j) = GiNaC::ex_to<GiNaC::numeric>(value).to_double();
-    }
-  for (std::size_t i = 0; i < p; ++i)
-    if (R(i, i) <= 0)
-      throw ModelError("observation.B",
-                       "row is zero at the parameter defaults and t = 0, so observation " + std::to_string(i + 1) +
-                           " has no noise and B B^T is not positive definite",
-                       one_based(i));
-  Eigen::LLT<Eigen::MatrixXd> cholesky(R);
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(R);
-  if (cholesky.info() != Eigen::Success || eigen.eigenvalues().minCoeff() <= 1e-12 * std::max(1.0, R.norm()))
-    throw ModelError("observation.B",
-                     "B B^T is not positive definite (smallest eigenvalue " +
-                         std::to_string(eigen.eigenvalues().minCoeff()) +
-                         " at the parameter defaults and t = 0); every observation needs its own noise");
+  require_positive_definite_noise(model, obs.B, "observation.B", "B");
+}
+
+void validate_sampled_observation(const Model& model) {
+  const SampledObservation& obs = model.observation.sampled();
+  const std::string field = "observation.sampled";
+  if (!(obs.period > 0)) throw ModelError(field + ".period", "must be positive, found " + to_text(obs.period));
+  if (obs.substeps < 1) throw ModelError(field + ".substeps", "must be at least 1 (1 sub-step: predict over the whole period)");
+  std::size_t r = obs.C.size();
+  if (r == 0) throw ModelError(field + ".C", "at least one observation row is required");
+  require_shape(obs.C, r, model.n(), field + ".C", "r x n with n = number of states");
+  if (obs.C0.size() != r)
+    throw ModelError(field + ".C0", "expected " + std::to_string(r) + " entries (one per row of C), found " +
+                                        std::to_string(obs.C0.size()));
+  require_shape(obs.Uv, r, std::nullopt, field + ".Uv", "one per observation, as in C");
+  for (std::size_t i = 0; i < r; ++i) {
+    require_state_free(model, obs.C0[i], field + ".C0", one_based(i), std::nullopt);
+    for (std::size_t j = 0; j < obs.C[i].size(); ++j)
+      require_state_free(model, obs.C[i][j], field + ".C", one_based(i), one_based(j));
+    for (std::size_t j = 0; j < obs.Uv[i].size(); ++j)
+      require_state_free(model, obs.Uv[i][j], field + ".Uv", one_based(i), one_based(j));
+  }
+  require_positive_definite_noise(model, obs.Uv, field + ".Uv", "Uv");
+}
+
+void validate_observation(const Model& model) {
+  if (model.observation.is_sampled()) return validate_sampled_observation(model);
+  validate_continuous_observation(model);
 }
 
 void validate_initial(const Model& model) {
@@ -274,6 +307,10 @@ void validate_user_filters(const Model& model) {
   // <identifier>.hpp and <identifier>_eigen.hpp derive from it too).
   std::map<std::string, std::string> identifiers;
   for (const auto& builtin : filter_kinds()) identifiers[filter_identifier(builtin.name)] = builtin.name;
+  if (model.observation.is_sampled() && !model.user_filters.empty())
+    throw ModelError("filters." + model.user_filters.front().name,
+                     "a filter given by its equations is a continuous-observation filter (dm = ... + gain (dy - ...)); "
+                     "this model's observation is sampled");
   for (const UserFilter& filter : model.user_filters) {
     const std::string field = "filters." + filter.name;
     if (!std::regex_match(filter.name, filter_name))

@@ -10,12 +10,18 @@ ObservationKind ObservationModel::kind() const {
 }
 
 std::size_t ObservationModel::p() const {
-  return std::visit([](const auto& form) { return form.A.size(); }, form_);
+  if (const auto* s = std::get_if<SampledObservation>(&form_)) return s->C.size();
+  return std::get<ContinuousObservation>(form_).A.size();
 }
 
 const ContinuousObservation& ObservationModel::continuous() const {
   if (const auto* c = std::get_if<ContinuousObservation>(&form_)) return *c;
   throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ", not continuous");
+}
+
+const SampledObservation& ObservationModel::sampled() const {
+  if (const auto* s = std::get_if<SampledObservation>(&form_)) return *s;
+  throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ", not sampled");
 }
 
 }  // namespace pfgen

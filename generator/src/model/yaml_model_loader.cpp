@@ -26,6 +26,7 @@ const std::set<std::string> kTopLevelFields = {
     "drift",     "diffusion",   "diffusion_covariance", "additive_diffusion",
     "additive_diffusion_covariance", "observation", "initial", "filters", "simulation"};
 
+const char* const kSampledFields = "period, C, Uv, C0, substeps";
 const char* const kUserFilterFields = "m_drift, P_drift, gain, description";
 const char* const kSimulationFields =
     "T, dt, runs, seed, filters, scheme, report_times, windows, record_points, bound, shown_run";
@@ -182,12 +183,24 @@ class Loader {
 
   void read_observation(ModelBuilder& builder, const ExpressionParser& parser) {
     YAML::Node obs = required("observation");
-    if (!obs.IsMap()) throw ModelError("observation", "expected a mapping with A0, A and B");
+    if (!obs.IsMap()) throw ModelError("observation", "expected a mapping with A0, A and B (or sampled: {...})");
+    if (YAML::Node sampled = obs["sampled"]; sampled) {
+      for (const auto& entry : obs) {
+        std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
+        if (key != "sampled") {
+          index_.record("observation." + key, entry.first);
+          throw ModelError("observation." + key, "a sampled observation has only the field sampled: {period, C, Uv, C0, substeps}");
+        }
+        index_.record("observation.sampled", entry.first);
+      }
+      read_sampled_observation(builder, parser, sampled);
+      return;
+    }
     for (const auto& entry : obs) {
       std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
       if (key != "A0" && key != "A" && key != "B") {
         index_.record("observation." + key, entry.first);
-        throw ModelError("observation." + key, "unknown field (known: A0, A, B)");
+        throw ModelError("observation." + key, "unknown field (known: A0, A, B), or sampled: {period, C, Uv} for sampled measurements");
       }
     }
     YAML::Node A_node = obs["A"];
@@ -200,6 +213,34 @@ class Loader {
     if (YAML::Node A0_node = obs["A0"]; A0_node && !A0_node.IsNull())
       A0 = vector_field(A0_node, "observation.A0", parser);
     builder.observation(A0, A, B);
+  }
+
+  // observation: {sampled: {period: T, C: [[...]], Uv: [[...]], C0: [...], substeps: N}}
+  void read_sampled_observation(ModelBuilder& builder, const ExpressionParser& parser, const YAML::Node& sampled) {
+    const std::string field = "observation.sampled";
+    if (!sampled.IsMap()) throw ModelError(field, std::string("expected a mapping with ") + kSampledFields);
+    for (const auto& entry : sampled) {
+      std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
+      index_.record(field + "." + key, entry.first);
+      if (key != "period" && key != "C" && key != "Uv" && key != "C0" && key != "substeps")
+        throw ModelError(field + "." + key, std::string("unknown field (known: ") + kSampledFields + ")");
+    }
+    for (const char* key : {"period", "C", "Uv"})
+      if (!sampled[key] || sampled[key].IsNull()) throw ModelError(field + "." + key, "missing required field");
+    // The period is a plain number, not an expression: the generated code and the simulator's
+    // sample grid need its value, whatever the parameters are set to.
+    const std::string period_text = scalar(sampled["period"], field + ".period");
+    auto period = parse_exact_number(period_text);
+    if (!period) throw ModelError(field + ".period", "'" + period_text + "' is not a number");
+    std::size_t substeps = 1;
+    if (YAML::Node s = sampled["substeps"]; s && !s.IsNull())
+      substeps = static_cast<std::size_t>(whole_number(s, field + ".substeps", 1000000));
+    ExMatrix C = matrix_field(sampled["C"], field + ".C", parser);
+    ExMatrix Uv = matrix_field(sampled["Uv"], field + ".Uv", parser);
+    ExVector C0(C.size(), GiNaC::ex(0));
+    if (YAML::Node C0_node = sampled["C0"]; C0_node && !C0_node.IsNull())
+      C0 = vector_field(C0_node, field + ".C0", parser);
+    builder.sampled_observation(*period, C0, C, Uv, substeps);
   }
 
   std::vector<GiNaC::numeric> number_list(const YAML::Node& node, const std::string& field,

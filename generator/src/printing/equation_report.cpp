@@ -2,6 +2,7 @@
 
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
+#include "pfgen/printing/sampled_report.hpp"
 
 namespace pfgen {
 namespace {
@@ -40,6 +41,7 @@ std::string exactness_line(const ExactnessReport& r) {
 }  // namespace
 
 std::string equations_text(const Model& model, const FilterEquations& eq) {
+  if (eq.is_sampled()) return sampled_equations_text(model, eq);
   TextPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.text_name(v); };
@@ -79,6 +81,7 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
 }
 
 std::string equations_latex(const FilterEquations& eq) {
+  if (eq.is_sampled()) return sampled_equations_latex(eq);
   LatexPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.latex_name(v); };
@@ -114,6 +117,7 @@ std::string equations_latex(const FilterEquations& eq) {
 }
 
 Json equations_json(const Model& model, const FilterEquations& eq) {
+  if (eq.is_sampled()) return sampled_equations_json(model, eq);
   TextPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.text_name(v); };

@@ -45,6 +45,13 @@ Json Json::number(double value) {
   return j;
 }
 
+Json Json::integer(std::uint64_t value) {
+  Json j;
+  j.kind_ = Kind::Number;
+  j.scalar_ = std::to_string(value);
+  return j;
+}
+
 Json Json::boolean(bool value) {
   Json j;
   j.kind_ = Kind::Boolean;

@@ -53,9 +53,15 @@ std::string model_section(const Model& model) {
     out += (d.g ? "g_{\\mathrm{add}} &= " + bmatrix(printer, *d.g) : "G_{\\mathrm{add}} &= " + bmatrix(printer, d.G)) +
            " \\\\\n";
   }
-  const ContinuousObservation& observation = model.observation.continuous();
-  out += "A_0 &= " + bmatrix(printer, column(observation.A0)) + ", \\quad A = " + bmatrix(printer, observation.A) +
-         ", \\quad B = " + bmatrix(printer, observation.B);
+  if (model.observation.is_sampled()) {
+    const SampledObservation& sampled = model.observation.sampled();
+    out += "C_0 &= " + bmatrix(printer, column(sampled.C0)) + ", \\quad C = " + bmatrix(printer, sampled.C) +
+           ", \\quad U_v = " + bmatrix(printer, sampled.Uv) + ", \\quad T = " + printer.print(sampled.period);
+  } else {
+    const ContinuousObservation& observation = model.observation.continuous();
+    out += "A_0 &= " + bmatrix(printer, column(observation.A0)) + ", \\quad A = " + bmatrix(printer, observation.A) +
+           ", \\quad B = " + bmatrix(printer, observation.B);
+  }
   if (model.initial) {
     const InitialConditions& ic = *model.initial;
     out += " \\\\\n";
@@ -80,10 +86,15 @@ std::string latex_document(const Model& model, const std::vector<FilterEquations
   out += model_section(model);
   bool any_user_filter = false;
   for (const auto& eq : filters) any_user_filter = any_user_filter || eq.is_user_filter();
-  out += "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state, $P_{ij}$ the error covariance, "
-         "$K$ the gain $P A^{T}(B B^{T})^{-1}$ and $dy_{r}$ the observation increments. Each $dP$ is written as "
-         "$E[(x-m)f^{T}] + E[f(x-m)^{T}]$, then the diffusion term, then $-P A^{T}(B B^{T})^{-1} A P$, "
-         "without merging like terms across the three parts.";
+  if (model.observation.is_sampled())
+    out += "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state and $P_{ij}$ the error covariance. "
+           "Between samples $m$ and $P$ follow the prediction; at each sample $y$ the Kalman update with "
+           "$S = C P C^{T} + U_v U_v^{T}$ and $K = P C^{T} S^{-1}$ applies.";
+  else
+    out += "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state, $P_{ij}$ the error covariance, "
+           "$K$ the gain $P A^{T}(B B^{T})^{-1}$ and $dy_{r}$ the observation increments. Each $dP$ is written as "
+           "$E[(x-m)f^{T}] + E[f(x-m)^{T}]$, then the diffusion term, then $-P A^{T}(B B^{T})^{-1} A P$, "
+           "without merging like terms across the three parts.";
   if (any_user_filter)
     out += " A filter defined in the model file has its $dm$, $K$ and $dP$ as given there, not derived by pfgen.";
   out += "\n";

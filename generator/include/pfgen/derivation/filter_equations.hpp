@@ -8,6 +8,11 @@
 // parts: its P drift, as given, is P_moment, the other two parts are zero and it
 // has no jacobian_term. P entries are stored as the upper triangle, row by row
 // (FilterVariables).
+// With sampled observations (the cd-* kinds) the same fields hold the prediction between
+// samples, without an observation term (gain empty, P_correction zero):
+//   dm = m_drift dt, dP = P_drift dt                      (cd-optimal, cd-ekf: integrated)
+//   m' = m + m_drift dt, P' = P + P_drift dt + P_euler dt^2 (cd-euler: one Euler sub-step dt)
+// and `update` holds the Kalman update at each sample (derivation/sampled_update.hpp).
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +20,7 @@
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/derivation/exactness.hpp"
 #include "pfgen/derivation/filter_variables.hpp"
+#include "pfgen/derivation/sampled_update.hpp"
 #include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/model_filters.hpp"
@@ -42,9 +48,14 @@ struct FilterEquations {
   std::vector<Polynomial> P_diffusion;          // n(n+1)/2
   std::vector<Polynomial> P_correction;         // n(n+1)/2, subtracted
   ExactnessReport exactness;
+  // cd-euler only (else empty): Cov(f) = E[f f^T] - E[f] E[f]^T, upper triangle, the dt^2 term of
+  // the exact covariance of x + f dt + g sqrt(dt) xi.
+  std::vector<Polynomial> P_euler;
+  SampledUpdate update;  // sampled observations only (update.r() == 0 otherwise)
 
   std::size_t n() const { return variables.n(); }
   bool is_user_filter() const { return !kind.has_value(); }
+  bool is_sampled() const { return observation == ObservationKind::Sampled; }
   // The dt-coefficient of dP_ij, all parts combined (i, j in either order).
   Polynomial P_drift(std::size_t i, std::size_t j) const;
 };

@@ -19,10 +19,14 @@ struct EvaluationPoint {
   std::map<std::string, GiNaC::numeric> parameters;  // overrides of the model defaults
 };
 
+// For a sampled kind, m_drift and P_drift are the prediction's (no observation term) and gain is
+// the update's K = P C^T (C P C^T + Uv Uv^T)^-1 at the point.
 struct EvaluatedFilter {
   std::vector<double> m_drift;                 // n
   std::vector<std::vector<double>> gain;       // n x p
   std::vector<std::vector<double>> P_drift;    // n x n, symmetric
+  std::vector<std::vector<double>> P_dt2;      // cd-euler only: Cov(f), n x n
+  std::vector<std::vector<double>> innovation_covariance;  // sampled only: C P C^T + Uv Uv^T, r x r
 };
 
 // A problem with the point itself (wrong sizes, asymmetric P, unknown parameter).

@@ -13,7 +13,7 @@
 
 namespace pfgen {
 
-enum class FilterKind { Optimal, Ekf, Additive, EkfAdditive };
+enum class FilterKind { Optimal, Ekf, Additive, EkfAdditive, CdOptimal, CdEkf, CdEuler };
 
 // How a kind takes the expectations of f, of its Jacobian and of g g^T.
 enum class ExpectationRule {
@@ -27,6 +27,12 @@ enum class DiffusionSource {
   Additive,  // the model's constant additive_diffusion, which the model file must give
 };
 
+// How a sampled-observation kind moves m and P between samples (continuous kinds: Ode).
+enum class Prediction {
+  Ode,       // the closed moment ODEs dm = E[f] dt, dP = (...) dt, integrated over the sub-steps
+  EulerMap,  // the exact moments of one Euler step x + f dt + g sqrt(dt) xi: adds Cov(f) dt^2
+};
+
 struct FilterKindInfo {
   FilterKind kind;
   std::string name;         // the --filter name, and (with '-' as '_') the generated code's
@@ -34,6 +40,7 @@ struct FilterKindInfo {
   ExpectationRule expectation;
   DiffusionSource diffusion;
   std::vector<ObservationKind> observations;  // the observation models it is derived for
+  Prediction prediction = Prediction::Ode;
 };
 
 // Every built-in kind, in the canonical order in which commands list and default to them.
@@ -58,5 +65,6 @@ inline bool uses_additive_diffusion(FilterKind kind) {
   return filter_kind_info(kind).diffusion == DiffusionSource::Additive;
 }
 inline bool is_extended_kalman(FilterKind kind) { return filter_kind_info(kind).expectation == ExpectationRule::AtMean; }
+inline bool uses_euler_map(FilterKind kind) { return filter_kind_info(kind).prediction == Prediction::EulerMap; }
 
 }  // namespace pfgen

@@ -9,6 +9,7 @@ namespace pfgen {
 
 enum class ObservationKind {
   Continuous,  // dy = (A0 + A x) dt + B dW2
+  Sampled,     // y_k = C0 + C x(t_k) + Uv v_k at t_k = k T, v_k ~ N(0, I)
 };
 
 struct ObservationKindInfo {

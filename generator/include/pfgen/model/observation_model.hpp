@@ -2,8 +2,8 @@
 // How the states are observed. The model file's `observation:` section chooses the kind when it
 // is read (kinds/observation_kinds.hpp lists them), and every room asks the ObservationModel for
 // its kind and the alternative it handles, instead of assuming one observation equation; a new
-// kind is one more alternative of the variant below. Today the one kind is continuous:
-//   dy = (A0 + A x) dt + B dW2.
+// kind is one more alternative of the variant below: continuous, dy = (A0 + A x) dt + B dW2, or
+// sampled, y_k = C0 + C x(t_k) + Uv v_k at t_k = k T.
 #include <cstddef>
 #include <variant>
 
@@ -18,19 +18,33 @@ struct ContinuousObservation {
   ExMatrix B;   // p x r, with B B^T positive definite
 };
 
+// Samples every `period` time units. The sampled filter kinds predict between samples in
+// `substeps` equal sub-steps of period / substeps (for cd-euler the sub-step is part of the
+// filter's definition: 1 sub-step is the discrete-discrete filter).
+struct SampledObservation {
+  GiNaC::numeric period;      // T > 0, exact
+  ExVector C0;                // r entries, independent of the states (zeros when not given)
+  ExMatrix C;                 // r x n
+  ExMatrix Uv;                // r x q, with Uv Uv^T positive definite
+  std::size_t substeps = 1;   // prediction sub-steps per period, >= 1
+};
+
 class ObservationModel {
  public:
   ObservationModel() = default;  // continuous with no rows: ModelBuilder requires a real one
   ObservationModel(ContinuousObservation continuous) : form_(std::move(continuous)) {}  // NOLINT: implicit by design
+  ObservationModel(SampledObservation sampled) : form_(std::move(sampled)) {}  // NOLINT: implicit by design
 
   ObservationKind kind() const;
-  std::size_t p() const;  // observations per time (rows of A)
+  std::size_t p() const;  // observations per time or per sample (rows of A or of C)
   // The alternative of that kind; std::logic_error when the model's observation is of another
   // kind (a room that handles it must have checked kind() or the kind registry first).
   const ContinuousObservation& continuous() const;
+  const SampledObservation& sampled() const;
+  bool is_sampled() const { return kind() == ObservationKind::Sampled; }
 
  private:
-  std::variant<ContinuousObservation> form_;
+  std::variant<ContinuousObservation, SampledObservation> form_;
 };
 
 }  // namespace pfgen

@@ -1,6 +1,7 @@
 #pragma once
 // A minimal JSON value with deterministic output: object members keep the
 // order they were added in, numbers are printed as shortest round-trip text.
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,6 +12,7 @@ class Json {
  public:
   static Json string(std::string value);
   static Json number(double value);  // throws std::domain_error on NaN or infinity
+  static Json integer(std::uint64_t value);  // written in decimal digits ("10", not "1e+01")
   static Json boolean(bool value);
   static Json array(std::vector<Json> items = {});
   static Json object();

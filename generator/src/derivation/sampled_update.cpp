@@ -1,0 +1,54 @@
+#include "pfgen/derivation/sampled_update.hpp"
+
+#include "pfgen/model/model.hpp"
+
+namespace pfgen {
+
+std::size_t SampledUpdate::upper_index(std::size_t a, std::size_t b) const {
+  if (a > b) std::swap(a, b);
+  const std::size_t rows = r();
+  return a * rows - a * (a - 1) / 2 + (b - a);
+}
+
+SampledUpdate sampled_update(const SampledObservation& observation, const FilterVariables& vars) {
+  const std::size_t n = vars.n(), r = observation.C.size();
+  auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
+  SampledUpdate out;
+  out.period = observation.period;
+  out.substeps = observation.substeps;
+  out.C.assign(r, std::vector<Polynomial>(n));
+  for (std::size_t a = 0; a < r; ++a)
+    for (std::size_t k = 0; k < n; ++k) out.C[a][k] = Polynomial::constant(observation.C[a][k]);
+  const ExMatrix R = multiply_by_transpose(observation.Uv);
+  for (std::size_t a = 0; a < r; ++a)
+    for (std::size_t b = a; b < r; ++b) out.R.push_back(Polynomial::constant(R[a][b]));
+  // (P C^T)_ia = sum_k P_ik C_ak
+  out.PCt.assign(n, std::vector<Polynomial>(r));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t a = 0; a < r; ++a)
+      for (std::size_t k = 0; k < n; ++k)
+        if (!observation.C[a][k].is_zero()) out.PCt[i][a].add_term(P(i, k), observation.C[a][k]);
+  // S_ab = sum_kl C_ak P_kl C_bl + R_ab
+  for (std::size_t a = 0; a < r; ++a)
+    for (std::size_t b = a; b < r; ++b) {
+      Polynomial s = Polynomial::constant(R[a][b]);
+      for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t l = 0; l < n; ++l)
+          if (!observation.C[a][k].is_zero() && !observation.C[b][l].is_zero())
+            s.add_term(P(k, l), observation.C[a][k] * observation.C[b][l]);
+      out.S.push_back(std::move(s));
+    }
+  return out;
+}
+
+std::vector<Polynomial> predicted_sample(const SampledObservation& observation, const FilterVariables& vars) {
+  std::vector<Polynomial> out;
+  for (std::size_t a = 0; a < observation.C.size(); ++a) {
+    Polynomial h = Polynomial::constant(observation.C0[a]);
+    for (std::size_t k = 0; k < vars.n(); ++k) h.add_term(Monomial::variable(vars.m(k)), observation.C[a][k]);
+    out.push_back(h);
+  }
+  return out;
+}
+
+}  // namespace pfgen

@@ -1,0 +1,236 @@
+#include "pfgen/printing/sampled_report.hpp"
+
+#include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/text_printer.hpp"
+
+namespace pfgen {
+namespace {
+
+// "a + b" from parts printed separately (the moment and diffusion terms stay visible).
+std::string join_parts(const ExpressionPrinter& printer, const std::vector<Polynomial>& parts,
+                       const ExpressionPrinter::VariableNamer& name) {
+  std::string out;
+  for (const auto& part : parts) {
+    if (part.is_zero()) continue;
+    std::string text = printer.print(part, name);
+    if (out.empty()) out = text;
+    else if (text[0] == '-') out += " - " + text.substr(1);
+    else out += " + " + text;
+  }
+  return out.empty() ? "0" : out;
+}
+
+std::vector<Polynomial> P_parts(const FilterEquations& eq, std::size_t u) { return {eq.P_moment[u], eq.P_diffusion[u]}; }
+
+std::string index2(std::size_t i, std::size_t j) { return std::to_string(i + 1) + std::to_string(j + 1); }
+
+std::string substep_phrase(const SampledUpdate& u) {
+  return std::to_string(u.substeps) + (u.substeps == 1 ? " sub-step" : " sub-steps");
+}
+
+}  // namespace
+
+std::string sampled_equations_text(const Model& model, const FilterEquations& eq) {
+  TextPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  const std::size_t n = eq.n();
+  const SampledUpdate& u = eq.update;
+  const std::size_t r = u.r();
+  std::string out;
+  out += "model: " + model.name + "\n";
+  out += "filter: " + eq.name + " (" + eq.description + ")\n";
+  out += "exactness: " + eq.exactness.explanation;
+  for (const auto& failed : eq.exactness.failed) out += "\n  failed: " + failed;
+  out += "\nvariables: ";
+  for (std::size_t i = 0; i < n; ++i)
+    out += (i ? ", " : "") + vars.text_name(vars.m(i)) + " = E[" + model.state_names[i] + "]";
+  out += "; P = covariance of (";
+  for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
+  out += ")\n";
+  out += "observation: sampled every T = " + printer.print(u.period) + ", y_k = C0 + C x(t_k) + Uv v_k; " +
+         substep_phrase(u) + " of dt = T/" + std::to_string(u.substeps) + " between samples\n\n";
+  if (eq.P_euler.empty()) {
+    out += "prediction between samples (no observation term; dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion]):\n";
+    for (std::size_t i = 0; i < n; ++i)
+      out += "dm" + std::to_string(i + 1) + " = (" + printer.print(eq.m_drift[i], name) + ") dt\n";
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j)
+        out += "d" + vars.text_name(vars.P(i, j)) + " = (" + join_parts(printer, P_parts(eq, vars.upper_index(i, j)), name) +
+               ") dt\n";
+  } else {
+    out += "prediction over one sub-step dt (exact moments of x + f dt + g sqrt(dt) xi; dP terms: "
+           "[E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion], then Cov(f)):\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string m = vars.text_name(vars.m(i));
+      out += m + "' = " + m + " + (" + printer.print(eq.m_drift[i], name) + ") dt\n";
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j) {
+        const std::size_t k = vars.upper_index(i, j);
+        const std::string P = vars.text_name(vars.P(i, j));
+        out += P + "' = " + P + " + (" + join_parts(printer, P_parts(eq, k), name) + ") dt + (" +
+               printer.print(eq.P_euler[k], name) + ") dt^2\n";
+      }
+  }
+  out += "\nupdate at each sample y = (";
+  for (std::size_t a = 0; a < r; ++a) out += (a ? ", " : "") + std::string("y") + std::to_string(a + 1);
+  out += "), R = Uv Uv^T (Joseph form):\n";
+  for (std::size_t a = 0; a < r; ++a)
+    out += "h" + std::to_string(a + 1) + " = " + printer.print(eq.predicted_observation[a], name) + "\n";
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t a = 0; a < r; ++a)
+      out += "PCt" + index2(i, a) + " = " + printer.print(u.PCt[i][a], name) + "\n";
+  for (std::size_t a = 0; a < r; ++a)
+    for (std::size_t b = a; b < r; ++b)
+      out += "S" + index2(a, b) + " = " + printer.print(u.S[u.upper_index(a, b)], name) + "\n";
+  out += "K = PCt S^-1\n";
+  out += "m <- m + K (y - h)\n";
+  out += "P <- (I - K C) P (I - K C)^T + K R K^T\n";
+  out += "C = [";
+  for (std::size_t a = 0; a < r; ++a) {
+    out += a ? "; " : "";
+    for (std::size_t k = 0; k < n; ++k) out += (k ? ", " : "") + printer.print(u.C[a][k], name);
+  }
+  out += "], R = [";
+  for (std::size_t a = 0; a < r; ++a) {
+    out += a ? "; " : "";
+    for (std::size_t b = 0; b < r; ++b) out += (b ? ", " : "") + printer.print(u.R[u.upper_index(a, b)], name);
+  }
+  return out + "]\n";
+}
+
+std::string sampled_equations_latex(const FilterEquations& eq) {
+  LatexPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return vars.latex_name(v); };
+  const std::size_t n = eq.n();
+  const SampledUpdate& u = eq.update;
+  const std::size_t r = u.r();
+  std::string out = "\\noindent\\textbf{Exactness:} " + latex_escape_text(eq.exactness.explanation) + ".\n";
+  if (!eq.exactness.failed.empty()) {
+    out += "\\begin{itemize}\n";
+    for (const auto& f : eq.exactness.failed) out += "\\item " + latex_escape_text(f) + "\n";
+    out += "\\end{itemize}\n";
+  }
+  auto block = [&](const std::vector<std::string>& lines) {
+    std::string text = "\\begin{align*}\n";
+    for (std::size_t k = 0; k < lines.size(); ++k) text += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
+    return text + "\\end{align*}\n";
+  };
+  std::vector<std::string> prediction;
+  const bool euler = !eq.P_euler.empty();
+  out += euler ? "\\paragraph{Prediction over one sub-step $\\Delta = T/" + std::to_string(u.substeps) +
+                     "$} (exact moments of $x + f\\Delta + g\\sqrt{\\Delta}\\,\\xi$):\n"
+               : "\\paragraph{Prediction between samples} ($" + std::to_string(u.substeps) +
+                     "$ sub-steps per period $T = " + printer.print(u.period) + "$, no observation term):\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string m = vars.latex_name(vars.m(i));
+    prediction.push_back(euler ? m + "' &= " + m + " + \\left(" + printer.print(eq.m_drift[i], name) + "\\right)\\Delta"
+                               : "\\frac{d" + m + "}{dt} &= " + printer.print(eq.m_drift[i], name));
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      const std::size_t k = vars.upper_index(i, j);
+      const std::string P = vars.latex_name(vars.P(i, j));
+      prediction.push_back(euler ? P + "' &= " + P + " + \\left(" + join_parts(printer, P_parts(eq, k), name) +
+                                       "\\right)\\Delta + \\left(" + printer.print(eq.P_euler[k], name) + "\\right)\\Delta^{2}"
+                                 : "\\frac{d" + P + "}{dt} &= " + join_parts(printer, P_parts(eq, k), name));
+    }
+  out += block(prediction);
+  out += "\\paragraph{Update at each sample} ($R = U_v U_v^{T}$, Joseph form):\n";
+  std::vector<std::string> update;
+  for (std::size_t a = 0; a < r; ++a)
+    update.push_back("h_{" + std::to_string(a + 1) + "} &= " + printer.print(eq.predicted_observation[a], name));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t a = 0; a < r; ++a)
+      update.push_back("(P C^{T})_{" + std::to_string(i + 1) + "," + std::to_string(a + 1) + "} &= " +
+                       printer.print(u.PCt[i][a], name));
+  for (std::size_t a = 0; a < r; ++a)
+    for (std::size_t b = a; b < r; ++b)
+      update.push_back("S_{" + std::to_string(a + 1) + "," + std::to_string(b + 1) + "} &= " +
+                       printer.print(u.S[u.upper_index(a, b)], name));
+  update.push_back("K &= P C^{T} S^{-1}, \\quad m \\leftarrow m + K (y - h), \\quad "
+                   "P \\leftarrow (I - K C) P (I - K C)^{T} + K R K^{T}");
+  out += block(update);
+  return out;
+}
+
+Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
+  TextPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  const std::size_t n = eq.n();
+  const SampledUpdate& u = eq.update;
+  const std::size_t r = u.r();
+  auto text = [&](const Polynomial& p) { return Json::string(printer.print(p, name)); };
+  auto full = [&](const std::vector<Polynomial>& upper, std::size_t size, auto index) {
+    Json rows = Json::array();
+    for (std::size_t i = 0; i < size; ++i) {
+      Json row = Json::array();
+      for (std::size_t j = 0; j < size; ++j) row.push(text(upper[index(i, j)]));
+      rows.push(row);
+    }
+    return rows;
+  };
+  auto P_index = [&](std::size_t i, std::size_t j) { return vars.upper_index(i, j); };
+  auto S_index = [&](std::size_t a, std::size_t b) { return u.upper_index(a, b); };
+
+  Json exactness = Json::object();
+  exactness.add("exact", Json::boolean(eq.exactness.exact));
+  exactness.add("condition", Json::string(eq.exactness.condition));
+  exactness.add("explanation", Json::string(eq.exactness.explanation));
+  Json failed = Json::array();
+  for (const auto& f : eq.exactness.failed) failed.push(Json::string(f));
+  exactness.add("failed", failed);
+  Json variables = Json::array();
+  for (std::size_t v = 0; v < vars.count(); ++v) variables.push(Json::string(vars.text_name(static_cast<std::uint32_t>(v))));
+
+  Json prediction = Json::object();
+  prediction.add("form", Json::string(eq.P_euler.empty() ? "ode" : "euler-map"));
+  Json m_drift = Json::array();
+  for (const auto& p : eq.m_drift) m_drift.push(text(p));
+  prediction.add("m_drift", m_drift);
+  std::vector<Polynomial> P_drift;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) P_drift.push_back(eq.P_drift(i, j));
+  prediction.add("P_drift", full(P_drift, n, P_index));
+  if (!eq.P_euler.empty()) prediction.add("P_dt2", full(eq.P_euler, n, P_index));
+
+  Json update = Json::object();
+  Json h = Json::array();
+  for (const auto& p : eq.predicted_observation) h.push(text(p));
+  update.add("predicted_observation", h);
+  Json PCt = Json::array();
+  for (std::size_t i = 0; i < n; ++i) {
+    Json row = Json::array();
+    for (std::size_t a = 0; a < r; ++a) row.push(text(u.PCt[i][a]));
+    PCt.push(row);
+  }
+  update.add("PCt", PCt);
+  update.add("S", full(u.S, r, S_index));
+  update.add("gain", Json::string("PCt S^-1"));
+  update.add("covariance", Json::string("(I - K C) P (I - K C)^T + K R K^T"));
+  Json C = Json::array();
+  for (std::size_t a = 0; a < r; ++a) {
+    Json row = Json::array();
+    for (std::size_t k = 0; k < n; ++k) row.push(text(u.C[a][k]));
+    C.push(row);
+  }
+  update.add("C", C);
+  update.add("R", full(u.R, r, S_index));
+
+  Json out = Json::object();
+  out.add("model", Json::string(model.name));
+  out.add("filter", Json::string(eq.name));
+  out.add("description", Json::string(eq.description));
+  out.add("exactness", exactness);
+  out.add("variables", variables);
+  out.add("period", Json::string(printer.print(u.period)));
+  out.add("substeps", Json::integer(u.substeps));
+  out.add("prediction", prediction);
+  out.add("update", update);
+  return out;
+}
+
+}  // namespace pfgen
