@@ -216,8 +216,16 @@ void check_close(double actual, double expected, const std::string& what) {
   CHECK(std::fabs(actual - expected) <= 1e-12);
 }
 
-// Every built-in kind, from the registry: a new kind is covered (or these tests fail) at once.
-const std::vector<std::string> kAllKinds = pfgen::filter_kind_names();
+// Every built-in kind for continuous observations, from the registry: a new kind is covered (or
+// these tests fail) at once. The sampled kinds have their own cases (test_sampled_cli.cpp).
+std::vector<std::string> kinds_for(pfgen::ObservationKind observation) {
+  std::vector<std::string> names;
+  for (const auto& info : pfgen::filter_kinds())
+    for (pfgen::ObservationKind o : info.observations)
+      if (o == observation) names.push_back(info.name);
+  return names;
+}
+const std::vector<std::string> kAllKinds = kinds_for(pfgen::ObservationKind::Continuous);
 
 // The built-in kinds a model file supports, from the registry's rules (no additive diffusion:
 // fewer kinds).
@@ -386,6 +394,8 @@ TEST_CASE("derive, latex and eval are byte-identical across separate processes",
   const std::vector<Case> cases = {
       {"basin2006_quadratic.yaml", kAllKinds, "--m=-1.5", "--P=0.5"},
       {"basin_skliar_partial.yaml", supported_kinds("basin_skliar_partial.yaml"), "--m=-1.5,2", "--P=0.5,-0.2;-0.2,0.3"},
+      {"allahyani_date_example1_gamma1.yaml", supported_kinds("allahyani_date_example1_gamma1.yaml"), "--m=-1.5", "--P=0.5"},
+      {"allahyani_date_example1_gamma05.yaml", supported_kinds("allahyani_date_example1_gamma05.yaml"), "--m=-1.5", "--P=0.5"},
   };
   auto same_three_times = [](const std::vector<std::string>& args) {
     std::vector<ProcessResult> runs;

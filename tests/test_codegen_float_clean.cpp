@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "pfgen/model/yaml_model_loader.hpp"
 #include "support/cli_helpers.hpp"
 
 namespace fs = std::filesystem;
@@ -193,6 +194,7 @@ std::set<std::string> include_lines(const std::string& text) {
 struct GeneratedModel {
   std::string name;                 // model name, also the directory
   std::vector<std::string> kinds;   // file stems: optimal, ekf_additive, ...
+  bool sampled = false;             // sampled observations: predict/update instead of step/gain
 };
 
 // `pfgen codegen MODEL -o DIR --scalar SCALAR` (every kind the model supports); what it wrote.
@@ -203,6 +205,7 @@ GeneratedModel generate(const std::string& model_path, const std::string& dir, c
   GeneratedModel out;
   for (const auto& model_dir : fs::directory_iterator(dir)) {
     out.name = model_dir.path().filename().string();
+    out.sampled = pfgen::load_model_file(model_path).observation.is_sampled();
     for (const auto& header : fs::directory_iterator(model_dir.path()))
       out.kinds.push_back(header.path().stem().string());
   }
@@ -226,10 +229,20 @@ std::string float_translation_unit(const GeneratedModel& model, bool templated) 
     tu += "  std::array<float, k::p> dy{};\n";
     tu += "  k::initial_state" + f + "(state.data());\n";
     tu += "  for (std::size_t r = 0; r < k::p; ++r) dy[r] = dt * state[0];\n";
-    tu += "  k::step" + f + "(state.data(), t, dt, dy.data(), params);\n";
-    tu += "  k::derivatives" + f + "(t, state.data(), params, out);\n";
-    tu += "  k::gain" + f + "(t, state.data(), params, out + k::state_size);\n";
-    tu += "  k::predicted_observation" + f + "(t, state.data(), params, out + k::state_size + k::n * k::p);\n";
+    if (model.sampled) {
+      // A sampled filter: predict(), update() and advance() (dy stands for the sample y).
+      tu += "  k::predict" + f + "(state.data(), t, dt, params);\n";
+      tu += "  if (!k::update" + f + "(state.data(), t, dy.data(), params)) return;\n";
+      tu += "  if (!k::advance" + f + "(state.data(), t, dy.data(), params)) return;\n";
+      tu += "  k::derivatives" + f + "(t, state.data(), params, out);\n";
+      tu += "  out[0] += k::period" + f + "();\n";
+      tu += "  k::predicted_observation" + f + "(t, state.data(), params, out + k::state_size);\n";
+    } else {
+      tu += "  k::step" + f + "(state.data(), t, dt, dy.data(), params);\n";
+      tu += "  k::derivatives" + f + "(t, state.data(), params, out);\n";
+      tu += "  k::gain" + f + "(t, state.data(), params, out + k::state_size);\n";
+      tu += "  k::predicted_observation" + f + "(t, state.data(), params, out + k::state_size + k::n * k::p);\n";
+    }
     tu += "}\n";
   }
   return tu;

@@ -120,20 +120,23 @@ TEST_CASE("kind registry: the model room and the derivation offer exactly the ki
       CHECK(eq.observation == model.observation.kind());
       CHECK(eq.predicted_observation.size() == model.p());
     }
-    CHECK((model.additive_diffusion.has_value() ? expected.size() == filter_kinds().size()
-                                                 : expected.size() < filter_kinds().size()));
+    std::size_t for_observation = 0;
+    for (const auto& info : filter_kinds())
+      for (ObservationKind o : info.observations) for_observation += o == model.observation.kind() ? 1 : 0;
+    const bool needs_additive = model.observation.kind() == ObservationKind::Continuous;  // some continuous kinds do
+    CHECK((model.additive_diffusion.has_value() || !needs_additive ? expected.size() == for_observation
+                                                                   : expected.size() < for_observation));
     for (const auto& filter : model.user_filters) expected.push_back(filter.name);
     CHECK(available_filter_names(model) == expected);
   }
 }
 
 TEST_CASE("kind registry: command-line help, errors and defaults list the registry's kinds", "[integration][kinds]") {
-  const std::string model = example("basin2006_quadratic.yaml");  // supports every kind
+  const std::string model = example("basin2006_quadratic.yaml");  // supports every continuous kind
   std::string bar, comma;
-  for (const auto& name : filter_kind_names()) {
-    bar += (bar.empty() ? "" : " | ") + name;
-    comma += (comma.empty() ? "" : ", ") + name;
-  }
+  for (const auto& name : filter_kind_names()) bar += (bar.empty() ? "" : " | ") + name;
+  for (const auto& info : filter_kinds())
+    if (info.observations.front() == ObservationKind::Continuous) comma += (comma.empty() ? "" : ", ") + info.name;
   for (const char* command : {"derive", "eval"}) {
     ProcessResult help = run_pfgen({command, "--help"});
     INFO(command << " --help: " << help.out);

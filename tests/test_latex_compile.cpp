@@ -79,8 +79,12 @@ TEST_CASE("pfgen latex documents of the examples compile with pdflatex", "[latex
   // Every kind each model supports (the default), then each kind on its own.
   check_compiles(example("basin2006_quadratic.yaml"), "", dir, "basin2006_all");
   check_compiles(example("basin_skliar_partial.yaml"), "", dir, "skliar_all");
-  for (const std::string& kind : pfgen::filter_kind_names())  // basin2006 supports every kind
-    check_compiles(example("basin2006_quadratic.yaml"), kind, dir, "basin2006_" + kind);
+  for (const auto& info : pfgen::filter_kinds())  // basin2006 supports every continuous kind
+    if (info.observations.front() == pfgen::ObservationKind::Continuous)
+      check_compiles(example("basin2006_quadratic.yaml"), info.name, dir, "basin2006_" + info.name);
+  // Sampled observations: every sampled kind (the default), prediction and update apart.
+  check_compiles(example("allahyani_date_example1_gamma1.yaml"), "", dir, "allahyani_gamma1_all");
+  check_compiles(example("allahyani_date_example1_gamma05.yaml"), "", dir, "allahyani_gamma05_all");
   check_compiles(example("basin_skliar_partial.yaml"), "ekf", dir, "skliar_ekf");
 }
 
