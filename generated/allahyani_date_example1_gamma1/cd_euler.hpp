@@ -144,7 +144,7 @@ inline void predict(Scalar* state, Scalar t, Scalar dt, const Params<Scalar>& pa
 }
 
 // Absorbs the sample y (p entries) taken at time t: K = P C^T S^-1, m += K (y - C0 - C m),
-// P = (I - K C) P (I - K C)^T + K R K^T (Joseph form: P stays symmetric and positive
+// P = (Id - K C) P (Id - K C)^T + K R K^T, Id the identity (Joseph form: P stays symmetric and positive
 // semi-definite under rounding). Returns false, leaving the state unchanged, when S is not
 // positive definite.
 template <class Scalar>
@@ -169,7 +169,7 @@ inline bool update(Scalar* state, Scalar t, const Scalar* y, const Params<Scalar
     for (std::size_t j = i; j < n; ++j) P[i * n + j] = P[j * n + i] = state[k++];
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t r = 0; r < p; ++r) state[i] += K[i * p + r] * (y[r] - h[r]);
-  // A = I - K C
+  // A = Id - K C
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j) {
       Scalar sum = i == j ? Scalar(1) : Scalar(0);
