@@ -4,12 +4,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <regex>
 #include <set>
 #include <sstream>
 
 #include "pfgen/kinds/filter_kinds.hpp"
+#include "pfgen/model/expansion_bound.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen/model/reserved_names.hpp"
@@ -55,6 +57,26 @@ void require_bounded_degree(const GiNaC::ex& e, const GiNaC::symbol& variable, c
                      row, column);
 }
 
+// A count as a user reads it: 501501, or 1.2e+30 when it has no business being written out.
+std::string count_text(double count) {
+  if (count < 1e15) return std::to_string(static_cast<long long>(std::round(count)));
+  if (!std::isfinite(count)) return "more than 1e308";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.2g", count);
+  return buffer;
+}
+
+// Before anything expands it (the symmetry check, G = g g^T, the derivation).
+void require_bounded_expansion(const GiNaC::ex& e, const std::string& field, std::optional<int> row,
+                               std::optional<int> column, const std::string& what = "") {
+  const double terms = expanded_terms_bound(e);
+  if (terms > kMaxExpandedTerms)
+    throw ModelError(field,
+                     (what.empty() ? "'" + to_text(e) + "'" : what) + " would expand to " +
+                         "up to " + count_text(terms) + " terms, above the limit of " + count_text(kMaxExpandedTerms),
+                     row, column);
+}
+
 void require_polynomial(const Model& model, const GiNaC::ex& e, const std::string& field,
                         std::optional<int> row, std::optional<int> column) {
   if (!e.is_polynomial(state_list(model)))
@@ -64,12 +86,14 @@ void require_polynomial(const Model& model, const GiNaC::ex& e, const std::strin
                      row, column);
   for (std::size_t k = 0; k < model.states.size(); ++k)
     require_bounded_degree(e, model.states[k], "state '" + model.state_names[k] + "'", field, row, column);
+  require_bounded_expansion(e, field, row, column);
 }
 
 void require_state_free(const Model& model, const GiNaC::ex& e, const std::string& field,
                         std::optional<int> row, std::optional<int> column) {
   if (depends_on_states(model, e))
     throw ModelError(field, "'" + to_text(e) + "' must not depend on the states", row, column);
+  require_bounded_expansion(e, field, row, column);
 }
 
 void require_shape(const ExMatrix& m, std::size_t rows, std::optional<std::size_t> columns,
@@ -126,6 +150,14 @@ void validate_diffusion(const Model& model, const Diffusion& d, const std::strin
         require_polynomial(model, (*d.g)[i][j], g_field, one_based(i), one_based(j));
         if (must_be_state_free)
           require_state_free(model, (*d.g)[i][j], g_field, one_based(i), one_based(j));
+      }
+    // The model's G = g g^T is expanded entry by entry.
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j) {
+        GiNaC::ex entry = 0;
+        for (std::size_t k = 0; k < (*d.g)[i].size(); ++k) entry += (*d.g)[i][k] * (*d.g)[j][k];
+        require_bounded_expansion(entry, g_field, one_based(i), std::nullopt,
+                                  "entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) + ") of g g^T");
       }
     return;
   }
@@ -254,6 +286,7 @@ void require_polynomial_in(const std::vector<GiNaC::symbol>& variables, const Gi
                      "integer powers of m1, P11, ... are allowed)",
                      row, column);
   for (const auto& v : variables) require_bounded_degree(e, v, "'" + v.get_name() + "'", field, row, column);
+  require_bounded_expansion(e, field, row, column);
 }
 
 void validate_user_filter_entry(const Model& model, const UserFilter& filter, const GiNaC::ex& e,
