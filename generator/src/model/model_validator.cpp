@@ -16,6 +16,7 @@
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen/model/reserved_names.hpp"
 #include "pfgen/model/simulation_rules.hpp"
+#include "pfgen/model/text_characters.hpp"
 #include "pfgen/notation/text_printer.hpp"
 
 namespace pfgen {
@@ -121,23 +122,28 @@ GiNaC::ex at_defaults(const Model& model, const GiNaC::ex& e) {
 }
 
 void validate_names(const Model& model) {
-  if (!is_valid_identifier(model.name))
-    throw ModelError("name", "'" + model.name +
-                                 "' is not an identifier (letters, digits, _; not starting with a digit)");
+  if (auto problem = identifier_problem(model.name)) throw ModelError("name", *problem);
   if (auto problem = namespace_name_problem(model.name)) throw ModelError("name", *problem);
   if (model.states.empty()) throw ModelError("states", "at least one state is required");
   std::set<std::string> seen;
+  const std::string time = model.time.get_name();
   auto check = [&](const std::string& name, const std::string& field, std::optional<int> index) {
-    if (!is_valid_identifier(name))
-      throw ModelError(field, "'" + name + "' is not an identifier", index);
+    if (auto problem = identifier_problem(name)) throw ModelError(field, *problem, index);
+    // Time is named first, so a state or parameter named like it is the one to rename (the
+    // message named field 'time', which a user who kept the default t never wrote).
+    if (field != "time" && name == time)
+      throw ModelError(field, "'" + name + "' is the name of time (" +
+                                  (time == "t" ? "t unless the field `time:` names it otherwise" : "field `time:`") +
+                                  "); give this one another name",
+                       index);
     if (auto problem = symbol_name_problem(name)) throw ModelError(field, *problem, index);
     if (!seen.insert(name).second)
       throw ModelError(field, "name '" + name + "' is used twice", index);
   };
+  check(time, "time", std::nullopt);
   for (std::size_t i = 0; i < model.state_names.size(); ++i)
     check(model.state_names[i], "states", one_based(i));
   for (const auto& p : model.parameters) check(p.name, "parameters." + p.name, std::nullopt);
-  check(model.time.get_name(), "time", std::nullopt);
 }
 
 void validate_diffusion(const Model& model, const Diffusion& d, const std::string& g_field,
@@ -375,6 +381,14 @@ bool is_valid_identifier(const std::string& name) {
   for (char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
   return true;
+}
+
+std::optional<std::string> identifier_problem(const std::string& name) {
+  if (is_valid_identifier(name)) return std::nullopt;
+  const std::string rule = "ASCII letters, digits and _, not starting with a digit";
+  if (auto character = first_non_ascii(name))
+    return "'" + name + "' is not an identifier: it contains " + *character + " (" + rule + ")";
+  return "'" + name + "' is not an identifier (" + rule + ")";
 }
 
 void validate_model(const Model& model) {
