@@ -7,16 +7,10 @@
 
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/model/model_error.hpp"
+#include "pfgen/notation/number_format.hpp"
 
 namespace pfgen {
 namespace {
-
-std::string count_text(double count) {
-  if (count < 1e15) return std::to_string(static_cast<long long>(std::round(count)));
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.2g", count);
-  return buffer;
-}
 
 // Counts the monomials m^beta P^K of E[x^alpha]: symmetric K >= 0 whose row sums, with a
 // diagonal entry counted twice, stay within alpha (beta takes the rest). Dynamic programming over

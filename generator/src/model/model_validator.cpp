@@ -17,6 +17,7 @@
 #include "pfgen/model/reserved_names.hpp"
 #include "pfgen/model/simulation_rules.hpp"
 #include "pfgen/model/text_characters.hpp"
+#include "pfgen/notation/number_format.hpp"
 #include "pfgen/notation/text_printer.hpp"
 
 namespace pfgen {
@@ -56,15 +57,6 @@ void require_bounded_degree(const GiNaC::ex& e, const GiNaC::symbol& variable, c
                      "'" + to_text(e) + "' has a degree in " + what + " above the limit of " +
                          std::to_string(kMaxDegree),
                      row, column);
-}
-
-// A count as a user reads it: 501501, or 1.2e+30 when it has no business being written out.
-std::string count_text(double count) {
-  if (count < 1e15) return std::to_string(static_cast<long long>(std::round(count)));
-  if (!std::isfinite(count)) return "more than 1e308";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.2g", count);
-  return buffer;
 }
 
 // Before anything expands it (the symmetry check, G = g g^T, the derivation).
