@@ -10,6 +10,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev         # model files, command line
   catch2                               # tests
   texlive-latex-base                   # pdflatex for `pfgen latex` documents
+  poppler-utils                        # pdftoppm: tests render LaTeX pages to check the layout
   gnuplot-nox                          # `pfgen simulate --plot` (error plots, PNG via cairo or SVG)
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # embedded proof:
   qemu-system-arm                      # Cortex-M4F cross-compiler and emulator (embedded-check.sh)

@@ -67,6 +67,28 @@ const std::vector<BadModel>& bad_models() {
       {"nonpoly_state_in_observation_B.yaml", "observation.B", 1, 1, 8, "must not depend on the states"},
       {"nonpoly_state_in_additive_diffusion.yaml", "additive_diffusion", 1, 1, 6, "must not depend on the states"},
       {"huge_degree.yaml", "drift", 1, 0, 4, "above the limit"},
+      // messages that named GiNaC internals, a broken byte or a field the file never writes
+      {"syntax_power_of_power.yaml", "drift", 1, 0, 4,
+       "cannot parse 'x^2^3': a power of a power needs parentheses, (a^b)^c or a^(b^c)"},
+      {"name_state_not_ascii.yaml", "states", 1, 0, 3,
+       "'\u03b1' is not an identifier: it contains the character '\u03b1' (U+03B1)"},
+      {"expression_not_ascii.yaml", "drift", 1, 0, 4,
+       "contains the character '\u03b1' (U+03B1); expressions are ASCII"},
+      {"parameter_named_null.yaml", "parameters", 0, 0, 4,
+       "expected a single value, found none (YAML reads ~ and null, Null or NULL as no value"},
+      {"state_named_like_time.yaml", "states", 1, 0, 3,
+       "'t' is the name of time (t unless the field `time:` names it otherwise); give this one another name"},
+      // expanded term counts, bounded before anything expands (README, "Model file reference")
+      {"expansion_power_of_sum.yaml", "drift", 1, 0, 4,
+       "'(1 + x + y)^1000' would expand to up to 501501 terms, above the limit of 100000"},
+      {"expansion_g_times_g_transpose.yaml", "diffusion", 1, 0, 5,
+       "entry (1,1) of g g^T would expand to up to 180901 terms, above the limit of 100000"},
+      // the derivation's own work, bounded before the expectations run (no line: the
+      // derivation sees the model, not the file)
+      {"expectation_budget_high_degree.yaml", "drift", 1, 0, 0,
+       "the Gaussian expectations of the drift up to this row need more than 500000 terms"},
+      {"equation_budget_many_observed_states.yaml", "states", 0, 0, 0,
+       "with 64 states (64 observed), the covariance equations would have up to 8519680 terms, above the limit of 2000000"},
       {"fuzz_degree_wraps_int.yaml", "drift", 1, 0, 4, "has a degree in state 'x' above the limit of 1000"},
       // (1 + x)^(10^9): its binomial coefficients are refused before its degree (expression_limits).
       {"huge_degree_in_diffusion_covariance.yaml", "diffusion_covariance", 1, 1, 5,

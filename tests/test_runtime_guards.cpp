@@ -204,3 +204,50 @@ TEST_CASE("runtime: the covariance guard accepts singular PSD P and rejects inde
   CHECK(packed[5] == 6);
   CHECK(unpack_symmetric(packed.data(), 3) == Eigen::MatrixXd(P));
 }
+
+TEST_CASE("a state-dependent diffusion covariance that loses definiteness stops the truth, reported at that time",
+          "[runtime][guards][unit]") {
+  // dx = (2 - x) dt with G = 1 - x: x heads for 2, and G < 0 once x > 1.
+  SdeSystem system;
+  system.n = system.q = 1;
+  system.drift = [](double, const double* x, double* f) { f[0] = 2 - x[0]; };
+  system.diffusion = diffusion_from_covariance(1, [](double, const double* x, double* G) { G[0] = 1 - x[0]; });
+  double g = 0;
+  const double inside = 0.75, outside = 1.01;
+  system.diffusion(0, &inside, &g);
+  CHECK(g == Approx(0.5));
+  // Zero is semi-definite; round-off relative to the largest eigenvalue passes too.
+  const double one = 1;
+  CHECK_NOTHROW(system.diffusion(0, &one, &g));
+  CHECK(g == 0);
+  auto two_by_two = diffusion_from_covariance(2, [](double, const double*, double* G) {
+    G[0] = 1;
+    G[1] = G[2] = 0;
+    G[3] = -1e-12;  // -1e-12 of the largest eigenvalue 1: round-off
+  });
+  double g2[4];
+  CHECK_NOTHROW(two_by_two(0, &one, g2));
+  try {
+    system.diffusion(0.5, &outside, &g);
+    FAIL("G = -0.01 was taken");
+  } catch (const CovarianceIndefinite& e) {
+    CHECK(e.t == 0.5);
+    CHECK(e.eigenvalue == Approx(-0.01));
+  }
+
+  EulerMaruyama scheme(system);
+  LinearObservation observation = observe_first(1);
+  const TimeGrid grid = TimeGrid::to_horizon(0, 5, 0.01);
+  const TruthRun run = simulate_truth(scheme, observation, Eigen::VectorXd::Zero(1), grid, 7, 0);
+  REQUIRE(run.diverged());
+  CHECK(run.divergence->kind == DivergenceKind::covariance_indefinite);
+  CHECK(run.divergence->value < 0);
+  CHECK(run.divergence->describe().find("the diffusion covariance G is not positive semi-definite at t = ") == 0);
+  // Euler-Maruyama reads G at the start of each step: the last stored state is the first with
+  // x > 1, every earlier one had G >= 0, and the step from it is where the run stopped.
+  REQUIRE(run.completed_steps < grid.steps);
+  const Eigen::Index last = static_cast<Eigen::Index>(run.completed_steps);
+  CHECK(run.x(0, last) > 1.0);
+  CHECK(run.x.leftCols(last).maxCoeff() <= 1.0);
+  CHECK(run.divergence->t == Approx(grid.time(run.completed_steps)));
+}

@@ -313,3 +313,20 @@ TEST_CASE("simulate --set gives a parameter its value for the job (truth and fil
   CHECK(bad.out.empty());
   CHECK(bad.err.find("--set: model growth has no parameter 'b'") != std::string::npos);
 }
+
+TEST_CASE("simulate: a truth whose diffusion covariance loses definiteness is stopped and reported, not clipped",
+          "[simulate][compiler]") {
+  TempDir dir;
+  const std::string model = dir.file("losing.yaml");
+  // G = 1 - x is negative once x > 1, and the drift takes x to 2.
+  write_file(model, "name: losing\nstates: [x]\ndrift: [\"2 - x\"]\ndiffusion_covariance: [[\"1 - x\"]]\n"
+                    "observation: {A: [[\"1\"]], B: [[\"1\"]]}\ninitial: {x0: [0], m0: [0], P0: [[1]]}\n");
+  const auto r = run_pfgen({"simulate", model, "--cache-dir", dir.file("cache"), "--T", "2", "--dt", "0.01", "--runs",
+                            "8", "--filters", "ekf", "-q"});
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out.find("Truth diverged: 8 of 8 runs") != std::string::npos);
+  CHECK(r.out.find("of which stopped where the diffusion covariance G lost positive semi-definiteness: 8 of 8 runs") !=
+        std::string::npos);
+  CHECK_FALSE(has_nan_or_inf(r.out));
+}

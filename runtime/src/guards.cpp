@@ -17,6 +17,10 @@ std::string DivergenceEvent::describe() const {
     out << "a grid step needs more sub-steps than allowed at t = " << t << " (too stiff for this dt)";
     return out.str();
   }
+  if (kind == DivergenceKind::covariance_indefinite) {
+    out << "the diffusion covariance G is not positive semi-definite at t = " << t << " (eigenvalue " << value << ")";
+    return out.str();
+  }
   out << "entry " << index << " is " << value;
   if (kind == DivergenceKind::bound_exceeded) out << " (beyond the bound)";
   out << " at t = " << t;

@@ -16,6 +16,9 @@ void SdeSystem::validate() const {
   if (q > 0 && !diffusion) throw std::invalid_argument("SDE system: q > 0 but the diffusion is missing");
 }
 
+CovarianceIndefinite::CovarianceIndefinite(double t_, double eigenvalue_)
+    : std::runtime_error("the diffusion covariance G is not positive semi-definite"), t(t_), eigenvalue(eigenvalue_) {}
+
 SdeSystem::Diffusion diffusion_from_covariance(std::size_t n, CovarianceCallback G) {
   if (!G) throw std::invalid_argument("diffusion_from_covariance: G is missing");
   return [n, G = std::move(G)](double t, const double* x, double* g) {
@@ -24,6 +27,8 @@ SdeSystem::Diffusion diffusion_from_covariance(std::size_t n, CovarianceCallback
     G(t, x, cov.data());
     const Eigen::MatrixXd symmetric = 0.5 * (cov + cov.transpose());
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(symmetric);
+    const double smallest = solver.eigenvalues().minCoeff();
+    if (smallest < -kCovarianceRoundOff * solver.eigenvalues().cwiseAbs().maxCoeff()) throw CovarianceIndefinite(t, smallest);
     const Eigen::VectorXd roots = solver.eigenvalues().cwiseMax(0.0).cwiseSqrt();
     const RowMajor root = solver.eigenvectors() * roots.asDiagonal() * solver.eigenvectors().transpose();
     std::copy(root.data(), root.data() + n * n, g);

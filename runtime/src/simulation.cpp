@@ -54,7 +54,12 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
     const double t = grid.time(k);
     truth_noise.wiener_increment(grid.dt, dW);
     observation_noise.wiener_increment(grid.dt, dW2);
-    scheme.step(t, x, grid.dt, dW);
+    try {
+      scheme.step(t, x, grid.dt, dW);
+    } catch (const CovarianceIndefinite& e) {
+      divergence = DivergenceEvent{e.t, 0, e.eigenvalue, DivergenceKind::covariance_indefinite};
+      return static_cast<std::ptrdiff_t>(k);
+    }
     if (scheme.last_step_incomplete()) {
       divergence = DivergenceEvent{t, 0, 0.0, DivergenceKind::too_stiff};
       return static_cast<std::ptrdiff_t>(k);

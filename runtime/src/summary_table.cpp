@@ -134,6 +134,10 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
           << stiff.str();
   }
   out << "\n" << events_line("Truth diverged", result.truth_divergences, result.runs) << "\n";
+  if (result.truth_covariance_losses.count() > 0)
+    out << events_line("  of which stopped where the diffusion covariance G lost positive semi-definiteness",
+                       result.truth_covariance_losses, result.runs)
+        << "\n";
   if (!result.truth_reports.empty()) {
     std::vector<std::vector<std::string>> rows{{"truth at", "state", "runs", "mean", "q05", "median", "q95"}};
     for (const TruthReportStatistics& report : result.truth_reports)

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_terms.hpp"
 
@@ -32,14 +33,39 @@ struct MomentTerms {
   std::vector<Polynomial> diffusion_upper;
 };
 
+// States whose column of the observation matrix (A, or a sampled observation's C) is not zero:
+// the observation term of the covariance equation (or the update's P C^T S^-1 C P) has one term
+// per pair of them.
+std::size_t observed_states(const ExMatrix& observation_matrix) {
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < observation_matrix.at(0).size(); ++k) {
+    bool observed = false;
+    for (const auto& row : observation_matrix) observed = observed || !row[k].is_zero();
+    count += observed;
+  }
+  return count;
+}
+
+std::size_t observed_states(const ObservationModel& observation) {
+  return observation.is_sampled() ? observed_states(observation.sampled().C)
+                                  : observed_states(observation.continuous().A);
+}
+
 MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariables& vars) {
   const std::size_t n = model.n();
   std::vector<Polynomial> f = state_polynomials(model.drift, model);
   PolyMatrix J = jacobian(f);
-  const ExMatrix& G = uses_additive_diffusion(kind) ? model.additive_diffusion->G : model.diffusion.G;
+  const bool additive = uses_additive_diffusion(kind);
+  const Diffusion& diffusion = additive ? *model.additive_diffusion : model.diffusion;
+  const ExMatrix& G = diffusion.G;
   std::vector<Polynomial> G_upper;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) G_upper.push_back(Polynomial::from_ex(G[i][j], model.states));
+
+  const std::string diffusion_field = std::string(additive ? "additive_" : "") +
+                                      (diffusion.g ? "diffusion" : "diffusion_covariance");
+  check_derivation_budget(model, DerivationInputs{!is_extended_kalman(kind), f, J, G_upper, diffusion_field,
+                                                  observed_states(model.observation)});
 
   // State x_i and mean m_i share variable index i (FilterVariables), so the
   // extended filter's f(m), J(m), G(m) are the x-polynomials read as they are.

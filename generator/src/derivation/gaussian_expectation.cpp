@@ -20,7 +20,7 @@ const Polynomial& GaussianExpectation::of_monomial(const Monomial& monomial) {
     value = Polynomial::constant(1);
   } else {
     const std::uint32_t i = monomial.factors().front().first;
-    const Polynomial& rest = of_monomial(monomial.without_one(i));  // std::map references stay valid
+    const Polynomial& rest = of_monomial(peeled(monomial));  // std::map references stay valid
     value = rest.times_monomial(Monomial::variable(variables_.m(i)));
     for (std::size_t j = 0; j < variables_.n(); ++j) {
       Polynomial d = rest.derivative(variables_.m(j));

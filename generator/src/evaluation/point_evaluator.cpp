@@ -127,19 +127,20 @@ EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const
   const std::size_t n = eq.n();
   EvaluatedFilter out;
   for (std::size_t i = 0; i < n; ++i) out.m_drift.push_back(value(eq.m_drift[i], "m_drift[" + std::to_string(i + 1) + "]"));
+  // Continuous kinds: the gain before the P drift (the order of the checks, so of the first
+  // message at a point where several are not finite). Sampled kinds: the prediction, then the update.
+  if (!eq.is_sampled()) {
+    out.gain.assign(n, std::vector<double>(eq.p));
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t r = 0; r < eq.p; ++r)
+        out.gain[i][r] = value(eq.gain[i][r], "gain[" + std::to_string(i + 1) + "][" + std::to_string(r + 1) + "]");
+  }
   out.P_drift.assign(n, std::vector<double>(n));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j)
       out.P_drift[i][j] = out.P_drift[j][i] =
           value(eq.P_drift(i, j), "P_drift[" + std::to_string(i + 1) + "][" + std::to_string(j + 1) + "]");
-  if (eq.is_sampled()) {
-    evaluate_sampled(eq, value, out);
-    return out;
-  }
-  out.gain.assign(n, std::vector<double>(eq.p));
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < eq.p; ++r)
-      out.gain[i][r] = value(eq.gain[i][r], "gain[" + std::to_string(i + 1) + "][" + std::to_string(r + 1) + "]");
+  if (eq.is_sampled()) evaluate_sampled(eq, value, out);
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/model/expression_limits.hpp"
 #include "pfgen/model/model_error.hpp"
+#include "pfgen/model/text_characters.hpp"
 
 namespace pfgen {
 namespace {
@@ -69,6 +70,9 @@ GiNaC::ex ExpressionParser::parse(const std::string& text, const ExpressionSite&
     if (static_cast<unsigned char>(c) < 0x20 && c != ' ' && c != '\t')
       throw fail("expression contains a control character");
   }
+  if (auto character = first_non_ascii(text))
+    throw fail("'" + text + "' contains " + *character +
+               "; expressions are ASCII: names of letters, digits and _, numbers, + - * / ^ ( ) ,");
   // Before GiNaC's parser, which recurses per nesting level and evaluates numeric powers at once.
   if (auto problem = expression_limit_problem(text)) throw fail(*problem);
   std::string unknown = first_identifier_not_in(text, symbols_);
@@ -80,6 +84,9 @@ GiNaC::ex ExpressionParser::parse(const std::string& text, const ExpressionSite&
   } catch (const GiNaC::parse_error& e) {
     throw fail("cannot parse '" + text + "': " + parse_error_reason(e.what()));
   } catch (const std::exception& e) {
+    // GiNaC's parser reads a^b^c as a power of three operands and fails while evaluating it.
+    if (std::string(e.what()).find("power should have exactly 2 operands") != std::string::npos)
+      throw fail("cannot parse '" + text + "': a power of a power needs parentheses, (a^b)^c or a^(b^c)");
     throw fail("cannot evaluate '" + text + "': " + e.what());
   }
   if (has_imaginary_part(value)) throw fail("'" + text + "' is not real");

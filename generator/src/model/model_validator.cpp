@@ -4,16 +4,20 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <regex>
 #include <set>
 #include <sstream>
 
 #include "pfgen/kinds/filter_kinds.hpp"
+#include "pfgen/model/expansion_bound.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen/model/reserved_names.hpp"
 #include "pfgen/model/simulation_rules.hpp"
+#include "pfgen/model/text_characters.hpp"
+#include "pfgen/notation/number_format.hpp"
 #include "pfgen/notation/text_printer.hpp"
 
 namespace pfgen {
@@ -55,6 +59,17 @@ void require_bounded_degree(const GiNaC::ex& e, const GiNaC::symbol& variable, c
                      row, column);
 }
 
+// Before anything expands it (the symmetry check, G = g g^T, the derivation).
+void require_bounded_expansion(const GiNaC::ex& e, const std::string& field, std::optional<int> row,
+                               std::optional<int> column, const std::string& what = "") {
+  const double terms = expanded_terms_bound(e);
+  if (terms > kMaxExpandedTerms)
+    throw ModelError(field,
+                     (what.empty() ? "'" + to_text(e) + "'" : what) + " would expand to " +
+                         "up to " + count_text(terms) + " terms, above the limit of " + count_text(kMaxExpandedTerms),
+                     row, column);
+}
+
 void require_polynomial(const Model& model, const GiNaC::ex& e, const std::string& field,
                         std::optional<int> row, std::optional<int> column) {
   if (!e.is_polynomial(state_list(model)))
@@ -64,12 +79,14 @@ void require_polynomial(const Model& model, const GiNaC::ex& e, const std::strin
                      row, column);
   for (std::size_t k = 0; k < model.states.size(); ++k)
     require_bounded_degree(e, model.states[k], "state '" + model.state_names[k] + "'", field, row, column);
+  require_bounded_expansion(e, field, row, column);
 }
 
 void require_state_free(const Model& model, const GiNaC::ex& e, const std::string& field,
                         std::optional<int> row, std::optional<int> column) {
   if (depends_on_states(model, e))
     throw ModelError(field, "'" + to_text(e) + "' must not depend on the states", row, column);
+  require_bounded_expansion(e, field, row, column);
 }
 
 void require_shape(const ExMatrix& m, std::size_t rows, std::optional<std::size_t> columns,
@@ -97,23 +114,28 @@ GiNaC::ex at_defaults(const Model& model, const GiNaC::ex& e) {
 }
 
 void validate_names(const Model& model) {
-  if (!is_valid_identifier(model.name))
-    throw ModelError("name", "'" + model.name +
-                                 "' is not an identifier (letters, digits, _; not starting with a digit)");
+  if (auto problem = identifier_problem(model.name)) throw ModelError("name", *problem);
   if (auto problem = namespace_name_problem(model.name)) throw ModelError("name", *problem);
   if (model.states.empty()) throw ModelError("states", "at least one state is required");
   std::set<std::string> seen;
+  const std::string time = model.time.get_name();
   auto check = [&](const std::string& name, const std::string& field, std::optional<int> index) {
-    if (!is_valid_identifier(name))
-      throw ModelError(field, "'" + name + "' is not an identifier", index);
+    if (auto problem = identifier_problem(name)) throw ModelError(field, *problem, index);
+    // Time is named first, so a state or parameter named like it is the one to rename (the
+    // message named field 'time', which a user who kept the default t never wrote).
+    if (field != "time" && name == time)
+      throw ModelError(field, "'" + name + "' is the name of time (" +
+                                  (time == "t" ? "t unless the field `time:` names it otherwise" : "field `time:`") +
+                                  "); give this one another name",
+                       index);
     if (auto problem = symbol_name_problem(name)) throw ModelError(field, *problem, index);
     if (!seen.insert(name).second)
       throw ModelError(field, "name '" + name + "' is used twice", index);
   };
+  check(time, "time", std::nullopt);
   for (std::size_t i = 0; i < model.state_names.size(); ++i)
     check(model.state_names[i], "states", one_based(i));
   for (const auto& p : model.parameters) check(p.name, "parameters." + p.name, std::nullopt);
-  check(model.time.get_name(), "time", std::nullopt);
 }
 
 void validate_diffusion(const Model& model, const Diffusion& d, const std::string& g_field,
@@ -126,6 +148,14 @@ void validate_diffusion(const Model& model, const Diffusion& d, const std::strin
         require_polynomial(model, (*d.g)[i][j], g_field, one_based(i), one_based(j));
         if (must_be_state_free)
           require_state_free(model, (*d.g)[i][j], g_field, one_based(i), one_based(j));
+      }
+    // The model's G = g g^T is expanded entry by entry.
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j) {
+        GiNaC::ex entry = 0;
+        for (std::size_t k = 0; k < (*d.g)[i].size(); ++k) entry += (*d.g)[i][k] * (*d.g)[j][k];
+        require_bounded_expansion(entry, g_field, one_based(i), std::nullopt,
+                                  "entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) + ") of g g^T");
       }
     return;
   }
@@ -287,6 +317,7 @@ void require_polynomial_in(const std::vector<GiNaC::symbol>& variables, const Gi
                      "integer powers of m1, P11, ... are allowed)",
                      row, column);
   for (const auto& v : variables) require_bounded_degree(e, v, "'" + v.get_name() + "'", field, row, column);
+  require_bounded_expansion(e, field, row, column);
 }
 
 void validate_user_filter_entry(const Model& model, const UserFilter& filter, const GiNaC::ex& e,
@@ -379,6 +410,14 @@ bool is_valid_identifier(const std::string& name) {
   for (char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
   return true;
+}
+
+std::optional<std::string> identifier_problem(const std::string& name) {
+  if (is_valid_identifier(name)) return std::nullopt;
+  const std::string rule = "ASCII letters, digits and _, not starting with a digit";
+  if (auto character = first_non_ascii(name))
+    return "'" + name + "' is not an identifier: it contains " + *character + " (" + rule + ")";
+  return "'" + name + "' is not an identifier (" + rule + ")";
 }
 
 void validate_model(const Model& model) {

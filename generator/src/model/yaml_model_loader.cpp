@@ -17,6 +17,7 @@
 #include "pfgen/model/expression_parser.hpp"
 #include "pfgen/model/model_builder.hpp"
 #include "pfgen/model/model_error.hpp"
+#include "pfgen/model/model_validator.hpp"
 
 namespace pfgen {
 namespace {
@@ -105,8 +106,20 @@ class Loader {
   std::string scalar(const YAML::Node& node, const std::string& field, std::optional<int> row = {},
                      std::optional<int> column = {}) {
     index_.record(field, node, row, column);
+    // YAML reads an empty entry, ~, null, Null and NULL as no value at all.
+    if (node.IsNull())
+      throw ModelError(field, "expected a single value, found none (YAML reads ~ and null, Null or NULL as no value: "
+                              "quote it, \"NULL\", to mean the text)", row, column);
     if (!node.IsScalar()) throw ModelError(field, "expected a single value", row, column);
     return node.Scalar();
+  }
+
+  // A state's, parameter's or time's name, checked as it is read: the expressions that use it
+  // come later, and a name that is no identifier would otherwise be reported there first.
+  std::string name(const YAML::Node& node, const std::string& field, std::optional<int> row = {}) {
+    std::string text = scalar(node, field, row);
+    if (auto problem = identifier_problem(text)) throw ModelError(field, *problem, row);
+    return text;
   }
 
   YAML::Node sequence(const YAML::Node& node, const std::string& field, std::optional<int> row = {}) {
@@ -118,20 +131,20 @@ class Loader {
   void read_symbols(ModelBuilder& builder) {
     YAML::Node states = sequence(required("states"), "states");
     for (std::size_t i = 0; i < states.size(); ++i)
-      builder.state(scalar(states[i], "states", static_cast<int>(i + 1)));
+      builder.state(name(states[i], "states", static_cast<int>(i + 1)));
     if (YAML::Node params = root_["parameters"]; params && !params.IsNull()) {
       index_.record("parameters", params);
       if (!params.IsMap()) throw ModelError("parameters", "expected a mapping name: default value");
       for (const auto& entry : params) {
-        std::string name = scalar(entry.first, "parameters");
-        std::string field = "parameters." + name;
+        std::string parameter = name(entry.first, "parameters");
+        std::string field = "parameters." + parameter;
         std::string text = scalar(entry.second, field);
         auto value = parse_exact_number(text);
         if (!value) throw ModelError(field, "default value '" + text + "' is not a number");
-        builder.parameter(name, *value);
+        builder.parameter(parameter, *value);
       }
     }
-    if (YAML::Node time = root_["time"]; time && !time.IsNull()) builder.time(scalar(time, "time"));
+    if (YAML::Node time = root_["time"]; time && !time.IsNull()) builder.time(name(time, "time"));
   }
 
   ExVector vector_field(const YAML::Node& node, const std::string& field, const ExpressionParser& parser) {

@@ -1,5 +1,6 @@
 #include "pfgen/printing/equation_report.hpp"
 
+#include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/sampled_report.hpp"
@@ -96,21 +97,22 @@ std::string equations_latex(const FilterEquations& eq) {
     out += "\\end{itemize}\n";
   }
   out += "\\begin{align*}\n";
+  // Each right-hand side is cut into lines that fit the page (latex_line_breaker).
   std::vector<std::string> lines;
   for (std::size_t i = 0; i < n; ++i) {
-    std::string line = "dm_{" + std::to_string(i + 1) + "} &= \\left(" + printer.print(eq.m_drift[i], name) + "\\right)dt";
+    std::string rhs = "\\left(" + printer.print(eq.m_drift[i], name) + "\\right)dt";
     for (std::size_t r = 0; r < eq.p; ++r)
-      line += " + " + K(i, r) + "\\left(dy_{" + std::to_string(r + 1) + "} - " +
-              (is_single_term(h[r]) ? printer.print(h[r], name) : "\\left(" + printer.print(h[r], name) + "\\right)") +
-              "\\,dt\\right)";
-    lines.push_back(line);
+      rhs += " + " + K(i, r) + "\\left(dy_{" + std::to_string(r + 1) + "} - " +
+             (is_single_term(h[r]) ? printer.print(h[r], name) : "\\left(" + printer.print(h[r], name) + "\\right)") +
+             "\\,dt\\right)";
+    lines.push_back(latex_align_lines("dm_{" + std::to_string(i + 1) + "}", rhs));
   }
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < eq.p; ++r) lines.push_back(K(i, r) + " &= " + printer.print(eq.gain[i][r], name));
+    for (std::size_t r = 0; r < eq.p; ++r) lines.push_back(latex_align_lines(K(i, r), printer.print(eq.gain[i][r], name)));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j)
-      lines.push_back("\\frac{d" + vars.latex_name(vars.P(i, j)) + "}{dt} &= " +
-                      join_parts(printer, P_parts(eq, vars.upper_index(i, j)), name));
+      lines.push_back(latex_align_lines("\\frac{d" + vars.latex_name(vars.P(i, j)) + "}{dt}",
+                                        join_parts(printer, P_parts(eq, vars.upper_index(i, j)), name)));
   for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
   out += "\\end{align*}\n";
   return out;

@@ -1,6 +1,7 @@
 #include "pfgen/printing/latex_document.hpp"
 
 #include "pfgen/printing/equation_report.hpp"
+#include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 
 namespace pfgen {
@@ -13,6 +14,28 @@ std::string bmatrix(const LatexPrinter& printer, const ExMatrix& m) {
     out += i + 1 < m.size() ? " \\\\ " : "";
   }
   return out + "\\end{bmatrix}";
+}
+
+// "name &= [matrix]" when it fits the page, else one aligned line per nonzero entry (cut in turn
+// when long), so that every term of a dense model's f and g is on the page.
+// `label` heads the whole matrix ("G = g g^{T}"), `name` its entries (G_{1,2}).
+std::string matrix_lines(const LatexPrinter& printer, const std::string& label, const std::string& name,
+                         const ExMatrix& m) {
+  const std::string whole = bmatrix(printer, m);
+  if (latex_width(label) + 1.8 + latex_width(whole) <= kLatexLineWidth) return label + " &= " + whole;
+  const bool vector = !m.empty() && m[0].size() == 1;
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (std::size_t j = 0; j < m[i].size(); ++j) {
+      if (m[i][j].is_zero()) continue;
+      const std::string index = vector ? std::to_string(i + 1) : std::to_string(i + 1) + "," + std::to_string(j + 1);
+      lines.push_back(latex_align_lines(name + "_{" + index + "}", printer.print(m[i][j])));
+    }
+  if (lines.empty()) return name + " &= 0";
+  std::string out;
+  for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "");
+  if (lines.size() < m.size() * m[0].size()) out += " \\\\\n&\\text{(other entries of $" + name + "$ are 0)}";
+  return out;
 }
 
 ExMatrix column(const ExVector& v) {
@@ -42,25 +65,37 @@ std::string model_section(const Model& model) {
     out += " (kept symbolic below)";
   }
   out += ".\n\\[ dx = f\\,dt + g\\,dW_1, \\qquad dy = (A_0 + A x)\\,dt + B\\,dW_2 \\]\n";
-  out += "\\begin{align*}\nf &= " + bmatrix(printer, column(model.drift)) + " \\\\\n";
+  out += "\\begin{align*}\n" + matrix_lines(printer, "f", "f", column(model.drift)) + " \\\\\n";
   if (model.diffusion.g) {
-    out += "g &= " + bmatrix(printer, *model.diffusion.g) + " \\\\\n";
+    out += matrix_lines(printer, "g", "g", *model.diffusion.g) + " \\\\\n";
   } else {
-    out += "G = g g^{T} &= " + bmatrix(printer, model.diffusion.G) + " \\\\\n";
+    out += matrix_lines(printer, "G = g g^{T}", "G", model.diffusion.G) + " \\\\\n";
   }
   if (model.additive_diffusion) {
     const Diffusion& d = *model.additive_diffusion;
-    out += (d.g ? "g_{\\mathrm{add}} &= " + bmatrix(printer, *d.g) : "G_{\\mathrm{add}} &= " + bmatrix(printer, d.G)) +
+    out += (d.g ? matrix_lines(printer, "g_{\\mathrm{add}}", "g^{\\mathrm{add}}", *d.g) : matrix_lines(printer, "G_{\\mathrm{add}}", "G^{\\mathrm{add}}", d.G)) +
            " \\\\\n";
   }
   if (model.observation.is_sampled()) {
     const SampledObservation& sampled = model.observation.sampled();
-    out += "C_0 &= " + bmatrix(printer, column(sampled.C0)) + ", \\quad C = " + bmatrix(printer, sampled.C) +
-           ", \\quad U_v = " + bmatrix(printer, sampled.Uv) + ", \\quad T = " + printer.print(sampled.period);
+    const std::string observation_line = bmatrix(printer, column(sampled.C0)) + ", \\quad C = " +
+                                         bmatrix(printer, sampled.C) + ", \\quad U_v = " + bmatrix(printer, sampled.Uv) +
+                                         ", \\quad T = " + printer.print(sampled.period);
+    if (latex_width("C_0 = " + observation_line) <= kLatexLineWidth)
+      out += "C_0 &= " + observation_line;
+    else
+      out += matrix_lines(printer, "C_0", "C_0", column(sampled.C0)) + " \\\\\n" +
+             matrix_lines(printer, "C", "C", sampled.C) + " \\\\\n" + matrix_lines(printer, "U_v", "U_v", sampled.Uv) +
+             " \\\\\nT &= " + printer.print(sampled.period);
   } else {
     const ContinuousObservation& observation = model.observation.continuous();
-    out += "A_0 &= " + bmatrix(printer, column(observation.A0)) + ", \\quad A = " + bmatrix(printer, observation.A) +
-           ", \\quad B = " + bmatrix(printer, observation.B);
+    const std::string observation_line = bmatrix(printer, column(observation.A0)) + ", \\quad A = " +
+                                         bmatrix(printer, observation.A) + ", \\quad B = " + bmatrix(printer, observation.B);
+    if (latex_width("A_0 = " + observation_line) <= kLatexLineWidth)
+      out += "A_0 &= " + observation_line;
+    else
+      out += matrix_lines(printer, "A_0", "A_0", column(observation.A0)) + " \\\\\n" +
+             matrix_lines(printer, "A", "A", observation.A) + " \\\\\n" + matrix_lines(printer, "B", "B", observation.B);
   }
   if (model.initial) {
     const InitialConditions& ic = *model.initial;

@@ -18,7 +18,10 @@
 namespace pfgen_runtime {
 
 // too_stiff: a grid step of the filter would need more sub-steps than FilterStepControl allows.
-enum class DivergenceKind { non_finite, bound_exceeded, too_stiff };
+// covariance_indefinite: the truth's diffusion covariance G(t, x) has a negative eigenvalue
+// beyond round-off (a model's state-dependent G can lose definiteness as x moves; `value` is
+// the eigenvalue).
+enum class DivergenceKind { non_finite, bound_exceeded, too_stiff, covariance_indefinite };
 
 struct DivergenceEvent {
   double t = 0;           // the grid time at which the offending value was first seen

@@ -138,6 +138,7 @@ struct MonteCarloResult {
   std::size_t n = 0;   // state components
   std::vector<FilterStatistics> filters;
   EventSummary truth_divergences;  // the truth guard's event time
+  EventSummary truth_covariance_losses;  // those of them where G lost definiteness
   std::vector<TruthReportStatistics> truth_reports;  // as MonteCarloOptions::report_times
   MonteCarloSeries series;
   MonteCarloTiming timing;

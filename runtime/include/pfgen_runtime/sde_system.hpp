@@ -3,6 +3,7 @@
 // arrays, the calling convention of generated code.
 #include <cstddef>
 #include <functional>
+#include <stdexcept>
 
 #include <Eigen/Core>
 
@@ -29,6 +30,15 @@ struct SdeSystem {
 // A diffusion g with g g^T = G(t, x), for models that give only G (n x n, row-major, symmetric
 // positive semi-definite): the symmetric square root by eigen-decomposition, negative round-off
 // eigenvalues clipped to 0. Then q = n. It has no Jacobian; use a derivative-free scheme.
+// A state-dependent G can lose definiteness as x moves (G = 1 - x once x > 1): an eigenvalue
+// below -kCovarianceRoundOff times the largest |eigenvalue| throws CovarianceIndefinite, which
+// simulate_truth reports as the run's end (DivergenceKind::covariance_indefinite) rather than
+// clipping it and simulating another model.
+inline constexpr double kCovarianceRoundOff = 1e-10;
+struct CovarianceIndefinite : std::runtime_error {
+  CovarianceIndefinite(double t, double eigenvalue);
+  double t, eigenvalue;
+};
 using CovarianceCallback = std::function<void(double t, const double* x, double* G)>;
 SdeSystem::Diffusion diffusion_from_covariance(std::size_t n, CovarianceCallback G);
 

@@ -49,7 +49,11 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
   values.reserve(runs.size());
 
   for (std::size_t r = 0; r < runs.size(); ++r)
-    if (runs[r].truth_diverged) result.truth_divergences.events.push_back({r, runs[r].truth_divergence_t});
+    if (runs[r].truth_diverged) {
+      result.truth_divergences.events.push_back({r, runs[r].truth_divergence_t});
+      if (runs[r].truth_covariance_indefinite)
+        result.truth_covariance_losses.events.push_back({r, runs[r].truth_divergence_t});
+    }
 
   for (std::size_t q = 0; q < plan.reports.size(); ++q) {
     TruthReportStatistics report;

@@ -29,6 +29,7 @@ struct FilterRunResult {
 struct RunResult {
   std::ptrdiff_t truth_last = -1;  // last grid index with a stored truth state; -1: none
   bool truth_diverged = false;
+  bool truth_covariance_indefinite = false;  // stopped because G lost definiteness
   double truth_divergence_t = nan;
   std::vector<double> truth_record;  // records x n
   std::vector<double> truth_report;  // reports x n; NaN where the truth had stopped

@@ -46,6 +46,7 @@ void Worker::simulate_truth(std::size_t run, RunResult& out) {
   if (divergence) {
     out.truth_diverged = true;
     out.truth_divergence_t = divergence->t;
+    out.truth_covariance_indefinite = divergence->kind == DivergenceKind::covariance_indefinite;
   }
   // Steps taken: the stored ones, and the one the guard stopped (none when x0 was rejected).
   truth_steps += static_cast<std::uint64_t>(std::max<std::ptrdiff_t>(out.truth_last, 0)) +

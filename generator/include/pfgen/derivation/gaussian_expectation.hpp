@@ -22,6 +22,11 @@ class GaussianExpectation {
   // `p` is over the state variables 0..n-1; the result is over FilterVariables.
   Polynomial of(const Polynomial& p);
   const Polynomial& of_monomial(const Monomial& monomial);
+  // The smaller monomial whose expectation E[monomial] is built from (monomial is not one):
+  // the first variable's exponent lowered by one. derivation_budget follows the same chain.
+  static Monomial peeled(const Monomial& monomial) {
+    return monomial.without_one(monomial.factors().front().first);
+  }
 
  private:
   const FilterVariables& variables_;

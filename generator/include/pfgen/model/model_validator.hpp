@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,5 +13,8 @@ void validate_model(const Model& model);
 
 // True if `name` may be used for a state, parameter or time symbol.
 bool is_valid_identifier(const std::string& name);
+// Why `name` is not an identifier ("'α' is not an identifier: ..."), or nullopt. The loader asks
+// as it reads each name, before any expression uses it; validate_model asks again for the C++ API.
+std::optional<std::string> identifier_problem(const std::string& name);
 
 }  // namespace pfgen

@@ -1,0 +1,40 @@
+#pragma once
+// Bounds on the work of a derivation, checked before the expectations are expanded.
+//
+// The per-state degree limit does not bound the work: E[x^80 y^80] alone has 45961 terms, and the
+// memoised recursion holds every E[x^a y^b] on its way, 2.8 million terms that took 16 s and
+// 800 MB; x^160 y^160 exhausted 3 GB. The covariance equations grow as n^2 times the terms of the
+// Jacobian and of the observation term. Both are counted exactly or bounded from above, from the
+// polynomials the derivation starts from, and a model beyond a limit is refused with one line
+// naming the field (README, "Model file reference", limits).
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "pfgen/algebra/polynomial.hpp"
+#include "pfgen/model/model.hpp"
+
+namespace pfgen {
+
+inline constexpr double kMaxExpectationTerms = 500000;  // terms of all E[x^a] the recursion holds
+inline constexpr double kMaxEquationTerms = 2000000;    // terms of the m and P equations
+
+// The number of terms of E[x^alpha] for x ~ N(m, P), as a polynomial in m and P: one per way to
+// pair some of alpha's factors (P_ij, P_ii for a pair within one state) and leave the rest as m's.
+// Exact up to `stop_above`; beyond it, some number above `stop_above`.
+double gaussian_moment_terms(const Monomial& alpha, double stop_above = kMaxExpectationTerms);
+
+// The polynomials a filter kind starts from, with where each came from in the model file.
+struct DerivationInputs {
+  bool gaussian = true;  // expectations under N(m, P), else evaluated at m (extended filters)
+  std::vector<Polynomial> drift;                   // f_i
+  std::vector<std::vector<Polynomial>> jacobian;   // d f_i / d x_k
+  std::vector<Polynomial> diffusion_upper;         // G_ij, i <= j
+  std::string diffusion_field;                     // "diffusion", "additive_diffusion_covariance", ...
+  std::size_t observed_states = 0;                 // states with a nonzero column in the observation
+};
+
+// Throws ModelError (file, field, row) when the derivation would go beyond either limit.
+void check_derivation_budget(const Model& model, const DerivationInputs& inputs);
+
+}  // namespace pfgen

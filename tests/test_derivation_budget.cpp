@@ -1,0 +1,130 @@
+// The bounds on a derivation's work (pfgen/model/expansion_bound.hpp and
+// pfgen/derivation/derivation_budget.hpp): each count is checked against the real expansion it
+// predicts, against a sequence known independently, and at the edges of its limit.
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include "pfgen/derivation/derivation_budget.hpp"
+#include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/derivation/gaussian_expectation.hpp"
+#include "pfgen/model/expansion_bound.hpp"
+#include "pfgen/model/model_builder.hpp"
+#include "pfgen/model/model_error.hpp"
+#include "support/dense_cubic_model.hpp"
+
+using namespace pfgen;
+
+namespace {
+
+Monomial monomial(const std::vector<std::uint32_t>& exponents) {
+  Monomial m;
+  for (std::uint32_t i = 0; i < exponents.size(); ++i)
+    if (exponents[i] > 0) m = m * Monomial::variable(i, exponents[i]);
+  return m;
+}
+
+// A model with the given drift rows over states x1..xn, identity noise, all states observed.
+Model model_with_drift(const std::vector<std::string>& drift_text, std::size_t observed) {
+  const std::size_t n = drift_text.size();
+  ModelBuilder b("budget");
+  std::vector<GiNaC::symbol> x;
+  GiNaC::symtab table;
+  for (std::size_t i = 0; i < n; ++i) {
+    x.push_back(b.state("x" + std::to_string(i + 1)));
+    table[x.back().get_name()] = x.back();
+  }
+  GiNaC::parser reader(table);
+  ExVector f;
+  for (const auto& text : drift_text) f.push_back(reader(text));
+  ExMatrix G(n, ExVector(n, 0)), A(observed, ExVector(n, 0)), B(observed, ExVector(observed, 0));
+  for (std::size_t i = 0; i < n; ++i) G[i][i] = 1;
+  for (std::size_t r = 0; r < observed; ++r) A[r][r] = B[r][r] = 1;
+  b.drift(f).diffusion_covariance(G).observation(ExVector(observed, 0), A, B);
+  return b.build();
+}
+
+}  // namespace
+
+TEST_CASE("gaussian_moment_terms counts the terms GaussianExpectation gives", "[derivation_budget][unit]") {
+  const FilterVariables vars(3);
+  GaussianExpectation E(vars);
+  for (std::uint32_t a = 0; a <= 6; ++a)
+    for (std::uint32_t b = 0; a + b <= 6; ++b)
+      for (std::uint32_t c = 0; a + b + c <= 6; ++c) {
+        const Monomial m = monomial({a, b, c});
+        INFO("x1^" << a << " x2^" << b << " x3^" << c);
+        CHECK(gaussian_moment_terms(m) == static_cast<double>(E.of_monomial(m).terms().size()));
+      }
+  const FilterVariables two(2);
+  GaussianExpectation E2(two);
+  CHECK(gaussian_moment_terms(monomial({12, 9})) == static_cast<double>(E2.of_monomial(monomial({12, 9})).terms().size()));
+}
+
+TEST_CASE("gaussian_moment_terms of distinct states are the involution numbers", "[derivation_budget][unit]") {
+  // E[x1 x2 ... xk]: one term per partial matching of k factors (OEIS A000085).
+  const std::vector<double> involutions = {1, 1, 2, 4, 10, 26, 76, 232, 764, 2620, 9496, 35696, 140152};
+  for (std::size_t k = 0; k < involutions.size(); ++k)
+    CHECK(gaussian_moment_terms(monomial(std::vector<std::uint32_t>(k, 1))) == involutions[k]);
+  // E[x^80 y^80], the example that took 16 s: 45961 terms itself.
+  CHECK(gaussian_moment_terms(monomial({80, 80})) == 45961);
+  // Beyond the stopping point only "more than" is promised, cheaply.
+  CHECK(gaussian_moment_terms(monomial(std::vector<std::uint32_t>(40, 1)), 1e6) > 1e6);
+}
+
+TEST_CASE("expanded_terms_bound is never below the real expansion", "[derivation_budget][unit]") {
+  GiNaC::symbol x("x"), y("y"), z("z"), a("a"), t("t");
+  const std::vector<GiNaC::ex> cases = {
+      pow(x + y + 1, 5), pow(x + 1, 30), pow(x + y + z, 4) * pow(x - y, 3), (x + y) * (x - y) + pow(a * x + sin(t), 3),
+      pow(pow(x + 1, 2) + y, 3), 3 * x * y * z, pow(x + a, 2) / (a + 1), pow(1 + x + y + z + a + t, 3) - pow(x, 2)};
+  for (const auto& e : cases) {
+    INFO(e);
+    CHECK(expanded_terms_bound(e) >= static_cast<double>(GiNaC::is_a<GiNaC::add>(e.expand()) ? e.expand().nops() : 1));
+  }
+  // Exact for a power of a sum of distinct variables: C(k + 2, 2) for three terms.
+  CHECK(expanded_terms_bound(pow(x + y + 1, 1000)) == Approx(501501));
+  // Capped by the degrees: (x + 1)^1000 has 1001 terms, not C(1001, 1000) of two "terms".
+  CHECK(expanded_terms_bound(pow(x + 1, 1000)) == Approx(1001));
+}
+
+TEST_CASE("the derivation budget refuses what would run away and passes the dense benchmarks",
+          "[derivation_budget][integration]") {
+  // The examples: E[x^80 y^80] needs 2.8 million intermediate terms.
+  try {
+    derive_filter(model_with_drift({"-x1^80*x2^80", "-x2"}, 1), FilterKind::Optimal);
+    FAIL("x1^80 x2^80 was derived");
+  } catch (const ModelError& e) {
+    CHECK(e.field() == "drift");
+    CHECK(e.row() == 1);
+    CHECK(std::string(e.what()).find("more than 500000 terms") != std::string::npos);
+  }
+  // The extended filter evaluates at m: no expectations, nothing to refuse.
+  CHECK_NOTHROW(derive_filter(model_with_drift({"-x1^80*x2^80", "-x2"}, 1), FilterKind::Ekf));
+  // Just inside: degree 40 in each.
+  CHECK_NOTHROW(derive_filter(model_with_drift({"-x1^40*x2^40", "-x2"}, 1), FilterKind::Optimal));
+
+  // The covariance equations of 64 fully observed states: 2080 entries of 4096 observation terms.
+  std::vector<std::string> linear;
+  for (int i = 1; i <= 64; ++i) linear.push_back("-x" + std::to_string(i));
+  try {
+    derive_filter(model_with_drift(linear, 64), FilterKind::Optimal);
+    FAIL("64 fully observed states were derived");
+  } catch (const ModelError& e) {
+    CHECK(e.field() == "states");
+    CHECK(std::string(e.what()).find("would have up to 8519680 terms, above the limit of 2000000") != std::string::npos);
+  }
+  // 64 states with one observed are well inside.
+  CHECK_NOTHROW(derive_filter(model_with_drift(linear, 1), FilterKind::Optimal));
+  // The derivation benchmark's largest model (dense cubic drift, 20 states) passes both limits.
+  const Model dense = pfgen_test::dense_cubic_model(20);
+  std::vector<Polynomial> f;
+  std::vector<std::vector<Polynomial>> J(20, std::vector<Polynomial>(20));
+  for (std::size_t i = 0; i < 20; ++i) f.push_back(Polynomial::from_ex(dense.drift[i], dense.states));
+  for (std::size_t i = 0; i < 20; ++i)
+    for (std::size_t k = 0; k < 20; ++k) J[i][k] = f[i].derivative(static_cast<std::uint32_t>(k));
+  std::vector<Polynomial> G_upper;
+  for (std::size_t i = 0; i < 20; ++i)
+    for (std::size_t j = i; j < 20; ++j) G_upper.push_back(Polynomial::from_ex(dense.diffusion.G[i][j], dense.states));
+  CHECK_NOTHROW(check_derivation_budget(dense, DerivationInputs{true, f, J, G_upper, "diffusion", 20}));
+}
