@@ -275,6 +275,33 @@ TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed
   check_close(optimal.m_drift[0], 0.275, "optimal m_drift");
 }
 
+// The whole output of eval, byte for byte, against files written by the program before the sampled
+// kinds came (tests/data/eval/): every key, every digit and the order of the keys. The sampled kinds
+// share the evaluator, and must leave the continuous kinds' output (the gain above all) as it was.
+TEST_CASE("eval of the continuous examples is byte-identical to its recorded output", "[cli][integration]") {
+  struct Case {
+    std::string file, filter;
+    std::vector<std::string> point;
+  };
+  std::vector<Case> cases;
+  for (const std::string filter : {"optimal", "ekf", "additive", "ekf-additive", "ekf-printed"})
+    cases.push_back({"basin2006_quadratic", filter, {"--m=-1.5", "--P", "0.5", "--t=2"}});
+  for (const std::string filter : {"optimal", "ekf", "ekf-printed"})
+    cases.push_back({"basin_skliar_partial", filter, {"--m=-1.5,2", "--P", "0.5,0.25;0.25,3"}});
+  for (const auto& c : cases) {
+    INFO(c.file << " --filter " << c.filter);
+    std::vector<std::string> args = {"eval", example(c.file + ".yaml"), "--filter", c.filter};
+    args.insert(args.end(), c.point.begin(), c.point.end());
+    ProcessResult r = run_pfgen(args);
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::string expected = read_file(test_data_dir() + "/eval/" + c.file + "_" + c.filter + ".json");
+    REQUIRE(!expected.empty());
+    CHECK(r.out == expected);
+    CHECK(r.out.find("\"gain\"") != std::string::npos);
+  }
+}
+
 TEST_CASE("eval accepts negative numbers in every spelling of the options", "[cli][integration]") {
   const std::string model = example("basin2006_quadratic.yaml");
   ProcessResult joined = run_pfgen({"eval", model, "--filter", "optimal", "--m=-1.5", "--P=0.5", "--t=-2"});
