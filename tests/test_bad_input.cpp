@@ -193,6 +193,19 @@ const std::vector<BadModel>& bad_models() {
       {"filter_unknown_field.yaml", "filters.mine.Q_drift", 0, 0, 12,
        "unknown field (known: m_drift, P_drift, gain, description)"},
       {"filter_unknown_symbol.yaml", "filters.mine.m_drift", 1, 0, 11, "unknown symbol 'm' in '-m'"},
+      // observation: {sampled: ...} (sampled measurements)
+      {"sampled_period_zero.yaml", "observation.sampled.period", 0, 0, 7, "must be positive, found 0"},
+      {"sampled_period_negative.yaml", "observation.sampled.period", 0, 0, 7, "must be positive, found -0.5"},
+      {"sampled_period_not_a_number.yaml", "observation.sampled.period", 0, 0, 7, "'fast' is not a number"},
+      {"sampled_C_columns.yaml", "observation.sampled.C", 1, 0, 8,
+       "expected 2 columns (r x n with n = number of states), found 3"},
+      {"sampled_C_depends_on_state.yaml", "observation.sampled.C", 1, 2, 8, "'x2' must not depend on the states"},
+      {"sampled_Uv_rows.yaml", "observation.sampled.Uv", 0, 0, 9,
+       "expected 2 rows (one per observation, as in C), found 1"},
+      {"sampled_Uv_singular.yaml", "observation.sampled.Uv", 0, 0, 9, "Uv Uv^T is not positive definite"},
+      {"sampled_substeps_zero.yaml", "observation.sampled.substeps", 0, 0, 10, "must be at least 1"},
+      {"sampled_with_user_filter.yaml", "filters.mine", 0, 0, 11,
+       "a filter given by its equations is a continuous-observation filter"},
       // simulation: (defaults for pfgen simulate)
       {"simulation_T_negative.yaml", "simulation.T", 0, 0, 10, "must be a number greater than 0, found -1"},
       {"simulation_T_not_a_number.yaml", "simulation.T", 0, 0, 10, "'soon' is not a number"},
@@ -391,6 +404,23 @@ TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line",
   }
   SECTION("--t not a number") {
     check_option_error(eval_partial({"--m=-1.5,2", good_P, "--t=soon"}), {"--t", "'soon' is not a number"});
+  }
+  SECTION("--filter of the other observation kind") {
+    // A sampled model asked for a continuous-only kind, and a continuous model for a sampled one.
+    for (const std::string kind : {"optimal", "ekf"})
+      check_option_error(run_pfgen({"eval", example("allahyani_date_example1_gamma1.yaml"), "--filter", kind,
+                                    "--m=0.5", "--P=2"}),
+                         {"--filter", "'" + kind + "' is not derived for sampled observations"});
+    for (const std::string kind : {"cd-optimal", "cd-ekf", "cd-euler"}) {
+      check_option_error(run_pfgen({"eval", example("basin2006_quadratic.yaml"), "--filter", kind, "--m=0.5",
+                                    "--P=2"}),
+                         {"--filter", "'" + kind + "' is not derived for continuous observations"});
+      check_option_error(run_pfgen({"derive", example("basin2006_quadratic.yaml"), "--filter", kind}),
+                         {"--filter", "'" + kind + "' is not derived for continuous observations"});
+    }
+    check_option_error(run_pfgen({"codegen", example("allahyani_date_example1_gamma1.yaml"), "--filter", "optimal",
+                                  "-o", "/nonexistent-pfgen-output"}),
+                       {"--filter", "'optimal' is not derived for sampled observations"});
   }
   SECTION("--set of an unknown parameter or without a value") {
     check_option_error(eval_partial({"--m=-1.5,2", good_P, "--set", "a=1"}),
