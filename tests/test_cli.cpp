@@ -302,6 +302,48 @@ TEST_CASE("eval of the continuous examples is byte-identical to its recorded out
   }
 }
 
+TEST_CASE("eval of the sampled examples matches the hand-computed prediction and update", "[cli][integration]") {
+  // Paper 003's example 1: dx = -0.5 x dt + 6 dW + 0.1 x^gamma dS, y_k = 10 x(t_k) + v_k.
+  // gamma = 1: g g^T = 36 + 0.01 x^2; gamma = 0.5: 36 + 0.01 x. At (m, P):
+  //   m drift -0.5 m; P drift 2 (-0.5) P + E[g g^T] (at the mean for cd-ekf);
+  //   cd-euler's dt^2 term Cov(f) = 0.25 P; S = 100 P + 1, K = 10 P / S.
+  struct Expected {
+    std::string file, kind, m, P;
+    double m_drift, P_drift, P_dt2, S, K;  // P_dt2 < 0: no such term
+  };
+  const std::vector<Expected> cases = {
+      {"allahyani_date_example1_gamma1.yaml", "cd-optimal", "0.5", "2", -0.25, -2 + 36 + 0.01 * (0.25 + 2), -1, 201, 20.0 / 201},
+      {"allahyani_date_example1_gamma1.yaml", "cd-ekf", "0.5", "2", -0.25, -2 + 36 + 0.01 * 0.25, -1, 201, 20.0 / 201},
+      {"allahyani_date_example1_gamma1.yaml", "cd-euler", "0.5", "2", -0.25, 34.0225, 0.5, 201, 20.0 / 201},
+      {"allahyani_date_example1_gamma05.yaml", "cd-optimal", "-1.5", "0.5", 0.75, -0.5 + 36 - 0.015, -1, 51, 5.0 / 51},
+      {"allahyani_date_example1_gamma05.yaml", "cd-ekf", "-1.5", "0.5", 0.75, 35.485, -1, 51, 5.0 / 51},
+      {"allahyani_date_example1_gamma05.yaml", "cd-euler", "-1.5", "0.5", 0.75, 35.485, 0.125, 51, 5.0 / 51},
+  };
+  std::vector<std::string> covered;
+  for (const auto& c : cases)
+    if (c.file == cases[0].file) covered.push_back(c.kind);
+  CHECK(covered == kinds_for(pfgen::ObservationKind::Sampled));  // a new sampled kind needs its case here
+  for (const auto& c : cases) {
+    INFO(c.file << " --filter " << c.kind);
+    ProcessResult r = run_pfgen({"eval", example(c.file), "--filter", c.kind, "--m=" + c.m, "--P=" + c.P});
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.empty());
+    JsonValue j = parse_json(r.out);
+    REQUIRE(j.kind == JsonValue::Kind::Object);
+    CHECK(j.keys() == std::vector<std::string>{"model", "filter", "prediction", "update"});
+    const bool euler = c.P_dt2 >= 0;
+    CHECK(j["prediction"].keys() == (euler ? std::vector<std::string>{"m_drift", "P_drift", "P_dt2"}
+                                           : std::vector<std::string>{"m_drift", "P_drift"}));
+    CHECK(j["update"].keys() == std::vector<std::string>{"innovation_covariance", "gain"});
+    check_close(numbers(j["prediction"]["m_drift"])[0], c.m_drift, "m_drift");
+    check_close(numbers(j["prediction"]["P_drift"].items.at(0))[0], c.P_drift, "P_drift");
+    if (euler) check_close(numbers(j["prediction"]["P_dt2"].items.at(0))[0], c.P_dt2, "P_dt2");
+    check_close(numbers(j["update"]["innovation_covariance"].items.at(0))[0], c.S, "S");
+    check_close(numbers(j["update"]["gain"].items.at(0))[0], c.K, "K");
+  }
+}
+
 TEST_CASE("eval accepts negative numbers in every spelling of the options", "[cli][integration]") {
   const std::string model = example("basin2006_quadratic.yaml");
   ProcessResult joined = run_pfgen({"eval", model, "--filter", "optimal", "--m=-1.5", "--P=0.5", "--t=-2"});
