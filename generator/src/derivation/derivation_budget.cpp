@@ -7,7 +7,6 @@
 
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/model/model_error.hpp"
-#include "pfgen/notation/number_format.hpp"
 
 namespace pfgen {
 namespace {

@@ -1,5 +1,8 @@
 #include "pfgen/model/model_error.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 namespace pfgen {
 
 ModelError::ModelError(std::string field, std::string message, std::optional<int> row,
@@ -22,6 +25,14 @@ void ModelError::rebuild() {
   text += (field_.empty() && !row_ && !column_) ? " " : ": ";
   text += message_;
   what_ = text;
+}
+
+std::string count_text(double count) {
+  if (count < 1e15) return std::to_string(static_cast<long long>(std::round(count)));
+  if (!std::isfinite(count)) return "more than 1e308";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.2g", count);
+  return buffer;
 }
 
 }  // namespace pfgen

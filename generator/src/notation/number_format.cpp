@@ -1,7 +1,6 @@
 #include "pfgen/notation/number_format.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 namespace pfgen {
@@ -24,14 +23,6 @@ std::string exact_decimal(const GiNaC::numeric& value) {
     digits.insert(digits.size() - places, ".");
   }
   return (value.is_negative() ? "-" : "") + digits;
-}
-
-std::string count_text(double count) {
-  if (count < 1e15) return std::to_string(static_cast<long long>(std::round(count)));
-  if (!std::isfinite(count)) return "more than 1e308";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.2g", count);
-  return buffer;
 }
 
 }  // namespace pfgen

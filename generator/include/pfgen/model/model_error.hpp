@@ -42,4 +42,8 @@ class ModelError : public std::runtime_error {
   const char* what() const noexcept override { return what_.c_str(); }
 };
 
+// A count (of terms, digits, steps) as a message gives it: whole below 1e15 ("501501"), else in
+// two significant digits ("1.2e+30"), "more than 1e308" when infinite.
+std::string count_text(double count);
+
 }  // namespace pfgen

@@ -15,8 +15,4 @@ std::string exact_decimal(const GiNaC::numeric& value);
 // support library's (pfgen_support/shortest_double.hpp), shared with the runtime.
 using pfgen_support::shortest_double;
 
-// A count of terms or steps as a user reads it in a message: whole below 1e15 ("501501"), else in
-// two significant digits ("1.2e+30"), "more than 1e308" when infinite.
-std::string count_text(double count);
-
 }  // namespace pfgen
