@@ -1,5 +1,6 @@
 #include "pfgen/printing/sampled_report.hpp"
 
+#include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
 
@@ -126,30 +127,31 @@ std::string sampled_equations_latex(const FilterEquations& eq) {
                      "$ sub-steps per period $T = " + printer.print(u.period) + "$, no observation term):\n";
   for (std::size_t i = 0; i < n; ++i) {
     const std::string m = vars.latex_name(vars.m(i));
-    prediction.push_back(euler ? m + "' &= " + m + " + \\left(" + printer.print(eq.m_drift[i], name) + "\\right)\\Delta"
-                               : "\\frac{d" + m + "}{dt} &= " + printer.print(eq.m_drift[i], name));
+    prediction.push_back(euler ? latex_align_lines(m + "'", m + " + \\left(" + printer.print(eq.m_drift[i], name) + "\\right)\\Delta")
+                               : latex_align_lines("\\frac{d" + m + "}{dt}", printer.print(eq.m_drift[i], name)));
   }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) {
       const std::size_t k = vars.upper_index(i, j);
       const std::string P = vars.latex_name(vars.P(i, j));
-      prediction.push_back(euler ? P + "' &= " + P + " + \\left(" + join_parts(printer, P_parts(eq, k), name) +
-                                       "\\right)\\Delta + \\left(" + printer.print(eq.P_euler[k], name) + "\\right)\\Delta^{2}"
-                                 : "\\frac{d" + P + "}{dt} &= " + join_parts(printer, P_parts(eq, k), name));
+      prediction.push_back(euler ? latex_align_lines(P + "'", P + " + \\left(" + join_parts(printer, P_parts(eq, k), name) +
+                                                                  "\\right)\\Delta + \\left(" + printer.print(eq.P_euler[k], name) +
+                                                                  "\\right)\\Delta^{2}")
+                                 : latex_align_lines("\\frac{d" + P + "}{dt}", join_parts(printer, P_parts(eq, k), name)));
     }
   out += block(prediction);
   out += "\\paragraph{Update at each sample} ($R = U_v U_v^{T}$, Joseph form):\n";
   std::vector<std::string> update;
   for (std::size_t a = 0; a < r; ++a)
-    update.push_back("h_{" + std::to_string(a + 1) + "} &= " + printer.print(eq.predicted_observation[a], name));
+    update.push_back(latex_align_lines("h_{" + std::to_string(a + 1) + "}", printer.print(eq.predicted_observation[a], name)));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t a = 0; a < r; ++a)
-      update.push_back("(P C^{T})_{" + std::to_string(i + 1) + "," + std::to_string(a + 1) + "} &= " +
-                       printer.print(u.PCt[i][a], name));
+      update.push_back(latex_align_lines("(P C^{T})_{" + std::to_string(i + 1) + "," + std::to_string(a + 1) + "}",
+                                         printer.print(u.PCt[i][a], name)));
   for (std::size_t a = 0; a < r; ++a)
     for (std::size_t b = a; b < r; ++b)
-      update.push_back("S_{" + std::to_string(a + 1) + "," + std::to_string(b + 1) + "} &= " +
-                       printer.print(u.S[u.upper_index(a, b)], name));
+      update.push_back(latex_align_lines("S_{" + std::to_string(a + 1) + "," + std::to_string(b + 1) + "}",
+                                         printer.print(u.S[u.upper_index(a, b)], name)));
   update.push_back("K &= P C^{T} S^{-1}, \\quad m \\leftarrow m + K (y - h), \\quad "
                    "P \\leftarrow (I - K C) P (I - K C)^{T} + K R K^{T}");
   out += block(update);
