@@ -12,36 +12,52 @@ namespace pfgen {
 namespace {
 
 // Counts the monomials m^beta P^K of E[x^alpha]: symmetric K >= 0 whose row sums, with a
-// diagonal entry counted twice, stay within alpha (beta takes the rest). Dynamic programming over
-// the pairs (i, j), i <= j, on the vector of factors left, stored densely in mixed radix.
+// diagonal entry counted twice, stay within alpha (beta takes the rest). The diagonal P_ii are
+// free once the cross pairs are chosen: a state with r factors left takes P_ii^0 .. P_ii^(r/2),
+// r/2 + 1 ways. So the count is a sum over the cross pairs P_ij, i < j, of the product of those
+// ways: in closed form for one or two states (the cost of a monomial of degree 1000 in x and y is
+// a loop of at most 500), by dynamic programming over the cross pairs on the vector of factors
+// left (dense, mixed radix) for more.
 double count_pairings(const std::vector<std::uint32_t>& alpha) {
   const std::size_t s = alpha.size();
+  auto diagonal_ways = [](std::uint32_t left) { return static_cast<double>(left / 2 + 1); };
+  if (s == 0) return 1;
+  if (s == 1) return diagonal_ways(alpha[0]);
+  if (s == 2) {
+    double total = 0;
+    for (std::uint32_t k = 0; k <= std::min(alpha[0], alpha[1]); ++k)
+      total += diagonal_ways(alpha[0] - k) * diagonal_ways(alpha[1] - k);
+    return total;
+  }
   std::vector<std::size_t> stride(s);
   std::size_t states = 1;
   for (std::size_t i = 0; i < s; ++i) {
     stride[i] = states;
     states *= alpha[i] + 1;
   }
-  // ways[v]: pairings so far that leave v's factors (v in mixed radix).
+  auto left_of = [&](std::size_t v, std::size_t i) { return static_cast<std::uint32_t>(v / stride[i] % (alpha[i] + 1)); };
+  // ways[v]: choices of cross pairs so far that leave v's factors (v in mixed radix).
   std::vector<double> ways(states, 0.0), next(states);
   ways[states - 1] = 1;  // nothing paired: all of alpha left
-  std::vector<std::uint32_t> left(s);
   for (std::size_t i = 0; i < s; ++i)
-    for (std::size_t j = i; j < s; ++j) {
+    for (std::size_t j = i + 1; j < s; ++j) {
       std::fill(next.begin(), next.end(), 0.0);
+      const std::size_t step = stride[i] + stride[j];
       for (std::size_t v = 0; v < states; ++v) {
         if (ways[v] == 0) continue;
-        const std::uint32_t li = static_cast<std::uint32_t>(v / stride[i] % (alpha[i] + 1));
-        const std::uint32_t lj = static_cast<std::uint32_t>(v / stride[j] % (alpha[j] + 1));
-        // k copies of P_ij use k factors of each (2k of one state when i == j).
-        const std::uint32_t most = i == j ? li / 2 : std::min(li, lj);
-        const std::size_t step = i == j ? 2 * stride[i] : stride[i] + stride[j];
+        // k copies of P_ij use k factors of each.
+        const std::uint32_t most = std::min(left_of(v, i), left_of(v, j));
         for (std::uint32_t k = 0; k <= most; ++k) next[v - k * step] += ways[v];
       }
       std::swap(ways, next);
     }
   double total = 0;
-  for (double w : ways) total += w;
+  for (std::size_t v = 0; v < states; ++v) {
+    if (ways[v] == 0) continue;
+    double diagonal = 1;
+    for (std::size_t i = 0; i < s; ++i) diagonal *= diagonal_ways(left_of(v, i));
+    total += ways[v] * diagonal;
+  }
   return total;
 }
 
@@ -52,11 +68,12 @@ class ExpectationCount {
   double add(const Polynomial& p) {
     double terms = 0;
     for (const auto& [monomial, coefficient] : p.terms()) {
+      if (total_ > kMaxExpectationTerms) break;  // refused anyway: counting on costs time for nothing
       terms += count(monomial);
       // GaussianExpectation reaches each monomial through the same chain of smaller ones.
       for (Monomial m = monomial; !m.is_one(); ) {
         m = GaussianExpectation::peeled(m);
-        if (!count(m)) break;  // already held, and so is the rest of its chain
+        if (!count(m) || total_ > kMaxExpectationTerms) break;  // already held, and so is the rest of its chain
       }
     }
     return terms;
