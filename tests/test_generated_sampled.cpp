@@ -13,7 +13,8 @@
 //  (c) update() returns false and leaves the state untouched (bit for bit) when S is not positive
 //      definite: P negative definite, and for r = 2 an S with a positive diagonal but a negative
 //      determinant (the second pivot fails).
-// Double: 1e-12 relative to the largest entry of m, and of P, separately. Float: kFloatTolerance.
+// Double: 1e-12 relative to the largest entry of m, and of P, separately (input or result).
+// Float: kFloatTolerance.
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
@@ -24,6 +25,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pfgen/derivation/filter_equations.hpp"
@@ -43,9 +45,10 @@ using VecL = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
 
 constexpr double kDoubleTolerance = 1e-12;
 // Float: the inputs are rounded to float (relative 6e-8) and each output entry goes through a few
-// dozen float operations (u = 6e-8 each); the largest condition number met (Joseph form's
-// A = Id - K C, about 1/(1 + C P C^T / R), formed by cancellation, enters P' only through
-// A P A^T, which is small beside K R K^T) keeps the errors below 1e-5 of the block's largest entry.
+// dozen float operations (u = 6e-8 each), so errors of some 1e-6 of the block's scale are
+// expected; the worst cancellation (Joseph form's A = Id - K C, about R / (R + C P C^T), enters P'
+// only through A P A^T, small beside K R K^T) adds little. Measured: at most 1.4e-7 (predict) and
+// 2.2e-6 (update, r = 2); the bound keeps a factor 10 over that.
 constexpr double kFloatTolerance = 2e-5;
 
 constexpr int kPoints = 25;
@@ -200,14 +203,18 @@ KalmanReference expected_update(const Model& model, double t, const std::vector<
 }
 
 // Largest |generated - expected| over the m block and over the P block, each divided by that
-// block's largest |expected| entry.
-double relative_deviation(const std::vector<double>& generated, const std::vector<double>& expected, std::size_t n) {
+// block's largest entry in the input state or in the expected result (rounding errors scale with
+// the inputs too: m' = m + K (y - C0 - C m) may be small beside m).
+double relative_deviation(const std::vector<double>& generated, const std::vector<double>& expected,
+                          const std::vector<double>& input, std::size_t n) {
   REQUIRE(generated.size() == expected.size());
+  REQUIRE(input.size() == expected.size());
   double worst = 0;
-  for (const auto& [begin, end] : {std::pair<std::size_t, std::size_t>{0, n}, {n, expected.size()}}) {
+  using Block = std::pair<std::size_t, std::size_t>;
+  for (const auto& [begin, end] : {Block{0, n}, Block{n, expected.size()}}) {
     double scale = 0, dev = 0;
     for (std::size_t k = begin; k < end; ++k) {
-      scale = std::max(scale, std::abs(expected[k]));
+      scale = std::max({scale, std::abs(expected[k]), std::abs(input[k])});
       dev = std::max(dev, std::abs(generated[k] - expected[k]));
     }
     worst = std::max(worst, dev / std::max(scale, 1e-300));
@@ -311,7 +318,9 @@ void check_model(const std::string& model_path) {
       Case c;
       c.kind = kind;
       c.t = std::abs(random_rational(rng, 3000));
-      c.dt = 0.05 + std::abs(random_rational(rng, 200));  // 0.05 to 0.25: the drift terms count
+      // dt from 0.01 to 0.05: the drift terms count, and Heun's Euler-predicted P stays positive
+      // definite (the evaluator's Gaussian expectations require it) under the cubic drift.
+      c.dt = 0.01 + std::abs(random_rational(rng, 40));
       FilterState s{std::vector<double>(n), std::vector<std::vector<double>>(n, std::vector<double>(n, 0))};
       std::vector<std::vector<double>> L(n, std::vector<double>(n, 0));
       for (std::size_t i = 0; i < n; ++i) {
@@ -409,7 +418,6 @@ void check_model(const std::string& model_path) {
         ++builds;
 
         std::istringstream lines(ran.out);
-        double worst_predict = 0, worst_update = 0;
         std::size_t refused = 0;
         for (const Case& c : cases) {
           INFO(c.kind << " at t = " << c.t << ", dt = " << c.dt << ", state" << join(c.state) << ", y" << join(c.y));
@@ -430,21 +438,16 @@ void check_model(const std::string& model_path) {
           }
           REQUIRE(ok == 1);
           CHECK(unchanged == 0);
-          const double dev_predict = relative_deviation(predicted, c.predicted, n);
-          const double dev_update = relative_deviation(updated, c.updated, n);
+          const double dev_predict = relative_deviation(predicted, c.predicted, c.state, n);
+          const double dev_update = relative_deviation(updated, c.updated, c.state, n);
           INFO("predict: generated" << join(predicted) << ", expected" << join(c.predicted) << "; update: generated"
                                     << join(updated) << ", expected" << join(c.updated));
           CHECK(dev_predict <= tolerance);
           CHECK(dev_update <= tolerance);
-          worst_predict = std::max(worst_predict, dev_predict);
-          worst_update = std::max(worst_update, dev_update);
         }
         CHECK(refused == (r == 2 && n == 2 ? 6u : 3u));
         std::string rest;
         CHECK(!(lines >> rest));  // nothing beyond the cases
-        WARN(model.name << " --scalar " << scalar << (template_scalar.empty() ? "" : "<" + template_scalar + ">")
-                        << " " << compiler << ": largest relative deviation, predict " << worst_predict
-                        << ", update " << worst_update);
       }
     }
   }
