@@ -1,6 +1,8 @@
 // The embedded proof's filter run: paper 000's and paper 001's optimal filters, as written
 // by `pfgen codegen`, stepped over the recorded observation sequence of observations.hpp,
-// with every `print_every`-th state printed as one line.
+// with every `print_every`-th state printed as one line; then the sampled filter (cd-optimal) of
+// paper 003's Example 1 (gamma = 1), advanced over its recorded samples (`substeps` Heun
+// predictions and one Kalman update per sample), with the state printed after every sample.
 //
 // One source, two builds (scripts/embedded-check.sh):
 //  - firmware: arm-none-eabi-g++ with PFGEN_EMBEDDED_TARGET, the `--scalar float` headers,
@@ -9,13 +11,14 @@
 // The include path picks the headers; the code below only uses the generated Scalar.
 //
 // Output lines:
-//   columns <model> step t <state entries...>
-//   traj <model> <k> <t> <state entries...>     (k = 0, print_every, ..., steps)
+//   columns <model> step|sample t <state entries...>
+//   traj <model> <k> <t> <state entries...>     (k = 0, print_every, ..., steps; sampled: every sample)
 //   info ...                                    (platform facts; not compared)
 //   end ok | end FAIL ...
 #include <cstddef>
 
 #include "basin2006_quadratic/optimal.hpp"
+#include "allahyani_date_example1_gamma1/cd_optimal.hpp"
 #include "basin_skliar_partial/optimal.hpp"
 #include "observations.hpp"
 #include "text_line.hpp"
@@ -29,10 +32,12 @@
 
 namespace quadratic = pfgen_models::basin2006_quadratic::optimal;
 namespace partial = pfgen_models::basin_skliar_partial::optimal;
+namespace sampled = pfgen_models::allahyani_date_example1_gamma1::cd_optimal;
 namespace observations = pfgen_embedded::observations;
 using pfgen_embedded::Line;
 
 static_assert(quadratic::p == 1 && partial::p == 1, "the recorded sequence holds one observation per step");
+static_assert(sampled::p == 1, "the recorded samples hold one observation each");
 
 // Out of line and with C names, so that scripts/embedded-check.sh can disassemble exactly
 // the filter step and check that it is single-precision FPU code only.
@@ -48,6 +53,14 @@ extern "C" __attribute__((noinline)) void pfgen_embedded_step_basin_skliar_parti
                                                                                    partial::Scalar dt,
                                                                                    const partial::Scalar* dy) {
   partial::step(state, t, dt, dy, partial::Params<partial::Scalar>{});
+}
+
+// One sampling period: predictions from t to t + period(), then the update with the sample y
+// taken at t + period(). Returns false when the update refused (S not positive definite).
+extern "C" __attribute__((noinline)) bool pfgen_embedded_advance_allahyani_date_example1_gamma1(sampled::Scalar* state,
+                                                                                               sampled::Scalar t,
+                                                                                               const sampled::Scalar* y) {
+  return sampled::advance(state, t, y, sampled::Params<sampled::Scalar>{});
 }
 
 namespace {
@@ -111,6 +124,46 @@ bool run(const char* model, const char* const (&columns)[StateSize], const float
   return ok;
 }
 
+// Runs the sampled filter over its recorded samples; false if an update refused or the state
+// stopped being finite. Line k holds the state after the k-th sample (k = 0: the initial state).
+template <class Scalar, std::size_t StateSize>
+bool run_sampled(const char* model, const char* const (&columns)[StateSize]) {
+  Line header;
+  header.text("columns ");
+  header.text(model);
+  header.text(" sample t");
+  for (const char* column : columns) {
+    header.text(" ");
+    header.text(column);
+  }
+  write_line(header);
+
+  Scalar state[StateSize];
+  sampled::initial_state(state);
+  const Scalar period = Scalar(observations::period);
+  bool ok = true;
+  for (int k = 0;; ++k) {
+    const Scalar t = Scalar(k) * period;
+    Line line;
+    line.text("traj ");
+    line.text(model);
+    line.text(" ");
+    line.integer(k);
+    line.text(" ");
+    line.number(static_cast<double>(t));
+    for (std::size_t i = 0; i < StateSize; ++i) {
+      line.text(" ");
+      line.number(static_cast<double>(state[i]));
+      ok = ok && finite(state[i]);
+    }
+    write_line(line);
+    if (k == observations::samples) break;
+    const Scalar y[1] = {Scalar(observations::allahyani_date_example1_gamma1_y[k])};
+    ok = pfgen_embedded_advance_allahyani_date_example1_gamma1(state, t, y) && ok;
+  }
+  return ok;
+}
+
 }  // namespace
 
 int main() {
@@ -123,6 +176,8 @@ int main() {
   const bool partial_ok = run<partial::Scalar>(
       "basin_skliar_partial", partial_columns, observations::basin_skliar_partial_dy,
       [](partial::Scalar* state) { partial::initial_state(state); }, pfgen_embedded_step_basin_skliar_partial);
+  const char* const sampled_columns[sampled::state_size] = {"m1", "P11"};
+  const bool sampled_ok = run_sampled<sampled::Scalar>("allahyani_date_example1_gamma1", sampled_columns);
 
   Line info;
   info.text("info scalar_bytes ");
@@ -136,7 +191,8 @@ int main() {
   write_line(info);
 
   Line end;
-  end.text(quadratic_ok && partial_ok ? "end ok" : "end FAIL: a filter state is not finite");
+  const bool all_ok = quadratic_ok && partial_ok && sampled_ok;
+  end.text(all_ok ? "end ok" : "end FAIL: a filter state is not finite or an update refused its sample");
   write_line(end);
-  return quadratic_ok && partial_ok ? 0 : 1;
+  return all_ok ? 0 : 1;
 }

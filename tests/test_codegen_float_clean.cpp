@@ -2,7 +2,9 @@
 // mode instantiated with float, every generated header compiles under g++ and clang++ with
 // -Wall -Wextra -Wdouble-promotion -Werror -fno-exceptions -fno-rtti; the float text holds no
 // double literal, no `double`, no unqualified (double) math call and no pow() for an integer
-// exponent; and every header includes only <array>, <cmath> and <cstddef>.
+// exponent; and every header includes only <array>, <cmath> and <cstddef>. The models: every
+// example (continuous and sampled), a time-varying model, and a sampled model with two
+// observations (tests/data/sampled_two_observations.yaml, the 2 x 2 Cholesky solve).
 // g++ and clang++ are test requirements (scripts/install-deps.sh installs both): when one is
 // missing these tests fail rather than pass silently.
 #include <catch2/catch.hpp>
@@ -265,6 +267,9 @@ std::vector<std::string> float_clean_models(const TempDir& dir) {
   REQUIRE(models.size() >= 2);
   write_file(dir.file("time_varying.yaml"), kTimeVaryingModel);
   models.push_back(dir.file("time_varying.yaml"));
+  // Sampled with two observations per sample: the written-out 2 x 2 Cholesky solve of update()
+  // (the examples' sampled models have one).
+  models.push_back(test_data_dir() + "/sampled_two_observations.yaml");
   return models;
 }
 
