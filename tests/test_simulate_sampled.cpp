@@ -4,6 +4,7 @@
 // of steps is a one-line error; the paper-003 script's tables run with small settings.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <regex>
 #include <sstream>
@@ -107,4 +108,23 @@ TEST_CASE("simulate sampled: the same output for any thread count, KIND@S sub-st
                                    dir.file("cache"), "--filters", "cd-euler@0"});
   CHECK(bad_name.exit_code != 0);
   CHECK(std::count(bad_name.err.begin(), bad_name.err.end(), '\n') == 1);
+}
+
+TEST_CASE("simulate sampled: the paper 003 script prints Tables I-III in both readings with small settings", "[simulate][sampled][paper003][compiler]") {
+  TempDir dir;
+  // 2 runs on dt = 0.5 (the samples stay at T = 1): the script's parsing and layout, not the figures.
+  const auto result = run_program({"env", "PFGEN=" + pfgen_executable(), "THREADS=1",
+                                   source_dir() + "/scripts/reproduce-paper003.sh", "2", "0.5", dir.file("out")});
+  INFO(result.out << result.err);
+  REQUIRE(result.exit_code == 0);
+  for (const char* title : {"Table I (Delta = 1/5), Y = C x(t_k), noise-free", "Table II (Delta = 1/10), Y = y_k",
+                            "Table III (example 2, Delta = 1/10), Y = C x(t_k)"})
+    CHECK(result.out.find(title) != std::string::npos);
+  // Every filter's row has a figure for gamma = 0 (no '-' cell) in Table I.
+  const std::regex row(R"(AvRMSE DDF \(cd-euler@1\)\s+[0-9.]+ ± [0-9.e-]+)");
+  CHECK(std::regex_search(result.out, row));
+  CHECK(result.out.find("AvMRAE cd-optimal") != std::string::npos);
+  CHECK(result.out.find("State-error RMS") != std::string::npos);
+  // Example 2 with gamma = 0.5: every truth stopped where G lost definiteness.
+  CHECK(result.out.find("example 2, gamma index 1: 0 runs counted; truth diverged: 2 of 2 runs") != std::string::npos);
 }
