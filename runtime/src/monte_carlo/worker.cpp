@@ -169,7 +169,7 @@ void Worker::step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth
     for (std::size_t u = within * substeps / N; u < (within + 1) * substeps / N; ++u)
       filter.predict(state, start + static_cast<double>(u) * delta, delta);
     if (within + 1 == N) {
-      const double t = start + period;
+      const double t = grid.t0 + static_cast<double>(sample + 1) * period;  // t_k = t0 + k T, as draw_samples
       const auto column = static_cast<Eigen::Index>(sample);
       if (!filter.update(state, t, noisy_.col(column).data())) {
         out.diverged = out.update_failed = true;  // the state is the predicted one: not stored
