@@ -158,3 +158,25 @@ TEST_CASE("sampled Monte Carlo: bitwise the same for 1 and 3 threads", "[runtime
   CHECK(one.filters[0].sampled->rmse_noisy == three.filters[0].sampled->rmse_noisy);
   CHECK(one.filters[0].horizon.rms == three.filters[0].horizon.rms);
 }
+
+TEST_CASE("sampled Monte Carlo: an update with S not positive definite stops the run, counted as diverged", "[runtime][sampled][unit]") {
+  const auto scheme = make_scheme(SchemeKind::euler_maruyama, constant_system());
+  Log log;
+  FilterModel filter = logging_filter(log, 2);
+  // The third update fails (as a generated update() does when S is not positive definite).
+  filter.update = [count = 0](double*, double, const double*) mutable { return ++count < 3; };
+  MonteCarloOptions options;
+  options.grid = TimeGrid::to_horizon(0.0, 10.0, 0.5);
+  options.runs = 1;
+  const MonteCarloResult result =
+      run_monte_carlo(*scheme, measurement(1.0), Eigen::VectorXd::Constant(1, 2.0), {filter}, options);
+  const FilterStatistics& stats = result.filters.front();
+  REQUIRE(stats.divergences.count() == 1);
+  CHECK(stats.divergences.earliest() == 3.0);  // at t_3
+  REQUIRE(stats.sampled);
+  CHECK(stats.sampled->update_failures == 1);
+  CHECK(stats.sampled->runs == 0);  // the run did not absorb every sample
+  const std::string table = format_summary_table(result, {"x"});
+  CHECK(table.find("Runs stopped by an update whose C P C^T + Uv Uv^T was not positive definite") != std::string::npos);
+  CHECK(table.find("nan") == std::string::npos);
+}
