@@ -4,7 +4,9 @@
 # sub-steps) and DDF (cd-euler with 1 sub-step) beside pfgen's cd-optimal and cd-ekf, all
 # stepped on the same truths and samples. Prints the tables laid out like the paper's, in both
 # readings of its "true values of the measurement" (noise-free C x(t_k), and the sample y_k),
-# each figure the mean over runs +- its standard error; then the state-error RMS.
+# each figure the mean over runs +- its standard error, and the differences DDF - CDF and
+# cd-optimal - CDF paired run by run (same truths, same samples) with their standard errors;
+# then the state-error RMS.
 #
 #   scripts/reproduce-paper003.sh [RUNS [DT [OUTDIR]]]     (defaults: 100 runs, dt = 0.01, build/paper003)
 #
@@ -23,7 +25,9 @@ ex1=("$here/examples/paper003/example1_gamma0.yaml" "$here/examples/allahyani_da
      "$here/examples/allahyani_date_example1_gamma1.yaml")
 ex2=("$here/examples/paper003/example2_gamma0.yaml" "$here/examples/paper003/example2_gamma05.yaml"
      "$here/examples/paper003/example2_gamma1.yaml")
-filters1="cd-euler@5,cd-euler@10,cd-euler@1,cd-optimal,cd-ekf"
+# The CDF of the table first: the table's paired differences are taken against the first filter.
+filters1a="cd-euler@5,cd-euler@1,cd-euler@10,cd-optimal,cd-ekf"
+filters1b="cd-euler@10,cd-euler@1,cd-euler@5,cd-optimal,cd-ekf"
 filters2="cd-euler@10,cd-euler@1,cd-optimal,cd-ekf"
 
 simulate() {  # model filters file
@@ -31,7 +35,8 @@ simulate() {  # model filters file
     --threads "$threads" --record-points 200 --cache-dir "$out/cache" -q > "$3"
 }
 for g in 0 1 2; do
-  simulate "${ex1[$g]}" "$filters1" "$out/example1_$g.txt"
+  simulate "${ex1[$g]}" "$filters1a" "$out/example1_$g.txt"    # Table I (the same truths and samples as Table II)
+  simulate "${ex1[$g]}" "$filters1b" "$out/example1b_$g.txt"  # Table II
   simulate "${ex2[$g]}" "$filters2" "$out/example2_$g.txt"
 done
 
@@ -39,6 +44,11 @@ done
 # noisy) of one filter from the table's sampled section.
 metric() {
   awk -v f="$2" -v k="$3" '/^At the samples/ {s = 1; next} s && $1 == f && $2 == "y1" {print $k " ± " $(k + 2); exit}' "$1"
+}
+# "difference ± se" of one paired metric (field: 4 dAvRMSE clean, 7 dAvMRAE clean, 10 dAvRMSE
+# noisy, 13 dAvMRAE noisy) of one filter against the job's first filter.
+paired() {
+  awk -v f="$2" -v k="$3" '/^Paired against/ {s = 1; next} s && $1 == f && $2 == "y1" {print $k " ± " $(k + 2); exit}' "$1"
 }
 # The state-error RMS over [0, T] of one filter and state.
 state_rms() {
@@ -48,22 +58,29 @@ state_rms() {
 counted() { awk -v f="$2" '/^At the samples/ {s = 1; next} s && $1 == f && $2 == "y1" {print $3; exit}' "$1"; }
 truth_line() { grep -m1 '^Truth diverged' "$1" | sed 's/^Truth diverged: //'; }
 
-row() {  # label example filter field
-  printf '%-26s' "$1"
-  for g in 0 1 2; do printf '  %-18s' "$(metric "$out/example$2_$g.txt" "$3" "$4")"; done
+row() {  # label job filter field [paired]
+  printf '%-30s' "$1"
+  for g in 0 1 2; do
+    if [ -n "${5:-}" ]; then v=$(paired "$out/$2_$g.txt" "$3" "$4"); else v=$(metric "$out/$2_$g.txt" "$3" "$4"); fi
+    printf '  %-20s' "${v:--}"
+  done
   printf '\n'
 }
-table() {  # title example field-rmse field-mrae cdf-filter
-  local title="$1" ex="$2" fr="$3" fm="$4" cdf="$5"
+table() {  # title job field-rmse field-mrae cdf-filter
+  local title="$1" job="$2" fr="$3" fm="$4" cdf="$5"
   echo "$title"
-  printf '%-26s  %-18s  %-18s  %-18s\n' "" "gamma = 0" "gamma = 0.5" "gamma = 1"
+  printf '%-30s  %-20s  %-20s  %-20s\n' "" "gamma = 0" "gamma = 0.5" "gamma = 1"
   for what in AvRMSE AvMRAE; do
     local field="$fr"
     [ "$what" = AvMRAE ] && field="$fm"
-    row "$what CDF ($cdf)" "$ex" "$cdf" "$field"
-    row "$what DDF (cd-euler@1)" "$ex" cd-euler@1 "$field"
-    row "$what cd-optimal" "$ex" cd-optimal "$field"
-    row "$what cd-ekf" "$ex" cd-ekf "$field"
+    row "$what CDF ($cdf)" "$job" "$cdf" "$field"
+    row "$what DDF (cd-euler@1)" "$job" cd-euler@1 "$field"
+    row "$what cd-optimal" "$job" cd-optimal "$field"
+    row "$what cd-ekf" "$job" cd-ekf "$field"
+    # Paired, run by run, against the CDF (the job's first filter): fields 4, 7, 10, 13.
+    local pf=$(( field == 5 ? 4 : field == 8 ? 7 : field == 11 ? 10 : 13 ))
+    row "  $what DDF - CDF (paired)" "$job" cd-euler@1 "$pf" paired
+    row "  $what cd-optimal - CDF" "$job" cd-optimal "$pf" paired
   done
   echo
 }
@@ -72,9 +89,9 @@ echo "Paper 003 reproduction: $runs runs of $samples samples, truth dt = $dt, se
 echo
 for reading in clean noisy; do
   if [ "$reading" = clean ]; then fr=5; fm=8; label="Y = C x(t_k), noise-free"; else fr=11; fm=14; label="Y = y_k, the noisy sample"; fi
-  table "Table I (Delta = 1/5), $label" 1 "$fr" "$fm" cd-euler@5
-  table "Table II (Delta = 1/10), $label" 1 "$fr" "$fm" cd-euler@10
-  table "Table III (example 2, Delta = 1/10), $label" 2 "$fr" "$fm" cd-euler@10
+  table "Table I (Delta = 1/5), $label" example1 "$fr" "$fm" cd-euler@5
+  table "Table II (Delta = 1/10), $label" example1b "$fr" "$fm" cd-euler@10
+  table "Table III (example 2, Delta = 1/10), $label" example2 "$fr" "$fm" cd-euler@10
 done
 
 echo "State-error RMS over [0, $samples] (all grid points; runs whose truth and filter completed):"
@@ -96,4 +113,4 @@ echo "Runs counted / truths stopped:"
 for e in 1 2; do for g in 0 1 2; do
   echo "  example $e, gamma index $g: $(counted "$out/example${e}_$g.txt" cd-optimal) runs counted; truth diverged: $(truth_line "$out/example${e}_$g.txt")"
 done; done
-echo "Full tables: $out/example{1,2}_{0,1,2}.txt (gamma index 0, 1, 2 = gamma 0, 0.5, 1)"
+echo "Full tables: $out/example{1,1b,2}_{0,1,2}.txt (1: Table I's job, 1b: Table II's; gamma index 0, 1, 2 = gamma 0, 0.5, 1)"

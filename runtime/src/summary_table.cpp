@@ -87,6 +87,26 @@ std::string sampled_section(const MonteCarloResult& result) {
       "\nAt the samples t_k (paper 003's metrics; Yhat = C0 + C m(t_k|t_k); clean: Y = C0 + C x(t_k), noisy: Y = y_k; "
       "mean over the runs that absorbed every sample ± standard error):\n" +
       align(rows);
+  // The same metrics paired run by run against the first filter: the standard error of a
+  // difference, without the spread the runs share.
+  std::vector<std::vector<std::string>> paired{{"filter", "output", "runs", "dAvRMSE clean", "dAvMRAE clean",
+                                                "dAvRMSE noisy", "dAvMRAE noisy"}};
+  auto diff = [](double mean, double error) { return number(mean, "%+.4g") + " ± " + number(error, "%.2g"); };
+  for (const FilterStatistics& filter : result.filters) {
+    if (!filter.sampled || filter.sampled->diff_rmse_clean.empty()) continue;
+    const SampledMetrics& m = *filter.sampled;
+    for (std::size_t i = 0; i < m.diff_rmse_clean.size(); ++i)
+      paired.push_back({filter.name, "y" + std::to_string(i + 1), count(m.paired_runs),
+                        diff(m.diff_rmse_clean[i], m.diff_rmse_clean_se[i]),
+                        diff(m.diff_mrae_clean[i], m.diff_mrae_clean_se[i]),
+                        diff(m.diff_rmse_noisy[i], m.diff_rmse_noisy_se[i]),
+                        diff(m.diff_mrae_noisy[i], m.diff_mrae_noisy_se[i])});
+  }
+  if (paired.size() > 1)
+    out += "\nPaired against " + result.filters.front().name +
+           " (per run: this filter's RMSE(s) or MRAE(s) minus its, over the runs both completed; mean ± standard "
+           "error):\n" +
+           align(paired);
   if (!failures.str().empty())
     out += "\nRuns stopped by an update whose C P C^T + Uv Uv^T was not positive definite (counted as diverged):\n" +
            failures.str();

@@ -95,6 +95,12 @@ struct SampledMetrics {
   std::vector<double> rmse_clean, rmse_clean_se, mrae_clean, mrae_clean_se;
   std::vector<double> rmse_noisy, rmse_noisy_se, mrae_noisy, mrae_noisy_se;
   std::size_t update_failures = 0;  // runs stopped by an update with S not positive definite
+  // Paired against the first filter (same runs, same samples): per run this filter's RMSE(s) or
+  // MRAE(s) minus the first filter's, over the runs both completed (paired_runs); mean and
+  // standard error. Empty for the first filter itself.
+  std::size_t paired_runs = 0;
+  std::vector<double> diff_rmse_clean, diff_rmse_clean_se, diff_mrae_clean, diff_mrae_clean_se;
+  std::vector<double> diff_rmse_noisy, diff_rmse_noisy_se, diff_mrae_noisy, diff_mrae_noisy_se;
 };
 
 struct FilterStatistics {
