@@ -180,3 +180,31 @@ TEST_CASE("sampled Monte Carlo: an update with S not positive definite stops the
   CHECK(table.find("Runs stopped by an update whose C P C^T + Uv Uv^T was not positive definite") != std::string::npos);
   CHECK(table.find("nan") == std::string::npos);
 }
+
+TEST_CASE("sampled Monte Carlo: paired differences against the first filter are per-run differences", "[runtime][sampled][unit]") {
+  const auto scheme = make_scheme(SchemeKind::euler_maruyama, constant_system());
+  Log log_a, log_b;
+  // Filter a keeps m = 2 (Yhat = 7 = the noise-free value); filter b keeps m = 2.5 (Yhat = 8.5):
+  // per run and sample the clean errors are 0 and -1.5, so the paired dRMSE clean is exactly 1.5
+  // with no spread, and dAvRMSE noisy is the mean over runs of RMSE_b(s) - RMSE_a(s).
+  FilterModel a = logging_filter(log_a, 1), b = logging_filter(log_b, 1);
+  a.name = "a";
+  b.name = "b";
+  b.initial_state = [](double* state) {
+    state[0] = 2.5;
+    state[1] = 1.0;
+  };
+  MonteCarloOptions options;
+  options.grid = TimeGrid::to_horizon(0.0, 10.0, 1.0);
+  options.runs = 5;
+  const MonteCarloResult result =
+      run_monte_carlo(*scheme, measurement(1.0), Eigen::VectorXd::Constant(1, 2.0), {a, b}, options);
+  const SampledMetrics& first = *result.filters[0].sampled;
+  const SampledMetrics& second = *result.filters[1].sampled;
+  CHECK(first.diff_rmse_clean.empty());
+  REQUIRE(second.paired_runs == 5);
+  CHECK(second.diff_rmse_clean[0] == Approx(1.5).epsilon(1e-12));
+  CHECK(second.diff_rmse_clean_se[0] == Approx(0.0).margin(1e-12));
+  CHECK(second.diff_rmse_noisy[0] == Approx(second.rmse_noisy[0] - first.rmse_noisy[0]).epsilon(1e-12));
+  CHECK(format_summary_table(result, {"x"}).find("Paired against a") != std::string::npos);
+}
