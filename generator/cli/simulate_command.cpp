@@ -120,15 +120,21 @@ int run_simulate(const SimulateOptions& options) {
   const Clock::time_point start = Clock::now();
   check_output_paths(options);
   Model model = load_model_file(options.model_path);
-  // The runtime simulates continuous observations only; sampled ones need samples y_k drawn from the
-  // truth at t_k and the filters' predict/update API (issue 11, deliverable 4).
-  if (model.observation.is_sampled())
-    throw CliValueError(model.source + ": observation: simulate does not yet run models with sampled observations "
-                        "(derive, latex, eval and codegen do)");
   // --set a=0.2: the job's value of a, compiled into the plugin as its default (so a new value
   // is a new source, and a new cache entry).
   apply_parameter_assignments(model, options.assignments);
   const SimulationSettings settings = resolve_simulation_settings(model, options.overrides);
+  // Samples at t_k = k T on the truth's grid: T must be a whole number of steps dt.
+  if (model.observation.is_sampled()) {
+    const double period = model.observation.sampled().period.to_double();
+    const double ratio = period / settings.dt, whole = std::round(ratio);
+    if (!(whole >= 1) || std::abs(ratio - whole) > 1e-9 * whole) {
+      char text[200];
+      std::snprintf(text, sizeof text, "the sampling period %.17g is not a whole number of steps dt = %.17g (T/dt = %.17g)",
+                    period, settings.dt, ratio);
+      throw CliValueError(model.source + ": observation.sampled.period: " + text + "; choose --dt = T/N");
+    }
+  }
   if (!model.initial || model.initial->x0.empty())
     throw CliValueError(model.source + ": initial: the model gives no x0, the truth's initial state");
   // An x0 or m0 beyond the divergence bound stops every run at t = 0: the table was all '-'
@@ -192,7 +198,11 @@ int run_simulate(const SimulateOptions& options) {
   mc.on_run_finished = [&progress](std::size_t finished, std::size_t) { progress.update(finished); };
 
   const pfgen_runtime::MonteCarloResult result =
-      pfgen_runtime::run_monte_carlo(*scheme, plugin.observation(), plugin.truth_initial_state(), plugin.filters(), mc);
+      plugin.is_sampled()
+          ? pfgen_runtime::run_monte_carlo(*scheme, plugin.measurement(), plugin.truth_initial_state(), plugin.filters(),
+                                           mc)
+          : pfgen_runtime::run_monte_carlo(*scheme, plugin.observation(), plugin.truth_initial_state(),
+                                           plugin.filters(), mc);
   progress.finish();
 
   // Files first, table last: a failed write must not follow a printed result.

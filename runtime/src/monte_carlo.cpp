@@ -25,10 +25,11 @@ namespace {
 
 using namespace monte_carlo_detail;
 
-void validate(const TruthScheme& scheme, const LinearObservation& observation, const Eigen::VectorXd& x0,
-              const std::vector<FilterModel>& filters, const MonteCarloOptions& options) {
+void validate(const TruthScheme& scheme, const LinearObservation& observation, const SampledMeasurement* measurement,
+              const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters, const MonteCarloOptions& options) {
   const std::size_t n = scheme.system().n;
-  if (static_cast<std::size_t>(x0.size()) != n || observation.n() != n)
+  const std::size_t p = measurement ? measurement->p() : observation.p();
+  if (static_cast<std::size_t>(x0.size()) != n || observation.n() != n || (measurement && measurement->n() != n))
     throw std::invalid_argument("monte carlo: x0 and the observation must have the truth's n states");
   if (!(options.grid.dt > 0) || options.grid.steps == 0 || !std::isfinite(options.grid.t0) ||
       !std::isfinite(options.grid.end()))
@@ -41,13 +42,19 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
   for (const FilterModel& filter : filters) {
     if (filter.name.empty() || !names.insert(filter.name).second)
       throw std::invalid_argument("monte carlo: filter names must be non-empty and distinct ('" + filter.name + "')");
-    if (!filter.step || !filter.initial_state)
-      throw std::invalid_argument("monte carlo: filter '" + filter.name + "' lacks initial_state or step");
-    if (filter.n != n || filter.p != observation.p())
+    if (!filter.initial_state || (measurement ? !filter.sampled() || !filter.predict || !filter.update : !filter.step))
+      throw std::invalid_argument("monte carlo: filter '" + filter.name + "' lacks initial_state or step " +
+                                  "(predict and update for sampled observations)");
+    if (filter.n != n || filter.p != p)
       throw std::invalid_argument("monte carlo: filter '" + filter.name +
                                   "' must have the truth's n states and the observation's p");
   }
+  if (measurement) (void)measurement->steps_per_sample(options.grid);  // throws unless whole
 }
+
+MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observation,
+                     const SampledMeasurement* measurement, const Eigen::VectorXd& x0,
+                     const std::vector<FilterModel>& filters, const MonteCarloOptions& options);
 
 }  // namespace
 
@@ -68,16 +75,35 @@ double EventSummary::median() const {
 MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const LinearObservation& observation,
                                  const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters,
                                  const MonteCarloOptions& options) {
+  return run(scheme, observation, nullptr, x0, filters, options);
+}
+
+MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const SampledMeasurement& measurement,
+                                 const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters,
+                                 const MonteCarloOptions& options) {
+  // The truth loop (simulate_truth_into) also makes continuous increments; a zero observation
+  // stands in, and its increments are never read. The samples come from their own stream.
+  const std::size_t n = measurement.n();
+  const LinearObservation placeholder(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Zero(1, static_cast<Eigen::Index>(n)),
+                                      Eigen::MatrixXd::Zero(1, 1));
+  return run(scheme, placeholder, &measurement, x0, filters, options);
+}
+
+namespace {
+
+MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observation,
+                     const SampledMeasurement* measurement, const Eigen::VectorXd& x0,
+                     const std::vector<FilterModel>& filters, const MonteCarloOptions& options) {
   const Clock::time_point wall_start = Clock::now();
-  validate(scheme, observation, x0, filters, options);
-  const Plan plan = make_plan(scheme.system().n, observation.p(), options);
+  validate(scheme, observation, measurement, x0, filters, options);
+  const Plan plan = make_plan(scheme.system().n, measurement ? measurement->p() : observation.p(), options);
 
   std::vector<RunResult> runs(options.runs);
   const unsigned threads = static_cast<unsigned>(std::min<std::size_t>(options.threads, options.runs));
   std::vector<std::unique_ptr<Worker>> workers(threads);
   std::atomic<std::size_t> finished{0};
   auto make_worker = [&](unsigned thread) {
-    workers[thread] = std::make_unique<Worker>(scheme, observation, filters, x0, plan, options);
+    workers[thread] = std::make_unique<Worker>(scheme, observation, measurement, filters, x0, plan, options);
     return workers[thread].get();
   };
   parallel_for(options.runs, threads, make_worker, [&](std::size_t run, Worker* worker) {
@@ -100,6 +126,7 @@ MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const LinearObservat
   timing.filter_seconds.assign(filters.size(), 0.0);
   timing.filter_cpu_seconds.assign(filters.size(), 0.0);
   timing.filter_steps.assign(filters.size(), 0);
+  if (measurement) timing.filter_samples.assign(filters.size(), 0);
   for (const auto& worker : workers) {
     timing.truth_seconds += worker->truth_seconds;
     timing.truth_cpu_seconds += worker->truth_cpu_seconds;
@@ -108,11 +135,14 @@ MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const LinearObservat
       timing.filter_seconds[f] += worker->filter_seconds[f];
       timing.filter_cpu_seconds[f] += worker->filter_cpu_seconds[f];
       timing.filter_steps[f] += worker->filter_steps[f];
+      if (measurement) timing.filter_samples[f] += worker->filter_samples[f];
     }
   }
   timing.aggregation_seconds = seconds_since(aggregation_start);
   timing.wall_seconds = seconds_since(wall_start);
   return result;
 }
+
+}  // namespace
 
 }  // namespace pfgen_runtime

@@ -1,6 +1,7 @@
 #include "pfgen_runtime/simulation.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "pfgen_runtime/random.hpp"
@@ -73,6 +74,55 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
     path.col(column + 1) = x;
   }
   return static_cast<std::ptrdiff_t>(grid.steps);
+}
+
+SampledMeasurement::SampledMeasurement(std::size_t p, std::size_t n, std::size_t q, double period,
+                                       Coefficients coefficients)
+    : p_(p), n_(n), q_(q), period_(period), coefficients_(std::move(coefficients)), C0_(p), C_(p * n), Uv_(p * q) {
+  if (p == 0 || n == 0 || q == 0) throw std::invalid_argument("sampled measurement: p, n and q must be at least 1");
+  if (!(period > 0) || !std::isfinite(period)) throw std::invalid_argument("sampled measurement: the period must be > 0");
+  if (!coefficients_) throw std::invalid_argument("sampled measurement: the coefficient callback is missing");
+}
+
+std::size_t SampledMeasurement::steps_per_sample(const TimeGrid& grid) const {
+  const double ratio = period_ / grid.dt;
+  const double whole = std::round(ratio);
+  if (!(whole >= 1) || std::abs(ratio - whole) > 1e-9 * whole) {
+    char text[200];
+    std::snprintf(text, sizeof text, "the sampling period %.17g is not a whole number of steps dt = %.17g (T/dt = %.17g)",
+                  period_, grid.dt, ratio);
+    throw std::invalid_argument(text);
+  }
+  return static_cast<std::size_t>(whole);
+}
+
+void SampledMeasurement::sample(double t, const double* x, const double* v, double* clean, double* noisy) {
+  coefficients_(t, C0_.data(), C_.data(), Uv_.data());
+  for (std::size_t i = 0; i < p_; ++i) {
+    double value = C0_[i];
+    for (std::size_t j = 0; j < n_; ++j) value += C_[i * n_ + j] * x[j];
+    clean[i] = value;
+    for (std::size_t j = 0; j < q_; ++j) value += Uv_[i * q_ + j] * v[j];
+    noisy[i] = value;
+  }
+}
+
+std::size_t draw_samples(SampledMeasurement& measurement, const TimeGrid& grid, std::size_t steps_per_sample,
+                         const Eigen::MatrixXd& path, std::ptrdiff_t last, std::uint64_t seed, std::uint64_t run,
+                         Eigen::MatrixXd& clean, Eigen::MatrixXd& noisy) {
+  if (last < 0) return 0;
+  const std::size_t samples = static_cast<std::size_t>(last) / steps_per_sample;
+  RandomStream noise(seed, run, substream::observation_noise);
+  Eigen::VectorXd v(static_cast<Eigen::Index>(measurement.q()));
+  for (std::size_t k = 1; k <= samples; ++k) {
+    for (Eigen::Index j = 0; j < v.size(); ++j) v[j] = noise.normal();
+    const auto column = static_cast<Eigen::Index>(k - 1);
+    // t_k = t0 + k T exactly, not the grid's t0 + (k N) dt (the same point up to rounding).
+    measurement.sample(grid.t0 + static_cast<double>(k) * measurement.period(),
+                       path.col(static_cast<Eigen::Index>(k * steps_per_sample)).data(), v.data(),
+                       clean.col(column).data(), noisy.col(column).data());
+  }
+  return samples;
 }
 
 FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const FilterGuardOptions& options) {

@@ -17,7 +17,8 @@ void require(bool condition, const std::string& path, const std::string& what) {
 void check_table(const pfgen_plugin& t, const std::string& path) {
   require(t.n >= 1 && t.p >= 1 && t.r >= 1, path, "n, p and r must be at least 1");
   require(t.model_name && t.pfgen_version, path, "the model name or pfgen version is missing");
-  require(t.drift && t.observation, path, "the drift or the observation is missing");
+  require(t.drift && (t.observation_is_sampled ? t.sampled_observation != nullptr : t.observation != nullptr), path,
+          "the drift or the observation is missing");
   require((t.q == 0) == (t.diffusion_is_zero != 0), path, "q must be 0 exactly when the diffusion is zero");
   if (!t.diffusion_is_zero) {
     if (t.diffusion_is_covariance)
@@ -26,6 +27,19 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
       require(t.diffusion != nullptr, path, "the diffusion g is missing");
   }
   require(t.filter_count == 0 || t.filters, path, "the filter table is missing");
+  if (t.observation_is_sampled) {
+    require(t.period > 0 && t.filter_count == 0, path, "a sampled observation needs a period > 0 and sampled filters");
+    require(t.sampled_filter_count == 0 || t.sampled_filters, path, "the sampled filter table is missing");
+    for (std::size_t k = 0; k < t.sampled_filter_count; ++k) {
+      const pfgen_plugin_sampled_filter& f = t.sampled_filters[k];
+      require(f.name && f.initial_state && f.predict && f.update && f.substeps >= 1, path,
+              "sampled filter " + std::to_string(k) + " lacks a name, function or sub-steps");
+      require(f.n == t.n && f.p == t.p && f.state_size == filter_state_size(t.n), path,
+              "filter " + std::string(f.name) + " has other dimensions than the model");
+    }
+  } else {
+    require(t.sampled_filter_count == 0, path, "sampled filters need a sampled observation");
+  }
   for (std::size_t k = 0; k < t.filter_count; ++k) {
     const pfgen_plugin_filter& f = t.filters[k];
     require(f.name && f.initial_state && f.step, path, "filter " + std::to_string(k) + " lacks a name or function");
@@ -78,7 +92,17 @@ SdeSystem SimulationPlugin::system() const {
   return system;
 }
 
+SampledMeasurement SimulationPlugin::measurement() const {
+  if (!is_sampled()) throw PluginLoadError("model " + model_name() + " has continuous observations, not samples");
+  const std::shared_ptr<void> library = library_;
+  return SampledMeasurement(table_->p, table_->n, table_->r, table_->period,
+                            [library, fill = table_->sampled_observation](double t, double* C0, double* C, double* Uv) {
+                              fill(t, C0, C, Uv);
+                            });
+}
+
 LinearObservation SimulationPlugin::observation() const {
+  if (is_sampled()) throw PluginLoadError("model " + model_name() + " has sampled observations: use measurement()");
   const std::size_t n = table_->n, p = table_->p, r = table_->r;
   const std::shared_ptr<void> library = library_;
   // The ABI's matrices are row-major, Eigen's column-major: copy through row-major buffers.
@@ -117,6 +141,20 @@ std::vector<FilterModel> SimulationPlugin::filters() const {
     model.initial_state = [library, init = f.initial_state](double* state) { init(state); };
     model.step = [library, step = f.step](double* state, double t, double dt, const double* dy) {
       step(state, t, dt, dy);
+    };
+    out.push_back(std::move(model));
+  }
+  for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {
+    const pfgen_plugin_sampled_filter& f = table_->sampled_filters[k];
+    FilterModel model;
+    model.name = f.name;
+    model.n = f.n;
+    model.p = f.p;
+    model.substeps = f.substeps;
+    model.initial_state = [library, init = f.initial_state](double* state) { init(state); };
+    model.predict = [library, predict = f.predict](double* state, double t, double dt) { predict(state, t, dt); };
+    model.update = [library, update = f.update](double* state, double t, const double* y) {
+      return update(state, t, y) != 0;
     };
     out.push_back(std::move(model));
   }

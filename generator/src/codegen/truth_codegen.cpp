@@ -86,6 +86,25 @@ std::string observation_function(const Model& model, TruthNames& names) {
   return function(model, names, signature + ")", false, outputs, destinations);
 }
 
+// C0, C and Uv of a sampled observation in one function of t: entry k of C0, then of C, then of Uv.
+std::string sampled_observation_function(const Model& model, TruthNames& names) {
+  const SampledObservation& o = model.observation.sampled();
+  std::vector<Polynomial> outputs;
+  std::vector<std::string> destinations;
+  std::string signature = "sampled_observation(double " + names.time;
+  const std::pair<const char*, std::vector<Polynomial>> parts[] = {
+      {"C0", in_states(model, ExMatrix{o.C0})}, {"C", in_states(model, o.C)}, {"Uv", in_states(model, o.Uv)}};
+  for (const auto& [preferred, part] : parts) {
+    const std::string target = names.take(preferred);
+    signature += ", double* " + target;
+    for (std::size_t k = 0; k < part.size(); ++k) {
+      outputs.push_back(part[k]);
+      destinations.push_back(target + "[" + std::to_string(k) + "]");
+    }
+  }
+  return function(model, names, signature + ")", false, outputs, destinations);
+}
+
 bool depends_on_time(const Model& model, const ExMatrix& m) {
   for (const auto& row : m)
     for (const auto& e : row)
@@ -100,13 +119,20 @@ TruthCode generate_truth_code(const Model& model) {
   TruthCode code;
   code.n = model.n();
   code.p = model.p();
-  const ContinuousObservation& observation = model.observation.continuous();
-  code.r = observation.B.empty() ? 0 : observation.B.front().size();
+  code.sampled = model.observation.is_sampled();
+  if (code.sampled) {
+    const SampledObservation& sampled = model.observation.sampled();
+    code.r = sampled.Uv.empty() ? 0 : sampled.Uv.front().size();
+    code.period = sampled.period.to_double();
+  } else {
+    const ContinuousObservation& observation = model.observation.continuous();
+    code.r = observation.B.empty() ? 0 : observation.B.front().size();
+    code.observation_is_constant = !depends_on_time(model, ExMatrix{observation.A0}) &&
+                                   !depends_on_time(model, observation.A) && !depends_on_time(model, observation.B);
+  }
   code.diffusion_is_zero = diffusion_is_zero(model);
   code.diffusion_is_covariance = !code.diffusion_is_zero && !d.g;
   code.q = code.diffusion_is_zero ? 0 : d.g ? d.g->front().size() : code.n;
-  code.observation_is_constant = !depends_on_time(model, ExMatrix{observation.A0}) &&
-                                 !depends_on_time(model, observation.A) && !depends_on_time(model, observation.B);
   code.has_initial_state = model.initial && !model.initial->x0.empty();
 
   CppEmitter emitter(ScalarMode::Double);
@@ -127,7 +153,7 @@ TruthCode generate_truth_code(const Model& model) {
   }
   if (code.diffusion_is_covariance)
     out += state_function(model, names, "diffusion_covariance", "G", in_states(model, d.G));
-  out += observation_function(model, names);
+  out += code.sampled ? sampled_observation_function(model, names) : observation_function(model, names);
   if (code.has_initial_state) {
     out += "inline void initial_state(double* x0) {\n";
     for (std::size_t i = 0; i < code.n; ++i)

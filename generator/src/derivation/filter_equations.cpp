@@ -184,6 +184,13 @@ FilterEquations derive_user_filter(const Model& model, const UserFilter& filter)
 }
 
 FilterEquations derive_named_filter(const Model& model, const std::string& name) {
+  if (auto split = split_substeps(name)) {  // KIND@S: the kind with S sub-steps (model_filters.hpp)
+    if (auto problem = filter_name_problem(model, name)) throw std::invalid_argument(*problem);
+    FilterEquations eq = derive_named_filter(model, split->first);
+    eq.name = name;
+    eq.update.substeps = split->second;
+    return eq;
+  }
   for (const auto& filter : model.user_filters)
     if (filter.name == name) return derive_user_filter(model, filter);
   if (auto kind = parse_filter_kind(name)) return derive_filter(model, *kind);

@@ -22,6 +22,7 @@ ExMatrix multiply_by_transpose(const ExMatrix& g) {
 std::string filter_identifier(const std::string& name) {
   std::string out = name;
   std::replace(out.begin(), out.end(), '-', '_');
+  std::replace(out.begin(), out.end(), '@', '_');  // cd-euler@5 (model_filters.hpp)
   return out;
 }
 

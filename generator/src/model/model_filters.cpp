@@ -1,5 +1,7 @@
 #include "pfgen/model/model_filters.hpp"
 
+#include <stdexcept>
+
 namespace pfgen {
 
 FilterKindNeeds filter_kind_needs(const Model& model) {
@@ -28,7 +30,31 @@ std::vector<std::string> available_filter_names(const Model& model) {
   return names;
 }
 
+std::optional<std::pair<std::string, std::size_t>> split_substeps(const std::string& name) {
+  const std::size_t at = name.find('@');
+  if (at == std::string::npos) return std::nullopt;
+  const std::string digits = name.substr(at + 1);
+  const bool whole = !digits.empty() && digits.size() <= 7 &&
+                     digits.find_first_not_of("0123456789") == std::string::npos && digits.front() != '0';
+  if (!whole || std::stoul(digits) > 1000000)
+    throw std::invalid_argument("filter '" + name + "': the sub-steps after '@' must be a whole number from 1 to 1000000");
+  return std::make_pair(name.substr(0, at), static_cast<std::size_t>(std::stoul(digits)));
+}
+
 std::optional<std::string> filter_name_problem(const Model& model, const std::string& name) {
+  std::optional<std::pair<std::string, std::size_t>> split;
+  try {
+    split = split_substeps(name);
+  } catch (const std::invalid_argument& e) {
+    return std::string(e.what());
+  }
+  if (split) {
+    const auto kind = parse_filter_kind(split->first);
+    if (!model.observation.is_sampled() || !kind)
+      return "'" + name + "': only the built-in kinds of a model with sampled observations take '@' and a number of "
+             "sub-steps";
+    return filter_name_problem(model, split->first);
+  }
   if (auto kind = parse_filter_kind(name))
     if (auto reason = unsupported_reason(model, *kind)) return "'" + name + "' " + *reason + " in model " + model.name;
   const std::vector<std::string> available = available_filter_names(model);

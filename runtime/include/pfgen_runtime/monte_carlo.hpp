@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -82,6 +83,26 @@ struct EventSummary {
   double median() const;    // of the times; NaN when there are none
 };
 
+// Paper 003's metrics of a sampled filter (docs/theory.md, section 2.5.6): over the runs that
+// absorbed every sample (K of them), per measurement component, RMSE(s) = sqrt(1/K sum_k
+// (Y(t_k) - Yhat(t_k|t_k))^2) and MRAE(s) = 1/K sum_k |Y(t_k) - Yhat(t_k|t_k)| / |Y(t_k)|, with
+// Yhat = C0 + C m(t_k|t_k), in two readings of the "true value of the measurement" Y: the
+// noise-free C0 + C x(t_k) (clean) and the sample y_k itself (noisy). Av* is the mean over runs,
+// *_se its standard error (sample standard deviation / sqrt(runs)); NaN when runs < 1 (se: < 2).
+struct SampledMetrics {
+  std::size_t runs = 0;
+  std::size_t samples = 0;  // K
+  std::vector<double> rmse_clean, rmse_clean_se, mrae_clean, mrae_clean_se;
+  std::vector<double> rmse_noisy, rmse_noisy_se, mrae_noisy, mrae_noisy_se;
+  std::size_t update_failures = 0;  // runs stopped by an update with S not positive definite
+  // Paired against the first filter (same runs, same samples): per run this filter's RMSE(s) or
+  // MRAE(s) minus the first filter's, over the runs both completed (paired_runs); mean and
+  // standard error. Empty for the first filter itself.
+  std::size_t paired_runs = 0;
+  std::vector<double> diff_rmse_clean, diff_rmse_clean_se, diff_mrae_clean, diff_mrae_clean_se;
+  std::vector<double> diff_rmse_noisy, diff_rmse_noisy_se, diff_mrae_noisy, diff_mrae_noisy_se;
+};
+
 struct FilterStatistics {
   std::string name;
   WindowStatistics horizon;              // [t0, T]; horizon.runs runs completed
@@ -93,6 +114,7 @@ struct FilterStatistics {
   std::uint64_t refined_steps = 0;  // grid steps taken in sub-steps (FilterStepper), all runs
   std::size_t refined_runs = 0;     // runs with at least one
   std::size_t too_stiff_runs = 0;   // runs stopped (and counted as diverged) for want of sub-steps
+  std::optional<SampledMetrics> sampled;  // sampled filters only
 };
 
 // Across runs at each record time, per component; NaN where no run is alive.
@@ -127,6 +149,7 @@ struct MonteCarloTiming {
   std::uint64_t truth_steps = 0;  // steps taken, over all runs
   std::vector<double> filter_seconds, filter_cpu_seconds;
   std::vector<std::uint64_t> filter_steps;
+  std::vector<std::uint64_t> filter_samples;  // samples absorbed, over all runs (sampled filters)
   double aggregation_seconds = 0;  // folding the runs into statistics, after they finished
 };
 
@@ -152,6 +175,15 @@ struct MonteCarloResult {
 // inconsistent inputs or options; an exception thrown by a callback in a worker stops the other
 // workers and is rethrown here.
 MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const LinearObservation& observation,
+                                 const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters,
+                                 const MonteCarloOptions& options);
+
+// The same for sampled observations: the truth on its grid as above (its steps and truth stream
+// unchanged), samples drawn at t_k = t0 + k T (draw_samples), and sampled filters (FilterModel::
+// sampled(), p = measurement.p()) predicting between samples and updating at each. The period
+// must be a whole number of grid steps (std::invalid_argument otherwise). Thread-count
+// independent like the continuous engine; each FilterStatistics has `sampled` set.
+MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const SampledMeasurement& measurement,
                                  const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters,
                                  const MonteCarloOptions& options);
 

@@ -2,7 +2,8 @@
  * means the same to every compiler and to C and C++ alike.
  *
  * A plugin is a shared object built by `pfgen simulate` from one model: its truth
- * dx = f(x,t) dt + g(x,t) dW1, its observation dy = (A0(t) + A(t) x) dt + B(t) dW2, and any
+ * dx = f(x,t) dt + g(x,t) dW1, its observation dy = (A0(t) + A(t) x) dt + B(t) dW2 (or samples
+ * y_k = C0 + C x(t_k) + Uv v_k, version 2 on), and any
  * number of generated filters, all at the model's default parameter values. It exports one
  * function, PFGEN_PLUGIN_ENTRY_NAME, returning a table that lives as long as the plugin is loaded.
  *
@@ -22,7 +23,7 @@
 extern "C" {
 #endif
 
-#define PFGEN_PLUGIN_ABI_VERSION 1u
+#define PFGEN_PLUGIN_ABI_VERSION 2u
 #define PFGEN_PLUGIN_ENTRY_NAME "pfgen_plugin_entry"
 
 /* One filter over its packed state [m (n entries), upper triangle of P row by row]. */
@@ -33,6 +34,20 @@ typedef struct pfgen_plugin_filter {
   void (*initial_state)(double* state);                                 /* from the model's m0, P0 */
   void (*step)(double* state, double t, double dt, const double* dy);   /* over [t, t+dt], dy: p */
 } pfgen_plugin_filter;
+
+/* One filter for sampled observations (y_k = C0 + C x(t_k) + Uv v_k every `period`) over the
+ * same packed state: `substeps` predictions of dt = period / substeps between samples, then one
+ * update. update returns 0, leaving the state unchanged, when C P C^T + Uv Uv^T is not positive
+ * definite. */
+typedef struct pfgen_plugin_sampled_filter {
+  const char* name;
+  size_t n, p;
+  size_t state_size; /* n + n(n+1)/2 */
+  size_t substeps;   /* >= 1 */
+  void (*initial_state)(double* state);
+  void (*predict)(double* state, double t, double dt);  /* one sub-step over [t, t+dt] */
+  int (*update)(double* state, double t, const double* y); /* the sample y (p entries) taken at t */
+} pfgen_plugin_sampled_filter;
 
 typedef struct pfgen_plugin {
   unsigned abi_version; /* PFGEN_PLUGIN_ABI_VERSION of the generator that wrote the plugin */
@@ -56,6 +71,14 @@ typedef struct pfgen_plugin {
   void (*observation)(double t, double* A0, double* A, double* B);    /* A0: p, A: p x n, B: p x r */
   size_t filter_count;
   const pfgen_plugin_filter* filters; /* filter_count entries (NULL when 0) */
+  /* Sampled observations (observation_is_sampled = 1): observation and filters are NULL and
+   * filter_count 0; p is the rows of C, r the columns of Uv, and sampled_observation fills
+   * C0 (p), C (p x n) and Uv (p x r) at a sample time. Continuous ones: all of these 0 or NULL. */
+  int observation_is_sampled;
+  double period; /* T > 0: samples at t_k = k T, k >= 1 */
+  void (*sampled_observation)(double t, double* C0, double* C, double* Uv);
+  size_t sampled_filter_count;
+  const pfgen_plugin_sampled_filter* sampled_filters; /* sampled_filter_count entries (NULL when 0) */
 } pfgen_plugin;
 
 /* The exported entry point: const pfgen_plugin* pfgen_plugin_entry(void). */

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -57,15 +58,57 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
                                    const DivergenceGuard& guard, Eigen::MatrixXd& path,
                                    Eigen::MatrixXd& dy, std::optional<DivergenceEvent>& divergence);
 
+// Samples y_k = C0 + C x(t_k) + Uv v_k (v_k standard normal, q entries) of the truth at
+// t_k = t0 + k period, k >= 1. The coefficients are evaluated at each sample time (row-major
+// C0: p, C: p x n, Uv: p x q); period must be a whole number of the grid's steps.
+class SampledMeasurement {
+ public:
+  using Coefficients = std::function<void(double t, double* C0, double* C, double* Uv)>;
+  // std::invalid_argument unless p, n, q >= 1, period > 0 and the callback is set.
+  SampledMeasurement(std::size_t p, std::size_t n, std::size_t q, double period, Coefficients coefficients);
+  std::size_t p() const { return p_; }
+  std::size_t n() const { return n_; }
+  std::size_t q() const { return q_; }
+  double period() const { return period_; }
+  // Grid steps per period: round(period / dt); std::invalid_argument when period / dt is not a
+  // whole number (relative tolerance 1e-9) or the period is shorter than dt.
+  std::size_t steps_per_sample(const TimeGrid& grid) const;
+  // Fills C0 (p), C (p x n) and Uv (p x q), row-major, at time t. Not thread-safe: copy per thread.
+  void evaluate(double t, double* C0, double* C, double* Uv) const { coefficients_(t, C0, C, Uv); }
+  // The noise-free value C0 + C x and the sample C0 + C x + Uv v at t, into clean and noisy (p).
+  void sample(double t, const double* x, const double* v, double* clean, double* noisy);
+
+ private:
+  std::size_t p_, n_, q_;
+  double period_;
+  Coefficients coefficients_;
+  std::vector<double> C0_, C_, Uv_;
+};
+
+// The samples of one truth path: for k = 1 .. K with k * steps_per_sample <= last (the last
+// stored grid index), column k - 1 of `clean` is C0 + C x(t_k) and of `noisy` the sample y_k, the
+// noise drawn from RandomStream(seed, run, substream::observation_noise), q normals per sample in
+// sample order. Returns K. The matrices are p x (at least K), sized by the caller.
+std::size_t draw_samples(SampledMeasurement& measurement, const TimeGrid& grid, std::size_t steps_per_sample,
+                         const Eigen::MatrixXd& path, std::ptrdiff_t last, std::uint64_t seed, std::uint64_t run,
+                         Eigen::MatrixXd& clean, Eigen::MatrixXd& noisy);
+
 // A filter as plain functions over its packed state [m (n), P upper triangle], the calling
 // convention of generated headers. `step` advances the state over [t, t + dt] given dy (p).
+// A filter for sampled observations has substeps >= 1 and predict/update instead of step:
+// between samples `substeps` predictions of dt = period / substeps, at each sample the update
+// (false when C P C^T + Uv Uv^T is not positive definite).
 struct FilterModel {
   std::string name;
   std::size_t n = 0;
   std::size_t p = 0;
   std::function<void(double* state)> initial_state;
   std::function<void(double* state, double t, double dt, const double* dy)> step;
+  std::size_t substeps = 0;  // 0: a continuous filter
+  std::function<void(double* state, double t, double dt)> predict;
+  std::function<bool(double* state, double t, const double* y)> update;
   std::size_t state_size() const { return filter_state_size(n); }
+  bool sampled() const { return substeps > 0; }
 };
 
 // Adapts a generated header: for namespace F,

@@ -61,11 +61,18 @@ class SimulationPlugin {
   // The truth SDE. A model giving only G = g g^T gets g from diffusion_from_covariance (q = n,
   // no Jacobian).
   SdeSystem system() const;
+  // Samples y_k = C0 + C x(t_k) + Uv v_k every period() (r() = columns of Uv).
+  bool is_sampled() const { return table_->observation_is_sampled != 0; }
+  double period() const { return table_->period; }
   // dy = (A0 + A x) dt + B dW2: constant coefficients when they do not depend on t.
+  // PluginLoadError for a sampled model.
   LinearObservation observation() const;
+  // The samples of a sampled model; PluginLoadError for a continuous one.
+  SampledMeasurement measurement() const;
   // The model's initial.x0; PluginLoadError (std::runtime_error) when the model gives none.
   Eigen::VectorXd truth_initial_state() const;
-  // The filters in the plugin's order, at the model's default parameters.
+  // The filters in the plugin's order, at the model's default parameters (for a sampled model
+  // its sampled filters: FilterModel::sampled()).
   std::vector<FilterModel> filters() const;
 
   // The raw table, valid while this object (or anything it returned) lives.

@@ -39,6 +39,81 @@ Eigen::MatrixXd records_matrix(const std::vector<double>& values, std::size_t re
   return matrix;
 }
 
+// Mean and standard error (sample standard deviation / sqrt(count)) of values, in run order.
+std::pair<double, double> mean_and_error(const std::vector<double>& values) {
+  if (values.empty()) return {nan, nan};
+  double sum = 0;
+  for (double v : values) sum += v;
+  const double count = static_cast<double>(values.size()), mean = sum / count;
+  if (values.size() < 2) return {mean, nan};
+  double squares = 0;
+  for (double v : values) squares += (v - mean) * (v - mean);
+  return {mean, std::sqrt(squares / (count - 1) / count)};
+}
+
+// RMSE(s) (which 0, 1) or MRAE(s) (2, 3) of component i of one filter's run.
+double run_metric(const FilterRunResult& filter, std::size_t i, std::size_t which) {
+  const double mean = filter.sample_sums[4 * i + which] / static_cast<double>(filter.samples);
+  return which < 2 ? std::sqrt(mean) : mean;
+}
+
+bool complete(const FilterRunResult& filter, std::ptrdiff_t steps) { return filter.last == steps && filter.samples > 0; }
+
+// Filter f minus filter 0, run by run, over the runs both completed.
+void paired_differences(const std::vector<RunResult>& runs, std::size_t f, std::ptrdiff_t steps, std::size_t p,
+                        SampledMetrics& metrics) {
+  std::vector<std::size_t> both;
+  for (std::size_t r = 0; r < runs.size(); ++r)
+    if (complete(runs[r].filters[f], steps) && complete(runs[r].filters[0], steps)) both.push_back(r);
+  metrics.paired_runs = both.size();
+  const std::pair<std::vector<double>*, std::vector<double>*> outputs[4] = {
+      {&metrics.diff_rmse_clean, &metrics.diff_rmse_clean_se}, {&metrics.diff_rmse_noisy, &metrics.diff_rmse_noisy_se},
+      {&metrics.diff_mrae_clean, &metrics.diff_mrae_clean_se}, {&metrics.diff_mrae_noisy, &metrics.diff_mrae_noisy_se}};
+  std::vector<double> values;
+  for (std::size_t i = 0; i < p; ++i)
+    for (std::size_t which = 0; which < 4; ++which) {
+      values.clear();
+      for (std::size_t r : both)
+        values.push_back(run_metric(runs[r].filters[f], i, which) - run_metric(runs[r].filters[0], i, which));
+      const auto [mean, error] = mean_and_error(values);
+      outputs[which].first->push_back(mean);
+      outputs[which].second->push_back(error);
+    }
+}
+
+// Paper 003's AvRMSE and AvMRAE in both readings, over the runs that absorbed every sample.
+SampledMetrics sampled_metrics(const std::vector<RunResult>& runs, std::size_t f, std::ptrdiff_t steps,
+                               std::size_t p) {
+  SampledMetrics metrics;
+  std::vector<const FilterRunResult*> complete;
+  for (const RunResult& run : runs) {
+    const FilterRunResult& filter = run.filters[f];
+    metrics.update_failures += filter.update_failed;
+    if (filter.last == steps && filter.samples > 0) {
+      complete.push_back(&filter);
+      metrics.samples = filter.samples;
+    }
+  }
+  metrics.runs = complete.size();
+  std::vector<double> values;
+  const std::pair<std::vector<double>*, std::vector<double>*> outputs[4] = {
+      {&metrics.rmse_clean, &metrics.rmse_clean_se}, {&metrics.rmse_noisy, &metrics.rmse_noisy_se},
+      {&metrics.mrae_clean, &metrics.mrae_clean_se}, {&metrics.mrae_noisy, &metrics.mrae_noisy_se}};
+  for (std::size_t i = 0; i < p; ++i)
+    for (std::size_t which = 0; which < 4; ++which) {
+      values.clear();
+      for (const FilterRunResult* filter : complete) {
+        const double mean = filter->sample_sums[4 * i + which] / static_cast<double>(filter->samples);
+        values.push_back(which < 2 ? std::sqrt(mean) : mean);  // RMSE(s) or MRAE(s)
+      }
+      const auto [mean, error] = mean_and_error(values);
+      outputs[which].first->push_back(mean);
+      outputs[which].second->push_back(error);
+    }
+  if (f > 0) paired_differences(runs, f, steps, p, metrics);
+  return metrics;
+}
+
 }  // namespace
 
 void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const std::vector<RunResult>& runs,
@@ -135,6 +210,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       stats.refined_runs += filter.refined_steps > 0;
       stats.too_stiff_runs += filter.too_stiff;
     }
+    if (filters[f].sampled()) stats.sampled = sampled_metrics(runs, f, steps, filters[f].p);
     result.filters.push_back(std::move(stats));
   }
 

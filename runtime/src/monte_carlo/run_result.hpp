@@ -24,6 +24,12 @@ struct FilterRunResult {
   std::uint64_t refined_steps = 0;   // grid steps the FilterStepper split
   std::vector<double> error_record;  // records x n
   std::vector<double> m_record, P_record;  // records x n, the shown run only
+  // Sampled observations: per measurement component i, sample_sums[4 i + (0, 1, 2, 3)] are the
+  // sums over the samples absorbed of (Y - Yhat)^2 and |Y - Yhat| / |Y| with Y the noise-free
+  // C0 + C x(t_k) (0, 2) and the sample y_k (1, 3); Yhat = C0 + C m(t_k|t_k).
+  std::vector<double> sample_sums;
+  std::size_t samples = 0;     // samples absorbed
+  bool update_failed = false;  // an update met C P C^T + Uv Uv^T not positive definite (diverged)
 };
 
 struct RunResult {

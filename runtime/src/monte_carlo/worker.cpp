@@ -7,15 +7,28 @@
 
 namespace pfgen_runtime::monte_carlo_detail {
 
-Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, const std::vector<FilterModel>& filters,
-               const Eigen::VectorXd& x0, const Plan& plan, const MonteCarloOptions& options)
+Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, const SampledMeasurement* measurement,
+               const std::vector<FilterModel>& filters, const Eigen::VectorXd& x0, const Plan& plan,
+               const MonteCarloOptions& options)
     : scheme_(scheme.clone()), observation_(observation), filters_(filters), x0_(x0), plan_(plan),
-      options_(options), path_(plan.n, plan.grid.steps + 1), dy_(plan.p, plan.grid.steps),
+      options_(options), path_(plan.n, plan.grid.steps + 1),
+      dy_(static_cast<Eigen::Index>(observation.p()), plan.grid.steps),
       error_(plan.n),
       sums_((1 + plan.windows.size()) * plan.n), stepper_(plan.n, plan.p, options.filter_guards.stepping) {
   filter_seconds.assign(filters.size(), 0.0);
   filter_cpu_seconds.assign(filters.size(), 0.0);
   filter_steps.assign(filters.size(), 0);
+  filter_samples.assign(filters.size(), 0);
+  if (measurement) {
+    measurement_ = *measurement;
+    steps_per_sample_ = measurement->steps_per_sample(plan.grid);
+    const auto p = static_cast<Eigen::Index>(measurement->p());
+    const auto samples = static_cast<Eigen::Index>(plan.grid.steps / steps_per_sample_);
+    clean_.resize(p, samples);
+    noisy_.resize(p, samples);
+    zeros_.assign(measurement->q(), 0.0);
+    estimate_.assign(2 * measurement->p(), 0.0);
+  }
   std::size_t largest = 0;
   for (const FilterModel& filter : filters_) largest = std::max(largest, filter.state_size());
   state_.resize(largest);
@@ -52,6 +65,9 @@ void Worker::simulate_truth(std::size_t run, RunResult& out) {
   truth_steps += static_cast<std::uint64_t>(std::max<std::ptrdiff_t>(out.truth_last, 0)) +
                  (divergence && out.truth_last >= 0 ? 1 : 0);
   const std::size_t n = plan_.n;
+  if (measurement_)
+    samples_ = draw_samples(*measurement_, plan_.grid, steps_per_sample_, path_, out.truth_last, options_.seed, run,
+                            clean_, noisy_);
   out.truth_record.assign(plan_.records.size() * n, nan);
   for (std::size_t r = 0; r < plan_.records.size(); ++r)
     if (static_cast<std::ptrdiff_t>(plan_.records[r]) <= out.truth_last)
@@ -104,6 +120,14 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, Filter
   visit(0, state, shown, out);
   out.last = 0;
   std::uint64_t steps = 0;
+  if (filter.sampled()) {
+    if (going) step_sampled_filter(filter, run.truth_last, out, guard, shown, steps);
+    filter_steps[f] += steps;
+    filter_samples[f] += out.samples;
+    if (out.last == static_cast<std::ptrdiff_t>(grid.steps))
+      for (std::size_t i = 0; i < n; ++i) out.mean_square[i] = sums_[i] / static_cast<double>(grid.steps + 1);
+    return;
+  }
   const std::uint64_t refined_before = stepper_.refined_steps();
   const double* dy = dy_.data();
   for (std::size_t k = 0; going && static_cast<std::ptrdiff_t>(k) < run.truth_last; ++k) {
@@ -122,6 +146,55 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, Filter
   out.refined_steps = stepper_.refined_steps() - refined_before;
   if (out.last == static_cast<std::ptrdiff_t>(grid.steps))
     for (std::size_t i = 0; i < n; ++i) out.mean_square[i] = sums_[i] / static_cast<double>(grid.steps + 1);
+}
+
+// A sampled filter over the truth's grid (docs/theory.md, section 2.5): grid step k lies in the
+// period starting at sample time t_s = t0 + s T, s = k / N (N grid steps per period), and the
+// filter makes there the sub-steps u with k' s_f / N <= u < (k' + 1) s_f / N, k' = k mod N, s_f its
+// substeps: integer arithmetic, so every period gets exactly s_f predictions of T / s_f, each
+// started at t_s + u T / s_f, whatever N. At the period's last grid step the update absorbs
+// y_{s+1}. The state visited at a grid point is so the prediction from the last sample to the
+// last sub-step completed (a zero-order hold between sub-steps), and at a sample time the updated
+// state, m(t_k|t_k).
+void Worker::step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth_last, FilterRunResult& out,
+                                 const std::function<bool(double)>& guard, bool shown, std::uint64_t& steps) {
+  const TimeGrid& grid = plan_.grid;
+  const std::size_t N = steps_per_sample_, substeps = filter.substeps, p = measurement_->p();
+  const double period = measurement_->period(), delta = period / static_cast<double>(substeps);
+  double* state = state_.data();
+  out.sample_sums.assign(4 * p, 0.0);
+  for (std::size_t k = 0; static_cast<std::ptrdiff_t>(k) < truth_last; ++k) {
+    const std::size_t sample = k / N, within = k % N;
+    const double start = grid.t0 + static_cast<double>(sample) * period;
+    for (std::size_t u = within * substeps / N; u < (within + 1) * substeps / N; ++u)
+      filter.predict(state, start + static_cast<double>(u) * delta, delta);
+    if (within + 1 == N) {
+      const double t = grid.t0 + static_cast<double>(sample + 1) * period;  // t_k = t0 + k T, as draw_samples
+      const auto column = static_cast<Eigen::Index>(sample);
+      if (!filter.update(state, t, noisy_.col(column).data())) {
+        out.diverged = out.update_failed = true;  // the state is the predicted one: not stored
+        out.divergence_t = t;
+        return;
+      }
+      ++out.samples;
+      double* hat = estimate_.data();
+      measurement_->sample(t, state, zeros_.data(), hat, hat + p);  // C0 + C m(t_k|t_k)
+      for (std::size_t i = 0; i < p; ++i) {
+        const double Y[2] = {clean_(static_cast<Eigen::Index>(i), column), noisy_(static_cast<Eigen::Index>(i), column)};
+        for (int reading = 0; reading < 2; ++reading) {
+          const double e = Y[reading] - hat[i];
+          out.sample_sums[4 * i + reading] += e * e;
+          out.sample_sums[4 * i + 2 + reading] += std::abs(e) / std::abs(Y[reading]);
+        }
+      }
+    }
+    ++steps;
+    const bool going = guard(grid.time(k + 1));
+    if (out.diverged) return;  // a diverged state is not stored
+    visit(k + 1, state, shown, out);
+    out.last = static_cast<std::ptrdiff_t>(k + 1);
+    if (!going) return;
+  }
 }
 
 // Grid point j of a filter pass: the error, its sums, and whatever the plan has at j.

@@ -7,7 +7,9 @@
 // only at the plan's points.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -21,8 +23,11 @@ namespace pfgen_runtime::monte_carlo_detail {
 class Worker {
  public:
   // Keeps references to plan and options: both must outlive the worker.
-  Worker(const TruthScheme& scheme, const LinearObservation& observation, const std::vector<FilterModel>& filters,
-         const Eigen::VectorXd& x0, const Plan& plan, const MonteCarloOptions& options);
+  // measurement: the samples of a model with sampled observations (then `observation` is only
+  // the truth loop's placeholder and every filter is sampled); nullptr for continuous ones.
+  Worker(const TruthScheme& scheme, const LinearObservation& observation, const SampledMeasurement* measurement,
+         const std::vector<FilterModel>& filters, const Eigen::VectorXd& x0, const Plan& plan,
+         const MonteCarloOptions& options);
 
   // Run number `run` (its random streams depend on the number alone) into `out`.
   void run(std::size_t run, RunResult& out);
@@ -32,10 +37,13 @@ class Worker {
   std::uint64_t truth_steps = 0;
   std::vector<double> filter_seconds, filter_cpu_seconds;
   std::vector<std::uint64_t> filter_steps;
+  std::vector<std::uint64_t> filter_samples;  // samples absorbed (sampled filters)
 
  private:
   void simulate_truth(std::size_t run, RunResult& out);
   void step_filter(std::size_t f, bool shown, const RunResult& run, FilterRunResult& out);
+  void step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth_last, FilterRunResult& out,
+                           const std::function<bool(double)>& guard, bool shown, std::uint64_t& steps);
   void visit(std::size_t j, const double* state, bool shown, FilterRunResult& out);
 
   std::unique_ptr<TruthScheme> scheme_;
@@ -46,6 +54,11 @@ class Worker {
   const MonteCarloOptions& options_;
   Eigen::MatrixXd path_;  // n x (steps + 1): x at the grid times of the current run
   Eigen::MatrixXd dy_;    // p x steps
+  std::optional<SampledMeasurement> measurement_;
+  std::size_t steps_per_sample_ = 0;
+  Eigen::MatrixXd clean_, noisy_;  // p x samples: C0 + C x(t_k) and y_k of the current run
+  std::size_t samples_ = 0;        // samples of the current run
+  std::vector<double> zeros_, estimate_;
   std::vector<double> state_, error_, sums_;
   FilterStepper stepper_;
   std::vector<std::size_t> active_;  // windows open at the current grid point

@@ -21,6 +21,8 @@ struct TruthCode {
   bool diffusion_is_covariance = false;  // only G = g g^T given: diffusion_covariance(), no g, no Jacobian
   bool observation_is_constant = true;   // A0, A, B free of the time symbol
   bool has_initial_state = false;        // the model gives initial.x0
+  bool sampled = false;                  // sampled observations: p rows of C, r columns of Uv
+  double period = 0;                     // sampled: T
   // Definitions, in this order (bracketed ones only when they exist; argument names as below
   // unless the model uses them, see cpp_names.hpp):
   //   using Scalar = double;  struct Params { <parameters with defaults> };
@@ -29,6 +31,7 @@ struct TruthCode {
   //   [void diffusion_jacobian(double t, const double* x, double* dg);]     // dg[(i*q+j)*n+l] = dg_ij/dx_l
   //   [void diffusion_covariance(double t, const double* x, double* G);]    // n x n row-major
   //   void observation(double t, double* A0, double* A, double* B);         // p, p x n, p x r
+  //   (sampled: void sampled_observation(double t, double* C0, double* C, double* Uv), p, p x n, p x r)
   //   [void initial_state(double* x0);]                                     // initial.x0
   std::string definitions;
 };
