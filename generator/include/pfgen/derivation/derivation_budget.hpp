@@ -16,7 +16,7 @@
 
 namespace pfgen {
 
-inline constexpr double kMaxExpectationTerms = 500000;  // terms of all E[x^a] the recursion holds
+inline constexpr double kMaxExpectationTerms = 250000;  // terms of all E[x^a] the recursion holds
 inline constexpr double kMaxEquationTerms = 2000000;    // terms of the m and P equations
 
 // The number of terms of E[x^alpha] for x ~ N(m, P), as a polynomial in m and P: one per way to
