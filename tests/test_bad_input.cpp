@@ -90,7 +90,7 @@ const std::vector<BadModel>& bad_models() {
       {"fuzz_expectation_count_slow.yaml", "drift", 1, 0, 0,
        "the Gaussian expectations of the drift up to this row need more than 250000 terms"},
       {"fuzz_expectation_near_limit.yaml", "drift", 1, 0, 0,
-       "the Gaussian expectations of the drift up to this row need more than 250000 terms"},
+       "the Gaussian expectations of the drift and its derivatives up to this row need more than 250000 terms"},
       {"equation_budget_many_observed_states.yaml", "states", 0, 0, 0,
        "with 64 states (64 observed), the covariance equations would have up to 8519680 terms, above the limit of 2000000"},
       {"fuzz_degree_wraps_int.yaml", "drift", 1, 0, 4, "has a degree in state 'x' above the limit of 1000"},
