@@ -3,41 +3,17 @@
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
+#include "pfgen/printing/report_parts.hpp"
 #include "pfgen/printing/sampled_report.hpp"
 
 namespace pfgen {
 namespace {
-
-// "a + b - c" from parts printed separately, so like terms of different parts
-// (0.03*P11^2 from E[gg^T] and -P11^2 from the correction) stay visible.
-std::string join_parts(const ExpressionPrinter& printer, const std::vector<Polynomial>& parts,
-                       const ExpressionPrinter::VariableNamer& name) {
-  std::string out;
-  for (const auto& part : parts) {
-    if (part.is_zero()) continue;
-    std::string text = printer.print(part, name);
-    if (out.empty()) {
-      out = text;
-    } else if (text[0] == '-') {
-      out += " - " + text.substr(1);
-    } else {
-      out += " + " + text;
-    }
-  }
-  return out.empty() ? "0" : out;
-}
 
 std::vector<Polynomial> P_parts(const FilterEquations& eq, std::size_t u) {
   return {eq.P_moment[u], eq.P_diffusion[u], eq.P_correction[u].scaled(-1)};
 }
 
 bool is_single_term(const Polynomial& p) { return p.terms().size() <= 1; }
-
-std::string exactness_line(const ExactnessReport& r) {
-  std::string out = r.explanation;
-  for (const auto& failed : r.failed) out += "\n  failed: " + failed;
-  return out;
-}
 
 }  // namespace
 
@@ -52,7 +28,7 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
   std::string out;
   out += "model: " + model.name + "\n";
   out += "filter: " + eq.name + " (" + eq.description + ")\n";
-  out += "exactness: " + exactness_line(eq.exactness) + "\n";
+  out += "exactness: " + exactness_text(eq.exactness) + "\n";
   out += "variables: ";
   for (std::size_t i = 0; i < n; ++i)
     out += (i ? ", " : "") + vars.text_name(vars.m(i)) + " = E[" + model.state_names[i] + "]";
@@ -90,12 +66,7 @@ std::string equations_latex(const FilterEquations& eq) {
   const std::vector<Polynomial>& h = eq.predicted_observation;
   auto K = [](std::size_t i, std::size_t r) { return "K_{" + std::to_string(i + 1) + "," + std::to_string(r + 1) + "}"; };
 
-  std::string out = "\\noindent\\textbf{Exactness:} " + latex_escape_text(eq.exactness.explanation) + ".\n";
-  if (!eq.exactness.failed.empty()) {
-    out += "\\begin{itemize}\n";
-    for (const auto& f : eq.exactness.failed) out += "\\item " + latex_escape_text(f) + "\n";
-    out += "\\end{itemize}\n";
-  }
+  std::string out = exactness_latex(eq.exactness);
   out += "\\begin{align*}\n";
   // Each right-hand side is cut into lines that fit the page (latex_line_breaker).
   std::vector<std::string> lines;
@@ -125,13 +96,7 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
   auto name = [&](std::uint32_t v) { return vars.text_name(v); };
   const std::size_t n = eq.n();
 
-  Json exactness = Json::object();
-  exactness.add("exact", Json::boolean(eq.exactness.exact));
-  exactness.add("condition", Json::string(eq.exactness.condition));
-  exactness.add("explanation", Json::string(eq.exactness.explanation));
-  Json failed = Json::array();
-  for (const auto& f : eq.exactness.failed) failed.push(Json::string(f));
-  exactness.add("failed", failed);
+  const Json exactness = exactness_json(eq.exactness);
 
   Json variables = Json::array();
   for (std::size_t v = 0; v < vars.count(); ++v) variables.push(Json::string(vars.text_name(static_cast<std::uint32_t>(v))));

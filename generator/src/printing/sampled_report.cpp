@@ -3,23 +3,10 @@
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
+#include "pfgen/printing/report_parts.hpp"
 
 namespace pfgen {
 namespace {
-
-// "a + b" from parts printed separately (the moment and diffusion terms stay visible).
-std::string join_parts(const ExpressionPrinter& printer, const std::vector<Polynomial>& parts,
-                       const ExpressionPrinter::VariableNamer& name) {
-  std::string out;
-  for (const auto& part : parts) {
-    if (part.is_zero()) continue;
-    std::string text = printer.print(part, name);
-    if (out.empty()) out = text;
-    else if (text[0] == '-') out += " - " + text.substr(1);
-    else out += " + " + text;
-  }
-  return out.empty() ? "0" : out;
-}
 
 std::vector<Polynomial> P_parts(const FilterEquations& eq, std::size_t u) { return {eq.P_moment[u], eq.P_diffusion[u]}; }
 
@@ -41,8 +28,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   std::string out;
   out += "model: " + model.name + "\n";
   out += "filter: " + eq.name + " (" + eq.description + ")\n";
-  out += "exactness: " + eq.exactness.explanation;
-  for (const auto& failed : eq.exactness.failed) out += "\n  failed: " + failed;
+  out += "exactness: " + exactness_text(eq.exactness);
   out += "\nvariables: ";
   for (std::size_t i = 0; i < n; ++i)
     out += (i ? ", " : "") + vars.text_name(vars.m(i)) + " = E[" + model.state_names[i] + "]";
@@ -108,12 +94,7 @@ std::string sampled_equations_latex(const FilterEquations& eq) {
   const std::size_t n = eq.n();
   const SampledUpdate& u = eq.update;
   const std::size_t r = u.r();
-  std::string out = "\\noindent\\textbf{Exactness:} " + latex_escape_text(eq.exactness.explanation) + ".\n";
-  if (!eq.exactness.failed.empty()) {
-    out += "\\begin{itemize}\n";
-    for (const auto& f : eq.exactness.failed) out += "\\item " + latex_escape_text(f) + "\n";
-    out += "\\end{itemize}\n";
-  }
+  std::string out = exactness_latex(eq.exactness);
   auto block = [&](const std::vector<std::string>& lines) {
     std::string text = "\\begin{align*}\n";
     for (std::size_t k = 0; k < lines.size(); ++k) text += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
@@ -178,13 +159,7 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   auto P_index = [&](std::size_t i, std::size_t j) { return vars.upper_index(i, j); };
   auto S_index = [&](std::size_t a, std::size_t b) { return u.upper_index(a, b); };
 
-  Json exactness = Json::object();
-  exactness.add("exact", Json::boolean(eq.exactness.exact));
-  exactness.add("condition", Json::string(eq.exactness.condition));
-  exactness.add("explanation", Json::string(eq.exactness.explanation));
-  Json failed = Json::array();
-  for (const auto& f : eq.exactness.failed) failed.push(Json::string(f));
-  exactness.add("failed", failed);
+  const Json exactness = exactness_json(eq.exactness);
   Json variables = Json::array();
   for (std::size_t v = 0; v < vars.count(); ++v) variables.push(Json::string(vars.text_name(static_cast<std::uint32_t>(v))));
 

@@ -1,0 +1,26 @@
+#pragma once
+// Pieces every filter report shares, continuous or sampled: a sum printed part by part, and the
+// exactness diagnostic as text, LaTeX and JSON.
+#include <string>
+#include <vector>
+
+#include "pfgen/algebra/polynomial.hpp"
+#include "pfgen/derivation/exactness.hpp"
+#include "pfgen/notation/expression_printer.hpp"
+#include "pfgen/printing/json_writer.hpp"
+
+namespace pfgen {
+
+// "a + b - c" from parts printed separately, so like terms of different parts (0.03*P11^2 from
+// E[gg^T] and -P11^2 from the correction) stay visible; "0" when every part is zero.
+std::string join_parts(const ExpressionPrinter& printer, const std::vector<Polynomial>& parts,
+                       const ExpressionPrinter::VariableNamer& name);
+
+// The explanation, then one "\n  failed: ..." line per failed condition.
+std::string exactness_text(const ExactnessReport& report);
+// "\noindent\textbf{Exactness:} ...", then the failed conditions as an itemize list.
+std::string exactness_latex(const ExactnessReport& report);
+// {exact, condition, explanation, failed}.
+Json exactness_json(const ExactnessReport& report);
+
+}  // namespace pfgen
