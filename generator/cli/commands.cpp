@@ -122,7 +122,10 @@ int run_codegen(const CodegenCliOptions& options) {
 
 int run_derive(const DeriveOptions& options) {
   Model model = load_model_file(options.model_path);
-  FilterEquations eq = derive_named_filter(model, single_filter(options.filter, model));
+  // Without --filter: the model's first filter (optimal, cd-optimal or delay-optimal).
+  const std::string name =
+      options.filter.empty() ? available_filter_names(model).front() : single_filter(options.filter, model);
+  FilterEquations eq = derive_named_filter(model, name);
   if (options.format == "text") {
     std::cout << equations_text(model, eq);
   } else if (options.format == "latex") {

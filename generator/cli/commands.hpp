@@ -8,7 +8,7 @@ namespace pfgen::cli {
 
 struct DeriveOptions {
   std::string model_path;
-  std::string filter = "optimal";
+  std::string filter;  // empty: the model's first filter in the registry's order
   std::string format = "text";
 };
 

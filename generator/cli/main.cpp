@@ -43,7 +43,8 @@ int main(int argc, char** argv) {
   DeriveOptions derive;
   CLI::App* derive_cmd = app.add_subcommand("derive", "Print the closed filter equations of a model");
   derive_cmd->add_option("MODEL", derive.model_path, "Model file (YAML)")->required();
-  derive_cmd->add_option("--filter", derive.filter, one_filter_help)->capture_default_str();
+  derive_cmd->add_option("--filter", derive.filter,
+                         one_filter_help + " (default: the model's first, optimal for continuous observations)");
   derive_cmd->add_option("--format", derive.format, "text | latex | json")
       ->check(CLI::IsMember({"text", "latex", "json"}))
       ->capture_default_str();

@@ -62,7 +62,7 @@ std::string square_invertible_A(const Model& model) {
     return "A is " + std::to_string(model.p()) + " x " + std::to_string(model.n()) + ", not square";
   std::vector<std::size_t> all(model.n());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-  if (determinant(model.observation.continuous().A, all, all).is_zero()) return "A is singular";
+  if (determinant(model.observation.rate().A, all, all).is_zero()) return "A is singular";
   return {};
 }
 
@@ -98,7 +98,7 @@ std::string partially_measured_split(const ModelFacts& facts) {
   if (x2.empty()) return "no components with their own linear dynamics to leave unmeasured";
   if (std::string noise = facts.state_dependent_noise(); !noise.empty()) return noise;
 
-  const ExMatrix& A = model.observation.continuous().A;
+  const ExMatrix& A = model.observation.rate().A;
   std::vector<std::size_t> rows1, rows2;
   for (std::size_t r = 0; r < model.p(); ++r) {
     bool sees_x1 = false, sees_x2 = false;
@@ -113,7 +113,7 @@ std::string partially_measured_split(const ModelFacts& facts) {
     return "the nonlinear components (" + join_indices(x1, model) + ") are seen by " + std::to_string(rows1.size()) +
            " observation rows, so A1 is not square";
   if (determinant(A, rows1, x1).is_zero()) return "the block A1 measuring (" + join_indices(x1, model) + ") is singular";
-  ExMatrix R = multiply_by_transpose(model.observation.continuous().B);
+  ExMatrix R = multiply_by_transpose(model.observation.rate().B);
   for (std::size_t a : rows1)
     for (std::size_t b : rows2)
       if (!R[a][b].is_zero()) return "observation noises of y1 and y2 are correlated (B B^T not block-diagonal)";
@@ -153,11 +153,54 @@ ExactnessReport sampled_exactness(const ModelFacts& facts, FilterKind kind) {
   return report;
 }
 
+ExactnessReport undelayed_exactness(const Model& model, FilterKind kind);
+
+// Delayed observations (docs/theory.md §2.6). With h = 0 the delay kinds are their undelayed
+// counterparts; with h > 0 no finite set of moments of x(t) is exact, and paper 004's filter
+// makes two approximations on top of the Gaussian closure, which the report names.
+ExactnessReport delayed_exactness(const ModelFacts& facts, FilterKind kind) {
+  const Model& model = facts.model;
+  const FilterKind counterpart = is_extended_kalman(kind) ? FilterKind::Ekf : FilterKind::Optimal;
+  if (model.observation.delay().is_zero()) {
+    ExactnessReport report = undelayed_exactness(model, counterpart);
+    report.explanation += " (h = 0: the delayed filter is the '" + filter_kind_name(counterpart) + "' filter)";
+    return report;
+  }
+  ExactnessReport report;
+  report.condition = "none";
+  const std::string multiplicative = facts.state_dependent_noise();
+  const std::string extension =
+      multiplicative.empty() ? ""
+                             : "; paper 004 treats additive state noise only, so with state-dependent g these "
+                               "equations are a Gaussian-closure extension of its filter";
+  if (is_extended_kalman(kind))
+    report.explanation = "approximation: the extended Kalman-Bucy filter linearises f at m and compares dy with "
+                         "A m(t - h) under the undelayed gain";
+  else if (uses_transition_gain(kind))
+    report.explanation = "approximation (paper 004): the innovation uses the filtered m(t - h) for the smoothed "
+                         "E[x(t - h) | Y(t)], and E[x(t) (x(t - h) - m(t - h))^T] is taken as P Phi*^T, Phi* "
+                         "from the noise-free solution x* started at m0 (paper 004, eqs 3 and 5)" + extension;
+  else
+    report.explanation = "approximation: the undelayed gain P A^T R^-1 with the delayed innovation (paper 004's "
+                         "eqs 19-20, its comparator)" + extension;
+  report.failed.push_back("delay: h > 0; the conditional law of x(t) depends on the path over [t - h, t], so no filter "
+                          "of m(t) and P(t) alone is exact");
+  return report;
+}
+
 }  // namespace
 
 ExactnessReport assess_exactness(const Model& model, FilterKind kind) {
   ModelFacts facts(model, kind);
   if (model.observation.is_sampled()) return sampled_exactness(facts, kind);
+  if (model.observation.is_delayed()) return delayed_exactness(facts, kind);
+  return undelayed_exactness(model, kind);
+}
+
+namespace {
+
+ExactnessReport undelayed_exactness(const Model& model, FilterKind kind) {
+  ModelFacts facts(model, kind);
   ExactnessReport report;
   const std::string nonaffine = facts.nonaffine_drift();
   const std::string multiplicative = facts.state_dependent_noise();
@@ -216,5 +259,7 @@ ExactnessReport assess_exactness(const Model& model, FilterKind kind) {
                    "paper 000 linear case: " + linear_case, "paper 001: " + split};
   return report;
 }
+
+}  // namespace
 
 }  // namespace pfgen

@@ -47,8 +47,7 @@ std::size_t observed_states(const ExMatrix& observation_matrix) {
 }
 
 std::size_t observed_states(const ObservationModel& observation) {
-  return observation.is_sampled() ? observed_states(observation.sampled().C)
-                                  : observed_states(observation.continuous().A);
+  return observation.is_sampled() ? observed_states(observation.sampled().C) : observed_states(observation.rate().A);
 }
 
 MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariables& vars) {
@@ -100,13 +99,16 @@ std::vector<Polynomial> euler_square_term(const Model& model, const FilterVariab
 FilterEquations equations_frame(const Model& model) {
   FilterEquations eq;
   eq.observation = model.observation.kind();
-  eq.variables = FilterVariables(model.n());
+  const bool delayed = model.observation.is_delayed();
+  eq.variables = FilterVariables(model.n(), delayed);
   eq.p = model.p();
   if (model.observation.is_sampled()) {
     eq.predicted_observation = predicted_sample(model.observation.sampled(), eq.variables);
     eq.update = sampled_update(model.observation.sampled(), eq.variables);
   } else {
-    eq.predicted_observation = predicted_observation(model.observation.continuous(), eq.variables);
+    // A delayed observation's innovation compares dy with the prediction of x(t - h), m(t - h).
+    eq.predicted_observation = predicted_observation(model.observation.rate(), eq.variables, delayed);
+    eq.delay = model.observation.delay();
   }
   return eq;
 }
@@ -152,9 +154,16 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
     if (uses_euler_map(kind)) eq.P_euler = euler_square_term(model, vars);
     return eq;
   }
-  ObservationCorrection correction = observation_correction(model.observation.continuous(), vars);
+  const bool transition = uses_transition_gain(kind);
+  ObservationCorrection correction = observation_correction(model.observation.rate(), vars, transition);
   eq.gain = std::move(correction.gain);
   eq.P_correction = std::move(correction.P_correction);
+  if (transition) {
+    // x* solves dx*/dt = f(x*, t): the model's drift with state i read as xs_i.
+    std::vector<std::uint32_t> as_x_star(vars.count());
+    for (std::size_t i = 0; i < n; ++i) as_x_star[i] = vars.x_star(i);
+    for (const auto& fi : state_polynomials(model.drift, model)) eq.x_star_drift.push_back(fi.renumbered(as_x_star));
+  }
   return eq;
 }
 

@@ -7,7 +7,8 @@
 
 namespace pfgen {
 
-FilterVariables::FilterVariables(std::size_t n) : n_(n), text_names_(filter_variable_names(n)) {
+FilterVariables::FilterVariables(std::size_t n, bool delayed)
+    : n_(n), delayed_(delayed), text_names_(filter_variable_names(n)) {
   // The naming rule (P1_10 and P_{1,10} from n = 10 on) is pfgen_support's.
   for (std::size_t i = 0; i < n; ++i) latex_names_.push_back(pfgen_support::mean_latex_name(i));
   for (std::size_t i = 0; i < n; ++i) {
@@ -16,7 +17,26 @@ FilterVariables::FilterVariables(std::size_t n) : n_(n), text_names_(filter_vari
       P_entries_.emplace_back(i, j);
     }
   }
+  if (delayed) {
+    for (std::size_t i = 0; i < n; ++i) {
+      text_names_.push_back("md" + std::to_string(i + 1));
+      latex_names_.push_back(pfgen_support::mean_latex_name(i) + "(t-h)");
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      text_names_.push_back("phi" + std::to_string(i + 1));
+      latex_names_.push_back("\\Phi^*_{" + std::to_string(i + 1) + "}");
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      text_names_.push_back("xs" + std::to_string(i + 1));
+      latex_names_.push_back("x^*_{" + std::to_string(i + 1) + "}");
+    }
+  }
   for (const auto& name : text_names_) symbols_.push_back(GiNaC::symbol(name));
+}
+
+std::uint32_t FilterVariables::delayed_variable(std::size_t block, std::size_t i) const {
+  if (!delayed_ || i >= n_) throw std::out_of_range("FilterVariables: no such delayed-filter variable");
+  return static_cast<std::uint32_t>(count() + block * n_ + i);
 }
 
 std::size_t FilterVariables::upper_index(std::size_t i, std::size_t j) const {

@@ -29,19 +29,26 @@ ObservationTerms observation_terms(const ContinuousObservation& observation) {
   return ObservationTerms{from_matrix(At_Rinv), from_matrix(At_Rinv_A)};
 }
 
-std::vector<Polynomial> predicted_observation(const ContinuousObservation& observation, const FilterVariables& vars) {
+std::vector<Polynomial> predicted_observation(const ContinuousObservation& observation, const FilterVariables& vars,
+                                              bool delayed) {
   std::vector<Polynomial> out;
   for (std::size_t r = 0; r < observation.A.size(); ++r) {
     Polynomial h = Polynomial::constant(observation.A0[r]);
-    for (std::size_t k = 0; k < vars.n(); ++k) h.add_term(Monomial::variable(vars.m(k)), observation.A[r][k]);
+    for (std::size_t k = 0; k < vars.n(); ++k)
+      h.add_term(Monomial::variable(delayed ? vars.m_delayed(k) : vars.m(k)), observation.A[r][k]);
     out.push_back(h);
   }
   return out;
 }
 
-ObservationCorrection observation_correction(const ContinuousObservation& observation, const FilterVariables& vars) {
+ObservationCorrection observation_correction(const ContinuousObservation& observation, const FilterVariables& vars,
+                                             bool transition) {
   const std::size_t n = vars.n(), p = observation.A.size();
-  auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
+  // P_ik, times phi_k for the Phi* gain: (P Phi)_ik, and (Phi P)_lj = (P Phi)_jl by symmetry.
+  auto P = [&](std::size_t i, std::size_t k) {
+    Monomial entry = Monomial::variable(vars.P(i, k));
+    return transition ? entry * Monomial::variable(vars.phi(k)) : entry;
+  };
   ObservationTerms obs = observation_terms(observation);
   ObservationCorrection out;
   out.gain.assign(n, std::vector<Polynomial>(p));

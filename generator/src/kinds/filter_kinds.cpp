@@ -10,6 +10,7 @@ const std::vector<FilterKindInfo>& filter_kinds() {
   using D = DiffusionSource;
   const std::vector<ObservationKind> continuous = {ObservationKind::Continuous};
   const std::vector<ObservationKind> sampled = {ObservationKind::Sampled};
+  const std::vector<ObservationKind> delayed = {ObservationKind::Delayed};
   static const std::vector<FilterKindInfo> kinds = {
       {FilterKind::Optimal, "optimal",
        "Gaussian-closure optimal filter: E[f], E[(x-m)f^T] + E[f(x-m)^T], E[g g^T] expanded exactly", E::Gaussian,
@@ -31,6 +32,16 @@ const std::vector<FilterKindInfo>& filter_kinds() {
       {FilterKind::CdEuler, "cd-euler",
        "exact Gaussian-closure moments of the Euler-discretised model per sub-step, Kalman update (paper 003's CDF)",
        E::Gaussian, D::Model, sampled, Prediction::EulerMap},
+      {FilterKind::DelayOptimal, "delay-optimal",
+       "Gaussian-closure filter for delayed observations: gain P Phi*^T A^T R^-1 with Phi* = diag(x*(t-h)/x*(t)) of "
+       "the noise-free x*, innovation dy - (A0 + A m(t-h)) dt (paper 004)",
+       E::Gaussian, D::Model, delayed, Prediction::Ode, DelayGain::Transition},
+      {FilterKind::DelayUncorrected, "delay-uncorrected",
+       "Gaussian-closure filter with the undelayed gain P A^T R^-1 and the delayed innovation dy - (A0 + A m(t-h)) dt",
+       E::Gaussian, D::Model, delayed, Prediction::Ode, DelayGain::Undelayed},
+      {FilterKind::DelayEkf, "delay-ekf",
+       "extended Kalman-Bucy filter (textbook) with the delayed innovation dy - (A0 + A m(t-h)) dt",
+       E::AtMean, D::Model, delayed, Prediction::Ode, DelayGain::Undelayed},
   };
   return kinds;
 }

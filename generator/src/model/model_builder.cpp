@@ -127,6 +127,14 @@ ModelBuilder& ModelBuilder::observation(const ExVector& A0, const ExMatrix& A, c
   return *this;
 }
 
+ModelBuilder& ModelBuilder::delayed_observation(const GiNaC::numeric& delay, const ExVector& A0, const ExMatrix& A,
+                                                const ExMatrix& B) {
+  model_.observation =
+      DelayedObservation{delay, ContinuousObservation{exact_vector(A0), exact_matrix(A), exact_matrix(B)}};
+  has_observation_ = true;
+  return *this;
+}
+
 ModelBuilder& ModelBuilder::sampled_observation(const GiNaC::numeric& period, const ExVector& C0, const ExMatrix& C,
                                                 const ExMatrix& Uv, std::size_t substeps) {
   model_.observation = SampledObservation{period, exact_vector(C0), exact_matrix(C), exact_matrix(Uv), substeps};

@@ -11,7 +11,7 @@ ObservationKind ObservationModel::kind() const {
 
 std::size_t ObservationModel::p() const {
   if (const auto* s = std::get_if<SampledObservation>(&form_)) return s->C.size();
-  return std::get<ContinuousObservation>(form_).A.size();
+  return rate().A.size();
 }
 
 const ContinuousObservation& ObservationModel::continuous() const {
@@ -22,6 +22,22 @@ const ContinuousObservation& ObservationModel::continuous() const {
 const SampledObservation& ObservationModel::sampled() const {
   if (const auto* s = std::get_if<SampledObservation>(&form_)) return *s;
   throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ", not sampled");
+}
+
+const DelayedObservation& ObservationModel::delayed() const {
+  if (const auto* d = std::get_if<DelayedObservation>(&form_)) return *d;
+  throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ", not delayed");
+}
+
+const ContinuousObservation& ObservationModel::rate() const {
+  if (const auto* c = std::get_if<ContinuousObservation>(&form_)) return *c;
+  if (const auto* d = std::get_if<DelayedObservation>(&form_)) return d->rate;
+  throw std::logic_error("the model's observation is sampled: it has no A0, A, B");
+}
+
+GiNaC::numeric ObservationModel::delay() const {
+  if (const auto* d = std::get_if<DelayedObservation>(&form_)) return d->delay;
+  return 0;
 }
 
 }  // namespace pfgen

@@ -66,6 +66,10 @@ std::optional<std::string> symbol_name_problem(const std::string& name) {
   // the printed equations (dm1 = (...) dt + K1_1 (dy1 - ... dt)).
   static const std::regex variables("^(m|P)_?[0-9][0-9_]*$");
   if (std::regex_match(name, variables)) return "'" + name + "' is reserved for the filter's m and P entries";
+  // md1, phi1, xs1: a delayed filter's m(t - h), Phi*_11 and x*_1 (docs/theory.md §2.6).
+  static const std::regex delayed("^(md|phi|xs)_?[0-9][0-9_]*$");
+  if (std::regex_match(name, delayed))
+    return "'" + name + "' is reserved for the delayed-observation filters' m(t - h), Phi* and x* entries";
   static const std::regex printed("^(d(m|P)_?[0-9][0-9_]*|K_?[0-9]+_[0-9]+|dy_?[0-9]+|dt)$");
   if (std::regex_match(name, printed))
     return "'" + name + "' is a name of the printed equations (dm1 = (...) dt + K1_1 (dy1 - ... dt), dP12)";

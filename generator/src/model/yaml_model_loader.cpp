@@ -211,10 +211,10 @@ class Loader {
     }
     for (const auto& entry : obs) {
       std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
-      if (key != "A0" && key != "A" && key != "B") {
-        index_.record("observation." + key, entry.first);
-        throw ModelError("observation." + key, "unknown field (known: A0, A, B), or sampled: {period, C, Uv} for sampled measurements");
-      }
+      index_.record("observation." + key, entry.first);
+      if (key != "A0" && key != "A" && key != "B" && key != "delay")
+        throw ModelError("observation." + key,
+                         "unknown field (known: A0, A, B, delay), or sampled: {period, C, Uv} for sampled measurements");
     }
     YAML::Node A_node = obs["A"];
     YAML::Node B_node = obs["B"];
@@ -225,6 +225,18 @@ class Loader {
     ExVector A0(A.size(), GiNaC::ex(0));
     if (YAML::Node A0_node = obs["A0"]; A0_node && !A0_node.IsNull())
       A0 = vector_field(A0_node, "observation.A0", parser);
+    // The delay is a plain number, like a sampled period: the history the filters keep and the
+    // simulator's delayed truth need its value whatever the parameters are set to. `delay: 0` is
+    // today's undelayed model, with its filters.
+    if (YAML::Node delay_node = obs["delay"]; delay_node && !delay_node.IsNull()) {
+      const std::string text = scalar(delay_node, "observation.delay");
+      auto delay = parse_exact_number(text);
+      if (!delay) throw ModelError("observation.delay", "'" + text + "' is not a number (the delay h in time units)");
+      if (!delay->is_zero()) {
+        builder.delayed_observation(*delay, A0, A, B);
+        return;
+      }
+    }
     builder.observation(A0, A, B);
   }
 

@@ -13,6 +13,12 @@
 //   dm = m_drift dt, dP = P_drift dt                      (cd-optimal, cd-ekf: integrated)
 //   m' = m + m_drift dt, P' = P + P_drift dt + P_euler dt^2 (cd-euler: one Euler sub-step dt)
 // and `update` holds the Kalman update at each sample (derivation/sampled_update.hpp).
+// With delayed observations (the delay-* kinds, and user filters of such a model; docs/theory.md
+// §2.6) the form is the continuous one, with the delayed filter variables (FilterVariables):
+//   predicted_observation = A0 + A md, md = m(t - h), read from the filter's history;
+//   delay-optimal: gain = P Phi A^T R^-1 and P_correction = P Phi A^T R^-1 A Phi P, Phi = diag(phi),
+//   phi_i = xs_i(t - h) / xs_i(t) (0 where xs_i(t) = 0, and for t < h), and xs integrates
+//   x_star_drift = f(xs) from xs(0) = m0 beside m and P.
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,10 +58,16 @@ struct FilterEquations {
   // the exact covariance of x + f dt + g sqrt(dt) xi.
   std::vector<Polynomial> P_euler;
   SampledUpdate update;  // sampled observations only (update.r() == 0 otherwise)
+  // Delayed observations only: the delay h (0 otherwise), and for the kinds with the Phi* gain the
+  // drift f(xs, t) of the noise-free solution xs, n entries (empty otherwise).
+  GiNaC::numeric delay = 0;
+  std::vector<Polynomial> x_star_drift;
 
   std::size_t n() const { return variables.n(); }
   bool is_user_filter() const { return !kind.has_value(); }
   bool is_sampled() const { return observation == ObservationKind::Sampled; }
+  bool is_delayed() const { return observation == ObservationKind::Delayed; }
+  bool uses_x_star() const { return !x_star_drift.empty(); }
   // The dt-coefficient of dP_ij, all parts combined (i, j in either order).
   Polynomial P_drift(std::size_t i, std::size_t j) const;
 };

@@ -6,6 +6,9 @@
 // x-polynomial read as an m-polynomial needs no renumbering (f(m) in the EKF).
 // Text names come from the model room's filter_variable_names(), which user
 // filters (Model::user_filters) are written in.
+// A filter for delayed observations (docs/theory.md §2.6) has three more blocks after P, which
+// are not part of count(): md_i = m_i(t - h), phi_i = Phi*_ii(t - h, t) (inputs the filter reads
+// from its history) and xs_i = x*_i, the noise-free solution the Phi* kinds integrate beside m, P.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,7 +19,7 @@ namespace pfgen {
 
 class FilterVariables {
  public:
-  explicit FilterVariables(std::size_t n = 0);
+  explicit FilterVariables(std::size_t n = 0, bool delayed = false);
 
   std::size_t n() const { return n_; }
   std::size_t count() const { return n_ + n_ * (n_ + 1) / 2; }
@@ -26,6 +29,13 @@ class FilterVariables {
   std::size_t upper_index(std::size_t i, std::size_t j) const;  // position in the upper triangle
 
   bool is_mean(std::uint32_t variable) const { return variable < n_; }
+
+  bool delayed() const { return delayed_; }
+  std::uint32_t m_delayed(std::size_t i) const { return delayed_variable(0, i); }  // m_i(t - h)
+  std::uint32_t phi(std::size_t i) const { return delayed_variable(1, i); }        // Phi*_ii(t - h, t)
+  std::uint32_t x_star(std::size_t i) const { return delayed_variable(2, i); }     // x*_i(t)
+  // Every variable a polynomial of this filter may hold: count(), or 4n more when delayed.
+  std::size_t all_count() const { return count() + (delayed_ ? 3 * n_ : 0); }
   // (row, column) of a P variable, 0-based, row <= column.
   std::pair<std::size_t, std::size_t> P_entry(std::uint32_t variable) const;
 
@@ -35,7 +45,9 @@ class FilterVariables {
   const std::vector<GiNaC::ex>& symbols() const { return symbols_; }
 
  private:
+  std::uint32_t delayed_variable(std::size_t block, std::size_t i) const;
   std::size_t n_;
+  bool delayed_ = false;
   std::vector<std::string> text_names_;
   std::vector<std::string> latex_names_;
   std::vector<GiNaC::ex> symbols_;

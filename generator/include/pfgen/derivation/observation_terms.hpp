@@ -17,14 +17,19 @@ struct ObservationTerms {
 
 ObservationTerms observation_terms(const ContinuousObservation& observation);
 
-// A0 + A m, one polynomial per observation row, in the filter's variables.
-std::vector<Polynomial> predicted_observation(const ContinuousObservation& observation, const FilterVariables& vars);
+// A0 + A m, one polynomial per observation row, in the filter's variables; with `delayed`,
+// A0 + A md, md = m(t - h) (FilterVariables::m_delayed).
+std::vector<Polynomial> predicted_observation(const ContinuousObservation& observation, const FilterVariables& vars,
+                                              bool delayed = false);
 
 // The gain (n x p) and the correction (upper triangle) of a derived filter.
 struct ObservationCorrection {
   std::vector<std::vector<Polynomial>> gain;
   std::vector<Polynomial> P_correction;
 };
-ObservationCorrection observation_correction(const ContinuousObservation& observation, const FilterVariables& vars);
+// With `transition`, paper 004's gain P Phi A^T R^-1 and correction P Phi A^T R^-1 A Phi P,
+// Phi = diag(phi_1..phi_n) (FilterVariables::phi; a delayed filter's variables).
+ObservationCorrection observation_correction(const ContinuousObservation& observation, const FilterVariables& vars,
+                                             bool transition = false);
 
 }  // namespace pfgen

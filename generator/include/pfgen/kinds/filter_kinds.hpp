@@ -13,7 +13,7 @@
 
 namespace pfgen {
 
-enum class FilterKind { Optimal, Ekf, Additive, EkfAdditive, CdOptimal, CdEkf, CdEuler };
+enum class FilterKind { Optimal, Ekf, Additive, EkfAdditive, CdOptimal, CdEkf, CdEuler, DelayOptimal, DelayUncorrected, DelayEkf };
 
 // How a kind takes the expectations of f, of its Jacobian and of g g^T.
 enum class ExpectationRule {
@@ -33,6 +33,13 @@ enum class Prediction {
   EulerMap,  // the exact moments of one Euler step x + f dt + g sqrt(dt) xi: adds Cov(f) dt^2
 };
 
+// How a delayed-observation kind forms its gain (other kinds: Undelayed). The innovation of every
+// delayed kind is dy - (A0 + A m(t - h)) dt (docs/theory.md §2.6).
+enum class DelayGain {
+  Undelayed,   // P A^T R^-1, as if the observation were not delayed (paper 004's eqs 19-20)
+  Transition,  // P Phi*^T A^T R^-1, Phi* = diag(x*(t - h) / x*(t)) from the noise-free x* (paper 004's eq 6)
+};
+
 struct FilterKindInfo {
   FilterKind kind;
   std::string name;         // the --filter name, and (with '-' as '_') the generated code's
@@ -41,6 +48,7 @@ struct FilterKindInfo {
   DiffusionSource diffusion;
   std::vector<ObservationKind> observations;  // the observation models it is derived for
   Prediction prediction = Prediction::Ode;
+  DelayGain delay_gain = DelayGain::Undelayed;
 };
 
 // Every built-in kind, in the canonical order in which commands list and default to them.
@@ -66,5 +74,6 @@ inline bool uses_additive_diffusion(FilterKind kind) {
 }
 inline bool is_extended_kalman(FilterKind kind) { return filter_kind_info(kind).expectation == ExpectationRule::AtMean; }
 inline bool uses_euler_map(FilterKind kind) { return filter_kind_info(kind).prediction == Prediction::EulerMap; }
+inline bool uses_transition_gain(FilterKind kind) { return filter_kind_info(kind).delay_gain == DelayGain::Transition; }
 
 }  // namespace pfgen

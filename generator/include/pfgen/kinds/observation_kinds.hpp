@@ -10,6 +10,7 @@ namespace pfgen {
 enum class ObservationKind {
   Continuous,  // dy = (A0 + A x) dt + B dW2
   Sampled,     // y_k = C0 + C x(t_k) + Uv v_k at t_k = k T, v_k ~ N(0, I)
+  Delayed,     // dy = (A0 + A x(t - h)) dt + B dW2, h >= 0 (h = 0 only through the C++ API)
 };
 
 struct ObservationKindInfo {

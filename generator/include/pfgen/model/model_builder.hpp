@@ -34,6 +34,9 @@ class ModelBuilder {
   ModelBuilder& additive_diffusion(const ExMatrix& g);
   ModelBuilder& additive_diffusion_covariance(const ExMatrix& G);
   ModelBuilder& observation(const ExVector& A0, const ExMatrix& A, const ExMatrix& B);
+  // dy = (A0 + A x(t - delay)) dt + B dW2; delay >= 0 (the validator refuses a negative one).
+  ModelBuilder& delayed_observation(const GiNaC::numeric& delay, const ExVector& A0, const ExMatrix& A,
+                                    const ExMatrix& B);
   // Samples y_k = C0 + C x(k T) + Uv v_k (SampledObservation); C0 may be zeros.
   ModelBuilder& sampled_observation(const GiNaC::numeric& period, const ExVector& C0, const ExMatrix& C,
                                     const ExMatrix& Uv, std::size_t substeps = 1);

@@ -3,7 +3,7 @@
 // is read (kinds/observation_kinds.hpp lists them), and every room asks the ObservationModel for
 // its kind and the alternative it handles, instead of assuming one observation equation; a new
 // kind is one more alternative of the variant below: continuous, dy = (A0 + A x) dt + B dW2, or
-// sampled, y_k = C0 + C x(t_k) + Uv v_k at t_k = k T.
+// sampled, y_k = C0 + C x(t_k) + Uv v_k at t_k = k T, or delayed, dy = (A0 + A x(t - h)) dt + B dW2.
 #include <cstddef>
 #include <variant>
 
@@ -29,11 +29,21 @@ struct SampledObservation {
   std::size_t substeps = 1;   // prediction sub-steps per period, >= 1
 };
 
+// Continuous observations of the state h time units ago (paper 004): the sensor reports late.
+// Before t = h the observation sees the pre-history x(s) = x(0), s < 0 (docs/theory.md §2.6).
+// The model file's `delay: 0` is an ordinary ContinuousObservation; h = 0 here (C++ API) keeps the
+// delayed kinds' equations, which then reduce to the undelayed ones.
+struct DelayedObservation {
+  GiNaC::numeric delay;  // h >= 0, exact
+  ContinuousObservation rate;  // A0, A, B of dy = (A0 + A x(t - h)) dt + B dW2
+};
+
 class ObservationModel {
  public:
   ObservationModel() = default;  // continuous with no rows: ModelBuilder requires a real one
   ObservationModel(ContinuousObservation continuous) : form_(std::move(continuous)) {}  // NOLINT: implicit by design
   ObservationModel(SampledObservation sampled) : form_(std::move(sampled)) {}  // NOLINT: implicit by design
+  ObservationModel(DelayedObservation delayed) : form_(std::move(delayed)) {}  // NOLINT: implicit by design
 
   ObservationKind kind() const;
   std::size_t p() const;  // observations per time or per sample (rows of A or of C)
@@ -41,10 +51,17 @@ class ObservationModel {
   // kind (a room that handles it must have checked kind() or the kind registry first).
   const ContinuousObservation& continuous() const;
   const SampledObservation& sampled() const;
+  const DelayedObservation& delayed() const;
   bool is_sampled() const { return kind() == ObservationKind::Sampled; }
+  bool is_delayed() const { return kind() == ObservationKind::Delayed; }
+  // A0, A and B of a continuous or delayed observation (the rate terms of dy); std::logic_error
+  // for sampled ones. For rooms that handle the delay themselves (or need only the coefficients).
+  const ContinuousObservation& rate() const;
+  // h of a delayed observation, 0 for the others.
+  GiNaC::numeric delay() const;
 
  private:
-  std::variant<ContinuousObservation, SampledObservation> form_;
+  std::variant<ContinuousObservation, SampledObservation, DelayedObservation> form_;
 };
 
 }  // namespace pfgen
