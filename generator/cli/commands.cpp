@@ -157,6 +157,13 @@ int run_eval(const EvalOptions& options) {
   point.t = parse_number("--t", options.t);
   point.m = parse_number_list("--m", options.m);
   point.P = parse_number_matrix("--P", options.P);
+  auto optional_list = [](const std::string& option, const std::string& text) {
+    return text.empty() ? std::vector<GiNaC::numeric>{} : parse_number_list(option, text);
+  };
+  point.m_delayed = optional_list("--m-delayed", options.m_delayed);
+  point.x_star = optional_list("--x-star", options.x_star);
+  point.x_star_delayed = optional_list("--x-star-delayed", options.x_star_delayed);
+  point.phi = optional_list("--phi", options.phi);
   EvaluatedFilter value = evaluate_at(model, eq, point);
 
   auto vector_json = [](const std::vector<double>& v) {
@@ -187,6 +194,17 @@ int run_eval(const EvalOptions& options) {
     out.add("m_drift", vector_json(value.m_drift));
     out.add("gain", matrix_json(value.gain));
     out.add("P_drift", matrix_json(value.P_drift));
+  }
+  if (eq.is_delayed()) {
+    // The delayed inputs as used (after the defaults and phi's rule), then x*'s own drift.
+    Json inputs = Json::object();
+    inputs.add("m_delayed", vector_json(value.m_delayed));
+    if (eq.uses_x_star()) {
+      inputs.add("x_star", vector_json(value.x_star));
+      inputs.add("phi", vector_json(value.phi));
+    }
+    out.add("delayed_inputs", inputs);
+    if (eq.uses_x_star()) out.add("x_star_drift", vector_json(value.x_star_drift));
   }
   std::cout << out.dump();
   return 0;

@@ -25,6 +25,8 @@ struct EvalOptions {
   std::string m;
   std::string P;
   std::vector<std::string> assignments;
+  // Delayed observations only (empty: the default, point_evaluator.hpp).
+  std::string m_delayed, x_star, x_star_delayed, phi;
 };
 
 struct CodegenCliOptions {

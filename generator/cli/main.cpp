@@ -63,6 +63,15 @@ int main(int argc, char** argv) {
   eval_cmd->add_option("--m", eval.m, "Estimate, comma-separated: --m=-1.5,2")->required();
   eval_cmd->add_option("--P", eval.P, "Covariance, rows separated by ';': --P '1,0;0,1'")->required();
   eval_cmd->add_option("--set", eval.assignments, "Parameter value, name=value (repeatable)");
+  // Delayed observations: what the filter's history holds at t (docs/theory.md §2.6).
+  eval_cmd->add_option("--m-delayed", eval.m_delayed,
+                       "Delayed filters: the estimate m(t-h) the innovation uses (default: --m)");
+  eval_cmd->add_option("--x-star", eval.x_star, "delay-optimal: the noise-free solution x*(t) (default: --m)");
+  eval_cmd->add_option("--x-star-delayed", eval.x_star_delayed,
+                       "delay-optimal: x*(t-h) (default: --x-star); phi_i = x*_i(t-h)/x*_i(t) for t >= h, "
+                       "0 where x*_i(t) = 0, 0 for t < h");
+  eval_cmd->add_option("--phi", eval.phi,
+                       "delay-optimal: the diagonal of Phi* itself, used as given (instead of --x-star-delayed)");
 
   CodegenCliOptions codegen;
   CLI::App* codegen_cmd = app.add_subcommand("codegen", "Write header-only C++ of a model's filters");

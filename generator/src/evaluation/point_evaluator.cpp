@@ -8,19 +8,48 @@
 namespace pfgen {
 namespace {
 
+// The values a delayed filter reads besides m and P (docs/theory.md §2.6), exact; empty for the
+// inputs the filter does not read.
+struct DelayedInputs {
+  std::vector<GiNaC::numeric> m_delayed, phi, x_star;
+};
+
+// The options' values, or their defaults (md = m, x* = m, x*(t - h) = x*), and phi by the filters'
+// own rule: x*_i(t - h) / x*_i(t) for t >= h, 0 where x*_i(t) = 0, and 0 for t < h.
+DelayedInputs delayed_inputs(const FilterEquations& eq, const EvaluationPoint& point) {
+  DelayedInputs in;
+  if (!eq.is_delayed()) return in;
+  in.m_delayed = point.m_delayed.empty() ? point.m : point.m_delayed;
+  if (!eq.uses_x_star()) return in;
+  in.x_star = point.x_star.empty() ? point.m : point.x_star;
+  if (!point.phi.empty()) {
+    in.phi = point.phi;
+    return in;
+  }
+  const std::vector<GiNaC::numeric>& earlier = point.x_star_delayed.empty() ? in.x_star : point.x_star_delayed;
+  for (std::size_t i = 0; i < in.x_star.size(); ++i)
+    in.phi.push_back(point.t < eq.delay || in.x_star[i].is_zero() ? GiNaC::numeric(0) : earlier[i] / in.x_star[i]);
+  return in;
+}
+
 class PolynomialEvaluator {
  public:
-  PolynomialEvaluator(const Model& model, const FilterVariables& vars, const EvaluationPoint& point) {
+  PolynomialEvaluator(const Model& model, const FilterVariables& vars, const EvaluationPoint& point,
+                      const DelayedInputs& delayed) {
     for (const auto& p : model.parameters) {
       auto it = point.parameters.find(p.name);
       coefficient_values_[p.symbol] = it != point.parameters.end() ? it->second : p.default_value;
     }
     coefficient_values_[model.time] = point.t;
-    variable_values_.resize(vars.count());
+    // Every variable a polynomial may hold: a delayed input the filter does not read stays 0.
+    variable_values_.resize(vars.all_count());
     for (std::size_t i = 0; i < vars.n(); ++i) {
       variable_values_[vars.m(i)] = point.m[i];
       for (std::size_t j = i; j < vars.n(); ++j) variable_values_[vars.P(i, j)] = point.P[i][j];
     }
+    for (std::size_t i = 0; i < delayed.m_delayed.size(); ++i) variable_values_[vars.m_delayed(i)] = delayed.m_delayed[i];
+    for (std::size_t i = 0; i < delayed.phi.size(); ++i) variable_values_[vars.phi(i)] = delayed.phi[i];
+    for (std::size_t i = 0; i < delayed.x_star.size(); ++i) variable_values_[vars.x_star(i)] = delayed.x_star[i];
   }
 
   // The value before rounding: exact where the inputs are.
@@ -51,7 +80,30 @@ class PolynomialEvaluator {
   std::vector<GiNaC::numeric> variable_values_;
 };
 
-void check_point(const Model& model, const EvaluationPoint& point) {
+void check_length(const std::string& option, const std::vector<GiNaC::numeric>& values, std::size_t n) {
+  if (!values.empty() && values.size() != n)
+    throw EvaluationError(option + ": expected " + std::to_string(n) + " values, found " + std::to_string(values.size()));
+}
+
+// The delayed inputs: only for a filter that reads them, each with n values, phi or x*(t - h).
+void check_delayed_point(const Model& model, const FilterEquations& eq, const EvaluationPoint& point) {
+  const std::vector<std::pair<std::string, const std::vector<GiNaC::numeric>*>> inputs = {
+      {"--m-delayed", &point.m_delayed}, {"--x-star", &point.x_star}, {"--x-star-delayed", &point.x_star_delayed},
+      {"--phi", &point.phi}};
+  for (const auto& [option, values] : inputs) {
+    if (values->empty()) continue;
+    if (!eq.is_delayed())
+      throw EvaluationError(option + ": filter " + eq.name + " is not for delayed observations (model " + model.name +
+                            " has none)");
+    if (option != "--m-delayed" && !eq.uses_x_star())
+      throw EvaluationError(option + ": filter " + eq.name + " has no Phi* gain, so it reads no x* (delay-optimal does)");
+    check_length(option, *values, model.n());
+  }
+  if (!point.phi.empty() && !point.x_star_delayed.empty())
+    throw EvaluationError("--phi: give --phi or --x-star-delayed (from which phi is computed), not both");
+}
+
+void check_point(const Model& model, const FilterEquations& eq, const EvaluationPoint& point) {
   const std::size_t n = model.n();
   if (point.m.size() != n)
     throw EvaluationError("--m: expected " + std::to_string(n) + " values, found " + std::to_string(point.m.size()));
@@ -73,6 +125,7 @@ void check_point(const Model& model, const EvaluationPoint& point) {
   const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(P).eigenvalues().minCoeff();
   if (smallest < -1e-12 * std::max(1.0, P.cwiseAbs().maxCoeff()))
     throw EvaluationError("--P: not positive semi-definite (smallest eigenvalue " + std::to_string(smallest) + ")");
+  check_delayed_point(model, eq, point);
   for (const auto& [name, value] : point.parameters) {
     bool known = false;
     for (const auto& p : model.parameters) known = known || p.name == name;
@@ -121,9 +174,10 @@ void evaluate_sampled(const FilterEquations& eq, const PolynomialEvaluator& valu
 }  // namespace
 
 EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const EvaluationPoint& point) {
-  check_point(model, point);
+  check_point(model, eq, point);
   const FilterVariables& vars = eq.variables;
-  PolynomialEvaluator value(model, vars, point);
+  const DelayedInputs delayed = delayed_inputs(eq, point);
+  PolynomialEvaluator value(model, vars, point, delayed);
   const std::size_t n = eq.n();
   EvaluatedFilter out;
   for (std::size_t i = 0; i < n; ++i) out.m_drift.push_back(value(eq.m_drift[i], "m_drift[" + std::to_string(i + 1) + "]"));
@@ -141,6 +195,17 @@ EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const
       out.P_drift[i][j] = out.P_drift[j][i] =
           value(eq.P_drift(i, j), "P_drift[" + std::to_string(i + 1) + "][" + std::to_string(j + 1) + "]");
   if (eq.is_sampled()) evaluate_sampled(eq, value, out);
+  auto rounded = [](const std::vector<GiNaC::numeric>& exact, const std::string& what) {
+    std::vector<double> out;
+    for (std::size_t i = 0; i < exact.size(); ++i)
+      out.push_back(PolynomialEvaluator::rounded(exact[i], what + "[" + std::to_string(i + 1) + "]"));
+    return out;
+  };
+  out.m_delayed = rounded(delayed.m_delayed, "m_delayed");
+  out.phi = rounded(delayed.phi, "phi");
+  out.x_star = rounded(delayed.x_star, "x_star");
+  for (std::size_t i = 0; i < eq.x_star_drift.size(); ++i)
+    out.x_star_drift.push_back(value(eq.x_star_drift[i], "x_star_drift[" + std::to_string(i + 1) + "]"));
   return out;
 }
 

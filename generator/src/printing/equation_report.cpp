@@ -3,6 +3,7 @@
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
+#include "pfgen/printing/delayed_report.hpp"
 #include "pfgen/printing/report_parts.hpp"
 #include "pfgen/printing/sampled_report.hpp"
 
@@ -35,8 +36,9 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
   out += "; P = covariance of (";
   for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
   out += ")\n";
+  if (eq.is_delayed()) out += delayed_header_text(eq);
   out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
-                              : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [P A^T (B B^T)^-1 A P]\n\n";
+                              : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [" + correction_words_text(eq) + "]\n\n";
   for (std::size_t i = 0; i < n; ++i) {
     std::string line = "dm" + std::to_string(i + 1) + " = (" + printer.print(eq.m_drift[i], name) + ") dt";
     for (std::size_t r = 0; r < eq.p; ++r) {
@@ -54,19 +56,20 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
     for (std::size_t j = i; j < n; ++j)
       out += "d" + vars.text_name(vars.P(i, j)) + " = (" + join_parts(printer, P_parts(eq, vars.upper_index(i, j)), name) +
              ") dt\n";
-  return out;
+  return out + x_star_equations_text(eq);
 }
 
 std::string equations_latex(const FilterEquations& eq) {
   if (eq.is_sampled()) return sampled_equations_latex(eq);
   LatexPrinter printer;
   const FilterVariables& vars = eq.variables;
-  auto name = [&](std::uint32_t v) { return vars.latex_name(v); };
+  auto name = [&](std::uint32_t v) { return latex_variable_name(vars, v); };
   const std::size_t n = eq.n();
   const std::vector<Polynomial>& h = eq.predicted_observation;
   auto K = [](std::size_t i, std::size_t r) { return "K_{" + std::to_string(i + 1) + "," + std::to_string(r + 1) + "}"; };
 
   std::string out = exactness_latex(eq.exactness);
+  if (eq.is_delayed()) out += delayed_paragraph_latex(eq);
   out += "\\begin{align*}\n";
   // Each right-hand side is cut into lines that fit the page (latex_line_breaker).
   std::vector<std::string> lines;
@@ -84,6 +87,7 @@ std::string equations_latex(const FilterEquations& eq) {
     for (std::size_t j = i; j < n; ++j)
       lines.push_back(latex_align_lines("\\frac{d" + vars.latex_name(vars.P(i, j)) + "}{dt}",
                                         join_parts(printer, P_parts(eq, vars.upper_index(i, j)), name)));
+  for (std::string& line : x_star_lines_latex(eq)) lines.push_back(std::move(line));
   for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
   out += "\\end{align*}\n";
   return out;
@@ -127,6 +131,7 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
   out.add("gain", gain);
   out.add("predicted_observation", predicted);
   out.add("P_drift", P_drift);
+  if (eq.is_delayed()) add_delayed_json(eq, out);
   return out;
 }
 

@@ -64,7 +64,10 @@ std::string model_section(const Model& model) {
              printer.print(model.parameters[k].default_value) + "$";
     out += " (kept symbolic below)";
   }
-  out += ".\n\\[ dx = f\\,dt + g\\,dW_1, \\qquad dy = (A_0 + A x)\\,dt + B\\,dW_2 \\]\n";
+  // A delayed observation sees the state h ago (docs/theory.md §2.6).
+  const bool delayed = model.observation.is_delayed();
+  out += std::string(".\n\\[ dx = f\\,dt + g\\,dW_1, \\qquad dy = (A_0 + A ") + (delayed ? "x(t-h)" : "x") +
+         ")\\,dt + B\\,dW_2 \\]\n";
   out += "\\begin{align*}\n" + matrix_lines(printer, "f", "f", column(model.drift)) + " \\\\\n";
   if (model.diffusion.g) {
     out += matrix_lines(printer, "g", "g", *model.diffusion.g) + " \\\\\n";
@@ -88,14 +91,17 @@ std::string model_section(const Model& model) {
              matrix_lines(printer, "C", "C", sampled.C) + " \\\\\n" + matrix_lines(printer, "U_v", "U_v", sampled.Uv) +
              " \\\\\nT &= " + printer.print(sampled.period);
   } else {
-    const ContinuousObservation& observation = model.observation.continuous();
+    const ContinuousObservation& observation = model.observation.rate();
+    const std::string delay = delayed ? ", \\quad h = " + printer.print(model.observation.delay()) : "";
     const std::string observation_line = bmatrix(printer, column(observation.A0)) + ", \\quad A = " +
-                                         bmatrix(printer, observation.A) + ", \\quad B = " + bmatrix(printer, observation.B);
+                                         bmatrix(printer, observation.A) + ", \\quad B = " + bmatrix(printer, observation.B) +
+                                         delay;
     if (latex_width("A_0 = " + observation_line) <= kLatexLineWidth)
       out += "A_0 &= " + observation_line;
     else
       out += matrix_lines(printer, "A_0", "A_0", column(observation.A0)) + " \\\\\n" +
-             matrix_lines(printer, "A", "A", observation.A) + " \\\\\n" + matrix_lines(printer, "B", "B", observation.B);
+             matrix_lines(printer, "A", "A", observation.A) + " \\\\\n" + matrix_lines(printer, "B", "B", observation.B) +
+             (delayed ? " \\\\\nh &= " + printer.print(model.observation.delay()) : "");
   }
   if (model.initial) {
     const InitialConditions& ic = *model.initial;
@@ -125,6 +131,12 @@ std::string latex_document(const Model& model, const std::vector<FilterEquations
     out += "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state and $P_{ij}$ the error covariance. "
            "Between samples $m$ and $P$ follow the prediction; at each sample $y$ the Kalman update with "
            "$S = C P C^{T} + U_v U_v^{T}$ and $K = P C^{T} S^{-1}$ applies.";
+  else if (model.observation.is_delayed())
+    out += "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state, $P_{ij}$ the error covariance, "
+           "$K$ the gain and $dy_{r}$ the observation increments; the innovation compares $dy$ with the estimate "
+           "$m(t-h)$ of the delayed state. Each $dP$ is written as $E[(x-m)f^{T}] + E[f(x-m)^{T}]$, then the "
+           "diffusion term, then the correction $-K A \\Phi^{*} P$ (with $\\Phi^{*} = I$ for the filters without "
+           "$\\Phi^{*}$), without merging like terms across the three parts.";
   else
     out += "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state, $P_{ij}$ the error covariance, "
            "$K$ the gain $P A^{T}(B B^{T})^{-1}$ and $dy_{r}$ the observation increments. Each $dP$ is written as "

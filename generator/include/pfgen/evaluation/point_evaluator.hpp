@@ -12,11 +12,19 @@
 
 namespace pfgen {
 
+// A filter for delayed observations (docs/theory.md §2.6) also reads what its history holds: md =
+// m(t - h), and for the kinds with the Phi* gain x*(t) and x*(t - h), from which
+// phi_i = x*_i(t - h) / x*_i(t) (0 where x*_i(t) = 0, and for t < h), or phi itself. An input left
+// empty takes its default: md = m, x* = m, x*(t - h) = x*(t) (so phi = 1 from t = h on).
 struct EvaluationPoint {
   GiNaC::numeric t = 0;
   std::vector<GiNaC::numeric> m;
   std::vector<std::vector<GiNaC::numeric>> P;      // full n x n, symmetric
   std::map<std::string, GiNaC::numeric> parameters;  // overrides of the model defaults
+  std::vector<GiNaC::numeric> m_delayed;         // --m-delayed
+  std::vector<GiNaC::numeric> x_star;            // --x-star
+  std::vector<GiNaC::numeric> x_star_delayed;    // --x-star-delayed
+  std::vector<GiNaC::numeric> phi;               // --phi, instead of --x-star-delayed
 };
 
 // For a sampled kind, m_drift and P_drift are the prediction's (no observation term) and gain is
@@ -27,9 +35,12 @@ struct EvaluatedFilter {
   std::vector<std::vector<double>> P_drift;    // n x n, symmetric
   std::vector<std::vector<double>> P_dt2;      // cd-euler only: Cov(f), n x n
   std::vector<std::vector<double>> innovation_covariance;  // sampled only: C P C^T + Uv Uv^T, r x r
+  // Delayed only: the inputs used (md; and phi, x* for the Phi* kinds) and x*'s drift f(x*, t).
+  std::vector<double> m_delayed, phi, x_star, x_star_drift;
 };
 
-// A problem with the point itself (wrong sizes, asymmetric P, unknown parameter).
+// A problem with the point itself (wrong sizes, asymmetric P, unknown parameter, a delayed input
+// for a filter that does not read it).
 class EvaluationError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

@@ -1,0 +1,119 @@
+#include "pfgen/printing/delayed_report.hpp"
+
+#include <functional>
+
+#include "pfgen/notation/latex_line_breaker.hpp"
+#include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/text_printer.hpp"
+
+namespace pfgen {
+namespace {
+
+std::string index(std::size_t i) { return std::to_string(i + 1); }
+
+// "md1 = m1(t-h), md2 = m2(t-h)" or the LaTeX names, for every state.
+std::string list(std::size_t n, const std::function<std::string(std::size_t)>& item) {
+  std::string out;
+  for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + item(i);
+  return out;
+}
+
+}  // namespace
+
+std::string latex_variable_name(const FilterVariables& vars, std::uint32_t variable) {
+  const std::string& name = vars.latex_name(variable);
+  return variable < vars.count() ? name : "{" + name + "}";
+}
+
+std::string correction_words_text(const FilterEquations& eq) {
+  return eq.uses_x_star() ? "P Phi* A^T (B B^T)^-1 A Phi* P" : "P A^T (B B^T)^-1 A P";
+}
+
+std::string delayed_header_text(const FilterEquations& eq) {
+  TextPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n();
+  std::string out = "observation: delayed by h = " + printer.print(eq.delay) +
+                    ", dy = (A0 + A x(t-h)) dt + B dW2 (before t = h the sensor sees x(0))\n";
+  out += "delayed inputs: " + list(n, [&](std::size_t i) {
+           return vars.text_name(vars.m_delayed(i)) + " = " + vars.text_name(vars.m(i)) + "(t-h)";
+         });
+  out += std::string(n == 1 ? ", the filter's own estimate" : ", the filter's own estimates") +
+         " h earlier (m0 for t < h)\n";
+  if (eq.uses_x_star()) {
+    out += "Phi* = diag(" + list(n, [&](std::size_t i) { return vars.text_name(vars.phi(i)); }) +
+           "): phi_i = xs_i(t-h)/xs_i(t) for t >= h, 0 where xs_i(t) = 0, and 0 for t < h;\n";
+    out += "  xs = x*, the noise-free solution of dxs = f(xs, t) dt from xs(0) = m0 (last equations)\n";
+  }
+  return out;
+}
+
+std::string x_star_equations_text(const FilterEquations& eq) {
+  TextPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  std::string out;
+  for (std::size_t i = 0; i < eq.x_star_drift.size(); ++i)
+    out += "d" + vars.text_name(vars.x_star(i)) + " = (" + printer.print(eq.x_star_drift[i], name) + ") dt\n";
+  return out;
+}
+
+std::string delayed_paragraph_latex(const FilterEquations& eq) {
+  LatexPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n();
+  std::string out = "\\paragraph{Delayed observation.} $dy = (A_0 + A x(t-h))\\,dt + B\\,dW_2$ with $h = " +
+                    printer.print(eq.delay) + "$ (before $t = h$ the sensor sees $x(0)$). ";
+  out += "$m_{i}(t-h)$ is the filter's own estimate $m_{i}$ at time $t - h$, and $m_{i}(0)$ for $t < h$.";
+  if (eq.uses_x_star()) {
+    out += " The gain is $P \\Phi^{*} A^{T}(B B^{T})^{-1}$ with $\\Phi^{*} = \\mathrm{diag}(" +
+           list(n, [&](std::size_t i) { return latex_variable_name(vars, vars.phi(i)); }) + ")$, ";
+    out += "$\\Phi^*_{i} = x^*_{i}(t-h) / x^*_{i}(t)$ for $t \\ge h$, $0$ where $x^*_{i}(t) = 0$, and $0$ for $t < h$; "
+           "$x^{*}$ is the noise-free solution of $dx^{*} = f(x^{*}, t)\\,dt$ from $x^{*}(0) = m_0$ "
+           "(the last equations below).";
+  }
+  return out + "\n";
+}
+
+std::vector<std::string> x_star_lines_latex(const FilterEquations& eq) {
+  LatexPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return latex_variable_name(vars, v); };
+  std::vector<std::string> lines;
+  for (std::size_t i = 0; i < eq.x_star_drift.size(); ++i)
+    lines.push_back(latex_align_lines("\\frac{d" + name(vars.x_star(i)) + "}{dt}", printer.print(eq.x_star_drift[i], name)));
+  return lines;
+}
+
+void add_delayed_json(const FilterEquations& eq, Json& out) {
+  TextPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  const std::size_t n = eq.n();
+  out.add("delay", Json::string(printer.print(eq.delay)));
+  Json delayed = Json::object();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string m = vars.text_name(vars.m(i));
+    delayed.add(vars.text_name(vars.m_delayed(i)), Json::string(m + "(t-h), and " + m + "(0) for t < h"));
+  }
+  if (eq.uses_x_star()) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string xs = vars.text_name(vars.x_star(i));
+      delayed.add(vars.text_name(vars.phi(i)),
+                  Json::string(xs + "(t-h)/" + xs + "(t) for t >= h, 0 where " + xs + "(t) = 0, and 0 for t < h"));
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      delayed.add(vars.text_name(vars.x_star(i)),
+                  Json::string("x*_" + index(i) + ": d" + vars.text_name(vars.x_star(i)) + " = x_star_drift[" + index(i) +
+                               "] dt from " + vars.text_name(vars.x_star(i)) + "(0) = " + vars.text_name(vars.m(i)) +
+                               "(0)"));
+  }
+  out.add("delayed_variables", delayed);
+  if (eq.uses_x_star()) {
+    Json drift = Json::array();
+    for (const auto& p : eq.x_star_drift) drift.push(Json::string(printer.print(p, name)));
+    out.add("x_star_drift", drift);
+  }
+}
+
+}  // namespace pfgen
