@@ -210,6 +210,15 @@ const std::vector<BadModel>& bad_models() {
       {"sampled_substeps_zero.yaml", "observation.sampled.substeps", 0, 0, 10, "must be at least 1"},
       {"sampled_with_user_filter.yaml", "filters.mine", 0, 0, 11,
        "a filter given by its equations is a continuous-observation filter"},
+      // observation: {delay: h, ...} (delayed observations)
+      {"delay_negative.yaml", "observation.delay", 0, 0, 7, "must be 0 or more (the delay h of dy = (A0 + A x(t - h)) dt"},
+      {"delay_not_a_number.yaml", "observation.delay", 0, 0, 7, "'soon' is not a number (the delay h in time units)"},
+      {"delay_expression_with_parameter.yaml", "observation.delay", 0, 0, 9, "'2*lag' is not a number"},
+      {"delay_with_sampled.yaml", "observation.delay", 0, 0, 7, "a sampled observation has only the field sampled"},
+      {"delayed_state_named_md1.yaml", "states", 2, 0, 3,
+       "'md1' is reserved for the delayed-observation filters' m(t - h), Phi* and x* entries"},
+      {"delayed_parameter_named_phi1.yaml", "parameters.phi1", 0, 0, 4, "'phi1' is reserved for the delayed-observation"},
+      {"delayed_time_named_xs1.yaml", "time", 0, 0, 4, "'xs1' is reserved for the delayed-observation"},
       // simulation: (defaults for pfgen simulate)
       {"simulation_T_negative.yaml", "simulation.T", 0, 0, 10, "must be a number greater than 0, found -1"},
       {"simulation_T_not_a_number.yaml", "simulation.T", 0, 0, 10, "'soon' is not a number"},
@@ -425,6 +434,28 @@ TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line",
     check_option_error(run_pfgen({"codegen", example("allahyani_date_example1_gamma1.yaml"), "--filter", "optimal",
                                   "-o", "/nonexistent-pfgen-output"}),
                        {"--filter", "'optimal' is not derived for sampled observations"});
+  }
+  SECTION("delayed inputs: wrong count, not a number, or not read by the filter") {
+    const std::string delayed = test_data_dir() + "/delayed_scalar.yaml";
+    auto eval_delayed = [&](const std::string& kind, std::vector<std::string> options) {
+      std::vector<std::string> args = {"eval", delayed, "--filter", kind, "--m=-1.5", "--P=0.5"};
+      args.insert(args.end(), options.begin(), options.end());
+      return run_pfgen(args);
+    };
+    check_option_error(eval_delayed("delay-optimal", {"--m-delayed=1,2"}), {"--m-delayed", "expected 1 values, found 2"});
+    check_option_error(eval_delayed("delay-optimal", {"--x-star=1,2"}), {"--x-star", "expected 1 values, found 2"});
+    check_option_error(eval_delayed("delay-optimal", {"--x-star-delayed=1,2"}),
+                       {"--x-star-delayed", "expected 1 values, found 2"});
+    check_option_error(eval_delayed("delay-optimal", {"--phi=1,2"}), {"--phi", "expected 1 values, found 2"});
+    check_option_error(eval_delayed("delay-optimal", {"--phi=abc"}), {"--phi", "'abc' is not a number"});
+    check_option_error(eval_delayed("delay-optimal", {"--phi=0.5", "--x-star-delayed=1"}),
+                       {"--phi", "give --phi or --x-star-delayed", "not both"});
+    for (const std::string kind : {"delay-uncorrected", "delay-ekf"})
+      for (const std::string option : {"--x-star=1", "--x-star-delayed=1", "--phi=1"})
+        check_option_error(eval_delayed(kind, {option}),
+                           {option.substr(0, option.find('=')), "filter " + kind + " has no Phi* gain"});
+    check_option_error(eval_partial({"--m=-1.5,2", good_P, "--m-delayed=1,2"}),
+                       {"--m-delayed", "filter optimal is not for delayed observations"});
   }
   SECTION("--set of an unknown parameter or without a value") {
     check_option_error(eval_partial({"--m=-1.5,2", good_P, "--set", "a=1"}),

@@ -275,6 +275,93 @@ TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed
   check_close(optimal.m_drift[0], 0.275, "optimal m_drift");
 }
 
+// Delayed observations (docs/theory.md §2.6), tests/data/delayed_scalar.yaml:
+//   dx = (0.5 x^2 - x) dt + 0.2 x dW1, dy = (0.3 + 2 x(t - 0.5)) dt + 0.5 dW2, so R = 0.25.
+// Gaussian closure: E[f] = 0.5 (m^2 + P) - m, E[(x-m) f] = m P - P, E[g^2] = 0.04 (m^2 + P);
+// delay-optimal: gain P phi A / R = 8 P phi, correction 16 P^2 phi^2; the others: 8 P and 16 P^2;
+// delay-ekf: f(m), J = m - 1, g(m)^2 = 0.04 m^2. The innovation compares dy with 0.3 + 2 md.
+TEST_CASE("eval of a delayed model matches the hand-computed filters and delayed inputs", "[cli][integration]") {
+  const std::string model = test_data_dir() + "/delayed_scalar.yaml";
+  const double m = -1.5, P = 0.5, md = 0.25;
+  struct Expected {
+    std::string kind;
+    double m_drift, gain, P_drift;
+  };
+  // At t = 1 >= h with x* = 3 and x*(t - h) = -0.75: phi = -0.25.
+  const double phi = -0.25;
+  const double moments = 2 * (m * P - P) + 0.04 * (m * m + P);
+  const std::vector<Expected> cases = {
+      {"delay-optimal", 0.5 * (m * m + P) - m, 8 * P * phi, moments - 16 * P * P * phi * phi},
+      {"delay-uncorrected", 0.5 * (m * m + P) - m, 8 * P, moments - 16 * P * P},
+      {"delay-ekf", 0.5 * m * m - m, 8 * P, 2 * (m - 1) * P + 0.04 * m * m - 16 * P * P},
+  };
+  std::vector<std::string> covered;
+  for (const auto& c : cases) covered.push_back(c.kind);
+  CHECK(covered == kinds_for(pfgen::ObservationKind::Delayed));  // a new delayed kind needs its case here
+  auto run = [&](const std::string& kind, const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"eval", model, "--filter", kind, "--m=-1.5", "--P=0.5"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    ProcessResult r = run_pfgen(args);
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.empty());
+    JsonValue j = parse_json(r.out);
+    REQUIRE(j.kind == JsonValue::Kind::Object);
+    return j;
+  };
+  for (const auto& c : cases) {
+    INFO("filter " << c.kind);
+    const bool x_star = c.kind == "delay-optimal";
+    const std::vector<std::string> extra =
+        x_star ? std::vector<std::string>{"--t=1", "--m-delayed=0.25", "--x-star=3", "--x-star-delayed=-0.75"}
+               : std::vector<std::string>{"--t=1", "--m-delayed=0.25"};
+    JsonValue j = run(c.kind, extra);
+    std::vector<std::string> keys = {"model", "filter", "m_drift", "gain", "P_drift", "predicted_observation",
+                                     "delayed_inputs"};
+    if (x_star) keys.push_back("x_star_drift");
+    CHECK(j.keys() == keys);
+    check_close(numbers(j["m_drift"])[0], c.m_drift, "m_drift");
+    check_close(numbers(j["gain"].items.at(0))[0], c.gain, "gain");
+    check_close(numbers(j["P_drift"].items.at(0))[0], c.P_drift, "P_drift");
+    check_close(numbers(j["predicted_observation"])[0], 0.3 + 2 * md, "predicted_observation");
+    const JsonValue& inputs = j["delayed_inputs"];
+    CHECK(inputs.keys() == (x_star ? std::vector<std::string>{"m_delayed", "x_star", "phi"}
+                                   : std::vector<std::string>{"m_delayed"}));
+    check_close(numbers(inputs["m_delayed"])[0], md, "m_delayed");
+    if (x_star) {
+      check_close(numbers(inputs["x_star"])[0], 3, "x_star");
+      check_close(numbers(inputs["phi"])[0], phi, "phi");
+      check_close(numbers(j["x_star_drift"])[0], 0.5 * 9 - 3, "x_star_drift");
+    }
+  }
+  const double optimal_moments = moments;
+  {  // phi is 0 for t < h and where x*(t) = 0, and --phi is used as given
+    auto gain_and_P = [&](const std::vector<std::string>& extra, double expected_phi) {
+      INFO("delay-optimal with " << extra.size() << " delayed options, phi " << expected_phi);
+      JsonValue j = run("delay-optimal", extra);
+      check_close(numbers(j["delayed_inputs"]["phi"])[0], expected_phi, "phi");
+      check_close(numbers(j["gain"].items.at(0))[0], 8 * P * expected_phi, "gain");
+      check_close(numbers(j["P_drift"].items.at(0))[0], optimal_moments - 16 * P * P * expected_phi * expected_phi,
+                  "P_drift");
+    };
+    gain_and_P({"--t=0.25", "--x-star=3", "--x-star-delayed=-0.75"}, 0);  // t < h = 0.5
+    gain_and_P({"--t=0.5", "--x-star=3", "--x-star-delayed=-0.75"}, -0.25);  // t = h: the ratio
+    gain_and_P({"--t=1", "--x-star=0", "--x-star-delayed=-0.75"}, 0);
+    gain_and_P({"--t=0.25", "--phi=0.5"}, 0.5);  // given phi: no rule applied
+  }
+  {  // without delayed options: md = m, x* = m, x*(t - h) = x*, so phi = 1 from t = h on
+    JsonValue j = run("delay-optimal", {"--t=1"});
+    check_close(numbers(j["predicted_observation"])[0], 0.3 + 2 * m, "predicted_observation");
+    check_close(numbers(j["delayed_inputs"]["m_delayed"])[0], m, "m_delayed");
+    check_close(numbers(j["delayed_inputs"]["x_star"])[0], m, "x_star");
+    check_close(numbers(j["delayed_inputs"]["phi"])[0], 1, "phi");
+    check_close(numbers(j["x_star_drift"])[0], 0.5 * m * m - m, "x_star_drift");
+    check_close(numbers(j["gain"].items.at(0))[0], 8 * P, "gain");
+    // At the default t = 0 < h, phi is 0.
+    check_close(numbers(run("delay-optimal", {})["delayed_inputs"]["phi"])[0], 0, "phi at t = 0");
+  }
+}
+
 // The whole output of eval, byte for byte, against files written by the program before the sampled
 // kinds came (tests/data/eval/): every key, every digit and the order of the keys. The sampled kinds
 // share the evaluator, and must leave the continuous kinds' output (the gain above all) as it was.

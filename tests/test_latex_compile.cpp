@@ -118,3 +118,36 @@ TEST_CASE("pfgen latex compiles for names, parameters and matrices that need esc
   CHECK(tex.find("model\\_with\\_under\\_scores\\_") != std::string::npos);
   CHECK(tex.find("\\section*{Filter \\texttt{ekf-additive}}") != std::string::npos);
 }
+
+TEST_CASE("pfgen latex compiles for delayed observations: x(t-h), Phi* and the auxiliary ODE",
+          "[latex][pdflatex][compiler]") {
+  if (!pdflatex_available())
+    FAIL("pdflatex is not on PATH: the LaTeX compile tests need it (install texlive-latex-base)");
+  TempDir dir;
+  // Two states, so the correction has phi1^2, phi1*phi2 and phi2^2 and the x* drift a square:
+  // powers of \Phi^*_{1} and x^*_{2}, which need braces to be one superscript. A user filter too.
+  write_file(dir.file("delayed.yaml"),
+             "name: delayed_two\n"
+             "states: [x, y]\n"
+             "drift: [\"-x + 0.5*x*y\", \"-y^2\"]\n"
+             "diffusion: [[\"0.1*x\", \"0\"], [\"0\", \"0.2\"]]\n"
+             "observation:\n"
+             "  delay: 0.25\n"
+             "  A: [[\"1\", \"1\"], [\"0\", \"2\"]]\n"
+             "  B: [[\"1\", \"0\"], [\"0\", \"1\"]]\n"
+             "initial: {x0: [1, 1], m0: [0.5, 0.5], P0: [[1, 0], [0, 1]]}\n"
+             "filters:\n"
+             "  mine:\n"
+             "    m_drift: [\"-m1\", \"-m2^2\"]\n"
+             "    P_drift: [[\"-2*P11\", \"0\"], [\"0\", \"-P22\"]]\n"
+             "    gain: [[\"P11\", \"0\"], [\"0\", \"P22\"]]\n");
+  check_compiles(dir.file("delayed.yaml"), "", dir, "delayed");
+  const std::string tex = read_file(dir.file("delayed.tex"));
+  CHECK(tex.find("dy = (A_0 + A x(t-h))\\,dt + B\\,dW_2") != std::string::npos);  // the model section
+  CHECK(tex.find("h = 0.25") != std::string::npos);
+  CHECK(tex.find("{\\Phi^*_{1}}^{2}") != std::string::npos);
+  CHECK(tex.find("\\frac{d{x^*_{2}}}{dt} &= -{x^*_{2}}^{2}") != std::string::npos);
+  CHECK(tex.find("{m_{1}(t-h)}") != std::string::npos);
+  for (const std::string kind : {"delay-optimal", "delay-uncorrected", "delay-ekf", "mine"})
+    CHECK(tex.find("\\section*{Filter \\texttt{" + kind + "}}") != std::string::npos);
+}

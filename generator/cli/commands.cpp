@@ -196,7 +196,8 @@ int run_eval(const EvalOptions& options) {
     out.add("P_drift", matrix_json(value.P_drift));
   }
   if (eq.is_delayed()) {
-    // The delayed inputs as used (after the defaults and phi's rule), then x*'s own drift.
+    // A0 + A m(t-h), the delayed inputs as used (after the defaults and phi's rule), x*'s own drift.
+    out.add("predicted_observation", vector_json(value.predicted_observation));
     Json inputs = Json::object();
     inputs.add("m_delayed", vector_json(value.m_delayed));
     if (eq.uses_x_star()) {

@@ -201,6 +201,10 @@ EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const
       out.push_back(PolynomialEvaluator::rounded(exact[i], what + "[" + std::to_string(i + 1) + "]"));
     return out;
   };
+  if (eq.is_delayed())
+    for (std::size_t r = 0; r < eq.p; ++r)
+      out.predicted_observation.push_back(
+          value(eq.predicted_observation[r], "predicted_observation[" + std::to_string(r + 1) + "]"));
   out.m_delayed = rounded(delayed.m_delayed, "m_delayed");
   out.phi = rounded(delayed.phi, "phi");
   out.x_star = rounded(delayed.x_star, "x_star");

@@ -35,8 +35,9 @@ struct EvaluatedFilter {
   std::vector<std::vector<double>> P_drift;    // n x n, symmetric
   std::vector<std::vector<double>> P_dt2;      // cd-euler only: Cov(f), n x n
   std::vector<std::vector<double>> innovation_covariance;  // sampled only: C P C^T + Uv Uv^T, r x r
-  // Delayed only: the inputs used (md; and phi, x* for the Phi* kinds) and x*'s drift f(x*, t).
-  std::vector<double> m_delayed, phi, x_star, x_star_drift;
+  // Delayed only: A0 + A md, what the innovation compares dy with; the inputs used (md; and phi,
+  // x* for the Phi* kinds) and x*'s drift f(x*, t).
+  std::vector<double> predicted_observation, m_delayed, phi, x_star, x_star_drift;
 };
 
 // A problem with the point itself (wrong sizes, asymmetric P, unknown parameter, a delayed input
