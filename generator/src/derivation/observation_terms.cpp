@@ -44,7 +44,8 @@ std::vector<Polynomial> predicted_observation(const ContinuousObservation& obser
 ObservationCorrection observation_correction(const ContinuousObservation& observation, const FilterVariables& vars,
                                              bool transition) {
   const std::size_t n = vars.n(), p = observation.A.size();
-  // P_ik, times phi_k for the Phi* gain: (P Phi)_ik, and (Phi P)_lj = (P Phi)_jl by symmetry.
+  // P_ik, times phi_k for the Phi* gain: (P Phi)_ik, and (Phi P)_lj = phi_l P_lj = (P Phi)_jl by
+  // symmetry, so the correction's term k, l is P(i, k) * P(j, l) (P(l, j) would be P_lj phi_j).
   auto P = [&](std::size_t i, std::size_t k) {
     Monomial entry = Monomial::variable(vars.P(i, k));
     return transition ? entry * Monomial::variable(vars.phi(k)) : entry;
@@ -60,7 +61,7 @@ ObservationCorrection observation_correction(const ContinuousObservation& observ
       Polynomial correction;
       for (std::size_t k = 0; k < n; ++k)
         for (std::size_t l = 0; l < n; ++l)
-          if (!obs.At_Rinv_A[k][l].is_zero()) correction.add_term(P(i, k) * P(l, j), obs.At_Rinv_A[k][l]);
+          if (!obs.At_Rinv_A[k][l].is_zero()) correction.add_term(P(i, k) * P(j, l), obs.At_Rinv_A[k][l]);
       out.P_correction.push_back(std::move(correction));
     }
   return out;

@@ -1,0 +1,74 @@
+// The delay kinds' gain and correction against the matrix products written out with GiNaC
+// matrices (docs/theory.md §2.6): delay-optimal's K = P Phi A^T R^-1 and P Phi A^T R^-1 A Phi P
+// with Phi = diag(phi), the others' P A^T R^-1 and P A^T R^-1 A P. A scalar model cannot tell
+// (P Phi)_jl = P_jl phi_l from P_lj phi_j: this one has three states, two observations and a
+// non-diagonal R.
+#include <catch2/catch.hpp>
+
+#include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/model/model_builder.hpp"
+
+using namespace pfgen;
+
+namespace {
+
+Model three_state_delayed_model() {
+  ModelBuilder b("delayed_three");
+  const GiNaC::symbol x = b.state("x"), y = b.state("y"), z = b.state("z");
+  b.drift({-x + x * y, -y, -z + GiNaC::pow(x, 2)});
+  b.diffusion({{GiNaC::numeric(1, 10)}, {GiNaC::numeric(1, 5)}, {GiNaC::numeric(3, 10)}});
+  b.delayed_observation(GiNaC::numeric(1, 2), {0, GiNaC::numeric(1, 4)}, {{1, 2, 0}, {0, -1, 3}},
+                        {{1, GiNaC::numeric(1, 2)}, {0, 2}});
+  return b.build();
+}
+
+GiNaC::matrix to_matrix(const ExMatrix& m) {
+  GiNaC::matrix out(static_cast<unsigned>(m.size()), static_cast<unsigned>(m[0].size()));
+  for (unsigned i = 0; i < m.size(); ++i)
+    for (unsigned j = 0; j < m[0].size(); ++j) out(i, j) = m[i][j];
+  return out;
+}
+
+void check_equal(const Polynomial& derived, const GiNaC::ex& expected, const std::vector<GiNaC::ex>& symbols,
+                 const std::string& what) {
+  const GiNaC::ex difference = GiNaC::expand(derived.to_ex(symbols) - expected);
+  INFO(what << ": derived minus expected = " << difference);
+  CHECK(difference.is_zero());
+}
+
+}  // namespace
+
+TEST_CASE("delay kinds: gain and correction are the matrix products with Phi* on both sides", "[unit][delay]") {
+  const Model model = three_state_delayed_model();
+  const ContinuousObservation& obs = model.observation.rate();
+  const GiNaC::matrix A = to_matrix(obs.A);
+  const GiNaC::matrix R = to_matrix(obs.B).mul(to_matrix(obs.B).transpose());
+  const GiNaC::matrix At_Rinv = A.transpose().mul(R.inverse());
+  for (const FilterKind kind : {FilterKind::DelayOptimal, FilterKind::DelayUncorrected, FilterKind::DelayEkf}) {
+    const FilterEquations eq = derive_filter(model, kind);
+    INFO("kind " << eq.name);
+    const FilterVariables& vars = eq.variables;
+    const std::vector<GiNaC::ex>& s = vars.symbols();
+    const unsigned n = static_cast<unsigned>(eq.n());
+    GiNaC::matrix P(n, n), Phi(n, n);
+    for (unsigned i = 0; i < n; ++i) {
+      for (unsigned j = 0; j < n; ++j) P(i, j) = s[vars.P(i, j)];
+      Phi(i, i) = kind == FilterKind::DelayOptimal ? s[vars.phi(i)] : GiNaC::ex(1);
+    }
+    const GiNaC::matrix K = P.mul(Phi).mul(At_Rinv);
+    const GiNaC::matrix correction = K.mul(A).mul(Phi).mul(P);
+    for (unsigned i = 0; i < n; ++i)
+      for (unsigned r = 0; r < eq.p; ++r)
+        check_equal(eq.gain[i][r], K(i, r), s, "gain[" + std::to_string(i + 1) + "][" + std::to_string(r + 1) + "]");
+    for (unsigned i = 0; i < n; ++i)
+      for (unsigned j = i; j < n; ++j)
+        check_equal(eq.P_correction[vars.upper_index(i, j)], correction(i, j), s,
+                    "P_correction[" + std::to_string(i + 1) + "][" + std::to_string(j + 1) + "]");
+    // The innovation compares dy with A0 + A m(t - h).
+    for (unsigned r = 0; r < eq.p; ++r) {
+      GiNaC::ex expected = obs.A0[r];
+      for (unsigned k = 0; k < n; ++k) expected += obs.A[r][k] * s[vars.m_delayed(k)];
+      check_equal(eq.predicted_observation[r], expected, s, "predicted_observation[" + std::to_string(r + 1) + "]");
+    }
+  }
+}
