@@ -541,6 +541,61 @@ TEST_CASE("derive --format json is a JSON object with the documented keys", "[cl
   CHECK(j["exactness"]["exact"].boolean);
 }
 
+// The delayed report's additions (docs/theory.md §2.6), on tests/data/delayed_scalar.yaml: the delay,
+// the observation of x(t-h), what md1 means, and for delay-optimal phi1's definition and x*'s
+// equation; the comparators have neither phi nor xs.
+TEST_CASE("derive of a delayed model shows h, m(t-h) and, for delay-optimal, Phi* and the x* equation",
+          "[cli][integration]") {
+  const std::string model = test_data_dir() + "/delayed_scalar.yaml";
+  auto derive = [&](const std::string& kind, const std::string& format) {
+    ProcessResult r = run_pfgen({"derive", model, "--filter", kind, "--format", format});
+    INFO("stderr: " << r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.empty());
+    return r.out;
+  };
+  for (const std::string kind : {"delay-optimal", "delay-uncorrected", "delay-ekf"}) {
+    INFO("filter " << kind);
+    const bool x_star = kind == "delay-optimal";
+    const std::string text = derive(kind, "text");
+    CHECK(text.find("observation: delayed by h = 0.5, dy = (A0 + A x(t-h)) dt + B dW2") != std::string::npos);
+    CHECK(text.find("delayed inputs: md1 = m1(t-h), the filter's own estimate h earlier (m0 for t < h)\n") !=
+          std::string::npos);
+    CHECK(text.find("(dy1 - (2*md1 + 0.3) dt)") != std::string::npos);
+    CHECK((text.find("phi1 = Phi*_11") != std::string::npos || text.find("Phi* = diag(phi1)") != std::string::npos) ==
+          x_star);
+    CHECK((text.find("[P Phi* A^T (B B^T)^-1 A Phi* P]") != std::string::npos) == x_star);
+    const std::string x_star_line = "dxs1 = (0.5*xs1^2 - xs1) dt\n";
+    CHECK((text.size() >= x_star_line.size() &&
+           text.compare(text.size() - x_star_line.size(), x_star_line.size(), x_star_line) == 0) == x_star);
+    CHECK((text.find("xs1") != std::string::npos) == x_star);
+
+    JsonValue j = parse_json(derive(kind, "json"));
+    std::vector<std::string> keys = {"model", "filter", "description", "exactness", "variables", "m_drift", "gain",
+                                     "predicted_observation", "P_drift", "delay", "delayed_variables"};
+    if (x_star) keys.push_back("x_star_drift");
+    CHECK(j.keys() == keys);
+    CHECK(j["delay"].text == "0.5");
+    CHECK(j["variables"].items.size() == 2);  // m1, P11: the state of the filter
+    CHECK(j["predicted_observation"][0].text == "2*md1 + 0.3");
+    CHECK(j["delayed_variables"].keys() ==
+          (x_star ? std::vector<std::string>{"md1", "phi1", "xs1"} : std::vector<std::string>{"md1"}));
+    CHECK(j["delayed_variables"]["md1"].text == "m1(t-h), and m1(0) for t < h");
+    if (x_star) {
+      CHECK(j["delayed_variables"]["phi1"].text == "xs1(t-h)/xs1(t) for t >= h, 0 where xs1(t) = 0, and 0 for t < h");
+      CHECK(j["x_star_drift"][0].text == "0.5*xs1^2 - xs1");
+      CHECK(j["gain"][0][0].text == "8*P11*phi1");
+    }
+
+    const std::string latex = derive(kind, "latex");
+    CHECK(latex.find("\\paragraph{Delayed observation.} $dy = (A_0 + A x(t-h))\\,dt + B\\,dW_2$ with $h = 0.5$") !=
+          std::string::npos);
+    CHECK(latex.find("{m_{1}(t-h)}") != std::string::npos);
+    CHECK((latex.find("\\frac{d{x^*_{1}}}{dt} &= 0.5\\,{x^*_{1}}^{2} - {x^*_{1}}") != std::string::npos) == x_star);
+    CHECK((latex.find("{\\Phi^*_{1}}^{2}") != std::string::npos) == x_star);
+  }
+}
+
 TEST_CASE("derive, latex and eval are byte-identical across separate processes", "[cli][determinism][integration]") {
   struct Case {
     std::string file;
@@ -552,6 +607,7 @@ TEST_CASE("derive, latex and eval are byte-identical across separate processes",
       {"basin_skliar_partial.yaml", supported_kinds("basin_skliar_partial.yaml"), "--m=-1.5,2", "--P=0.5,-0.2;-0.2,0.3"},
       {"allahyani_date_example1_gamma1.yaml", supported_kinds("allahyani_date_example1_gamma1.yaml"), "--m=-1.5", "--P=0.5"},
       {"allahyani_date_example1_gamma05.yaml", supported_kinds("allahyani_date_example1_gamma05.yaml"), "--m=-1.5", "--P=0.5"},
+      {"delay_linear.yaml", supported_kinds("delay_linear.yaml"), "--m=-1.5", "--P=0.5"},
   };
   auto same_three_times = [](const std::vector<std::string>& args) {
     std::vector<ProcessResult> runs;
