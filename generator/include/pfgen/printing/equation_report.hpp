@@ -6,6 +6,8 @@
 // upper triangle of P. In text and LaTeX each dP is written as its three parts
 // in turn, E[(x-m)f^T] + E[f(x-m)^T], then E[g g^T], then - P A^T R^-1 A P, so
 // it reads like the published equations; JSON gives each entry combined.
+// A filter for delayed observations adds what delayed_report.hpp lists (h, the meaning of m(t-h),
+// Phi* and x*'s equations); sampled filters are handed to sampled_report.hpp.
 #include <string>
 
 #include "pfgen/derivation/filter_equations.hpp"

@@ -1,9 +1,12 @@
-// The delay kinds' gain and correction against the matrix products written out with GiNaC
-// matrices (docs/theory.md §2.6): delay-optimal's K = P Phi A^T R^-1 and P Phi A^T R^-1 A Phi P
-// with Phi = diag(phi), the others' P A^T R^-1 and P A^T R^-1 A P. A scalar model cannot tell
-// (P Phi)_jl = P_jl phi_l from P_lj phi_j: this one has three states, two observations and a
-// non-diagonal R.
+// The delay kinds' equations checked against code they do not share (docs/theory.md §2.6):
+// - the gain and correction against the matrix products written out with GiNaC matrices:
+//   delay-optimal's K = P Phi A^T R^-1 and P Phi A^T R^-1 A Phi P with Phi = diag(phi), the others'
+//   P A^T R^-1 and P A^T R^-1 A P. A scalar model cannot tell (P Phi)_jl = P_jl phi_l from
+//   P_lj phi_j: this one has three states, two observations and a non-diagonal R;
+// - paper 004's example (dx = x^2 dt, y = x(t - 0.8) + noise), its eqs 17-20 written out by hand.
 #include <catch2/catch.hpp>
+
+#include <functional>
 
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model_builder.hpp"
@@ -19,6 +22,16 @@ Model three_state_delayed_model() {
   b.diffusion({{GiNaC::numeric(1, 10)}, {GiNaC::numeric(1, 5)}, {GiNaC::numeric(3, 10)}});
   b.delayed_observation(GiNaC::numeric(1, 2), {0, GiNaC::numeric(1, 4)}, {{1, 2, 0}, {0, -1, 3}},
                         {{1, GiNaC::numeric(1, 2)}, {0, 2}});
+  return b.build();
+}
+
+// Paper 004's example: no state noise, A = B = 1, h = 0.8.
+Model paper004_printed_model() {
+  ModelBuilder b("paper004_printed");
+  const GiNaC::symbol x = b.state("x");
+  b.drift({GiNaC::pow(x, 2)});
+  b.diffusion({{0}});
+  b.delayed_observation(GiNaC::numeric(4, 5), {0}, {{1}}, {{1}});
   return b.build();
 }
 
@@ -70,5 +83,41 @@ TEST_CASE("delay kinds: gain and correction are the matrix products with Phi* on
       for (unsigned k = 0; k < n; ++k) expected += obs.A[r][k] * s[vars.m_delayed(k)];
       check_equal(eq.predicted_observation[r], expected, s, "predicted_observation[" + std::to_string(r + 1) + "]");
     }
+  }
+}
+
+TEST_CASE("delay kinds: paper 004's eqs 17-20 for dx = x^2 dt, and the textbook EKF", "[unit][delay]") {
+  const Model model = paper004_printed_model();
+  struct Expected {
+    FilterKind kind;
+    std::function<GiNaC::ex(GiNaC::ex, GiNaC::ex, GiNaC::ex)> m_drift, gain, P_drift;  // of (m, P, phi)
+  };
+  // eqs 17-18: m^2 + P, P Phi*, 4 P m - P^2 Phi*^2; eqs 19-20: the same without Phi*; the textbook
+  // EKF: f(m) = m^2, J = 2m, so 4 m P - P^2 (the paper's eq 22 prints 2P: docs/theory.md §8).
+  const std::vector<Expected> cases = {
+      {FilterKind::DelayOptimal, [](GiNaC::ex m, GiNaC::ex P, GiNaC::ex) { return m * m + P; },
+       [](GiNaC::ex, GiNaC::ex P, GiNaC::ex phi) { return P * phi; },
+       [](GiNaC::ex m, GiNaC::ex P, GiNaC::ex phi) { return 4 * P * m - P * P * phi * phi; }},
+      {FilterKind::DelayUncorrected, [](GiNaC::ex m, GiNaC::ex P, GiNaC::ex) { return m * m + P; },
+       [](GiNaC::ex, GiNaC::ex P, GiNaC::ex) { return P; },
+       [](GiNaC::ex m, GiNaC::ex P, GiNaC::ex) { return 4 * P * m - P * P; }},
+      {FilterKind::DelayEkf, [](GiNaC::ex m, GiNaC::ex, GiNaC::ex) { return m * m; },
+       [](GiNaC::ex, GiNaC::ex P, GiNaC::ex) { return P; },
+       [](GiNaC::ex m, GiNaC::ex P, GiNaC::ex) { return 4 * m * P - P * P; }},
+  };
+  for (const auto& c : cases) {
+    const FilterEquations eq = derive_filter(model, c.kind);
+    INFO("kind " << eq.name);
+    const FilterVariables& vars = eq.variables;
+    const std::vector<GiNaC::ex>& s = vars.symbols();
+    const GiNaC::ex m = s[vars.m(0)], P = s[vars.P(0, 0)], phi = s[vars.phi(0)];
+    CHECK(eq.delay == GiNaC::numeric(4, 5));
+    check_equal(eq.m_drift[0], c.m_drift(m, P, phi), s, "m drift");
+    check_equal(eq.gain[0][0], c.gain(m, P, phi), s, "gain");
+    check_equal(eq.P_drift(0, 0), c.P_drift(m, P, phi), s, "P drift");
+    check_equal(eq.predicted_observation[0], s[vars.m_delayed(0)], s, "innovation: dy - m(t - 0.8) dt");
+    // The auxiliary x*: dx*/dt = x*^2 from m0 (only the Phi* kind has it).
+    REQUIRE(eq.x_star_drift.size() == (c.kind == FilterKind::DelayOptimal ? 1u : 0u));
+    if (!eq.x_star_drift.empty()) check_equal(eq.x_star_drift[0], GiNaC::pow(s[vars.x_star(0)], 2), s, "x* drift");
   }
 }
