@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/model_builder.hpp"
 
 using namespace pfgen;
@@ -120,4 +121,31 @@ TEST_CASE("delay kinds: paper 004's eqs 17-20 for dx = x^2 dt, and the textbook 
     REQUIRE(eq.x_star_drift.size() == (c.kind == FilterKind::DelayOptimal ? 1u : 0u));
     if (!eq.x_star_drift.empty()) check_equal(eq.x_star_drift[0], GiNaC::pow(s[vars.x_star(0)], 2), s, "x* drift");
   }
+}
+
+TEST_CASE("evaluate_at of delay-optimal reads phi by the generated step's rule, 1 when h = 0", "[unit][delay]") {
+  // dx = x^2 dt, dy = x(t - h) dt + dW2 at m = 0.5, P = 2 with x* = 0 (where the ratio would be 0/0).
+  auto gain_at = [](const GiNaC::numeric& h, const GiNaC::numeric& t, const GiNaC::numeric& x_star) {
+    ModelBuilder b("phi_rule");
+    const GiNaC::symbol x = b.state("x");
+    b.drift({GiNaC::pow(x, 2)});
+    b.diffusion({{0}});
+    b.delayed_observation(h, {0}, {{1}}, {{1}});
+    const Model model = b.build();
+    EvaluationPoint point;
+    point.t = t;
+    point.m = {GiNaC::numeric(1, 2)};
+    point.P = {{2}};
+    point.x_star = {x_star};
+    point.x_star_delayed = {GiNaC::numeric(1, 4)};
+    const EvaluatedFilter value = evaluate_at(model, derive_filter(model, FilterKind::DelayOptimal), point);
+    REQUIRE(value.phi.size() == 1);
+    CHECK(value.gain[0][0] == 2 * value.phi[0]);  // K = P phi
+    return value.phi[0];
+  };
+  CHECK(gain_at(0, 0, 0) == 1);                          // h = 0: Phi* = I, even where x* = 0
+  CHECK(gain_at(0, 3, GiNaC::numeric(1, 2)) == 1);
+  CHECK(gain_at(GiNaC::numeric(4, 5), 3, 0) == 0);       // x*(t) = 0
+  CHECK(gain_at(GiNaC::numeric(4, 5), GiNaC::numeric(1, 2), 1) == 0);  // t < h
+  CHECK(gain_at(GiNaC::numeric(4, 5), GiNaC::numeric(4, 5), 1) == 0.25);  // t = h: x*(0) / x*(h)
 }

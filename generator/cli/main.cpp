@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
   eval_cmd->add_option("--x-star", eval.x_star, "delay-optimal: the noise-free solution x*(t) (default: --m)");
   eval_cmd->add_option("--x-star-delayed", eval.x_star_delayed,
                        "delay-optimal: x*(t-h) (default: --x-star); phi_i = x*_i(t-h)/x*_i(t) for t >= h, "
-                       "0 where x*_i(t) = 0, 0 for t < h");
+                       "0 where x*_i(t) = 0, 0 for t < h (1 when h = 0)");
   eval_cmd->add_option("--phi", eval.phi,
                        "delay-optimal: the diagonal of Phi* itself, used as given (instead of --x-star-delayed)");
 

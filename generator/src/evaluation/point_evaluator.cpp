@@ -15,7 +15,8 @@ struct DelayedInputs {
 };
 
 // The options' values, or their defaults (md = m, x* = m, x*(t - h) = x*), and phi by the filters'
-// own rule: x*_i(t - h) / x*_i(t) for t >= h, 0 where x*_i(t) = 0, and 0 for t < h.
+// own rule (the generated step's): 1 when h = 0 (Phi* = I), else x*_i(t - h) / x*_i(t) for t >= h,
+// 0 where x*_i(t) = 0, and 0 for t < h.
 DelayedInputs delayed_inputs(const FilterEquations& eq, const EvaluationPoint& point) {
   DelayedInputs in;
   if (!eq.is_delayed()) return in;
@@ -28,7 +29,9 @@ DelayedInputs delayed_inputs(const FilterEquations& eq, const EvaluationPoint& p
   }
   const std::vector<GiNaC::numeric>& earlier = point.x_star_delayed.empty() ? in.x_star : point.x_star_delayed;
   for (std::size_t i = 0; i < in.x_star.size(); ++i)
-    in.phi.push_back(point.t < eq.delay || in.x_star[i].is_zero() ? GiNaC::numeric(0) : earlier[i] / in.x_star[i]);
+    in.phi.push_back(eq.delay.is_zero()                              ? GiNaC::numeric(1)
+                     : point.t < eq.delay || in.x_star[i].is_zero() ? GiNaC::numeric(0)
+                                                                    : earlier[i] / in.x_star[i]);
   return in;
 }
 

@@ -14,7 +14,7 @@ namespace pfgen {
 
 // A filter for delayed observations (docs/theory.md §2.6) also reads what its history holds: md =
 // m(t - h), and for the kinds with the Phi* gain x*(t) and x*(t - h), from which
-// phi_i = x*_i(t - h) / x*_i(t) (0 where x*_i(t) = 0, and for t < h), or phi itself. An input left
+// phi_i = x*_i(t - h) / x*_i(t) (0 where x*_i(t) = 0, and for t < h; 1 when h = 0), or phi itself. An input left
 // empty takes its default: md = m, x* = m, x*(t - h) = x*(t) (so phi = 1 from t = h on).
 struct EvaluationPoint {
   GiNaC::numeric t = 0;
