@@ -96,7 +96,7 @@ TEST_CASE("the generated history hands out the m and x* of h ago, as a direct re
 TEST_CASE("Phi* of dx = a x dt is exp(-a h) from t = h on and 0 before", "[codegen][delayed][unit]") {
   // delay_linear: a = -0.5, h = 0.5, dt = 0.01, so Phi* = exp(0.25) for t >= 0.5.
   optimal::Filter<double> filter;
-  const double a = filter.params.a, h = optimal::delay;
+  const double a = filter.params.a, h = optimal::delay<double>();
   double worst = 0;
   std::size_t checked_before = 0, checked_after = 0;
   for (std::size_t k = 0; k < 400; ++k) {
