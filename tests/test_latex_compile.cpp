@@ -86,6 +86,8 @@ TEST_CASE("pfgen latex documents of the examples compile with pdflatex", "[latex
   check_compiles(example("allahyani_date_example1_gamma1.yaml"), "", dir, "allahyani_gamma1_all");
   check_compiles(example("allahyani_date_example1_gamma05.yaml"), "", dir, "allahyani_gamma05_all");
   check_compiles(example("basin_skliar_partial.yaml"), "ekf", dir, "skliar_ekf");
+  // Delayed observations: every delay kind (the default), with Phi* and the x* equation.
+  check_compiles(example("delay_linear.yaml"), "", dir, "delay_linear_all");
 }
 
 TEST_CASE("pfgen latex compiles for names, parameters and matrices that need escaping", "[latex][pdflatex][compiler]") {
