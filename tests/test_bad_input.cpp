@@ -450,7 +450,7 @@ TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line",
     check_option_error(eval_delayed("delay-optimal", {"--phi=abc"}), {"--phi", "'abc' is not a number"});
     check_option_error(eval_delayed("delay-optimal", {"--phi=0.5", "--x-star-delayed=1"}),
                        {"--phi", "give --phi or --x-star-delayed", "not both"});
-    for (const std::string kind : {"delay-uncorrected", "delay-ekf"})
+    for (const std::string kind : {"delay-uncorrected", "delay-ekf", "mine"})
       for (const std::string option : {"--x-star=1", "--x-star-delayed=1", "--phi=1"})
         check_option_error(eval_delayed(kind, {option}),
                            {option.substr(0, option.find('=')), "filter " + kind + " has no Phi* gain"});

@@ -360,6 +360,15 @@ TEST_CASE("eval of a delayed model matches the hand-computed filters and delayed
     // At the default t = 0 < h, phi is 0.
     check_close(numbers(run("delay-optimal", {})["delayed_inputs"]["phi"])[0], 0, "phi at t = 0");
   }
+  {  // the model's own filter: its equations as given, with the delayed innovation
+    JsonValue j = run("mine", {"--m-delayed=0.25"});
+    CHECK(j.keys() == std::vector<std::string>{"model", "filter", "m_drift", "gain", "P_drift", "predicted_observation",
+                                               "delayed_inputs"});
+    check_close(numbers(j["m_drift"])[0], -m, "m_drift");
+    check_close(numbers(j["gain"].items.at(0))[0], 2 * P, "gain");
+    check_close(numbers(j["P_drift"].items.at(0))[0], 0.04 - 2 * P, "P_drift");
+    check_close(numbers(j["predicted_observation"])[0], 0.3 + 2 * md, "predicted_observation");
+  }
 }
 
 // The whole output of eval, byte for byte, against files written by the program before the sampled
