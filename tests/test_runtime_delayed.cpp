@@ -2,7 +2,8 @@
 // pre-history x(s) = x(0), s < 0), checked against a path known in closed form; h must be a
 // whole number of steps; a filter with extra state and a fixed grid step (a delayed filter's
 // calling convention) is stepped exactly once per grid step, never refined, only on its own grid,
-// and gives the same bits in run_filter and in the Monte Carlo engine on any number of threads.
+// and gives the same bits in run_filter and in the Monte Carlo engine on any number of threads;
+// a checked-in generated delayed filter plugs in through make_delayed_filter_model.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "generated/delay_linear/delay_optimal.hpp"
 #include "pfgen_runtime/monte_carlo.hpp"
 #include "pfgen_runtime/random.hpp"
 #include "pfgen_runtime/simulation.hpp"
@@ -221,4 +223,37 @@ TEST_CASE("runtime delayed: Monte Carlo runs equal run_filter's, bitwise, on 1 a
     CHECK(std::memcmp(&one.series.truth(c, 0), &truth.x(0, c), sizeof(double)) == 0);
     CHECK(std::memcmp(&one.series.filters[0].m(c, 0), &run.state(0, c), sizeof(double)) == 0);
   }
+}
+
+TEST_CASE("runtime delayed: a generated delayed filter plugs in and steps as its own Filter object", "[runtime][delayed][unit]") {
+  // examples/delay_linear.yaml: dx = -0.5 x dt + 0.3 dW1, dy = x(t - 0.5) dt + 0.2 dW2, dt = 0.01.
+  namespace F = pfgen_models::delay_linear::delay_optimal;
+  const FilterModel filter =
+      make_delayed_filter_model("delay-optimal", F::n, F::p, F::state_size, F::history_size, F::dt<double>(),
+                                &F::initial_state<double>, &F::initial_history<double>, &F::step<double>);
+  CHECK(filter.fixed_dt == 0.01);
+  CHECK(filter.state_size() == F::state_size + F::history_size);
+  SdeSystem system;
+  system.n = 1;
+  system.q = 1;
+  system.drift = [](double, const double* x, double* f) { f[0] = -0.5 * x[0]; };
+  system.diffusion = [](double, const double*, double* g) { g[0] = 0.3; };
+  EulerMaruyama scheme(system);
+  LinearObservation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1),
+                                Eigen::MatrixXd::Constant(1, 1, 0.2));
+  observation.set_delay(F::delay<double>());
+  const TimeGrid grid = TimeGrid::to_horizon(0.0, 2.0, F::dt<double>());
+  const TruthRun truth = simulate_truth(scheme, observation, Eigen::VectorXd::Ones(1), grid, 3, 2);
+  const FilterRun run = run_filter(filter, truth);
+  REQUIRE(run.completed_steps == grid.steps);
+
+  F::Filter<double> direct;
+  for (std::size_t k = 0; k < grid.steps; ++k) {
+    direct.step(truth.dy.col(static_cast<Eigen::Index>(k)).data());
+    const auto c = static_cast<Eigen::Index>(k + 1);
+    INFO("step " << k);
+    REQUIRE(std::memcmp(&run.state(0, c), &direct.state[0], sizeof(double)) == 0);
+    REQUIRE(std::memcmp(&run.state(1, c), &direct.state[1], sizeof(double)) == 0);
+  }
+  CHECK(run.state(1, static_cast<Eigen::Index>(grid.steps)) < 0.25);  // the observations taught it something
 }

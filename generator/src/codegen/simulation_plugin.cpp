@@ -63,8 +63,8 @@ std::string filter_wrappers(const Model& model, const std::vector<std::string>& 
       out += "void " + name + "_initial_state(double* state) {\n" + alias +
              "  F::initial_state(state);\n  F::initial_history(state, state + F::state_size);\n}\n";
       out += "void " + name + "_step(double* state, double t, double dt, const double* dy) {\n" + alias +
-             "  (void)dt;  // F::dt, the table's fixed_dt\n"
-             "  F::step(state, state + F::state_size, static_cast<std::size_t>(std::llround(t / F::dt)), dy,\n"
+             "  (void)dt;  // F::dt(), the table's fixed_dt\n"
+             "  F::step(state, state + F::state_size, static_cast<std::size_t>(std::llround(t / F::dt())), dy,\n"
              "          F::Params<double>{});\n}\n\n";
     }
     return out;
@@ -97,7 +97,7 @@ std::string filter_table(const Model& model, const std::vector<std::string>& nam
       const std::string mP = ns + "::n + " + ns + "::n * (" + ns + "::n + 1) / 2";
       out += item + "state_size = " + mP + ";\n";
       out += item + "extra_state_size = " + ns + "::state_size + " + ns + "::history_size - (" + mP + ");\n";
-      out += item + "fixed_dt = " + ns + "::dt;\n";
+      out += item + "fixed_dt = " + ns + "::dt();\n";
     } else {
       out += item + "state_size = " + ns + "::state_size;\n";
     }

@@ -144,11 +144,11 @@ FilterModel make_filter_model(std::string name, std::size_t n, std::size_t p, vo
   return model;
 }
 
-// Adapts a generated delayed filter's header (docs: DESIGN.md, delayed filters): for namespace F,
-//   make_delayed_filter_model("delay-optimal", F::n, F::p, F::state_size, F::history_size, F::dt,
+// Adapts a generated delayed filter's header (templates/cpp/delayed_filter.hpp.tmpl): for namespace F,
+//   make_delayed_filter_model("delay-optimal", F::n, F::p, F::state_size, F::history_size, F::dt<double>(),
 //                             &F::initial_state<double>, &F::initial_history<double>, &F::step<double>)
 // The FilterModel's state is [F's state, history]; step(state, t, dt, dy) calls
-// F::step(state, history, k, dy, params) with k = round(t / F::dt).
+// F::step(state, history, k, dy, params) with k = round(t / dt).
 template <class Params>
 FilterModel make_delayed_filter_model(std::string name, std::size_t n, std::size_t p, std::size_t state_size,
                                       std::size_t history_size, double dt, void (*initial_state)(double*),
