@@ -123,9 +123,9 @@ std::string timing_json(const pfgen_runtime::MonteCarloResult& result, const too
 std::string delay_note(const Model& model, const SimulationSettings& s) {
   if (!model.observation.is_delayed()) return {};
   const double h = model.observation.delay().to_double();
-  return ", observation delay h = " + pfgen_support::shortest_chars(h) + " = " +
-         std::to_string(static_cast<long long>(std::llround(h / s.dt))) + " steps of dt = " +
-         pfgen_support::shortest_chars(s.dt);
+  const long long steps = std::llround(h / s.dt);
+  return ", observation delay h = " + pfgen_support::shortest_chars(h) + " = " + std::to_string(steps) +
+         (steps == 1 ? " step" : " steps") + " of dt = " + pfgen_support::shortest_chars(s.dt);
 }
 
 }  // namespace
