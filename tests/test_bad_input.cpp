@@ -212,7 +212,7 @@ const std::vector<BadModel>& bad_models() {
        "a filter given by its equations is a continuous-observation filter"},
       // observation: {delay: h, ...} (delayed observations)
       {"delay_negative.yaml", "observation.delay", 0, 0, 7, "must be 0 or more (the delay h of dy = (A0 + A x(t - h)) dt"},
-      {"delay_not_a_number.yaml", "observation.delay", 0, 0, 7, "'soon' is not a number (the delay h in time units)"},
+      {"delay_not_a_number.yaml", "observation.delay", 0, 0, 7, "'soon' is not a number: the delay h is a plain number"},
       {"delay_expression_with_parameter.yaml", "observation.delay", 0, 0, 9, "'2*lag' is not a number"},
       {"delay_with_sampled.yaml", "observation.delay", 0, 0, 7, "a sampled observation has only the field sampled"},
       {"delayed_state_named_md1.yaml", "states", 2, 0, 3,

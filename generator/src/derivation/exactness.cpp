@@ -177,8 +177,8 @@ ExactnessReport delayed_exactness(const ModelFacts& facts, FilterKind kind) {
     report.explanation = "approximation: the extended Kalman-Bucy filter linearises f at m and compares dy with "
                          "A m(t - h) under the undelayed gain";
   else if (uses_transition_gain(kind))
-    report.explanation = "approximation (paper 004): the innovation uses the filtered m(t - h) for the smoothed "
-                         "E[x(t - h) | Y(t)], and E[x(t) (x(t - h) - m(t - h))^T] is taken as P Phi*^T, Phi* "
+    report.explanation = "approximation (paper 004): the innovation uses m(t - h), the estimate made at t - h, for "
+                         "E[x(t - h) | Y(t)], which the observations since t - h also inform, and E[x(t) (x(t - h) - m(t - h))^T] is taken as P Phi*^T, Phi* "
                          "from the noise-free solution x* started at m0 (paper 004, eqs 3 and 5)" + extension;
   else
     report.explanation = "approximation: the undelayed gain P A^T R^-1 with the delayed innovation (paper 004's "

@@ -231,7 +231,8 @@ class Loader {
     if (YAML::Node delay_node = obs["delay"]; delay_node && !delay_node.IsNull()) {
       const std::string text = scalar(delay_node, "observation.delay");
       auto delay = parse_exact_number(text);
-      if (!delay) throw ModelError("observation.delay", "'" + text + "' is not a number (the delay h in time units)");
+      if (!delay) throw ModelError("observation.delay", "'" + text + "' is not a number: the delay h is a plain number of "
+                                                                   "time units (no parameters or expressions)");
       if (!delay->is_zero()) {
         builder.delayed_observation(*delay, A0, A, B);
         return;
