@@ -1,0 +1,113 @@
+// The augmented-state Kalman filter of tests/support/delayed_linear_reference.hpp, the exact
+// reference the delay filter kinds are measured against (README, "How good is Φ*?"), checked
+// against what does not share its code: the scalar Kalman filter written out here (no delay),
+// and its own truth simulation (its error variance must be its P).
+#include <catch2/catch_test_macros.hpp>
+#include <catch2/matchers/catch_matchers_floating_point.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "support/delayed_linear_reference.hpp"
+
+using pfgen_test::AugmentedKalman;
+using pfgen_test::AugmentedKalmanGain;
+using pfgen_test::AugmentedMean;
+using pfgen_test::DelayedLinearModel;
+using pfgen_test::DelayedObservationRule;
+
+TEST_CASE("delayed linear reference: with D = 0 and the left-point rule it is the scalar Kalman filter",
+          "[delay][reference][unit]") {
+  for (const double a : {-1.0, 0.7}) {
+    DelayedLinearModel model;
+    model.a = a;
+    model.sigma = 0.8;
+    model.dt = 0.05;
+    model.D = 0;
+    model.m0 = 0.3;
+    model.P0 = 2.0;
+    model.rule = DelayedObservationRule::left_point;
+    const std::size_t steps = 200;
+    const auto path = pfgen_test::simulate_delayed_linear(model, steps, 11, 0);
+    AugmentedKalman reference(model);
+    // dy_k = dt x_k + v_k, Var v_k = dt: update x_k with dy_k, then predict x_{k+1}.
+    const double F = std::exp(a * model.dt);
+    const double Q = model.sigma * model.sigma * (std::exp(2 * a * model.dt) - 1) / (2 * a);
+    double m = model.m0, P = model.P0;
+    for (std::size_t k = 0; k < steps; ++k) {
+      const double S = model.dt * model.dt * P + model.dt;
+      const double K = P * model.dt / S;
+      m += K * (path.dy[k] - model.dt * m);
+      P -= K * K * S;
+      m = F * m;
+      P = F * F * P + Q;
+      reference.step(path.dy[k]);
+      INFO("a = " << a << ", step " << k);
+      REQUIRE_THAT(reference.mean(), Catch::Matchers::WithinAbs(m, 1e-12 * (1 + std::abs(m))));
+      REQUIRE_THAT(reference.variance(), Catch::Matchers::WithinRel(P, 1e-12));
+    }
+    // The filter has learnt something: its variance is below the prior's stationary value.
+    const double prior = a < 0 ? model.sigma * model.sigma / (-2 * a) : 1e300;
+    CHECK(reference.variance() < prior);
+  }
+}
+
+TEST_CASE("delayed linear reference: its error variance over its own truths is its P (D = 3, both rules)",
+          "[delay][reference][statistical]") {
+  const std::size_t runs = 20000, steps = 40;
+  const std::vector<std::size_t> checkpoints = {2, 10, 40};  // step 2 is inside the pre-history
+  for (const double a : {-1.0, 0.5}) {
+    for (const auto rule : {DelayedObservationRule::trapezoid, DelayedObservationRule::left_point}) {
+      DelayedLinearModel model;
+      model.a = a;
+      model.sigma = 1.0;
+      model.dt = 0.1;
+      model.D = 3;
+      model.m0 = 0.5;
+      model.P0 = 1.0;
+      model.rule = rule;
+      AugmentedKalmanGain gain(model);
+      std::vector<AugmentedMean> means(runs, AugmentedMean(model));
+      std::vector<pfgen_test::DelayedLinearPath> paths;
+      paths.reserve(runs);
+      for (std::size_t r = 0; r < runs; ++r) paths.push_back(pfgen_test::simulate_delayed_linear(model, steps, 5, r));
+      for (std::size_t k = 0; k < steps; ++k) {
+        gain.advance();
+        double sum = 0, sum_squares = 0;
+        for (std::size_t r = 0; r < runs; ++r) {
+          means[r].advance(gain, paths[r].dy[k]);
+          const double e = paths[r].x[k + 1] - means[r].mean();
+          sum += e;
+          sum_squares += e * e;
+        }
+        if (std::find(checkpoints.begin(), checkpoints.end(), k + 1) == checkpoints.end()) continue;
+        const double P = gain.variance(), n = static_cast<double>(runs);
+        INFO("a = " << a << ", rule " << (rule == DelayedObservationRule::trapezoid ? "trapezoid" : "left point")
+                    << ", step " << k + 1 << ": P = " << P << ", mean e^2 = " << sum_squares / n);
+        // Gaussian errors: the mean square's standard error is P sqrt(2/n) (1 %); allow 5 of them.
+        CHECK(std::abs(sum_squares / n - P) < 5 * P * std::sqrt(2 / n));
+        CHECK(std::abs(sum / n) < 5 * std::sqrt(P / n));
+      }
+    }
+  }
+}
+
+TEST_CASE("delayed linear reference: a delay costs information, P grows with D", "[delay][reference][unit]") {
+  // The same data arrive later with a larger D, so the conditional variance of x_k cannot be
+  // smaller; with a stable a it is bounded by the prior's stationary variance σ²/(−2a).
+  double previous = 0;
+  for (const std::size_t D : {0, 1, 5, 20, 50}) {
+    DelayedLinearModel model;
+    model.a = -1.0;
+    model.dt = 0.02;
+    model.D = D;
+    AugmentedKalmanGain gain(model);
+    for (int k = 0; k < 500; ++k) gain.advance();
+    INFO("D = " << D << ": P = " << gain.variance());
+    CHECK(gain.variance() > previous);
+    CHECK(gain.variance() < 0.5 * model.sigma * model.sigma / 1.0);
+    previous = gain.variance();
+  }
+}
