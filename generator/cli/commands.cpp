@@ -1,6 +1,7 @@
 #include "commands.hpp"
 
 #include <cstdio>
+#include <cmath>
 #include <filesystem>
 #include <regex>
 #include <fstream>
@@ -50,7 +51,16 @@ int run_codegen(const CodegenCliOptions& options) {
                                                         : codegen::ScalarMode::Template;
   codegen_options.name_space = options.name_space;
   codegen_options.eliminate_common_subexpressions = !options.no_cse;
-  codegen_options.eigen_wrapper = options.eigen;
+  // A delayed filter's state carries x* and it keeps a history: it has no Eigen wrapper (the
+  // plain header's Filter is its interface), so --eigen writes none for it, and says so.
+  const bool eigen = options.eigen && !model.observation.is_delayed();
+  if (options.eigen && !eigen)
+    std::cerr << "pfgen: note: --eigen: no Eigen wrappers for the filters of delayed observations (model "
+              << model.name << "); their headers have a Filter type instead\n";
+  codegen_options.eigen_wrapper = eigen;
+  codegen_options.grid_step = options.dt ? options.dt : model.simulation.dt;
+  if (options.dt && !(*options.dt > 0 && std::isfinite(*options.dt)))
+    throw CliValueError("--dt: the step must be positive and finite");
   const std::vector<std::string> names = parse_filter_list("--filter", options.filters, model);
   // The files' names follow from the model's and the filters' names (GeneratedFilter's
   // relative_path), so they are checked before any derivation: a header must not replace the
@@ -63,7 +73,7 @@ int run_codegen(const CodegenCliOptions& options) {
       const std::string stem = model.name + "/" + filter_identifier(name);
       relative_paths.push_back(stem + ".hpp");
       written.push_back({"-o (filter " + name + ")", (std::filesystem::path(options.output_dir) / (stem + ".hpp")).string()});
-      if (options.eigen)
+      if (eigen)
         written.push_back({"-o (filter " + name + ", --eigen)",
                            (std::filesystem::path(options.output_dir) / (stem + "_eigen.hpp")).string()});
     }

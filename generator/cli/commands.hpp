@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands of `pfgen`. Each returns the process exit code; problems with
 // the model or the options are thrown and reported by main().
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,7 @@ struct CodegenCliOptions {
   bool stats = false;
   bool no_cse = false;     // benchmark baseline only
   bool eigen = false;      // also write <kind>_eigen.hpp
+  std::optional<double> dt;  // delayed observations: the filters' grid step (else simulation: dt)
 };
 
 int run_codegen(const CodegenCliOptions& options);

@@ -76,6 +76,9 @@ int main(int argc, char** argv) {
   codegen_cmd->add_flag("--stats", codegen.stats, "Print operation counts as JSON, one line per filter kind");
   codegen_cmd->add_flag("--eigen", codegen.eigen,
                         "Also write DIR/<model>/<filter>_eigen.hpp: wrappers taking m and P as Eigen matrices");
+  codegen_cmd->add_option("--dt", codegen.dt,
+                          "Delayed observations: the grid step of the filters, a divisor of the delay (default: "
+                          "simulation.dt)");
   codegen_cmd->add_flag("--no-cse", codegen.no_cse, "Emit without common-subexpression elimination (benchmark baseline)");
 
   // CLI11 reads unsigned options with strtoull, which takes "-1" as 2^64 - 1 and saturates an

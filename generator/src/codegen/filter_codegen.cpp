@@ -4,6 +4,8 @@
 #include "pfgen/codegen/cpp_names.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/codegen/template_text.hpp"
+#include "pfgen/model/delay_grid.hpp"
+#include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::codegen {
 namespace {
@@ -20,7 +22,7 @@ std::string ops_comment(const FunctionStats& s) {
 // The arguments of derivatives(), gain() and predicted_observation() and their temporaries,
 // named clear of the model's names (cpp_names.hpp). The time argument has the model's name.
 struct FunctionNames {
-  std::string time, state, params, out, K, h, temporary_prefix;
+  std::string time, state, delayed, params, out, K, h, temporary_prefix;
 };
 
 FunctionNames function_names(const Model& model) {
@@ -32,19 +34,54 @@ FunctionNames function_names(const Model& model) {
   f.out = names.take("out");
   f.K = names.take("K");
   f.h = names.take("h");
+  // Taken last, so that the names above are spelled as before for every model.
+  f.delayed = names.take("delayed");
   f.temporary_prefix = names.temporary_prefix();
   return f;
+}
+
+// Where each filter variable is read from: array[index], named as the equations name it. An
+// undelayed filter reads its count() variables from the state; a delayed one also reads x* from
+// the state (after m and P) and m(t - h), Phi* from the `delayed` argument (docs/theory.md §2.6).
+struct InputLayout {
+  std::vector<std::string> names, arrays;
+  std::vector<std::size_t> indices;
+  std::vector<std::string> array_arguments;  // the functions' array arguments, in signature order
+};
+
+InputLayout input_layout(const FilterVariables& vars, const FunctionNames& names) {
+  InputLayout layout;
+  layout.array_arguments = {names.state};
+  const std::size_t count = vars.count(), n = vars.n();
+  auto add = [&](std::uint32_t v, const std::string& array, std::size_t index) {
+    layout.names.push_back(vars.text_name(v));
+    layout.arrays.push_back(array);
+    layout.indices.push_back(index);
+  };
+  for (std::size_t v = 0; v < count; ++v) add(static_cast<std::uint32_t>(v), names.state, v);
+  if (!vars.delayed()) return layout;
+  layout.array_arguments.push_back(names.delayed);
+  for (std::size_t i = 0; i < n; ++i) add(vars.m_delayed(i), names.delayed, i);
+  for (std::size_t i = 0; i < n; ++i) add(vars.phi(i), names.delayed, n + i);
+  for (std::size_t i = 0; i < n; ++i) add(vars.x_star(i), names.state, count + i);
+  return layout;
+}
+
+GraphBuilder graph_builder(ExpressionGraph& graph, const Model& model, const InputLayout& layout,
+                           const FunctionNames& names) {
+  return GraphBuilder(graph, model, layout.names, layout.arrays, layout.indices, names.params);
 }
 
 // The top of a function's body: `(void)` for each argument its outputs do not read (the
 // functions share one signature, and -Wunused-parameter must stay quiet), then each input it
 // reads, named once.
 std::string prologue(const ExpressionGraph& graph, const GraphBuilder& builder, const std::vector<std::size_t>& roots,
-                     const FunctionNames& names, const CppEmitter& emitter) {
+                     const FunctionNames& names, const InputLayout& layout, const CppEmitter& emitter) {
   const InputUse use = builder.uses(roots);
   std::string text;
   if (!use.time) text += "  (void)" + names.time + ";\n";
-  if (!use.variables) text += "  (void)" + names.state + ";\n";
+  for (const std::string& array : layout.array_arguments)
+    if (!use.arrays.count(array)) text += "  (void)" + array + ";\n";
   if (!use.parameters) text += "  (void)" + names.params + ";\n";
   return text + emitter.input_declarations(graph, roots, builder.declaration_order());
 }
@@ -59,13 +96,14 @@ FunctionCode function_code(const std::string& function, const std::vector<Polyno
                            const std::string& target, const Model& model, const FilterVariables& vars,
                            const CodegenOptions& options, const FunctionNames& names) {
   ExpressionGraph graph;
-  GraphBuilder builder(graph, model, vars, names.state, names.params);
+  const InputLayout layout = input_layout(vars, names);
+  GraphBuilder builder = graph_builder(graph, model, layout, names);
   std::vector<std::size_t> roots;
   for (const auto& p : outputs) roots.push_back(builder.polynomial(p));
   CppEmitter emitter(options.scalar, names.temporary_prefix);
   FunctionCode code;
   code.stats = FunctionStats{function, graph.tree_counts(roots), graph.shared_counts(roots)};
-  code.body = prologue(graph, builder, roots, names, emitter) +
+  code.body = prologue(graph, builder, roots, names, layout, emitter) +
               (options.eliminate_common_subexpressions ? emitter.shared_body(graph, roots, target)
                                                        : emitter.tree_body(graph, roots, target));
   return code;
@@ -85,11 +123,14 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
   std::vector<Polynomial> expanded = eq.m_drift;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) expanded.push_back(eq.P_drift(i, j));
+  // A delayed filter with Phi* integrates x* beside m and P: its drift follows them in `out`.
+  expanded.insert(expanded.end(), eq.x_star_drift.begin(), eq.x_star_drift.end());
   FunctionCode flat = function_code("derivatives", expanded, names.out, model, vars, options, names);
   if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty()) return flat;
 
   ExpressionGraph graph;
-  GraphBuilder builder(graph, model, vars, names.state, names.params);
+  const InputLayout layout = input_layout(vars, names);
+  GraphBuilder builder = graph_builder(graph, model, layout, names);
   std::vector<std::size_t> roots;
   for (const auto& p : eq.m_drift) roots.push_back(builder.polynomial(p));
   std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
@@ -110,21 +151,25 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
       if (!eq.P_correction[u].is_zero()) sum = graph.sub(sum, builder.polynomial(eq.P_correction[u]));
       roots.push_back(sum);
     }
+  for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
   OpCounts structured = graph.shared_counts(roots);
   if (structured.total() >= flat.stats.cse.total()) return flat;
   FunctionCode code;
   code.stats = FunctionStats{"derivatives", flat.stats.naive, structured};
   const CppEmitter emitter(options.scalar, names.temporary_prefix);
-  code.body = prologue(graph, builder, roots, names, emitter) + emitter.shared_body(graph, roots, names.out);
+  code.body = prologue(graph, builder, roots, names, layout, emitter) + emitter.shared_body(graph, roots, names.out);
   return code;
 }
 
-std::string initial_body(const Model& model, const FilterVariables& vars, const CppEmitter& emitter) {
-  std::vector<GiNaC::numeric> values(vars.count(), 0);
+// m0 and P0; with `x_star`, x*(0) = m0 after them (a delayed filter's noise-free solution).
+std::string initial_body(const Model& model, const FilterVariables& vars, const CppEmitter& emitter,
+                         bool x_star = false) {
+  std::vector<GiNaC::numeric> values(vars.count() + (x_star ? vars.n() : 0), 0);
   if (model.initial) {
     for (std::size_t i = 0; i < vars.n(); ++i) {
       values[vars.m(i)] = model.initial->m0[i];
       for (std::size_t j = i; j < vars.n(); ++j) values[vars.P(i, j)] = model.initial->P0[i][j];
+      if (x_star) values[vars.count() + i] = model.initial->m0[i];
     }
   }
   std::string body;
@@ -259,6 +304,101 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
   return result;
 }
 
+std::string ops_banner(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                       const GeneratedFilter& result, const std::string& extra) {
+  return "// Generated by pfgen " PFGEN_VERSION " from model `" + model.name + "`, filter `" + eq.name +
+         "`. Do not edit: regenerate with `pfgen codegen`.\n" + extra +
+         (eq.is_user_filter() ? "// The filter's equations are given in the model file (`filters:`), not derived by pfgen.\n"
+                              : "") +
+         "// Scalar: " + scalar_mode_name(options.scalar) + ". Common-subexpression elimination: " +
+         (options.eliminate_common_subexpressions ? "on" : "off") + ".\n" +
+         "// Ops before CSE: " + counts_text(result.naive_total()) + ".\n" +
+         "// Ops after CSE:  " + counts_text(result.cse_total()) + ".";
+}
+
+// A filter for delayed observations (templates/cpp/delayed_filter.hpp.tmpl; docs/theory.md §2.6):
+// the functions read m(t - h) and Phi* from a second array, x* follows m and P in the state, and
+// the step keeps the history on the fixed grid the filter is generated for.
+GeneratedFilter generate_delayed_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
+  // No Eigen wrapper (options.eigen_wrapper is ignored): the state carries x* and the filter keeps
+  // a history, so the header's Filter is the interface.
+  if (!options.grid_step)
+    throw CodegenError("filter '" + eq.name + "': a filter for delayed observations steps on a fixed grid: give --dt "
+                       "(or simulation: dt in the model file)");
+  const DelaySteps steps = delay_steps(eq.delay, *options.grid_step);
+  if (!steps.problem.empty()) throw CodegenError("filter '" + eq.name + "': " + steps.problem);
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n();
+  const bool x_star = eq.uses_x_star();
+  std::vector<Polynomial> gain_outputs;
+  for (const auto& row : eq.gain) gain_outputs.insert(gain_outputs.end(), row.begin(), row.end());
+  const FunctionNames names = function_names(model);
+  FunctionCode derivatives = derivatives_code(model, eq, options, names);
+  FunctionCode gain = function_code("gain", gain_outputs, names.K, model, vars, options, names);
+  FunctionCode observation =
+      function_code("predicted_observation", eq.predicted_observation, names.h, model, vars, options, names);
+
+  const std::string identifier = filter_identifier(eq.name);
+  GeneratedFilter result;
+  result.name = eq.name;
+  result.relative_path = model.name + "/" + identifier + ".hpp";
+  result.functions = {derivatives.stats, gain.stats, observation.stats};
+
+  CppEmitter emitter(options.scalar);
+  const bool templated = options.scalar == ScalarMode::Template;
+  std::string params;
+  for (const auto& p : model.parameters) params += "  Scalar " + p.name + " = " + emitter.literal(p.default_value) + ";\n";
+  const std::string h = pfgen_support::shortest_double(eq.delay.to_double());
+  const std::string dt = pfgen_support::shortest_double(*options.grid_step);
+  const std::string extra = "// Delayed observations: h = " + h + " = " + std::to_string(steps.steps) +
+                            " steps of dt = " + dt + "; the caller supplies dy over each step of this dt.\n";
+  // Literals of the two doubles as C++ reads them back exactly (shortest round-trip text).
+  auto double_literal = [](const std::string& text) {
+    return text.find_first_of(".eEn") == std::string::npos ? text + ".0" : text;
+  };
+  std::string gain_meaning = "P A^T (B B^T)^-1";
+  if (eq.is_user_filter()) gain_meaning = "as given in the model file";
+  else if (x_star) gain_meaning = "P Phi*^T A^T (B B^T)^-1, Phi* = diag(phi)";
+  std::map<std::string, std::string> values = {
+      {"banner", ops_banner(model, eq, options, result, extra)},
+      {"namespace", options.name_space + "::" + model.name + "::" + identifier},
+      {"n", std::to_string(n)},
+      {"p", std::to_string(eq.p)},
+      {"state_size", std::to_string(vars.count() + (x_star ? n : 0))},
+      {"delay", double_literal(h)},
+      {"dt", double_literal(dt)},
+      {"delay_steps", std::to_string(steps.steps)},
+      {"uses_x_star", x_star ? "true" : "false"},
+      {"history_what", x_star ? " and x*" : ""},
+      {"prehistory_x_star", x_star ? " and x*(s) = m0" : ""},
+      {"state_x_star",
+       x_star ? "\n// then x* (n entries), the noise-free solution dx*/dt = f(x*, t) from x*(0) = m0." : ""},
+      {"out_x_star", x_star ? ", x* drift f(x*, t)" : ""},
+      {"initial_x_star", x_star ? ", and x*(0) = m0" : ""},
+      {"scalar_alias", templated ? "" : "\nusing Scalar = " + scalar_mode_name(options.scalar) + ";\n"},
+      {"template_prefix", templated ? "template <class Scalar>\n" : ""},
+      {"params_members", params},
+      {"t", names.time},
+      {"state", names.state},
+      {"delayed", names.delayed},
+      {"params", names.params},
+      {"out", names.out},
+      {"K", names.K},
+      {"h", names.h},
+      {"derivatives_ops", ops_comment(derivatives.stats)},
+      {"derivatives_body", derivatives.body},
+      {"gain_meaning", gain_meaning},
+      {"gain_ops", ops_comment(gain.stats)},
+      {"gain_body", gain.body},
+      {"observation_ops", ops_comment(observation.stats)},
+      {"observation_body", observation.body},
+      {"initial_body", initial_body(model, vars, emitter, x_star)},
+  };
+  result.contents =
+      fill_template("cpp/delayed_filter.hpp.tmpl", embedded_template("cpp/delayed_filter.hpp.tmpl"), values);
+  return result;
+}
+
 }  // namespace
 
 OpCounts GeneratedFilter::naive_total() const {
@@ -275,6 +415,7 @@ OpCounts GeneratedFilter::cse_total() const {
 
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
   if (eq.is_sampled()) return generate_sampled_code(model, eq, options);
+  if (eq.is_delayed()) return generate_delayed_code(model, eq, options);
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
   std::vector<Polynomial> gain_outputs;

@@ -44,7 +44,18 @@ GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, const Fil
 // on which input an equation happens to read first.
 GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, std::vector<std::string> names,
                            const std::string& array, const std::string& params)
-    : graph_(graph) {
+    : GraphBuilder(graph, model, names, std::vector<std::string>(names.size(), array),
+                   [&] {
+                     std::vector<std::size_t> indices(names.size());
+                     for (std::size_t v = 0; v < indices.size(); ++v) indices[v] = v;
+                     return indices;
+                   }(),
+                   params) {}
+
+GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, std::vector<std::string> names,
+                           const std::vector<std::string>& arrays, const std::vector<std::size_t>& indices,
+                           const std::string& params)
+    : graph_(graph), variable_arrays_(arrays) {
   for (const auto& p : model.parameters) {
     parameter_inputs_.push_back(graph_.input(p.name, params + "." + p.name));
     symbols_[p.symbol] = parameter_inputs_.back();
@@ -52,7 +63,7 @@ GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, std::vect
   time_input_ = graph_.input(model.time.get_name());
   symbols_[model.time] = time_input_;
   for (std::size_t v = 0; v < names.size(); ++v)
-    variable_inputs_.push_back(graph_.input(names[v], array + "[" + std::to_string(v) + "]"));
+    variable_inputs_.push_back(graph_.input(names[v], arrays.at(v) + "[" + std::to_string(indices.at(v)) + "]"));
 }
 
 std::vector<std::size_t> GraphBuilder::declaration_order() const {
@@ -68,6 +79,8 @@ InputUse GraphBuilder::uses(const std::vector<std::size_t>& outputs) const {
   };
   InputUse use;
   use.variables = any(variable_inputs_);
+  for (std::size_t v = 0; v < variable_inputs_.size(); ++v)
+    if (needed[variable_inputs_[v]]) use.arrays.insert(variable_arrays_[v]);
   use.parameters = any(parameter_inputs_);
   use.time = needed[time_input_];
   return use;

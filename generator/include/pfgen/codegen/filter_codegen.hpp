@@ -4,8 +4,12 @@
 // Generated API (namespace <NS>::<model>::<filter>, the filter's name with '-' written '_'):
 //   n, p, state_size; Params<Scalar>; derivatives(); gain(); predicted_observation();
 //   initial_state(); step()  -- see the template for their contracts.
+// A filter for delayed observations (templates/cpp/delayed_filter.hpp.tmpl) steps on a fixed grid
+// dt and keeps its own fixed-size history: CodegenOptions::grid_step must give that dt, and the
+// delay must be a whole number of it (model/delay_grid.hpp); otherwise CodegenError.
 // With CodegenOptions::eigen_wrapper, also <filter>_eigen.hpp: pack()/unpack() between the flat
 // state and Eigen m, P, and overloads of the functions above taking them.
+#include <optional>
 #include <string>
 
 #include "pfgen/codegen/cpp_emitter.hpp"
@@ -18,6 +22,9 @@ struct CodegenOptions {
   std::string name_space = "pfgen_models";
   bool eliminate_common_subexpressions = true;  // false only for the benchmark's baseline
   bool eigen_wrapper = false;                   // also write <kind>_eigen.hpp (templates/cpp/filter_eigen.hpp.tmpl)
+  // Delayed observations only: the grid step dt the filter is generated for (`--dt`, else the
+  // model's simulation dt). Ignored by the other filters.
+  std::optional<double> grid_step;
 };
 
 struct FunctionStats {

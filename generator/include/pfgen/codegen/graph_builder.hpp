@@ -5,6 +5,7 @@
 // (x^4 = (x*x)*(x*x)), never pow(); monomials are built variable by variable,
 // so monomials with a common prefix share its product.
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@ class CodegenError : public std::runtime_error {
 // What a function's outputs read of its arguments.
 struct InputUse {
   bool variables = false;   // the array of variables (the filter state, the truth's x)
+  std::set<std::string> arrays;  // each array a variable is read from (a delayed filter has two)
   bool parameters = false;
   bool time = false;
 };
@@ -39,6 +41,11 @@ class GraphBuilder {
   // x_i (polynomial variable i, Polynomial::from_ex(e, model.states)) from x[i] as its own name.
   GraphBuilder(ExpressionGraph& graph, const Model& model, std::vector<std::string> names,
                const std::string& array, const std::string& params);
+  // Variable v is named names[v] and read from arrays[v][indices[v]]: a delayed filter reads m, P
+  // and x* from its state and m(t - h), Phi* from a second array.
+  GraphBuilder(ExpressionGraph& graph, const Model& model, std::vector<std::string> names,
+               const std::vector<std::string>& arrays, const std::vector<std::size_t>& indices,
+               const std::string& params);
 
   std::size_t polynomial(const Polynomial& p);
   std::size_t variable(std::uint32_t variable) { return variable_power(variable, 1); }
@@ -56,6 +63,7 @@ class GraphBuilder {
 
   ExpressionGraph& graph_;
   std::vector<std::size_t> variable_inputs_;
+  std::vector<std::string> variable_arrays_;
   std::vector<std::size_t> parameter_inputs_;
   std::size_t time_input_;
   std::map<GiNaC::ex, std::size_t, GiNaC::ex_is_less> symbols_;
