@@ -3,7 +3,7 @@
 // misprint, and the printed EKF run as the user filter `ekf-printed`. A = B = 1, no state noise,
 // so the gain P Phi* A^T (B B^T)^-1 is P phi and the correction P^2 phi^2
 // (docs/paper-discrepancies.md, rows 6-9).
-#include <catch2/catch_test_macros.hpp>
+#include <catch2/catch.hpp>
 
 #include <string>
 

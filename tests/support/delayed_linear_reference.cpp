@@ -51,12 +51,11 @@ void AugmentedKalmanGain::advance() {
 AugmentedMean::AugmentedMean(const DelayedLinearModel& model)
     : model_(model), z_(model.augmented_size(), model.m0), predicted_(model.augmented_size()) {}
 
-void AugmentedMean::advance(const AugmentedKalmanGain& gain, double dy) {
+void AugmentedMean::advance(const std::vector<double>& K, double dy) {
   const std::size_t L = z_.size(), D = model_.D;
   predicted_[0] = model_.F() * z_[0];
   for (std::size_t i = 1; i < L; ++i) predicted_[i] = z_[i - 1];
   const double innovation = dy - (model_.c0() * predicted_[D + 1] + model_.c1() * predicted_[D]);
-  const std::vector<double>& K = gain.gain();
   for (std::size_t i = 0; i < L; ++i) z_[i] = predicted_[i] + K[i] * innovation;
 }
 

@@ -62,7 +62,9 @@ class AugmentedKalmanGain {
 class AugmentedMean {
  public:
   explicit AugmentedMean(const DelayedLinearModel& model);
-  void advance(const AugmentedKalmanGain& gain, double dy);
+  void advance(const AugmentedKalmanGain& gain, double dy) { advance(gain.gain(), dy); }
+  // The same with a gain K_k kept from an earlier AugmentedKalmanGain::advance().
+  void advance(const std::vector<double>& gain, double dy);
   double mean() const { return z_[0]; }  // E[x_{k+1} | dy_0..dy_k]
 
  private:
