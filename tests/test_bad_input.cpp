@@ -144,7 +144,7 @@ const std::vector<BadModel>& bad_models() {
       {"missing_initial_P0.yaml", "initial.P0", 0, 0, 9, "missing required field"},
       // unknown or conflicting fields, bad names and values
       {"unknown_top_level_field.yaml", "drfit", 0, 0, 5, "unknown field"},
-      {"unknown_observation_field.yaml", "observation.C", 0, 0, 9, "unknown field (known: A0, A, B)"},
+      {"unknown_observation_field.yaml", "observation.C", 0, 0, 9, "unknown field (known: A0, A, B, delay)"},
       {"unknown_initial_field.yaml", "initial.Q0", 0, 0, 9, "unknown field (known: x0, m0, P0)"},
       {"both_diffusion_forms.yaml", "diffusion_covariance", 0, 0, 6, "not both"},
       {"name_not_identifier.yaml", "name", 0, 0, 2, "'my model' is not an identifier"},

@@ -197,6 +197,7 @@ struct GeneratedModel {
   std::string name;                 // model name, also the directory
   std::vector<std::string> kinds;   // file stems: optimal, ekf_additive, ...
   bool sampled = false;             // sampled observations: predict/update instead of step/gain
+  bool delayed = false;             // delayed observations: a Filter with its history, step(dy)
 };
 
 // `pfgen codegen MODEL -o DIR --scalar SCALAR` (every kind the model supports); what it wrote.
@@ -208,6 +209,7 @@ GeneratedModel generate(const std::string& model_path, const std::string& dir, c
   for (const auto& model_dir : fs::directory_iterator(dir)) {
     out.name = model_dir.path().filename().string();
     out.sampled = pfgen::load_model_file(model_path).observation.is_sampled();
+    out.delayed = pfgen::load_model_file(model_path).observation.is_delayed();
     for (const auto& header : fs::directory_iterator(model_dir.path()))
       out.kinds.push_back(header.path().stem().string());
   }
@@ -239,6 +241,17 @@ std::string float_translation_unit(const GeneratedModel& model, bool templated) 
       tu += "  k::derivatives" + f + "(t, state.data(), params, out);\n";
       tu += "  out[0] += k::period" + f + "();\n";
       tu += "  k::predicted_observation" + f + "(t, state.data(), params, out + k::state_size);\n";
+    } else if (model.delayed) {
+      // A delayed filter: the Filter object (state, history, step count), then the functions
+      // with the delayed inputs m(t - h) and Phi*.
+      tu += "  k::Filter" + f + " filter;\n";
+      tu += "  filter.step(dy.data());\n";
+      tu += "  std::array<float, k::delayed_size> delayed{};\n";
+      tu += "  k::detail::delayed_inputs" + f + "(filter.history.data(), filter.state.data(), state.data(), 1, 0, delayed.data());\n";
+      tu += "  k::derivatives" + f + "(t + filter.time(), filter.state.data(), delayed.data(), params, out);\n";
+      tu += "  k::gain" + f + "(t, state.data(), delayed.data(), params, out + k::state_size);\n";
+      tu += "  k::predicted_observation" + f + "(t, state.data(), delayed.data(), params, out + k::state_size + k::n * k::p);\n";
+      tu += "  out[0] += dt + k::dt" + f + "() + k::delay" + f + "();\n";
     } else {
       tu += "  k::step" + f + "(state.data(), t, dt, dy.data(), params);\n";
       tu += "  k::derivatives" + f + "(t, state.data(), params, out);\n";

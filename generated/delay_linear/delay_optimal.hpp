@@ -23,8 +23,10 @@ inline constexpr std::size_t n = 1;
 inline constexpr std::size_t p = 1;
 inline constexpr std::size_t state_size = 3;
 // The delay h, the grid step dt the filter was generated for, and h = delay_steps * dt.
-inline constexpr double delay = 0.5;
-inline constexpr double dt = 0.01;
+template <class Scalar>
+inline constexpr Scalar delay() { return Scalar(0.5); }
+template <class Scalar>
+inline constexpr Scalar dt() { return Scalar(0.01); }
 inline constexpr std::size_t delay_steps = 50;
 // Whether the filter integrates the noise-free x* (state entries m, P, then x*) for its Phi* gain.
 inline constexpr bool uses_x_star = true;
@@ -164,7 +166,7 @@ inline void increment(Scalar t, const Scalar* state, const Scalar* delayed, cons
   std::array<Scalar, state_size> rates{};
   std::array<Scalar, n * p> K{};
   std::array<Scalar, p> h{};
-  const Scalar step = static_cast<Scalar>(dt);
+  const Scalar step = dt<Scalar>();
   derivatives(t, state, delayed, params, rates.data());
   gain(t, state, delayed, params, K.data());
   predicted_observation(t, state, delayed, params, h.data());
@@ -182,8 +184,8 @@ inline void increment(Scalar t, const Scalar* state, const Scalar* delayed, cons
 // predicted state). Then the start state enters the history. Call with k = 0, 1, 2, ... in turn.
 template <class Scalar>
 inline void step(Scalar* state, Scalar* history, std::size_t k, const Scalar* dy, const Params<Scalar>& params) {
-  const Scalar t = static_cast<Scalar>(static_cast<double>(k) * dt);
-  const Scalar t_end = static_cast<Scalar>(static_cast<double>(k + 1) * dt);
+  const Scalar t = static_cast<Scalar>(k) * dt<Scalar>();
+  const Scalar t_end = static_cast<Scalar>(k + 1) * dt<Scalar>();
   std::array<Scalar, delayed_size> delayed{};
   std::array<Scalar, state_size> first{}, predicted{}, second{};
   detail::delayed_inputs(history, state, state, k, 0, delayed.data());
@@ -214,7 +216,7 @@ struct Filter {
     pfgen_models::delay_linear::delay_optimal::step(state.data(), history.data(), k, dy, params);
     ++k;
   }
-  double time() const { return static_cast<double>(k) * dt; }
+  Scalar time() const { return static_cast<Scalar>(k) * dt<Scalar>(); }
 };
 
 }  // namespace pfgen_models::delay_linear::delay_optimal

@@ -21,9 +21,11 @@ namespace pfgen_models::delay_linear::delay_uncorrected {
 inline constexpr std::size_t n = 1;
 inline constexpr std::size_t p = 1;
 inline constexpr std::size_t state_size = 2;
+
+using Scalar = float;
 // The delay h, the grid step dt the filter was generated for, and h = delay_steps * dt.
-inline constexpr double delay = 0.5;
-inline constexpr double dt = 0.01;
+inline constexpr Scalar delay() { return 0.5f; }
+inline constexpr Scalar dt() { return 0.01f; }
 inline constexpr std::size_t delay_steps = 50;
 // Whether the filter integrates the noise-free x* (state entries m, P, then x*) for its Phi* gain.
 inline constexpr bool uses_x_star = false;
@@ -34,8 +36,6 @@ inline constexpr std::size_t history_size = delay_steps * history_width;
 // The delayed inputs of derivatives(), gain() and predicted_observation(): m(t - h) (n entries),
 // then with x* the diagonal of Phi*(t - h, t) (n entries).
 inline constexpr std::size_t delayed_size = uses_x_star ? 2 * n : n;
-
-using Scalar = float;
 
 // The model's parameters, defaulting to the values in its model file.
 template <class Scalar>
@@ -151,7 +151,7 @@ inline void increment(Scalar t, const Scalar* state, const Scalar* delayed, cons
   std::array<Scalar, state_size> rates{};
   std::array<Scalar, n * p> K{};
   std::array<Scalar, p> h{};
-  const Scalar step = static_cast<Scalar>(dt);
+  const Scalar step = dt();
   derivatives(t, state, delayed, params, rates.data());
   gain(t, state, delayed, params, K.data());
   predicted_observation(t, state, delayed, params, h.data());
@@ -168,8 +168,8 @@ inline void increment(Scalar t, const Scalar* state, const Scalar* delayed, cons
 // (both already known, as delay_steps >= 1; with delay_steps = 0 they are the start and the
 // predicted state). Then the start state enters the history. Call with k = 0, 1, 2, ... in turn.
 inline void step(Scalar* state, Scalar* history, std::size_t k, const Scalar* dy, const Params<Scalar>& params) {
-  const Scalar t = static_cast<Scalar>(static_cast<double>(k) * dt);
-  const Scalar t_end = static_cast<Scalar>(static_cast<double>(k + 1) * dt);
+  const Scalar t = static_cast<Scalar>(k) * dt();
+  const Scalar t_end = static_cast<Scalar>(k + 1) * dt();
   std::array<Scalar, delayed_size> delayed{};
   std::array<Scalar, state_size> first{}, predicted{}, second{};
   detail::delayed_inputs(history, state, state, k, 0, delayed.data());
@@ -199,7 +199,7 @@ struct Filter {
     pfgen_models::delay_linear::delay_uncorrected::step(state.data(), history.data(), k, dy, params);
     ++k;
   }
-  double time() const { return static_cast<double>(k) * dt; }
+  Scalar time() const { return static_cast<Scalar>(k) * dt(); }
 };
 
 }  // namespace pfgen_models::delay_linear::delay_uncorrected

@@ -352,10 +352,8 @@ GeneratedFilter generate_delayed_code(const Model& model, const FilterEquations&
   const std::string dt = pfgen_support::shortest_double(*options.grid_step);
   const std::string extra = "// Delayed observations: h = " + h + " = " + std::to_string(steps.steps) +
                             " steps of dt = " + dt + "; the caller supplies dy over each step of this dt.\n";
-  // Literals of the two doubles as C++ reads them back exactly (shortest round-trip text).
-  auto double_literal = [](const std::string& text) {
-    return text.find_first_of(".eEn") == std::string::npos ? text + ".0" : text;
-  };
+  // h and dt as literals of the scalar type (float code has no double in it).
+  auto real_literal = [&](double value) { return emitter.literal(GiNaC::numeric(value)); };
   std::string gain_meaning = "P A^T (B B^T)^-1";
   if (eq.is_user_filter()) gain_meaning = "as given in the model file";
   else if (x_star) gain_meaning = "P Phi*^T A^T (B B^T)^-1, Phi* = diag(phi)";
@@ -365,8 +363,9 @@ GeneratedFilter generate_delayed_code(const Model& model, const FilterEquations&
       {"n", std::to_string(n)},
       {"p", std::to_string(eq.p)},
       {"state_size", std::to_string(vars.count() + (x_star ? n : 0))},
-      {"delay", double_literal(h)},
-      {"dt", double_literal(dt)},
+      {"scalar_call", templated ? "<Scalar>" : ""},
+      {"delay", real_literal(eq.delay.to_double())},
+      {"dt", real_literal(*options.grid_step)},
       {"delay_steps", std::to_string(steps.steps)},
       {"uses_x_star", x_star ? "true" : "false"},
       {"history_what", x_star ? " and x*" : ""},
