@@ -62,10 +62,9 @@ paper_m=(0.377 1.1 1.533 1.820)
 paper_m1=(0.272 0.744 1.136 1.466)
 paper_m2=(0.205 0.611 0.901 1.119)
 
-line() {  # label cells...
-  printf '%-40s' "$1"; shift
-  for cell in "$@"; do printf '  %-18s' "$cell"; done
-  printf '\n'
+line() {  # label cells... (no trailing blanks)
+  { printf '%-40s' "$1"; shift
+    for cell in "$@"; do printf '  %-18s' "$cell"; done; printf '\n'; } | sed 's/ *$//'
 }
 paper_line() {  # label values...
   local label="$1"; shift
@@ -77,7 +76,7 @@ echo "Paper 004 reproduction: $runs runs, dt = $dt (delay 0.8 = $(awk -v d="$dt"
 echo
 echo "1. The example as printed (dx = x^2 dt from x0 = 1.1): the truth blows up at t = 1/1.1 = 0.909"
 grep -m1 '^Truth diverged' "$out/as_printed.txt" | sed 's/^/   /'
-awk '/^Truth at the report times/ {s = 1; print "   " $0; next} s && NF {print "   " $0}' "$out/as_printed.txt"
+awk '/^Truth at the report times/ {s = 1; print "   " $0; next} s && NF == 0 {exit} s {print "   " $0}' "$out/as_printed.txt"
 echo "   Filters (RMS over [0, 4] is over runs whose truth and filter lived to t = 4; '-' when none did):"
 awk '/^filter +state +RMS/ {s = 1; print "   " $0; next} s && NF == 0 {exit} s {print "   " $0}' "$out/as_printed.txt"
 echo
