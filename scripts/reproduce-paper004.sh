@@ -13,13 +13,13 @@
 #    deterministic, so mean m = x - mean e (e = x - m, from simulate's "Errors at the report
 #    times"). Then whether the Phi* filter beats the comparators on these runs.
 #
-#   scripts/reproduce-paper004.sh [RUNS [DT [OUTDIR]]]     (defaults: 200 runs, dt = 0.001, build/paper004)
+#   scripts/reproduce-paper004.sh [RUNS [DT [OUTDIR]]]     (defaults: 2000 runs, dt = 0.001, build/paper004; ~15 s)
 #
 # DT must divide the delay 0.8 (the filters step on a fixed grid). PFGEN (default
 # build/generator/pfgen) names the program; THREADS its --threads (default 2).
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
-runs="${1:-200}"
+runs="${1:-2000}"
 dt="${2:-0.001}"
 out="${3:-$here/build/paper004}"
 pfgen="${PFGEN:-$here/build/generator/pfgen}"
