@@ -110,3 +110,29 @@ TEST_CASE("delayed linear reference: a delay costs information, P grows with D",
     previous = gain.variance();
   }
 }
+
+TEST_CASE("delayed linear reference: its steady P tends to the continuous-time value as dt shrinks", "[delay][reference][unit]") {
+  // For dx = a x dt + σ dW1, dy = x(t − h) dt + dW2 the data up to t are those of the undelayed
+  // problem up to t − h, so Var[x(t) | Y(t)] = e^{2ah} P_KB + σ² (e^{2ah} − 1)/(2a), with the
+  // Kalman–Bucy P_KB = a + sqrt(a² + σ²): a formula that shares nothing with the recursion.
+  for (const double a : {-1.0, 0.5}) {
+    const double h = 0.5, sigma = 1.0;
+    const double P_kb = a + std::sqrt(a * a + sigma * sigma);
+    const double expected = std::exp(2 * a * h) * P_kb + sigma * sigma * std::expm1(2 * a * h) / (2 * a);
+    double previous_gap = 1e300;
+    for (const double dt : {0.05, 0.01}) {
+      DelayedLinearModel model;
+      model.a = a;
+      model.sigma = sigma;
+      model.dt = dt;
+      model.D = static_cast<std::size_t>(std::llround(h / dt));
+      AugmentedKalmanGain gain(model);
+      for (int k = 0; k < static_cast<int>(std::llround(20 / dt)); ++k) gain.advance();
+      const double gap = std::abs(gain.variance() - expected);
+      INFO("a = " << a << ", dt = " << dt << ": P = " << gain.variance() << ", continuous " << expected);
+      CHECK(gap < 1e-3 * expected);
+      CHECK(gap < previous_gap);
+      previous_gap = gap;
+    }
+  }
+}
