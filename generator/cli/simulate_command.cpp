@@ -22,6 +22,7 @@
 #include "pfgen_runtime/results_csv.hpp"
 #include "pfgen_runtime/simulation_plugin.hpp"
 #include "pfgen_runtime/summary_table.hpp"
+#include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::cli {
 namespace {
@@ -82,7 +83,10 @@ void check_output_paths(const SimulateOptions& options) {
 // recorded points of every run. Refuse a job that would not fit instead of dying in bad_alloc.
 void check_memory(const Model& model, const SimulationSettings& s, unsigned threads, std::size_t filters) {
   const double steps = std::floor(s.T / s.dt + 0.5);
-  const double per_thread = (steps + 1) * static_cast<double>(model.n() + model.p()) * sizeof(double);
+  // A delayed filter also keeps D = h / dt grid values of m and x* (at most 2n each) per thread.
+  const double history = std::round(model.observation.delay().to_double() / s.dt) * 2.0 *
+                         static_cast<double>(model.n() * filters);
+  const double per_thread = ((steps + 1) * static_cast<double>(model.n() + model.p()) + history) * sizeof(double);
   const double records = std::min(steps + 1, static_cast<double>(s.record_points) + 1);
   const double statistics = static_cast<double>(s.runs) * records * static_cast<double>((filters + 1) * model.n()) *
                             sizeof(double);
@@ -112,6 +116,16 @@ std::string timing_json(const pfgen_runtime::MonteCarloResult& result, const too
       << ", \"truth_seconds\": " << result.timing.truth_seconds << ", \"filter_seconds\": " << filter_seconds
       << ", \"total_seconds\": " << total_seconds << "}\n";
   return out.str();
+}
+
+// The header line's note on a delayed observation: every filter and the truth's dy read x or m
+// h = D dt back. Empty for other models, whose output stays as it was.
+std::string delay_note(const Model& model, const SimulationSettings& s) {
+  if (!model.observation.is_delayed()) return {};
+  const double h = model.observation.delay().to_double();
+  const long long steps = std::llround(h / s.dt);
+  return ", observation delay h = " + pfgen_support::shortest_chars(h) + " = " + std::to_string(steps) +
+         (steps == 1 ? " step" : " steps") + " of dt = " + pfgen_support::shortest_chars(s.dt);
 }
 
 }  // namespace
@@ -155,7 +169,8 @@ int run_simulate(const SimulateOptions& options) {
   for (const std::string& name : settings.filters.empty() ? available_filter_names(model) : settings.filters)
     filters.push_back(derive_named_filter(model, name));
   check_memory(model, settings, thread_count(options.threads), filters.size());
-  const std::string source = codegen::generate_simulation_plugin(model, filters);
+  // Delayed observations: filters generated for this grid step (settings checked D = h / dt).
+  const std::string source = codegen::generate_simulation_plugin(model, filters, settings.dt);
   const double derive_seconds = seconds_since(start);
 
   toolchain::PluginBuildOptions build_options;
@@ -179,6 +194,7 @@ int run_simulate(const SimulateOptions& options) {
     }
   }();
 
+  plugin.check_grid_step(settings.dt);  // a delayed filter runs only on the grid it was made for
   const std::string scheme_name = settings.scheme == "auto" ? choose_truth_scheme(model) : settings.scheme;
   const auto scheme = pfgen_runtime::make_scheme(pfgen_runtime::scheme_kind_from_string(scheme_name), plugin.system());
 
@@ -231,7 +247,7 @@ int run_simulate(const SimulateOptions& options) {
 
   // Timing first (stderr), so that the output ends with the table and the paths of the files.
   if (!options.quiet) std::cerr << pfgen_runtime::format_timing(result) << std::flush;
-  std::cout << "model: " << model.name << " (" << options.model_path << ")\n"
+  std::cout << "model: " << model.name << " (" << options.model_path << ")" << delay_note(model, settings) << "\n"
             << pfgen_runtime::format_summary_table(result, model.state_names);
   // Delayed observations (paper 004's printed estimates are compared through mean m = x - mean e):
   // the signed errors at the report times with standard errors. Other models' output is unchanged.

@@ -48,8 +48,10 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
     if (filter.n != n || filter.p != p)
       throw std::invalid_argument("monte carlo: filter '" + filter.name +
                                   "' must have the truth's n states and the observation's p");
+    check_filter_grid(filter, options.grid);
   }
   if (measurement) (void)measurement->steps_per_sample(options.grid);  // throws unless whole
+  (void)observation.delay_steps(options.grid.dt);  // throws unless h is a whole number of steps
 }
 
 MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observation,

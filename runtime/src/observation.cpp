@@ -1,5 +1,7 @@
 #include "pfgen_runtime/observation.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
@@ -18,6 +20,28 @@ LinearObservation::LinearObservation(std::size_t p, std::size_t n, std::size_t r
       A_(Eigen::MatrixXd::Zero(p, n)), B_(Eigen::MatrixXd::Zero(p, r)), work_(p) {
   if (p_ == 0 || n_ == 0) throw std::invalid_argument("observation: p and n must be at least 1");
   if (!coefficients_) throw std::invalid_argument("observation: the coefficient callback is missing");
+}
+
+void LinearObservation::set_delay(double h) {
+  if (!(h >= 0) || !std::isfinite(h)) throw std::invalid_argument("observation: the delay h must be finite and >= 0");
+  delay_ = h;
+}
+
+std::size_t LinearObservation::delay_steps(double dt) const {
+  if (delay_ == 0) return 0;
+  const double ratio = delay_ / dt, whole = std::round(ratio);
+  char text[240];
+  if (!(whole <= static_cast<double>(max_delay_steps))) {
+    std::snprintf(text, sizeof text, "the observation delay h = %.17g is more than %zu steps dt = %.17g (h/dt = %.17g)",
+                  delay_, max_delay_steps, dt, ratio);
+    throw std::invalid_argument(text);
+  }
+  if (!(whole >= 1) || std::abs(ratio - whole) > 1e-9 * whole) {
+    std::snprintf(text, sizeof text, "the observation delay h = %.17g is not a whole number of steps dt = %.17g (h/dt = %.17g)",
+                  delay_, dt, ratio);
+    throw std::invalid_argument(text);
+  }
+  return static_cast<std::size_t>(whole);
 }
 
 void LinearObservation::evaluate(double t) {

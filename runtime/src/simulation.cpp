@@ -47,6 +47,9 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
   RandomStream truth_noise(seed, run, substream::truth_noise);
   RandomStream observation_noise(seed, run, substream::observation_noise);
   Eigen::VectorXd x = x0, dW(scheme.system().q), dW2(observation.r());
+  // The delay in grid steps: dy over step k reads the path at k - D and k + 1 - D (both stored
+  // when D >= 1), clamped at 0 for the pre-history x(s) = x(0), s < 0.
+  const std::size_t D = observation.delay_steps(grid.dt);
 
   divergence = guard.check(grid.t0, x);
   if (divergence) return -1;
@@ -70,7 +73,13 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
       return static_cast<std::ptrdiff_t>(k);
     }
     const auto column = static_cast<Eigen::Index>(k);
-    observation.increment(t, grid.dt, path.col(column), x, dW2, dy.col(column));
+    if (D == 0) {
+      observation.increment(t, grid.dt, path.col(column), x, dW2, dy.col(column));
+    } else {
+      const auto start = static_cast<Eigen::Index>(k >= D ? k - D : 0);
+      const auto end = static_cast<Eigen::Index>(k + 1 >= D ? k + 1 - D : 0);
+      observation.increment(t, grid.dt, path.col(start), path.col(end), dW2, dy.col(column));
+    }
     path.col(column + 1) = x;
   }
   return static_cast<std::ptrdiff_t>(grid.steps);
@@ -125,18 +134,32 @@ std::size_t draw_samples(SampledMeasurement& measurement, const TimeGrid& grid, 
   return samples;
 }
 
+void check_filter_grid(const FilterModel& filter, const TimeGrid& grid) {
+  if (filter.extra_state > 0 && !filter.fixed_step())
+    throw std::invalid_argument("filter '" + filter.name + "': extra state needs a fixed grid step");
+  if (!filter.fixed_step()) return;
+  if (std::abs(grid.dt - filter.fixed_dt) > 1e-9 * filter.fixed_dt || grid.t0 != 0) {
+    char text[200];
+    std::snprintf(text, sizeof text, "was generated for the grid t_k = k dt, dt = %.17g; this one has dt = %.17g%s",
+                  filter.fixed_dt, grid.dt, grid.t0 != 0 ? " and starts after 0" : "");
+    throw std::invalid_argument("filter '" + filter.name + "' " + text);
+  }
+}
+
 FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const FilterGuardOptions& options) {
   if (!filter.step || !filter.initial_state || filter.n == 0)
     throw std::invalid_argument("run_filter: filter '" + filter.name + "' lacks n, initial_state or step");
   if (truth.dy.rows() != static_cast<Eigen::Index>(filter.p))
     throw std::invalid_argument("run_filter: filter '" + filter.name + "' expects p observations");
-  const std::size_t size = filter.state_size();
+  check_filter_grid(filter, truth.grid);
   const TimeGrid& grid = truth.grid;
 
   FilterRun result;
   result.name = filter.name;
-  result.state.resize(static_cast<Eigen::Index>(size), static_cast<Eigen::Index>(truth.completed_steps + 1));
-  Eigen::VectorXd state(size);
+  // Only m and P are kept: a delayed filter's history (extra state) would be D n values a step.
+  const auto recorded = static_cast<Eigen::Index>(filter_state_size(filter.n));
+  result.state.resize(recorded, static_cast<Eigen::Index>(truth.completed_steps + 1));
+  Eigen::VectorXd state(filter.state_size());
   filter.initial_state(state.data());
 
   // True while the run may go on. Events are written only when they happen.
@@ -158,17 +181,19 @@ FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const Fil
   FilterStepper stepper(filter.n, filter.p, options.stepping);
   bool going = guard(grid.t0);
   const bool initial_ok = !result.divergence;  // a PSD loss at t0 keeps P0 on record
-  if (initial_ok) result.state.col(0) = state;
+  if (initial_ok) result.state.col(0) = state.head(recorded);
   for (std::size_t k = 0; going && k < truth.completed_steps; ++k) {
-    if (stepper.advance(filter.step, state.data(), grid.time(k), grid.dt,
-                        truth.dy.col(static_cast<Eigen::Index>(k)).data()) == 0) {
+    const double* dy = truth.dy.col(static_cast<Eigen::Index>(k)).data();
+    if (filter.fixed_step()) {
+      filter.step(state.data(), grid.time(k), grid.dt, dy);  // once per grid step, never refined
+    } else if (stepper.advance(filter.step, state.data(), grid.time(k), grid.dt, dy) == 0) {
       result.divergence = DivergenceEvent{grid.time(k), 0, 0.0, DivergenceKind::too_stiff};
       going = false;
       break;
     }
     going = guard(grid.time(k + 1));
     if (result.divergence) break;  // a diverged state is not stored
-    result.state.col(static_cast<Eigen::Index>(k + 1)) = state;
+    result.state.col(static_cast<Eigen::Index>(k + 1)) = state.head(recorded);
     result.completed_steps = k + 1;
   }
   result.stopped = !going;

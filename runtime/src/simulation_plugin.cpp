@@ -2,6 +2,9 @@
 
 #include <dlfcn.h>
 
+#include <cmath>
+#include <cstdio>
+
 #include "pfgen_runtime/guards.hpp"
 
 namespace pfgen_runtime {
@@ -40,11 +43,23 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
   } else {
     require(t.sampled_filter_count == 0, path, "sampled filters need a sampled observation");
   }
+  require(std::isfinite(t.delay) && t.delay >= 0 && std::isfinite(t.delay_dt) && t.delay_dt >= 0, path,
+          "the observation delay and its grid step must be finite and >= 0");
+  if (t.delay > 0) {
+    require(!t.observation_is_sampled, path, "a delay needs continuous observations");
+    require(t.delay_dt > 0 && t.delay_steps >= 1 &&
+                std::abs(t.delay - static_cast<double>(t.delay_steps) * t.delay_dt) <= 1e-9 * t.delay,
+            path, "the delay must be delay_steps grid steps delay_dt");
+  } else {
+    require(t.delay_steps == 0, path, "delay_steps must be 0 without a delay");
+  }
   for (std::size_t k = 0; k < t.filter_count; ++k) {
     const pfgen_plugin_filter& f = t.filters[k];
     require(f.name && f.initial_state && f.step, path, "filter " + std::to_string(k) + " lacks a name or function");
     require(f.n == t.n && f.p == t.p && f.state_size == filter_state_size(t.n), path,
             "filter " + std::string(f.name) + " has other dimensions than the model");
+    require(std::isfinite(f.fixed_dt) && f.fixed_dt >= 0 && (f.extra_state_size == 0 || f.fixed_dt > 0), path,
+            "filter " + std::string(f.name) + " has extra state without a fixed grid step, or a bad one");
   }
 }
 
@@ -114,11 +129,33 @@ LinearObservation SimulationPlugin::observation() const {
     A = A_rows;
     B = B_rows;
   };
-  if (!table_->observation_is_constant) return LinearObservation(p, n, r, coefficients);
-  Eigen::VectorXd A0(p);
-  Eigen::MatrixXd A(p, n), B(p, r);
-  coefficients(0.0, A0, A, B);
-  return LinearObservation(A0, A, B);
+  LinearObservation observation = [&] {
+    if (!table_->observation_is_constant) return LinearObservation(p, n, r, coefficients);
+    Eigen::VectorXd A0(p);
+    Eigen::MatrixXd A(p, n), B(p, r);
+    coefficients(0.0, A0, A, B);
+    return LinearObservation(A0, A, B);
+  }();
+  observation.set_delay(table_->delay);
+  return observation;
+}
+
+void SimulationPlugin::check_grid_step(double dt) const {
+  // The same tolerance as the model's rule for h / dt (simulation_rules.cpp).
+  auto differs = [dt](double fixed) { return fixed > 0 && std::abs(dt - fixed) > 1e-9 * fixed; };
+  char text[160];
+  for (std::size_t k = 0; k < table_->filter_count; ++k)
+    if (differs(table_->filters[k].fixed_dt)) {
+      std::snprintf(text, sizeof text, " was generated for the grid step dt = %.17g, not %.17g",
+                    table_->filters[k].fixed_dt, dt);
+      throw PluginLoadError("simulation plugin " + path_ + ": filter '" + table_->filters[k].name + "'" + text +
+                            "; generate the plugin for this dt");
+    }
+  if (table_->delay > 0 && differs(table_->delay_dt)) {
+    std::snprintf(text, sizeof text, ": the observation delay h = %.17g was set for dt = %.17g, not %.17g",
+                  table_->delay, table_->delay_dt, dt);
+    throw PluginLoadError("simulation plugin " + path_ + text + "; generate the plugin for this dt");
+  }
 }
 
 Eigen::VectorXd SimulationPlugin::truth_initial_state() const {
@@ -142,6 +179,8 @@ std::vector<FilterModel> SimulationPlugin::filters() const {
     model.step = [library, step = f.step](double* state, double t, double dt, const double* dy) {
       step(state, t, dt, dy);
     };
+    model.extra_state = f.extra_state_size;
+    model.fixed_dt = f.fixed_dt;
     out.push_back(std::move(model));
   }
   for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {

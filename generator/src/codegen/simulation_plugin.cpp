@@ -1,6 +1,7 @@
 #include "pfgen/codegen/simulation_plugin.hpp"
 
 #include <map>
+#include <optional>
 #include <set>
 
 #include "pfgen/codegen/cpp_emitter.hpp"
@@ -8,6 +9,8 @@
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/codegen/template_text.hpp"
 #include "pfgen/codegen/truth_codegen.hpp"
+#include "pfgen/model/delay_grid.hpp"
+#include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::codegen {
 namespace {
@@ -52,6 +55,20 @@ std::string filter_wrappers(const Model& model, const std::vector<std::string>& 
     }
     return out;
   }
+  if (model.observation.is_delayed()) {
+    // The ABI's flat state is [F's state (m, P, x*), F's history]; the grid index k of the step
+    // from t: the loader accepts only the grid t_k = k F::dt (fixed_dt).
+    for (const auto& name : names) {
+      const std::string alias = "  namespace F = " + filter_namespace(model, name) + ";\n";
+      out += "void " + name + "_initial_state(double* state) {\n" + alias +
+             "  F::initial_state(state);\n  F::initial_history(state, state + F::state_size);\n}\n";
+      out += "void " + name + "_step(double* state, double t, double dt, const double* dy) {\n" + alias +
+             "  (void)dt;  // F::dt(), the table's fixed_dt\n"
+             "  F::step(state, state + F::state_size, static_cast<std::size_t>(std::llround(t / F::dt())), dy,\n"
+             "          F::Params<double>{});\n}\n\n";
+    }
+    return out;
+  }
   for (const auto& name : names) {
     const std::string alias = "  namespace F = " + filter_namespace(model, name) + ";\n";
     out += "void " + name + "_initial_state(double* state) {\n" + alias + "  F::initial_state(state);\n}\n";
@@ -75,7 +92,15 @@ std::string filter_table(const Model& model, const std::vector<std::string>& nam
     out += item + "name = " + c_string(labels[k]) + ";\n";
     out += item + "n = " + ns + "::n;\n";
     out += item + "p = " + ns + "::p;\n";
-    out += item + "state_size = " + ns + "::state_size;\n";
+    if (model.observation.is_delayed()) {
+      // The ABI's state_size is m and P; x* and the history follow as extra state.
+      const std::string mP = ns + "::n + " + ns + "::n * (" + ns + "::n + 1) / 2";
+      out += item + "state_size = " + mP + ";\n";
+      out += item + "extra_state_size = " + ns + "::state_size + " + ns + "::history_size - (" + mP + ");\n";
+      out += item + "fixed_dt = " + ns + "::dt();\n";
+    } else {
+      out += item + "state_size = " + ns + "::state_size;\n";
+    }
     out += item + "initial_state = &pfgen_simulation::entry::" + names[k] + "_initial_state;\n";
     out += item + "step = &pfgen_simulation::entry::" + names[k] + "_step;\n";
   }
@@ -115,10 +140,21 @@ std::string truth_function(bool present, const std::string& name) {
 
 const std::string& plugin_abi_header() { return embedded_template("pfgen_runtime/plugin_abi.h"); }
 
-std::string generate_simulation_plugin(const Model& model, const std::vector<FilterEquations>& filters) {
+std::string generate_simulation_plugin(const Model& model, const std::vector<FilterEquations>& filters,
+                                       std::optional<double> grid_step) {
   CodegenOptions options;
   options.scalar = ScalarMode::Double;
   options.name_space = kFilterNamespace;
+  // The delay on the grid: the truth reads x(t - h) D steps back, the filters keep D steps.
+  std::size_t delay_steps_value = 0;
+  const bool delayed = model.observation.is_delayed();
+  if (delayed) {
+    if (!grid_step) throw CodegenError("a model with delayed observations needs the grid step dt for its plugin");
+    const DelaySteps steps = delay_steps(model.observation.delay(), *grid_step);
+    if (!steps.problem.empty()) throw CodegenError("observation.delay: " + steps.problem);
+    delay_steps_value = steps.steps;
+    options.grid_step = grid_step;
+  }
 
   std::vector<std::string> names, labels;
   std::set<std::string> seen;
@@ -166,6 +202,9 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
       {"sampled_observation", sampled ? "&pfgen_simulation::truth::sampled_observation" : "nullptr"},
       {"sampled_filter_count", sampled ? std::to_string(names.size()) : "0"},
       {"sampled_filters", !sampled || names.empty() ? "nullptr" : "sampled_filters.data()"},
+      {"delay", CppEmitter(ScalarMode::Double).literal(model.observation.delay())},
+      {"delay_dt", delayed ? pfgen_support::shortest_double(*grid_step) : std::string("0.0")},
+      {"delay_steps", std::to_string(delay_steps_value)},
   };
   return fill_template("cpp/simulation_plugin.cpp.tmpl", embedded_template("cpp/simulation_plugin.cpp.tmpl"),
                        values);

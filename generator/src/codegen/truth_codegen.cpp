@@ -67,9 +67,10 @@ std::string state_function(const Model& model, TruthNames& names, const std::str
   return function(model, names, signature, true, outputs, destinations);
 }
 
-// A0, A and B in one function of t: entry k of A0, then of A, then of B.
+// A0, A and B in one function of t: entry k of A0, then of A, then of B. A delayed observation
+// has the same coefficients; the runtime applies them to x(t - h).
 std::string observation_function(const Model& model, TruthNames& names) {
-  const ContinuousObservation& o = model.observation.continuous();
+  const ContinuousObservation& o = model.observation.rate();
   std::vector<Polynomial> outputs;
   std::vector<std::string> destinations;
   std::string signature = "observation(double " + names.time;
@@ -125,7 +126,8 @@ TruthCode generate_truth_code(const Model& model) {
     code.r = sampled.Uv.empty() ? 0 : sampled.Uv.front().size();
     code.period = sampled.period.to_double();
   } else {
-    const ContinuousObservation& observation = model.observation.continuous();
+    const ContinuousObservation& observation = model.observation.rate();
+    code.delay = model.observation.delay().to_double();
     code.r = observation.B.empty() ? 0 : observation.B.front().size();
     code.observation_is_constant = !depends_on_time(model, ExMatrix{observation.A0}) &&
                                    !depends_on_time(model, observation.A) && !depends_on_time(model, observation.B);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "pfgen/model/delay_grid.hpp"
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen_support/shortest_double.hpp"
 
@@ -43,6 +44,16 @@ Breach check_grid(const SimulationSection& s) {
   if (std::abs(steps - std::round(steps)) > 1e-6 + 1e-12 * steps)
     return breach("dt", "T = " + number_text(T) + " is not a whole number of steps of " + number_text(dt) +
                             " (T / dt = " + number_text(steps) + "); choose a dt that divides T");
+  return {};
+}
+
+// Delayed filters run on the fixed grid t_k = k dt and read their history D = h / dt steps back,
+// as the truth's dy reads x: h must be a whole number of steps (model/delay_grid.hpp), the file's
+// dt and the command line's alike.
+Breach check_delay(const Model& model, const SimulationSection& s) {
+  if (!s.dt || !(*s.dt > 0) || !model.observation.is_delayed()) return {};
+  const DelaySteps steps = delay_steps(model.observation.delay(), *s.dt);
+  if (!steps.problem.empty()) return breach("dt", "observation.delay: " + steps.problem);
   return {};
 }
 
@@ -122,6 +133,7 @@ Breach check_times(const SimulationSection& s) {
 
 std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model, const SimulationSection& settings) {
   if (auto b = check_grid(settings)) return b;
+  if (auto b = check_delay(model, settings)) return b;
   if (auto b = check_counts(settings)) return b;
   if (auto b = check_scheme(model, settings)) return b;
   if (auto b = check_filters(model, settings)) return b;

@@ -1,5 +1,6 @@
 #pragma once
-// Continuous linear observations dy = (A0(t) + A(t) x) dt + B(t) dW2 on the truth's grid.
+// Continuous linear observations dy = (A0(t) + A(t) x(t - h)) dt + B(t) dW2 on the truth's grid,
+// h = 0 unless set_delay() gives a delay (docs/theory.md §2.6).
 #include <cstddef>
 #include <functional>
 
@@ -21,7 +22,18 @@ class LinearObservation {
   std::size_t n() const { return n_; }
   std::size_t r() const { return r_; }
 
-  // The increment over [t, t + dt] given the truth at both ends and dW2 (r entries):
+  // The observation delay h >= 0 (default 0): dy over [t, t + dt] reads the truth at t - h and
+  // t + dt - h, and x(s) = x(0) for s < 0. std::invalid_argument unless h is finite and >= 0.
+  void set_delay(double h);
+  double delay() const { return delay_; }
+  // h in steps of the grid: D = round(h / dt); std::invalid_argument when h / dt is not a whole
+  // number (relative tolerance 1e-9) or D > max_delay_steps (the truth would keep nothing
+  // longer, but a filter's history of D grid values would not fit).
+  std::size_t delay_steps(double dt) const;
+  static constexpr std::size_t max_delay_steps = 10000000;
+
+  // The increment over [t, t + dt] given the truth at both ends and dW2 (r entries); with a delay
+  // the caller passes x(t - h) and x(t + dt - h) as x_start and x_end:
   //   dy = 1/2 [(A0 + A x)(t) + (A0 + A x)(t + dt)] dt + B(t) dW2.
   // The trapezoid integrates the drift to O(dt^1.5) strongly, as accurate as the truth itself;
   // B(t) at the left end keeps the noise term Ito. Not thread-safe (work arrays): copy per thread.
@@ -39,6 +51,7 @@ class LinearObservation {
   Eigen::VectorXd A0_;
   Eigen::MatrixXd A_, B_;
   Eigen::VectorXd work_;
+  double delay_ = 0;
 };
 
 }  // namespace pfgen_runtime

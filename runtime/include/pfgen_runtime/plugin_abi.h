@@ -2,8 +2,8 @@
  * means the same to every compiler and to C and C++ alike.
  *
  * A plugin is a shared object built by `pfgen simulate` from one model: its truth
- * dx = f(x,t) dt + g(x,t) dW1, its observation dy = (A0(t) + A(t) x) dt + B(t) dW2 (or samples
- * y_k = C0 + C x(t_k) + Uv v_k, version 2 on), and any
+ * dx = f(x,t) dt + g(x,t) dW1, its observation dy = (A0(t) + A(t) x(t - h)) dt + B(t) dW2 (h = 0
+ * but in version 3 on; or samples y_k = C0 + C x(t_k) + Uv v_k, version 2 on), and any
  * number of generated filters, all at the model's default parameter values. It exports one
  * function, PFGEN_PLUGIN_ENTRY_NAME, returning a table that lives as long as the plugin is loaded.
  *
@@ -23,16 +23,22 @@
 extern "C" {
 #endif
 
-#define PFGEN_PLUGIN_ABI_VERSION 2u
+#define PFGEN_PLUGIN_ABI_VERSION 3u
 #define PFGEN_PLUGIN_ENTRY_NAME "pfgen_plugin_entry"
 
-/* One filter over its packed state [m (n entries), upper triangle of P row by row]. */
+/* One filter over its packed state [m (n entries), upper triangle of P row by row], followed by
+ * extra_state_size entries of its own (a delayed filter's x* and the history of its last D grid
+ * values; 0 for others) that only the filter reads. A filter with fixed_dt > 0 was generated for
+ * the grid t_k = k fixed_dt and must be stepped once per grid step on exactly that grid
+ * (step's t = t_k, dt = fixed_dt); fixed_dt = 0: any t and dt. */
 typedef struct pfgen_plugin_filter {
   const char* name;
   size_t n, p;
-  size_t state_size; /* n + n(n+1)/2 */
+  size_t state_size; /* n + n(n+1)/2: m and P */
   void (*initial_state)(double* state);                                 /* from the model's m0, P0 */
   void (*step)(double* state, double t, double dt, const double* dy);   /* over [t, t+dt], dy: p */
+  size_t extra_state_size; /* entries after m and P (version 3 on) */
+  double fixed_dt;         /* 0, or the only grid step the filter accepts (version 3 on) */
 } pfgen_plugin_filter;
 
 /* One filter for sampled observations (y_k = C0 + C x(t_k) + Uv v_k every `period`) over the
@@ -79,6 +85,12 @@ typedef struct pfgen_plugin {
   void (*sampled_observation)(double t, double* C0, double* C, double* Uv);
   size_t sampled_filter_count;
   const pfgen_plugin_sampled_filter* sampled_filters; /* sampled_filter_count entries (NULL when 0) */
+  /* Continuous observations with a delay (version 3 on): dy reads the truth at t - h, with
+   * x(s) = x(0) for s < 0. delay_steps = h / delay_dt, the grid step the plugin's filters were
+   * generated for; all three 0 without a delay. */
+  double delay;
+  double delay_dt;
+  size_t delay_steps;
 } pfgen_plugin;
 
 /* The exported entry point: const pfgen_plugin* pfgen_plugin_entry(void). */

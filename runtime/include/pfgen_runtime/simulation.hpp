@@ -3,6 +3,7 @@
 // filters stepped on the same observation increments. Each run draws from its own streams,
 // RandomStream(seed, run, substream::truth_noise / observation_noise), so a run is the same
 // whichever thread computes it and in whatever order.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -41,7 +42,9 @@ struct TruthRun {
 };
 
 // Steps `scheme` from x0 over `grid` with Wiener increments from the run's truth stream, and
-// generates dy from its observation stream. The run stops at the first grid time whose state
+// generates dy from its observation stream (with the observation's delay h = D dt, dy over step k
+// from the path at k - D and k + 1 - D, x(s) = x(0) for s < 0; std::invalid_argument unless h is
+// a whole number of steps). The run stops at the first grid time whose state
 // the guard rejects (that state is not stored; the event has its time). The scheme and
 // observation are used, not copied: give each thread its own.
 TruthRun simulate_truth(TruthScheme& scheme, LinearObservation& observation, const Eigen::VectorXd& x0,
@@ -98,6 +101,10 @@ std::size_t draw_samples(SampledMeasurement& measurement, const TimeGrid& grid, 
 // A filter for sampled observations has substeps >= 1 and predict/update instead of step:
 // between samples `substeps` predictions of dt = period / substeps, at each sample the update
 // (false when C P C^T + Uv Uv^T is not positive definite).
+// A filter of delayed observations keeps more state after m and P (x* and the history of its
+// last D grid values, `extra_state` entries) and was generated for one grid step `fixed_dt`:
+// it is stepped exactly once per grid step, never refined (FilterStepper's sub-steps would leave
+// the history's grid), and only on a grid t_k = k fixed_dt.
 struct FilterModel {
   std::string name;
   std::size_t n = 0;
@@ -107,9 +114,17 @@ struct FilterModel {
   std::size_t substeps = 0;  // 0: a continuous filter
   std::function<void(double* state, double t, double dt)> predict;
   std::function<bool(double* state, double t, const double* y)> update;
-  std::size_t state_size() const { return filter_state_size(n); }
+  std::size_t extra_state = 0;  // entries after m and P; guards and records never read them
+  double fixed_dt = 0;          // 0: any grid step (refined where unstable); else the only one
+  // m, P and the extra state: what initial_state and step read and write.
+  std::size_t state_size() const { return filter_state_size(n) + extra_state; }
   bool sampled() const { return substeps > 0; }
+  bool fixed_step() const { return fixed_dt > 0; }
 };
+
+// std::invalid_argument unless the filter can run on `grid`: a fixed-step filter needs
+// grid.dt == fixed_dt (relative tolerance 1e-9) and t0 = 0; extra state needs a fixed step.
+void check_filter_grid(const FilterModel& filter, const TimeGrid& grid);
 
 // Adapts a generated header: for namespace F,
 //   make_filter_model("optimal", F::n, F::p, &F::initial_state<double>, &F::step<double>)
@@ -125,6 +140,33 @@ FilterModel make_filter_model(std::string name, std::size_t n, std::size_t p, vo
   model.initial_state = initial_state;
   model.step = [step, params = std::move(params)](double* state, double t, double dt, const double* dy) {
     step(state, t, dt, dy, params);
+  };
+  return model;
+}
+
+// Adapts a generated delayed filter's header (templates/cpp/delayed_filter.hpp.tmpl): for namespace F,
+//   make_delayed_filter_model("delay-optimal", F::n, F::p, F::state_size, F::history_size, F::dt<double>(),
+//                             &F::initial_state<double>, &F::initial_history<double>, &F::step<double>)
+// The FilterModel's state is [F's state, history]; step(state, t, dt, dy) calls
+// F::step(state, history, k, dy, params) with k = round(t / dt).
+template <class Params>
+FilterModel make_delayed_filter_model(std::string name, std::size_t n, std::size_t p, std::size_t state_size,
+                                      std::size_t history_size, double dt, void (*initial_state)(double*),
+                                      void (*initial_history)(const double*, double*),
+                                      void (*step)(double*, double*, std::size_t, const double*, const Params&),
+                                      Params params = Params{}) {
+  FilterModel model;
+  model.name = std::move(name);
+  model.n = n;
+  model.p = p;
+  model.extra_state = state_size + history_size - filter_state_size(n);
+  model.fixed_dt = dt;
+  model.initial_state = [initial_state, initial_history, state_size](double* state) {
+    initial_state(state);
+    initial_history(state, state + state_size);
+  };
+  model.step = [step, state_size, dt, params = std::move(params)](double* state, double t, double, const double* dy) {
+    step(state, state + state_size, static_cast<std::size_t>(std::llround(t / dt)), dy, params);
   };
   return model;
 }
@@ -160,7 +202,8 @@ struct CovarianceEvent {
 struct FilterRun {
   std::string name;
   std::size_t completed_steps = 0;
-  Eigen::MatrixXd state;  // state_size x (completed_steps + 1): column k at grid.time(k)
+  // m and P (filter_state_size(n) rows, no extra state) x (completed_steps + 1): column k at grid.time(k)
+  Eigen::MatrixXd state;
   std::optional<DivergenceEvent> divergence;  // m or P non-finite or beyond its bound
   std::optional<CovarianceEvent> psd_loss;    // first time P failed the PSD check
   bool stopped = false;  // by a divergence, or by a PSD loss with stop_on_psd_loss

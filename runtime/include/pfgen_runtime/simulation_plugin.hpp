@@ -64,15 +64,19 @@ class SimulationPlugin {
   // Samples y_k = C0 + C x(t_k) + Uv v_k every period() (r() = columns of Uv).
   bool is_sampled() const { return table_->observation_is_sampled != 0; }
   double period() const { return table_->period; }
-  // dy = (A0 + A x) dt + B dW2: constant coefficients when they do not depend on t.
-  // PluginLoadError for a sampled model.
+  // dy = (A0 + A x(t - h)) dt + B dW2: constant coefficients when they do not depend on t, the
+  // delay h (0 but for delayed observations) set. PluginLoadError for a sampled model.
   LinearObservation observation() const;
+  double delay() const { return table_->delay; }
+  // PluginLoadError unless every filter accepts the grid step dt: a delayed filter (fixed_dt)
+  // runs only on the grid it was generated for, and so does the delay's step count.
+  void check_grid_step(double dt) const;
   // The samples of a sampled model; PluginLoadError for a continuous one.
   SampledMeasurement measurement() const;
   // The model's initial.x0; PluginLoadError (std::runtime_error) when the model gives none.
   Eigen::VectorXd truth_initial_state() const;
   // The filters in the plugin's order, at the model's default parameters (for a sampled model
-  // its sampled filters: FilterModel::sampled()).
+  // its sampled filters: FilterModel::sampled(); a delayed filter has extra_state and fixed_dt).
   std::vector<FilterModel> filters() const;
 
   // The raw table, valid while this object (or anything it returned) lives.

@@ -130,8 +130,11 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, Filter
   }
   const std::uint64_t refined_before = stepper_.refined_steps();
   const double* dy = dy_.data();
+  const bool fixed_step = filter.fixed_step();  // a delayed filter: once per grid step, as run_filter
   for (std::size_t k = 0; going && static_cast<std::ptrdiff_t>(k) < run.truth_last; ++k) {
-    if (stepper_.advance(filter.step, state, grid.time(k), grid.dt, dy + k * plan_.p) == 0) {
+    if (fixed_step) {
+      filter.step(state, grid.time(k), grid.dt, dy + k * plan_.p);
+    } else if (stepper_.advance(filter.step, state, grid.time(k), grid.dt, dy + k * plan_.p) == 0) {
       out.diverged = out.too_stiff = true;  // mid-step: the state is not stored
       out.divergence_t = grid.time(k);
       break;

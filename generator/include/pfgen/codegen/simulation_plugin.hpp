@@ -4,6 +4,7 @@
 // plugin ABI (runtime/include/pfgen_runtime/plugin_abi.h, pasted in verbatim), for
 // `pfgen simulate` to compile into a shared object (toolchain/plugin_compiler.hpp) and load
 // (pfgen_runtime::SimulationPlugin). The text is deterministic: it is the cache key's input.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,11 @@ namespace pfgen::codegen {
 // The filters in the given order, each named by its own name (FilterEquations::name, e.g.
 // "ekf-additive") for the runtime and by filter_identifier(name) in the C++. Throws
 // CodegenError when two filters share an identifier, or for what the code generator cannot write.
-std::string generate_simulation_plugin(const Model& model, const std::vector<FilterEquations>& filters);
+// A model with delayed observations needs grid_step, the simulation's dt: its filters are
+// generated for that grid (CodegenOptions::grid_step), and the table records h, dt and D = h / dt.
+// Other models ignore it, so their plugin source does not depend on dt.
+std::string generate_simulation_plugin(const Model& model, const std::vector<FilterEquations>& filters,
+                                       std::optional<double> grid_step = std::nullopt);
 
 // The text of pfgen_runtime/plugin_abi.h, compiled into pfgen at build time.
 const std::string& plugin_abi_header();

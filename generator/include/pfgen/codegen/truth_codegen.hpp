@@ -23,6 +23,7 @@ struct TruthCode {
   bool has_initial_state = false;        // the model gives initial.x0
   bool sampled = false;                  // sampled observations: p rows of C, r columns of Uv
   double period = 0;                     // sampled: T
+  double delay = 0;                      // delayed: h (the observation functions are A0, A, B as ever)
   // Definitions, in this order (bracketed ones only when they exist; argument names as below
   // unless the model uses them, see cpp_names.hpp):
   //   using Scalar = double;  struct Params { <parameters with defaults> };

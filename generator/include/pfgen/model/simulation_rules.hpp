@@ -20,8 +20,8 @@ struct SimulationRuleBreach {
   std::string message;               // what is wrong, without the place
 };
 
-// The first rule the settings break, in a fixed order (T, dt, runs, record points, bound, shown
-// run, scheme, filters, report times, windows), or nothing.
+// The first rule the settings break, in a fixed order (T, dt, the observation delay against dt,
+// runs, record points, bound, shown run, scheme, filters, report times, windows), or nothing.
 std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model, const SimulationSection& settings);
 
 // Whether the model's diffusion is identically zero (a deterministic truth).
