@@ -138,6 +138,8 @@ for f in delay-uncorrected delay-ekf ekf-printed ekf-printed-2p; do
   line "vs $f" "${cells[@]}"
   verdicts+=" ${cells[*]}"
 done
-better=$(grep -o 'better' <<< "$verdicts" | wc -l); worse=$(grep -o 'worse' <<< "$verdicts" | wc -l)
+count_word() { awk -v w="$1" '{n += gsub(w, "")} END {print n + 0}' <<< "$verdicts"; }
+better=$(count_word better); worse=$(count_word worse)
 echo "In all: delay-optimal better in $better, worse in $worse of 16 comparisons (4 comparators x 4 times)."
-echo "Full tables: $out/as_printed.txt, $out/quadratic_009.txt"
+shown="${out#"$here"/}"  # relative to the repository when it is inside it
+echo "Full tables: $shown/as_printed.txt, $shown/quadratic_009.txt"
