@@ -196,6 +196,19 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
   return out.str();
 }
 
+std::string format_report_errors(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
+  if (state_names.size() != result.n)
+    throw std::invalid_argument("report errors: need one name per state component");
+  if (result.filters.empty() || result.filters.front().reports.empty()) return "";
+  std::vector<std::vector<std::string>> rows{{"filter", "state", "t", "runs", "mean e", "se", "mean |e|", "se"}};
+  for (const FilterStatistics& filter : result.filters)
+    for (const ReportStatistics& r : filter.reports)
+      for (std::size_t i = 0; i < result.n; ++i)
+        rows.push_back({filter.name, state_names[i], time(r.t), count(r.alive), number(r.mean_error[i]),
+                        number(r.mean_error_se[i], "%.2g"), number(r.mean_abs[i]), number(r.mean_abs_se[i], "%.2g")});
+  return "\nErrors at the report times (e = x - m over the runs counted; se: standard error over runs):\n" + align(rows);
+}
+
 std::string format_timing(const MonteCarloResult& result) {
   const MonteCarloTiming& timing = result.timing;
   // "1.234 thread-s, 56.7 ns/step (CPU 55.1 ns/step)": elapsed and CPU time per step.

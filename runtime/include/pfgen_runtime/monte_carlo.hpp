@@ -60,6 +60,10 @@ struct ReportStatistics {
   std::size_t index = 0;
   std::size_t alive = 0;                // runs with truth and filter alive at t
   std::vector<double> mean_abs, rms;    // per component, over those runs; NaN when alive == 0
+  // The signed mean of e = x - m (with a deterministic truth, mean m = x - mean e) and the
+  // standard errors (sample standard deviation / sqrt(alive)) of it and of mean_abs; per
+  // component, NaN when alive == 0 (the standard errors: alive < 2). format_report_errors prints them.
+  std::vector<double> mean_error, mean_error_se, mean_abs_se;
 };
 
 // The truth itself at a report time, over the runs whose truth is alive there (a paper's

@@ -19,6 +19,13 @@ namespace pfgen_runtime {
 // (std::invalid_argument otherwise).
 std::string format_summary_table(const MonteCarloResult& result, const std::vector<std::string>& state_names);
 
+// The errors at the report times in full, one row per filter, state component and report time:
+// the runs counted, the signed mean of e = x - m and the mean |e|, each with its standard error
+// over runs. Not part of format_summary_table (whose bytes stay as they were); `pfgen simulate`
+// prints it after the table for delayed observations, where a paper's printed estimates are
+// compared through mean m = x - mean e. Empty when there are no filters or no report times.
+std::string format_report_errors(const MonteCarloResult& result, const std::vector<std::string>& state_names);
+
 // Wall time, thread seconds and ns per step of the truth and of each filter (varies run to run).
 std::string format_timing(const MonteCarloResult& result);
 

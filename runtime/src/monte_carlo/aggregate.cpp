@@ -177,7 +177,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       ReportStatistics report;
       report.index = plan.reports[q];
       report.t = plan.grid.time(report.index);
-      std::vector<double> sum_abs(n, 0.0), sum_square(n, 0.0);
+      std::vector<double> sum_abs(n, 0.0), sum_square(n, 0.0), sum(n, 0.0);
       for (const RunResult& run : runs) {
         const FilterRunResult& filter = run.filters[f];
         if (filter.last < static_cast<std::ptrdiff_t>(report.index)) continue;
@@ -186,12 +186,23 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
           const double e = filter.report_error[q * n + i];
           sum_abs[i] += std::abs(e);
           sum_square[i] += e * e;
+          sum[i] += e;
         }
       }
       const double alive = static_cast<double>(report.alive);
+      // Standard error of a mean whose values' squares sum to sum_square: e^2 = |e|^2, so one sum
+      // serves the signed and the absolute error.
+      auto standard_error = [&](double mean, double squares) {
+        if (report.alive < 2) return nan;
+        const double variance = (squares - alive * mean * mean) / (alive - 1);
+        return std::sqrt(std::max(variance, 0.0) / alive);
+      };
       for (std::size_t i = 0; i < n; ++i) {
         report.mean_abs.push_back(report.alive > 0 ? sum_abs[i] / alive : nan);
         report.rms.push_back(report.alive > 0 ? std::sqrt(sum_square[i] / alive) : nan);
+        report.mean_error.push_back(report.alive > 0 ? sum[i] / alive : nan);
+        report.mean_error_se.push_back(standard_error(report.mean_error.back(), sum_square[i]));
+        report.mean_abs_se.push_back(standard_error(report.mean_abs.back(), sum_square[i]));
       }
       stats.reports.push_back(std::move(report));
     }
