@@ -2,7 +2,9 @@
 // by `pfgen codegen`, stepped over the recorded observation sequence of observations.hpp,
 // with every `print_every`-th state printed as one line; then the sampled filter (cd-optimal) of
 // paper 003's Example 1 (gamma = 1), advanced over its recorded samples (`substeps` Heun
-// predictions and one Kalman update per sample), with the state printed after every sample.
+// predictions and one Kalman update per sample), with the state printed after every sample; then
+// the delayed-observation filter (delay-optimal) of examples/delay_linear.yaml over its recorded
+// increments, with its fixed-size history (h = 0.5 = 50 steps) in a static array.
 //
 // One source, two builds (scripts/embedded-check.sh):
 //  - firmware: arm-none-eabi-g++ with PFGEN_EMBEDDED_TARGET, the `--scalar float` headers,
@@ -20,6 +22,7 @@
 #include "basin2006_quadratic/optimal.hpp"
 #include "allahyani_date_example1_gamma1/cd_optimal.hpp"
 #include "basin_skliar_partial/optimal.hpp"
+#include "delay_linear/delay_optimal.hpp"
 #include "observations.hpp"
 #include "text_line.hpp"
 
@@ -33,11 +36,13 @@
 namespace quadratic = pfgen_models::basin2006_quadratic::optimal;
 namespace partial = pfgen_models::basin_skliar_partial::optimal;
 namespace sampled = pfgen_models::allahyani_date_example1_gamma1::cd_optimal;
+namespace delayed = pfgen_models::delay_linear::delay_optimal;
 namespace observations = pfgen_embedded::observations;
 using pfgen_embedded::Line;
 
 static_assert(quadratic::p == 1 && partial::p == 1, "the recorded sequence holds one observation per step");
 static_assert(sampled::p == 1, "the recorded samples hold one observation each");
+static_assert(delayed::p == 1, "the recorded sequence holds one observation per step");
 
 // Out of line and with C names, so that scripts/embedded-check.sh can disassemble exactly
 // the filter step and check that it is single-precision FPU code only.
@@ -61,6 +66,16 @@ extern "C" __attribute__((noinline)) bool pfgen_embedded_advance_allahyani_date_
                                                                                                sampled::Scalar t,
                                                                                                const sampled::Scalar* y) {
   return sampled::advance(state, t, y, sampled::Params<sampled::Scalar>{});
+}
+
+// One grid step k of the delayed filter: Heun over [k dt, (k + 1) dt] reading m and x* h ago
+// from its history ring, then storing the step's start in it. `flatten` inlines the generated
+// step into this symbol (GCC keeps the larger delayed step out of line otherwise), so that the
+// check below disassembles all of its arithmetic.
+extern "C" __attribute__((noinline, flatten)) void pfgen_embedded_step_delay_linear(delayed::Scalar* state,
+                                                                          delayed::Scalar* history, std::size_t k,
+                                                                          const delayed::Scalar* dy) {
+  delayed::step(state, history, k, dy, delayed::Params<delayed::Scalar>{});
 }
 
 namespace {
@@ -178,6 +193,20 @@ int main() {
       [](partial::Scalar* state) { partial::initial_state(state); }, pfgen_embedded_step_basin_skliar_partial);
   const char* const sampled_columns[sampled::state_size] = {"m1", "P11"};
   const bool sampled_ok = run_sampled<sampled::Scalar>("allahyani_date_example1_gamma1", sampled_columns);
+  // The delayed filter: its history (delay_steps x (m, x*)) lives here, sized at compile time.
+  static_assert(delayed::delay_steps == 50 && delayed::history_size == 100, "delay_linear: h = 0.5 = 50 steps of 0.01");
+  static delayed::Scalar history[delayed::history_size];
+  std::size_t step_index = 0;
+  const char* const delayed_columns[delayed::state_size] = {"m1", "P11", "xs1"};
+  const bool delayed_ok = run<delayed::Scalar>(
+      "delay_linear", delayed_columns, observations::delay_linear_dy,
+      [](delayed::Scalar* state) {
+        delayed::initial_state(state);
+        delayed::initial_history(state, history);
+      },
+      [&step_index](delayed::Scalar* state, delayed::Scalar, delayed::Scalar, const delayed::Scalar* dy) {
+        pfgen_embedded_step_delay_linear(state, history, step_index++, dy);
+      });
 
   Line info;
   info.text("info scalar_bytes ");
@@ -191,7 +220,7 @@ int main() {
   write_line(info);
 
   Line end;
-  const bool all_ok = quadratic_ok && partial_ok && sampled_ok;
+  const bool all_ok = quadratic_ok && partial_ok && sampled_ok && delayed_ok;
   end.text(all_ok ? "end ok" : "end FAIL: a filter state is not finite or an update refused its sample");
   write_line(end);
   return all_ok ? 0 : 1;

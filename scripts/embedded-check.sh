@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Embedded proof (README, "Embedded (Cortex-M4F)"): the float code `pfgen codegen --scalar float`
-# writes for paper 000's and paper 001's examples (optimal filter) and for paper 003's Example 1
-# with gamma = 1 (sampled observations, cd-optimal: predict/update), cross-compiled for a
+# writes for paper 000's and paper 001's examples (optimal filter), for paper 003's Example 1
+# with gamma = 1 (sampled observations, cd-optimal: predict/update) and for delay_linear (delayed
+# observations, delay-optimal with its history ring), cross-compiled for a
 # Cortex-M4F (arm-none-eabi, hard float) into a bare-metal program, run under
 #   qemu-system-arm -machine mps2-an386
 # on the recorded observations and samples of embedded/observations.hpp, and compared with the
@@ -50,8 +51,10 @@ ATOL=1e-5
 models=(basin2006_quadratic basin_skliar_partial)
 # The sampled filter run: cd-optimal (Heun predictions, Kalman update) over recorded samples.
 sampled_models=(allahyani_date_example1_gamma1)
+# The delayed filter run: delay-optimal (fixed grid, history ring of m and x*).
+delayed_models=(delay_linear)
 step_symbols=(pfgen_embedded_step_basin2006_quadratic pfgen_embedded_step_basin_skliar_partial
-              pfgen_embedded_advance_allahyani_date_example1_gamma1)
+              pfgen_embedded_advance_allahyani_date_example1_gamma1 pfgen_embedded_step_delay_linear)
 qemu_timeout=60
 
 fail() { echo "embedded-check: FAIL: $*" >&2; exit 1; }
@@ -91,6 +94,10 @@ done
 for m in "${sampled_models[@]}"; do
   "$pfgen" codegen "$root/examples/$m.yaml" --filter cd-optimal --scalar float -o gen-float
   "$pfgen" codegen "$root/examples/$m.yaml" --filter cd-optimal --scalar double -o gen-double
+done
+for m in "${delayed_models[@]}"; do  # the grid dt is the model's simulation: dt (0.01)
+  "$pfgen" codegen "$root/examples/$m.yaml" --filter delay-optimal --scalar float -o gen-float
+  "$pfgen" codegen "$root/examples/$m.yaml" --filter delay-optimal --scalar double -o gen-double
 done
 
 # --- the recorded observations are what the committed tool writes -------------------------
@@ -209,7 +216,7 @@ total_s=$(elapsed "$t_work")
 
 {
   echo "embedded-check: Cortex-M4F (qemu-system-arm -machine mps2-an386) vs host double, optimal filters of"
-  echo "  ${models[*]}, sampled cd-optimal filter of ${sampled_models[*]};"
+  echo "  ${models[*]}, sampled cd-optimal filter of ${sampled_models[*]}, delayed delay-optimal filter of ${delayed_models[*]};"
   echo "  $(grep -c '^traj' target.txt) trajectory lines, $compared values compared"
   echo "  flash (text + data): $flash bytes   [text $text, data $data; of which $observation_bytes bytes of recorded observations]"
   echo "  RAM (data + bss):    $ram bytes   [data $data, bss $((bss - stack_reserved)), stack reserved $stack_reserved; stack peak measured $stack_peak]"

@@ -15,6 +15,7 @@ cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Rel
 cmake --build "$build" -j"$(nproc)" --target pfgen_fuzz_model
 mkdir -p "$build/corpus" "$build/seeds" "$build/findings"
 cp "$root"/examples/*.yaml "$root"/tests/data/bad/*.yaml "$build/seeds/"
+for f in "$root"/examples/*/*.yaml; do cp "$f" "$build/seeds/$(basename "$(dirname "$f")")_$(basename "$f")"; done
 # The first directory collects new inputs; the seeds are read only.
 # -timeout 10: a model that takes longer to load and derive is a finding (a missing limit);
 # -rss_limit_mb 2048: so is one that needs more memory; detect_leaks=0: a leak is not a finding here

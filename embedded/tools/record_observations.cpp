@@ -25,6 +25,10 @@
 // the truth by Euler-Maruyama with 1000 substeps per period, v_k standard normal, each y_k
 // rounded to float like the dy above.
 //
+// Increments for the delayed filter (delay-optimal) of examples/delay_linear.yaml:
+//   dx = -0.5 x dt + 0.3 dW1, x(0) = 1;  dy = x(t - 0.5) dt + 0.2 dW2, x(s) = x(0) for s < 0,
+// on the same grid (500 steps of dt, 100 Euler-Maruyama substeps each), appended after the samples.
+//
 // Build and run (from the repository root):
 //   c++ -std=c++17 -O2 -o /tmp/record_observations embedded/tools/record_observations.cpp
 //   /tmp/record_observations > embedded/observations.hpp
@@ -132,6 +136,31 @@ Record simulate_sampled(double x, std::uint64_t seed) {
   return record;
 }
 
+// examples/delay_linear.yaml's truth and its delayed observation increments.
+constexpr double kDelay = 0.5;
+
+Record simulate_delayed(double x0, std::uint64_t seed) {
+  SplitMix64 rng(seed);
+  const double dt = static_cast<double>(kDtFloat);
+  const double h = dt / kSubsteps;
+  const double sqrt_h = std::sqrt(h);
+  const auto lag = static_cast<std::size_t>(std::lround(kDelay / h));  // substeps in the delay
+  std::vector<double> path = {x0};                                       // x at every substep
+  Record record;
+  for (int k = 0; k < kSteps; ++k) {
+    double dy = 0.0;
+    for (int s = 0; s < kSubsteps; ++s) {
+      const std::size_t now = path.size() - 1;
+      const double delayed = now >= lag ? path[now - lag] : x0;  // x(t - h), x(0) before 0
+      dy += delayed * h + 0.2 * sqrt_h * rng.normal();
+      path.push_back(path.back() - 0.5 * path.back() * h + 0.3 * sqrt_h * rng.normal());
+    }
+    record.dy.push_back(static_cast<float>(dy));
+  }
+  record.x_final = {path.back()};
+  return record;
+}
+
 void print_array(const char* name, const Record& record, const char* description, std::uint64_t seed,
                  const char* size = "steps", const char* at = "t = 500 dt") {
   std::printf("\n// %s\n// seed %llu; true state at %s:", description, static_cast<unsigned long long>(seed), at);
@@ -185,6 +214,10 @@ int main() {
   print_array("allahyani_date_example1_gamma1_y", sampled,
               "allahyani_date_example1_gamma1: dx = -0.5 x dt + 6 dW + 0.1 x dS, x(0) = 1; y_k = 10 x(k) + v_k",
               sampled_seed, "samples", "t = 200");
+  const std::uint64_t delayed_seed = 2004;
+  print_array("delay_linear_dy", simulate_delayed(1.0, delayed_seed),
+              "delay_linear: dx = -0.5 x dt + 0.3 dW1, x(0) = 1; dy = x(t - 0.5) dt + 0.2 dW2 (x(s) = x(0), s < 0)",
+              delayed_seed);
   std::printf("\n}  // namespace pfgen_embedded::observations\n");
   return 0;
 }
