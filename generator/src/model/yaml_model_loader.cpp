@@ -18,6 +18,7 @@
 #include "pfgen/model/model_builder.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/model_validator.hpp"
+#include "pfgen/model/yaml_documents.hpp"
 
 namespace pfgen {
 namespace {
@@ -472,16 +473,18 @@ void refuse_duplicate_keys(const YAML::Node& node, const std::string& field, con
 }
 
 void refuse_second_document(const std::string& text, const std::string& path) {
-  std::vector<YAML::Node> documents;
-  try {
-    documents = YAML::LoadAll(text);
-  } catch (const YAML::Exception&) {
-    return;  // the first document's parse reports it
-  }
-  if (documents.size() > 1)
-    throw located(ModelError("", "the file holds " + std::to_string(documents.size()) +
+  const YamlDocuments documents = count_yaml_documents(text);
+  if (documents.parse_error) return;  // the first document's parse reports it
+  const SourceLocation where{documents.line + 1, documents.column + 1};
+  if (documents.stuck)
+    throw located(ModelError("", "not valid YAML from here on: the text after the first document does not parse "
+                                 "(an unclosed [ or a stray ] or quote before it?)"),
+                  path, where);
+  if (documents.count > 1)
+    throw located(ModelError("", "the file holds " + std::string(documents.count >= 1000 ? "at least " : "") +
+                                     std::to_string(documents.count) +
                                      " YAML documents (separated by ---); a model file is one document"),
-                  path, {documents[1].Mark().line + 1, documents[1].Mark().column + 1});
+                  path, where);
 }
 
 }  // namespace
