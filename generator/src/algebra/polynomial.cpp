@@ -80,10 +80,19 @@ bool displays_before(const Monomial& a, const Monomial& b) {
 
 }  // namespace
 
-std::vector<std::pair<Monomial, GiNaC::ex>> Polynomial::ordered_terms() const {
-  std::vector<std::pair<Monomial, GiNaC::ex>> ordered(terms_.begin(), terms_.end());
+std::vector<const Polynomial::Terms::value_type*> Polynomial::ordered_view() const {
+  std::vector<const Terms::value_type*> ordered;
+  ordered.reserve(terms_.size());
+  for (const auto& term : terms_) ordered.push_back(&term);
   std::stable_sort(ordered.begin(), ordered.end(),
-                   [](const auto& a, const auto& b) { return displays_before(a.first, b.first); });
+                   [](const auto* a, const auto* b) { return displays_before(a->first, b->first); });
+  return ordered;
+}
+
+std::vector<std::pair<Monomial, GiNaC::ex>> Polynomial::ordered_terms() const {
+  std::vector<std::pair<Monomial, GiNaC::ex>> ordered;
+  ordered.reserve(terms_.size());
+  for (const auto* term : ordered_view()) ordered.push_back(*term);
   return ordered;
 }
 

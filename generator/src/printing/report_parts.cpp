@@ -4,19 +4,12 @@
 
 namespace pfgen {
 
-std::string join_parts(const ExpressionPrinter& printer, const std::vector<Polynomial>& parts,
-                       const ExpressionPrinter::VariableNamer& name) {
+std::string join_parts(PolynomialWriter& writer, const std::vector<ReportPart>& parts) {
   std::string out;
-  for (const auto& part : parts) {
-    if (part.is_zero()) continue;
-    std::string text = printer.print(part, name);
-    if (out.empty()) {
-      out = text;
-    } else if (text[0] == '-') {
-      out += " - " + text.substr(1);
-    } else {
-      out += " + " + text;
-    }
+  for (const ReportPart& part : parts) {
+    if (part.polynomial->is_zero()) continue;
+    // After the first part, its first sign joins the sum (" - 0.5*m1", not " + -0.5*m1").
+    writer.append(out, *part.polynomial, part.negated, !out.empty());
   }
   return out.empty() ? "0" : out;
 }

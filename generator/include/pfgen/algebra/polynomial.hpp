@@ -51,6 +51,8 @@ class Polynomial {
   // then the exponent of the lowest-numbered variable where two monomials
   // differ, larger first. Printers and the code generator both use it.
   std::vector<std::pair<Monomial, GiNaC::ex>> ordered_terms() const;
+  // The same order as pointers into terms(), copying no monomial or coefficient (printers).
+  std::vector<const Terms::value_type*> ordered_view() const;
   bool is_zero() const { return terms_.empty(); }
   std::uint32_t degree() const;
 
