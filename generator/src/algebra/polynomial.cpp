@@ -166,13 +166,30 @@ std::uint32_t Polynomial::degree() const {
   return d;
 }
 
-void Polynomial::add_term(const Monomial& monomial, const GiNaC::ex& coefficient) {
+void Polynomial::add_term(const Monomial& monomial, const GiNaC::ex& coefficient) { accumulate(monomial, coefficient); }
+
+void Polynomial::add_term(Monomial&& monomial, const GiNaC::ex& coefficient) {
+  accumulate(std::move(monomial), coefficient);
+}
+
+template <class M>
+void Polynomial::accumulate(M&& monomial, const GiNaC::ex& coefficient) {
   GiNaC::ex c = normalize_coefficient(coefficient);
   if (coefficient_is_zero(c)) return;
-  auto [it, inserted] = terms_.emplace(monomial, c);
-  if (inserted) return;
+  // Look up before inserting: map::emplace would build (allocate) a node only to drop it
+  // when the monomial is already there, the common case when sums collect like terms.
+  auto it = terms_.lower_bound(monomial);
+  if (it == terms_.end() || !(it->first == monomial)) {
+    terms_.emplace_hint(it, std::forward<M>(monomial), std::move(c));
+    return;
+  }
   it->second = coefficient_sum(it->second, c);
   if (coefficient_is_zero(it->second)) terms_.erase(it);
+}
+
+Polynomial& Polynomial::add_times_monomial(const Polynomial& p, const Monomial& monomial) {
+  for (const auto& [m, coefficient] : p.terms_) add_term(m * monomial, coefficient);
+  return *this;
 }
 
 Polynomial& Polynomial::operator+=(const Polynomial& other) {

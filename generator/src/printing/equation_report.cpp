@@ -41,23 +41,28 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
   out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
                               : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [" + correction_words_text(eq) + "]\n\n";
   for (std::size_t i = 0; i < n; ++i) {
-    std::string line = "dm" + std::to_string(i + 1) + " = (" + writer.print(eq.m_drift[i]) + ") dt";
+    out += "dm" + std::to_string(i + 1) + " = (";
+    writer.append(out, eq.m_drift[i]);
+    out += ") dt";
     for (std::size_t r = 0; r < eq.p; ++r) {
       std::string predicted = writer.print(h[r]);
       if (!is_single_term(h[r])) predicted = "(" + predicted + ")";
-      line += " + K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " (dy" + std::to_string(r + 1) + " - " +
+      out += " + K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " (dy" + std::to_string(r + 1) + " - " +
               predicted + " dt)";
     }
-    out += line + "\n";
+    out += "\n";
   }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t r = 0; r < eq.p; ++r)
       out += "K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " = " + writer.print(eq.gain[i][r]) + "\n";
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j)
-      out += "d" + vars.text_name(vars.P(i, j)) + " = (" + join_parts(writer, P_parts(eq, vars.upper_index(i, j))) +
-             ") dt\n";
-  return out + x_star_equations_text(eq);
+    for (std::size_t j = i; j < n; ++j) {
+      out += "d" + vars.text_name(vars.P(i, j)) + " = (";
+      append_parts(out, writer, P_parts(eq, vars.upper_index(i, j)));
+      out += ") dt\n";
+    }
+  out += x_star_equations_text(eq);
+  return out;
 }
 
 std::string equations_latex(const FilterEquations& eq) {

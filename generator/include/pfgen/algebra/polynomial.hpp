@@ -57,6 +57,9 @@ class Polynomial {
   std::uint32_t degree() const;
 
   void add_term(const Monomial& monomial, const GiNaC::ex& coefficient);
+  void add_term(Monomial&& monomial, const GiNaC::ex& coefficient);
+  // *this += p.times_monomial(monomial), without the intermediate polynomial.
+  Polynomial& add_times_monomial(const Polynomial& p, const Monomial& monomial);
   Polynomial& operator+=(const Polynomial& other);
   Polynomial& operator-=(const Polynomial& other);
   Polynomial operator+(const Polynomial& other) const;
@@ -72,6 +75,9 @@ class Polynomial {
   bool operator!=(const Polynomial& other) const { return !(*this == other); }
 
  private:
+  template <class M>
+  void accumulate(M&& monomial, const GiNaC::ex& coefficient);
+
   Terms terms_;
 };
 
