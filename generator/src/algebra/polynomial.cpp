@@ -81,11 +81,17 @@ bool displays_before(const Monomial& a, const Monomial& b) {
 }  // namespace
 
 std::vector<const Polynomial::Terms::value_type*> Polynomial::ordered_view() const {
+  // Each monomial's degree is computed once, not at every comparison of the sort.
+  std::vector<std::pair<std::uint32_t, const Terms::value_type*>> keyed;
+  keyed.reserve(terms_.size());
+  for (const auto& term : terms_) keyed.emplace_back(term.first.degree(), &term);
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
+    if (a.first != b.first) return a.first > b.first;
+    return displays_before(a.second->first, b.second->first);
+  });
   std::vector<const Terms::value_type*> ordered;
-  ordered.reserve(terms_.size());
-  for (const auto& term : terms_) ordered.push_back(&term);
-  std::stable_sort(ordered.begin(), ordered.end(),
-                   [](const auto* a, const auto* b) { return displays_before(a->first, b->first); });
+  ordered.reserve(keyed.size());
+  for (const auto& entry : keyed) ordered.push_back(entry.second);
   return ordered;
 }
 
