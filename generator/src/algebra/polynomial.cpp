@@ -59,8 +59,6 @@ Monomial Monomial::without_one(std::uint32_t index) const {
 
 // ---- Polynomial ----
 
-namespace {
-
 bool displays_before(const Monomial& a, const Monomial& b) {
   if (a.degree() != b.degree()) return a.degree() > b.degree();
   const auto& fa = a.factors();
@@ -77,8 +75,6 @@ bool displays_before(const Monomial& a, const Monomial& b) {
   }
   return false;
 }
-
-}  // namespace
 
 std::vector<const Polynomial::Terms::value_type*> Polynomial::ordered_view() const {
   // Each monomial's degree is computed once, not at every comparison of the sort.

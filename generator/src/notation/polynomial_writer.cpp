@@ -1,5 +1,7 @@
 #include "pfgen/notation/polynomial_writer.hpp"
 
+#include <algorithm>
+
 #include "pfgen/algebra/coefficient.hpp"
 
 namespace pfgen {
@@ -15,6 +17,48 @@ void PolynomialWriter::append(std::string& out, const Polynomial& p, bool negate
   bool first = !continuing;
   for (const auto* term : p.ordered_view()) {
     append_term(out, term->first, term->second, negated, first);
+    first = false;
+  }
+}
+
+void PolynomialWriter::append_sum(std::string& out, const std::vector<SignedPolynomial>& parts) {
+  // Merge the parts' terms (each part's map is sorted by monomial), summing like terms as
+  // Polynomial's operator+ and operator- do: the next part's coefficient normalised, negated
+  // by coefficient_product(c, -1), added by coefficient_sum, zero sums dropped.
+  std::vector<std::pair<const Monomial*, GiNaC::ex>> merged;
+  for (const SignedPolynomial& part : parts) {
+    std::vector<std::pair<const Monomial*, GiNaC::ex>> next;
+    next.reserve(merged.size() + part.polynomial->terms().size());
+    auto a = merged.begin();
+    for (const auto& [monomial, coefficient] : part.polynomial->terms()) {
+      for (; a != merged.end() && *a->first < monomial; ++a) next.push_back(std::move(*a));
+      GiNaC::ex c = part.negated ? coefficient_product(coefficient, -1) : coefficient;
+      if (&part != &parts.front()) c = normalize_coefficient(c);  // operator+ copies the first part as it is
+      if (a != merged.end() && *a->first == monomial) {
+        GiNaC::ex sum = coefficient_sum(a->second, c);
+        if (!coefficient_is_zero(sum)) next.emplace_back(a->first, std::move(sum));
+        ++a;
+      } else if (!coefficient_is_zero(c)) {
+        next.emplace_back(&monomial, std::move(c));
+      }
+    }
+    for (; a != merged.end(); ++a) next.push_back(std::move(*a));
+    merged = std::move(next);
+  }
+  if (merged.empty()) {
+    out += "0";
+    return;
+  }
+  std::vector<std::pair<std::uint32_t, std::size_t>> order;  // (degree, index), as ordered_view
+  order.reserve(merged.size());
+  for (std::size_t k = 0; k < merged.size(); ++k) order.emplace_back(merged[k].first->degree(), k);
+  std::stable_sort(order.begin(), order.end(), [&](const auto& x, const auto& y) {
+    if (x.first != y.first) return x.first > y.first;
+    return displays_before(*merged[x.second].first, *merged[y.second].first);
+  });
+  bool first = true;
+  for (const auto& entry : order) {
+    append_term(out, *merged[entry.second].first, merged[entry.second].second, false, first);
     first = false;
   }
 }

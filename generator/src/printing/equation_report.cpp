@@ -124,7 +124,11 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
   // summed and printed once, then written in both places of the full matrix.
   std::vector<Json> P_upper(n * (n + 1) / 2);
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j) P_upper[vars.upper_index(i, j)] = Json::string(writer.print(eq.P_drift(i, j)));
+    for (std::size_t j = i; j < n; ++j) {
+      std::string text;  // P_drift(i, j), merged as FilterEquations::P_drift sums it
+      writer.append_sum(text, P_parts(eq, vars.upper_index(i, j)));
+      P_upper[vars.upper_index(i, j)] = Json::string(std::move(text));
+    }
   Json P_drift = Json::array();
   for (std::size_t i = 0; i < n; ++i) {
     Json row = Json::array();

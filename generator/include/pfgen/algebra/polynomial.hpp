@@ -33,6 +33,10 @@ class Monomial {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> factors_;
 };
 
+// pfgen's canonical display order of monomials (Polynomial::ordered_terms): total degree
+// descending, then the exponent of the lowest-numbered variable where they differ, larger first.
+bool displays_before(const Monomial& a, const Monomial& b);
+
 class Polynomial {
  public:
   using Terms = std::map<Monomial, GiNaC::ex>;

@@ -16,6 +16,12 @@
 
 namespace pfgen {
 
+// A polynomial or its negative, unbuilt (dP's correction enters its sum negated).
+struct SignedPolynomial {
+  const Polynomial* polynomial;
+  bool negated = false;
+};
+
 class PolynomialWriter {
  public:
   // `printer` and `name` must outlive the writer; `name(v)` must not change between calls.
@@ -25,6 +31,9 @@ class PolynomialWriter {
   // (as print(p.scaled(-1), name), without building the negated polynomial).
   // `continuing`: p follows other text in a sum, so its first sign is written " + " or " - ".
   void append(std::string& out, const Polynomial& p, bool negated = false, bool continuing = false);
+  // Appends the sum of the parts with like terms merged, as print(p1 + p2 - p3) writes it,
+  // without building the sum (its map of terms); the coefficients are summed in the same order.
+  void append_sum(std::string& out, const std::vector<SignedPolynomial>& parts);
   std::string print(const Polynomial& p) {
     std::string out;
     append(out, p);

@@ -12,10 +12,7 @@
 namespace pfgen {
 
 // One part of a sum: the polynomial, or its negative (the correction of dP), unbuilt.
-struct ReportPart {
-  const Polynomial* polynomial;
-  bool negated = false;
-};
+using ReportPart = SignedPolynomial;
 
 // "a + b - c" from parts printed separately, so like terms of different parts (0.03*P11^2 from
 // E[gg^T] and -P11^2 from the correction) stay visible; "0" when every part is zero.
