@@ -30,7 +30,7 @@ seconds() {  # wall-clock seconds of one run of the command, its output discarde
   start=$(date +%s.%N)
   "$@" >/dev/null
   end=$(date +%s.%N)
-  echo "$end - $start" | bc -l
+  awk -v s="$start" -v e="$end" 'BEGIN {print e - s}'
 }
 
 printf '%4s %-6s %10s %10s %8s %12s\n' "n" "format" "whole_s" "derive_s" "out_MB" "min..max"
@@ -45,6 +45,6 @@ for n in $sizes; do
     for _ in $(seq "$runs"); do seconds "$pfgen" derive "$model" --format "$format" >>"$work/times"; done
     whole=$(median <"$work/times")
     range=$(sort -g "$work/times" | awk 'NR == 1 {lo = $1} {hi = $1} END {printf "%.2f..%.2f", lo, hi}')
-    printf '%4s %-6s %10.3f %10.3f %8.1f %12s\n' "$n" "$format" "$whole" "$derive" "$(echo "$bytes / 1000000" | bc -l)" "$range"
+    printf '%4s %-6s %10.3f %10.3f %8.1f %12s\n' "$n" "$format" "$whole" "$derive" "$(awk -v b="$bytes" 'BEGIN {print b / 1e6}')" "$range"
   done
 done
