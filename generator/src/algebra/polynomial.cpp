@@ -59,8 +59,6 @@ Monomial Monomial::without_one(std::uint32_t index) const {
 
 // ---- Polynomial ----
 
-namespace {
-
 bool displays_before(const Monomial& a, const Monomial& b) {
   if (a.degree() != b.degree()) return a.degree() > b.degree();
   const auto& fa = a.factors();
@@ -78,12 +76,25 @@ bool displays_before(const Monomial& a, const Monomial& b) {
   return false;
 }
 
-}  // namespace
+std::vector<const Polynomial::Terms::value_type*> Polynomial::ordered_view() const {
+  // Each monomial's degree is computed once, not at every comparison of the sort.
+  std::vector<std::pair<std::uint32_t, const Terms::value_type*>> keyed;
+  keyed.reserve(terms_.size());
+  for (const auto& term : terms_) keyed.emplace_back(term.first.degree(), &term);
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
+    if (a.first != b.first) return a.first > b.first;
+    return displays_before(a.second->first, b.second->first);
+  });
+  std::vector<const Terms::value_type*> ordered;
+  ordered.reserve(keyed.size());
+  for (const auto& entry : keyed) ordered.push_back(entry.second);
+  return ordered;
+}
 
 std::vector<std::pair<Monomial, GiNaC::ex>> Polynomial::ordered_terms() const {
-  std::vector<std::pair<Monomial, GiNaC::ex>> ordered(terms_.begin(), terms_.end());
-  std::stable_sort(ordered.begin(), ordered.end(),
-                   [](const auto& a, const auto& b) { return displays_before(a.first, b.first); });
+  std::vector<std::pair<Monomial, GiNaC::ex>> ordered;
+  ordered.reserve(terms_.size());
+  for (const auto* term : ordered_view()) ordered.push_back(*term);
   return ordered;
 }
 
@@ -157,13 +168,30 @@ std::uint32_t Polynomial::degree() const {
   return d;
 }
 
-void Polynomial::add_term(const Monomial& monomial, const GiNaC::ex& coefficient) {
+void Polynomial::add_term(const Monomial& monomial, const GiNaC::ex& coefficient) { accumulate(monomial, coefficient); }
+
+void Polynomial::add_term(Monomial&& monomial, const GiNaC::ex& coefficient) {
+  accumulate(std::move(monomial), coefficient);
+}
+
+template <class M>
+void Polynomial::accumulate(M&& monomial, const GiNaC::ex& coefficient) {
   GiNaC::ex c = normalize_coefficient(coefficient);
   if (coefficient_is_zero(c)) return;
-  auto [it, inserted] = terms_.emplace(monomial, c);
-  if (inserted) return;
+  // Look up before inserting: map::emplace would build (allocate) a node only to drop it
+  // when the monomial is already there, the common case when sums collect like terms.
+  auto it = terms_.lower_bound(monomial);
+  if (it == terms_.end() || !(it->first == monomial)) {
+    terms_.emplace_hint(it, std::forward<M>(monomial), std::move(c));
+    return;
+  }
   it->second = coefficient_sum(it->second, c);
   if (coefficient_is_zero(it->second)) terms_.erase(it);
+}
+
+Polynomial& Polynomial::add_times_monomial(const Polynomial& p, const Monomial& monomial) {
+  for (const auto& [m, coefficient] : p.terms_) add_term(m * monomial, coefficient);
+  return *this;
 }
 
 Polynomial& Polynomial::operator+=(const Polynomial& other) {

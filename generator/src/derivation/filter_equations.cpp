@@ -141,8 +141,8 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
     for (std::size_t j = i; j < n; ++j) {
       Polynomial moment;
       for (std::size_t k = 0; k < n; ++k) {
-        moment += terms.jacobian[j][k].times_monomial(P(i, k));
-        moment += terms.jacobian[i][k].times_monomial(P(k, j));
+        moment.add_times_monomial(terms.jacobian[j][k], P(i, k));
+        moment.add_times_monomial(terms.jacobian[i][k], P(k, j));
       }
       eq.P_moment.push_back(std::move(moment));
     }

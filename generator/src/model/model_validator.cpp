@@ -36,17 +36,28 @@ GiNaC::lst state_list(const Model& model) {
 std::optional<int> one_based(std::size_t index) { return static_cast<int>(index + 1); }
 
 // The closure's moments grow with the degree: x^(10^10) must be refused, not exhaust memory.
-void require_bounded_degree(const GiNaC::ex& e, const GiNaC::symbol& variable, const std::string& what,
-                            const std::string& field, std::optional<int> row, std::optional<int> column) {
-  constexpr int kMaxDegree = 1000;
+constexpr int kMaxDegree = 1000;
+
+// The powers in e whose exponent is a number beyond the degree limit, found in one walk of e
+// (not one per state: a dense model's drift entry has thousands of terms).
+std::vector<GiNaC::ex> huge_powers(const GiNaC::ex& e) {
+  std::vector<GiNaC::ex> found;
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (GiNaC::is_a<GiNaC::power>(*it) && GiNaC::is_a<GiNaC::numeric>(it->op(1)) &&
+        GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(it->op(1))) > GiNaC::numeric(kMaxDegree))
+      found.push_back(*it);
+  return found;
+}
+
+void require_bounded_degree(const GiNaC::ex& e, const std::vector<GiNaC::ex>& huge, const GiNaC::symbol& variable,
+                            const std::string& what, const std::string& field, std::optional<int> row,
+                            std::optional<int> column) {
   int degree = kMaxDegree + 1;
   // GiNaC's degree() wraps an exponent beyond int's range (x^(83^10) gave a negative degree, which
   // passed, and the expectation's recursion then overflowed the stack): compare exponents exactly.
   bool huge_exponent = false;
-  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
-    if (GiNaC::is_a<GiNaC::power>(*it) && GiNaC::is_a<GiNaC::numeric>(it->op(1)) && it->op(0).has(variable) &&
-        GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(it->op(1))) > GiNaC::numeric(kMaxDegree))
-      huge_exponent = true;
+  for (const GiNaC::ex& power : huge)
+    if (power.op(0).has(variable)) huge_exponent = true;
   try {
     if (!huge_exponent) degree = e.degree(variable);
   } catch (const std::exception&) {
@@ -77,8 +88,9 @@ void require_polynomial(const Model& model, const GiNaC::ex& e, const std::strin
                      "'" + to_text(e) + "' is not polynomial in the states (only non-negative "
                      "integer powers of states are allowed; sin(x), 1/x, x^0.5 are not)",
                      row, column);
+  const std::vector<GiNaC::ex> huge = huge_powers(e);
   for (std::size_t k = 0; k < model.states.size(); ++k)
-    require_bounded_degree(e, model.states[k], "state '" + model.state_names[k] + "'", field, row, column);
+    require_bounded_degree(e, huge, model.states[k], "state '" + model.state_names[k] + "'", field, row, column);
   require_bounded_expansion(e, field, row, column);
 }
 
@@ -319,7 +331,8 @@ void require_polynomial_in(const std::vector<GiNaC::symbol>& variables, const Gi
                      "'" + to_text(e) + "' is not polynomial in the filter's m and P entries (only non-negative "
                      "integer powers of m1, P11, ... are allowed)",
                      row, column);
-  for (const auto& v : variables) require_bounded_degree(e, v, "'" + v.get_name() + "'", field, row, column);
+  const std::vector<GiNaC::ex> huge = huge_powers(e);
+  for (const auto& v : variables) require_bounded_degree(e, huge, v, "'" + v.get_name() + "'", field, row, column);
   require_bounded_expansion(e, field, row, column);
 }
 

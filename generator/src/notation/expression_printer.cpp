@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "pfgen/notation/polynomial_writer.hpp"
+
 namespace pfgen {
 namespace {
 
@@ -27,20 +29,10 @@ std::string ExpressionPrinter::print(const GiNaC::ex& e) const {
   return print_sum(terms);
 }
 
+// Terms in Polynomial::ordered_view's order; a coefficient that is a sum is one parenthesised
+// factor. PolynomialWriter does the work (and keeps what repeats across many polynomials).
 std::string ExpressionPrinter::print(const Polynomial& p, const VariableNamer& name) const {
-  std::vector<Term> terms;
-  for (const auto& [monomial, coefficient] : p.ordered_terms()) {
-    Term term;
-    if (GiNaC::is_exactly_a<GiNaC::add>(coefficient)) {
-      term.numerator_factors.push_back(parenthesized(print(coefficient)));
-    } else {
-      term = to_term(coefficient);
-    }
-    for (const auto& [variable, exponent] : monomial.factors())
-      term.numerator_factors.push_back(print_integer_power(name(variable), exponent));
-    terms.push_back(term);
-  }
-  return print_sum(terms);
+  return PolynomialWriter(*this, name).print(p);
 }
 
 std::string ExpressionPrinter::print_sum(std::vector<Term> terms) const {

@@ -23,11 +23,18 @@ std::string TextPrinter::power(const std::string& base, const std::string& expon
 }
 
 std::string TextPrinter::join_factors(const std::vector<std::string>& factors) const {
-  std::string out;
+  std::string out;  // appended piece by piece: a report joins millions of factors
   for (std::size_t k = 0; k < factors.size(); ++k) {
+    if (k) out += '*';
     // A fraction coefficient needs parentheses to stay one factor: (1/3)*m1.
     bool fraction = factors[k].find('/') != std::string::npos && factors[k].front() != '(';
-    out += (k ? "*" : "") + (fraction && factors.size() > 1 ? "(" + factors[k] + ")" : factors[k]);
+    if (fraction && factors.size() > 1) {
+      out += '(';
+      out += factors[k];
+      out += ')';
+    } else {
+      out += factors[k];
+    }
   }
   return out;
 }

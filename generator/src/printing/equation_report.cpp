@@ -10,8 +10,8 @@
 namespace pfgen {
 namespace {
 
-std::vector<Polynomial> P_parts(const FilterEquations& eq, std::size_t u) {
-  return {eq.P_moment[u], eq.P_diffusion[u], eq.P_correction[u].scaled(-1)};
+std::vector<ReportPart> P_parts(const FilterEquations& eq, std::size_t u) {
+  return {{&eq.P_moment[u]}, {&eq.P_diffusion[u]}, {&eq.P_correction[u], true}};
 }
 
 bool is_single_term(const Polynomial& p) { return p.terms().size() <= 1; }
@@ -23,6 +23,7 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
   TextPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  PolynomialWriter writer(printer, name);
   const std::size_t n = eq.n();
   const std::vector<Polynomial>& h = eq.predicted_observation;
 
@@ -40,23 +41,28 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
   out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
                               : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [" + correction_words_text(eq) + "]\n\n";
   for (std::size_t i = 0; i < n; ++i) {
-    std::string line = "dm" + std::to_string(i + 1) + " = (" + printer.print(eq.m_drift[i], name) + ") dt";
+    out += "dm" + std::to_string(i + 1) + " = (";
+    writer.append(out, eq.m_drift[i]);
+    out += ") dt";
     for (std::size_t r = 0; r < eq.p; ++r) {
-      std::string predicted = printer.print(h[r], name);
+      std::string predicted = writer.print(h[r]);
       if (!is_single_term(h[r])) predicted = "(" + predicted + ")";
-      line += " + K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " (dy" + std::to_string(r + 1) + " - " +
+      out += " + K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " (dy" + std::to_string(r + 1) + " - " +
               predicted + " dt)";
     }
-    out += line + "\n";
+    out += "\n";
   }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t r = 0; r < eq.p; ++r)
-      out += "K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " = " + printer.print(eq.gain[i][r], name) + "\n";
+      out += "K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " = " + writer.print(eq.gain[i][r]) + "\n";
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j)
-      out += "d" + vars.text_name(vars.P(i, j)) + " = (" + join_parts(printer, P_parts(eq, vars.upper_index(i, j)), name) +
-             ") dt\n";
-  return out + x_star_equations_text(eq);
+    for (std::size_t j = i; j < n; ++j) {
+      out += "d" + vars.text_name(vars.P(i, j)) + " = (";
+      append_parts(out, writer, P_parts(eq, vars.upper_index(i, j)));
+      out += ") dt\n";
+    }
+  out += x_star_equations_text(eq);
+  return out;
 }
 
 std::string equations_latex(const FilterEquations& eq) {
@@ -64,6 +70,7 @@ std::string equations_latex(const FilterEquations& eq) {
   LatexPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return latex_variable_name(vars, v); };
+  PolynomialWriter writer(printer, name);
   const std::size_t n = eq.n();
   const std::vector<Polynomial>& h = eq.predicted_observation;
   auto K = [](std::size_t i, std::size_t r) { return "K_{" + std::to_string(i + 1) + "," + std::to_string(r + 1) + "}"; };
@@ -74,19 +81,19 @@ std::string equations_latex(const FilterEquations& eq) {
   // Each right-hand side is cut into lines that fit the page (latex_line_breaker).
   std::vector<std::string> lines;
   for (std::size_t i = 0; i < n; ++i) {
-    std::string rhs = "\\left(" + printer.print(eq.m_drift[i], name) + "\\right)dt";
+    std::string rhs = "\\left(" + writer.print(eq.m_drift[i]) + "\\right)dt";
     for (std::size_t r = 0; r < eq.p; ++r)
       rhs += " + " + K(i, r) + "\\left(dy_{" + std::to_string(r + 1) + "} - " +
-             (is_single_term(h[r]) ? printer.print(h[r], name) : "\\left(" + printer.print(h[r], name) + "\\right)") +
+             (is_single_term(h[r]) ? writer.print(h[r]) : "\\left(" + writer.print(h[r]) + "\\right)") +
              "\\,dt\\right)";
     lines.push_back(latex_align_lines("dm_{" + std::to_string(i + 1) + "}", rhs));
   }
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < eq.p; ++r) lines.push_back(latex_align_lines(K(i, r), printer.print(eq.gain[i][r], name)));
+    for (std::size_t r = 0; r < eq.p; ++r) lines.push_back(latex_align_lines(K(i, r), writer.print(eq.gain[i][r])));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j)
       lines.push_back(latex_align_lines("\\frac{d" + vars.latex_name(vars.P(i, j)) + "}{dt}",
-                                        join_parts(printer, P_parts(eq, vars.upper_index(i, j)), name)));
+                                        join_parts(writer, P_parts(eq, vars.upper_index(i, j)))));
   for (std::string& line : x_star_lines_latex(eq)) lines.push_back(std::move(line));
   for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
   out += "\\end{align*}\n";
@@ -98,6 +105,7 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
   TextPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  PolynomialWriter writer(printer, name);
   const std::size_t n = eq.n();
 
   const Json exactness = exactness_json(eq.exactness);
@@ -105,21 +113,30 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
   Json variables = Json::array();
   for (std::size_t v = 0; v < vars.count(); ++v) variables.push(Json::string(vars.text_name(static_cast<std::uint32_t>(v))));
   Json m_drift = Json::array();
-  for (const auto& p : eq.m_drift) m_drift.push(Json::string(printer.print(p, name)));
+  for (const auto& p : eq.m_drift) m_drift.push(Json::string(writer.print(p)));
   Json gain = Json::array();
   for (std::size_t i = 0; i < n; ++i) {
     Json row = Json::array();
-    for (std::size_t r = 0; r < eq.p; ++r) row.push(Json::string(printer.print(eq.gain[i][r], name)));
+    for (std::size_t r = 0; r < eq.p; ++r) row.push(Json::string(writer.print(eq.gain[i][r])));
     gain.push(row);
   }
+  // P is symmetric and P_drift(i, j) is P_drift(j, i): each entry of the upper triangle is
+  // summed and printed once, then written in both places of the full matrix.
+  std::vector<Json> P_upper(n * (n + 1) / 2);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      std::string text;  // P_drift(i, j), merged as FilterEquations::P_drift sums it
+      writer.append_sum(text, P_parts(eq, vars.upper_index(i, j)));
+      P_upper[vars.upper_index(i, j)] = Json::string(std::move(text));
+    }
   Json P_drift = Json::array();
   for (std::size_t i = 0; i < n; ++i) {
     Json row = Json::array();
-    for (std::size_t j = 0; j < n; ++j) row.push(Json::string(printer.print(eq.P_drift(i, j), name)));
+    for (std::size_t j = 0; j < n; ++j) row.push(P_upper[vars.upper_index(i, j)]);
     P_drift.push(row);
   }
   Json predicted = Json::array();
-  for (const auto& h : eq.predicted_observation) predicted.push(Json::string(printer.print(h, name)));
+  for (const auto& h : eq.predicted_observation) predicted.push(Json::string(writer.print(h)));
 
   Json out = Json::object();
   out.add("model", Json::string(model.name));

@@ -4,21 +4,21 @@
 
 namespace pfgen {
 
-std::string join_parts(const ExpressionPrinter& printer, const std::vector<Polynomial>& parts,
-                       const ExpressionPrinter::VariableNamer& name) {
-  std::string out;
-  for (const auto& part : parts) {
-    if (part.is_zero()) continue;
-    std::string text = printer.print(part, name);
-    if (out.empty()) {
-      out = text;
-    } else if (text[0] == '-') {
-      out += " - " + text.substr(1);
-    } else {
-      out += " + " + text;
-    }
+void append_parts(std::string& out, PolynomialWriter& writer, const std::vector<ReportPart>& parts) {
+  bool empty = true;
+  for (const ReportPart& part : parts) {
+    if (part.polynomial->is_zero()) continue;
+    // After the first part, its first sign joins the sum (" - 0.5*m1", not " + -0.5*m1").
+    writer.append(out, *part.polynomial, part.negated, !empty);
+    empty = false;
   }
-  return out.empty() ? "0" : out;
+  if (empty) out += "0";
+}
+
+std::string join_parts(PolynomialWriter& writer, const std::vector<ReportPart>& parts) {
+  std::string out;
+  append_parts(out, writer, parts);
+  return out;
 }
 
 std::string exactness_text(const ExactnessReport& report) {

@@ -8,7 +8,7 @@
 namespace pfgen {
 namespace {
 
-std::vector<Polynomial> P_parts(const FilterEquations& eq, std::size_t u) { return {eq.P_moment[u], eq.P_diffusion[u]}; }
+std::vector<ReportPart> P_parts(const FilterEquations& eq, std::size_t u) { return {{&eq.P_moment[u]}, {&eq.P_diffusion[u]}}; }
 
 std::string index2(std::size_t i, std::size_t j) { return std::to_string(i + 1) + std::to_string(j + 1); }
 
@@ -22,6 +22,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   TextPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  PolynomialWriter writer(printer, name);
   const std::size_t n = eq.n();
   const SampledUpdate& u = eq.update;
   const std::size_t r = u.r();
@@ -40,49 +41,49 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   if (eq.P_euler.empty()) {
     out += "prediction between samples (no observation term; dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion]):\n";
     for (std::size_t i = 0; i < n; ++i)
-      out += "dm" + std::to_string(i + 1) + " = (" + printer.print(eq.m_drift[i], name) + ") dt\n";
+      out += "dm" + std::to_string(i + 1) + " = (" + writer.print(eq.m_drift[i]) + ") dt\n";
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i; j < n; ++j)
-        out += "d" + vars.text_name(vars.P(i, j)) + " = (" + join_parts(printer, P_parts(eq, vars.upper_index(i, j)), name) +
+        out += "d" + vars.text_name(vars.P(i, j)) + " = (" + join_parts(writer, P_parts(eq, vars.upper_index(i, j))) +
                ") dt\n";
   } else {
     out += "prediction over one sub-step dt (exact moments of x + f dt + g sqrt(dt) xi; dP terms: "
            "[E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion], then Cov(f)):\n";
     for (std::size_t i = 0; i < n; ++i) {
       const std::string m = vars.text_name(vars.m(i));
-      out += m + "' = " + m + " + (" + printer.print(eq.m_drift[i], name) + ") dt\n";
+      out += m + "' = " + m + " + (" + writer.print(eq.m_drift[i]) + ") dt\n";
     }
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i; j < n; ++j) {
         const std::size_t k = vars.upper_index(i, j);
         const std::string P = vars.text_name(vars.P(i, j));
-        out += P + "' = " + P + " + (" + join_parts(printer, P_parts(eq, k), name) + ") dt + (" +
-               printer.print(eq.P_euler[k], name) + ") dt^2\n";
+        out += P + "' = " + P + " + (" + join_parts(writer, P_parts(eq, k)) + ") dt + (" +
+               writer.print(eq.P_euler[k]) + ") dt^2\n";
       }
   }
   out += "\nupdate at each sample y = (";
   for (std::size_t a = 0; a < r; ++a) out += (a ? ", " : "") + std::string("y") + std::to_string(a + 1);
   out += "), R = Uv Uv^T (Joseph form):\n";
   for (std::size_t a = 0; a < r; ++a)
-    out += "h" + std::to_string(a + 1) + " = " + printer.print(eq.predicted_observation[a], name) + "\n";
+    out += "h" + std::to_string(a + 1) + " = " + writer.print(eq.predicted_observation[a]) + "\n";
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t a = 0; a < r; ++a)
-      out += "PCt" + index2(i, a) + " = " + printer.print(u.PCt[i][a], name) + "\n";
+      out += "PCt" + index2(i, a) + " = " + writer.print(u.PCt[i][a]) + "\n";
   for (std::size_t a = 0; a < r; ++a)
     for (std::size_t b = a; b < r; ++b)
-      out += "S" + index2(a, b) + " = " + printer.print(u.S[u.upper_index(a, b)], name) + "\n";
+      out += "S" + index2(a, b) + " = " + writer.print(u.S[u.upper_index(a, b)]) + "\n";
   out += "K = PCt S^-1\n";
   out += "m <- m + K (y - h)\n";
   out += "P <- (I - K C) P (I - K C)^T + K R K^T\n";
   out += "C = [";
   for (std::size_t a = 0; a < r; ++a) {
     out += a ? "; " : "";
-    for (std::size_t k = 0; k < n; ++k) out += (k ? ", " : "") + printer.print(u.C[a][k], name);
+    for (std::size_t k = 0; k < n; ++k) out += (k ? ", " : "") + writer.print(u.C[a][k]);
   }
   out += "], R = [";
   for (std::size_t a = 0; a < r; ++a) {
     out += a ? "; " : "";
-    for (std::size_t b = 0; b < r; ++b) out += (b ? ", " : "") + printer.print(u.R[u.upper_index(a, b)], name);
+    for (std::size_t b = 0; b < r; ++b) out += (b ? ", " : "") + writer.print(u.R[u.upper_index(a, b)]);
   }
   return out + "]\n";
 }
@@ -91,6 +92,7 @@ std::string sampled_equations_latex(const FilterEquations& eq) {
   LatexPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.latex_name(v); };
+  PolynomialWriter writer(printer, name);
   const std::size_t n = eq.n();
   const SampledUpdate& u = eq.update;
   const std::size_t r = u.r();
@@ -108,31 +110,31 @@ std::string sampled_equations_latex(const FilterEquations& eq) {
                      "$ sub-steps per period $T = " + printer.print(u.period) + "$, no observation term):\n";
   for (std::size_t i = 0; i < n; ++i) {
     const std::string m = vars.latex_name(vars.m(i));
-    prediction.push_back(euler ? latex_align_lines(m + "'", m + " + \\left(" + printer.print(eq.m_drift[i], name) + "\\right)\\Delta")
-                               : latex_align_lines("\\frac{d" + m + "}{dt}", printer.print(eq.m_drift[i], name)));
+    prediction.push_back(euler ? latex_align_lines(m + "'", m + " + \\left(" + writer.print(eq.m_drift[i]) + "\\right)\\Delta")
+                               : latex_align_lines("\\frac{d" + m + "}{dt}", writer.print(eq.m_drift[i])));
   }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) {
       const std::size_t k = vars.upper_index(i, j);
       const std::string P = vars.latex_name(vars.P(i, j));
-      prediction.push_back(euler ? latex_align_lines(P + "'", P + " + \\left(" + join_parts(printer, P_parts(eq, k), name) +
-                                                                  "\\right)\\Delta + \\left(" + printer.print(eq.P_euler[k], name) +
+      prediction.push_back(euler ? latex_align_lines(P + "'", P + " + \\left(" + join_parts(writer, P_parts(eq, k)) +
+                                                                  "\\right)\\Delta + \\left(" + writer.print(eq.P_euler[k]) +
                                                                   "\\right)\\Delta^{2}")
-                                 : latex_align_lines("\\frac{d" + P + "}{dt}", join_parts(printer, P_parts(eq, k), name)));
+                                 : latex_align_lines("\\frac{d" + P + "}{dt}", join_parts(writer, P_parts(eq, k))));
     }
   out += block(prediction);
   out += "\\paragraph{Update at each sample} ($R = U_v U_v^{T}$, Joseph form):\n";
   std::vector<std::string> update;
   for (std::size_t a = 0; a < r; ++a)
-    update.push_back(latex_align_lines("h_{" + std::to_string(a + 1) + "}", printer.print(eq.predicted_observation[a], name)));
+    update.push_back(latex_align_lines("h_{" + std::to_string(a + 1) + "}", writer.print(eq.predicted_observation[a])));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t a = 0; a < r; ++a)
       update.push_back(latex_align_lines("(P C^{T})_{" + std::to_string(i + 1) + "," + std::to_string(a + 1) + "}",
-                                         printer.print(u.PCt[i][a], name)));
+                                         writer.print(u.PCt[i][a])));
   for (std::size_t a = 0; a < r; ++a)
     for (std::size_t b = a; b < r; ++b)
       update.push_back(latex_align_lines("S_{" + std::to_string(a + 1) + "," + std::to_string(b + 1) + "}",
-                                         printer.print(u.S[u.upper_index(a, b)], name)));
+                                         writer.print(u.S[u.upper_index(a, b)])));
   update.push_back("K &= P C^{T} S^{-1}, \\quad m \\leftarrow m + K (y - h), \\quad "
                    "P \\leftarrow (I - K C) P (I - K C)^{T} + K R K^{T}");
   out += block(update);
@@ -143,10 +145,11 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   TextPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  PolynomialWriter writer(printer, name);
   const std::size_t n = eq.n();
   const SampledUpdate& u = eq.update;
   const std::size_t r = u.r();
-  auto text = [&](const Polynomial& p) { return Json::string(printer.print(p, name)); };
+  auto text = [&](const Polynomial& p) { return Json::string(writer.print(p)); };
   auto full = [&](const std::vector<Polynomial>& upper, std::size_t size, auto index) {
     Json rows = Json::array();
     for (std::size_t i = 0; i < size; ++i) {

@@ -33,6 +33,10 @@ class Monomial {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> factors_;
 };
 
+// pfgen's canonical display order of monomials (Polynomial::ordered_terms): total degree
+// descending, then the exponent of the lowest-numbered variable where they differ, larger first.
+bool displays_before(const Monomial& a, const Monomial& b);
+
 class Polynomial {
  public:
   using Terms = std::map<Monomial, GiNaC::ex>;
@@ -51,10 +55,15 @@ class Polynomial {
   // then the exponent of the lowest-numbered variable where two monomials
   // differ, larger first. Printers and the code generator both use it.
   std::vector<std::pair<Monomial, GiNaC::ex>> ordered_terms() const;
+  // The same order as pointers into terms(), copying no monomial or coefficient (printers).
+  std::vector<const Terms::value_type*> ordered_view() const;
   bool is_zero() const { return terms_.empty(); }
   std::uint32_t degree() const;
 
   void add_term(const Monomial& monomial, const GiNaC::ex& coefficient);
+  void add_term(Monomial&& monomial, const GiNaC::ex& coefficient);
+  // *this += p.times_monomial(monomial), without the intermediate polynomial.
+  Polynomial& add_times_monomial(const Polynomial& p, const Monomial& monomial);
   Polynomial& operator+=(const Polynomial& other);
   Polynomial& operator-=(const Polynomial& other);
   Polynomial operator+(const Polynomial& other) const;
@@ -70,6 +79,9 @@ class Polynomial {
   bool operator!=(const Polynomial& other) const { return !(*this == other); }
 
  private:
+  template <class M>
+  void accumulate(M&& monomial, const GiNaC::ex& coefficient);
+
   Terms terms_;
 };
 

@@ -28,6 +28,8 @@ class ExpressionPrinter {
   std::string print(const Polynomial& p, const VariableNamer& name) const;
 
  protected:
+  friend class PolynomialWriter;  // prints polynomials with the same pieces, keeping what repeats
+
   // A term: sign, non-negative number (1 when absent) and already printed factors.
   struct Term {
     bool negative = false;

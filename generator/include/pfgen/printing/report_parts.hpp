@@ -6,15 +6,19 @@
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/derivation/exactness.hpp"
-#include "pfgen/notation/expression_printer.hpp"
+#include "pfgen/notation/polynomial_writer.hpp"
 #include "pfgen/printing/json_writer.hpp"
 
 namespace pfgen {
 
+// One part of a sum: the polynomial, or its negative (the correction of dP), unbuilt.
+using ReportPart = SignedPolynomial;
+
 // "a + b - c" from parts printed separately, so like terms of different parts (0.03*P11^2 from
 // E[gg^T] and -P11^2 from the correction) stay visible; "0" when every part is zero.
-std::string join_parts(const ExpressionPrinter& printer, const std::vector<Polynomial>& parts,
-                       const ExpressionPrinter::VariableNamer& name);
+std::string join_parts(PolynomialWriter& writer, const std::vector<ReportPart>& parts);
+// The same, appended to `out` (a report of a large model is tens of megabytes: no copies).
+void append_parts(std::string& out, PolynomialWriter& writer, const std::vector<ReportPart>& parts);
 
 // The explanation, then one "\n  failed: ..." line per failed condition.
 std::string exactness_text(const ExactnessReport& report);
