@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole-command time of `pfgen derive` on the dense cubic benchmark model (issue 14, deliverable 1),
+# Whole-command time of `pfgen derive` on the dense cubic benchmark model,
 # beside the in-process derivation of the same model (bench_derive). A user meets the whole
 # command: reading and checking the model file, the derivation, printing tens of megabytes and
 # the process's exit; bench_derive times only derive_filter(). The difference is what the model
