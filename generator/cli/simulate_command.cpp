@@ -23,6 +23,7 @@
 #include "pfgen_runtime/simulation_plugin.hpp"
 #include "pfgen_runtime/summary_table.hpp"
 #include "pfgen_support/shortest_double.hpp"
+#include "pfgen_support/whole_steps.hpp"
 
 namespace pfgen::cli {
 namespace {
@@ -141,8 +142,9 @@ int run_simulate(const SimulateOptions& options) {
   // Samples at t_k = k T on the truth's grid: T must be a whole number of steps dt.
   if (model.observation.is_sampled()) {
     const double period = model.observation.sampled().period.to_double();
-    const double ratio = period / settings.dt, whole = std::round(ratio);
-    if (!(whole >= 1) || std::abs(ratio - whole) > 1e-9 * whole) {
+    const double ratio = period / settings.dt;
+    const std::optional<double> whole = pfgen_support::whole_steps(period, settings.dt);
+    if (!whole || *whole < 1) {
       char text[200];
       std::snprintf(text, sizeof text, "the sampling period %.17g is not a whole number of steps dt = %.17g (T/dt = %.17g)",
                     period, settings.dt, ratio);

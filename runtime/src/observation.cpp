@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "pfgen_support/whole_steps.hpp"
+
 namespace pfgen_runtime {
 
 LinearObservation::LinearObservation(Eigen::VectorXd A0, Eigen::MatrixXd A, Eigen::MatrixXd B)
@@ -36,12 +38,13 @@ std::size_t LinearObservation::delay_steps(double dt) const {
                   delay_, max_delay_steps, dt, ratio);
     throw std::invalid_argument(text);
   }
-  if (!(whole >= 1) || std::abs(ratio - whole) > 1e-9 * whole) {
+  const std::optional<double> steps = pfgen_support::whole_steps(delay_, dt);
+  if (!steps || *steps < 1) {
     std::snprintf(text, sizeof text, "the observation delay h = %.17g is not a whole number of steps dt = %.17g (h/dt = %.17g)",
                   delay_, dt, ratio);
     throw std::invalid_argument(text);
   }
-  return static_cast<std::size_t>(whole);
+  return static_cast<std::size_t>(*steps);
 }
 
 void LinearObservation::evaluate(double t) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "pfgen_runtime/random.hpp"
+#include "pfgen_support/whole_steps.hpp"
 
 namespace pfgen_runtime {
 
@@ -95,14 +96,14 @@ SampledMeasurement::SampledMeasurement(std::size_t p, std::size_t n, std::size_t
 
 std::size_t SampledMeasurement::steps_per_sample(const TimeGrid& grid) const {
   const double ratio = period_ / grid.dt;
-  const double whole = std::round(ratio);
-  if (!(whole >= 1) || std::abs(ratio - whole) > 1e-9 * whole) {
+  const std::optional<double> whole = pfgen_support::whole_steps(period_, grid.dt);
+  if (!whole || *whole < 1) {
     char text[200];
     std::snprintf(text, sizeof text, "the sampling period %.17g is not a whole number of steps dt = %.17g (T/dt = %.17g)",
                   period_, grid.dt, ratio);
     throw std::invalid_argument(text);
   }
-  return static_cast<std::size_t>(whole);
+  return static_cast<std::size_t>(*whole);
 }
 
 void SampledMeasurement::sample(double t, const double* x, const double* v, double* clean, double* noisy) {

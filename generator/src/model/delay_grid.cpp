@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "pfgen_support/shortest_double.hpp"
+#include "pfgen_support/whole_steps.hpp"
 
 namespace pfgen {
 
@@ -21,12 +22,12 @@ DelaySteps delay_steps(const GiNaC::numeric& delay, double dt) {
                   " steps of history; take a larger dt";
     return out;
   }
-  const double whole = std::round(ratio);
-  if (std::abs(ratio - whole) > 1e-9 * std::max(1.0, whole)) {
+  const std::optional<double> whole = pfgen_support::whole_steps(h, dt);
+  if (!whole) {
     out.problem = where + ": h must be a whole number of steps (h / dt = " + pfgen_support::shortest_double(ratio) + ")";
     return out;
   }
-  out.steps = static_cast<std::size_t>(whole);
+  out.steps = static_cast<std::size_t>(*whole);
   return out;
 }
 
