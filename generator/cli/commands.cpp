@@ -10,10 +10,12 @@
 #include "cli_options.hpp"
 #include "output_paths.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
+#include "pfgen/derivation/drift_coefficients.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/reserved_names.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
+#include "pfgen/printing/coefficient_report.hpp"
 #include "pfgen/printing/equation_report.hpp"
 #include "pfgen/printing/json_writer.hpp"
 #include "pfgen/printing/latex_document.hpp"
@@ -132,6 +134,20 @@ int run_codegen(const CodegenCliOptions& options) {
 
 int run_derive(const DeriveOptions& options) {
   Model model = load_model_file(options.model_path);
+  if (options.coefficients) {
+    if (!options.filter.empty())
+      throw CliValueError("--coefficients: shows the model's coefficient form, not a filter's equations; drop --filter");
+    const DriftCoefficients drift = extract_drift_coefficients(model);
+    const ObservationCoefficients observation = extract_observation_coefficients(model);
+    if (options.format == "text") {
+      std::cout << coefficients_text(model, drift, observation);
+    } else if (options.format == "latex") {
+      std::cout << coefficients_latex(model, drift, observation);
+    } else {
+      std::cout << coefficients_json(model, drift, observation).dump();
+    }
+    return 0;
+  }
   // Without --filter: the model's first filter (optimal, cd-optimal or delay-optimal).
   const std::string name =
       options.filter.empty() ? available_filter_names(model).front() : single_filter(options.filter, model);
@@ -152,10 +168,12 @@ int run_latex(const LatexOptions& options) {
   if (std::filesystem::path(options.output_path).extension() != ".tex")
     throw CliValueError("-o: '" + options.output_path + "' must end in .tex (pdflatex makes the PDF from it)");
   Model model = load_model_file(options.model_path);
+  // Before the filters are derived: a drift the form cannot hold is refused at once.
+  if (options.coefficients) check_coefficient_form_degree(model);
   std::vector<FilterEquations> filters;
   for (const std::string& name : parse_filter_list("--filter", options.filters, model))
     filters.push_back(derive_named_filter(model, name));
-  write_file_atomically(options.output_path, latex_document(model, filters));
+  write_file_atomically(options.output_path, latex_document(model, filters, options.coefficients));
   return 0;
 }
 

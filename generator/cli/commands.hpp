@@ -11,12 +11,14 @@ struct DeriveOptions {
   std::string model_path;
   std::string filter;  // empty: the model's first filter in the registry's order
   std::string format = "text";
+  bool coefficients = false;  // the model's coefficient form A..A3, E, E1 instead of a filter
 };
 
 struct LatexOptions {
   std::string model_path;
   std::string output_path;
   std::string filters;  // comma-separated; empty: every kind the model supports
+  bool coefficients = false;  // add a section with the model's coefficient form
 };
 
 struct EvalOptions {

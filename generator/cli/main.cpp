@@ -48,12 +48,17 @@ int main(int argc, char** argv) {
   derive_cmd->add_option("--format", derive.format, "text | latex | json")
       ->check(CLI::IsMember({"text", "latex", "json"}))
       ->capture_default_str();
+  derive_cmd->add_flag("--coefficients", derive.coefficients,
+                       "Print the model's coefficient form instead of a filter: f = A + A1 x + A2 x x + A3 x x x, "
+                       "observation rate E + E1 x (drift of degree <= 3)");
 
   LatexOptions latex;
   CLI::App* latex_cmd = app.add_subcommand("latex", "Write a standalone LaTeX document of the model and its filters");
   latex_cmd->add_option("MODEL", latex.model_path, "Model file (YAML)")->required();
   latex_cmd->add_option("-o,--output", latex.output_path, "Output .tex file")->required();
   latex_cmd->add_option("--filter", latex.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports, then its own)");
+  latex_cmd->add_flag("--coefficients", latex.coefficients,
+                      "Add a section with the model's coefficient form A..A3, E, E1 (drift of degree <= 3)");
 
   EvalOptions eval;
   CLI::App* eval_cmd = app.add_subcommand("eval", "Evaluate a filter's m drift, gain and P drift at one point (JSON)");
