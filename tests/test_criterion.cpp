@@ -297,22 +297,28 @@ TEST_CASE("criterion: the delta-method standard error matches the spread of J ov
           "[criterion][runtime][statistical]") {
   // 40 seeds of 100 runs each: the standard deviation of the 40 J's against the mean of their
   // delta-method standard errors. With 40 samples a standard deviation is known to about 11 %.
-  const double epsilon = 0.2;
-  std::vector<double> J, se;
+  // At eps = 0.5 the ESS is about 68 of 100 (measured: ratio 1.06); at eps = 0.2, ESS about 14,
+  // the delta method underestimates the spread twofold (docs/theory.md §7.3).
+  const double epsilon = 0.5;
+  std::vector<double> J, se, ess;
   for (std::uint64_t seed = 1; seed <= 40; ++seed) {
-    const CriterionStatistics& c = *scalar_run(1000 + seed, 100, epsilon).filters.front().criterion;
+    const MonteCarloResult result = scalar_run(1000 + seed, 100, epsilon);
+    const CriterionStatistics& c = *result.filters.front().criterion;
     J.push_back(c.all.J);
     se.push_back(c.all.J_se);
+    ess.push_back(c.all.ess);
   }
-  double mean = 0, mean_se = 0;
+  double mean = 0, mean_se = 0, mean_ess = 0;
   for (std::size_t k = 0; k < J.size(); ++k) {
     mean += J[k] / static_cast<double>(J.size());
     mean_se += se[k] / static_cast<double>(J.size());
+    mean_ess += ess[k] / static_cast<double>(J.size());
   }
   double squares = 0;
   for (double v : J) squares += (v - mean) * (v - mean);
   const double spread = std::sqrt(squares / static_cast<double>(J.size() - 1));
-  CAPTURE(mean, spread, mean_se);
+  CAPTURE(mean, spread, mean_se, mean_ess);
   CHECK(spread / mean_se > 0.7);
   CHECK(spread / mean_se < 1.4);
+  CHECK(mean_ess > 50);
 }
