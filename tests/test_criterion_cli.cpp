@@ -53,7 +53,7 @@ TEST_CASE("simulate --risk-epsilon: J per filter, identical for 1 and 2 threads,
                                              {"--runs", "6", "--T", "1", "--dt", "1e-3", "--filters", "optimal,ekf",
                                               "--threads", "1", "-q"}));
   REQUIRE(plain.exit_code == 0);
-  CHECK(plain.out.find("criterion") == std::string::npos);
+  CHECK(plain.out.find("Exponential criterion") == std::string::npos);
   const std::size_t start = one.out.find("\nExponential criterion J"), end = one.out.find("\nTruth diverged");
   REQUIRE(start != std::string::npos);
   CHECK(without_csv_line(one.out.substr(0, start) + one.out.substr(end)) == plain.out);
