@@ -14,12 +14,14 @@
 
 #include <ginac/ginac.h>
 
+#include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model.hpp"
 
 namespace pfgen {
 
-// The highest degree of a drift the coefficient form holds.
-inline constexpr std::uint32_t kCoefficientFormDegree = 3;
+// The highest degree of a drift the coefficient form holds: the risk-sensitive kind's limit
+// (kinds/filter_kinds.hpp), so the two cannot drift apart.
+inline constexpr std::uint32_t kCoefficientFormDegree = kRiskSensitiveMaxDegree;
 
 // The nonzero entries of a tensor, keyed by 0-based indices (i, j, k[, l]); std::map keeps them in
 // lexicographic index order, the order every report lists them in.
