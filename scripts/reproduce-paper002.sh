@@ -128,7 +128,7 @@ run_job() {  # model-file filters eps gamma csv
 cell() {  # csv filter
   awk -F, -v f="$2" 'NR > 1 && $1 == f {
     if ($10 + 0 == 0) { J = $5; se = $6; ess = $7 } else { J = $12; se = $13; ess = $14 }
-    s = (J == "" ? "-" : sprintf("%.4g ± %.2g", J, se))
+    s = (J == "" ? "-" : sprintf("%.4g ± " (se + 0 < 10 ? "%.2g" : "%.0f"), J, se))
     if (ess != "" && ess + 0 < 20) s = s "!"
     if ($10 + 0 > 0) s = s sprintf(" [%d stop @%.3g]", $10, $11)
     print s; exit }' "$1"
@@ -142,9 +142,16 @@ stops() {  # csv filter: runs stopped before T
   awk -F, -v f="$2" 'NR > 1 && $1 == f {print $10; exit}' "$1"
 }
 
-line() {  # cells... (fixed widths, no trailing blanks)
-  { printf '%-7s' "$1"; shift
-    for cell in "$@"; do printf '  %-26s' "$cell"; done; printf '\n'; } | sed 's/ *$//'
+row() {  # cells... : one tab-separated row, added to $rows
+  local IFS=$'\t'; rows+="$*"$'\n'
+}
+align() {  # prints $rows in columns two blanks apart (no trailing blanks)
+  printf '%s' "$rows" | awk -F'\t' '{ for (i = 1; i <= NF; ++i) { c[NR, i] = $i; if (length($i) > w[i]) w[i] = length($i) }
+      n[NR] = NF }
+    END { for (r = 1; r <= NR; ++r) { s = ""
+            for (i = 1; i <= n[r]; ++i) s = s (i < n[r] ? sprintf("%-" w[i] + 2 "s", c[r, i]) : c[r, i])
+            print s } }'
+  rows=""
 }
 nth() { awk -v i="$1" '{print $i}' <<< "$2"; }
 
@@ -152,6 +159,9 @@ gamma_of() {  # reading eps
   if [ "$1" = gamma1 ]; then echo 1; else awk -v e="$2" 'BEGIN {printf "%.17g\n", sqrt(e / 2)}'; fi
 }
 
+# simulate's "Truth at the report times" section: the same in every job of a row when the truths are.
+truth_table() { awk '/^Truth at the report times/ {s = 1} s && NF == 0 {exit} s' "$1"; }
+same_truths=0
 verdict_rs=0; verdict_total=0
 echo "Paper 002 reproduction: $runs runs per job, dt = $dt, seed $seed; J ± standard error (delta method)"
 echo "(J over the runs that reached T when some stopped: [k stop @t] = k runs stopped, the first at t;"
@@ -166,11 +176,12 @@ for name in $cases; do
     if [ "$reading" = gamma1 ]; then what="gamma = 1: noise intensity s = eps/2"; else what="gamma^2 = eps/2: unit noise intensity s = 1"; fi
     echo "Table $table ($name: x(0) = ($x0), T = $T), $what"
     echo "  initial: R-S C(0) = ($rs_m0), Q(0) = ($rs_q0) [printed ($rs_q0_printed)]; Pol m(0) = ($poly_m0), P(0) = ($poly_p0) [printed ($poly_p0_printed)]$([ "$ekf" = 1 ] && echo "; K-B m(0) = ($ekf_m0), P(0) = ($ekf_p0) [printed ($ekf_p0_printed)]")"
+    rows=""
     if [ "$ekf" = 1 ]; then
-      line "eps" "J_R-S paper" "J_R-S risk-sensitive" "J_Pol paper" "J_Pol optimal" "J_Pol eq 22 printed" \
+      row "eps" "J_R-S paper" "J_R-S risk-sensitive" "J_Pol paper" "J_Pol optimal" "J_Pol eq 22 printed" \
         "J_K-B paper" "J_K-B ekf" "J_K-B eq 23 printed" "truth stopped"
     else
-      line "eps" "J_R-S paper" "J_R-S risk-sensitive" "J_Pol paper" "J_Pol optimal" "J_Pol eq 26 printed" "truth stopped"
+      row "eps" "J_R-S paper" "J_R-S risk-sensitive" "J_Pol paper" "J_Pol optimal" "J_Pol eq 26 printed" "truth stopped"
     fi
     i=0
     for eps in $eps_list; do
@@ -180,17 +191,25 @@ for name in $cases; do
       variant "$dir/rs-$eps.yaml" "$x0" "$rs_m0" "$(rs_p0 "$eps" "$rs_q0")"
       run_job "$dir/rs-$eps.yaml" risk-sensitive "$eps" "$gamma" "$dir/rs-$tag.csv"
       run_job "$dir/poly.yaml" optimal,poly-printed "$eps" "$gamma" "$dir/poly-$tag.csv"
-      truth=$(awk '/^Truth diverged/ {print $3 " of " $5; exit}' "$dir/poly-$tag.txt")
+      truth=$(awk '/^Truth diverged: no run/ {print "0"; exit} /^Truth diverged/ {print $3; exit}' "$dir/poly-$tag.txt")
       rs=$(cell "$dir/rs-$tag.csv" risk-sensitive)
+      jobs=("$dir/rs-$tag.txt" "$dir/poly-$tag.txt")
       if [ "$ekf" = 1 ]; then
         run_job "$dir/ekf.yaml" ekf,ekf-printed "$eps" "$gamma" "$dir/ekf-$tag.csv"
-        line "$eps" "$(nth "$i" "$paper_rs")" "$rs" "$(nth "$i" "$paper_pol")" "$(cell "$dir/poly-$tag.csv" optimal)" \
+        jobs+=("$dir/ekf-$tag.txt")
+        row "$eps" "$(nth "$i" "$paper_rs")" "$rs" "$(nth "$i" "$paper_pol")" "$(cell "$dir/poly-$tag.csv" optimal)" \
           "$(cell "$dir/poly-$tag.csv" poly-printed)" "$(nth "$i" "$paper_kb")" "$(cell "$dir/ekf-$tag.csv" ekf)" \
           "$(cell "$dir/ekf-$tag.csv" ekf-printed)" "$truth"
       else
-        line "$eps" "$(nth "$i" "$paper_rs")" "$rs" "$(nth "$i" "$paper_pol")" "$(cell "$dir/poly-$tag.csv" optimal)" \
+        row "$eps" "$(nth "$i" "$paper_rs")" "$rs" "$(nth "$i" "$paper_pol")" "$(cell "$dir/poly-$tag.csv" optimal)" \
           "$(cell "$dir/poly-$tag.csv" poly-printed)" "$truth"
       fi
+      for job in "${jobs[@]:1}"; do
+        if [ "$(truth_table "$job")" != "$(truth_table "${jobs[0]}")" ]; then
+          echo "reproduce-paper002: the truths of $job and ${jobs[0]} differ" >&2; exit 1
+        fi
+      done
+      same_truths=$((same_truths + 1))
       # The paper's claim: J_R-S is the smallest. Against pfgen's own comparators, over the same
       # truths; "smaller" when the difference exceeds 2 standard errors and no run of either stopped.
       comparators=("$dir/poly-$tag.csv optimal"); [ "$ekf" = 1 ] && comparators+=("$dir/ekf-$tag.csv ekf")
@@ -203,9 +222,11 @@ for name in $cases; do
           exit !(x[1] - y[1] < -2 * sqrt(x[2]^2 + y[2]^2)) }' && verdict_rs=$((verdict_rs + 1))
       done
     done
+    align
   done
 done
 echo
+echo "Truths: the same in every job of each of the $same_truths rows (simulate's truth table at the report times compared)."
 echo "The paper's claim (J_R-S smallest for every eps) holds, on our runs, in $verdict_rs of $verdict_total comparisons"
 echo "of risk-sensitive against optimal and ekf (smaller by more than 2 standard errors, no run stopped)."
 
@@ -223,7 +244,8 @@ shifted_variant() {  # target filter printed repaired x0 m0
 if [ "$part2" = 1 ]; then
   echo
   echo "2. The indefinite printed P(0) as printed (gamma = 1), through the printed filters:"
-  line "case" "filter" "eps" "J from printed P(0)" "J from repaired P(0)"
+  rows=""
+  row "case" "filter" "eps" "J from printed P(0)" "J from repaired P(0)"
   for spec in "reactor2 ekf-printed ekf" "satellite1 poly-printed poly"; do
     read -r name f group <<< "$spec"
     case " $cases " in *" $name "*) ;; *) continue ;; esac
@@ -234,10 +256,11 @@ if [ "$part2" = 1 ]; then
     for eps in $eps_list; do
       i=$((i + 1)); [ "$i" -gt "$eps_count" ] && break
       run_job "$dir/$group-printed-p0.yaml" "$f" "$eps" 1 "$dir/$group-printed-p0-eps$eps.csv"
-      line "$name" "$f" "$eps" "$(cell "$dir/$group-printed-p0-eps$eps.csv" "$f")" \
+      row "$name" "$f" "$eps" "$(cell "$dir/$group-printed-p0-eps$eps.csv" "$f")" \
         "$(cell "$dir/$group-gamma1-eps$eps.csv" "$f" 2>/dev/null || echo -)"
     done
   done
+  align
 fi
 shown="${out#"$here"/}"
 echo "Full outputs (simulate's tables and criterion CSVs): $shown/<case>/"
