@@ -160,7 +160,7 @@ gamma_of() {  # reading eps
 }
 
 # simulate's "Truth at the report times" section: the same in every job of a row when the truths are.
-truth_table() { awk '/^Truth at the report times/ {s = 1} s && NF == 0 {exit} s' "$1"; }
+truth_table() { awk '/^Truth at the report times/ {s = 1; next} s && /^t = / {print; next} s {exit}' "$1"; }
 same_truths=0
 verdict_rs=0; verdict_total=0
 echo "Paper 002 reproduction: $runs runs per job, dt = $dt, seed $seed; J ± standard error (delta method)"
