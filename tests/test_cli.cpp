@@ -225,7 +225,14 @@ std::vector<std::string> kinds_for(pfgen::ObservationKind observation) {
       if (o == observation) names.push_back(info.name);
   return names;
 }
-const std::vector<std::string> kAllKinds = kinds_for(pfgen::ObservationKind::Continuous);
+// The mean-square kinds (the risk-sensitive kind needs a model with a risk: section: its own case).
+std::vector<std::string> mean_square_kinds_for(pfgen::ObservationKind observation) {
+  std::vector<std::string> names;
+  for (const std::string& name : kinds_for(observation))
+    if (!pfgen::is_risk_sensitive(*pfgen::parse_filter_kind(name))) names.push_back(name);
+  return names;
+}
+const std::vector<std::string> kAllKinds = mean_square_kinds_for(pfgen::ObservationKind::Continuous);
 
 // The built-in kinds a model file supports, from the registry's rules (no additive diffusion:
 // fewer kinds).
@@ -273,6 +280,31 @@ TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed
   Evaluated optimal = eval({model, "--filter", "optimal", "--m=-1.5", "--P", "0.5"});
   check_close(optimal.P_drift[0][0], -0.424375, "optimal P_drift");
   check_close(optimal.m_drift[0], 0.275, "optimal m_drift");
+}
+
+// The risk-sensitive kind (docs/theory.md §2.7), tests/data/risk_scalar.yaml:
+//   f = -x + 0.5 x^2 + 0.2 x^3, G = 0.09, A0 = 0.3, A = 2, R = 0.25, eps = 4, M = 3.
+// div f = f' = -1 + x + 0.6 x^2, grad(div f) = 1 + 1.2 x, Hess(div f) = 1.2:
+//   m drift = f(m) - P (1 + 1.2 m), gain = P A / R = 8 P,
+//   P drift = 2 f'(m) P + 0.09 - P^2 (A^2/R + 1.2 - 2 M/eps) = 2 f'(m) P + 0.09 - 15.7 P^2.
+TEST_CASE("eval of the risk-sensitive kind matches the hand-computed filter", "[cli][integration]") {
+  const std::string model = test_data_dir() + "/risk_scalar.yaml";
+  const double m = -1.5, P = 0.5;
+  std::vector<std::string> risk_kinds;
+  for (const std::string& name : kinds_for(pfgen::ObservationKind::Continuous))
+    if (pfgen::is_risk_sensitive(*pfgen::parse_filter_kind(name))) risk_kinds.push_back(name);
+  CHECK(risk_kinds == std::vector<std::string>{"risk-sensitive"});  // a new one needs its case here
+  Evaluated e = eval({model, "--filter", "risk-sensitive", "--m=-1.5", "--P", "0.5"});
+  REQUIRE(e.m_drift.size() == 1);
+  REQUIRE(e.gain.size() == 1);
+  REQUIRE(e.P_drift.size() == 1);
+  const double f = -m + 0.5 * m * m + 0.2 * m * m * m, df = -1 + m + 0.6 * m * m;
+  check_close(e.m_drift[0], f - P * (1 + 1.2 * m), "m_drift");
+  check_close(e.gain[0][0], 8 * P, "gain");
+  check_close(e.P_drift[0][0], 2 * df * P + 0.09 - 15.7 * P * P, "P_drift");
+  // Written out: 2.35 and -4.985.
+  check_close(e.m_drift[0], 2.35, "m_drift by hand");
+  check_close(e.P_drift[0][0], -4.985, "P_drift by hand");
 }
 
 // Delayed observations (docs/theory.md §2.6), tests/data/delayed_scalar.yaml:

@@ -93,7 +93,9 @@ TEST_CASE("kind registry: the README's table is the registry written out", "[uni
     CHECK(rows[k][2] == diffusion_words(info.diffusion));
     CHECK(rows[k][3] == observation_words(info.observations));
     // The formula columns follow the two axes.
-    CHECK(rows[k][4] == (info.expectation == ExpectationRule::Gaussian ? "E[f]" : "f(m)"));
+    const std::string drift = info.expectation == ExpectationRule::Gaussian ? "E[f]" : "f(m)";
+    // The risk-sensitive kind follows the information state's mode (docs/theory.md §2.7).
+    CHECK(rows[k][4] == (info.criterion == Criterion::RiskSensitive ? drift + " − P ∇(div f)(m)" : drift));
     CHECK((rows[k][6].find("additive") != std::string::npos) == (info.diffusion == DiffusionSource::Additive));
   }
 }
@@ -122,7 +124,8 @@ TEST_CASE("kind registry: the model room and the derivation offer exactly the ki
     }
     std::size_t for_observation = 0;
     for (const auto& info : filter_kinds())
-      for (ObservationKind o : info.observations) for_observation += o == model.observation.kind() ? 1 : 0;
+      for (ObservationKind o : info.observations)
+        for_observation += o == model.observation.kind() && info.criterion == Criterion::MeanSquare ? 1 : 0;
     const bool needs_additive = model.observation.kind() == ObservationKind::Continuous;  // some continuous kinds do
     CHECK((model.additive_diffusion.has_value() || !needs_additive ? expected.size() == for_observation
                                                                    : expected.size() < for_observation));
@@ -132,11 +135,12 @@ TEST_CASE("kind registry: the model room and the derivation offer exactly the ki
 }
 
 TEST_CASE("kind registry: command-line help, errors and defaults list the registry's kinds", "[integration][kinds]") {
-  const std::string model = example("basin2006_quadratic.yaml");  // supports every continuous kind
+  const std::string model = example("basin2006_quadratic.yaml");  // every mean-square continuous kind
   std::string bar, comma;
   for (const auto& name : filter_kind_names()) bar += (bar.empty() ? "" : " | ") + name;
   for (const auto& info : filter_kinds())
-    if (info.observations.front() == ObservationKind::Continuous) comma += (comma.empty() ? "" : ", ") + info.name;
+    if (info.observations.front() == ObservationKind::Continuous && info.criterion == Criterion::MeanSquare)
+      comma += (comma.empty() ? "" : ", ") + info.name;
   for (const char* command : {"derive", "eval"}) {
     ProcessResult help = run_pfgen({command, "--help"});
     INFO(command << " --help: " << help.out);

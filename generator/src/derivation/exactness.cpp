@@ -188,10 +188,33 @@ ExactnessReport delayed_exactness(const ModelFacts& facts, FilterKind kind) {
   return report;
 }
 
+// The risk-sensitive filter (docs/theory.md §2.7) is exact, as the risk-sensitive filter, when the
+// quadratic form of its information state is: f affine (the LEQG filter). It never estimates the
+// conditional mean, and says so.
+ExactnessReport risk_sensitive_exactness(const ModelFacts& facts) {
+  ExactnessReport report;
+  const std::string nonaffine = facts.nonaffine_drift();
+  if (nonaffine.empty()) {
+    report.exact = true;
+    report.condition = "LEQG";
+    report.explanation = "exact: f is affine and the noise additive, so the information state stays Gaussian and "
+                         "this is the linear risk-sensitive (LEQG) filter for the criterion J; m is its estimate, "
+                         "not the conditional mean";
+    return report;
+  }
+  report.condition = "none";
+  report.explanation = "approximation (paper 002's construction): the equation of the risk-sensitive information "
+                       "state's logarithm is expanded about m to second order in x - m; the terms of order 3 and "
+                       "above, which f's degree above 1 brings, are dropped";
+  report.failed.push_back("LEQG: " + nonaffine);
+  return report;
+}
+
 }  // namespace
 
 ExactnessReport assess_exactness(const Model& model, FilterKind kind) {
   ModelFacts facts(model, kind);
+  if (is_risk_sensitive(kind)) return risk_sensitive_exactness(facts);
   if (model.observation.is_sampled()) return sampled_exactness(facts, kind);
   if (model.observation.is_delayed()) return delayed_exactness(facts, kind);
   return undelayed_exactness(model, kind);

@@ -5,6 +5,7 @@
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_terms.hpp"
+#include "pfgen/derivation/risk_sensitive.hpp"
 
 namespace pfgen {
 namespace {
@@ -113,6 +114,27 @@ FilterEquations equations_frame(const Model& model) {
   return eq;
 }
 
+// The risk-sensitive kind: its parts from paper 002's construction (risk_sensitive.hpp), and the
+// Jacobian at m that its transport term is made of, for code generation's shared form.
+FilterEquations risk_sensitive_filter(const Model& model, FilterEquations eq) {
+  const std::vector<Polynomial> f = state_polynomials(model.drift, model);
+  std::vector<Polynomial> G_upper;
+  for (std::size_t i = 0; i < model.n(); ++i)
+    for (std::size_t j = i; j < model.n(); ++j) G_upper.push_back(Polynomial::from_ex(model.diffusion.G[i][j], model.states));
+  check_derivation_budget(model, DerivationInputs{false, f, jacobian(f), G_upper,
+                                                  model.diffusion.g ? "diffusion" : "diffusion_covariance",
+                                                  observed_states(model.observation)});
+  RiskSensitiveTerms terms = risk_sensitive_terms(model, eq.variables);
+  eq.m_drift = std::move(terms.m_drift);
+  eq.gain = std::move(terms.gain);
+  eq.jacobian_term = jacobian(f);
+  eq.P_moment = std::move(terms.P_moment);
+  eq.P_diffusion = std::move(terms.P_diffusion);
+  eq.P_correction = std::move(terms.P_correction);
+  eq.risk = model.risk;
+  return eq;
+}
+
 }  // namespace
 
 Polynomial FilterEquations::P_drift(std::size_t i, std::size_t j) const {
@@ -131,6 +153,7 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
   eq.exactness = assess_exactness(model, kind);
   const FilterVariables& vars = eq.variables;
   auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
+  if (is_risk_sensitive(kind)) return risk_sensitive_filter(model, std::move(eq));
 
   MomentTerms terms = moment_terms(model, kind, vars);
   eq.m_drift = std::move(terms.drift);

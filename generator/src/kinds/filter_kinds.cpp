@@ -42,6 +42,10 @@ const std::vector<FilterKindInfo>& filter_kinds() {
       {FilterKind::DelayEkf, "delay-ekf",
        "extended Kalman-Bucy filter (textbook) with the delayed innovation dy - (A0 + A m(t-h)) dt",
        E::AtMean, D::Model, delayed, Prediction::Ode, DelayGain::Undelayed},
+      {FilterKind::RiskSensitive, "risk-sensitive",
+       "risk-sensitive filter for the model's risk: criterion J (paper 002): f(m) - P grad(div f)(m), "
+       "Jacobian at m, and -P (Hess(div f)(m) - (2/eps) M) P in dP; LEQG for linear models",
+       E::AtMean, D::Model, continuous, Prediction::Ode, DelayGain::Undelayed, Criterion::RiskSensitive},
   };
   return kinds;
 }
@@ -69,6 +73,14 @@ std::optional<std::string> unsupported_reason(const FilterKindInfo& kind, const 
     return std::string("needs additive_diffusion or additive_diffusion_covariance");
   if (std::find(kind.observations.begin(), kind.observations.end(), model.observation) == kind.observations.end())
     return "is not derived for " + observation_kind_info(model.observation).name + " observations";
+  if (kind.criterion == Criterion::RiskSensitive) {
+    if (!model.has_risk_criterion) return std::string("needs a risk: section (risk: {epsilon: ...})");
+    if (!model.state_independent_diffusion)
+      return std::string("needs a state-independent diffusion (additive noise, as its construction assumes)");
+    if (model.drift_degree > kRiskSensitiveMaxDegree)
+      return "is derived for drifts of degree <= " + std::to_string(kRiskSensitiveMaxDegree) + " (drift[" +
+             std::to_string(model.drift_degree_row) + "] has degree " + std::to_string(model.drift_degree) + ")";
+  }
   return std::nullopt;
 }
 

@@ -188,6 +188,11 @@ ModelBuilder& ModelBuilder::user_filter(const std::string& name, const ExVector&
   return *this;
 }
 
+ModelBuilder& ModelBuilder::risk_criterion(const GiNaC::ex& epsilon, const ExMatrix& weight) {
+  model_.risk = RiskCriterion{exact_rationals(epsilon), exact_matrix(weight)};
+  return *this;
+}
+
 ModelBuilder& ModelBuilder::simulation(const SimulationSection& settings) {
   model_.simulation = settings;
   return *this;
@@ -202,6 +207,11 @@ Model ModelBuilder::build() const {
   Model model = model_;
   complete(model.diffusion);
   if (model.additive_diffusion) complete(*model.additive_diffusion);
+  if (model.risk && model.risk->weight.empty())  // L = |x - m|^2 unless the model says otherwise
+    for (std::size_t i = 0; i < model.n(); ++i) {
+      model.risk->weight.emplace_back(model.n(), GiNaC::ex(0));
+      model.risk->weight[i][i] = 1;
+    }
   return model;
 }
 

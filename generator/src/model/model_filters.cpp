@@ -8,6 +8,23 @@ FilterKindNeeds filter_kind_needs(const Model& model) {
   FilterKindNeeds needs;
   needs.has_additive_diffusion = model.additive_diffusion.has_value();
   needs.observation = model.observation.kind();
+  needs.has_risk_criterion = model.risk.has_value();
+  // Only the risk-sensitive kind reads the facts below, and only with a risk: section: skip the
+  // expansions for every other model.
+  if (!needs.has_risk_criterion) return needs;
+  needs.state_independent_diffusion = true;
+  for (const auto& row : model.diffusion.G)
+    for (const auto& entry : row) needs.state_independent_diffusion &= !depends_on_states(model, entry);
+  GiNaC::symbol scale;  // x -> scale x: the total degree in the states is the degree in scale
+  GiNaC::exmap scaled;
+  for (const auto& x : model.states) scaled[x] = x * scale;
+  for (std::size_t i = 0; i < model.drift.size(); ++i) {
+    const int degree = model.drift[i].subs(scaled).expand().degree(scale);
+    if (degree > static_cast<int>(needs.drift_degree)) {
+      needs.drift_degree = static_cast<unsigned>(degree);
+      needs.drift_degree_row = static_cast<unsigned>(i + 1);
+    }
+  }
   return needs;
 }
 

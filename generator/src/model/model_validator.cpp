@@ -321,6 +321,43 @@ void validate_initial(const Model& model) {
                                        std::to_string(eigen.eigenvalues().minCoeff()) + ")");
 }
 
+// The risk criterion's epsilon and weight are numbers or expressions of the parameters: simulate
+// evaluates them with the parameters' values. At the defaults epsilon must be positive and the
+// weight symmetric positive semi-definite (simulate checks the values it is given by --set).
+void validate_risk(const Model& model) {
+  if (!model.risk) return;
+  const RiskCriterion& risk = *model.risk;
+  auto value_of = [&](const GiNaC::ex& e, const std::string& field, std::optional<int> row,
+                         std::optional<int> column) {
+    require_state_free(model, e, field, row, column);
+    if (e.has(model.time))
+      throw ModelError(field, "'" + to_text(e) + "' must not depend on the time", row, column);
+    GiNaC::ex value = at_defaults(model, e);
+    if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real())
+      throw ModelError(field, "'" + to_text(e) + "' is not a real number at the parameters' values", row, column);
+    return GiNaC::ex_to<GiNaC::numeric>(value).to_double();
+  };
+  const double epsilon = value_of(risk.epsilon, "risk.epsilon", std::nullopt, std::nullopt);
+  if (!(epsilon > 0))
+    throw ModelError("risk.epsilon", "must be positive (it is " + to_text(risk.epsilon) + " = " +
+                                         std::to_string(epsilon) + " at the parameters' values)");
+  if (risk.weight.empty()) return;
+  const std::size_t n = model.n();
+  require_shape(risk.weight, n, n, "risk.weight", "n x n, one per state");
+  Eigen::MatrixXd M(n, n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      M(i, j) = value_of(risk.weight[i][j], "risk.weight", one_based(i), one_based(j));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (!(risk.weight[i][j] - risk.weight[j][i]).expand().is_zero())
+        throw ModelError("risk.weight", "not symmetric", one_based(i), one_based(j));
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(M);
+  if (eigen.eigenvalues().minCoeff() < -1e-12 * std::max(1.0, M.norm()))
+    throw ModelError("risk.weight", "not positive semi-definite (smallest eigenvalue " +
+                                        std::to_string(eigen.eigenvalues().minCoeff()) + ")");
+}
+
 // A double as the user wrote it, near enough: shortest round-trip is not needed in messages.
 void require_polynomial_in(const std::vector<GiNaC::symbol>& variables, const GiNaC::ex& e, const std::string& field,
                            std::optional<int> row, std::optional<int> column) {
@@ -449,6 +486,7 @@ void validate_model(const Model& model) {
                        "additive_diffusion_covariance", true);
   validate_observation(model);
   validate_initial(model);
+  validate_risk(model);
   validate_user_filters(model);
   validate_simulation(model);
 }

@@ -26,7 +26,7 @@ namespace {
 const std::set<std::string> kTopLevelFields = {
     "name",      "states",      "parameters",         "time",
     "drift",     "diffusion",   "diffusion_covariance", "additive_diffusion",
-    "additive_diffusion_covariance", "observation", "initial", "filters", "simulation"};
+    "additive_diffusion_covariance", "observation", "initial", "risk", "filters", "simulation"};
 
 const char* const kSampledFields = "period, C, Uv, C0, substeps";
 const char* const kUserFilterFields = "m_drift, P_drift, gain, description";
@@ -76,7 +76,7 @@ class Loader {
       if (!kTopLevelFields.count(key)) {
         ModelError e(key, "unknown field (known: name, states, parameters, time, drift, diffusion, "
                           "diffusion_covariance, additive_diffusion, additive_diffusion_covariance, "
-                          "observation, initial, filters, simulation)");
+                          "observation, initial, risk, filters, simulation)");
         e.set_location(SourceLocation{entry.first.Mark().line + 1, entry.first.Mark().column + 1});
         throw e;
       }
@@ -90,6 +90,7 @@ class Loader {
     read_diffusion(builder, parser, "additive_diffusion", "additive_diffusion_covariance", false);
     read_observation(builder, parser);
     read_initial(builder);
+    read_risk(builder, parser);
     read_filters(builder);
     read_simulation(builder);
     return builder.build();
@@ -305,6 +306,25 @@ class Loader {
     for (std::size_t i = 0; i < rows.size(); ++i)
       ic.P0.push_back(number_list(rows[i], "initial.P0", static_cast<int>(i + 1)));
     builder.initial(ic);
+  }
+
+  // risk: {epsilon: EXPR, weight: [[...]]}: the exponential criterion J (RiskCriterion).
+  void read_risk(ModelBuilder& builder, const ExpressionParser& parser) {
+    YAML::Node risk = root_["risk"];
+    if (!risk || risk.IsNull()) return;
+    if (!risk.IsMap()) throw ModelError("risk", "expected a mapping with epsilon and, optionally, weight");
+    for (const auto& entry : risk) {
+      std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
+      if (key != "epsilon" && key != "weight") {
+        index_.record("risk." + key, entry.first);
+        throw ModelError("risk." + key, "unknown field (known: epsilon, weight)");
+      }
+    }
+    if (!risk["epsilon"] || risk["epsilon"].IsNull()) throw ModelError("risk.epsilon", "missing required field");
+    GiNaC::ex epsilon = parser.parse(scalar(risk["epsilon"], "risk.epsilon"), ExpressionSite{"risk.epsilon", {}, {}});
+    ExMatrix weight;
+    if (YAML::Node w = risk["weight"]; w && !w.IsNull()) weight = matrix_field(w, "risk.weight", parser);
+    builder.risk_criterion(epsilon, weight);
   }
 
   // filters: {NAME: {m_drift: [...], P_drift: [[...]], gain: [[...]], description: "..."}}

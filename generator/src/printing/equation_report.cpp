@@ -5,6 +5,7 @@
 #include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/delayed_report.hpp"
 #include "pfgen/printing/report_parts.hpp"
+#include "pfgen/printing/risk_report.hpp"
 #include "pfgen/printing/sampled_report.hpp"
 
 namespace pfgen {
@@ -15,6 +16,22 @@ std::vector<ReportPart> P_parts(const FilterEquations& eq, std::size_t u) {
 }
 
 bool is_single_term(const Polynomial& p) { return p.terms().size() <= 1; }
+
+// The variables line (m = E[x], P its covariance) and which terms make up dP.
+std::string mean_square_header_text(const Model& model, const FilterEquations& eq) {
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n();
+  std::string out = "variables: ";
+  for (std::size_t i = 0; i < n; ++i)
+    out += (i ? ", " : "") + vars.text_name(vars.m(i)) + " = E[" + model.state_names[i] + "]";
+  out += "; P = covariance of (";
+  for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
+  out += ")\n";
+  if (eq.is_delayed()) out += delayed_header_text(eq);
+  out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
+                              : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [" + correction_words_text(eq) + "]\n\n";
+  return out;
+}
 
 }  // namespace
 
@@ -31,15 +48,7 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
   out += "model: " + model.name + "\n";
   out += "filter: " + eq.name + " (" + eq.description + ")\n";
   out += "exactness: " + exactness_text(eq.exactness) + "\n";
-  out += "variables: ";
-  for (std::size_t i = 0; i < n; ++i)
-    out += (i ? ", " : "") + vars.text_name(vars.m(i)) + " = E[" + model.state_names[i] + "]";
-  out += "; P = covariance of (";
-  for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
-  out += ")\n";
-  if (eq.is_delayed()) out += delayed_header_text(eq);
-  out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
-                              : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [" + correction_words_text(eq) + "]\n\n";
+  out += is_risk_sensitive_report(eq) ? risk_header_text(model, eq) : mean_square_header_text(model, eq);
   for (std::size_t i = 0; i < n; ++i) {
     out += "dm" + std::to_string(i + 1) + " = (";
     writer.append(out, eq.m_drift[i]);
@@ -77,6 +86,7 @@ std::string equations_latex(const FilterEquations& eq) {
 
   std::string out = exactness_latex(eq.exactness);
   if (eq.is_delayed()) out += delayed_paragraph_latex(eq);
+  if (is_risk_sensitive_report(eq)) out += risk_paragraph_latex(eq);
   out += "\\begin{align*}\n";
   // Each right-hand side is cut into lines that fit the page (latex_line_breaker).
   std::vector<std::string> lines;
@@ -149,6 +159,7 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
   out.add("predicted_observation", predicted);
   out.add("P_drift", P_drift);
   if (eq.is_delayed()) add_delayed_json(eq, out);
+  if (is_risk_sensitive_report(eq)) add_risk_json(eq, out);
   return out;
 }
 

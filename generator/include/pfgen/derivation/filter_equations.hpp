@@ -62,6 +62,8 @@ struct FilterEquations {
   // drift f(xs, t) of the noise-free solution xs, n entries (empty otherwise).
   GiNaC::numeric delay = 0;
   std::vector<Polynomial> x_star_drift;
+  // The risk-sensitive kind only: the model's criterion (epsilon and M), for the reports.
+  std::optional<RiskCriterion> risk;
 
   std::size_t n() const { return variables.n(); }
   bool is_user_filter() const { return !kind.has_value(); }

@@ -13,7 +13,8 @@
 
 namespace pfgen {
 
-enum class FilterKind { Optimal, Ekf, Additive, EkfAdditive, CdOptimal, CdEkf, CdEuler, DelayOptimal, DelayUncorrected, DelayEkf };
+enum class FilterKind { Optimal, Ekf, Additive, EkfAdditive, CdOptimal, CdEkf, CdEuler, DelayOptimal, DelayUncorrected, DelayEkf,
+                        RiskSensitive };
 
 // How a kind takes the expectations of f, of its Jacobian and of g g^T.
 enum class ExpectationRule {
@@ -40,6 +41,13 @@ enum class DelayGain {
   Transition,  // P Phi*^T A^T R^-1, Phi* = diag(x*(t - h) / x*(t)) from the noise-free x* (paper 004's eq 6)
 };
 
+// What a kind's estimate is optimal for (docs/theory.md §2.7).
+enum class Criterion {
+  MeanSquare,     // E|x - m|^2: m approximates the conditional mean
+  RiskSensitive,  // J = eps log E exp(eps^-1 int (x - m)^T M (x - m) dt): the model's `risk:` section; m is the
+                  // centre of the risk-sensitive information state, expanded to second order about it
+};
+
 struct FilterKindInfo {
   FilterKind kind;
   std::string name;         // the --filter name, and (with '-' as '_') the generated code's
@@ -49,6 +57,7 @@ struct FilterKindInfo {
   std::vector<ObservationKind> observations;  // the observation models it is derived for
   Prediction prediction = Prediction::Ode;
   DelayGain delay_gain = DelayGain::Undelayed;
+  Criterion criterion = Criterion::MeanSquare;
 };
 
 // Every built-in kind, in the canonical order in which commands list and default to them.
@@ -61,7 +70,14 @@ std::vector<std::string> filter_kind_names();  // canonical order
 struct FilterKindNeeds {
   bool has_additive_diffusion = false;
   ObservationKind observation = ObservationKind::Continuous;
+  bool has_risk_criterion = false;         // the model file's `risk:` section
+  bool state_independent_diffusion = false;  // g (or G) free of the states
+  unsigned drift_degree = 0;               // the highest total degree of a drift entry in the states
+  unsigned drift_degree_row = 0;           // 1-based row of the first entry of that degree
 };
+// The risk-sensitive kind is derived for drifts of degree <= 3 (paper 002's second- and
+// third-degree systems; the construction's dropped terms grow with the degree).
+inline constexpr unsigned kRiskSensitiveMaxDegree = 3;
 // Why the kind cannot be derived for such a model ("needs additive_diffusion or ..."), or
 // nothing when it can.
 std::optional<std::string> unsupported_reason(const FilterKindInfo& kind, const FilterKindNeeds& model);
@@ -75,5 +91,6 @@ inline bool uses_additive_diffusion(FilterKind kind) {
 inline bool is_extended_kalman(FilterKind kind) { return filter_kind_info(kind).expectation == ExpectationRule::AtMean; }
 inline bool uses_euler_map(FilterKind kind) { return filter_kind_info(kind).prediction == Prediction::EulerMap; }
 inline bool uses_transition_gain(FilterKind kind) { return filter_kind_info(kind).delay_gain == DelayGain::Transition; }
+inline bool is_risk_sensitive(FilterKind kind) { return filter_kind_info(kind).criterion == Criterion::RiskSensitive; }
 
 }  // namespace pfgen

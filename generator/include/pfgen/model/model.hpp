@@ -79,6 +79,16 @@ struct SimulationSection {
   std::string location_of(const std::string& field) const;
 };
 
+// The model file's `risk:` section: the exponential criterion
+//   J = epsilon log E[exp(epsilon^-1 int_0^T L dt)],   L = (x - m)^T weight (x - m),
+// that `pfgen simulate` reports for every filter and the `risk-sensitive` kind is derived for
+// (docs/theory.md §2.7). epsilon and weight hold numbers and parameters only (no states, no
+// time), so `--set` can change them; weight defaults to the identity.
+struct RiskCriterion {
+  GiNaC::ex epsilon;
+  ExMatrix weight;  // n x n, symmetric
+};
+
 // The values `scheme:` accepts: auto, euler-maruyama, milstein, ...
 const std::vector<std::string>& simulation_schemes();
 
@@ -96,6 +106,7 @@ struct Model {
   std::optional<InitialConditions> initial;
   std::vector<UserFilter> user_filters;  // in file order
   SimulationSection simulation;
+  std::optional<RiskCriterion> risk;       // the `risk:` section, when given
 
   std::size_t n() const { return states.size(); }
   std::size_t p() const { return observation.p(); }

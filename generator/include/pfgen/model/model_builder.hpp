@@ -52,6 +52,8 @@ class ModelBuilder {
   //   b.user_filter("ekf-printed", {0.1 * pow(v[0], 2)}, {{0.4 * v[1] + 0.01 - pow(v[1], 2)}}, {{v[1]}});
   ModelBuilder& user_filter(const std::string& name, const ExVector& m_drift, const ExMatrix& P_drift,
                             const ExMatrix& gain, const std::string& description = "");
+  // The model file's `risk:` section (RiskCriterion); an empty weight means the identity.
+  ModelBuilder& risk_criterion(const GiNaC::ex& epsilon, const ExMatrix& weight = {});
   // The model file's `simulation:` defaults (checked by build()).
   ModelBuilder& simulation(const SimulationSection& settings);
 
