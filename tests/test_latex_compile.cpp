@@ -79,8 +79,9 @@ TEST_CASE("pfgen latex documents of the examples compile with pdflatex", "[latex
   // Every kind each model supports (the default), then each kind on its own.
   check_compiles(example("basin2006_quadratic.yaml"), "", dir, "basin2006_all");
   check_compiles(example("basin_skliar_partial.yaml"), "", dir, "skliar_all");
-  for (const auto& info : pfgen::filter_kinds())  // basin2006 supports every continuous kind
-    if (info.observations.front() == pfgen::ObservationKind::Continuous)
+  for (const auto& info : pfgen::filter_kinds())  // basin2006 supports every mean-square continuous kind
+    if (info.observations.front() == pfgen::ObservationKind::Continuous &&
+        info.criterion == pfgen::Criterion::MeanSquare)
       check_compiles(example("basin2006_quadratic.yaml"), info.name, dir, "basin2006_" + info.name);
   // Sampled observations: every sampled kind (the default), prediction and update apart.
   check_compiles(example("allahyani_date_example1_gamma1.yaml"), "", dir, "allahyani_gamma1_all");
@@ -88,6 +89,9 @@ TEST_CASE("pfgen latex documents of the examples compile with pdflatex", "[latex
   check_compiles(example("basin_skliar_partial.yaml"), "ekf", dir, "skliar_ekf");
   // Delayed observations: every delay kind (the default), with Phi* and the x* equation.
   check_compiles(example("delay_linear.yaml"), "", dir, "delay_linear_all");
+  // The risk criterion: optimal, ekf and risk-sensitive, with the criterion paragraph.
+  check_compiles(test_data_dir() + "/risk_scalar.yaml", "", dir, "risk_scalar_all");
+  CHECK(read_file(dir.file("risk_scalar_all.tex")).find("Risk-sensitive filter for the criterion") != std::string::npos);
 }
 
 TEST_CASE("pfgen latex compiles for names, parameters and matrices that need escaping", "[latex][pdflatex][compiler]") {

@@ -139,6 +139,11 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--compiler", simulate.compiler, "C++ compiler for the plugin (default: $CXX, else c++)");
   simulate_cmd->add_option("--timing", simulate.timing_path, "Write phase times as JSON to FILE");
   simulate_cmd->add_option("--set", simulate.assignments, "Parameter value for this job, name=value (repeatable)");
+  simulate_cmd->add_option("--risk-epsilon", so.risk_epsilon,
+                           "Report the exponential criterion J = eps log E[exp(int L dt / eps)] of every filter with "
+                           "this eps (default: the model's risk.epsilon; without either, no J)");
+  simulate_cmd->add_option("--criterion-csv", simulate.criterion_csv_path,
+                           "Write J per filter as CSV to FILE (needs --risk-epsilon or a risk: section)");
   simulate_cmd->add_flag("-q,--quiet", simulate.quiet, "No plugin and timing lines on stderr");
 
   try {

@@ -64,10 +64,13 @@ void check_output_paths(const SimulateOptions& options) {
     written.push_back({"--plot's gnuplot script", pfgen_runtime::gnuplot_script_path(options.plot_path)});
   }
   if (!options.timing_path.empty()) written.push_back({"--timing", options.timing_path});
+  if (!options.criterion_csv_path.empty()) written.push_back({"--criterion-csv", options.criterion_csv_path});
   check_distinct_outputs({{"the model file", options.model_path}}, written);
   // --timing too: it is written last, and a failure there used to follow a printed table.
-  const std::pair<const std::string*, const char*> outputs[] = {
-      {&options.csv_path, "-o"}, {&options.plot_path, "--plot"}, {&options.timing_path, "--timing"}};
+  const std::pair<const std::string*, const char*> outputs[] = {{&options.csv_path, "-o"},
+                                                                {&options.plot_path, "--plot"},
+                                                                {&options.timing_path, "--timing"},
+                                                                {&options.criterion_csv_path, "--criterion-csv"}};
   for (const auto& [path, option] : outputs) {
     if (path->empty()) continue;
     const auto parent = std::filesystem::path(*path).parent_path();
@@ -129,6 +132,20 @@ std::string delay_note(const Model& model, const SimulationSettings& s) {
          (steps == 1 ? " step" : " steps") + " of dt = " + pfgen_support::shortest_chars(s.dt);
 }
 
+// The runtime's form of J's settings: M as an Eigen matrix, left empty (L = |x - m|^2, printed
+// "M = identity") when it is the identity.
+pfgen_runtime::CriterionOptions criterion_options(const CriterionSettings& criterion, std::size_t n) {
+  pfgen_runtime::CriterionOptions out;
+  out.epsilon = criterion.epsilon;
+  if (criterion.weight.empty()) return out;
+  const auto size = static_cast<Eigen::Index>(n);
+  Eigen::MatrixXd weight(size, size);
+  for (Eigen::Index i = 0; i < size; ++i)
+    for (Eigen::Index j = 0; j < size; ++j) weight(i, j) = criterion.weight[static_cast<std::size_t>(i * size + j)];
+  if (!weight.isIdentity(0.0)) out.weight = weight;
+  return out;
+}
+
 }  // namespace
 
 int run_simulate(const SimulateOptions& options) {
@@ -139,6 +156,9 @@ int run_simulate(const SimulateOptions& options) {
   // is a new source, and a new cache entry).
   apply_parameter_assignments(model, options.assignments);
   const SimulationSettings settings = resolve_simulation_settings(model, options.overrides);
+  if (!options.criterion_csv_path.empty() && !settings.criterion)
+    throw CliValueError("--criterion-csv: no criterion J to write; give --risk-epsilon or a risk: section in " +
+                        model.source);
   // Samples at t_k = k T on the truth's grid: T must be a whole number of steps dt.
   if (model.observation.is_sampled()) {
     const double period = model.observation.sampled().period.to_double();
@@ -213,6 +233,7 @@ int run_simulate(const SimulateOptions& options) {
   mc.filter_guards.estimate_guard = pfgen_runtime::DivergenceGuard(settings.bound);
   mc.filter_guards.covariance_guard = pfgen_runtime::DivergenceGuard(std::max(1e16, settings.bound * settings.bound));
   ProgressBar progress("simulate", settings.runs);
+  if (settings.criterion) mc.criterion = criterion_options(*settings.criterion, model.n());
   mc.on_run_finished = [&progress](std::size_t finished, std::size_t) { progress.update(finished); };
 
   const pfgen_runtime::MonteCarloResult result =
@@ -236,6 +257,8 @@ int run_simulate(const SimulateOptions& options) {
     }
   }
 
+  if (!options.criterion_csv_path.empty()) pfgen_runtime::write_criterion_csv(options.criterion_csv_path, result);
+
   // Before the table, like the other files: a failed write must not follow a printed result.
   // (write_file_atomically's own messages name codegen's -o.)
   if (!options.timing_path.empty()) {
@@ -255,6 +278,7 @@ int run_simulate(const SimulateOptions& options) {
   // the signed errors at the report times with standard errors. Other models' output is unchanged.
   if (model.observation.is_delayed()) std::cout << pfgen_runtime::format_report_errors(result, model.state_names);
   if (!options.csv_path.empty()) std::cout << "csv: " << options.csv_path << "\n";
+  if (!options.criterion_csv_path.empty()) std::cout << "criterion csv: " << options.criterion_csv_path << "\n";
   if (!options.plot_path.empty()) {
     if (options.csv_path.empty()) std::cout << "csv: " << csv_for_plot(options) << "\n";
     std::cout << "plot: " << options.plot_path << "\n";

@@ -88,6 +88,17 @@ std::string place_of(const std::string& field, const SimulationOverrides& cli, c
   return source.option + " (default " + source.default_value + ")";
 }
 
+// J's eps and M: --risk-epsilon over the model's risk.epsilon (a parameter expression, at the
+// job's parameter values, so --set changes it); M from risk.weight, the identity when not given.
+std::optional<CriterionSettings> resolve_criterion(const Model& model, const SimulationOverrides& cli) {
+  if (cli.risk_epsilon && (!(*cli.risk_epsilon > 0) || !std::isfinite(*cli.risk_epsilon)))
+    throw CliValueError("--risk-epsilon: '" + number_text(*cli.risk_epsilon) + "' is not a finite number > 0");
+  if (!cli.risk_epsilon) return std::nullopt;
+  CriterionSettings criterion;
+  criterion.epsilon = *cli.risk_epsilon;
+  return criterion;
+}
+
 }  // namespace
 
 SimulationSettings resolve_simulation_settings(const Model& model, const SimulationOverrides& cli) {
@@ -145,6 +156,7 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
   combined.shown_run = s.shown_run;
   if (auto breach = check_simulation_settings(model, combined))
     throw CliValueError(place_of(breach->field, cli, file, s) + ": " + breach->message);
+  s.criterion = resolve_criterion(model, cli);
   std::cerr << notes;
   return s;
 }

@@ -24,6 +24,14 @@ struct SimulationOverrides {
   std::optional<std::string> scheme;
   std::optional<std::string> report_times;  // "5,6,6.5"
   std::optional<std::string> windows;       // "0:4,4:9.2"
+  std::optional<double> risk_epsilon;       // --risk-epsilon: J's eps, over the model's risk.epsilon
+};
+
+// The exponential criterion J of every filter (docs/theory.md, "The exponential criterion J"),
+// asked for by the model's `risk:` section or --risk-epsilon.
+struct CriterionSettings {
+  double epsilon = 1;          // finite, > 0
+  std::vector<double> weight;  // M, n x n row-major; empty: the identity
 };
 
 struct SimulationSettings {
@@ -38,6 +46,7 @@ struct SimulationSettings {
   std::size_t record_points = 1000;
   double bound = 1e8;
   std::size_t shown_run = 0;
+  std::optional<CriterionSettings> criterion;  // unset: J is not computed, the output is as before
 };
 
 // Throws CliValueError naming the option (or the model file's field) and what is wrong.

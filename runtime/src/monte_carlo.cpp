@@ -50,6 +50,12 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
                                   "' must have the truth's n states and the observation's p");
     check_filter_grid(filter, options.grid);
   }
+  if (options.criterion) {
+    if (!(options.criterion->epsilon > 0) || !std::isfinite(options.criterion->epsilon))
+      throw std::invalid_argument("monte carlo: the criterion's epsilon must be finite and > 0");
+    const std::string problem = criterion_weight_problem(options.criterion->weight, n);
+    if (!problem.empty()) throw std::invalid_argument("monte carlo: " + problem);
+  }
   if (measurement) (void)measurement->steps_per_sample(options.grid);  // throws unless whole
   (void)observation.delay_steps(options.grid.dt);  // throws unless h is a whole number of steps
 }
@@ -121,6 +127,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   result.seed = options.seed;
   result.scheme = scheme.name();
   result.n = plan.n;
+  result.criterion = options.criterion;
   aggregate(plan, filters, runs, options, threads, result);
 
   MonteCarloTiming& timing = result.timing;

@@ -104,16 +104,65 @@ std::string format_results_csv(const MonteCarloResult& result, const std::vector
   return out;
 }
 
-void write_results_csv(const std::string& path, const MonteCarloResult& result,
-                       const std::vector<std::string>& state_names) {
-  const std::string text = format_results_csv(result, state_names);
+namespace {
+
+void write_csv(const std::string& what, const std::string& path, const std::string& text) {
   try {
     pfgen_support::write_file_atomically(path, text);
   } catch (const pfgen_support::AtomicWriteError& e) {
     if (e.stage() == pfgen_support::AtomicWriteError::Stage::write)
-      throw std::runtime_error("cannot write the results CSV '" + path + "'");
-    throw std::runtime_error("cannot write the results CSV '" + path + "' (renaming " + e.temporary() + " failed)");
+      throw std::runtime_error("cannot write the " + what + " '" + path + "'");
+    throw std::runtime_error("cannot write the " + what + " '" + path + "' (renaming " + e.temporary() + " failed)");
   }
+}
+
+// A criterion value: "inf" where J is infinite on purpose, else as append_number.
+void append_criterion_number(std::string& out, double value) {
+  if (std::isinf(value) && value > 0) out += "inf";
+  else append_number(out, value);
+}
+
+}  // namespace
+
+void write_results_csv(const std::string& path, const MonteCarloResult& result,
+                       const std::vector<std::string>& state_names) {
+  write_csv("results CSV", path, format_results_csv(result, state_names));
+}
+
+std::string format_criterion_csv(const MonteCarloResult& result) {
+  if (!result.criterion) throw std::invalid_argument("criterion CSV: the result has no criterion");
+  std::string out =
+      "filter,epsilon,runs,completed,J,J_se,ess,mean_integral,mean_integral_se,stopped,first_stop_t,completed_J,"
+      "completed_J_se,completed_ess,completed_mean_integral,completed_mean_integral_se\n";
+  for (const FilterStatistics& filter : result.filters) {
+    const CriterionStatistics& c = *filter.criterion;
+    append_field(out, filter.name);
+    const double cells[] = {c.epsilon,
+                            static_cast<double>(c.all.runs),
+                            static_cast<double>(c.completed.runs),
+                            c.all.J,
+                            c.all.J_se,
+                            c.all.ess,
+                            c.all.mean_integral,
+                            c.all.mean_integral_se,
+                            static_cast<double>(c.stopped.count()),
+                            c.stopped.earliest(),
+                            c.completed.J,
+                            c.completed.J_se,
+                            c.completed.ess,
+                            c.completed.mean_integral,
+                            c.completed.mean_integral_se};
+    for (double value : cells) {
+      out += ',';
+      append_criterion_number(out, value);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+void write_criterion_csv(const std::string& path, const MonteCarloResult& result) {
+  write_csv("criterion CSV", path, format_criterion_csv(result));
 }
 
 }  // namespace pfgen_runtime

@@ -113,6 +113,56 @@ std::string sampled_section(const MonteCarloResult& result) {
   return out;
 }
 
+// How L was weighted: "M = identity" or the matrix row by row.
+std::string weight_text(const Eigen::MatrixXd& weight) {
+  if (weight.size() == 0) return "M = identity";
+  std::string text = "M = [";
+  for (Eigen::Index i = 0; i < weight.rows(); ++i) {
+    text += i ? "; " : "";
+    for (Eigen::Index j = 0; j < weight.cols(); ++j) text += (j ? ", " : "") + number(weight(i, j), "%.6g");
+  }
+  return text + "]";
+}
+
+// J may be infinite on purpose (a run stopped before T): "inf", not '-'.
+std::string criterion_number(double value) { return std::isinf(value) ? "inf" : number(value); }
+
+std::vector<std::string> criterion_cells(const CriterionEstimate& e) {
+  return {count(e.runs), criterion_number(e.J), number(e.J_se, "%.2g"), number(e.ess, "%.4g"),
+          criterion_number(e.mean_integral), number(e.mean_integral_se, "%.2g")};
+}
+
+// The exponential criterion per filter (docs/theory.md, "The exponential criterion J"); empty when
+// it was not asked for, so other tables keep their bytes.
+std::string criterion_section(const MonteCarloResult& result) {
+  if (!result.criterion || result.filters.empty() || !result.filters.front().criterion) return "";
+  const double epsilon = result.filters.front().criterion->epsilon;
+  std::vector<std::vector<std::string>> rows{
+      {"filter", "runs", "J", "se", "ESS", "mean int L", "se", "stopped", "first stop t"}};
+  std::vector<std::vector<std::string>> conditional{{"filter", "runs", "J", "se", "ESS", "mean int L", "se"}};
+  for (const FilterStatistics& filter : result.filters) {
+    const CriterionStatistics& c = *filter.criterion;
+    std::vector<std::string> row{filter.name};
+    for (std::string& cell : criterion_cells(c.all)) row.push_back(std::move(cell));
+    row.push_back(count(c.stopped.count()));
+    row.push_back(time(c.stopped.earliest()));
+    rows.push_back(std::move(row));
+    if (c.stopped.count() > 0) {
+      std::vector<std::string> only{filter.name};
+      for (std::string& cell : criterion_cells(c.completed)) only.push_back(std::move(cell));
+      conditional.push_back(std::move(only));
+    }
+  }
+  std::string out = "\nExponential criterion J = eps log E[exp(int_0^T L dt / eps)], eps = " + number(epsilon, "%.6g") +
+                    ", L = (x - m)^T M (x - m), " + weight_text(result.criterion->weight) +
+                    " (int L per run by the trapezoid rule on the grid; se: delta method; ESS: effective sample "
+                    "size; J = inf when a run stopped before T):\n" +
+                    align(rows);
+  if (conditional.size() > 1)
+    out += "\nThe same over the runs that reached T only (conditional on no stop; not J):\n" + align(conditional);
+  return out;
+}
+
 }  // namespace
 
 std::string format_summary_table(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
@@ -179,6 +229,7 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
              "counted as diverged):\n"
           << stiff.str();
     out << sampled_section(result);
+    out << criterion_section(result);
   }
   out << "\n" << events_line("Truth diverged", result.truth_divergences, result.runs) << "\n";
   if (result.truth_covariance_losses.count() > 0)

@@ -338,9 +338,12 @@ void validate_risk(const Model& model) {
     return GiNaC::ex_to<GiNaC::numeric>(value).to_double();
   };
   const double epsilon = value_of(risk.epsilon, "risk.epsilon", std::nullopt, std::nullopt);
-  if (!(epsilon > 0))
-    throw ModelError("risk.epsilon", "must be positive (it is " + to_text(risk.epsilon) + " = " +
-                                         std::to_string(epsilon) + " at the parameters' values)");
+  if (!(epsilon > 0)) {
+    if (GiNaC::is_a<GiNaC::numeric>(risk.epsilon))
+      throw ModelError("risk.epsilon", "must be a number greater than 0, found " + to_text(risk.epsilon));
+    throw ModelError("risk.epsilon", "'" + to_text(risk.epsilon) + "' is " + to_text(at_defaults(model, risk.epsilon)) +
+                                         " at the parameters' values; it must be greater than 0");
+  }
   if (risk.weight.empty()) return;
   const std::size_t n = model.n();
   require_shape(risk.weight, n, n, "risk.weight", "n x n, one per state");

@@ -23,6 +23,7 @@
 
 #include <Eigen/Core>
 
+#include "pfgen_runtime/criterion.hpp"
 #include "pfgen_runtime/guards.hpp"
 #include "pfgen_runtime/observation.hpp"
 #include "pfgen_runtime/schemes.hpp"
@@ -41,6 +42,9 @@ struct MonteCarloOptions {
   std::vector<std::pair<double, double>> windows;  // [a, b] in [t0, T], a < b, snapped to the grid
   DivergenceGuard truth_guard{1e8};
   FilterGuardOptions filter_guards;
+  // The exponential criterion J per filter (criterion.hpp), when set; the weight, when given, must
+  // be n x n, finite and symmetric.
+  std::optional<CriterionOptions> criterion;
   // Called from worker threads (must be thread-safe) after each finished run with the number of
   // runs finished so far.
   std::function<void(std::size_t finished, std::size_t total)> on_run_finished;
@@ -107,6 +111,18 @@ struct SampledMetrics {
   std::vector<double> diff_rmse_noisy, diff_rmse_noisy_se, diff_mrae_noisy, diff_mrae_noisy_se;
 };
 
+// The exponential criterion J of one filter (criterion.hpp; docs/theory.md, "The exponential
+// criterion J"). A run whose truth or filter stopped before T (divergence, bound, PSD loss with
+// stop_on_psd_loss) has no I_r, and the error it left behind is unbounded: J over all runs is
+// then +infinity. `completed` is J over the runs that reached T, a conditional figure, not J.
+struct CriterionStatistics {
+  double epsilon = 0;
+  std::vector<double> integrals;  // I_r per run, in run order; NaN for a run stopped before T
+  EventSummary stopped;           // those runs, with the time the truth or the filter stopped
+  CriterionEstimate all;          // every run: J and mean_integral +inf, the rest NaN when one stopped
+  CriterionEstimate completed;    // the runs that reached T
+};
+
 struct FilterStatistics {
   std::string name;
   WindowStatistics horizon;              // [t0, T]; horizon.runs runs completed
@@ -119,6 +135,7 @@ struct FilterStatistics {
   std::size_t refined_runs = 0;     // runs with at least one
   std::size_t too_stiff_runs = 0;   // runs stopped (and counted as diverged) for want of sub-steps
   std::optional<SampledMetrics> sampled;  // sampled filters only
+  std::optional<CriterionStatistics> criterion;  // when MonteCarloOptions::criterion is set
 };
 
 // Across runs at each record time, per component; NaN where no run is alive.
@@ -164,6 +181,7 @@ struct MonteCarloResult {
   std::string scheme;  // the truth scheme's name()
   std::size_t n = 0;   // state components
   std::vector<FilterStatistics> filters;
+  std::optional<CriterionOptions> criterion;  // as asked (the writers say which L was used)
   EventSummary truth_divergences;  // the truth guard's event time
   EventSummary truth_covariance_losses;  // those of them where G lost definiteness
   std::vector<TruthReportStatistics> truth_reports;  // as MonteCarloOptions::report_times

@@ -27,4 +27,14 @@ std::string format_results_csv(const MonteCarloResult& result, const std::vector
 std::vector<std::string> results_csv_columns(const MonteCarloResult& result,
                                              const std::vector<std::string>& state_names);
 
+// The exponential criterion per filter (MonteCarloOptions::criterion), one row per filter:
+//   filter, epsilon, runs, completed, J, J_se, ess, mean_integral, mean_integral_se, stopped,
+//   first_stop_t, completed_J, completed_J_se, completed_ess, completed_mean_integral,
+//   completed_mean_integral_se
+// (the completed_ columns: over the runs that reached T only). J and mean_integral are "inf" when
+// a run stopped before T; undefined values are empty cells. std::invalid_argument when the result
+// has no criterion. write_criterion_csv writes it atomically like write_results_csv.
+std::string format_criterion_csv(const MonteCarloResult& result);
+void write_criterion_csv(const std::string& path, const MonteCarloResult& result);
+
 }  // namespace pfgen_runtime

@@ -3,7 +3,8 @@
 //
 // Deterministic: the same result gives the same bytes (no timing in it; that is format_timing's),
 // numbers with 4 significant digits, '-' for every undefined cell, so no "nan" or "inf" is ever
-// printed as a result.
+// printed as a result; the one exception is the exponential criterion J, which is infinite, and
+// printed "inf", when a run stopped before T.
 #include <string>
 #include <vector>
 
@@ -15,7 +16,11 @@ namespace pfgen_runtime {
 // component: RMS error over [t0, T] and over each window ("RMS[a,b]"), mean |e| at each report
 // time ("|e|@t"), the median and 95 % quantile over completed runs of the peak |e|, divergences (count, earliest and
 // median time) and PSD losses (count, earliest time); then how many runs each statistic counted,
-// and a line on the truth's divergences. state_names: one per state component
+// and a line on the truth's divergences. When the result carries the exponential criterion
+// (MonteCarloOptions::criterion), a section with one row per filter follows the filters' tables:
+// eps and the L used, then J, its standard error, the effective sample size, mean int L and its
+// standard error, the runs stopped before T and the first stop time ("inf" for J and mean int L
+// then, and the same figures over the completed runs in a second table). state_names: one per state component
 // (std::invalid_argument otherwise).
 std::string format_summary_table(const MonteCarloResult& result, const std::vector<std::string>& state_names);
 

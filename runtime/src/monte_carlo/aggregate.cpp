@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "parallel_for.hpp"
 #include "pfgen_runtime/statistics.hpp"
@@ -114,6 +115,44 @@ SampledMetrics sampled_metrics(const std::vector<RunResult>& runs, std::size_t f
   return metrics;
 }
 
+// When run r stopped before T for this filter: the filter's own event (divergence, or a PSD loss
+// that stopped it), else the truth's; t0 when the truth was refused at its first point.
+double stop_time(const RunResult& run, const FilterRunResult& filter, const TimeGrid& grid, bool stop_on_psd_loss) {
+  if (filter.diverged) return filter.divergence_t;
+  if (filter.psd_lost && stop_on_psd_loss) return filter.psd_t;
+  if (run.truth_diverged) return run.truth_divergence_t;
+  return grid.t0;
+}
+
+// J of filter f over every run and over the runs that reached T (docs/theory.md, "The
+// exponential criterion J"); the integrals folded in run order.
+CriterionStatistics criterion_statistics(const std::vector<RunResult>& runs, std::size_t f, const TimeGrid& grid,
+                                         double epsilon, bool stop_on_psd_loss) {
+  CriterionStatistics out;
+  out.epsilon = epsilon;
+  std::vector<double> completed;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const FilterRunResult& filter = runs[r].filters[f];
+    if (filter.last == static_cast<std::ptrdiff_t>(grid.steps)) {
+      out.integrals.push_back(filter.integral);
+      completed.push_back(filter.integral);
+    } else {
+      out.integrals.push_back(nan);
+      out.stopped.events.push_back({r, stop_time(runs[r], filter, grid, stop_on_psd_loss)});
+    }
+  }
+  out.completed = estimate_criterion(completed, epsilon);
+  if (out.stopped.count() == 0) {
+    out.all = out.completed;
+  } else {
+    const double inf = std::numeric_limits<double>::infinity();
+    out.all.runs = runs.size();
+    out.all.J = out.all.mean_integral = inf;
+    out.all.J_se = out.all.ess = out.all.mean_integral_se = nan;
+  }
+  return out;
+}
+
 }  // namespace
 
 void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const std::vector<RunResult>& runs,
@@ -222,6 +261,8 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       stats.too_stiff_runs += filter.too_stiff;
     }
     if (filters[f].sampled()) stats.sampled = sampled_metrics(runs, f, steps, filters[f].p);
+    if (options.criterion) stats.criterion = criterion_statistics(runs, f, plan.grid, options.criterion->epsilon,
+                                                                 options.filter_guards.stop_on_psd_loss);
     result.filters.push_back(std::move(stats));
   }
 

@@ -30,6 +30,9 @@ struct FilterRunResult {
   std::vector<double> sample_sums;
   std::size_t samples = 0;     // samples absorbed
   bool update_failed = false;  // an update met C P C^T + Uv Uv^T not positive definite (diverged)
+  // The criterion's I = int L dt by the trapezoid rule over the grid points visited so far (the
+  // whole horizon when last == steps); 0 unless MonteCarloOptions::criterion is set.
+  double integral = 0;
 };
 
 struct RunResult {

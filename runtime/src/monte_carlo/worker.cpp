@@ -33,6 +33,11 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
   for (const FilterModel& filter : filters_) largest = std::max(largest, filter.state_size());
   state_.resize(largest);
   active_.reserve(plan.windows.size());
+  if (options.criterion) {
+    criterion_ = true;
+    weight_ = options.criterion->weight;
+    weighted_ = weight_.size() > 0;
+  }
 }
 
 void Worker::run(std::size_t run, RunResult& out) {
@@ -213,6 +218,7 @@ void Worker::visit(std::size_t j, const double* state, bool shown, FilterRunResu
     out.peak[i] = std::max(out.peak[i], std::abs(e));
     for (std::size_t w : active_) sums_[(1 + w) * n + i] += square;
   }
+  if (criterion_) accumulate_criterion(j, out);
   while (next_event_ < plan_.events.size() && plan_.events[next_event_].index == j) {
     const Plan::Event& event = plan_.events[next_event_++];
     const std::size_t slot = event.slot;
@@ -237,6 +243,25 @@ void Worker::visit(std::size_t j, const double* state, bool shown, FilterRunResu
       }
     }
   }
+}
+
+// The criterion's L = e^T M e at grid point j (e in error_), and the trapezoid's step from j - 1.
+// Every grid point a filter pass reaches is visited, in order, from j = 0.
+void Worker::accumulate_criterion(std::size_t j, FilterRunResult& out) {
+  const std::size_t n = plan_.n;
+  double L = 0;
+  if (!weighted_) {
+    for (std::size_t i = 0; i < n; ++i) L += error_[i] * error_[i];
+  } else {
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t k = 0; k < n; ++k)
+        L += error_[i] * weight_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)) * error_[k];
+  }
+  if (j == 0)
+    out.integral = 0;
+  else
+    out.integral += 0.5 * plan_.grid.dt * (previous_L_ + L);
+  previous_L_ = L;
 }
 
 }  // namespace pfgen_runtime::monte_carlo_detail

@@ -45,6 +45,7 @@ class Worker {
   void step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth_last, FilterRunResult& out,
                            const std::function<bool(double)>& guard, bool shown, std::uint64_t& steps);
   void visit(std::size_t j, const double* state, bool shown, FilterRunResult& out);
+  void accumulate_criterion(std::size_t j, FilterRunResult& out);
 
   std::unique_ptr<TruthScheme> scheme_;
   LinearObservation observation_;
@@ -63,6 +64,10 @@ class Worker {
   FilterStepper stepper_;
   std::vector<std::size_t> active_;  // windows open at the current grid point
   std::size_t next_open_ = 0, next_event_ = 0;
+  // The criterion's L = e^T M e at the previous grid point (the trapezoid's left end).
+  bool criterion_ = false, weighted_ = false;
+  Eigen::MatrixXd weight_;
+  double previous_L_ = 0;
 };
 
 }  // namespace pfgen_runtime::monte_carlo_detail

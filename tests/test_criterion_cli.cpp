@@ -1,0 +1,87 @@
+// `pfgen simulate` with the exponential criterion J: --risk-epsilon adds the section (the same
+// bytes for any --threads) and --criterion-csv its CSV; bad values are one-line errors before
+// anything is built.
+#include <catch2/catch.hpp>
+
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "support/cli_helpers.hpp"
+
+using namespace pfgen_test;
+
+namespace {
+
+std::vector<std::string> simulate_args(const std::string& model, const TempDir& dir,
+                                       std::initializer_list<std::string> more) {
+  std::vector<std::string> args{"simulate", model, "--cache-dir", dir.file("cache")};
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+}  // namespace
+
+TEST_CASE("simulate --risk-epsilon: J per filter, identical for 1 and 2 threads, and its CSV",
+          "[criterion][simulate][compiler]") {
+  TempDir dir;
+  auto run = [&](const std::string& threads, const std::string& csv) {
+    return run_pfgen(simulate_args(example("basin2006_quadratic.yaml"), dir,
+                                   {"--runs", "6", "--T", "1", "--dt", "1e-3", "--filters", "optimal,ekf",
+                                    "--risk-epsilon", "0.5", "--threads", threads, "--criterion-csv",
+                                    dir.file(csv), "-q"}));
+  };
+  const auto one = run("1", "one.csv"), two = run("2", "two.csv");
+  INFO(one.err);
+  REQUIRE(one.exit_code == 0);
+  REQUIRE(two.exit_code == 0);
+  auto without_csv_line = [](std::string text) { return std::regex_replace(text, std::regex("criterion csv: .*\n"), ""); };
+  CHECK(without_csv_line(one.out) == without_csv_line(two.out));
+  CHECK(read_file(dir.file("one.csv")) == read_file(dir.file("two.csv")));
+  CHECK(one.out.find("Exponential criterion J = eps log E[exp(int_0^T L dt / eps)], eps = 0.5, L = (x - m)^T M (x - "
+                     "m), M = identity") != std::string::npos);
+  // One row per filter: name, runs, J (a number), ...
+  CHECK(std::regex_search(one.out, std::regex(R"(\noptimal\s+6\s+[0-9.e+-]+\s)")));
+  CHECK(std::regex_search(one.out, std::regex(R"(\nekf\s+6\s+[0-9.e+-]+\s)")));
+  const std::string csv = read_file(dir.file("one.csv"));
+  CHECK(csv.rfind("filter,epsilon,runs,completed,J,", 0) == 0);
+  CHECK(csv.find("\noptimal,0.5,6,6,") != std::string::npos);
+  CHECK(one.out.find("criterion csv: " + dir.file("one.csv")) != std::string::npos);
+
+  // Without it, no section (the other outputs are checked byte for byte by the golden tests).
+  const auto plain = run_pfgen(simulate_args(example("basin2006_quadratic.yaml"), dir,
+                                             {"--runs", "6", "--T", "1", "--dt", "1e-3", "--filters", "optimal,ekf",
+                                              "--threads", "1", "-q"}));
+  REQUIRE(plain.exit_code == 0);
+  CHECK(plain.out.find("Exponential criterion") == std::string::npos);
+  const std::size_t start = one.out.find("\nExponential criterion J"), end = one.out.find("\nTruth diverged");
+  REQUIRE(start != std::string::npos);
+  CHECK(without_csv_line(one.out.substr(0, start) + one.out.substr(end)) == plain.out);
+}
+
+TEST_CASE("simulate: bad criterion options are one-line errors naming the option, before the build",
+          "[criterion][simulate][bad_input][integration]") {
+  TempDir dir;
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases{
+      {{"--risk-epsilon", "0"}, "--risk-epsilon: '0' is not a finite number > 0"},
+      {{"--risk-epsilon", "-2"}, "--risk-epsilon: '-2' is not a finite number > 0"},
+      {{"--criterion-csv", dir.file("j.csv")}, "--criterion-csv: no criterion J to write; give --risk-epsilon"},
+      {{"--risk-epsilon", "1", "--criterion-csv", dir.file("missing/j.csv")}, "does not exist"},
+      {{"--risk-epsilon", "1", "-o", dir.file("j.csv"), "--criterion-csv", dir.file("j.csv")}, "--criterion-csv"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args{"simulate", example("basin2006_quadratic.yaml"), "--cache-dir", dir.file("cache")};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const auto result = run_pfgen(args);
+    INFO(result.err);
+    CHECK(result.exit_code != 0);
+    CHECK(result.out.empty());
+    CHECK(count_lines(result.err) == 1);
+    CHECK(result.err.find(c.message) != std::string::npos);
+  }
+  CHECK(dir.entries() == std::vector<std::string>{});
+}
