@@ -22,7 +22,7 @@
 # gamma is never given: each table is run in two readings, gamma = 1 (intensity s = eps/2, growing
 # with eps) and gamma^2 = eps/2 (unit intensity s = 1 for every eps).
 #
-#   scripts/reproduce-paper002.sh [RUNS [DT [OUTDIR]]]   (defaults: 4000 runs, dt = 0.001, build/paper002)
+#   scripts/reproduce-paper002.sh [RUNS [DT [OUTDIR]]]   (defaults: 1000 runs, dt = 0.001, build/paper002; ~10 min)
 #
 # PFGEN (default build/generator/pfgen) names the program; THREADS its --threads (default 2);
 # CASES the tables to run (default "reactor1 reactor2 reactor3 satellite1 satellite2"); READINGS
@@ -30,7 +30,7 @@
 # skips part 2.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
-runs="${1:-4000}"
+runs="${1:-1000}"
 dt="${2:-0.001}"
 out="${3:-$here/build/paper002}"
 pfgen="${PFGEN:-$here/build/generator/pfgen}"
