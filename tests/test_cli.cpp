@@ -305,6 +305,29 @@ TEST_CASE("eval of the risk-sensitive kind matches the hand-computed filter", "[
   // Written out: 2.35 and -4.985.
   check_close(e.m_drift[0], 2.35, "m_drift by hand");
   check_close(e.P_drift[0][0], -4.985, "P_drift by hand");
+  // derive's JSON names the criterion; its text says what m is.
+  ProcessResult json = run_pfgen({"derive", model, "--filter", "risk-sensitive", "--format", "json"});
+  REQUIRE(json.exit_code == 0);
+  const JsonValue j = parse_json(json.out);
+  REQUIRE(j.has("criterion"));
+  CHECK(j["criterion"]["epsilon"].text == "4");
+  CHECK(j["criterion"]["weight"][0][0].text == "3");
+  ProcessResult text = run_pfgen({"derive", model, "--filter", "risk-sensitive"});
+  REQUIRE(text.exit_code == 0);
+  CHECK(text.out.find("m1 = risk-sensitive estimate of x (the centre of the information state, not E[x])") !=
+        std::string::npos);
+  CHECK(text.out.find("dP11 = ") != std::string::npos);
+  // Byte-identical run after run, also where coefficients are rational functions of parameters
+  // (brought over one denominator by GiNaC's normal(), the coefficient was (2*r^2 - eps)/(eps*r^2)
+  // in some runs and -(-2*r^2 + eps)/(eps*r^2) in others; algebra/coefficient.cpp).
+  const std::string leqg = example("leqg_tracking.yaml");
+  const std::string first = run_pfgen({"derive", leqg, "--filter", "risk-sensitive"}).out;
+  CHECK(first.find("dP11 = (2*P12 + (-1/r^2 + 2/eps)*P11^2 + 2*P12^2/eps) dt") != std::string::npos);
+  for (int k = 0; k < 6; ++k) CHECK(run_pfgen({"derive", leqg, "--filter", "risk-sensitive"}).out == first);
+  // The mean-square kinds' reports of the same model have no criterion.
+  ProcessResult optimal = run_pfgen({"derive", model, "--filter", "optimal", "--format", "json"});
+  REQUIRE(optimal.exit_code == 0);
+  CHECK(!parse_json(optimal.out).has("criterion"));
 }
 
 // Delayed observations (docs/theory.md §2.6), tests/data/delayed_scalar.yaml:

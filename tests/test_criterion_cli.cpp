@@ -85,3 +85,32 @@ TEST_CASE("simulate: bad criterion options are one-line errors naming the option
   }
   CHECK(dir.entries() == std::vector<std::string>{});
 }
+
+TEST_CASE("simulate: the model's risk: section asks for J; --set changes its eps, --risk-epsilon overrides it, "
+          "its weight is used and named",
+          "[criterion][simulate][compiler]") {
+  TempDir dir;
+  const std::string model = dir.file("risky.yaml");
+  write_file(model, read_file(example("basin2006_quadratic.yaml")) +
+                        "\nparameters: {k_eps: 1}\nrisk:\n  epsilon: 4*k_eps\n  weight: [[2]]\n");
+  auto run = [&](std::initializer_list<std::string> more) {
+    std::vector<std::string> args{"simulate", model, "--cache-dir", dir.file("cache"), "--runs", "4", "--T", "0.5",
+                                  "--dt", "1e-3", "--filters", "optimal", "--threads", "1", "-q"};
+    args.insert(args.end(), more.begin(), more.end());
+    return run_pfgen(args);
+  };
+  const auto file = run({});
+  INFO(file.err);
+  REQUIRE(file.exit_code == 0);
+  CHECK(file.out.find("eps = 4, L = (x - m)^T M (x - m), M = [2]") != std::string::npos);
+  const auto set = run({"--set", "k_eps=0.25"});
+  REQUIRE(set.exit_code == 0);
+  CHECK(set.out.find("eps = 1, L = (x - m)^T M (x - m), M = [2]") != std::string::npos);
+  const auto cli = run({"--risk-epsilon", "7"});
+  REQUIRE(cli.exit_code == 0);
+  CHECK(cli.out.find("eps = 7, L = (x - m)^T M (x - m), M = [2]") != std::string::npos);
+  const auto bad = run({"--set", "k_eps=-1"});
+  CHECK(bad.exit_code != 0);
+  CHECK(count_lines(bad.err) == 1);
+  CHECK(bad.err.find("risk.epsilon") != std::string::npos);
+}

@@ -88,14 +88,35 @@ std::string place_of(const std::string& field, const SimulationOverrides& cli, c
   return source.option + " (default " + source.default_value + ")";
 }
 
+// A `risk:` entry at this job's parameter values (the model's defaults after --set): the
+// validator has checked that it is a real number of parameters alone.
+double risk_value(const Model& model, const GiNaC::ex& e, const std::string& field) {
+  GiNaC::exmap values;
+  for (const Parameter& parameter : model.parameters) values[parameter.symbol] = parameter.default_value;
+  const GiNaC::ex value = e.subs(values).evalf();
+  if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real())
+    throw CliValueError(model.source + ": " + field + ": not a real number at this job's parameter values");
+  return GiNaC::ex_to<GiNaC::numeric>(value).to_double();
+}
+
 // J's eps and M: --risk-epsilon over the model's risk.epsilon (a parameter expression, at the
 // job's parameter values, so --set changes it); M from risk.weight, the identity when not given.
 std::optional<CriterionSettings> resolve_criterion(const Model& model, const SimulationOverrides& cli) {
   if (cli.risk_epsilon && (!(*cli.risk_epsilon > 0) || !std::isfinite(*cli.risk_epsilon)))
     throw CliValueError("--risk-epsilon: '" + number_text(*cli.risk_epsilon) + "' is not a finite number > 0");
-  if (!cli.risk_epsilon) return std::nullopt;
+  if (!cli.risk_epsilon && !model.risk) return std::nullopt;
   CriterionSettings criterion;
-  criterion.epsilon = *cli.risk_epsilon;
+  if (cli.risk_epsilon) criterion.epsilon = *cli.risk_epsilon;
+  else criterion.epsilon = risk_value(model, model.risk->epsilon, "risk.epsilon");
+  if (!(criterion.epsilon > 0) || !std::isfinite(criterion.epsilon))
+    throw CliValueError(model.source + ": risk.epsilon: " + number_text(criterion.epsilon) +
+                        " at this job's parameter values is not a finite number > 0");
+  if (model.risk && !model.risk->weight.empty())
+    for (std::size_t i = 0; i < model.n(); ++i)
+      for (std::size_t j = 0; j < model.n(); ++j)
+        criterion.weight.push_back(risk_value(model, model.risk->weight[i][j],
+                                              "risk.weight, row " + std::to_string(i + 1) + ", column " +
+                                                  std::to_string(j + 1)));
   return criterion;
 }
 
