@@ -101,6 +101,10 @@ TEST_CASE("simulate: identical output for any thread count, and the second run u
   CHECK(one.out.find("(cached)") == std::string::npos);
   CHECK(one.err.find("(cached)") == std::string::npos);
   CHECK(three.err.find("(cached)") != std::string::npos);
+  // A compile is announced before it starts, and its time given after; a cached plugin is not compiled.
+  CHECK(std::regex_search(one.err, std::regex("pfgen: compiling the simulation plugin \\(5 filters, [0-9]+ KiB of C\\+\\+\\)\\.\\.\\.\n"
+                                              "pfgen: plugin .*plugin\\.so \\(compiled in [0-9]+\\.[0-9] s\\)\n")));
+  CHECK(three.err.find("compiling") == std::string::npos);
   // stdout names the CSV: the same apart from that line.
   auto without_csv_line = [](std::string text) { return std::regex_replace(text, std::regex("csv: .*\n"), ""); };
   CHECK(without_csv_line(one.out) == without_csv_line(three.out));

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <thread>
@@ -198,9 +199,21 @@ int run_simulate(const SimulateOptions& options) {
   toolchain::PluginBuildOptions build_options;
   build_options.cache_dir = options.cache_dir;
   build_options.compiler = options.compiler;
-  toolchain::PluginBuild build = toolchain::build_plugin(source, build_options);
+  // A dense model's plugin takes the compiler tens of seconds: say so before, and how long after.
   if (!options.quiet)
-    std::cerr << "pfgen: plugin " << build.path << (build.cache_hit ? " (cached)" : "") << "\n";
+    build_options.before_compile = [&](const std::string&) {
+      std::cerr << "pfgen: compiling the simulation plugin (" << filters.size()
+                << (filters.size() == 1 ? " filter, " : " filters, ") << source.size() / 1024 << " KiB of C++)...\n"
+                << std::flush;
+    };
+  toolchain::PluginBuild build = toolchain::build_plugin(source, build_options);
+  if (!options.quiet) {
+    if (build.cache_hit)
+      std::cerr << "pfgen: plugin " << build.path << " (cached)\n";
+    else
+      std::cerr << "pfgen: plugin " << build.path << " (compiled in " << std::fixed << std::setprecision(1)
+                << build.compile_seconds << " s)\n" << std::defaultfloat;
+  }
   const pfgen_runtime::SimulationPlugin plugin = [&] {
     try {
       return pfgen_runtime::SimulationPlugin(build.path);

@@ -160,6 +160,7 @@ PluginBuild build_plugin(const std::string& source, const PluginBuildOptions& op
   std::vector<std::string> argv = compiler;
   argv.insert(argv.end(), flags.begin(), flags.end());
   argv.insert(argv.end(), {"-o", temporary.string(), source_path.string()});
+  if (options.before_compile) options.before_compile(command_line(argv));
   const auto start = std::chrono::steady_clock::now();
   ProcessResult result;
   try {

@@ -10,6 +10,7 @@
 // plugin.cpp equals the source byte for byte, so a hash collision costs a rebuild, never a
 // wrong plugin. The shared object is built under a temporary name in the entry's directory and
 // renamed into place, so concurrent pfgen processes never see, or load, a partial file.
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,6 +39,9 @@ struct PluginBuildOptions {
   std::vector<std::string> flags;
   // Empty: default_cache_dir().
   std::string cache_dir;
+  // Called on a cache miss, just before the compiler runs, with its command line: a compile can
+  // take a minute for a large model, and the caller says so rather than wait in silence.
+  std::function<void(const std::string& command)> before_compile;
 };
 
 struct PluginBuild {
