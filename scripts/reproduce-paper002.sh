@@ -115,10 +115,10 @@ variant() {  # target x0 m0 P0
     '/^initial:/ {print line; next} {print}' "$here/examples/paper002/$model.yaml" > "$1"
 }
 
-# One simulate job: J of FILTERS over the runs, as the criterion CSV.
+# One simulate job: J of FILTERS over the runs, as the criterion CSV (J's eps is the model's risk.epsilon, eps, set by --set).
 run_job() {  # model-file filters eps gamma csv
   "$pfgen" simulate "$1" --filters "$2" --set "eps=$3" --set "gamma=$4" --runs "$runs" --T "$T" --dt "$dt" \
-    --seed "$seed" --threads "$threads" --record-points 2 --risk-epsilon "$3" --cache-dir "$out/cache" \
+    --seed "$seed" --threads "$threads" --record-points 2 --cache-dir "$out/cache" \
     --criterion-csv "$5" -q > "${5%.csv}.txt"
 }
 
