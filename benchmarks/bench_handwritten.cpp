@@ -99,6 +99,8 @@ void measure(const Options& options, const GeneratedFilter<Scalar>& generated, d
   const std::vector<Scalar> dy(dy_double.begin(), dy_double.end());
   const Scalar dt = Scalar(kDt);
 
+  // One step per call through the same run() that is timed (t = 0 each time: the model is
+  // time-invariant, so t is unused).
   const pfgen_test::Agreement agreement = pfgen_test::handwritten_agreement(
       hand, generated.initial_state, [&](Scalar* state, const Scalar* y) { generated.run(state, y, 1, dt); }, dy, dt);
   if (!(agreement.initial <= tolerance && agreement.final <= tolerance)) {
