@@ -29,7 +29,7 @@ struct CodegenOptions {
   // this many, each its own function (CppEmitter::split_above): g++ -O2 needs minutes and gigabytes
   // for one function of tens of thousands of operations. Every header in generated/ is far below.
   // 0: never split (tests lower it to compare split and unsplit code on a small model).
-  std::size_t max_function_ops = 1000;
+  std::size_t max_function_ops = 500;
 };
 
 struct FunctionStats {
