@@ -53,6 +53,7 @@ int run_codegen(const CodegenCliOptions& options) {
                                                         : codegen::ScalarMode::Template;
   codegen_options.name_space = options.name_space;
   codegen_options.eliminate_common_subexpressions = !options.no_cse;
+  if (options.max_function_ops) codegen_options.max_function_ops = static_cast<std::size_t>(*options.max_function_ops);
   // A delayed filter's state carries x* and it keeps a history: it has no Eigen wrapper (the
   // plain header's Filter is its interface), so --eigen writes none for it, and says so.
   const bool eigen = options.eigen && !model.observation.is_delayed();

@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands of `pfgen`. Each returns the process exit code; problems with
 // the model or the options are thrown and reported by main().
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,6 +43,7 @@ struct CodegenCliOptions {
   bool no_cse = false;     // benchmark baseline only
   bool eigen = false;      // also write <kind>_eigen.hpp
   std::optional<double> dt;  // delayed observations: the filters' grid step (else simulation: dt)
+  std::optional<std::uint64_t> max_function_ops;  // else CodegenOptions' default; 0: never split
 };
 
 int run_codegen(const CodegenCliOptions& options);

@@ -108,6 +108,10 @@ int main(int argc, char** argv) {
         return std::string();
       },
       "UINT");
+  codegen_cmd->add_option("--max-function-ops", codegen.max_function_ops,
+                          "Write a function of more operations (after CSE) in parts of at most this many, each its "
+                          "own function, to bound compile time (default 500; 0: never split)")
+      ->check(whole_number);
 
   SimulateOptions simulate;
   SimulationOverrides& so = simulate.overrides;

@@ -109,6 +109,8 @@ std::string CppEmitter::shared_body(const ExpressionGraph& graph, const std::vec
 
 std::string CppEmitter::shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                                     const std::vector<std::string>& destinations) const {
+  if (max_ops_ != 0 && graph.needed_operations(outputs).size() > max_ops_)
+    return chunked_body(graph, outputs, destinations);
   std::map<std::size_t, std::string> names;
   auto spell = [&](std::size_t id) {
     if (graph.is_leaf(id)) return operation(graph, graph.node(id), {});
@@ -126,6 +128,11 @@ std::string CppEmitter::shared_body(const ExpressionGraph& graph, const std::vec
   for (std::size_t k = 0; k < outputs.size(); ++k)
     body += "  " + destinations.at(k) + " = " + spell(outputs[k]) + ";\n";
   return body;
+}
+
+void CppEmitter::split_above(std::size_t max_ops, std::string shared_array) {
+  max_ops_ = max_ops;
+  shared_array_ = std::move(shared_array);
 }
 
 std::string CppEmitter::tree_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,

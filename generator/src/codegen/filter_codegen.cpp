@@ -22,7 +22,7 @@ std::string ops_comment(const FunctionStats& s) {
 // The arguments of derivatives(), gain() and predicted_observation() and their temporaries,
 // named clear of the model's names (cpp_names.hpp). The time argument has the model's name.
 struct FunctionNames {
-  std::string time, state, delayed, params, out, K, h, temporary_prefix;
+  std::string time, state, delayed, params, out, K, h, shared, temporary_prefix;
 };
 
 FunctionNames function_names(const Model& model) {
@@ -36,6 +36,7 @@ FunctionNames function_names(const Model& model) {
   f.h = names.take("h");
   // Taken last, so that the names above are spelled as before for every model.
   f.delayed = names.take("delayed");
+  f.shared = names.take("shared");  // the local array of a function written in parts (chunked_body.cpp)
   f.temporary_prefix = names.temporary_prefix();
   return f;
 }
@@ -101,6 +102,7 @@ FunctionCode function_code(const std::string& function, const std::vector<Polyno
   std::vector<std::size_t> roots;
   for (const auto& p : outputs) roots.push_back(builder.polynomial(p));
   CppEmitter emitter(options.scalar, names.temporary_prefix);
+  emitter.split_above(options.max_function_ops, names.shared);
   FunctionCode code;
   code.stats = FunctionStats{function, graph.tree_counts(roots), graph.shared_counts(roots)};
   code.body = prologue(graph, builder, roots, names, layout, emitter) +
@@ -156,7 +158,8 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
   if (structured.total() >= flat.stats.cse.total()) return flat;
   FunctionCode code;
   code.stats = FunctionStats{"derivatives", flat.stats.naive, structured};
-  const CppEmitter emitter(options.scalar, names.temporary_prefix);
+  CppEmitter emitter(options.scalar, names.temporary_prefix);
+  emitter.split_above(options.max_function_ops, names.shared);
   code.body = prologue(graph, builder, roots, names, layout, emitter) + emitter.shared_body(graph, roots, names.out);
   return code;
 }

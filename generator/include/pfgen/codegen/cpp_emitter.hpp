@@ -36,16 +36,24 @@ class CppEmitter {
   // The same with `destinations[k] = ...;` for output k.
   std::string shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                           const std::vector<std::string>& destinations) const;
+  // From now on shared_body() splits a body of more than `max_ops` operations into parts of at
+  // most `max_ops` (chunked_body.cpp); `shared_array` names the local array through which the
+  // parts pass the values later parts read, a name clear of the function's others. 0: never split.
+  void split_above(std::size_t max_ops, std::string shared_array);
   // Every output as one nested expression, without temporaries: the same
   // equations with no common-subexpression elimination (benchmark baseline).
   std::string tree_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                         const std::string& target) const;
 
  private:
+  std::string chunked_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                           const std::vector<std::string>& destinations) const;
   std::string operation(const ExpressionGraph& graph, const Node& node,
                         const std::vector<std::string>& operand_text) const;
   ScalarMode mode_;
   std::string temporary_prefix_;
+  std::size_t max_ops_ = 0;
+  std::string shared_array_;
 };
 
 }  // namespace pfgen::codegen

@@ -25,6 +25,11 @@ struct CodegenOptions {
   // Delayed observations only: the grid step dt the filter is generated for (`--dt`, else the
   // model's simulation dt). Ignored by the other filters.
   std::optional<double> grid_step;
+  // A generated function with more operations (after CSE) than this is written in parts of at most
+  // this many, each its own function (CppEmitter::split_above): g++ -O2 needs minutes and gigabytes
+  // for one function of tens of thousands of operations. Every header in generated/ is far below.
+  // 0: never split (tests lower it to compare split and unsplit code on a small model).
+  std::size_t max_function_ops = 500;
 };
 
 struct FunctionStats {
