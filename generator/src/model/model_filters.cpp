@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "pfgen/algebra/polynomial.hpp"
+
 namespace pfgen {
 
 FilterKindNeeds filter_kind_needs(const Model& model) {
@@ -15,13 +17,11 @@ FilterKindNeeds filter_kind_needs(const Model& model) {
   needs.state_independent_diffusion = true;
   for (const auto& row : model.diffusion.G)
     for (const auto& entry : row) needs.state_independent_diffusion &= !depends_on_states(model, entry);
-  GiNaC::symbol scale;  // x -> scale x: the total degree in the states is the degree in scale
-  GiNaC::exmap scaled;
-  for (const auto& x : model.states) scaled[x] = x * scale;
   for (std::size_t i = 0; i < model.drift.size(); ++i) {
-    const int degree = model.drift[i].subs(scaled).expand().degree(scale);
-    if (degree > static_cast<int>(needs.drift_degree)) {
-      needs.drift_degree = static_cast<unsigned>(degree);
+    // The validator has checked that the drift is polynomial in the states.
+    const std::uint32_t degree = Polynomial::from_ex(model.drift[i], model.states).degree();
+    if (degree > needs.drift_degree) {
+      needs.drift_degree = degree;
       needs.drift_degree_row = static_cast<unsigned>(i + 1);
     }
   }

@@ -289,6 +289,13 @@ void validate_observation(const Model& model) {
   validate_continuous_observation(model);
 }
 
+// A symmetric matrix of numbers (P0, the risk weight) with no eigenvalue below -1e-12 of its scale.
+void require_positive_semidefinite(const Eigen::MatrixXd& m, const std::string& field) {
+  const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m).eigenvalues().minCoeff();
+  if (smallest < -1e-12 * std::max(1.0, m.norm()))
+    throw ModelError(field, "not positive semi-definite (smallest eigenvalue " + std::to_string(smallest) + ")");
+}
+
 void validate_initial(const Model& model) {
   if (!model.initial) return;
   const InitialConditions& init = *model.initial;
@@ -315,10 +322,7 @@ void validate_initial(const Model& model) {
       if (init.P0[i][j] != init.P0[j][i])
         throw ModelError("initial.P0", "not symmetric", one_based(i), one_based(j));
   // Positive semi-definite, not definite: paper 001 starts from a singular P0.
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(P);
-  if (eigen.eigenvalues().minCoeff() < -1e-12 * std::max(1.0, P.norm()))
-    throw ModelError("initial.P0", "not positive semi-definite (smallest eigenvalue " +
-                                       std::to_string(eigen.eigenvalues().minCoeff()) + ")");
+  require_positive_semidefinite(P, "initial.P0");
 }
 
 // The risk criterion's epsilon and weight are numbers or expressions of the parameters: simulate
@@ -355,10 +359,7 @@ void validate_risk(const Model& model) {
     for (std::size_t j = i + 1; j < n; ++j)
       if (!(risk.weight[i][j] - risk.weight[j][i]).expand().is_zero())
         throw ModelError("risk.weight", "not symmetric", one_based(i), one_based(j));
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(M);
-  if (eigen.eigenvalues().minCoeff() < -1e-12 * std::max(1.0, M.norm()))
-    throw ModelError("risk.weight", "not positive semi-definite (smallest eigenvalue " +
-                                        std::to_string(eigen.eigenvalues().minCoeff()) + ")");
+  require_positive_semidefinite(M, "risk.weight");
 }
 
 // A double as the user wrote it, near enough: shortest round-trip is not needed in messages.
