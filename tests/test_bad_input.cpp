@@ -196,8 +196,21 @@ const std::vector<BadModel>& bad_models() {
       {"filter_parameter_named_like_P11.yaml", "parameters.P11", 0, 0, 4,
        "'P11' is reserved for the filter's m and P entries"},
       {"filter_unknown_field.yaml", "filters.mine.Q_drift", 0, 0, 12,
-       "unknown field (known: m_drift, P_drift, gain, description)"},
+       "unknown field (known: m_drift, P_drift, gain, define, description)"},
       {"filter_unknown_symbol.yaml", "filters.mine.m_drift", 1, 0, 11, "unknown symbol 'm' in '-m'"},
+      // filters.NAME.define: a user filter's auxiliary names
+      {"filter_define_later_name.yaml", "filters.mine.define.S", 0, 0, 13,
+       "unknown symbol 'T' in '2*T' (a definition reads the filter's m and P, the parameters, the time and the names "
+       "defined above it)"},
+      {"filter_define_parameter_name.yaml", "filters.mine.define.a", 0, 0, 14,
+       "'a' is already a name of the model or of this filter"},
+      {"filter_define_reserved_name.yaml", "filters.mine.define.dt", 0, 0, 14, "'dt' is a name of the printed equations"},
+      {"filter_define_depends_on_state.yaml", "filters.mine.define.S", 0, 0, 13, "'1/(P11*x)' depends on the states"},
+      {"filter_define_huge_power.yaml", "filters.mine.define.S", 0, 0, 13, "'P11^1000000' has a power beyond 1000"},
+      {"filter_define_twice.yaml", "filters.mine.define.S", 0, 0, 14, "given twice in one mapping (first at line 13)"},
+      {"filter_define_not_a_mapping.yaml", "filters.mine.define", 0, 0, 12, "expected a mapping of names to expressions"},
+      {"filter_define_power_in_equation.yaml", "filters.mine.P_drift", 1, 1, 15,
+       "'1 - P11^2*S^100000' has a degree in 'S' above the limit of 1000"},
       // observation: {sampled: ...} (sampled measurements)
       {"sampled_period_zero.yaml", "observation.sampled.period", 0, 0, 7, "must be positive, found 0"},
       {"sampled_period_negative.yaml", "observation.sampled.period", 0, 0, 7, "must be positive, found -0.5"},

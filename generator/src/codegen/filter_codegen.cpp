@@ -94,11 +94,12 @@ struct FunctionCode {
 };
 
 FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
-                           const std::string& target, const Model& model, const FilterVariables& vars,
+                           const std::string& target, const Model& model, const FilterEquations& eq,
                            const CodegenOptions& options, const FunctionNames& names) {
   ExpressionGraph graph;
-  const InputLayout layout = input_layout(vars, names);
+  const InputLayout layout = input_layout(eq.variables, names);
   GraphBuilder builder = graph_builder(graph, model, layout, names);
+  builder.define(eq.definitions, eq.variables.symbols());
   std::vector<std::size_t> roots;
   for (const auto& p : outputs) roots.push_back(builder.polynomial(p));
   CppEmitter emitter(options.scalar, names.temporary_prefix);
@@ -127,12 +128,13 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
     for (std::size_t j = i; j < n; ++j) expanded.push_back(eq.P_drift(i, j));
   // A delayed filter with Phi* integrates x* beside m and P: its drift follows them in `out`.
   expanded.insert(expanded.end(), eq.x_star_drift.begin(), eq.x_star_drift.end());
-  FunctionCode flat = function_code("derivatives", expanded, names.out, model, vars, options, names);
+  FunctionCode flat = function_code("derivatives", expanded, names.out, model, eq, options, names);
   if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty()) return flat;
 
   ExpressionGraph graph;
   const InputLayout layout = input_layout(vars, names);
   GraphBuilder builder = graph_builder(graph, model, layout, names);
+  builder.define(eq.definitions, eq.variables.symbols());
   std::vector<std::size_t> roots;
   for (const auto& p : eq.m_drift) roots.push_back(builder.polynomial(p));
   std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
@@ -221,9 +223,9 @@ ContinuousFunctions continuous_functions(const Model& model, const FilterEquatio
   ContinuousFunctions f;
   f.names = function_names(model);
   f.derivatives = derivatives_code(model, eq, options, f.names);
-  f.gain = function_code("gain", gain_outputs, f.names.K, model, eq.variables, options, f.names);
+  f.gain = function_code("gain", gain_outputs, f.names.K, model, eq, options, f.names);
   f.observation =
-      function_code("predicted_observation", eq.predicted_observation, f.names.h, model, eq.variables, options, f.names);
+      function_code("predicted_observation", eq.predicted_observation, f.names.h, model, eq, options, f.names);
   return f;
 }
 
@@ -254,17 +256,17 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
   FunctionCode derivatives = derivatives_code(model, eq, options, names);
   const bool euler = !eq.P_euler.empty();
   FunctionCode square;
-  if (euler) square = function_code("euler_square", eq.P_euler, names.out, model, vars, options, names);
+  if (euler) square = function_code("euler_square", eq.P_euler, names.out, model, eq, options, names);
   std::vector<Polynomial> innovation;
   for (const auto& row : u.PCt) innovation.insert(innovation.end(), row.begin(), row.end());
   innovation.insert(innovation.end(), u.S.begin(), u.S.end());
-  FunctionCode innovation_code = function_code("innovation_terms", innovation, names.out, model, vars, options, names);
+  FunctionCode innovation_code = function_code("innovation_terms", innovation, names.out, model, eq, options, names);
   std::vector<Polynomial> matrices;
   for (const auto& row : u.C) matrices.insert(matrices.end(), row.begin(), row.end());
   matrices.insert(matrices.end(), u.R.begin(), u.R.end());
-  FunctionCode matrices_code = function_code("observation_matrices", matrices, names.out, model, vars, options, names);
+  FunctionCode matrices_code = function_code("observation_matrices", matrices, names.out, model, eq, options, names);
   FunctionCode observation =
-      function_code("predicted_observation", eq.predicted_observation, names.h, model, vars, options, names);
+      function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names);
 
   const std::string identifier = filter_identifier(eq.name);
   GeneratedFilter result;

@@ -86,6 +86,13 @@ InputUse GraphBuilder::uses(const std::vector<std::size_t>& outputs) const {
   return use;
 }
 
+void GraphBuilder::define(const std::vector<FilterDefinition>& definitions,
+                          const std::vector<GiNaC::ex>& variable_symbols) {
+  for (std::size_t v = 0; v < variable_symbols.size() && v < variable_inputs_.size(); ++v)
+    symbols_[variable_symbols[v]] = variable_inputs_[v];
+  for (const auto& d : definitions) symbols_[d.name] = expression(d.value);
+}
+
 std::size_t GraphBuilder::variable_power(std::uint32_t variable, std::uint32_t exponent) {
   return integer_power(variable_inputs_.at(variable), exponent);
 }

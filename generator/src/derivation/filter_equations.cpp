@@ -202,6 +202,9 @@ FilterEquations derive_user_filter(const Model& model, const UserFilter& filter)
   // The model room names its symbols as FilterVariables does, in the same order
   // (validate_model checked), so symbol k is variable index k.
   auto polynomial = [&](const GiNaC::ex& e) { return Polynomial::from_ex(e, filter.variables); };
+  GiNaC::exmap as_filter_symbols;
+  for (std::size_t v = 0; v < filter.variables.size(); ++v) as_filter_symbols[filter.variables[v]] = eq.variables.symbols().at(v);
+  for (const auto& d : filter.definitions) eq.definitions.push_back(FilterDefinition{d.name, d.value.subs(as_filter_symbols)});
   for (const auto& e : filter.m_drift) eq.m_drift.push_back(polynomial(e));
   eq.gain.assign(n, std::vector<Polynomial>(eq.p));
   for (std::size_t i = 0; i < n; ++i)

@@ -37,8 +37,9 @@ DelayedInputs delayed_inputs(const FilterEquations& eq, const EvaluationPoint& p
 
 class PolynomialEvaluator {
  public:
-  PolynomialEvaluator(const Model& model, const FilterVariables& vars, const EvaluationPoint& point,
+  PolynomialEvaluator(const Model& model, const FilterEquations& eq, const EvaluationPoint& point,
                       const DelayedInputs& delayed) {
+    const FilterVariables& vars = eq.variables;
     for (const auto& p : model.parameters) {
       auto it = point.parameters.find(p.name);
       coefficient_values_[p.symbol] = it != point.parameters.end() ? it->second : p.default_value;
@@ -53,6 +54,7 @@ class PolynomialEvaluator {
     for (std::size_t i = 0; i < delayed.m_delayed.size(); ++i) variable_values_[vars.m_delayed(i)] = delayed.m_delayed[i];
     for (std::size_t i = 0; i < delayed.phi.size(); ++i) variable_values_[vars.phi(i)] = delayed.phi[i];
     for (std::size_t i = 0; i < delayed.x_star.size(); ++i) variable_values_[vars.x_star(i)] = delayed.x_star[i];
+    define_names(eq);
   }
 
   // The value before rounding: exact where the inputs are.
@@ -79,6 +81,26 @@ class PolynomialEvaluator {
   }
 
  private:
+  // A user filter's definitions, in order, each from the values before it. Each value is rounded
+  // to GiNaC's floating point (17 digits) as soon as it is computed: an exact value could grow
+  // without bound through a chain of powers (D2 = D1^1000, D3 = D2^1000), a float cannot.
+  void define_names(const FilterEquations& eq) {
+    if (eq.definitions.empty()) return;
+    GiNaC::exmap values = coefficient_values_;
+    for (std::size_t v = 0; v < eq.variables.count(); ++v) values[eq.variables.symbols()[v]] = variable_values_[v];
+    for (const auto& d : eq.definitions) {
+      const std::string what = "definition '" + d.name.get_name() + "'";
+      GiNaC::ex value;
+      try {
+        value = d.value.subs(values).evalf();
+      } catch (const std::exception&) {  // GiNaC's pole_error for 1/0, CLN's overflow
+        throw EvaluationError(what + " cannot be computed at this point (a division by zero or an overflow)");
+      }
+      rounded(value, what);  // a real, finite number, or an EvaluationError naming the definition
+      coefficient_values_[d.name] = values[d.name] = value;
+    }
+  }
+
   GiNaC::exmap coefficient_values_;
   std::vector<GiNaC::numeric> variable_values_;
 };
@@ -178,9 +200,8 @@ void evaluate_sampled(const FilterEquations& eq, const PolynomialEvaluator& valu
 
 EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const EvaluationPoint& point) {
   check_point(model, eq, point);
-  const FilterVariables& vars = eq.variables;
   const DelayedInputs delayed = delayed_inputs(eq, point);
-  PolynomialEvaluator value(model, vars, point, delayed);
+  PolynomialEvaluator value(model, eq, point, delayed);
   const std::size_t n = eq.n();
   EvaluatedFilter out;
   for (std::size_t i = 0; i < n; ++i) out.m_drift.push_back(value(eq.m_drift[i], "m_drift[" + std::to_string(i + 1) + "]"));

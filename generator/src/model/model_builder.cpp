@@ -176,7 +176,8 @@ GiNaC::symtab ModelBuilder::filter_symbols() {
 }
 
 ModelBuilder& ModelBuilder::user_filter(const std::string& name, const ExVector& m_drift, const ExMatrix& P_drift,
-                                        const ExMatrix& gain, const std::string& description) {
+                                        const ExMatrix& gain, const std::string& description,
+                                        const std::vector<FilterDefinition>& definitions) {
   UserFilter filter;
   filter.name = name;
   filter.description = description;
@@ -184,6 +185,8 @@ ModelBuilder& ModelBuilder::user_filter(const std::string& name, const ExVector&
   filter.m_drift = exact_vector(m_drift);
   filter.P_drift = exact_matrix(P_drift);
   filter.gain = exact_matrix(gain);
+  for (const auto& definition : definitions)
+    filter.definitions.push_back(FilterDefinition{definition.name, exact_rationals(definition.value)});
   model_.user_filters.push_back(std::move(filter));
   return *this;
 }

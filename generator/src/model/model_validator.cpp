@@ -370,7 +370,8 @@ void require_polynomial_in(const std::vector<GiNaC::symbol>& variables, const Gi
   if (!e.is_polynomial(list))
     throw ModelError(field,
                      "'" + to_text(e) + "' is not polynomial in the filter's m and P entries (only non-negative "
-                     "integer powers of m1, P11, ... are allowed)",
+                     "integer powers of m1, P11, ... are allowed; name a quotient such as 1/P11 under `define:` "
+                     "and use the name)",
                      row, column);
   const std::vector<GiNaC::ex> huge = huge_powers(e);
   for (const auto& v : variables) require_bounded_degree(e, huge, v, "'" + v.get_name() + "'", field, row, column);
@@ -384,7 +385,46 @@ void validate_user_filter_entry(const Model& model, const UserFilter& filter, co
                      "'" + to_text(e) + "' depends on the states; a filter is written in its own variables "
                      "(m1, P11, ...), t and the parameters",
                      row, column);
+  if (!filter.definitions.empty()) {
+    // A definition may stand for anything of m and P, so its powers are bounded as a variable's.
+    const std::vector<GiNaC::ex> huge = huge_powers(e);
+    for (const auto& d : filter.definitions)
+      require_bounded_degree(e, huge, d.name, "'" + d.name.get_name() + "'", field, row, column);
+  }
   require_polynomial_in(filter.variables, e, field, row, column);
+}
+
+// A user filter's `define:` (FilterDefinition): each name clear of the model's names, of the
+// names the printed equations use and of the earlier definitions; each value free of the states
+// and reading only the filter's variables, the parameters, t and the names defined before it
+// (so the values can be computed in file order, once per evaluation).
+void validate_filter_definitions(const Model& model, const UserFilter& filter, const std::string& field) {
+  std::set<std::string> taken(model.state_names.begin(), model.state_names.end());
+  taken.insert(model.time.get_name());
+  std::set<GiNaC::ex, GiNaC::ex_is_less> readable(filter.variables.begin(), filter.variables.end());
+  readable.insert(model.time);
+  for (const auto& p : model.parameters) {
+    taken.insert(p.name);
+    readable.insert(p.symbol);
+  }
+  for (const auto& d : filter.definitions) {
+    const std::string name = d.name.get_name();
+    const std::string entry = field + ".define." + name;
+    if (auto problem = identifier_problem(name)) throw ModelError(entry, *problem);
+    if (auto problem = symbol_name_problem(name)) throw ModelError(entry, *problem);
+    if (!taken.insert(name).second)
+      throw ModelError(entry, "'" + name + "' is already a name of the model or an earlier definition of this filter");
+    if (depends_on_states(model, d.value))
+      throw ModelError(entry, "'" + to_text(d.value) + "' depends on the states; a definition is written in the "
+                              "filter's variables (m1, P11, ...), t, the parameters and earlier definitions");
+    for (auto it = d.value.preorder_begin(); it != d.value.preorder_end(); ++it)
+      if (GiNaC::is_a<GiNaC::symbol>(*it) && !readable.count(*it))
+        throw ModelError(entry, "reads '" + to_text(*it) + "', which is not defined before it");
+    if (!huge_powers(d.value).empty())
+      throw ModelError(entry, "'" + to_text(d.value) + "' has a power beyond " + std::to_string(kMaxDegree));
+    require_bounded_expansion(d.value, entry, std::nullopt, std::nullopt);
+    readable.insert(d.name);
+  }
 }
 
 void validate_user_filters(const Model& model) {
@@ -426,6 +466,7 @@ void validate_user_filters(const Model& model) {
       throw ModelError(field, "the filter's variables must be m1..m" + std::to_string(n) +
                                   " and the upper triangle of P (" + names.back() + " last), " +
                                   std::to_string(names.size()) + " symbols, found " + std::to_string(given.size()));
+    validate_filter_definitions(model, filter, field);
     const std::string m_field = field + ".m_drift";
     if (filter.m_drift.size() != n)
       throw ModelError(m_field, "expected " + std::to_string(n) + " entries (one per state), found " +

@@ -29,7 +29,7 @@ const std::set<std::string> kTopLevelFields = {
     "additive_diffusion_covariance", "observation", "initial", "risk", "filters", "simulation"};
 
 const char* const kSampledFields = "period, C, Uv, C0, substeps";
-const char* const kUserFilterFields = "m_drift, P_drift, gain, description";
+const char* const kUserFilterFields = "m_drift, P_drift, gain, define, description";
 const char* const kSimulationFields =
     "T, dt, runs, seed, filters, scheme, report_times, windows, record_points, bound, shown_run";
 
@@ -327,13 +327,49 @@ class Loader {
     builder.risk_criterion(epsilon, weight);
   }
 
-  // filters: {NAME: {m_drift: [...], P_drift: [[...]], gain: [[...]], description: "..."}}
+  // define: {NAME: "expression", ...}, in file order: each expression may read the filter's
+  // variables, the parameters, t and the names defined above it, which is why each is parsed
+  // with a table that grows by one name at a time. The names join `symbols` for the equations.
+  std::vector<FilterDefinition> read_definitions(const YAML::Node& define, const std::string& field,
+                                                 GiNaC::symtab& symbols) {
+    std::vector<FilterDefinition> definitions;
+    if (!define || define.IsNull()) return definitions;
+    if (!define.IsMap())
+      throw ModelError(field, "expected a mapping of names to expressions, e.g. {D: \"1/(P11*P22 - P12^2)\"}");
+    for (const auto& item : define) {
+      if (!item.first.IsScalar()) {
+        index_.record(field, item.first);
+        throw ModelError(field, "a definition's name must be a single value");
+      }
+      const std::string name = item.first.Scalar();
+      const std::string entry_field = field + "." + name;
+      index_.record(entry_field, item.first);
+      if (symbols.count(name))
+        throw ModelError(entry_field, "'" + name + "' is already a name of the model or of this filter (a state, "
+                                      "parameter, the time, m1, P11, ... or an earlier definition); give the "
+                                      "definition another name");
+      GiNaC::ex value;
+      try {
+        value = ExpressionParser(symbols).parse(scalar(item.second, entry_field), ExpressionSite{entry_field, {}, {}});
+      } catch (const ModelError& e) {
+        if (e.message().rfind("unknown symbol", 0) != 0) throw;
+        throw ModelError(e.field(), e.message() + " (a definition reads the filter's m and P, the parameters, the time "
+                                                  "and the names defined above it)");
+      }
+      const GiNaC::symbol symbol(name);
+      symbols[name] = symbol;
+      definitions.push_back(FilterDefinition{symbol, value});
+    }
+    return definitions;
+  }
+
+  // filters: {NAME: {m_drift: [...], P_drift: [[...]], gain: [[...]], define: {...}, description: "..."}}
   void read_filters(ModelBuilder& builder) {
     YAML::Node filters = root_["filters"];
     if (!filters || filters.IsNull()) return;
     if (!filters.IsMap())
       throw ModelError("filters", "expected a mapping of filter names to {m_drift, P_drift, gain}");
-    ExpressionParser parser(builder.filter_symbols());
+    const GiNaC::symtab filter_symbols = builder.filter_symbols();
     for (const auto& entry : filters) {
       if (!entry.first.IsScalar()) {
         index_.record("filters", entry.first);
@@ -347,7 +383,7 @@ class Loader {
         throw ModelError(field, std::string("expected a mapping with ") + kUserFilterFields);
       for (const auto& item : body) {
         std::string key = item.first.IsScalar() ? item.first.Scalar() : "?";
-        if (key != "m_drift" && key != "P_drift" && key != "gain" && key != "description") {
+        if (key != "m_drift" && key != "P_drift" && key != "gain" && key != "define" && key != "description") {
           index_.record(field + "." + key, item.first);
           throw ModelError(field + "." + key, std::string("unknown field (known: ") + kUserFilterFields + ")");
         }
@@ -357,10 +393,13 @@ class Loader {
         if (!body[key] || body[key].IsNull()) throw ModelError(field + "." + key, "missing required field");
       std::string description;
       if (YAML::Node d = body["description"]; d && !d.IsNull()) description = scalar(d, field + ".description");
+      GiNaC::symtab symbols = filter_symbols;
+      const std::vector<FilterDefinition> definitions = read_definitions(body["define"], field + ".define", symbols);
+      const ExpressionParser parser(symbols);
       ExVector m_drift = vector_field(body["m_drift"], field + ".m_drift", parser);
       ExMatrix P_drift = matrix_field(body["P_drift"], field + ".P_drift", parser);
       ExMatrix gain = matrix_field(body["gain"], field + ".gain", parser);
-      builder.user_filter(name, m_drift, P_drift, gain, description);
+      builder.user_filter(name, m_drift, P_drift, gain, description, definitions);
     }
   }
 

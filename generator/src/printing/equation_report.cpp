@@ -3,6 +3,7 @@
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
+#include "pfgen/printing/definitions_report.hpp"
 #include "pfgen/printing/delayed_report.hpp"
 #include "pfgen/printing/report_parts.hpp"
 #include "pfgen/printing/risk_report.hpp"
@@ -49,6 +50,7 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
   out += "filter: " + eq.name + " (" + eq.description + ")\n";
   out += "exactness: " + exactness_text(eq.exactness) + "\n";
   out += is_risk_sensitive_report(eq) ? risk_header_text(model, eq) : mean_square_header_text(model, eq);
+  out += definitions_text(eq);
   for (std::size_t i = 0; i < n; ++i) {
     out += "dm" + std::to_string(i + 1) + " = (";
     writer.append(out, eq.m_drift[i]);
@@ -89,7 +91,7 @@ std::string equations_latex(const FilterEquations& eq) {
   if (is_risk_sensitive_report(eq)) out += risk_paragraph_latex(eq);
   out += "\\begin{align*}\n";
   // Each right-hand side is cut into lines that fit the page (latex_line_breaker).
-  std::vector<std::string> lines;
+  std::vector<std::string> lines = definitions_latex_lines(eq);
   for (std::size_t i = 0; i < n; ++i) {
     std::string rhs = "\\left(" + writer.print(eq.m_drift[i]) + "\\right)dt";
     for (std::size_t r = 0; r < eq.p; ++r)
@@ -154,6 +156,7 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
   out.add("description", Json::string(eq.description));
   out.add("exactness", exactness);
   out.add("variables", variables);
+  add_definitions_json(eq, out);
   out.add("m_drift", m_drift);
   out.add("gain", gain);
   out.add("predicted_observation", predicted);

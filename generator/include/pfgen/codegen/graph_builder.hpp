@@ -47,6 +47,11 @@ class GraphBuilder {
                const std::vector<std::string>& arrays, const std::vector<std::size_t>& indices,
                const std::string& params);
 
+  // A user filter's definitions (FilterEquations::definitions), in order: each name becomes the
+  // node of its value, which reads filter variable v as variable_symbols[v]. Call before building
+  // anything that reads them; a definition no output reads is never emitted.
+  void define(const std::vector<FilterDefinition>& definitions, const std::vector<GiNaC::ex>& variable_symbols);
+
   std::size_t polynomial(const Polynomial& p);
   std::size_t variable(std::uint32_t variable) { return variable_power(variable, 1); }
   std::size_t expression(const GiNaC::ex& e);

@@ -64,6 +64,11 @@ struct FilterEquations {
   std::vector<Polynomial> x_star_drift;
   // The risk-sensitive kind only: the model's criterion (epsilon and M), for the reports.
   std::optional<RiskCriterion> risk;
+  // A user filter's auxiliary names (`define:`), in file order. Their symbols may appear in the
+  // coefficients of every polynomial above; each value reads the filter variables as
+  // variables.symbols(), the parameters, t and the names before it. Evaluators and emitters
+  // compute them in this order before anything that reads them; printers list them.
+  std::vector<FilterDefinition> definitions;
 
   std::size_t n() const { return variables.n(); }
   bool is_user_filter() const { return !kind.has_value(); }

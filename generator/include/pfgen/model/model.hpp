@@ -38,10 +38,21 @@ struct InitialConditions {
   std::vector<std::vector<GiNaC::numeric>> P0;
 };
 
+// An auxiliary quantity of a user filter (`define:`): `name` stands for `value` wherever it
+// appears. The value is any expression of the filter's variables, the parameters, t and the
+// names defined before it (for example 1/(P11*P22 - P12^2)), so equations that divide by a
+// polynomial of m and P, such as a filter printed in the information matrix Q = -eps P^-1, can
+// be written as printed while m_drift, P_drift and gain stay polynomial in m and P.
+struct FilterDefinition {
+  GiNaC::symbol name;
+  GiNaC::ex value;
+};
+
 // A filter the model file gives by its equations (`filters:`), not derived by pfgen:
 //   dm = m_drift dt + gain (dy - (A0 + A m) dt),   dP = P_drift dt,
 // with the model's own observation for the predicted A0 + A m. Its expressions are
-// polynomials in the filter's variables (t and parameters may appear, states may not).
+// polynomials in the filter's variables (t, parameters and its definitions may appear in the
+// coefficients, states may not).
 struct UserFilter {
   std::string name;         // [A-Za-z][A-Za-z0-9_-]*, not a built-in kind; '-' is '_' in C++
   std::string description;  // may be empty
@@ -51,6 +62,7 @@ struct UserFilter {
   ExVector m_drift;  // n
   ExMatrix P_drift;  // n x n, symmetric
   ExMatrix gain;     // n x p
+  std::vector<FilterDefinition> definitions;  // in file order; each value reads only earlier names
 };
 
 // Defaults for `pfgen simulate` from the model file's `simulation:` section; every

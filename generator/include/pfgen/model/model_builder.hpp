@@ -50,8 +50,11 @@ class ModelBuilder {
   // the time symbol and the parameters; checked by build() like the model's expressions.
   //   auto v = b.filter_variables();   // n = 1: m1, P11
   //   b.user_filter("ekf-printed", {0.1 * pow(v[0], 2)}, {{0.4 * v[1] + 0.01 - pow(v[1], 2)}}, {{v[1]}});
+  // `definitions` (FilterDefinition) are the filter's auxiliary names, in the order they are
+  // defined; their symbols may appear in the equations' coefficients.
   ModelBuilder& user_filter(const std::string& name, const ExVector& m_drift, const ExMatrix& P_drift,
-                            const ExMatrix& gain, const std::string& description = "");
+                            const ExMatrix& gain, const std::string& description = "",
+                            const std::vector<FilterDefinition>& definitions = {});
   // The model file's `risk:` section (RiskCriterion); an empty weight means the identity.
   ModelBuilder& risk_criterion(const GiNaC::ex& epsilon, const ExMatrix& weight = {});
   // The model file's `simulation:` defaults (checked by build()).
