@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Reproduces paper 002 (Alcorta-Garcia, Anguiano Rostro, Torres Torres 2011), Tables 1-5, with
 # `pfgen simulate`: the exponential criterion J = eps log E[exp(eps^-1 int_0^T |x - m|^2 dt)] of the
-# risk-sensitive filter (pfgen's `risk-sensitive`), the polynomial filter (pfgen's `optimal`, and the
-# printed eq 22 or 26 as the model's `poly-printed`) and, for the reactor, the extended Kalman-Bucy
-# filter (pfgen's `ekf`, and the printed eq 23 as `ekf-printed`), for every eps of each table.
+# risk-sensitive filter (pfgen's `risk-sensitive`, and the printed eq 21 or 25 as the model's
+# `rs-printed`), the polynomial filter (pfgen's `optimal`, and the printed eq 22 or 26 as
+# `poly-printed`) and, for the reactor, the extended Kalman-Bucy filter (pfgen's `ekf`, and the
+# printed eq 23 as `ekf-printed`), for every eps of each table.
 #
 # The paper starts each filter from its own m(0), P(0). `simulate` takes them from the model's
 # `initial:`, so the script writes one copy of examples/paper002/{reactor,satellite}.yaml per filter
@@ -16,8 +17,9 @@
 #   reactor case 2's EKF P(0) = (2, 5, 10) and satellite case 1's polynomial P(0) = (10, 20, 5) are
 #   indefinite: the nearest positive semi-definite matrix is used (the negative eigenvalue clipped to
 #   0, plus 1e-9 of the largest on the diagonal so that the written decimals stay semi-definite).
-# Part 2 runs the two indefinite P(0) as printed through the printed filters (23) and (26), in the
-# variable P - D with D = P(0)printed - P(0)repaired, so that P itself starts where the paper says.
+# Part 2 runs the three invalid matrices as printed through the printed filters (21), (23) and (26),
+# in the variable P - D with D = P(0)printed - P(0)repaired, so that P itself starts where the paper
+# says (for (21), P(0) = -eps Q(0)^-1 of the printed and of the repaired Q(0)).
 #
 # gamma is never given: each table is run in two readings, gamma = 1 (intensity s = eps/2, growing
 # with eps) and gamma^2 = eps/2 (unit intensity s = 1 for every eps).
@@ -178,10 +180,11 @@ for name in $cases; do
     echo "  initial: R-S C(0) = ($rs_m0), Q(0) = ($rs_q0) [printed ($rs_q0_printed)]; Pol m(0) = ($poly_m0), P(0) = ($poly_p0) [printed ($poly_p0_printed)]$([ "$ekf" = 1 ] && echo "; K-B m(0) = ($ekf_m0), P(0) = ($ekf_p0) [printed ($ekf_p0_printed)]")"
     rows=""
     if [ "$ekf" = 1 ]; then
-      row "eps" "J_R-S paper" "J_R-S risk-sensitive" "J_Pol paper" "J_Pol optimal" "J_Pol eq 22 printed" \
-        "J_K-B paper" "J_K-B ekf" "J_K-B eq 23 printed" "truth stopped"
+      row "eps" "J_R-S paper" "J_R-S risk-sensitive" "J_R-S eq 21 printed" "J_Pol paper" "J_Pol optimal" \
+        "J_Pol eq 22 printed" "J_K-B paper" "J_K-B ekf" "J_K-B eq 23 printed" "truth stopped"
     else
-      row "eps" "J_R-S paper" "J_R-S risk-sensitive" "J_Pol paper" "J_Pol optimal" "J_Pol eq 26 printed" "truth stopped"
+      row "eps" "J_R-S paper" "J_R-S risk-sensitive" "J_R-S eq 25 printed" "J_Pol paper" "J_Pol optimal" \
+        "J_Pol eq 26 printed" "truth stopped"
     fi
     i=0
     for eps in $eps_list; do
@@ -189,19 +192,20 @@ for name in $cases; do
       gamma=$(gamma_of "$reading" "$eps")
       tag="$reading-eps$eps"
       variant "$dir/rs-$eps.yaml" "$x0" "$rs_m0" "$(rs_p0 "$eps" "$rs_q0")"
-      run_job "$dir/rs-$eps.yaml" risk-sensitive "$eps" "$gamma" "$dir/rs-$tag.csv"
+      run_job "$dir/rs-$eps.yaml" risk-sensitive,rs-printed "$eps" "$gamma" "$dir/rs-$tag.csv"
       run_job "$dir/poly.yaml" optimal,poly-printed "$eps" "$gamma" "$dir/poly-$tag.csv"
       truth=$(awk '/^Truth diverged: no run/ {print "0"; exit} /^Truth diverged/ {print $3; exit}' "$dir/poly-$tag.txt")
       rs=$(cell "$dir/rs-$tag.csv" risk-sensitive)
+      rs_printed=$(cell "$dir/rs-$tag.csv" rs-printed)
       jobs=("$dir/rs-$tag.txt" "$dir/poly-$tag.txt")
       if [ "$ekf" = 1 ]; then
         run_job "$dir/ekf.yaml" ekf,ekf-printed "$eps" "$gamma" "$dir/ekf-$tag.csv"
         jobs+=("$dir/ekf-$tag.txt")
-        row "$eps" "$(nth "$i" "$paper_rs")" "$rs" "$(nth "$i" "$paper_pol")" "$(cell "$dir/poly-$tag.csv" optimal)" \
+        row "$eps" "$(nth "$i" "$paper_rs")" "$rs" "$rs_printed" "$(nth "$i" "$paper_pol")" "$(cell "$dir/poly-$tag.csv" optimal)" \
           "$(cell "$dir/poly-$tag.csv" poly-printed)" "$(nth "$i" "$paper_kb")" "$(cell "$dir/ekf-$tag.csv" ekf)" \
           "$(cell "$dir/ekf-$tag.csv" ekf-printed)" "$truth"
       else
-        row "$eps" "$(nth "$i" "$paper_rs")" "$rs" "$(nth "$i" "$paper_pol")" "$(cell "$dir/poly-$tag.csv" optimal)" \
+        row "$eps" "$(nth "$i" "$paper_rs")" "$rs" "$rs_printed" "$(nth "$i" "$paper_pol")" "$(cell "$dir/poly-$tag.csv" optimal)" \
           "$(cell "$dir/poly-$tag.csv" poly-printed)" "$truth"
       fi
       for job in "${jobs[@]:1}"; do
@@ -230,31 +234,35 @@ echo "Truths: the same in every job of each of the $same_truths rows (simulate's
 echo "The paper's claim (J_R-S smallest for every eps) holds, on our runs, in $verdict_rs of $verdict_total comparisons"
 echo "of risk-sensitive against optimal and ekf (smaller by more than 2 standard errors, no run stopped)."
 
-# Part 2: the indefinite printed P(0), run as printed through the printed filters, in the variable
+# Part 2: the invalid printed P(0) or Q(0), run as printed through the printed filters, in the variable
 # P~ = P - D (D = printed - repaired): every P in the filter's equations is replaced by P~ + D.
 shifted_variant() {  # target filter printed repaired x0 m0
   local d11 d12 d22
   read -r d11 d12 d22 <<< "$(awk -v p="$3" -v r="$4" 'BEGIN {split(p, a, " "); split(r, b, " ");
     printf "%.10g %.10g %.10g\n", a[1] - b[1], a[2] - b[2], a[3] - b[3]}')"
   variant "$1.tmp" "$5" "$6" "$4"
-  sed -E -e "/^  $2:/,/^  [a-z]/ { /gain|P_drift|m_drift|^      - |^         \"/ {
+  sed -E -e "/^  $2:/,/^  [a-z]/ { /gain|P_drift|m_drift|^      - |^         \"|^      [A-Za-z][A-Za-z0-9_]*: / {
       s/\bP11\b/(P11 + ($d11))/g; s/\bP12\b/(P12 + ($d12))/g; s/\bP22\b/(P22 + ($d22))/g } }" "$1.tmp" > "$1"
   rm -f "$1.tmp"
 }
 if [ "$part2" = 1 ]; then
   echo
-  echo "2. The indefinite printed P(0) as printed (gamma = 1), through the printed filters:"
+  echo "2. The invalid printed initial matrices as printed (gamma = 1), through the printed filters:"
   rows=""
   row "case" "filter" "eps" "J from printed P(0)" "J from repaired P(0)"
-  for spec in "reactor2 ekf-printed ekf" "satellite1 poly-printed poly"; do
+  for spec in "reactor1 rs-printed rs" "reactor2 ekf-printed ekf" "satellite1 poly-printed poly"; do
     read -r name f group <<< "$spec"
     case " $cases " in *" $name "*) ;; *) continue ;; esac
     case_data "$name"
     dir="$out/$name"; i=0
-    if [ "$group" = ekf ]; then printed="$ekf_p0_printed"; rep="$ekf_p0"; m0="$ekf_m0"; else printed="$poly_p0_printed"; rep="$poly_p0"; m0="$poly_m0"; fi
-    shifted_variant "$dir/$group-printed-p0.yaml" "$f" "$printed" "$rep" "$x0" "$m0"
     for eps in $eps_list; do
       i=$((i + 1)); [ "$i" -gt "$eps_count" ] && break
+      case "$group" in
+        ekf) printed="$ekf_p0_printed"; rep="$ekf_p0"; m0="$ekf_m0" ;;
+        poly) printed="$poly_p0_printed"; rep="$poly_p0"; m0="$poly_m0" ;;
+        rs) printed="$(rs_p0 "$eps" "$rs_q0_printed")"; rep="$(rs_p0 "$eps" "$rs_q0")"; m0="$rs_m0" ;;
+      esac
+      shifted_variant "$dir/$group-printed-p0.yaml" "$f" "$printed" "$rep" "$x0" "$m0"
       run_job "$dir/$group-printed-p0.yaml" "$f" "$eps" 1 "$dir/$group-printed-p0-eps$eps.csv"
       row "$name" "$f" "$eps" "$(cell "$dir/$group-printed-p0-eps$eps.csv" "$f")" \
         "$(cell "$dir/$group-gamma1-eps$eps.csv" "$f" 2>/dev/null || echo -)"

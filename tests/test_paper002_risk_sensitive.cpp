@@ -79,6 +79,60 @@ struct QForm {
   }
 };
 
+// (21)'s printed Q equations, its "Q11^2 Q12^2" read as Q11^2 + Q12^2 (the extraction lost a +).
+std::vector<ex> reactor_printed_dQ(const QForm& q) {
+  return {4 * q.Q11 + pow(q.Q11, 2) + pow(q.Q12, 2) - 1, 3 * q.Q12 + q.Q11 + q.Q11 * q.Q12 - q.Q12 * q.Q22,
+          2 * q.Q22 - 2 * q.Q12 + pow(q.Q12, 2) + pow(q.Q22, 2) - 1};
+}
+
+// (25)'s printed Q equations.
+std::vector<ex> satellite_printed_dQ(const QForm& q, const ex& C1, const ex& C2, const ex& eps) {
+  return {q.Q12 - C1 * C2 * q.Q11 - pow(C2, 2) * q.Q12 + C2 * q.Q22 + q.Q11 + q.Q22 - eps * C1 * C2,
+          numeric(1, 2) * q.Q22 + q.Q11 * q.Q12 + q.Q12 * q.Q22, pow(q.Q12, 2) + pow(q.Q22, 2) - eps * C1 * C2};
+}
+
+// A user filter of the example with its definitions substituted: m_drift, gain and P_drift in the
+// kind's symbols (the same FilterVariables order), for comparison with a transcription here.
+struct UserFilterExpressions {
+  std::vector<ex> m_drift;
+  std::vector<std::vector<ex>> gain;
+  matrix P_drift{2, 2};
+};
+
+UserFilterExpressions user_filter(const pfgen::Model& model, const std::string& name, const RiskSensitive& rs) {
+  const pfgen::FilterEquations eq = pfgen::derive_named_filter(model, name);
+  const auto& v = eq.variables.symbols();
+  // The filter's own symbols renamed to the kind's, then the definitions substituted, last first.
+  GiNaC::exmap to_kind = {{v[0], rs.C1}, {v[1], rs.C2}, {v[2], rs.P11}, {v[3], rs.P12}, {v[4], rs.P22}};
+  auto expression = [&](const pfgen::Polynomial& p) {
+    ex e = p.to_ex(v);
+    for (auto d = eq.definitions.rbegin(); d != eq.definitions.rend(); ++d) e = e.subs(d->name == d->value);
+    return e.subs(to_kind);
+  };
+  UserFilterExpressions out;
+  for (std::size_t i = 0; i < 2; ++i) out.m_drift.push_back(expression(eq.m_drift[i]));
+  for (const auto& row : eq.gain) {
+    out.gain.emplace_back();
+    for (const auto& entry : row) out.gain.back().push_back(expression(entry));
+  }
+  for (unsigned i = 0; i < 2; ++i)
+    for (unsigned j = 0; j < 2; ++j) out.P_drift(i, j) = expression(eq.P_drift(i, j));
+  return out;
+}
+
+// Q = -eps P^-1 in the kind's P symbols.
+GiNaC::exmap Q_of_P(const QForm& q, const RiskSensitive& rs) {
+  const ex det = rs.P11 * rs.P22 - pow(rs.P12, 2);
+  return {{q.Q11, -rs.eps * rs.P22 / det}, {q.Q12, rs.eps * rs.P12 / det}, {q.Q22, -rs.eps * rs.P11 / det}};
+}
+
+// dP/dt = eps^-1 P (dQ/dt) P, from P = -eps Q^-1: the printed Q equations carried over to P.
+matrix P_drift_of_printed(const std::vector<ex>& dQ, const QForm& q, const RiskSensitive& rs) {
+  const matrix P{{rs.P11, rs.P12}, {rs.P12, rs.P22}};
+  const matrix dQm = GiNaC::ex_to<matrix>(matrix{{dQ[0], dQ[1]}, {dQ[1], dQ[2]}}.subs(Q_of_P(q, rs)));
+  return GiNaC::ex_to<matrix>((P.mul(dQm).mul(P)).mul_scalar(1 / rs.eps));
+}
+
 void check_Q_difference(const matrix& derived, const ex printed[3], const ex difference[3]) {
   const char* names[] = {"dQ11", "dQ12", "dQ22"};
   const unsigned rows[] = {0, 0, 1}, columns[] = {0, 1, 1};
@@ -111,9 +165,8 @@ TEST_CASE("paper 002: the reactor's risk-sensitive filter against the printed (2
   // Derived in Q: dQ/dt = -Q F - F^T Q + Q^2/(2 gamma^2) + (2 - 2 gamma^2) I. (21) as printed, its
   // "Q11^2 Q12^2" read as Q11^2 + Q12^2 (the extraction lost a +):
   const QForm q;
-  const ex printed[3] = {4 * q.Q11 + pow(q.Q11, 2) + pow(q.Q12, 2) - 1,
-                         3 * q.Q12 + q.Q11 + q.Q11 * q.Q12 - q.Q12 * q.Q22,
-                         2 * q.Q22 - 2 * q.Q12 + pow(q.Q12, 2) + pow(q.Q22, 2) - 1};
+  const std::vector<ex> printed_dQ = reactor_printed_dQ(q);
+  const ex* printed = printed_dQ.data();
   // derived - printed: (21) takes the constant A1 for F (no C2 terms), transposes it in dQ11 and
   // dQ22 (so -2 Q12 goes missing from dQ11 and +2 Q12 appears in dQ22) and twists dQ12's signs; its
   // Q^2 has coefficient 1 for 1/(2 gamma^2), and its constant -1 stands for 2 - 2 gamma^2 (the risk
@@ -158,9 +211,8 @@ TEST_CASE("paper 002: the satellite's risk-sensitive filter against the printed 
   // Derived in Q: dQ/dt = -Q F - F^T Q + Q^2/(2 gamma^2) - eps (A^T R^-1 A - (2/eps) I + Hess div f).
   const QForm q;
   const ex &gamma = rs.gamma;
-  const ex printed[3] = {q.Q12 - C1 * C2 * q.Q11 - pow(C2, 2) * q.Q12 + C2 * q.Q22 + q.Q11 + q.Q22 - eps * C1 * C2,
-                         half * q.Q22 + q.Q11 * q.Q12 + q.Q12 * q.Q22,
-                         pow(q.Q12, 2) + pow(q.Q22, 2) - eps * C1 * C2};
+  const std::vector<ex> printed_dQ = satellite_printed_dQ(q, C1, C2, eps);
+  const ex* printed = printed_dQ.data();
   const ex g = 1 / (2 * pow(gamma, 2));
   const ex derived[3] = {-2 * C1 * C2 * q.Q11 + g * (pow(q.Q11, 2) + pow(q.Q12, 2)) + 2 - 2 * pow(gamma, 2),
                          -half * (1 + pow(C1, 2)) * q.Q11 - C1 * C2 * q.Q12 + g * (q.Q11 * q.Q12 + q.Q12 * q.Q22) - eps,
@@ -178,4 +230,65 @@ TEST_CASE("paper 002: the satellite's risk-sensitive filter against the printed 
   const matrix Qi = q.Q_inverse();
   const GiNaC::exmap to_Q = q.P_of_Q(rs);
   for (unsigned i = 0; i < 2; ++i) CHECK(same(rs.gain[i][0].subs(to_Q), -2 * pow(gamma, 2) * Qi(i, 0)));
+}
+
+// The printed filters run as printed through the examples' `filters:` (rs-printed, with Q, dQ and
+// det Q under `define:`): with the definitions substituted, each equation is the transcription of
+// (21) or (25) here, carried over to P = -eps Q^-1 (dP = eps^-1 P dQ P; dm = m_drift dt +
+// gain (dy - A m dt), so the printed dC is m_drift - gain A m + gain dy/dt).
+TEST_CASE("paper 002: the examples' rs-printed filters are (21) and (25) as printed",
+          "[paper002][risk-sensitive][userfilter][unit]") {
+  const QForm q;
+  SECTION("reactor, (21)") {
+    const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("paper002/reactor.yaml"));
+    const RiskSensitive rs = derive(model);
+    const UserFilterExpressions user = user_filter(model, "rs-printed", rs);
+    const std::vector<ex> dQ = reactor_printed_dQ(q);
+    const matrix dP = P_drift_of_printed(dQ, q, rs);
+    for (unsigned i = 0; i < 2; ++i)
+      for (unsigned j = 0; j < 2; ++j) CHECK(same(user.P_drift(i, j), dP(i, j)));
+    // dC1 = (-dQ11/det Q)[dQ11 (Q22 C1 - Q12 C2) + dQ12 (Q11 C2 - Q12 C1) - dY1 Q22 + dY2 Q12] - 2 C1 + Q11 C1 + Q12 C2
+    // dC2 = (-dQ12/det Q)[dQ12 (Q22 C1 - Q12 C2) + dQ22 (Q11 C2 - Q12 C1) - dY1 Q12 + dY2 Q11 - 2 eps Q11]
+    //       + C1 - C2 + Q12 C1 + Q22 C2
+    const ex det = q.det();
+    const ex K[2][2] = {{dQ[0] * q.Q22 / det, -dQ[0] * q.Q12 / det}, {dQ[1] * q.Q12 / det, -dQ[1] * q.Q11 / det}};
+    const ex rest[2] = {-dQ[0] / det * (dQ[0] * (q.Q22 * rs.C1 - q.Q12 * rs.C2) + dQ[1] * (q.Q11 * rs.C2 - q.Q12 * rs.C1)) -
+                            2 * rs.C1 + q.Q11 * rs.C1 + q.Q12 * rs.C2,
+                        -dQ[1] / det *
+                                (dQ[1] * (q.Q22 * rs.C1 - q.Q12 * rs.C2) + dQ[2] * (q.Q11 * rs.C2 - q.Q12 * rs.C1) -
+                                 2 * rs.eps * q.Q11) +
+                            rs.C1 - rs.C2 + q.Q12 * rs.C1 + q.Q22 * rs.C2};
+    const GiNaC::exmap to_P = Q_of_P(q, rs);
+    const ex C[2] = {rs.C1, rs.C2};
+    for (unsigned i = 0; i < 2; ++i) {
+      INFO("row " << i + 1);
+      for (unsigned r = 0; r < 2; ++r) CHECK(same(user.gain[i][r], K[i][r].subs(to_P)));
+      CHECK(same(user.m_drift[i] - user.gain[i][0] * C[0] - user.gain[i][1] * C[1], rest[i].subs(to_P)));
+    }
+  }
+  SECTION("satellite, (25)") {
+    const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("paper002/satellite.yaml"));
+    const RiskSensitive rs = derive(model);
+    const UserFilterExpressions user = user_filter(model, "rs-printed", rs);
+    const std::vector<ex> dQ = satellite_printed_dQ(q, rs.C1, rs.C2, rs.eps);
+    const matrix dP = P_drift_of_printed(dQ, q, rs);
+    for (unsigned i = 0; i < 2; ++i)
+      for (unsigned j = 0; j < 2; ++j) CHECK(same(user.P_drift(i, j), dP(i, j)));
+    // dC1 = (-dQ22/det Q)(C1 dQ11 + C2 dQ12 + dY) + (-dQ12/det Q)(C1 dQ12 + C2 dQ22) - C2/2 + C1 Q11 + C2 Q12
+    // dC2 = (-dQ12/det Q)(C1 dQ11 + C2 dQ12 + dY) + (-dQ11/det Q)(C1 dQ12 + C2 dQ22) + C1 Q12 + C2 Q22
+    const ex det = q.det();
+    const ex &C1 = rs.C1, &C2 = rs.C2;
+    const ex K[2] = {-dQ[2] / det, -dQ[1] / det};
+    const ex rest[2] = {-dQ[2] / det * (C1 * dQ[0] + C2 * dQ[1]) - dQ[1] / det * (C1 * dQ[1] + C2 * dQ[2]) -
+                            numeric(1, 2) * C2 + C1 * q.Q11 + C2 * q.Q12,
+                        -dQ[1] / det * (C1 * dQ[0] + C2 * dQ[1]) - dQ[0] / det * (C1 * dQ[1] + C2 * dQ[2]) + C1 * q.Q12 +
+                            C2 * q.Q22};
+    const GiNaC::exmap to_P = Q_of_P(q, rs);
+    for (unsigned i = 0; i < 2; ++i) {
+      INFO("row " << i + 1);
+      REQUIRE(user.gain[i].size() == 1);
+      CHECK(same(user.gain[i][0], K[i].subs(to_P)));
+      CHECK(same(user.m_drift[i] - user.gain[i][0] * C1, rest[i].subs(to_P)));
+    }
+  }
 }
