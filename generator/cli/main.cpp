@@ -8,7 +8,11 @@
 
 #include "cli_options.hpp"
 #include "commands.hpp"
+#include "job_group.hpp"
 #include "simulate_command.hpp"
+#ifdef PFGEN_WITH_MPI
+#include "mpi_runs.hpp"
+#endif
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model.hpp"
@@ -165,7 +169,18 @@ int main(int argc, char** argv) {
     if (*codegen_cmd) return run_codegen(codegen);
     if (*latex_cmd) return run_latex(latex);
     if (*eval_cmd) return run_eval(eval);
-    if (*simulate_cmd) return run_simulate(simulate);
+    if (*simulate_cmd) {
+#ifdef PFGEN_WITH_MPI
+      // Started by mpirun: the ranks share the runs, rank 0 writes (mpi_runs.hpp).
+      if (launched_by_mpi()) {
+        MpiJob job(argc, argv);
+        return run_simulate(simulate, job);
+      }
+#endif
+      return run_simulate(simulate);
+    }
+  } catch (const FailedElsewhere&) {
+    // Another process of the job failed and said why.
   } catch (const pfgen::ModelError& e) {
     std::cerr << "pfgen: " << one_line(e.what()) << "\n";
   } catch (const CliValueError& e) {

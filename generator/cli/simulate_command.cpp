@@ -7,11 +7,13 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
 #include "cli_options.hpp"
 #include "commands.hpp"
+#include "job_group.hpp"
 #include "output_paths.hpp"
 #include "progress_bar.hpp"
 #include "pfgen/codegen/simulation_plugin.hpp"
@@ -147,11 +149,36 @@ pfgen_runtime::CriterionOptions criterion_options(const CriterionSettings& crite
   return out;
 }
 
-}  // namespace
+// What every process of a job reads and derives alike: the model, the settings, the filters'
+// equations and the plugin's source (whose hash keys the compiled plugin in the cache).
+struct PreparedJob {
+  Model model;
+  SimulationSettings settings;
+  std::vector<FilterEquations> filters;
+  std::string source;
+  double derive_seconds = 0;
+};
 
-int run_simulate(const SimulateOptions& options) {
-  const Clock::time_point start = Clock::now();
-  check_output_paths(options);
+// Nothing written to std::cerr while it lives (its errors are exceptions, reported by main).
+class SilentStderr {
+ public:
+  explicit SilentStderr(bool silent) : saved_(silent ? std::cerr.rdbuf(nullptr) : nullptr), silent_(silent) {}
+  ~SilentStderr() {
+    if (silent_) std::cerr.rdbuf(saved_);  // clears the bad bit a write set meanwhile
+  }
+  SilentStderr(const SilentStderr&) = delete;
+  SilentStderr& operator=(const SilentStderr&) = delete;
+
+ private:
+  std::streambuf* saved_;
+  bool silent_;
+};
+
+// `speaks`: the process that writes the outputs checks their paths (other machines of an MPI
+// job need not have its directories) and says the settings' notes, once for the job.
+PreparedJob prepare(const SimulateOptions& options, bool speaks, Clock::time_point start) {
+  const SilentStderr quiet(!speaks);
+  if (speaks) check_output_paths(options);
   Model model = load_model_file(options.model_path);
   // --set a=0.2: the job's value of a, compiled into the plugin as its default (so a new value
   // is a new source, and a new cache entry).
@@ -195,67 +222,132 @@ int run_simulate(const SimulateOptions& options) {
   // Delayed observations: filters generated for this grid step (settings checked D = h / dt).
   const std::string source = codegen::generate_simulation_plugin(model, filters, settings.dt);
   const double derive_seconds = seconds_since(start);
+  return PreparedJob{std::move(model), settings, std::move(filters), source, derive_seconds};
+}
 
-  toolchain::PluginBuildOptions build_options;
-  build_options.cache_dir = options.cache_dir;
-  build_options.compiler = options.compiler;
-  // A dense model's plugin takes the compiler tens of seconds: say so before, and how long after.
-  if (!options.quiet)
-    build_options.before_compile = [&](const std::string&) {
-      std::cerr << "pfgen: compiling the simulation plugin (" << filters.size()
-                << (filters.size() == 1 ? " filter, " : " filters, ") << source.size() / 1024 << " KiB of C++)...\n"
-                << std::flush;
-    };
-  toolchain::PluginBuild build = toolchain::build_plugin(source, build_options);
-  if (!options.quiet) {
+
+// What makes one job's results: the plugin's source (model, parameters, filters) and every
+// setting the runs read, numbers in hexadecimal so that no digit is lost. --threads, the output
+// paths and the cache are not in it: they do not change the results.
+std::string job_text(const PreparedJob& job) {
+  const SimulationSettings& s = job.settings;
+  std::string text = job.source;
+  auto number = [&text](double value) {
+    char digits[40];
+    std::snprintf(digits, sizeof digits, " %a", value);
+    text += digits;
+  };
+  text += "\nscheme " + s.scheme + " runs " + std::to_string(s.runs) + " seed " + std::to_string(s.seed) +
+          " record_points " + std::to_string(s.record_points) + " shown_run " + std::to_string(s.shown_run) + "\n";
+  for (double value : {s.T, s.dt, s.bound}) number(value);
+  text += "\nreports";
+  for (double t : s.report_times) number(t);
+  text += "\nwindows";
+  for (const auto& [a, b] : s.windows) number(a), number(b);
+  if (s.criterion) {
+    text += "\ncriterion";
+    number(s.criterion->epsilon);
+    for (double m : s.criterion->weight) number(m);
+  }
+  return text;
+}
+
+// Builds the plugin (a cache hit when another process or an earlier job built it) and loads it.
+pfgen_runtime::SimulationPlugin load_plugin(const std::string& source, const toolchain::PluginBuildOptions& options,
+                                            bool talk, toolchain::PluginBuild& build) {
+  build = toolchain::build_plugin(source, options);
+  if (talk) {
     if (build.cache_hit)
       std::cerr << "pfgen: plugin " << build.path << " (cached)\n";
     else
       std::cerr << "pfgen: plugin " << build.path << " (compiled in " << std::fixed << std::setprecision(1)
                 << build.compile_seconds << " s)\n" << std::defaultfloat;
   }
-  const pfgen_runtime::SimulationPlugin plugin = [&] {
-    try {
-      return pfgen_runtime::SimulationPlugin(build.path);
-    } catch (const pfgen_runtime::PluginLoadError&) {
-      if (!build.cache_hit) throw;
-      // A cached plugin that does not load (truncated by a full disk or a killed copy) failed
-      // every later run until deleted by hand: remove it and build it once more.
-      std::error_code ignored;
-      std::filesystem::remove(build.path, ignored);
-      build = toolchain::build_plugin(source, build_options);
-      if (!options.quiet) std::cerr << "pfgen: the cached plugin did not load; rebuilt " << build.path << "\n";
-      return pfgen_runtime::SimulationPlugin(build.path);
-    }
-  }();
+  try {
+    return pfgen_runtime::SimulationPlugin(build.path);
+  } catch (const pfgen_runtime::PluginLoadError&) {
+    if (!build.cache_hit) throw;
+    // A cached plugin that does not load (truncated by a full disk or a killed copy) failed
+    // every later run until deleted by hand: remove it and build it once more.
+    std::error_code ignored;
+    std::filesystem::remove(build.path, ignored);
+    build = toolchain::build_plugin(source, options);
+    if (talk) std::cerr << "pfgen: the cached plugin did not load; rebuilt " << build.path << "\n";
+    return pfgen_runtime::SimulationPlugin(build.path);
+  }
+}
 
-  plugin.check_grid_step(settings.dt);  // a delayed filter runs only on the grid it was made for
-  const std::string scheme_name = settings.scheme == "auto" ? choose_truth_scheme(model) : settings.scheme;
-  const auto scheme = pfgen_runtime::make_scheme(pfgen_runtime::scheme_kind_from_string(scheme_name), plugin.system());
+}  // namespace
 
-  pfgen_runtime::MonteCarloOptions mc;
-  mc.grid = pfgen_runtime::TimeGrid::to_horizon(0.0, settings.T, settings.dt);
-  mc.runs = settings.runs;
-  mc.seed = settings.seed;
-  mc.threads = thread_count(options.threads);
-  mc.record_points = settings.record_points;
-  mc.shown_run = settings.shown_run;
-  mc.report_times = settings.report_times;
-  mc.windows = settings.windows;
-  mc.truth_guard = pfgen_runtime::DivergenceGuard(settings.bound);
-  mc.filter_guards.estimate_guard = pfgen_runtime::DivergenceGuard(settings.bound);
-  mc.filter_guards.covariance_guard = pfgen_runtime::DivergenceGuard(std::max(1e16, settings.bound * settings.bound));
-  ProgressBar progress("simulate", settings.runs);
-  if (settings.criterion) mc.criterion = criterion_options(*settings.criterion, model.n());
-  mc.on_run_finished = [&progress](std::size_t finished, std::size_t) { progress.update(finished); };
+int run_simulate(const SimulateOptions& options) {
+  LocalJob alone;
+  return run_simulate(options, alone);
+}
 
-  const pfgen_runtime::MonteCarloResult result =
-      plugin.is_sampled()
-          ? pfgen_runtime::run_monte_carlo(*scheme, plugin.measurement(), plugin.truth_initial_state(), plugin.filters(),
-                                           mc)
-          : pfgen_runtime::run_monte_carlo(*scheme, plugin.observation(), plugin.truth_initial_state(),
-                                           plugin.filters(), mc);
+int run_simulate(const SimulateOptions& options, JobGroup& group) {
+  const Clock::time_point start = Clock::now();
+  const bool speaks = group.speaks();
+  const bool talk = speaks && !options.quiet;  // stderr's messages: one process's only
+  std::optional<PreparedJob> job;
+  group.together([&] { job.emplace(prepare(options, speaks, start)); });
+  group.check_same_job(job_text(*job), "the processes of this MPI job were given different jobs (model, "
+                                      "parameters or settings differ between ranks): give every rank the same");
+  const Model& model = job->model;
+  const SimulationSettings& settings = job->settings;
+  const std::vector<FilterEquations>& filters = job->filters;
+  const std::string& source = job->source;
+  const double derive_seconds = job->derive_seconds;
+
+  toolchain::PluginBuildOptions build_options;
+  build_options.cache_dir = options.cache_dir;
+  build_options.compiler = options.compiler;
+  // A dense model's plugin takes the compiler tens of seconds: say so before, and how long after.
+  if (talk)
+    build_options.before_compile = [&](const std::string&) {
+      std::cerr << "pfgen: compiling the simulation plugin (" << filters.size()
+                << (filters.size() == 1 ? " filter, " : " filters, ") << source.size() / 1024 << " KiB of C++)...\n"
+                << std::flush;
+    };
+  toolchain::PluginBuild build;
+  std::optional<pfgen_runtime::SimulationPlugin> loaded;
+  group.build_in_turn([&] { loaded.emplace(load_plugin(source, build_options, talk, build)); });
+  const pfgen_runtime::SimulationPlugin& plugin = *loaded;
+
+  // This process's runs (all of them but in an MPI job); the progress bar counts those.
+  std::optional<pfgen_runtime::RunShare> share = group.share(settings.runs);
+  ProgressBar progress("simulate", !speaks ? 0 : share ? share->count : settings.runs);
+  std::optional<pfgen_runtime::MonteCarloResult> folded;
+  group.together([&] {
+    plugin.check_grid_step(settings.dt);  // a delayed filter runs only on the grid it was made for
+    const std::string scheme_name = settings.scheme == "auto" ? choose_truth_scheme(model) : settings.scheme;
+    const auto scheme =
+        pfgen_runtime::make_scheme(pfgen_runtime::scheme_kind_from_string(scheme_name), plugin.system());
+
+    pfgen_runtime::MonteCarloOptions mc;
+    mc.grid = pfgen_runtime::TimeGrid::to_horizon(0.0, settings.T, settings.dt);
+    mc.runs = settings.runs;
+    mc.seed = settings.seed;
+    mc.threads = thread_count(options.threads);
+    mc.record_points = settings.record_points;
+    mc.shown_run = settings.shown_run;
+    mc.report_times = settings.report_times;
+    mc.windows = settings.windows;
+    mc.truth_guard = pfgen_runtime::DivergenceGuard(settings.bound);
+    mc.filter_guards.estimate_guard = pfgen_runtime::DivergenceGuard(settings.bound);
+    mc.filter_guards.covariance_guard =
+        pfgen_runtime::DivergenceGuard(std::max(1e16, settings.bound * settings.bound));
+    if (settings.criterion) mc.criterion = criterion_options(*settings.criterion, model.n());
+    mc.on_run_finished = [&progress](std::size_t finished, std::size_t) { progress.update(finished); };
+    mc.share = std::move(share);
+
+    folded = plugin.is_sampled() ? pfgen_runtime::run_monte_carlo(*scheme, plugin.measurement(),
+                                                                  plugin.truth_initial_state(), plugin.filters(), mc)
+                                 : pfgen_runtime::run_monte_carlo(*scheme, plugin.observation(),
+                                                                  plugin.truth_initial_state(), plugin.filters(), mc);
+  });
   progress.finish();
+  if (!folded->folded) return 0;  // another process of the job writes the outputs
+  const pfgen_runtime::MonteCarloResult& result = *folded;
 
   // Files first, table last: a failed write must not follow a printed result.
   if (!options.csv_path.empty() || !options.plot_path.empty())
@@ -284,7 +376,7 @@ int run_simulate(const SimulateOptions& options) {
   }
 
   // Timing first (stderr), so that the output ends with the table and the paths of the files.
-  if (!options.quiet) std::cerr << pfgen_runtime::format_timing(result) << std::flush;
+  if (talk) std::cerr << pfgen_runtime::format_timing(result) << std::flush;
   std::cout << "model: " << model.name << " (" << options.model_path << ")" << delay_note(model, settings) << "\n"
             << pfgen_runtime::format_summary_table(result, model.state_names);
   // Delayed observations (paper 004's printed estimates are compared through mean m = x - mean e):

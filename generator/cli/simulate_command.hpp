@@ -24,6 +24,11 @@ struct SimulateOptions {
   std::vector<std::string> assignments;  // --set name=value: parameter values for this job
 };
 
+class JobGroup;
+
 int run_simulate(const SimulateOptions& options);
+// The same job made by several processes together (job_group.hpp): each runs this with its own
+// group member; only the one that speaks() prints and writes files.
+int run_simulate(const SimulateOptions& options, JobGroup& group);
 
 }  // namespace pfgen::cli

@@ -1,5 +1,6 @@
-// run_monte_carlo: checks the inputs, plans, hands the runs to one Worker per thread, folds the
-// runs into statistics and sums the workers' timing. The parts live in monte_carlo/: plan (the
+// run_monte_carlo: checks the inputs, plans, hands the runs (this process's share of them, when
+// shared among processes) to one Worker per thread, folds the runs into statistics and sums the
+// workers' timing. The parts live in monte_carlo/: plan (the
 // grid points where something is recorded), worker (one thread's runs), aggregate (the
 // statistics, in run order) and parallel_for (the threads).
 #include "pfgen_runtime/monte_carlo.hpp"
@@ -10,11 +11,13 @@
 #include <memory>
 #include <set>
 #include <stdexcept>
+#include <string>
 
 #include "monte_carlo/aggregate.hpp"
 #include "monte_carlo/clock.hpp"
 #include "monte_carlo/parallel_for.hpp"
 #include "monte_carlo/plan.hpp"
+#include "monte_carlo/run_codec.hpp"
 #include "monte_carlo/run_result.hpp"
 #include "monte_carlo/worker.hpp"
 #include "pfgen_runtime/statistics.hpp"
@@ -38,6 +41,9 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
   if (options.threads == 0) throw std::invalid_argument("monte carlo: threads must be at least 1");
   if (options.record_points == 0) throw std::invalid_argument("monte carlo: record_points must be at least 1");
   if (options.shown_run >= options.runs) throw std::invalid_argument("monte carlo: the shown run is not among the runs");
+  if (options.share && (options.share->first > options.runs || options.share->count > options.runs - options.share->first ||
+                        !options.share->gather))
+    throw std::invalid_argument("monte carlo: a process's share must be runs among the job's, with a gather");
   std::set<std::string> names;
   for (const FilterModel& filter : filters) {
     if (filter.name.empty() || !names.insert(filter.name).second)
@@ -106,36 +112,37 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   validate(scheme, observation, measurement, x0, filters, options);
   const Plan plan = make_plan(scheme.system().n, measurement ? measurement->p() : observation.p(), options);
 
-  std::vector<RunResult> runs(options.runs);
-  const unsigned threads = static_cast<unsigned>(std::min<std::size_t>(options.threads, options.runs));
+  // This process's runs: all of them, or its share (the runs first .. first + count - 1).
+  const std::size_t first = options.share ? options.share->first : 0;
+  const std::size_t count = options.share ? options.share->count : options.runs;
+  std::vector<RunResult> runs(count);
+  const unsigned threads = static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(options.threads, count)));
   std::vector<std::unique_ptr<Worker>> workers(threads);
   std::atomic<std::size_t> finished{0};
   auto make_worker = [&](unsigned thread) {
     workers[thread] = std::make_unique<Worker>(scheme, observation, measurement, filters, x0, plan, options);
     return workers[thread].get();
   };
-  parallel_for(options.runs, threads, make_worker, [&](std::size_t run, Worker* worker) {
-    worker->run(run, runs[run]);
+  parallel_for(count, threads, make_worker, [&](std::size_t k, Worker* worker) {
+    worker->run(first + k, runs[k]);
     const std::size_t done = finished.fetch_add(1) + 1;
-    if (options.on_run_finished) options.on_run_finished(done, options.runs);
+    if (options.on_run_finished) options.on_run_finished(done, count);
   });
 
-  const Clock::time_point aggregation_start = Clock::now();
+  // Zero timing with one entry per filter (and per sampled filter).
+  const auto no_timing = [&] {
+    MonteCarloTiming zero;
+    zero.threads = 0;
+    zero.filter_seconds.assign(filters.size(), 0.0);
+    zero.filter_cpu_seconds.assign(filters.size(), 0.0);
+    zero.filter_steps.assign(filters.size(), 0);
+    if (measurement) zero.filter_samples.assign(filters.size(), 0);
+    return zero;
+  };
   MonteCarloResult result;
-  result.grid = options.grid;
-  result.runs = options.runs;
-  result.seed = options.seed;
-  result.scheme = scheme.name();
-  result.n = plan.n;
-  result.criterion = options.criterion;
-  aggregate(plan, filters, runs, options, threads, result);
-
   MonteCarloTiming& timing = result.timing;
+  timing = no_timing();
   timing.threads = threads;
-  timing.filter_seconds.assign(filters.size(), 0.0);
-  timing.filter_cpu_seconds.assign(filters.size(), 0.0);
-  timing.filter_steps.assign(filters.size(), 0);
-  if (measurement) timing.filter_samples.assign(filters.size(), 0);
   for (const auto& worker : workers) {
     timing.truth_seconds += worker->truth_seconds;
     timing.truth_cpu_seconds += worker->truth_cpu_seconds;
@@ -147,6 +154,33 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
       if (measurement) timing.filter_samples[f] += worker->filter_samples[f];
     }
   }
+
+  if (options.share) {
+    // Every process's runs, in run order, on the one that folds them; the others stop here.
+    const std::vector<std::vector<char>> blocks = options.share->gather(encode_share(runs, timing));
+    if (blocks.empty()) {
+      result.folded = false;
+      timing.wall_seconds = seconds_since(wall_start);
+      return result;
+    }
+    runs.clear();
+    MonteCarloTiming all = no_timing();  // every process's threads and times
+    for (const std::vector<char>& block : blocks) decode_share(block, filters.size(), runs, all);
+    if (runs.size() != options.runs)
+      throw std::runtime_error("monte carlo: the processes' shares hold " + std::to_string(runs.size()) +
+                               " runs, not " + std::to_string(options.runs));
+    timing = all;
+  }
+
+  const Clock::time_point aggregation_start = Clock::now();
+  result.grid = options.grid;
+  result.runs = options.runs;
+  result.seed = options.seed;
+  result.scheme = scheme.name();
+  result.n = plan.n;
+  result.criterion = options.criterion;
+  aggregate(plan, filters, runs, options, threads, result);
+
   timing.aggregation_seconds = seconds_since(aggregation_start);
   timing.wall_seconds = seconds_since(wall_start);
   return result;

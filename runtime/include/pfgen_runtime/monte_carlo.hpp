@@ -31,6 +31,17 @@
 
 namespace pfgen_runtime {
 
+// The runs of one job shared among processes (the MPI ranks of `pfgen simulate`, whose MPI code
+// lives in the program, not here): this process makes runs [first, first + count) only, and
+// hands their results, encoded as bytes, to `gather`. On the process that folds the statistics,
+// gather returns every process's bytes, its own included, in the order of their runs, which
+// together must be runs 0 .. runs - 1; elsewhere it returns nothing. The folding reads the
+// decoded runs exactly as it reads a single process's, so the result is bitwise the same.
+struct RunShare {
+  std::size_t first = 0, count = 0;
+  std::function<std::vector<std::vector<char>>(std::vector<char> mine)> gather;
+};
+
 struct MonteCarloOptions {
   TimeGrid grid;
   std::size_t runs = 100;
@@ -48,6 +59,8 @@ struct MonteCarloOptions {
   // Called from worker threads (must be thread-safe) after each finished run with the number of
   // runs finished so far.
   std::function<void(std::size_t finished, std::size_t total)> on_run_finished;
+  // Set: this process makes only its share of the runs (then on_run_finished counts those).
+  std::optional<RunShare> share;
 };
 
 // The per-run mean of e^2 over a window's grid points, averaged over the runs in which neither
@@ -175,6 +188,9 @@ struct MonteCarloTiming {
 };
 
 struct MonteCarloResult {
+  // False on a process that only made its share of the runs (MonteCarloOptions::share) for
+  // another to fold: then only `timing` (its own) is filled in.
+  bool folded = true;
   TimeGrid grid;
   std::size_t runs = 0;
   std::uint64_t seed = 0;

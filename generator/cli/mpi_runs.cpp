@@ -1,0 +1,135 @@
+#include "mpi_runs.hpp"
+
+// MPI's C interface only, not the C++ bindings (deprecated, and noisy under -Wextra).
+#ifndef OMPI_SKIP_MPICXX
+#define OMPI_SKIP_MPICXX 1
+#endif
+#ifndef MPICH_SKIP_MPICXX
+#define MPICH_SKIP_MPICXX 1
+#endif
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <exception>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "pfgen/toolchain/content_hash.hpp"
+
+namespace pfgen::cli {
+
+namespace {
+
+// Messages of one gather: a block's size, then its bytes in pieces that fit MPI's int counts.
+constexpr int kSizeTag = 1, kBytesTag = 2;
+constexpr std::size_t kPiece = std::size_t{1} << 30;
+
+}  // namespace
+
+bool launched_by_mpi() {
+  // Open MPI's mpirun, MPICH's Hydra (mpiexec) and PMIx launchers each set one of these.
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+
+MpiJob::MpiJob(int& argc, char**& argv) {
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  MPI_Comm machine;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &machine);
+  int local_rank = 0;
+  MPI_Comm_rank(machine, &local_rank);
+  first_on_machine_ = local_rank == 0;
+  MPI_Comm_free(&machine);
+}
+
+MpiJob::~MpiJob() { MPI_Finalize(); }
+
+int MpiJob::lowest_failing(bool ok) const {
+  const int mine = ok ? size_ : rank_;
+  int lowest = size_;
+  MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  return lowest;
+}
+
+void MpiJob::together(const std::function<void()>& step) {
+  agreed_ = false;
+  std::exception_ptr error;
+  try {
+    step();
+  } catch (...) {
+    error = std::current_exception();
+  }
+  if (agreed_) {  // the step's gather agreed already; what failed after it failed here alone
+    if (error) std::rethrow_exception(error);
+    return;
+  }
+  const int lowest = lowest_failing(!error);
+  if (lowest == size_) return;
+  if (lowest == rank_) std::rethrow_exception(error);
+  throw FailedElsewhere();
+}
+
+void MpiJob::build_in_turn(const std::function<void()>& build) {
+  together([&] {
+    if (first_on_machine_) build();
+  });
+  together([&] {
+    if (!first_on_machine_) build();
+  });
+}
+
+void MpiJob::check_same_job(const std::string& job, const std::string& problem) {
+  // The smallest and the largest hash over the ranks are equal when every rank has the same job.
+  const std::uint64_t hash = toolchain::ContentHash().add(job).value();
+  std::uint64_t low = 0, high = 0;
+  MPI_Allreduce(&hash, &low, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Allreduce(&hash, &high, 1, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD);
+  if (low == high) return;
+  if (rank_ == 0) throw std::runtime_error(problem);
+  throw FailedElsewhere();
+}
+
+std::optional<pfgen_runtime::RunShare> MpiJob::share(std::size_t runs) {
+  const auto ranks = static_cast<std::size_t>(size_), rank = static_cast<std::size_t>(rank_);
+  // Blocks of runs / K runs, the first runs % K of them one run longer.
+  pfgen_runtime::RunShare share;
+  share.first = runs / ranks * rank + std::min(rank, runs % ranks);
+  share.count = runs / ranks + (rank < runs % ranks ? 1 : 0);
+  share.gather = [this](std::vector<char> mine) { return gather(std::move(mine)); };
+  return share;
+}
+
+std::vector<std::vector<char>> MpiJob::gather(std::vector<char> mine) {
+  // Every rank reached this point, or one failed making its runs and is in together()'s
+  // agreement: agree here first, so that no rank waits for bytes that will never come.
+  agreed_ = true;
+  if (lowest_failing(true) != size_) throw FailedElsewhere();
+  if (rank_ != 0) {
+    const std::uint64_t size = mine.size();
+    MPI_Send(&size, 1, MPI_UINT64_T, 0, kSizeTag, MPI_COMM_WORLD);
+    for (std::size_t at = 0; at < mine.size(); at += kPiece)
+      MPI_Send(mine.data() + at, static_cast<int>(std::min(kPiece, mine.size() - at)), MPI_BYTE, 0, kBytesTag,
+               MPI_COMM_WORLD);
+    return {};
+  }
+  std::vector<std::vector<char>> blocks;
+  blocks.push_back(std::move(mine));
+  for (int source = 1; source < size_; ++source) {
+    std::uint64_t size = 0;
+    MPI_Recv(&size, 1, MPI_UINT64_T, source, kSizeTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    std::vector<char>& block = blocks.emplace_back(static_cast<std::size_t>(size));
+    for (std::size_t at = 0; at < block.size(); at += kPiece)
+      MPI_Recv(block.data() + at, static_cast<int>(std::min(kPiece, block.size() - at)), MPI_BYTE, source,
+               kBytesTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  }
+  return blocks;
+}
+
+}  // namespace pfgen::cli

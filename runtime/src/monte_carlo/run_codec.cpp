@@ -1,0 +1,182 @@
+#include "run_codec.hpp"
+
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+namespace pfgen_runtime::monte_carlo_detail {
+
+namespace {
+
+// A new field of RunResult or FilterRunResult must be written and read below, or processes'
+// runs would lose it on the way: the sizes are checked where they are known, to make that loud.
+#if defined(__x86_64__) && defined(__GLIBCXX__)
+static_assert(sizeof(RunResult) == 96, "RunResult changed: encode the new field in run_codec.cpp");
+static_assert(sizeof(FilterRunResult) == 232, "FilterRunResult changed: encode the new field in run_codec.cpp");
+#endif
+
+constexpr char kMagic[8] = {'p', 'f', 'g', 'e', 'n', 'r', 'u', '1'};
+
+class Writer {
+ public:
+  template <class T>
+  void put(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const char* bytes = reinterpret_cast<const char*>(&value);
+    out.insert(out.end(), bytes, bytes + sizeof(T));
+  }
+  template <class T>
+  void put(const std::vector<T>& values) {
+    put(static_cast<std::uint64_t>(values.size()));
+    for (const T& value : values) put(value);
+  }
+  std::vector<char> out;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::vector<char>& bytes) : bytes_(bytes) {}
+  template <class T>
+  void get(T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    need(sizeof(T));
+    std::memcpy(&value, bytes_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+  }
+  template <class T>
+  void get(std::vector<T>& values) {
+    std::uint64_t size = 0;
+    get(size);
+    if (size > (bytes_.size() - at_) / sizeof(T)) fail();  // before allocating a corrupt size
+    values.resize(static_cast<std::size_t>(size));
+    for (T& value : values) get(value);
+  }
+  bool done() const { return at_ == bytes_.size(); }
+  [[noreturn]] static void fail() { throw std::runtime_error("monte carlo: a process's share of the runs is malformed"); }
+
+ private:
+  void need(std::size_t size) const {
+    if (bytes_.size() - at_ < size) fail();
+  }
+  const std::vector<char>& bytes_;
+  std::size_t at_ = 0;
+};
+
+// One function per type for both directions, so that what is written is what is read: Run is
+// const when encoding.
+template <class IO, class Run>
+void filter_fields(IO& io, Run& f) {
+  io.put_or_get(f.last);
+  io.put_or_get(f.diverged);
+  io.put_or_get(f.psd_lost);
+  io.put_or_get(f.too_stiff);
+  io.put_or_get(f.divergence_t);
+  io.put_or_get(f.psd_t);
+  io.put_or_get(f.mean_square);
+  io.put_or_get(f.report_error);
+  io.put_or_get(f.peak);
+  io.put_or_get(f.refined_steps);
+  io.put_or_get(f.error_record);
+  io.put_or_get(f.m_record);
+  io.put_or_get(f.P_record);
+  io.put_or_get(f.sample_sums);
+  io.put_or_get(f.samples);
+  io.put_or_get(f.update_failed);
+  io.put_or_get(f.integral);
+}
+
+template <class IO, class Run>
+void run_fields(IO& io, Run& r) {
+  io.put_or_get(r.truth_last);
+  io.put_or_get(r.truth_diverged);
+  io.put_or_get(r.truth_covariance_indefinite);
+  io.put_or_get(r.truth_divergence_t);
+  io.put_or_get(r.truth_record);
+  io.put_or_get(r.truth_report);
+  std::uint64_t filters = r.filters.size();
+  io.put_or_get(filters);
+  if constexpr (!std::is_const_v<Run>) r.filters.resize(static_cast<std::size_t>(filters));
+  for (auto& f : r.filters) filter_fields(io, f);
+}
+
+struct Encode {
+  template <class T>
+  void put_or_get(const T& value) {
+    writer.put(value);
+  }
+  Writer writer;
+};
+
+struct Decode {
+  template <class T>
+  void put_or_get(T& value) {
+    reader.get(value);
+  }
+  Reader reader;
+};
+
+}  // namespace
+
+std::vector<char> encode_share(const std::vector<RunResult>& runs, const MonteCarloTiming& timing) {
+  Encode io;
+  for (char c : kMagic) io.put_or_get(c);
+  io.put_or_get(timing.threads);
+  io.put_or_get(timing.truth_seconds);
+  io.put_or_get(timing.truth_cpu_seconds);
+  io.put_or_get(timing.truth_steps);
+  io.put_or_get(timing.filter_seconds);
+  io.put_or_get(timing.filter_cpu_seconds);
+  io.put_or_get(timing.filter_steps);
+  io.put_or_get(timing.filter_samples);
+  io.put_or_get(static_cast<std::uint64_t>(runs.size()));
+  for (const RunResult& run : runs) run_fields(io, run);
+  return std::move(io.writer.out);
+}
+
+void decode_share(const std::vector<char>& bytes, std::size_t filters, std::vector<RunResult>& runs,
+                  MonteCarloTiming& timing) {
+  Decode io{Reader(bytes)};
+  for (char expected : kMagic) {
+    char c = 0;
+    io.put_or_get(c);
+    if (c != expected) Reader::fail();
+  }
+  MonteCarloTiming block;
+  io.put_or_get(block.threads);
+  io.put_or_get(block.truth_seconds);
+  io.put_or_get(block.truth_cpu_seconds);
+  io.put_or_get(block.truth_steps);
+  io.put_or_get(block.filter_seconds);
+  io.put_or_get(block.filter_cpu_seconds);
+  io.put_or_get(block.filter_steps);
+  io.put_or_get(block.filter_samples);
+  if (block.filter_seconds.size() != filters || block.filter_cpu_seconds.size() != filters ||
+      block.filter_steps.size() != filters || (block.filter_samples.size() != filters && !block.filter_samples.empty()))
+    Reader::fail();
+  std::uint64_t count = 0;
+  io.put_or_get(count);
+  for (std::uint64_t k = 0; k < count; ++k) {
+    RunResult run;
+    run_fields(io, run);
+    if (run.filters.size() != filters) Reader::fail();
+    runs.push_back(std::move(run));
+  }
+  if (!io.reader.done()) Reader::fail();
+
+  timing.threads += block.threads;
+  timing.truth_seconds += block.truth_seconds;
+  timing.truth_cpu_seconds += block.truth_cpu_seconds;
+  timing.truth_steps += block.truth_steps;
+  for (std::size_t f = 0; f < filters; ++f) {
+    timing.filter_seconds[f] += block.filter_seconds[f];
+    timing.filter_cpu_seconds[f] += block.filter_cpu_seconds[f];
+    timing.filter_steps[f] += block.filter_steps[f];
+    if (!block.filter_samples.empty() && f < timing.filter_samples.size())
+      timing.filter_samples[f] += block.filter_samples[f];
+  }
+}
+
+}  // namespace pfgen_runtime::monte_carlo_detail
