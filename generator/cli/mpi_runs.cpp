@@ -10,11 +10,13 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstdlib>
 #include <exception>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include "pfgen/toolchain/content_hash.hpp"
@@ -26,6 +28,17 @@ namespace {
 // Messages of one gather: a block's size, then its bytes in pieces that fit MPI's int counts.
 constexpr int kSizeTag = 1, kBytesTag = 2;
 constexpr std::size_t kPiece = std::size_t{1} << 30;
+
+// Waits for a non-blocking collective by testing it between growing sleeps: a rank that finished
+// its runs (or waits for another machine's compile) would otherwise spin in MPI's blocking call
+// and take a core from the ranks still working, which oversubscribed cores cannot spare.
+void wait_sleeping(MPI_Request& request) {
+  auto pause = std::chrono::microseconds(50);
+  for (int done = 0; MPI_Test(&request, &done, MPI_STATUS_IGNORE), !done;) {
+    std::this_thread::sleep_for(pause);
+    pause = std::min<std::chrono::microseconds>(pause * 2, std::chrono::milliseconds(10));
+  }
+}
 
 }  // namespace
 
@@ -54,7 +67,9 @@ MpiJob::~MpiJob() { MPI_Finalize(); }
 int MpiJob::lowest_failing(bool ok) const {
   const int mine = ok ? size_ : rank_;
   int lowest = size_;
-  MPI_Allreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Request request;
+  MPI_Iallreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &request);
+  wait_sleeping(request);
   return lowest;
 }
 
@@ -86,12 +101,15 @@ void MpiJob::build_in_turn(const std::function<void()>& build) {
 }
 
 void MpiJob::check_same_job(const std::string& job, const std::string& problem) {
-  // The smallest and the largest hash over the ranks are equal when every rank has the same job.
+  // The smallest and the largest hash over the ranks (the largest as the complement of the
+  // smallest complement) are equal when every rank has the same job.
   const std::uint64_t hash = toolchain::ContentHash().add(job).value();
-  std::uint64_t low = 0, high = 0;
-  MPI_Allreduce(&hash, &low, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD);
-  MPI_Allreduce(&hash, &high, 1, MPI_UINT64_T, MPI_MAX, MPI_COMM_WORLD);
-  if (low == high) return;
+  const std::uint64_t mine[2] = {hash, ~hash};
+  std::uint64_t low[2] = {0, 0};
+  MPI_Request request;
+  MPI_Iallreduce(mine, low, 2, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD, &request);
+  wait_sleeping(request);
+  if (low[0] == ~low[1]) return;
   if (rank_ == 0) throw std::runtime_error(problem);
   throw FailedElsewhere();
 }
