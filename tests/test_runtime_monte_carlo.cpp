@@ -229,6 +229,54 @@ TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "
   }
 }
 
+// What `mpirun pfgen simulate` does across ranks (MonteCarloOptions::share), here in one process:
+// three shares, one of them empty, encoded, gathered in run order and folded by the last.
+TEST_CASE("monte carlo: runs shared among processes fold to the single process's result bit for bit", "[montecarlo][runtime][unit]") {
+  Scenario scenario;
+  EulerMaruyama scheme(scalar_linear_system(scenario.model));
+  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
+  scenario.options.criterion = CriterionOptions{};  // the runs' integrals travel too
+  scenario.options.threads = 2;
+  const MonteCarloResult whole = run_monte_carlo(scheme, observation, x0, scenario.filters, scenario.options);
+
+  // Runs [0, 9), [9, 9) and [9, 23): the shown run 4 is the first share's.
+  std::vector<std::vector<char>> blocks;
+  auto share = [&](std::size_t first, std::size_t count, bool folds) {
+    MonteCarloOptions options = scenario.options;
+    options.share = RunShare{first, count, [&blocks, folds](std::vector<char> mine) {
+                               blocks.push_back(std::move(mine));
+                               return folds ? blocks : std::vector<std::vector<char>>{};
+                             }};
+    return run_monte_carlo(scheme, observation, x0, scenario.filters, options);
+  };
+  const MonteCarloResult first = share(0, 9, false), empty = share(9, 0, false), last = share(9, 14, true);
+  CHECK_FALSE(first.folded);
+  CHECK_FALSE(empty.folded);
+  REQUIRE(last.folded);
+  CHECK(last.timing.threads == 2 + 1 + 2);  // every process's threads
+  CHECK(last.timing.truth_steps == whole.timing.truth_steps);
+  CHECK(bitwise_equal(flatten(last), flatten(whole)));
+  CHECK(format_summary_table(last, {"x"}) == format_summary_table(whole, {"x"}));
+  CHECK(format_results_csv(last, {"x"}) == format_results_csv(whole, {"x"}));
+  CHECK(format_criterion_csv(last) == format_criterion_csv(whole));
+
+  // Shares that miss runs, or bytes cut short, are refused rather than folded.
+  MonteCarloOptions gap = scenario.options;
+  gap.share = RunShare{0, 9, [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine}; }};
+  CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, gap),
+                    Catch::Contains("hold 9 runs, not 23"));
+  MonteCarloOptions cut = scenario.options;
+  cut.share = RunShare{0, 23, [](std::vector<char> mine) {
+                         mine.pop_back();
+                         return std::vector<std::vector<char>>{mine};
+                       }};
+  CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, cut), Catch::Contains("malformed"));
+  MonteCarloOptions outside = scenario.options;
+  outside.share = RunShare{20, 4, [](std::vector<char>) { return std::vector<std::vector<char>>{}; }};
+  CHECK_THROWS_AS(run_monte_carlo(scheme, observation, x0, scenario.filters, outside), std::invalid_argument);
+}
+
 TEST_CASE("monte carlo: each run equals simulate_truth + run_filter bit for bit", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   ScalarLinear& model = scenario.model;
