@@ -260,6 +260,7 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
   CHECK(format_summary_table(last, {"x"}) == format_summary_table(whole, {"x"}));
   CHECK(format_results_csv(last, {"x"}) == format_results_csv(whole, {"x"}));
   CHECK(format_criterion_csv(last) == format_criterion_csv(whole));
+  CHECK(format_stops_csv(last) == format_stops_csv(whole));
 
   // Shares that miss runs, or bytes cut short, are refused rather than folded.
   MonteCarloOptions gap = scenario.options;

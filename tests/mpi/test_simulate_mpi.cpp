@@ -107,7 +107,7 @@ TEST_CASE("mpirun -n 2 simulate continuous: table and CSV and plot script as one
   const std::string out =
       same_everywhere({"simulate", example("basin2006_quadratic.yaml"), "--runs", "7", "--T", "1", "--dt", "1e-3",
                        "--filters", "optimal,ekf", "--report-times", "0.5,1", "--windows", "0:0.5", "--shown-run", "5"},
-                      {"-o=r.csv", "--plot=e.svg"}, {"e.svg.gp"});
+                      {"-o=r.csv", "--plot=e.svg", "--stops-csv=s.csv"}, {"e.svg.gp"});
   CHECK(out.find("optimal") != std::string::npos);
   // One run among two ranks: the second makes none.
   same_everywhere({"simulate", example("basin2006_quadratic.yaml"), "--runs", "1", "--T", "0.5", "--dt", "1e-3",
@@ -129,7 +129,7 @@ TEST_CASE("mpirun -n 2 simulate delayed: table and signed errors and CSV as one 
 
 TEST_CASE("mpirun -n 2 simulate risk: J table and criterion CSV as one process", "[mpi][compiler]") {
   const std::string out = same_everywhere({"simulate", example("leqg_tracking.yaml"), "--runs", "9", "--T", "2"},
-                                          {"-o=r.csv", "--criterion-csv=j.csv"});
+                                          {"-o=r.csv", "--criterion-csv=j.csv", "--stops-csv=s.csv"});
   CHECK(out.find("J") != std::string::npos);
 }
 
