@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -146,4 +147,21 @@ TEST_CASE("stratonovich: paper 000's truth blows up with the inverse Gaussian la
                                        "--runs", "200", "--T", "20", "--dt", "1e-3", "-q"});
   REQUIRE(ito.exit_code == 0);
   CHECK_THAT(ito.out, Contains("Truth diverged: no run"));
+}
+
+// scripts/paper000-blowup.sh with small settings: its table (both readings beside the exact law)
+// and the simulate sections it quotes. The figures of the full run are in the README.
+TEST_CASE("stratonovich: the paper 000 blow-up script runs with small settings", "[stratonovich][simulate][compiler]") {
+  TempDir dir;
+  const auto result = run_program({"env", "PFGEN=" + pfgen_executable(), "THREADS=1",
+                                   source_dir() + "/scripts/paper000-blowup.sh", "60", "0.01", "15", dir.file("out")});
+  INFO(result.out << result.err);
+  REQUIRE(result.exit_code == 0);
+  CHECK_THAT(result.out, Contains("reading                   blown up by 9.2  blown up by T"));
+  // The exact law's line: its quantiles do not depend on the run (only its counts on RUNS and T).
+  CHECK(std::regex_search(result.out, std::regex(R"(\nexact \(inverse Gaussian\) +[0-9.]+ of 60 +[0-9.]+ of 60 +[0-9.]+ +)"
+                                                 R"(5\.075 +6\.919 +8\.621 +10\.749 +14\.710\n)")));
+  CHECK_THAT(result.out, Contains("\nito                       0 of 60          0 of 60"));
+  CHECK_THAT(result.out, Contains("Stratonovich reading: the filters up to the blow-up"));
+  CHECK_THAT(result.out, Contains("Truth diverged: no run"));
 }
