@@ -110,6 +110,31 @@ Polynomial Polynomial::variable(std::uint32_t index) {
   return p;
 }
 
+Polynomial Polynomial::sum_of(std::vector<std::pair<Monomial, GiNaC::ex>>&& terms) {
+  // Stable: a monomial's coefficients keep their order, so they are summed as add_term sums them.
+  std::stable_sort(terms.begin(), terms.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  Polynomial out;
+  auto run = terms.begin();
+  while (run != terms.end()) {
+    auto next = run + 1;
+    while (next != terms.end() && next->first == run->first) ++next;
+    // add_term's steps: each coefficient normalised; the first (or the first after a zero sum)
+    // taken as it is, the others added by coefficient_sum; a zero sum leaves no term.
+    bool present = false;
+    GiNaC::ex sum;
+    for (auto it = run; it != next; ++it) {
+      GiNaC::ex c = normalize_coefficient(it->second);
+      if (coefficient_is_zero(c)) continue;
+      sum = present ? coefficient_sum(sum, c) : std::move(c);
+      present = !coefficient_is_zero(sum);
+    }
+    // Sorted runs arrive in increasing order: inserting at the end costs no search.
+    if (present) out.terms_.emplace_hint(out.terms_.end(), std::move(run->first), std::move(sum));
+    run = next;
+  }
+  return out;
+}
+
 Polynomial Polynomial::from_ex(const GiNaC::ex& e, const std::vector<GiNaC::symbol>& variables) {
   std::map<GiNaC::ex, std::uint32_t, GiNaC::ex_is_less> index;
   for (std::uint32_t i = 0; i < variables.size(); ++i) index[variables[i]] = i;

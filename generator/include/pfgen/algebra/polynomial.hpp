@@ -45,6 +45,12 @@ class Polynomial {
   static Polynomial constant(const GiNaC::ex& c);
   static Polynomial variable(std::uint32_t index);
 
+  // The sum of `terms` in their given order, like terms merged exactly as add_term() one after
+  // another would merge them (the same coefficient sums in the same order, zero sums dropped),
+  // by one stable sort instead of a map lookup per term: the derivation's big sums (dP's
+  // E[(x-m)f^T] at n = 20: 17,000 products per entry) are built this way.
+  static Polynomial sum_of(std::vector<std::pair<Monomial, GiNaC::ex>>&& terms);
+
   // Converts an expression polynomial in `variables` (checked by the caller);
   // everything else in it becomes part of the coefficients.
   static Polynomial from_ex(const GiNaC::ex& e, const std::vector<GiNaC::symbol>& variables);
