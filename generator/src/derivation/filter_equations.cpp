@@ -164,6 +164,9 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
     for (std::size_t j = i; j < n; ++j) {
       // The products in the order add_times_monomial would add them, summed by one sort.
       std::vector<std::pair<Monomial, GiNaC::ex>> products;
+      std::size_t count = 0;
+      for (std::size_t k = 0; k < n; ++k) count += terms.jacobian[j][k].terms().size() + terms.jacobian[i][k].terms().size();
+      products.reserve(count);
       for (std::size_t k = 0; k < n; ++k) {
         for (const auto& [m, c] : terms.jacobian[j][k].terms()) products.emplace_back(m * P(i, k), c);
         for (const auto& [m, c] : terms.jacobian[i][k].terms()) products.emplace_back(m * P(k, j), c);
