@@ -159,11 +159,11 @@ int run_derive(const DeriveOptions& options) {
   kept_until_exit = new FilterEquations(derive_named_filter(model, name));
   const FilterEquations& eq = *kept_until_exit;
   if (options.format == "text") {
-    std::cout << equations_text(model, eq);
+    write_equations_text(std::cout, model, eq);
   } else if (options.format == "latex") {
     std::cout << equations_latex(eq);
   } else {
-    std::cout << equations_json(model, eq).dump();
+    equations_json(model, eq).dump(std::cout);
   }
   return 0;
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <stdexcept>
 
 #include "pfgen/notation/number_format.hpp"
@@ -94,7 +95,15 @@ bool Json::is_scalar_array() const {
   return true;
 }
 
-void Json::write(std::string& out, int indent) const {
+namespace {
+void drain(std::string& out, std::ostream* sink) {
+  if (sink == nullptr || out.size() < (1u << 20)) return;
+  sink->write(out.data(), static_cast<std::streamsize>(out.size()));
+  out.clear();
+}
+}  // namespace
+
+void Json::write(std::string& out, int indent, std::ostream* sink) const {
   const std::string pad(indent + 2, ' ');
   switch (kind_) {
     case Kind::String:
@@ -107,7 +116,8 @@ void Json::write(std::string& out, int indent) const {
         out += "[";
         for (std::size_t k = 0; k < items_.size(); ++k) {
           if (k) out += ", ";
-          items_[k].write(out, indent);
+          items_[k].write(out, indent, sink);
+          drain(out, sink);
         }
         out += "]";
         return;
@@ -115,8 +125,9 @@ void Json::write(std::string& out, int indent) const {
       out += "[\n";
       for (std::size_t k = 0; k < items_.size(); ++k) {
         out += pad;
-        items_[k].write(out, indent + 2);
+        items_[k].write(out, indent + 2, sink);
         out += k + 1 < items_.size() ? ",\n" : "\n";
+        drain(out, sink);
       }
       out += std::string(indent, ' ') + "]";
       return;
@@ -138,8 +149,9 @@ void Json::write(std::string& out, int indent) const {
       out += "{\n";
       for (std::size_t k = 0; k < items_.size(); ++k) {
         out += pad + json_quote(keys_[k]) + ": ";
-        items_[k].write(out, indent + 2);
+        items_[k].write(out, indent + 2, sink);
         out += k + 1 < items_.size() ? ",\n" : "\n";
+        drain(out, sink);
       }
       out += std::string(indent, ' ') + "}";
       return;
@@ -157,6 +169,13 @@ std::string Json::dump() const {
   std::string out;
   write(out, 0);
   return out + "\n";
+}
+
+void Json::dump(std::ostream& sink) const {
+  std::string out;
+  write(out, 0, &sink);
+  out += "\n";
+  sink.write(out.data(), static_cast<std::streamsize>(out.size()));
 }
 
 }  // namespace pfgen
