@@ -7,6 +7,42 @@
 
 namespace pfgen {
 
+// ---- FactorList ----
+
+void FactorList::reserve(std::size_t capacity) {
+  if (capacity <= capacity_) return;
+  auto* grown = new value_type[capacity];
+  std::copy(begin(), end(), grown);
+  delete[] heap_;
+  heap_ = grown;
+  capacity_ = static_cast<std::uint32_t>(capacity);
+}
+
+FactorList::iterator FactorList::erase(iterator position) {
+  std::copy(position + 1, end(), position);
+  --size_;
+  return position;
+}
+
+void FactorList::copy_from(const FactorList& other) {
+  reserve(other.size_);
+  std::copy(other.begin(), other.end(), data());
+  size_ = other.size_;
+}
+
+void FactorList::move_from(FactorList& other) noexcept {
+  if (other.heap_) {
+    heap_ = other.heap_;
+    capacity_ = other.capacity_;
+    other.heap_ = nullptr;
+    other.capacity_ = kInline;
+  } else {
+    std::copy(other.inline_, other.inline_ + other.size_, inline_);
+  }
+  size_ = other.size_;
+  other.size_ = 0;
+}
+
 // ---- Monomial ----
 
 Monomial Monomial::variable(std::uint32_t index, std::uint32_t exponent) {
