@@ -159,7 +159,8 @@ Polynomial Polynomial::sum_of(std::vector<std::pair<Monomial, GiNaC::ex>>&& term
     bool present = false;
     GiNaC::ex sum;
     for (auto it = run; it != next; ++it) {
-      GiNaC::ex c = normalize_coefficient(it->second);
+      // A number is its own normal form: the check here saves a call per term.
+      GiNaC::ex c = GiNaC::is_exactly_a<GiNaC::numeric>(it->second) ? it->second : normalize_coefficient(it->second);
       if (coefficient_is_zero(c)) continue;
       sum = present ? coefficient_sum(sum, c) : std::move(c);
       present = !coefficient_is_zero(sum);
