@@ -7,6 +7,42 @@
 
 namespace pfgen {
 
+// ---- FactorList ----
+
+void FactorList::reserve(std::size_t capacity) {
+  if (capacity <= capacity_) return;
+  auto* grown = new value_type[capacity];
+  std::copy(begin(), end(), grown);
+  delete[] heap_;
+  heap_ = grown;
+  capacity_ = static_cast<std::uint32_t>(capacity);
+}
+
+FactorList::iterator FactorList::erase(iterator position) {
+  std::copy(position + 1, end(), position);
+  --size_;
+  return position;
+}
+
+void FactorList::copy_from(const FactorList& other) {
+  reserve(other.size_);
+  std::copy(other.begin(), other.end(), data());
+  size_ = other.size_;
+}
+
+void FactorList::move_from(FactorList& other) noexcept {
+  if (other.heap_) {
+    heap_ = other.heap_;
+    capacity_ = other.capacity_;
+    other.heap_ = nullptr;
+    other.capacity_ = kInline;
+  } else {
+    std::copy(other.inline_, other.inline_ + other.size_, inline_);
+  }
+  size_ = other.size_;
+  other.size_ = 0;
+}
+
 // ---- Monomial ----
 
 Monomial Monomial::variable(std::uint32_t index, std::uint32_t exponent) {
@@ -108,6 +144,32 @@ Polynomial Polynomial::variable(std::uint32_t index) {
   Polynomial p;
   p.add_term(Monomial::variable(index), 1);
   return p;
+}
+
+Polynomial Polynomial::sum_of(std::vector<std::pair<Monomial, GiNaC::ex>>&& terms) {
+  // Stable: a monomial's coefficients keep their order, so they are summed as add_term sums them.
+  std::stable_sort(terms.begin(), terms.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  Polynomial out;
+  auto run = terms.begin();
+  while (run != terms.end()) {
+    auto next = run + 1;
+    while (next != terms.end() && next->first == run->first) ++next;
+    // add_term's steps: each coefficient normalised; the first (or the first after a zero sum)
+    // taken as it is, the others added by coefficient_sum; a zero sum leaves no term.
+    bool present = false;
+    GiNaC::ex sum;
+    for (auto it = run; it != next; ++it) {
+      // A number is its own normal form: the check here saves a call per term.
+      GiNaC::ex c = GiNaC::is_exactly_a<GiNaC::numeric>(it->second) ? it->second : normalize_coefficient(it->second);
+      if (coefficient_is_zero(c)) continue;
+      sum = present ? coefficient_sum(sum, c) : std::move(c);
+      present = !coefficient_is_zero(sum);
+    }
+    // Sorted runs arrive in increasing order: inserting at the end costs no search.
+    if (present) out.terms_.emplace_hint(out.terms_.end(), std::move(run->first), std::move(sum));
+    run = next;
+  }
+  return out;
 }
 
 Polynomial Polynomial::from_ex(const GiNaC::ex& e, const std::vector<GiNaC::symbol>& variables) {

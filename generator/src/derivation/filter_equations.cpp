@@ -162,12 +162,16 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
   // E[(x-m) f^T]_ij = sum_k P_ik E[d_k f_j] (Stein's lemma); the EKF uses J(m).
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) {
-      Polynomial moment;
+      // The products in the order add_times_monomial would add them, summed by one sort.
+      std::vector<std::pair<Monomial, GiNaC::ex>> products;
+      std::size_t count = 0;
+      for (std::size_t k = 0; k < n; ++k) count += terms.jacobian[j][k].terms().size() + terms.jacobian[i][k].terms().size();
+      products.reserve(count);
       for (std::size_t k = 0; k < n; ++k) {
-        moment.add_times_monomial(terms.jacobian[j][k], P(i, k));
-        moment.add_times_monomial(terms.jacobian[i][k], P(k, j));
+        for (const auto& [m, c] : terms.jacobian[j][k].terms()) products.emplace_back(m * P(i, k), c);
+        for (const auto& [m, c] : terms.jacobian[i][k].terms()) products.emplace_back(m * P(k, j), c);
       }
-      eq.P_moment.push_back(std::move(moment));
+      eq.P_moment.push_back(Polynomial::sum_of(std::move(products)));
     }
   eq.jacobian_term = std::move(terms.jacobian);
 

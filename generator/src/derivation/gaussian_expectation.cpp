@@ -5,12 +5,13 @@
 namespace pfgen {
 
 Polynomial GaussianExpectation::of(const Polynomial& p) {
-  Polynomial out;
+  // The products in the order add_term would add them, summed by one sort (Polynomial::sum_of).
+  std::vector<std::pair<Monomial, GiNaC::ex>> products;
   for (const auto& [monomial, coefficient] : p.terms()) {
     const Polynomial& moment = of_monomial(monomial);
-    for (const auto& [m, c] : moment.terms()) out.add_term(m, coefficient_product(c, coefficient));
+    for (const auto& [m, c] : moment.terms()) products.emplace_back(m, coefficient_product(c, coefficient));
   }
-  return out;
+  return Polynomial::sum_of(std::move(products));
 }
 
 const Polynomial& GaussianExpectation::of_monomial(const Monomial& monomial) {

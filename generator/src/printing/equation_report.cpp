@@ -1,5 +1,7 @@
 #include "pfgen/printing/equation_report.hpp"
 
+#include <ostream>
+
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
@@ -35,9 +37,15 @@ std::string mean_square_header_text(const Model& model, const FilterEquations& e
   return out;
 }
 
-}  // namespace
+// With a sink, `out` is written to it whenever it passes a megabyte.
+void drain(std::string& out, std::ostream* sink) {
+  if (sink == nullptr || out.size() < (1u << 20)) return;
+  sink->write(out.data(), static_cast<std::streamsize>(out.size()));
+  out.clear();
+}
 
-std::string equations_text(const Model& model, const FilterEquations& eq) {
+// The text report, or with a sink the part of it not yet written there.
+std::string text_report(const Model& model, const FilterEquations& eq, std::ostream* sink) {
   if (eq.is_sampled()) return sampled_equations_text(model, eq);
   TextPrinter printer;
   const FilterVariables& vars = eq.variables;
@@ -64,18 +72,31 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
               predicted + " dt)";
     }
     out += "\n";
+    drain(out, sink);
   }
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < eq.p; ++r)
+    for (std::size_t r = 0; r < eq.p; ++r) {
       out += "K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " = " + writer.print(eq.gain[i][r]) + "\n";
+      drain(out, sink);
+    }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) {
       out += "d" + vars.text_name(vars.P(i, j)) + " = (";
       append_parts(out, writer, P_parts(eq, vars.upper_index(i, j)));
       out += ") dt\n";
+      drain(out, sink);
     }
   out += x_star_equations_text(eq);
   return out;
+}
+
+}  // namespace
+
+std::string equations_text(const Model& model, const FilterEquations& eq) { return text_report(model, eq, nullptr); }
+
+void write_equations_text(std::ostream& out, const Model& model, const FilterEquations& eq) {
+  const std::string rest = text_report(model, eq, &out);
+  out.write(rest.data(), static_cast<std::streamsize>(rest.size()));
 }
 
 std::string equations_latex(const FilterEquations& eq) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <stdexcept>
 
 #include "pfgen/notation/number_format.hpp"
@@ -9,31 +10,38 @@
 namespace pfgen {
 
 std::string json_quote(const std::string& text) {
-  std::string out = "\"";
-  for (unsigned char c : text) {
+  std::string out;
+  out.reserve(text.size() + 2);
+  out += '"';
+  // Runs of characters that need no escape are appended whole: reports quote megabytes.
+  std::size_t plain_from = 0;
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const unsigned char c = static_cast<unsigned char>(text[k]);
+    if (c >= 0x20 && c != '"' && c != '\\') continue;
+    out.append(text, plain_from, k - plain_from);
+    plain_from = k + 1;
     switch (c) {
       case '"': out += "\\\""; break;
       case '\\': out += "\\\\"; break;
       case '\n': out += "\\n"; break;
       case '\t': out += "\\t"; break;
       case '\r': out += "\\r"; break;
-      default:
-        if (c < 0x20) {
-          char buffer[8];
-          std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
-          out += buffer;
-        } else {
-          out += static_cast<char>(c);
-        }
+      default: {
+        char buffer[8];
+        std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
+        out += buffer;
+      }
     }
   }
-  return out + "\"";
+  out.append(text, plain_from, std::string::npos);
+  out += '"';
+  return out;
 }
 
 Json Json::string(std::string value) {
   Json j;
   j.kind_ = Kind::String;
-  j.scalar_ = json_quote(value);
+  j.scalar_ = std::make_shared<const std::string>(json_quote(value));
   return j;
 }
 
@@ -41,21 +49,21 @@ Json Json::number(double value) {
   if (!std::isfinite(value)) throw std::domain_error("result is not a finite number");
   Json j;
   j.kind_ = Kind::Number;
-  j.scalar_ = shortest_double(value);
+  j.scalar_ = std::make_shared<const std::string>(shortest_double(value));
   return j;
 }
 
 Json Json::integer(std::uint64_t value) {
   Json j;
   j.kind_ = Kind::Number;
-  j.scalar_ = std::to_string(value);
+  j.scalar_ = std::make_shared<const std::string>(std::to_string(value));
   return j;
 }
 
 Json Json::boolean(bool value) {
   Json j;
   j.kind_ = Kind::Boolean;
-  j.scalar_ = value ? "true" : "false";
+  j.scalar_ = std::make_shared<const std::string>(value ? "true" : "false");
   return j;
 }
 
@@ -87,20 +95,29 @@ bool Json::is_scalar_array() const {
   return true;
 }
 
-void Json::write(std::string& out, int indent) const {
+namespace {
+void drain(std::string& out, std::ostream* sink) {
+  if (sink == nullptr || out.size() < (1u << 20)) return;
+  sink->write(out.data(), static_cast<std::streamsize>(out.size()));
+  out.clear();
+}
+}  // namespace
+
+void Json::write(std::string& out, int indent, std::ostream* sink) const {
   const std::string pad(indent + 2, ' ');
   switch (kind_) {
     case Kind::String:
     case Kind::Number:
     case Kind::Boolean:
-      out += scalar_;
+      out += *scalar_;
       return;
     case Kind::Array: {
       if (is_scalar_array() || indent < 0) {
         out += "[";
         for (std::size_t k = 0; k < items_.size(); ++k) {
           if (k) out += ", ";
-          items_[k].write(out, indent);
+          items_[k].write(out, indent, sink);
+          drain(out, sink);
         }
         out += "]";
         return;
@@ -108,8 +125,9 @@ void Json::write(std::string& out, int indent) const {
       out += "[\n";
       for (std::size_t k = 0; k < items_.size(); ++k) {
         out += pad;
-        items_[k].write(out, indent + 2);
+        items_[k].write(out, indent + 2, sink);
         out += k + 1 < items_.size() ? ",\n" : "\n";
+        drain(out, sink);
       }
       out += std::string(indent, ' ') + "]";
       return;
@@ -131,8 +149,9 @@ void Json::write(std::string& out, int indent) const {
       out += "{\n";
       for (std::size_t k = 0; k < items_.size(); ++k) {
         out += pad + json_quote(keys_[k]) + ": ";
-        items_[k].write(out, indent + 2);
+        items_[k].write(out, indent + 2, sink);
         out += k + 1 < items_.size() ? ",\n" : "\n";
+        drain(out, sink);
       }
       out += std::string(indent, ' ') + "}";
       return;
@@ -150,6 +169,13 @@ std::string Json::dump() const {
   std::string out;
   write(out, 0);
   return out + "\n";
+}
+
+void Json::dump(std::ostream& sink) const {
+  std::string out;
+  write(out, 0, &sink);
+  out += "\n";
+  sink.write(out.data(), static_cast<std::streamsize>(out.size()));
 }
 
 }  // namespace pfgen

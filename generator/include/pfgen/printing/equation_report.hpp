@@ -8,6 +8,7 @@
 // it reads like the published equations; JSON gives each entry combined.
 // A filter for delayed observations adds what delayed_report.hpp lists (h, the meaning of m(t-h),
 // Phi* and x*'s equations); sampled filters are handed to sampled_report.hpp.
+#include <iosfwd>
 #include <string>
 
 #include "pfgen/derivation/filter_equations.hpp"
@@ -16,6 +17,9 @@
 namespace pfgen {
 
 std::string equations_text(const Model& model, const FilterEquations& eq);
+// The same bytes written to `out` equation by equation, never holding the whole report
+// (a dense cubic n = 20 report is 63 MB).
+void write_equations_text(std::ostream& out, const Model& model, const FilterEquations& eq);
 std::string equations_latex(const FilterEquations& eq);
 Json equations_json(const Model& model, const FilterEquations& eq);
 
