@@ -19,6 +19,7 @@
 
 using namespace pfgen;
 using GiNaC::ex;
+using pfgen_test::example;
 
 namespace {
 
