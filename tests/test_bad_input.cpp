@@ -198,6 +198,9 @@ const std::vector<BadModel>& bad_models() {
       {"filter_unknown_field.yaml", "filters.mine.Q_drift", 0, 0, 12,
        "unknown field (known: m_drift, P_drift, gain, define, description)"},
       {"filter_unknown_symbol.yaml", "filters.mine.m_drift", 1, 0, 11, "unknown symbol 'm' in '-m'"},
+      // noise: how dW is read
+      {"noise_unknown.yaml", "noise", 0, 0, 6, "must be ito or stratonovich, found 'skorokhod'"},
+      {"noise_stratonovich_covariance_only.yaml", "noise", 0, 0, 6, "stratonovich needs the diffusion as g"},
       // filters.NAME.define: a user filter's auxiliary names
       {"filter_define_later_name.yaml", "filters.mine.define.S", 0, 0, 13,
        "unknown symbol 'T' in '2*T' (a definition reads the filter's m and P, the parameters, the time and the names "

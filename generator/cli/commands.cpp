@@ -19,6 +19,7 @@
 #include "pfgen/printing/equation_report.hpp"
 #include "pfgen/printing/json_writer.hpp"
 #include "pfgen/printing/latex_document.hpp"
+#include "pfgen/printing/noise_report.hpp"
 #include "pfgen_support/atomic_file.hpp"
 
 namespace pfgen::cli {
@@ -156,7 +157,7 @@ int run_derive(const DeriveOptions& options) {
   if (options.format == "text") {
     std::cout << equations_text(model, eq);
   } else if (options.format == "latex") {
-    std::cout << equations_latex(eq);
+    std::cout << noise_latex(model) << equations_latex(eq);
   } else {
     std::cout << equations_json(model, eq).dump();
   }

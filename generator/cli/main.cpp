@@ -153,6 +153,8 @@ int main(int argc, char** argv) {
                            "this eps (default: the model's risk.epsilon; without either, no J)");
   simulate_cmd->add_option("--criterion-csv", simulate.criterion_csv_path,
                            "Write J per filter as CSV to FILE (needs --risk-epsilon or a risk: section)");
+  simulate_cmd->add_option("--stops-csv", simulate.stops_csv_path,
+                           "Write every run that stopped before T (truth or filter, event, run, t) as CSV to FILE");
   simulate_cmd->add_flag("-q,--quiet", simulate.quiet, "No plugin and timing lines on stderr");
 
   try {

@@ -66,12 +66,14 @@ void check_output_paths(const SimulateOptions& options) {
   }
   if (!options.timing_path.empty()) written.push_back({"--timing", options.timing_path});
   if (!options.criterion_csv_path.empty()) written.push_back({"--criterion-csv", options.criterion_csv_path});
+  if (!options.stops_csv_path.empty()) written.push_back({"--stops-csv", options.stops_csv_path});
   check_distinct_outputs({{"the model file", options.model_path}}, written);
   // --timing too: it is written last, and a failure there used to follow a printed table.
   const std::pair<const std::string*, const char*> outputs[] = {{&options.csv_path, "-o"},
                                                                 {&options.plot_path, "--plot"},
                                                                 {&options.timing_path, "--timing"},
-                                                                {&options.criterion_csv_path, "--criterion-csv"}};
+                                                                {&options.criterion_csv_path, "--criterion-csv"},
+                                                                {&options.stops_csv_path, "--stops-csv"}};
   for (const auto& [path, option] : outputs) {
     if (path->empty()) continue;
     const auto parent = std::filesystem::path(*path).parent_path();
@@ -271,6 +273,7 @@ int run_simulate(const SimulateOptions& options) {
   }
 
   if (!options.criterion_csv_path.empty()) pfgen_runtime::write_criterion_csv(options.criterion_csv_path, result);
+  if (!options.stops_csv_path.empty()) pfgen_runtime::write_stops_csv(options.stops_csv_path, result);
 
   // Before the table, like the other files: a failed write must not follow a printed result.
   // (write_file_atomically's own messages name codegen's -o.)
@@ -292,6 +295,7 @@ int run_simulate(const SimulateOptions& options) {
   if (model.observation.is_delayed()) std::cout << pfgen_runtime::format_report_errors(result, model.state_names);
   if (!options.csv_path.empty()) std::cout << "csv: " << options.csv_path << "\n";
   if (!options.criterion_csv_path.empty()) std::cout << "criterion csv: " << options.criterion_csv_path << "\n";
+  if (!options.stops_csv_path.empty()) std::cout << "stops csv: " << options.stops_csv_path << "\n";
   if (!options.plot_path.empty()) {
     if (options.csv_path.empty()) std::cout << "csv: " << csv_for_plot(options) << "\n";
     std::cout << "plot: " << options.plot_path << "\n";

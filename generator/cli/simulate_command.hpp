@@ -20,6 +20,7 @@ struct SimulateOptions {
   std::string compiler;       // empty: $CXX or c++
   std::string timing_path;    // --timing FILE: phase times as JSON (for benchmarks)
   std::string criterion_csv_path;  // --criterion-csv FILE: J per filter (needs the criterion)
+  std::string stops_csv_path;      // --stops-csv FILE: every run that stopped before T, with its time
   bool quiet = false;         // no compile/timing lines on stderr
   std::vector<std::string> assignments;  // --set name=value: parameter values for this job
 };

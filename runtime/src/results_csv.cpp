@@ -165,4 +165,30 @@ void write_criterion_csv(const std::string& path, const MonteCarloResult& result
   write_csv("criterion CSV", path, format_criterion_csv(result));
 }
 
+std::string format_stops_csv(const MonteCarloResult& result) {
+  std::string out = "source,event,run,t\n";
+  auto row = [&out](const std::string& source, const char* event, const RunEvent& e) {
+    append_field(out, source);
+    out += std::string(",") + event + "," + std::to_string(e.run) + ",";
+    append_number(out, e.t);
+    out += '\n';
+  };
+  // A truth whose G lost definiteness is also among the truth's divergences: one row, named so.
+  const std::vector<RunEvent>& losses = result.truth_covariance_losses.events;
+  std::size_t k = 0;
+  for (const RunEvent& e : result.truth_divergences.events) {
+    while (k < losses.size() && losses[k].run < e.run) ++k;
+    row("truth", k < losses.size() && losses[k].run == e.run ? "covariance" : "diverged", e);
+  }
+  for (const FilterStatistics& filter : result.filters) {
+    for (const RunEvent& e : filter.divergences.events) row(filter.name, "diverged", e);
+    for (const RunEvent& e : filter.psd_losses.events) row(filter.name, "psd_loss", e);
+  }
+  return out;
+}
+
+void write_stops_csv(const std::string& path, const MonteCarloResult& result) {
+  write_csv("stops CSV", path, format_stops_csv(result));
+}
+
 }  // namespace pfgen_runtime

@@ -205,6 +205,8 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
       }
       x += increment_;
       ++substeps_;
+      // Past the bound (or non-finite: NaN fails <=) the run has diverged; the guard reports it.
+      if (!(x.cwiseAbs().maxCoeff() <= escape_bound_)) return;
       continue;
     }
     // Bisect: W(s + h/2) - W(s) given W(s + h) - W(s) = dW is N(dW/2, h/4 I).

@@ -45,6 +45,7 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
                                    const DivergenceGuard& guard, Eigen::MatrixXd& path,
                                    Eigen::MatrixXd& dy, std::optional<DivergenceEvent>& divergence) {
   scheme.start_run(seed, run);
+  scheme.set_escape_bound(guard.bound());
   RandomStream truth_noise(seed, run, substream::truth_noise);
   RandomStream observation_noise(seed, run, substream::observation_noise);
   Eigen::VectorXd x = x0, dW(scheme.system().q), dW2(observation.r());

@@ -1,5 +1,7 @@
 #include "pfgen/model/model_builder.hpp"
 
+#include "pfgen/model/stratonovich.hpp"
+
 
 #include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/model/model_error.hpp"
@@ -191,6 +193,11 @@ ModelBuilder& ModelBuilder::user_filter(const std::string& name, const ExVector&
   return *this;
 }
 
+ModelBuilder& ModelBuilder::noise(NoiseCalculus calculus) {
+  model_.noise = calculus;
+  return *this;
+}
+
 ModelBuilder& ModelBuilder::risk_criterion(const GiNaC::ex& epsilon, const ExMatrix& weight) {
   model_.risk = RiskCriterion{exact_rationals(epsilon), exact_matrix(weight)};
   return *this;
@@ -208,6 +215,14 @@ Model ModelBuilder::build() const {
   if (!has_observation_) throw ModelError("observation", "missing required field");
   validate_model(model_);
   Model model = model_;
+  if (model.noise == NoiseCalculus::Stratonovich) {
+    // The model as written is valid (and has g: validate_model checked); the filters and the
+    // truth use its Ito form, which is validated again: the kinds it offers follow its drift.
+    model.stated_drift = model.drift;
+    model.noise_correction = stratonovich_correction(*model.diffusion.g, model.states);
+    for (std::size_t i = 0; i < model.n(); ++i) model.drift[i] = (model.drift[i] + model.noise_correction[i]).expand();
+    validate_model(model);
+  }
   complete(model.diffusion);
   if (model.additive_diffusion) complete(*model.additive_diffusion);
   if (model.risk && model.risk->weight.empty())  // L = |x - m|^2 unless the model says otherwise

@@ -526,6 +526,10 @@ void validate_model(const Model& model) {
                                   std::to_string(model.drift.size()));
   for (std::size_t i = 0; i < n; ++i) require_polynomial(model, model.drift[i], "drift", one_based(i), std::nullopt);
   validate_diffusion(model, model.diffusion, "diffusion", "diffusion_covariance", false);
+  if (model.noise == NoiseCalculus::Stratonovich && !model.diffusion.g)
+    throw ModelError("noise", "stratonovich needs the diffusion as g (field `diffusion:`): the Ito correction "
+                              "1/2 sum g_jk dg_ik/dx_j reads g itself, which diffusion_covariance G = g g^T does not "
+                              "determine");
   if (model.additive_diffusion)
     validate_diffusion(model, *model.additive_diffusion, "additive_diffusion",
                        "additive_diffusion_covariance", true);

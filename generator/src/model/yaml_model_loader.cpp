@@ -26,7 +26,7 @@ namespace {
 const std::set<std::string> kTopLevelFields = {
     "name",      "states",      "parameters",         "time",
     "drift",     "diffusion",   "diffusion_covariance", "additive_diffusion",
-    "additive_diffusion_covariance", "observation", "initial", "risk", "filters", "simulation"};
+    "additive_diffusion_covariance", "noise", "observation", "initial", "risk", "filters", "simulation"};
 
 const char* const kSampledFields = "period, C, Uv, C0, substeps";
 const char* const kUserFilterFields = "m_drift, P_drift, gain, define, description";
@@ -88,6 +88,7 @@ class Loader {
     builder.drift(vector_field(required("drift"), "drift", parser));
     read_diffusion(builder, parser, "diffusion", "diffusion_covariance", true);
     read_diffusion(builder, parser, "additive_diffusion", "additive_diffusion_covariance", false);
+    read_noise(builder);
     read_observation(builder, parser);
     read_initial(builder);
     read_risk(builder, parser);
@@ -361,6 +362,18 @@ class Loader {
       definitions.push_back(FilterDefinition{symbol, value});
     }
     return definitions;
+  }
+
+  // noise: ito | stratonovich (default ito).
+  void read_noise(ModelBuilder& builder) {
+    YAML::Node node = root_["noise"];
+    if (!node || node.IsNull()) return;
+    const std::string value = scalar(node, "noise");
+    if (value == "stratonovich") {
+      builder.noise(NoiseCalculus::Stratonovich);
+    } else if (value != "ito") {
+      throw ModelError("noise", "must be ito or stratonovich, found '" + value + "'");
+    }
   }
 
   // filters: {NAME: {m_drift: [...], P_drift: [[...]], gain: [[...]], define: {...}, description: "..."}}

@@ -5,6 +5,7 @@
 #include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/definitions_report.hpp"
 #include "pfgen/printing/delayed_report.hpp"
+#include "pfgen/printing/noise_report.hpp"
 #include "pfgen/printing/report_parts.hpp"
 #include "pfgen/printing/risk_report.hpp"
 #include "pfgen/printing/sampled_report.hpp"
@@ -47,6 +48,7 @@ std::string equations_text(const Model& model, const FilterEquations& eq) {
 
   std::string out;
   out += "model: " + model.name + "\n";
+  out += noise_text(model);
   out += "filter: " + eq.name + " (" + eq.description + ")\n";
   out += "exactness: " + exactness_text(eq.exactness) + "\n";
   out += is_risk_sensitive_report(eq) ? risk_header_text(model, eq) : mean_square_header_text(model, eq);
@@ -152,6 +154,7 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
 
   Json out = Json::object();
   out.add("model", Json::string(model.name));
+  add_noise_json(model, out);
   out.add("filter", Json::string(eq.name));
   out.add("description", Json::string(eq.description));
   out.add("exactness", exactness);

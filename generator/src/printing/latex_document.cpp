@@ -5,6 +5,7 @@
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/printing/latex_matrix.hpp"
+#include "pfgen/printing/noise_report.hpp"
 
 namespace pfgen {
 namespace {
@@ -31,9 +32,12 @@ std::string model_section(const Model& model) {
   }
   // A delayed observation sees the state h ago (docs/theory.md §2.6).
   const bool delayed = model.observation.is_delayed();
-  out += std::string(".\n\\[ dx = f\\,dt + g\\,dW_1, \\qquad dy = (A_0 + A ") + (delayed ? "x(t-h)" : "x") +
-         ")\\,dt + B\\,dW_2 \\]\n";
-  out += "\\begin{align*}\n" + matrix_lines(printer, "f", "f", column(model.drift)) + " \\\\\n";
+  // With Stratonovich noise f is the drift as written; the Ito drift follows the model (noise_report).
+  const bool stratonovich = model.noise == NoiseCalculus::Stratonovich;
+  out += std::string(".\n\\[ dx = f\\,dt + g") + (stratonovich ? " \\circ " : "\\,") +
+         "dW_1, \\qquad dy = (A_0 + A " + (delayed ? "x(t-h)" : "x") + ")\\,dt + B\\,dW_2 \\]\n";
+  out += "\\begin{align*}\n" + matrix_lines(printer, "f", "f", column(stratonovich ? model.stated_drift : model.drift)) +
+         " \\\\\n";
   if (model.diffusion.g) {
     out += matrix_lines(printer, "g", "g", *model.diffusion.g) + " \\\\\n";
   } else {
@@ -77,7 +81,7 @@ std::string model_section(const Model& model) {
            ", \\quad P_0 = " + bmatrix(printer, numeric_matrix(ic.P0));
   }
   out += "\n\\end{align*}\n";
-  return out;
+  return out + noise_latex(model);
 }
 
 }  // namespace

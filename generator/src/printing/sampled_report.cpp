@@ -3,6 +3,7 @@
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
+#include "pfgen/printing/noise_report.hpp"
 #include "pfgen/printing/report_parts.hpp"
 
 namespace pfgen {
@@ -28,6 +29,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   const std::size_t r = u.r();
   std::string out;
   out += "model: " + model.name + "\n";
+  out += noise_text(model);
   out += "filter: " + eq.name + " (" + eq.description + ")\n";
   out += "exactness: " + exactness_text(eq.exactness);
   out += "\nvariables: ";
@@ -202,6 +204,7 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
 
   Json out = Json::object();
   out.add("model", Json::string(model.name));
+  add_noise_json(model, out);
   out.add("filter", Json::string(eq.name));
   out.add("description", Json::string(eq.description));
   out.add("exactness", exactness);

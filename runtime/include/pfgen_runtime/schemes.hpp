@@ -23,6 +23,8 @@
 
 #include "pfgen_runtime/random.hpp"
 
+#include <limits>
+
 #include <Eigen/Core>
 
 #include "pfgen_runtime/sde_system.hpp"
@@ -50,6 +52,11 @@ class TruthScheme {
   }
 
   const SdeSystem& system() const { return system_; }
+  // The divergence bound of the run (DivergenceGuard). A scheme that takes substeps inside a grid
+  // step (AdaptiveEuler) ends the step as soon as an entry passes it: the path has diverged there,
+  // and integrating it on could carry it through infinity and back (a Stratonovich state that
+  // explodes, x = -10/u with u crossing 0, came back as a finite negative x the guard never saw).
+  void set_escape_bound(double bound) { escape_bound_ = bound; }
 
  protected:
   void evaluate_drift(double t, const Eigen::Ref<const Eigen::VectorXd>& x);      // -> f_
@@ -58,6 +65,7 @@ class TruthScheme {
   Eigen::VectorXd f_;  // n
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> g_;  // n x q
   Eigen::VectorXd increment_;  // n
+  double escape_bound_ = std::numeric_limits<double>::infinity();
 };
 
 // x + f dt + g dW.
@@ -138,7 +146,7 @@ class AdaptiveEuler : public TruthScheme {
   struct Options {
     double tolerance = 0.05;   // relative change of x allowed per substep
     double scale = 1.0;        // |x| floor of the relative test
-    int max_depth = 40;        // substeps no shorter than dt / 2^max_depth
+    int max_depth = 60;        // substeps no shorter than dt / 2^max_depth
     // Substeps one grid step may take; beyond, the step stops short and the run is reported
     // (--T 1e20 --dt 1e19 used to spin for minutes towards 2^max_depth substeps a step).
     std::uint64_t max_substeps = std::uint64_t(1) << 20;

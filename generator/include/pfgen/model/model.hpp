@@ -104,6 +104,11 @@ struct RiskCriterion {
 // The values `scheme:` accepts: auto, euler-maruyama, milstein, ...
 const std::vector<std::string>& simulation_schemes();
 
+// How the model file's dW is read (`noise:`). Ito is the default; with Stratonovich noise
+// dx = f dt + g o dW is the Ito equation dx = (f + c) dt + g dW with the correction
+// c_i = 1/2 sum_j sum_k g_jk dg_ik/dx_j (docs/theory.md §1.2), polynomial when f and g are.
+enum class NoiseCalculus { Ito, Stratonovich };
+
 struct Model {
   std::string name;
   std::string source;  // file the model came from, or "<api>"
@@ -111,7 +116,14 @@ struct Model {
   std::vector<GiNaC::symbol> states;
   std::vector<Parameter> parameters;
   GiNaC::symbol time;
-  ExVector drift;                          // n entries, polynomial in the states
+  // n entries, polynomial in the states: the Ito drift, which every filter and the truth use.
+  // With Stratonovich noise it is the drift as written plus the correction below.
+  ExVector drift;
+  NoiseCalculus noise = NoiseCalculus::Ito;
+  // Stratonovich noise only (empty otherwise): the drift as the model file writes it, and the
+  // correction c that drift adds to it (drift = stated_drift + noise_correction).
+  ExVector stated_drift;
+  ExVector noise_correction;
   Diffusion diffusion;                     // state-dependent (multiplicative) diffusion
   std::optional<Diffusion> additive_diffusion;  // constant diffusion for the `additive` kinds
   ObservationModel observation;           // its kind is chosen when the model file is read

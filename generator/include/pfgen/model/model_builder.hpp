@@ -55,6 +55,9 @@ class ModelBuilder {
   ModelBuilder& user_filter(const std::string& name, const ExVector& m_drift, const ExMatrix& P_drift,
                             const ExMatrix& gain, const std::string& description = "",
                             const std::vector<FilterDefinition>& definitions = {});
+  // How dW is read (`noise:`, NoiseCalculus): with Stratonovich, build() converts the drift to
+  // its Ito form (stratonovich.hpp) and keeps the drift as given in Model::stated_drift.
+  ModelBuilder& noise(NoiseCalculus calculus);
   // The model file's `risk:` section (RiskCriterion); an empty weight means the identity.
   ModelBuilder& risk_criterion(const GiNaC::ex& epsilon, const ExMatrix& weight = {});
   // The model file's `simulation:` defaults (checked by build()).
