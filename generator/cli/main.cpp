@@ -8,6 +8,7 @@
 
 #include "cli_options.hpp"
 #include "commands.hpp"
+#include "huge_page_heap.hpp"
 #include "job_group.hpp"
 #include "simulate_command.hpp"
 #ifdef PFGEN_WITH_MPI
@@ -32,6 +33,7 @@ std::string one_line(std::string text) {
 
 int main(int argc, char** argv) {
   using namespace pfgen::cli;
+  use_huge_page_heap(argv);  // first: it may execute pfgen again (huge_page_heap.hpp)
   CLI::App app{"pfgen " PFGEN_VERSION ": optimal filters for polynomial stochastic systems"};
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
