@@ -1,6 +1,7 @@
 #include "pfgen/codegen/filter_codegen.hpp"
 
 #include "pfgen/codegen/cholesky_solve.hpp"
+#include "pfgen/codegen/correction_factor.hpp"
 #include "pfgen/codegen/cpp_names.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/codegen/template_text.hpp"
@@ -118,7 +119,9 @@ FunctionCode function_code(const std::string& function, const std::vector<Polyno
 // instead of being expanded into each. The naive count stays that of the
 // expanded equations; the emitted graph is whichever of the two forms needs
 // fewer operations after sharing. A user filter has no Jacobian term (its P
-// drift is given whole), so it always takes the expanded form.
+// drift is given whole), so it always takes the expanded form. The structured
+// form also writes the correction P A^T R^-1 A P as K (A P), K the gain, where
+// correction_factor() has checked that this is the same polynomial.
 FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                               const FunctionNames& names) {
   const FilterVariables& vars = eq.variables;
@@ -141,6 +144,19 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t k = 0; k < n; ++k)
       if (!eq.jacobian_term[j][k].is_zero()) J[j][k] = builder.polynomial(eq.jacobian_term[j][k]);
+  // The correction's factors: K (n x p) and H = A P (p x n), each entry built once.
+  const auto H = correction_factor(eq);
+  std::vector<std::vector<std::size_t>> K_node, H_node;
+  if (H) {
+    K_node.assign(n, std::vector<std::size_t>(eq.p));
+    H_node.assign(eq.p, std::vector<std::size_t>(n));
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t r = 0; r < eq.p; ++r)
+        if (!eq.gain[i][r].is_zero()) K_node[i][r] = builder.polynomial(eq.gain[i][r]);
+    for (std::size_t r = 0; r < eq.p; ++r)
+      for (std::size_t j = 0; j < n; ++j)
+        if (!(*H)[r][j].is_zero()) H_node[r][j] = builder.polynomial((*H)[r][j]);
+  }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) {
       const std::size_t u = vars.upper_index(i, j);
@@ -152,7 +168,17 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
       if (!eq.P_diffusion[u].is_zero()) terms.push_back(builder.polynomial(eq.P_diffusion[u]));
       std::size_t sum = terms.empty() ? graph.constant(0) : terms[0];
       for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
-      if (!eq.P_correction[u].is_zero()) sum = graph.sub(sum, builder.polynomial(eq.P_correction[u]));
+      if (eq.P_correction[u].is_zero()) {
+      } else if (H) {
+        std::vector<std::size_t> products;
+        for (std::size_t r = 0; r < eq.p; ++r)
+          if (!eq.gain[i][r].is_zero() && !(*H)[r][j].is_zero()) products.push_back(graph.mul(K_node[i][r], H_node[r][j]));
+        std::size_t correction = products[0];  // not empty: the correction is not zero
+        for (std::size_t k = 1; k < products.size(); ++k) correction = graph.add(correction, products[k]);
+        sum = graph.sub(sum, correction);
+      } else {
+        sum = graph.sub(sum, builder.polynomial(eq.P_correction[u]));
+      }
       roots.push_back(sum);
     }
   for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
