@@ -282,6 +282,9 @@ TEST_CASE("user filters: every command takes them by name, after the built-in ki
     CHECK(count_lines(r.out) == 3);
     CHECK(r.out.find("\"filter\": \"optimal\"") < r.out.find("\"filter\": \"ekf\""));
     CHECK(r.out.find("\"filter\": \"ekf\"") < r.out.find("\"filter\": \"ekf-printed\""));
+    // Counts are integers in decimal digits (ekf's CSE count has 10 adds: not "1e+01").
+    CHECK_THAT(r.out, Contains("\"cse\": {\"adds\": 10, \"muls\": 11,"));
+    CHECK(r.out.find("e+") == std::string::npos);
     std::vector<std::string> files;
     for (const auto& entry : std::filesystem::directory_iterator(dir.file("basin_skliar_partial")))
       files.push_back(entry.path().filename().string());

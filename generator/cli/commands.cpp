@@ -104,11 +104,11 @@ int run_codegen(const CodegenCliOptions& options) {
   if (options.stats) {
     auto counts = [](const codegen::OpCounts& c) {
       Json o = Json::object();
-      o.add("adds", Json::number(static_cast<double>(c.adds)));
-      o.add("muls", Json::number(static_cast<double>(c.muls)));
-      o.add("divs", Json::number(static_cast<double>(c.divs)));
-      o.add("calls", Json::number(static_cast<double>(c.calls)));
-      o.add("total", Json::number(static_cast<double>(c.total())));
+      o.add("adds", Json::integer(c.adds));
+      o.add("muls", Json::integer(c.muls));
+      o.add("divs", Json::integer(c.divs));
+      o.add("calls", Json::integer(c.calls));
+      o.add("total", Json::integer(c.total()));
       return o;
     };
     for (const auto& file : files) {
@@ -123,8 +123,8 @@ int run_codegen(const CodegenCliOptions& options) {
       Json out = Json::object();
       out.add("model", Json::string(model.name));
       out.add("filter", Json::string(file.name));
-      out.add("ops_naive", Json::number(static_cast<double>(file.naive_total().total())));
-      out.add("ops_cse", Json::number(static_cast<double>(file.cse_total().total())));
+      out.add("ops_naive", Json::integer(file.naive_total().total()));
+      out.add("ops_cse", Json::integer(file.cse_total().total()));
       out.add("naive", counts(file.naive_total()));
       out.add("cse", counts(file.cse_total()));
       out.add("functions", functions);
