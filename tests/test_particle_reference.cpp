@@ -234,6 +234,8 @@ TEST_CASE("particle reference: particles beyond the bound die, and when all have
   const std::string table = format_summary_table(result, {"x"});
   CHECK(table.find("Reference stopped (every particle diverged): 3 of 3 runs, first at t = 0") != std::string::npos);
   CHECK(table.find("nan") == std::string::npos);
+  CHECK(format_stops_csv(result) ==
+        "source,event,run,t\nreference,stopped,0,0\nreference,stopped,1,0\nreference,stopped,2,0\n");
 }
 
 TEST_CASE("particle reference: refused where it cannot run; absent, the outputs are as before",
@@ -252,6 +254,7 @@ TEST_CASE("particle reference: refused where it cannot run; absent, the outputs 
   CHECK(format_summary_table(without, {"x"}).find("particle reference") == std::string::npos);
   CHECK(format_results_csv(without, {"x"}).find("reference") == std::string::npos);
   CHECK(format_timing(without).find("particle reference") == std::string::npos);
+  CHECK(format_stops_csv(without) == "source,event,run,t\n");
 
   auto refused = [&](const ParticleReferenceOptions& reference, const TruthScheme& truth,
                      const LinearObservation& obs) {

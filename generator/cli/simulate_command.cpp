@@ -133,8 +133,9 @@ std::string timing_json(const pfgen_runtime::MonteCarloResult& result, const too
       << ", \"steps\": " << result.grid.steps << ", \"derive_seconds\": " << derive_seconds
       << ", \"cache_hit\": " << (build.cache_hit ? "true" : "false")
       << ", \"compile_seconds\": " << build.compile_seconds << ", \"wall_seconds\": " << result.timing.wall_seconds
-      << ", \"truth_seconds\": " << result.timing.truth_seconds << ", \"filter_seconds\": " << filter_seconds
-      << ", \"total_seconds\": " << total_seconds << "}\n";
+      << ", \"truth_seconds\": " << result.timing.truth_seconds << ", \"filter_seconds\": " << filter_seconds;
+  if (result.reference) out << ", \"reference_seconds\": " << result.timing.reference_seconds;
+  out << ", \"total_seconds\": " << total_seconds << "}\n";
   return out.str();
 }
 

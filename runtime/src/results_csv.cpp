@@ -205,6 +205,9 @@ std::string format_stops_csv(const MonteCarloResult& result) {
     for (const RunEvent& e : filter.divergences.events) row(filter.name, "diverged", e);
     for (const RunEvent& e : filter.psd_losses.events) row(filter.name, "psd_loss", e);
   }
+  // The particle reference: runs where every particle diverged (source "reference").
+  if (result.reference)
+    for (const RunEvent& e : result.reference->stopped.events) row("reference", "stopped", e);
   return out;
 }
 
