@@ -108,7 +108,10 @@ void check_memory(const Model& model, const SimulationSettings& s, unsigned thre
   const double per_thread =
       ((steps + 1) * static_cast<double>(model.n() + model.p()) + history + particles) * sizeof(double);
   const double records = std::min(steps + 1, static_cast<double>(s.record_points) + 1);
-  const double statistics = static_cast<double>(s.runs) * records * static_cast<double>((filters + 1) * model.n()) *
+  // Per run and record point: the truth and each filter's error; with the particle reference also
+  // its error and each filter's distance from it.
+  const double recorded = static_cast<double>((filters + 1) * (s.reference_particles ? 2 : 1));
+  const double statistics = static_cast<double>(s.runs) * records * recorded * static_cast<double>(model.n()) *
                             sizeof(double);
   // Only min(threads, runs) threads are started (run_monte_carlo): --threads 1000000 --runs 2 is fine.
   const double bytes = per_thread * static_cast<double>(std::min<std::size_t>(threads, s.runs)) + statistics;
