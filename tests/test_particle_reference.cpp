@@ -238,7 +238,7 @@ TEST_CASE("particle reference: particles beyond the bound die, and when all have
         "source,event,run,t\nreference,stopped,0,0\nreference,stopped,1,0\nreference,stopped,2,0\n");
 }
 
-TEST_CASE("particle reference: refused where it cannot run; absent, the outputs are as before",
+TEST_CASE("particle reference: refused where it cannot run, and absent the outputs are as before",
           "[particles][runtime][unit]") {
   ScalarLinear model;
   EulerMaruyama scheme(scalar_linear_system(model));

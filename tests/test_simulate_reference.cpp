@@ -49,7 +49,7 @@ TEST_CASE("simulate --reference: bad values are one-line errors naming --referen
   CHECK(dir.entries() == std::vector<std::string>{});  // refused before the build: no cache
 }
 
-TEST_CASE("simulate --reference: identical table and CSV for 1 and 2 threads; the plot draws the reference",
+TEST_CASE("simulate --reference: identical table and CSV for 1 and 2 threads, and the plot draws the reference",
           "[simulate][particles][compiler]") {
   TempDir dir;
   auto run = [&](const std::string& threads, const std::string& csv) {
@@ -81,7 +81,7 @@ TEST_CASE("simulate --reference: identical table and CSV for 1 and 2 threads; th
   CHECK(read_file(dir.file("e.svg")).find("particle reference (N = 50)") != std::string::npos);
 }
 
-TEST_CASE("simulate --reference: skipped with one note where the truth has no process noise; outputs unchanged",
+TEST_CASE("simulate --reference: skipped with one note where the truth has no process noise, outputs unchanged",
           "[simulate][particles][compiler]") {
   TempDir dir;
   auto run = [&](std::initializer_list<std::string> more, const std::string& csv) {
