@@ -97,12 +97,89 @@ TEST_CASE("particle reference: its distance from Kalman-Bucy shrinks like 1/sqrt
     // The reference is (nearly) the conditional mean, so its error is the filter's: both close to
     // sqrt(P_inf) = 0.47 here.
     CHECK(c.reference_rms[0] == Approx(c.filter_rms[0]).epsilon(0.1));
-    // Orthogonality of the conditional mean: |x - m|^2 = |x - m_ref|^2 + |m_ref - m|^2 in the mean.
-    CHECK(c.filter_rms[0] * c.filter_rms[0] ==
-          Approx(c.reference_rms[0] * c.reference_rms[0] + c.distance[0] * c.distance[0]).epsilon(0.05));
+    // Orthogonality of the conditional mean, here Kalman-Bucy's m: the particle mean's error
+    // splits as |x - m_ref|^2 = |x - m|^2 + |m - m_ref|^2 in the mean.
+    CHECK(c.reference_rms[0] * c.reference_rms[0] ==
+          Approx(c.filter_rms[0] * c.filter_rms[0] + c.distance[0] * c.distance[0]).epsilon(0.05));
   }
   INFO("RMS(m - m_ref) for N = 100, 400, 1600: " << distance[0] << ", " << distance[1] << ", " << distance[2]);
   // 1/sqrt(N): each fourfold N halves the distance.
+  CHECK(distance[0] / distance[1] >= 1.4);
+  CHECK(distance[0] / distance[1] <= 2.9);
+  CHECK(distance[1] / distance[2] >= 1.4);
+  CHECK(distance[1] / distance[2] <= 2.9);
+  CHECK(distance[2] < 0.1 * filter_rms);
+}
+
+// Samples y_k = x(t_k) + r v_k every `period` of the scalar OU truth.
+SampledMeasurement scalar_samples(double period, double r) {
+  return SampledMeasurement(1, 1, 1, period, [r](double, double* C0, double* C, double* Uv) {
+    C0[0] = 0;
+    C[0] = 1;
+    Uv[0] = r;
+  });
+}
+
+// The Kalman filter of the Euler-Maruyama chain x' = (1 - a h) x + s dW on the grid step h,
+// sampled every period: the exact conditional mean of the truth the particles simulate. One
+// prediction per grid step (substeps = grid steps per period), so that between samples its m is
+// the predicted mean at every grid point, not one held from the last sample.
+FilterModel sampled_kalman(const ScalarLinear& model, double h, double r, std::size_t steps_per_sample) {
+  FilterModel filter;
+  filter.name = "kalman";
+  filter.n = 1;
+  filter.p = 1;
+  filter.substeps = steps_per_sample;
+  filter.initial_state = [model](double* state) {
+    state[0] = model.m0;
+    state[1] = model.P0;
+  };
+  filter.predict = [model, h](double* state, double, double dt) {
+    const long steps = std::lround(dt / h);
+    for (long k = 0; k < steps; ++k) {
+      state[0] *= 1 - model.a * h;
+      state[1] = (1 - model.a * h) * (1 - model.a * h) * state[1] + model.s * model.s * h;
+    }
+  };
+  filter.update = [r](double* state, double, const double* y) {
+    const double S = state[1] + r * r, K = state[1] / S;
+    state[0] += K * (y[0] - state[0]);
+    state[1] *= 1 - K;
+    return true;
+  };
+  return filter;
+}
+
+TEST_CASE("particle reference: with sampled observations it approaches the exact Kalman filter like 1/sqrt(N)",
+          "[particles][runtime][statistical]") {
+  ScalarLinear model;
+  model.m0 = 0.5;
+  model.P0 = 0.8;
+  const double r = 0.4, dt = 0.01;
+  EulerMaruyama scheme(scalar_linear_system(model));
+  const SampledMeasurement samples = scalar_samples(0.1, r);
+  MonteCarloOptions options;
+  options.grid = TimeGrid::to_horizon(0.0, 3.0, dt);
+  options.runs = 40;
+  options.seed = 99;
+  options.threads = 2;
+  options.record_points = 10;
+  std::vector<double> distance;
+  double filter_rms = 0;
+  for (std::size_t particles : {100, 400, 1600}) {
+    options.reference = prior(model, particles);
+    const MonteCarloResult result =
+        run_monte_carlo(scheme, samples, Eigen::VectorXd::Constant(1, 0.2), {sampled_kalman(model, dt, r, 10)}, options);
+    REQUIRE(result.filters[0].reference);
+    const ReferenceComparison& c = *result.filters[0].reference;
+    CHECK(c.runs == options.runs);
+    CHECK(result.reference->mean_resamplings > 0);
+    distance.push_back(c.distance[0]);
+    filter_rms = c.filter_rms[0];
+    CHECK(c.reference_rms[0] * c.reference_rms[0] ==
+          Approx(c.filter_rms[0] * c.filter_rms[0] + c.distance[0] * c.distance[0]).epsilon(0.05));
+  }
+  INFO("RMS(m - m_ref) for N = 100, 400, 1600: " << distance[0] << ", " << distance[1] << ", " << distance[2]);
   CHECK(distance[0] / distance[1] >= 1.4);
   CHECK(distance[0] / distance[1] <= 2.9);
   CHECK(distance[1] / distance[2] >= 1.4);

@@ -1,7 +1,7 @@
 // `pfgen simulate --reference particles:N` end to end (docs/theory.md §7.4): bad values are
 // one-line errors naming --reference; the reference's table, CSV and plot are the same for any
-// thread count; a model without process noise gets one note and exactly the outputs of a run
-// without --reference.
+// thread count, for continuous and sampled observations; a model without process noise gets one
+// note and exactly the outputs of a run without --reference.
 #include <catch2/catch.hpp>
 
 #include <regex>
@@ -100,4 +100,23 @@ TEST_CASE("simulate --reference: skipped with one note where the truth has no pr
   auto without_csv_line = [](std::string text) { return std::regex_replace(text, std::regex("csv: .*\n"), ""); };
   CHECK(without_csv_line(plain.out) == without_csv_line(referenced.out));
   CHECK(read_file(dir.file("plain.csv")) == read_file(dir.file("referenced.csv")));
+}
+
+TEST_CASE("simulate --reference: sampled observations (paper 003) get the reference too, the same for 1 and 2 threads",
+          "[simulate][particles][compiler]") {
+  TempDir dir;
+  auto run = [&](const std::string& threads) {
+    return run_pfgen(simulate_args("paper003/example1_gamma0.yaml", dir,
+                                   {"--runs", "3", "--T", "5", "--dt", "1e-2", "--threads", threads, "--reference",
+                                    "particles:300", "-q"}));
+  };
+  const auto one = run("1");
+  const auto two = run("2");
+  REQUIRE(one.exit_code == 0);
+  REQUIRE(two.exit_code == 0);
+  INFO(one.out << one.err);
+  CHECK(one.err.empty());  // no skip note
+  CHECK(one.out == two.out);
+  CHECK(one.out.find("Distance to the particle reference (N = 300 particles") != std::string::npos);
+  CHECK(std::regex_search(one.out, std::regex("\ncd-optimal +x +3 +[0-9.e-]+ ")));
 }

@@ -297,8 +297,6 @@ pfgen_runtime::SimulationPlugin load_plugin(const std::string& source, const too
 
 // Why the particle reference cannot run on this model (empty: it can). docs/theory.md §7.4.
 std::string reference_obstacle(const Model& model, const pfgen_runtime::SimulationPlugin& plugin) {
-  if (plugin.is_sampled())
-    return "the observations are sampled, and the reference weighs continuous increments dy only";
   if (model.observation.is_delayed()) return "the observations are delayed, and the reference weighs undelayed ones only";
   if (plugin.diffusion_is_zero())
     return "the truth has no process noise (g = 0): the particles would never spread, so their weights would "

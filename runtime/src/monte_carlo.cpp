@@ -62,10 +62,11 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
     const std::string problem = criterion_weight_problem(options.criterion->weight, n);
     if (!problem.empty()) throw std::invalid_argument("monte carlo: " + problem);
   }
-  if (options.reference) {
+  if (options.reference) {  // its checks
     if (measurement)
-      throw std::invalid_argument("monte carlo: the particle reference needs continuous observations, not sampled ones");
-    (void)ParticleReference(scheme, observation, *options.reference, options.truth_guard.bound());  // its checks
+      (void)ParticleReference(scheme, *measurement, *options.reference, options.truth_guard.bound());
+    else
+      (void)ParticleReference(scheme, observation, *options.reference, options.truth_guard.bound());
   }
   if (measurement) (void)measurement->steps_per_sample(options.grid);  // throws unless whole
   (void)observation.delay_steps(options.grid.dt);  // throws unless h is a whole number of steps

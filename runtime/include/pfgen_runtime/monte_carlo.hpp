@@ -58,7 +58,7 @@ struct MonteCarloOptions {
   // be n x n, finite and symmetric.
   std::optional<CriterionOptions> criterion;
   // The particle reference (particle_reference.hpp) on every run, when set: continuous undelayed
-  // observations and a truth with noise only (std::invalid_argument otherwise).
+  // or sampled observations and a truth with noise only (std::invalid_argument otherwise).
   std::optional<ParticleReferenceOptions> reference;
   // Called from worker threads (must be thread-safe) after each finished run with the number of
   // runs finished so far.

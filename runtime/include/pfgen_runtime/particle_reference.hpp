@@ -13,6 +13,8 @@
 //   with h_i = 1/2 [(A0 + A x_i)(t) + (A0 + A x_i)(t + dt)], the trapezoid the truth's dy uses
 //   (LinearObservation::increment), and R at the step's left end as its noise term. Normalised
 //   with the largest log-weight subtracted.
+// - Sampled observations y_k = C0 + C x(t_k) + Uv v_k instead: the weights change only at the
+//   samples, by log w_i += -1/2 (y_k - C0 - C x_i)^T (Uv Uv^T)^-1 (y_k - C0 - C x_i).
 // - Resampling: systematic (one uniform), when the effective sample size 1 / sum w^2 (w
 //   normalised) falls below kResampleFraction N.
 // - A particle whose state is non-finite or beyond the run's divergence bound, or whose step the
@@ -23,12 +25,13 @@
 // normals per particle for the prior, then per grid step q normals per particle in particle
 // order, dead ones included, and one uniform per resampling); an adaptive scheme's bridge draws
 // come from substream::particle_refinement. So the reference depends on (seed, run, N) only, never
-// on threads. Continuous, undelayed observations and a truth with noise (q > 0) only: without
-// process noise the particles never spread, and the other observation kinds have other
-// likelihoods.
+// on threads. Continuous undelayed or sampled observations and a truth with noise (q > 0) only:
+// without process noise the particles never spread, and a delayed observation's likelihood
+// depends on the path h back.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -67,6 +70,10 @@ class ParticleReference {
   // `bound`: the divergence bound of the truth (DivergenceGuard) that ends a particle.
   ParticleReference(const TruthScheme& scheme, const LinearObservation& observation,
                     const ParticleReferenceOptions& options, double bound);
+  // For sampled observations y_k = C0 + C x(t_k) + Uv v_k: weights change only at the samples,
+  // by the Gaussian likelihood log w_i += -1/2 (y_k - C0 - C x_i)^T (Uv Uv^T)^-1 (y_k - C0 - C x_i).
+  ParticleReference(const TruthScheme& scheme, const SampledMeasurement& measurement,
+                    const ParticleReferenceOptions& options, double bound);
 
   // Runs the filter over the increments dy.col(0 .. truth_last - 1) of run `run` on `grid`,
   // writing the weighted mean at grid index j into mean.col(j) for j = 0 .. result.last (mean is
@@ -74,9 +81,18 @@ class ParticleReference {
   ParticleReferenceRun run(const TimeGrid& grid, const Eigen::MatrixXd& dy, std::ptrdiff_t truth_last,
                            std::uint64_t seed, std::uint64_t run, Eigen::MatrixXd& mean);
 
+  // The same for sampled observations (the second constructor): the samples y_1 .. y_count in the
+  // columns of `samples` (draw_samples' `noisy`), y_s at grid index s steps_per_sample.
+  ParticleReferenceRun run_sampled(const TimeGrid& grid, std::size_t steps_per_sample, const Eigen::MatrixXd& samples,
+                                   std::size_t count, std::ptrdiff_t truth_last, std::uint64_t seed, std::uint64_t run,
+                                   Eigen::MatrixXd& mean);
+
   std::size_t particles() const { return N_; }
 
  private:
+  void initialise(const ParticleReferenceOptions& options);
+  void draw_prior(RandomStream& stream);
+  void propagate(double t, double dt, RandomStream& stream, ParticleReferenceRun& result);
   bool step_particle(std::size_t i, double t, double dt);
   void set_rate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> rate) const;
   // Weighted mean into `out` and, when the ESS is low, systematic resampling. False when every
@@ -84,7 +100,8 @@ class ParticleReference {
   bool weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, RandomStream& stream, std::uint64_t& resamplings);
 
   std::unique_ptr<TruthScheme> scheme_;
-  LinearObservation observation_;
+  std::optional<LinearObservation> observation_;    // continuous observations
+  std::optional<SampledMeasurement> measurement_;  // or sampled ones
   std::size_t N_, n_, q_, p_;
   Eigen::VectorXd m0_;
   Eigen::MatrixXd root_;  // P0^(1/2)
@@ -95,6 +112,8 @@ class ParticleReference {
   std::vector<char> alive_, alive_spare_;
   Eigen::VectorXd dW_, z_, A0_, R_inv_dy_, h_, R_inv_h_;
   Eigen::MatrixXd A_, B_, R_inv_;
+  std::vector<double> C0_, C_, Uv_;  // a sample's coefficients, row-major
+  Eigen::VectorXd innovation_;
 };
 
 }  // namespace pfgen_runtime

@@ -39,7 +39,9 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
     weighted_ = weight_.size() > 0;
   }
   if (options.reference) {
-    reference_ = std::make_unique<ParticleReference>(scheme, observation, *options.reference, options.truth_guard.bound());
+    const double bound = options.truth_guard.bound();
+    reference_ = measurement ? std::make_unique<ParticleReference>(scheme, *measurement, *options.reference, bound)
+                             : std::make_unique<ParticleReference>(scheme, observation, *options.reference, bound);
     reference_mean_.resize(static_cast<Eigen::Index>(plan.n), static_cast<Eigen::Index>(plan.grid.steps + 1));
     distance_sums_.resize(plan.n);
   }
@@ -95,11 +97,13 @@ void Worker::simulate_truth(std::size_t run, RunResult& out) {
       for (std::size_t i = 0; i < n; ++i) out.truth_report[q * n + i] = path_(i, plan_.reports[q]);
 }
 
-// The particle reference on the run's increments, and its own error x - m_ref.
+// The particle reference on the run's increments (or samples), and its own error x - m_ref.
 void Worker::run_reference(std::size_t run, bool shown, RunResult& out) {
   const std::size_t n = plan_.n, steps = plan_.grid.steps;
   const ParticleReferenceRun outcome =
-      reference_->run(plan_.grid, dy_, out.truth_last, options_.seed, run, reference_mean_);
+      measurement_ ? reference_->run_sampled(plan_.grid, steps_per_sample_, noisy_, samples_, out.truth_last,
+                                             options_.seed, run, reference_mean_)
+                   : reference_->run(plan_.grid, dy_, out.truth_last, options_.seed, run, reference_mean_);
   reference_last_ = outcome.last;
   reference_steps += outcome.particle_steps;
   ReferenceRunResult& reference = out.reference;
