@@ -81,7 +81,7 @@ TEST_CASE("simulate --reference: identical table and CSV for 1 and 2 threads, an
   CHECK(read_file(dir.file("e.svg")).find("particle reference (N = 50)") != std::string::npos);
 }
 
-TEST_CASE("simulate --reference: skipped with one note where the truth has no process noise, outputs unchanged",
+TEST_CASE("simulate --reference: skipped with one note for a truth without process noise or delayed observations, outputs unchanged",
           "[simulate][particles][compiler]") {
   TempDir dir;
   auto run = [&](std::initializer_list<std::string> more, const std::string& csv) {
@@ -100,6 +100,21 @@ TEST_CASE("simulate --reference: skipped with one note where the truth has no pr
   auto without_csv_line = [](std::string text) { return std::regex_replace(text, std::regex("csv: .*\n"), ""); };
   CHECK(without_csv_line(plain.out) == without_csv_line(referenced.out));
   CHECK(read_file(dir.file("plain.csv")) == read_file(dir.file("referenced.csv")));
+
+  // Delayed observations likewise.
+  auto delayed = [&](std::initializer_list<std::string> more) {
+    std::vector<std::string> args = simulate_args("delay_linear.yaml", dir, {"--runs", "2", "--T", "1", "-q"});
+    args.insert(args.end(), more.begin(), more.end());
+    return run_pfgen(args);
+  };
+  const auto delayed_plain = delayed({});
+  const auto delayed_referenced = delayed({"--reference", "particles:100"});
+  REQUIRE(delayed_plain.exit_code == 0);
+  REQUIRE(delayed_referenced.exit_code == 0);
+  CHECK(delayed_referenced.err ==
+        delayed_plain.err + "pfgen: --reference: skipped, the observations are delayed, and the reference weighs "
+                            "undelayed ones only\n");
+  CHECK(delayed_referenced.out == delayed_plain.out);
 }
 
 TEST_CASE("simulate --reference: sampled observations (paper 003) get the reference too, the same for 1 and 2 threads",
