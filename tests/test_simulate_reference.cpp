@@ -77,8 +77,8 @@ TEST_CASE("simulate --reference: identical table and CSV for 1 and 2 threads, an
                                                {"--runs", "2", "--T", "1", "--dt", "1e-2", "--reference",
                                                 "particles:50", "--plot", dir.file("e.svg"), "-q"}));
   REQUIRE(plotted.exit_code == 0);
-  CHECK(read_file(dir.file("e.svg.gp")).find("title 'particle reference (N = 50)'") != std::string::npos);
-  CHECK(read_file(dir.file("e.svg")).find("particle reference (N = 50)") != std::string::npos);
+  CHECK(read_file(dir.file("e.svg.gp")).find("title 'reference (N=50)'") != std::string::npos);
+  CHECK(read_file(dir.file("e.svg")).find("reference (N=50)") != std::string::npos);
 }
 
 TEST_CASE("simulate --reference: skipped with one note for a truth without process noise or delayed observations, outputs unchanged",

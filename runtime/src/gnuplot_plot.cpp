@@ -121,7 +121,7 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
     if (result.reference && !result.filters.empty())
       out << ", \\\n     " << data << " skip 1 using 1:"
           << column(columns, "reference_err_" + x) << " with lines lw 1.5 dt 2 lc rgb '#000000' title "
-          << quoted("particle reference (N = " + std::to_string(result.reference->particles) + ")");
+          << quoted("reference (N=" + std::to_string(result.reference->particles) + ")");
     out << "\n";
     out << "set title " << quoted(x + ": median over " + std::to_string(result.runs) + " runs, 5-95 % band" + clipped) << "\n";
     if (result.filters.empty()) out << "plot 0 with lines notitle\n";
