@@ -438,7 +438,8 @@ TEST_CASE("user filters: ModelBuilder adds them with the same checks", "[userfil
     CHECK(from_api.P_drift(0, 0) == from_file.P_drift(0, 0));
     CHECK(from_api.gain == from_file.gain);
     CHECK(from_api.description == "as printed");
-    CHECK(available_filter_names(api) == std::vector<std::string>{"optimal", "ekf", "ekf-printed"});
+    CHECK(available_filter_names(api) == std::vector<std::string>{"optimal", "ekf", "ukf", "ekf-printed"});
+    CHECK(default_filter_names(api) == std::vector<std::string>{"optimal", "ekf", "ekf-printed"});
   }
   SECTION("a state in a user filter is refused") {
     ModelBuilder b = builder();
