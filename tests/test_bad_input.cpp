@@ -451,7 +451,7 @@ TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line",
   }
   SECTION("--filter of the other observation kind") {
     // A sampled model asked for a continuous-only kind, and a continuous model for a sampled one.
-    for (const std::string kind : {"optimal", "ekf"})
+    for (const std::string kind : {"optimal", "ekf", "ukf"})
       check_option_error(run_pfgen({"eval", example("allahyani_date_example1_gamma1.yaml"), "--filter", kind,
                                     "--m=0.5", "--P=2"}),
                          {"--filter", "'" + kind + "' is not derived for sampled observations"});
@@ -462,6 +462,9 @@ TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line",
       check_option_error(run_pfgen({"derive", example("basin2006_quadratic.yaml"), "--filter", kind}),
                          {"--filter", "'" + kind + "' is not derived for continuous observations"});
     }
+    // The opt-in ukf is refused like the others: continuous observations only.
+    check_option_error(run_pfgen({"derive", test_data_dir() + "/delayed_scalar.yaml", "--filter", "ukf"}),
+                       {"--filter", "'ukf' is not derived for delayed observations"});
     check_option_error(run_pfgen({"codegen", example("allahyani_date_example1_gamma1.yaml"), "--filter", "optimal",
                                   "-o", "/nonexistent-pfgen-output"}),
                        {"--filter", "'optimal' is not derived for sampled observations"});

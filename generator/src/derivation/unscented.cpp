@@ -76,7 +76,11 @@ UnscentedTerms unscented_terms(const Model& model, const FilterVariables& vars) 
   for (std::size_t j = 0; j < n; ++j) {
     GiNaC::ex diagonal = P(j, j);
     for (std::size_t k = 0; k < j; ++k) diagonal -= GiNaC::pow(L[j][k], 2);
-    out.cholesky.push_back(FilterDefinition{GiNaC::ex_to<GiNaC::symbol>(L[j][j]), GiNaC::sqrt(diagonal)});
+    // sqrt(max(0, d)), written (d + |d|) / 2: a positive semidefinite P whose pivot is 0 (paper 001's
+    // singular P0, kept singular by a noise-free state) is computed a rounding error below 0, and its
+    // factor's entry is 0, not the square root of a negative number. A P that is really indefinite is
+    // the filter's failure, which the runtime's guards report from P itself.
+    out.cholesky.push_back(FilterDefinition{GiNaC::ex_to<GiNaC::symbol>(L[j][j]), GiNaC::sqrt((diagonal + GiNaC::abs(diagonal)) / 2)});
     for (std::size_t i = j + 1; i < n; ++i) {
       GiNaC::ex entry = P(i, j);
       for (std::size_t k = 0; k < j; ++k) entry -= L[i][k] * L[j][k];

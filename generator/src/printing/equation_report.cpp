@@ -1,7 +1,9 @@
 #include "pfgen/printing/equation_report.hpp"
 
 #include <ostream>
+#include <sstream>
 
+#include "pfgen/derivation/unscented.hpp"
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
@@ -21,6 +23,20 @@ std::vector<ReportPart> P_parts(const FilterEquations& eq, std::size_t u) {
 
 bool is_single_term(const Polynomial& p) { return p.terms().size() <= 1; }
 
+// The ukf's points and weights (docs/theory.md §2.8) and its dP terms, sums over the points.
+std::string sigma_point_header_text(const FilterEquations& eq) {
+  const SigmaPointWeights w = sigma_point_weights(eq.n());
+  std::ostringstream c, w0, wi;
+  c << w.c;
+  w0 << w.w0;
+  wi << w.w;
+  return "sigma points: X_0 = m, X_j = m + sqrt(" + c.str() + ") L_j, X_(n+j) = m - sqrt(" + c.str() +
+         ") L_j (j = 1.." + std::to_string(eq.n()) + ", L_j column j of L, L L^T = P: the definitions below); weights w_0 = " +
+         w0.str() + ", w_i = " + wi.str() + "\n" +
+         "dP terms: [sum_i w_i ((X_i-m) f(X_i)^T + f(X_i) (X_i-m)^T)] + [sum_i w_i g(X_i) g(X_i)^T] - [" +
+         correction_words_text(eq) + "]\n\n";
+}
+
 // The variables line (m = E[x], P its covariance) and which terms make up dP.
 std::string mean_square_header_text(const Model& model, const FilterEquations& eq) {
   const FilterVariables& vars = eq.variables;
@@ -32,6 +48,7 @@ std::string mean_square_header_text(const Model& model, const FilterEquations& e
   for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
   out += ")\n";
   if (eq.is_delayed()) out += delayed_header_text(eq);
+  if (eq.kind && uses_sigma_points(*eq.kind)) return out + sigma_point_header_text(eq);
   out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
                               : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [" + correction_words_text(eq) + "]\n\n";
   return out;

@@ -30,7 +30,8 @@ SigmaPointWeights sigma_point_weights(std::size_t n);
 
 struct UnscentedTerms {
   // L's entries, column by column (L11, L21, ..., Ln1, L22, ...), each defined from P and the
-  // entries before it: L_jj = sqrt(P_jj - sum_{k<j} L_jk^2), L_ij = (P_ij - sum_{k<j} L_ik L_jk) / L_jj.
+  // entries before it: L_jj = sqrt(P_jj - sum_{k<j} L_jk^2), L_ij = (P_ij - sum_{k<j} L_ik L_jk) / L_jj,
+  // the radicand taken as max(0, .) = (d + |d|) / 2 so that a singular P's zero pivot stays 0.
   std::vector<FilterDefinition> cholesky;
   std::vector<Polynomial> m_drift;      // n
   std::vector<Polynomial> P_moment;     // n(n+1)/2, upper triangle
