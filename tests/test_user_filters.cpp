@@ -340,7 +340,7 @@ TEST_CASE("user filters: every command takes them by name, after the built-in ki
     ProcessResult r = run_pfgen({"eval", model, "--filter", "ekf-paper", "--m=1,2", "--P", "0.5,0.1;0.1,0.3"});
     CHECK(r.exit_code == 1);
     CHECK(r.out.empty());
-    CHECK_THAT(r.err, Contains("unknown filter 'ekf-paper' (known: optimal, ekf, ekf-printed)"));
+    CHECK_THAT(r.err, Contains("unknown filter 'ekf-paper' (known: optimal, ekf, ukf, ekf-printed)"));
   }
 }
 
