@@ -227,8 +227,9 @@ ExactnessReport unscented_exactness(const ModelFacts& facts) {
   }
   report.condition = "none";
   report.explanation = "approximation (unscented, Sarkka 2007): E[f], E[(x-m) f^T] and E[g g^T] under N(m, P) are "
-                       "replaced by weighted sums over 2n+1 sigma points, exact for polynomials of degree <= 3 "
-                       "along each sigma axis (c = 3), not for every mixed moment";
+                       "replaced by weighted sums over 2n+1 sigma points; the sums equal those expectations when "
+                       "f has degree <= 2 and G degree <= 3, and beyond that only for terms that move along one "
+                       "sigma axis (docs/theory.md 2.8), on top of the Gaussian assumed density";
   report.failed.push_back("Kalman-Bucy: " + (!nonaffine.empty() ? nonaffine : multiplicative));
   return report;
 }
