@@ -55,8 +55,9 @@ GiNaC::ex antisymmetric_sum(const std::vector<GiNaC::ex>& a, const GiNaC::numeri
 
 SigmaPointWeights sigma_point_weights(std::size_t n) {
   const GiNaC::numeric dimension(static_cast<long>(n));
-  // kappa = 3 - n keeps c = 3 for n <= 3: the sigma points then match the Gaussian's moments to
-  // order 3 along each axis (order 5 for n = 1); above n = 3 that kappa would make w_0 negative.
+  // kappa = 3 - n keeps c = 3 for n <= 3: along each sigma axis the points then match the standard
+  // Gaussian's moments to order 5 (E[u^4] = 3 = c); mixed moments only to order 3, for any c. Above
+  // n = 3 that kappa would make w_0 negative, so kappa = 0 there.
   const GiNaC::numeric kappa = n <= 3 ? GiNaC::numeric(3) - dimension : GiNaC::numeric(0);
   const GiNaC::numeric c = dimension + kappa;
   return SigmaPointWeights{c, kappa / c, GiNaC::numeric(1) / (2 * c)};
