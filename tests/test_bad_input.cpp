@@ -269,7 +269,7 @@ const std::vector<BadModel>& bad_models() {
       {"simulation_seed_too_large.yaml", "simulation.seed", 0, 0, 10, "'18446744073709551616' is too large"},
       {"simulation_shown_run_out_of_range.yaml", "simulation.shown_run", 0, 0, 11, "run 5 is not among the 5 runs"},
       {"simulation_unknown_field.yaml", "simulation.horizon", 0, 0, 10, "unknown field (known: T, dt, runs, seed,"},
-      {"simulation_unknown_filter.yaml", "simulation.filters", 2, 0, 10, "unknown filter 'kalman' (known: optimal, ekf)"},
+      {"simulation_unknown_filter.yaml", "simulation.filters", 2, 0, 10, "unknown filter 'kalman' (known: optimal, ekf, ukf)"},
       {"simulation_unknown_scheme.yaml", "simulation.scheme", 0, 0, 10, "unknown scheme 'runge-kutta'"},
       {"simulation_window_after_T.yaml", "simulation.windows", 2, 0, 11, "window [4, 10] ends after the horizon T = 9.2"},
       {"simulation_window_not_pair.yaml", "simulation.windows", 1, 0, 10, "a window is [start, end], found 3 values"},
@@ -451,7 +451,7 @@ TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line",
   }
   SECTION("--filter of the other observation kind") {
     // A sampled model asked for a continuous-only kind, and a continuous model for a sampled one.
-    for (const std::string kind : {"optimal", "ekf"})
+    for (const std::string kind : {"optimal", "ekf", "ukf"})
       check_option_error(run_pfgen({"eval", example("allahyani_date_example1_gamma1.yaml"), "--filter", kind,
                                     "--m=0.5", "--P=2"}),
                          {"--filter", "'" + kind + "' is not derived for sampled observations"});
@@ -462,6 +462,9 @@ TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line",
       check_option_error(run_pfgen({"derive", example("basin2006_quadratic.yaml"), "--filter", kind}),
                          {"--filter", "'" + kind + "' is not derived for continuous observations"});
     }
+    // The opt-in ukf is refused like the others: continuous observations only.
+    check_option_error(run_pfgen({"derive", test_data_dir() + "/delayed_scalar.yaml", "--filter", "ukf"}),
+                       {"--filter", "'ukf' is not derived for delayed observations"});
     check_option_error(run_pfgen({"codegen", example("allahyani_date_example1_gamma1.yaml"), "--filter", "optimal",
                                   "-o", "/nonexistent-pfgen-output"}),
                        {"--filter", "'optimal' is not derived for sampled observations"});

@@ -108,6 +108,9 @@ TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed
       {"ekf", 0.1 * m * m, P, 2 * 0.2 * m * P + 0.01 * std::pow(m, 4) - P * P},
       {"additive", 0.1 * (m * m + P), P, 0.4 * m * P + 0.01 - P * P},
       {"ekf-additive", 0.1 * m * m, P, 2 * 0.2 * m * P + 0.01 - P * P},
+      // The three sigma points are exact to degree 5 in one dimension: f, (x - m) f and G have
+      // degrees 2, 3 and 4, so the ukf is the optimal filter here (docs/theory.md §2.8).
+      {"ukf", 0.1 * (m * m + P), P, 0.4 * m * P + 0.03 * P * P + 0.06 * m * m * P + 0.01 * std::pow(m, 4) - P * P},
   };
   std::vector<std::string> covered;
   for (const auto& c : cases) covered.push_back(c.kind);

@@ -165,7 +165,7 @@ TEST_CASE("pfgen codegen writes the Eigen wrappers only with --eigen", "[codegen
   ProcessResult eigen = run_pfgen({"codegen", dir.file("three_two.yaml"), "-o", dir.file("eigen"), "--eigen"});
   INFO(eigen.err);
   REQUIRE(eigen.exit_code == 0);
-  for (const std::string& kind : pfgen::available_filter_names(pfgen::load_model_file(dir.file("three_two.yaml")))) {
+  for (const std::string& kind : pfgen::default_filter_names(pfgen::load_model_file(dir.file("three_two.yaml")))) {
     INFO(kind);
     // The plain header is the same with or without --eigen; the wrapper includes it and Eigen.
     CHECK(read_file(dir.file("eigen/three_two/" + std::string(kind) + ".hpp")) ==

@@ -71,6 +71,8 @@ std::string filter_check(const std::string& filter, const std::string& scalar) {
          "    for (int run = 0; run < 50; ++run) {\n"
          "      std::array<S, C::state_size> state{};\n"
          "      for (auto& v : state) v = S(uniform(rng));\n"
+         // P diagonally dominant, so positive definite: the ukf's Cholesky factor needs it.
+         "      for (std::size_t i = 0, k = C::n; i < C::n; k += C::n - i, ++i) state[k] += S(3);\n"
          "      const S t = S(2 * uniform(rng) + 2), dt = S(0.01);\n"
          "      std::array<S, C::p> dy{};\n"
          "      for (auto& v : dy) v = S(0.1 * uniform(rng));\n"

@@ -46,7 +46,21 @@ std::vector<std::vector<std::string>> readme_kind_table() {
 }
 
 std::string expectation_words(ExpectationRule rule) {
-  return rule == ExpectationRule::Gaussian ? "Gaussian" : "at the mean";
+  switch (rule) {
+    case ExpectationRule::Gaussian: return "Gaussian";
+    case ExpectationRule::AtMean: return "at the mean";
+    case ExpectationRule::SigmaPoints: return "sigma points";
+  }
+  return "";
+}
+
+std::string drift_words(ExpectationRule rule) {
+  switch (rule) {
+    case ExpectationRule::Gaussian: return "E[f]";
+    case ExpectationRule::AtMean: return "f(m)";
+    case ExpectationRule::SigmaPoints: return "Σ wᵢ f(Xᵢ)";
+  }
+  return "";
 }
 
 std::string diffusion_words(DiffusionSource source) {
@@ -93,7 +107,7 @@ TEST_CASE("kind registry: the README's table is the registry written out", "[uni
     CHECK(rows[k][2] == diffusion_words(info.diffusion));
     CHECK(rows[k][3] == observation_words(info.observations));
     // The formula columns follow the two axes.
-    const std::string drift = info.expectation == ExpectationRule::Gaussian ? "E[f]" : "f(m)";
+    const std::string drift = drift_words(info.expectation);
     // The risk-sensitive kind follows the information state's mode (docs/theory.md §2.7).
     CHECK(rows[k][4] == (info.criterion == Criterion::RiskSensitive ? drift + " − P ∇(div f)(m)" : drift));
     CHECK((rows[k][6].find("additive") != std::string::npos) == (info.diffusion == DiffusionSource::Additive));
@@ -131,6 +145,12 @@ TEST_CASE("kind registry: the model room and the derivation offer exactly the ki
                                                                    : expected.size() < for_observation));
     for (const auto& filter : model.user_filters) expected.push_back(filter.name);
     CHECK(available_filter_names(model) == expected);
+    // The defaults leave out exactly the registry's opt-in kinds (in_defaults = false: the ukf).
+    std::vector<std::string> defaults;
+    for (const auto& name : expected)
+      if (!parse_filter_kind(name) || filter_kind_info(*parse_filter_kind(name)).in_defaults) defaults.push_back(name);
+    CHECK(default_filter_names(model) == defaults);
+    CHECK(defaults.size() < expected.size());  // the ukf is offered, but not by default
   }
 }
 
@@ -150,7 +170,8 @@ TEST_CASE("kind registry: command-line help, errors and defaults list the regist
   CHECK(unknown.exit_code != 0);
   CHECK(unknown.err.find("(known: " + comma) != std::string::npos);
 
-  // Defaults of latex and codegen: every kind the model supports, then its own filters.
+  // Defaults of latex and codegen: every kind the model supports but the opt-in ones (the ukf), then
+  // its own filters.
   const Model loaded = load_model_file(model);
   TempDir dir;
   ProcessResult codegen = run_pfgen({"codegen", model, "-o", dir.path()});
@@ -160,7 +181,7 @@ TEST_CASE("kind registry: command-line help, errors and defaults list the regist
     files.push_back(entry.path().filename().string());
   std::sort(files.begin(), files.end());
   std::vector<std::string> expected;
-  for (const auto& name : available_filter_names(loaded)) expected.push_back(filter_identifier(name) + ".hpp");
+  for (const auto& name : default_filter_names(loaded)) expected.push_back(filter_identifier(name) + ".hpp");
   std::sort(expected.begin(), expected.end());
   CHECK(files == expected);
 
@@ -168,7 +189,7 @@ TEST_CASE("kind registry: command-line help, errors and defaults list the regist
   REQUIRE(latex.exit_code == 0);
   const std::string document = read_file(dir.file("doc.tex"));
   std::size_t last = 0;
-  for (const auto& name : available_filter_names(loaded)) {
+  for (const auto& name : default_filter_names(loaded)) {
     INFO("latex section for " << name);
     const std::size_t at = document.find("\\section*{Filter \\texttt{" + name + "}}");
     REQUIRE(at != std::string::npos);

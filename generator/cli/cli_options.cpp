@@ -77,7 +77,7 @@ void apply_parameter_assignments(Model& model, const std::vector<std::string>& a
 }
 
 std::vector<std::string> parse_filter_list(const std::string& option, const std::string& text, const Model& model) {
-  if (text.empty()) return available_filter_names(model);
+  if (text.empty()) return default_filter_names(model);
   std::vector<std::string> out;
   for (const auto& name : split(text, ',')) {
     if (auto problem = filter_name_problem(model, name)) throw CliValueError(option + ": " + *problem);

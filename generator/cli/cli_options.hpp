@@ -28,8 +28,8 @@ std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& optio
 // definite, ...). eval and simulate both use it, so they read --set alike.
 void apply_parameter_assignments(Model& model, const std::vector<std::string>& assignments);
 // "optimal,ekf-printed" -> filter names, each a built-in kind the model supports or one of
-// its user filters (`filters:`); empty text -> every filter the model offers
-// (available_filter_names: the supported kinds, then the user filters in file order).
+// its user filters (`filters:`); empty text -> the model's default filters
+// (default_filter_names: the supported kinds but the opt-in ukf, then the user filters in file order).
 // Errors name `option` (--filter, or simulate's --filters).
 std::vector<std::string> parse_filter_list(const std::string& option, const std::string& text, const Model& model);
 

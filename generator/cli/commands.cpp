@@ -152,7 +152,7 @@ int run_derive(const DeriveOptions& options) {
   }
   // Without --filter: the model's first filter (optimal, cd-optimal or delay-optimal).
   const std::string name =
-      options.filter.empty() ? available_filter_names(model).front() : single_filter(options.filter, model);
+      options.filter.empty() ? default_filter_names(model).front() : single_filter(options.filter, model);
   // Kept, never freed: the process ends after printing, and freeing a big filter's millions of terms
   // one by one (dense cubic n = 20: 3.3 million) costs a tenth of the whole command. A static pointer
   // keeps them reachable, so leak checkers do not report them.

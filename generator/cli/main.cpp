@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
   CLI::App* latex_cmd = app.add_subcommand("latex", "Write a standalone LaTeX document of the model and its filters");
   latex_cmd->add_option("MODEL", latex.model_path, "Model file (YAML)")->required();
   latex_cmd->add_option("-o,--output", latex.output_path, "Output .tex file")->required();
-  latex_cmd->add_option("--filter", latex.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports, then its own)");
+  latex_cmd->add_option("--filter", latex.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)");
   latex_cmd->add_flag("--coefficients", latex.coefficients,
                       "Add a section with the model's coefficient form A..A3, E, E1 (drift of degree <= 3)");
 
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
   CLI::App* codegen_cmd = app.add_subcommand("codegen", "Write header-only C++ of a model's filters");
   codegen_cmd->add_option("MODEL", codegen.model_path, "Model file (YAML)")->required();
   codegen_cmd->add_option("-o,--output", codegen.output_dir, "Output directory; files go to DIR/<model>/<filter>.hpp");
-  codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports, then its own)");
+  codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)");
   codegen_cmd->add_option("--scalar", codegen.scalar, "float | double | template")
       ->check(CLI::IsMember({"float", "double", "template"}))
       ->capture_default_str();
@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("MODEL", simulate.model_path, "Model file (YAML)")->required();
   simulate_cmd->add_option("--filters", so.filters,
                            "Comma-separated filters, built-in kinds or the model's own (default: simulation.filters, "
-                           "else every filter of the model)");
+                           "else every filter of the model but the opt-in ukf)");
   simulate_cmd->add_option("--T", so.T, "Horizon (default: simulation.T)");
   simulate_cmd->add_option("--dt", so.dt, "Time step of the truth and the filters (default: simulation.dt, else 1e-3)");
   simulate_cmd->add_option("--runs", so.runs, "Monte Carlo runs (default: simulation.runs, else 100)")

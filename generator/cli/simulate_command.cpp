@@ -233,7 +233,7 @@ PreparedJob prepare(const SimulateOptions& options, bool speaks, Clock::time_poi
 
   // Derive and generate: deterministic text, whose hash keys the compiled plugin in the cache.
   std::vector<FilterEquations> filters;
-  for (const std::string& name : settings.filters.empty() ? available_filter_names(model) : settings.filters)
+  for (const std::string& name : settings.filters.empty() ? default_filter_names(model) : settings.filters)
     filters.push_back(derive_named_filter(model, name));
   check_memory(model, settings, thread_count(options.threads), filters.size());
   // Delayed observations: filters generated for this grid step (settings checked D = h / dt).

@@ -210,11 +210,36 @@ ExactnessReport risk_sensitive_exactness(const ModelFacts& facts) {
   return report;
 }
 
+// The unscented kind (docs/theory.md §2.8) replaces E[f], E[(x-m) f^T] and E[g g^T] under N(m, P) by
+// sigma-point sums; these equal the expectations when f is affine and g constant (Kalman-Bucy), and
+// for polynomials of low enough degree along the sigma axes, which the report names as a
+// condition only in the Kalman-Bucy case, where it is proven.
+ExactnessReport unscented_exactness(const ModelFacts& facts) {
+  ExactnessReport report;
+  const std::string nonaffine = facts.nonaffine_drift();
+  const std::string multiplicative = facts.state_dependent_noise();
+  if (nonaffine.empty() && multiplicative.empty()) {
+    report.exact = true;
+    report.condition = "Kalman-Bucy";
+    report.explanation = "exact: f is affine and g does not depend on x, so the sigma-point sums are the Gaussian "
+                         "expectations and this is the Kalman-Bucy filter";
+    return report;
+  }
+  report.condition = "none";
+  report.explanation = "approximation (unscented, Sarkka 2007): E[f], E[(x-m) f^T] and E[g g^T] under N(m, P) are "
+                       "replaced by weighted sums over 2n+1 sigma points; the sums equal those expectations when "
+                       "f has degree <= 2 and G degree <= 3, and beyond that only for terms that move along one "
+                       "sigma axis (docs/theory.md 2.8), on top of the Gaussian assumed density";
+  report.failed.push_back("Kalman-Bucy: " + (!nonaffine.empty() ? nonaffine : multiplicative));
+  return report;
+}
+
 }  // namespace
 
 ExactnessReport assess_exactness(const Model& model, FilterKind kind) {
   ModelFacts facts(model, kind);
   if (is_risk_sensitive(kind)) return risk_sensitive_exactness(facts);
+  if (uses_sigma_points(kind)) return unscented_exactness(facts);
   if (model.observation.is_sampled()) return sampled_exactness(facts, kind);
   if (model.observation.is_delayed()) return delayed_exactness(facts, kind);
   return undelayed_exactness(model, kind);

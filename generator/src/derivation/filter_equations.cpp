@@ -6,6 +6,7 @@
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_terms.hpp"
 #include "pfgen/derivation/risk_sensitive.hpp"
+#include "pfgen/derivation/unscented.hpp"
 
 namespace pfgen {
 namespace {
@@ -135,6 +136,32 @@ FilterEquations risk_sensitive_filter(const Model& model, FilterEquations eq) {
   return eq;
 }
 
+// The unscented kind (unscented.hpp): its moment terms from the sigma points, L's entries as the
+// equations' definitions, and the observation's gain and correction as the optimal kind's: with a
+// linear observation the sigma-point cross-covariance of x and A x is P A^T exactly. There is no
+// Jacobian term (P_moment is not of the form P J^T + J P for a J polynomial in m and P), so code
+// generation takes the expanded form.
+FilterEquations unscented_filter(const Model& model, FilterEquations eq) {
+  const std::vector<Polynomial> f = state_polynomials(model.drift, model);
+  std::vector<Polynomial> G_upper;
+  for (std::size_t i = 0; i < model.n(); ++i)
+    for (std::size_t j = i; j < model.n(); ++j) G_upper.push_back(Polynomial::from_ex(model.diffusion.G[i][j], model.states));
+  // The Gaussian closure's budget is this derivation's bound too: a monomial's sigma-point sum has
+  // no more terms in m than its Gaussian expectation (one per sub-monomial of even co-degree).
+  check_derivation_budget(model, DerivationInputs{true, f, jacobian(f), G_upper,
+                                                  model.diffusion.g ? "diffusion" : "diffusion_covariance",
+                                                  observed_states(model.observation)});
+  UnscentedTerms terms = unscented_terms(model, eq.variables);
+  eq.definitions = std::move(terms.cholesky);
+  eq.m_drift = std::move(terms.m_drift);
+  eq.P_moment = std::move(terms.P_moment);
+  eq.P_diffusion = std::move(terms.P_diffusion);
+  ObservationCorrection correction = observation_correction(model.observation.rate(), eq.variables);
+  eq.gain = std::move(correction.gain);
+  eq.P_correction = std::move(correction.P_correction);
+  return eq;
+}
+
 }  // namespace
 
 Polynomial FilterEquations::P_drift(std::size_t i, std::size_t j) const {
@@ -154,6 +181,7 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
   const FilterVariables& vars = eq.variables;
   auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
   if (is_risk_sensitive(kind)) return risk_sensitive_filter(model, std::move(eq));
+  if (uses_sigma_points(kind)) return unscented_filter(model, std::move(eq));
 
   MomentTerms terms = moment_terms(model, kind, vars);
   eq.m_drift = std::move(terms.drift);

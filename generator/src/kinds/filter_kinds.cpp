@@ -46,6 +46,11 @@ const std::vector<FilterKindInfo>& filter_kinds() {
        "risk-sensitive filter for the model's risk: criterion J (paper 002): f(m) - P grad(div f)(m), "
        "Jacobian at m, and -P (Hess(div f)(m) - (2/eps) M) P in dP; LEQG for linear models",
        E::AtMean, D::Model, continuous, Prediction::Ode, DelayGain::Undelayed, Criterion::RiskSensitive},
+      {FilterKind::Ukf, "ukf",
+       "unscented Kalman-Bucy filter (Sarkka 2007): E[f], E[(x-m)f^T], E[g g^T] as weighted sums over the 2n+1 "
+       "sigma points m, m +- sqrt(c) L_j, L the Cholesky factor of P; opt-in (not among the defaults)",
+       E::SigmaPoints, D::Model, continuous, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
+       /*in_defaults=*/false},
   };
   return kinds;
 }

@@ -47,6 +47,14 @@ std::vector<std::string> available_filter_names(const Model& model) {
   return names;
 }
 
+std::vector<std::string> default_filter_names(const Model& model) {
+  std::vector<std::string> names;
+  for (FilterKind kind : supported_filter_kinds(model))
+    if (filter_kind_info(kind).in_defaults) names.push_back(filter_kind_name(kind));
+  for (const auto& filter : model.user_filters) names.push_back(filter.name);
+  return names;
+}
+
 std::optional<std::pair<std::string, std::size_t>> split_substeps(const std::string& name) {
   const std::size_t at = name.find('@');
   if (at == std::string::npos) return std::nullopt;

@@ -1,7 +1,9 @@
 #include "pfgen/printing/equation_report.hpp"
 
 #include <ostream>
+#include <sstream>
 
+#include "pfgen/derivation/unscented.hpp"
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
@@ -21,6 +23,33 @@ std::vector<ReportPart> P_parts(const FilterEquations& eq, std::size_t u) {
 
 bool is_single_term(const Polynomial& p) { return p.terms().size() <= 1; }
 
+// The ukf's points and weights (docs/theory.md §2.8) and its dP terms, sums over the points.
+std::string sigma_point_header_text(const FilterEquations& eq) {
+  const SigmaPointWeights w = sigma_point_weights(eq.n());
+  std::ostringstream c, w0, wi;
+  c << w.c;
+  w0 << w.w0;
+  wi << w.w;
+  return "sigma points: X_0 = m, X_j = m + sqrt(" + c.str() + ") L_j, X_(n+j) = m - sqrt(" + c.str() +
+         ") L_j (j = 1.." + std::to_string(eq.n()) + ", L_j column j of L, L L^T = P: the definitions below); weights w_0 = " +
+         w0.str() + ", w_i = " + wi.str() + "\n" +
+         "dP terms: [sum_i w_i ((X_i-m) f(X_i)^T + f(X_i) (X_i-m)^T)] + [sum_i w_i g(X_i) g(X_i)^T] - [" +
+         correction_words_text(eq) + "]\n\n";
+}
+
+// The same in LaTeX, before the equations.
+std::string sigma_point_paragraph_latex(const FilterEquations& eq) {
+  const SigmaPointWeights w = sigma_point_weights(eq.n());
+  const LatexPrinter printer;
+  const std::string c = printer.print(w.c);
+  return "\\noindent Unscented filter: sigma points $X_0 = m$, $X_j = m + \\sqrt{" + c + "}\\,L_j$, $X_{n+j} = m - \\sqrt{" +
+         c + "}\\,L_j$ ($j = 1, \\ldots, " + std::to_string(eq.n()) +
+         "$; $L_j$ the $j$-th column of the Cholesky factor $L$ of $P$, $L L^T = P$, whose entries are defined "
+         "below), weights $w_0 = " + printer.print(w.w0) + "$, $w_i = " + printer.print(w.w) +
+         "$; $dP/dt = \\sum_i w_i \\left((X_i - m) f(X_i)^T + f(X_i) (X_i - m)^T + g(X_i) g(X_i)^T\\right) - "
+         "P A^T (B B^T)^{-1} A P$.\n\n";
+}
+
 // The variables line (m = E[x], P its covariance) and which terms make up dP.
 std::string mean_square_header_text(const Model& model, const FilterEquations& eq) {
   const FilterVariables& vars = eq.variables;
@@ -32,6 +61,7 @@ std::string mean_square_header_text(const Model& model, const FilterEquations& e
   for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
   out += ")\n";
   if (eq.is_delayed()) out += delayed_header_text(eq);
+  if (eq.kind && uses_sigma_points(*eq.kind)) return out + sigma_point_header_text(eq);
   out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
                               : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [" + correction_words_text(eq) + "]\n\n";
   return out;
@@ -112,6 +142,7 @@ std::string equations_latex(const FilterEquations& eq) {
   std::string out = exactness_latex(eq.exactness);
   if (eq.is_delayed()) out += delayed_paragraph_latex(eq);
   if (is_risk_sensitive_report(eq)) out += risk_paragraph_latex(eq);
+  if (eq.kind && uses_sigma_points(*eq.kind)) out += sigma_point_paragraph_latex(eq);
   out += "\\begin{align*}\n";
   // Each right-hand side is cut into lines that fit the page (latex_line_breaker).
   std::vector<std::string> lines = definitions_latex_lines(eq);

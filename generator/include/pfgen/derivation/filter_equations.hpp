@@ -64,7 +64,8 @@ struct FilterEquations {
   std::vector<Polynomial> x_star_drift;
   // The risk-sensitive kind only: the model's criterion (epsilon and M), for the reports.
   std::optional<RiskCriterion> risk;
-  // A user filter's auxiliary names (`define:`), in file order. Their symbols may appear in the
+  // A user filter's auxiliary names (`define:`), in file order, or the ukf's Cholesky factor L of P
+  // (derivation/unscented.hpp), entry by entry. Their symbols may appear in the
   // coefficients of every polynomial above; each value reads the filter variables as
   // variables.symbols(), the parameters, t and the names before it. Evaluators and emitters
   // compute them in this order before anything that reads them; printers list them.

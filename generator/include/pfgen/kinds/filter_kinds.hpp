@@ -14,12 +14,14 @@
 namespace pfgen {
 
 enum class FilterKind { Optimal, Ekf, Additive, EkfAdditive, CdOptimal, CdEkf, CdEuler, DelayOptimal, DelayUncorrected, DelayEkf,
-                        RiskSensitive };
+                        RiskSensitive, Ukf };
 
 // How a kind takes the expectations of f, of its Jacobian and of g g^T.
 enum class ExpectationRule {
   Gaussian,  // E[.] over x ~ N(m, P), expanded exactly: the Gaussian closure
   AtMean,    // evaluated at x = m: the extended Kalman-Bucy filter
+  SigmaPoints,  // a weighted sum over the 2n+1 sigma points m, m +- sqrt(c) L_j (L L^T = P): the unscented
+                // Kalman-Bucy filter (derivation/unscented.hpp, docs/theory.md §2.8)
 };
 
 // Which diffusion a kind puts into its P equation.
@@ -58,6 +60,10 @@ struct FilterKindInfo {
   Prediction prediction = Prediction::Ode;
   DelayGain delay_gain = DelayGain::Undelayed;
   Criterion criterion = Criterion::MeanSquare;
+  // Whether derive/latex/codegen/simulate include the kind when no filter is named. The ukf is a
+  // comparator one asks for (`--filter ukf`): adding it to every default would change every
+  // default output and the checked-in generated/ code.
+  bool in_defaults = true;
 };
 
 // Every built-in kind, in the canonical order in which commands list and default to them.
@@ -89,6 +95,7 @@ inline bool uses_additive_diffusion(FilterKind kind) {
   return filter_kind_info(kind).diffusion == DiffusionSource::Additive;
 }
 inline bool is_extended_kalman(FilterKind kind) { return filter_kind_info(kind).expectation == ExpectationRule::AtMean; }
+inline bool uses_sigma_points(FilterKind kind) { return filter_kind_info(kind).expectation == ExpectationRule::SigmaPoints; }
 inline bool uses_euler_map(FilterKind kind) { return filter_kind_info(kind).prediction == Prediction::EulerMap; }
 inline bool uses_transition_gain(FilterKind kind) { return filter_kind_info(kind).delay_gain == DelayGain::Transition; }
 inline bool is_risk_sensitive(FilterKind kind) { return filter_kind_info(kind).criterion == Criterion::RiskSensitive; }

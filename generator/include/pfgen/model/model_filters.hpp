@@ -24,6 +24,11 @@ std::vector<FilterKind> supported_filter_kinds(const Model& model);
 // The names of supported_filter_kinds(), then the model's user filters in file order.
 std::vector<std::string> available_filter_names(const Model& model);
 
+// What derive/latex/codegen/simulate use when no filter is named: available_filter_names()
+// without the kinds the registry keeps out of the defaults (FilterKindInfo::in_defaults, the ukf),
+// which a user names to get.
+std::vector<std::string> default_filter_names(const Model& model);
+
 // Why `name` is not a filter of the model, in the words every command and the validator use
 // ("unknown filter 'kalman' (known: optimal, ekf)", "'additive' needs additive_diffusion or
 // additive_diffusion_covariance in model m"), or nothing when it is one.
