@@ -157,6 +157,10 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--risk-epsilon", so.risk_epsilon,
                            "Report the exponential criterion J = eps log E[exp(int L dt / eps)] of every filter with "
                            "this eps (default: the model's risk.epsilon; without either, no J)");
+  simulate_cmd->add_option("--reference", so.reference,
+                           "particles:N: on each run a bootstrap particle filter with N particles estimates the true "
+                           "conditional mean; the table adds each filter's RMS distance from it (not for delayed "
+                           "observations or a truth without noise)");
   simulate_cmd->add_option("--criterion-csv", simulate.criterion_csv_path,
                            "Write J per filter as CSV to FILE (needs --risk-epsilon or a risk: section)");
   simulate_cmd->add_option("--stops-csv", simulate.stops_csv_path,

@@ -22,6 +22,7 @@
 #include "pfgen/toolchain/plugin_compiler.hpp"
 #include "pfgen_runtime/gnuplot_plot.hpp"
 #include "pfgen_runtime/monte_carlo.hpp"
+#include "pfgen_runtime/particle_reference.hpp"
 #include "pfgen_runtime/results_csv.hpp"
 #include "pfgen_runtime/simulation_plugin.hpp"
 #include "pfgen_runtime/summary_table.hpp"
@@ -30,6 +31,9 @@
 
 namespace pfgen::cli {
 namespace {
+
+static_assert(kMaxReferenceParticles == pfgen_runtime::kMaxParticles,
+              "--reference's limit and the runtime's must agree");
 
 using Clock = std::chrono::steady_clock;
 
@@ -95,9 +99,19 @@ void check_memory(const Model& model, const SimulationSettings& s, unsigned thre
   // A delayed filter also keeps D = h / dt grid values of m and x* (at most 2n each) per thread.
   const double history = std::round(model.observation.delay().to_double() / s.dt) * 2.0 *
                          static_cast<double>(model.n() * filters);
-  const double per_thread = ((steps + 1) * static_cast<double>(model.n() + model.p()) + history) * sizeof(double);
+  // The particle reference: its mean path, and N particles with their rates, twice (resampling).
+  const double particles = s.reference_particles
+                               ? (steps + 1) * static_cast<double>(model.n()) +
+                                     2.0 * static_cast<double>(*s.reference_particles) *
+                                         static_cast<double>(model.n() + model.p() + 2)
+                               : 0.0;
+  const double per_thread =
+      ((steps + 1) * static_cast<double>(model.n() + model.p()) + history + particles) * sizeof(double);
   const double records = std::min(steps + 1, static_cast<double>(s.record_points) + 1);
-  const double statistics = static_cast<double>(s.runs) * records * static_cast<double>((filters + 1) * model.n()) *
+  // Per run and record point: the truth and each filter's error; with the particle reference also
+  // its error and each filter's distance from it.
+  const double recorded = static_cast<double>((filters + 1) * (s.reference_particles ? 2 : 1));
+  const double statistics = static_cast<double>(s.runs) * records * recorded * static_cast<double>(model.n()) *
                             sizeof(double);
   // Only min(threads, runs) threads are started (run_monte_carlo): --threads 1000000 --runs 2 is fine.
   const double bytes = per_thread * static_cast<double>(std::min<std::size_t>(threads, s.runs)) + statistics;
@@ -122,8 +136,9 @@ std::string timing_json(const pfgen_runtime::MonteCarloResult& result, const too
       << ", \"steps\": " << result.grid.steps << ", \"derive_seconds\": " << derive_seconds
       << ", \"cache_hit\": " << (build.cache_hit ? "true" : "false")
       << ", \"compile_seconds\": " << build.compile_seconds << ", \"wall_seconds\": " << result.timing.wall_seconds
-      << ", \"truth_seconds\": " << result.timing.truth_seconds << ", \"filter_seconds\": " << filter_seconds
-      << ", \"total_seconds\": " << total_seconds << "}\n";
+      << ", \"truth_seconds\": " << result.timing.truth_seconds << ", \"filter_seconds\": " << filter_seconds;
+  if (result.reference) out << ", \"reference_seconds\": " << result.timing.reference_seconds;
+  out << ", \"total_seconds\": " << total_seconds << "}\n";
   return out.str();
 }
 
@@ -246,6 +261,7 @@ std::string job_text(const PreparedJob& job) {
   for (double t : s.report_times) number(t);
   text += "\nwindows";
   for (const auto& [a, b] : s.windows) number(a), number(b);
+  if (s.reference_particles) text += "\nreference particles " + std::to_string(*s.reference_particles);
   if (s.criterion) {
     text += "\ncriterion";
     number(s.criterion->epsilon);
@@ -277,6 +293,32 @@ pfgen_runtime::SimulationPlugin load_plugin(const std::string& source, const too
     if (talk) std::cerr << "pfgen: the cached plugin did not load; rebuilt " << build.path << "\n";
     return pfgen_runtime::SimulationPlugin(build.path);
   }
+}
+
+// Why the particle reference cannot run on this model (empty: it can). docs/theory.md §7.4.
+std::string reference_obstacle(const Model& model, const pfgen_runtime::SimulationPlugin& plugin) {
+  if (model.observation.is_delayed()) return "the observations are delayed, and the reference weighs undelayed ones only";
+  if (plugin.diffusion_is_zero())
+    return "the truth has no process noise (g = 0): the particles would never spread, so their weights would "
+           "collapse onto one";
+  if (!model.initial || model.initial->m0.size() != model.n() || model.initial->P0.size() != model.n())
+    return "the model gives no prior m0, P0 to draw the particles from";
+  return {};
+}
+
+// The reference's settings: N, and the filters' prior N(m0, P0) from the model.
+pfgen_runtime::ParticleReferenceOptions reference_options(const Model& model, std::size_t particles) {
+  pfgen_runtime::ParticleReferenceOptions out;
+  out.particles = particles;
+  const auto n = static_cast<Eigen::Index>(model.n());
+  out.m0.resize(n);
+  out.P0.resize(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    out.m0[i] = model.initial->m0[static_cast<std::size_t>(i)].to_double();
+    for (Eigen::Index j = 0; j < n; ++j)
+      out.P0(i, j) = model.initial->P0[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)].to_double();
+  }
+  return out;
 }
 
 }  // namespace
@@ -339,6 +381,13 @@ int run_simulate(const SimulateOptions& options, JobGroup& group) {
     mc.filter_guards.covariance_guard =
         pfgen_runtime::DivergenceGuard(std::max(1e16, settings.bound * settings.bound));
     if (settings.criterion) mc.criterion = criterion_options(*settings.criterion, model.n());
+    if (settings.reference_particles) {
+      const std::string obstacle = reference_obstacle(model, plugin);
+      if (obstacle.empty())
+        mc.reference = reference_options(model, *settings.reference_particles);
+      else if (speaks)
+        std::cerr << "pfgen: --reference: skipped, " << obstacle << "\n";
+    }
     mc.on_run_finished = [&progress](std::size_t finished, std::size_t) { progress.update(finished); };
     mc.share = std::move(share);
 

@@ -122,6 +122,26 @@ std::optional<CriterionSettings> resolve_criterion(const Model& model, const Sim
 
 }  // namespace
 
+std::size_t parse_reference(const std::string& text) {
+  const std::string prefix = "particles:";
+  const std::string usage = "; write particles:N, N the number of particles (1 to " +
+                            std::to_string(kMaxReferenceParticles) + ")";
+  if (text.compare(0, prefix.size(), prefix) != 0)
+    throw CliValueError("--reference: '" + text + "' is not a known reference" + usage);
+  const std::string digits = text.substr(prefix.size());
+  if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos)
+    throw CliValueError("--reference: '" + digits + "' in '" + text + "' is not a whole number" + usage);
+  // Length first: no overflow, whatever the digits.
+  const std::size_t significant = digits.find_first_not_of('0');
+  if (significant == std::string::npos)
+    throw CliValueError("--reference: '" + text + "' asks for no particles" + usage);
+  const std::string value = digits.substr(significant);
+  if (value.size() > std::to_string(kMaxReferenceParticles).size() || std::stoull(value) > kMaxReferenceParticles)
+    throw CliValueError("--reference: " + digits + " particles are more than the " +
+                        std::to_string(kMaxReferenceParticles) + " allowed" + usage);
+  return static_cast<std::size_t>(std::stoull(value));
+}
+
 SimulationSettings resolve_simulation_settings(const Model& model, const SimulationOverrides& cli) {
   const SimulationSection& file = model.simulation;
   SimulationSettings s;
@@ -178,6 +198,7 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
   if (auto breach = check_simulation_settings(model, combined))
     throw CliValueError(place_of(breach->field, cli, file, s) + ": " + breach->message);
   s.criterion = resolve_criterion(model, cli);
+  if (cli.reference) s.reference_particles = parse_reference(*cli.reference);
   std::cerr << notes;
   return s;
 }

@@ -25,7 +25,16 @@ struct SimulationOverrides {
   std::optional<std::string> report_times;  // "5,6,6.5"
   std::optional<std::string> windows;       // "0:4,4:9.2"
   std::optional<double> risk_epsilon;       // --risk-epsilon: J's eps, over the model's risk.epsilon
+  std::optional<std::string> reference;     // --reference particles:N
 };
+
+// The most particles --reference accepts (the runtime's kMaxParticles; simulate_command checks
+// that they agree): N doubles of n states per thread, so a typo cannot ask for terabytes.
+inline constexpr std::size_t kMaxReferenceParticles = 1000000;
+
+// --reference's text "particles:N" -> N, a whole number 1 .. kMaxReferenceParticles; anything
+// else is a CliValueError naming --reference.
+std::size_t parse_reference(const std::string& text);
 
 // The exponential criterion J of every filter (docs/theory.md, "The exponential criterion J"),
 // asked for by the model's `risk:` section or --risk-epsilon.
@@ -47,6 +56,9 @@ struct SimulationSettings {
   double bound = 1e8;
   std::size_t shown_run = 0;
   std::optional<CriterionSettings> criterion;  // unset: J is not computed, the output is as before
+  // --reference particles:N: the bootstrap particle filter's N (docs/theory.md §7.4); unset: no
+  // reference, the output as before.
+  std::optional<std::size_t> reference_particles;
 };
 
 // Throws CliValueError naming the option (or the model file's field) and what is wrong.

@@ -117,6 +117,11 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
       out << (f == 0 ? "plot " : ", \\\n     ") << data << " skip 1 using 1:" << column(columns, name + "_err_" + x)
           << " with lines lw 1.5 lc rgb '" << colors[f % 8] << "' title " << quoted(name);
     }
+    // The particle reference's x - m_ref beside them: how far from the conditional mean they are.
+    if (result.reference && !result.filters.empty())
+      out << ", \\\n     " << data << " skip 1 using 1:"
+          << column(columns, "reference_err_" + x) << " with lines lw 1.5 dt 2 lc rgb '#000000' title "
+          << quoted("reference (N=" + std::to_string(result.reference->particles) + ")");
     out << "\n";
     out << "set title " << quoted(x + ": median over " + std::to_string(result.runs) + " runs, 5-95 % band" + clipped) << "\n";
     if (result.filters.empty()) out << "plot 0 with lines notitle\n";

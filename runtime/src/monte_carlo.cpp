@@ -62,6 +62,12 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
     const std::string problem = criterion_weight_problem(options.criterion->weight, n);
     if (!problem.empty()) throw std::invalid_argument("monte carlo: " + problem);
   }
+  if (options.reference) {  // its checks
+    if (measurement)
+      (void)ParticleReference(scheme, *measurement, *options.reference, options.truth_guard.bound());
+    else
+      (void)ParticleReference(scheme, observation, *options.reference, options.truth_guard.bound());
+  }
   if (measurement) (void)measurement->steps_per_sample(options.grid);  // throws unless whole
   (void)observation.delay_steps(options.grid.dt);  // throws unless h is a whole number of steps
 }
@@ -147,6 +153,9 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     timing.truth_seconds += worker->truth_seconds;
     timing.truth_cpu_seconds += worker->truth_cpu_seconds;
     timing.truth_steps += worker->truth_steps;
+    timing.reference_seconds += worker->reference_seconds;
+    timing.reference_cpu_seconds += worker->reference_cpu_seconds;
+    timing.reference_steps += worker->reference_steps;
     for (std::size_t f = 0; f < filters.size(); ++f) {
       timing.filter_seconds[f] += worker->filter_seconds[f];
       timing.filter_cpu_seconds[f] += worker->filter_cpu_seconds[f];

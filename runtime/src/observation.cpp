@@ -82,6 +82,13 @@ void LinearObservation::increment(double t, double dt, const Eigen::Ref<const Ei
   }
 }
 
+void LinearObservation::coefficients(double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
+  evaluate(t);
+  A0 = A0_;
+  A = A_;
+  B = B_;
+}
+
 Eigen::VectorXd LinearObservation::rate(double t, const Eigen::Ref<const Eigen::VectorXd>& x) {
   evaluate(t);
   return A0_ + A_ * x;

@@ -55,6 +55,27 @@ std::vector<Column> make_columns(const MonteCarloResult& result, const std::vect
     add_statistics(result.filters[f].name + "_err_", series.filters[f].error);
     add_alive(result.filters[f].name + "_alive", series.filters[f].alive);
   }
+  // The particle reference, after every other column (their positions stay): the shown run's
+  // m_ref and x - m_ref, the RMS of x - m_ref over the runs; per filter the shown run's m - m_ref
+  // and its RMS over the runs.
+  if (result.reference) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const std::string& x = state_names[static_cast<std::size_t>(i)];
+      columns.push_back({"reference_m_" + x, [&series, i](Eigen::Index r) { return series.reference_m(r, i); }});
+      columns.push_back({"reference_err_" + x,
+                         [&series, i](Eigen::Index r) { return series.truth(r, i) - series.reference_m(r, i); }});
+      columns.push_back(
+          {"reference_err_" + x + "_rms", [&series, i](Eigen::Index r) { return series.reference_error_rms(r, i); }});
+    }
+    for (std::size_t f = 0; f < result.filters.size(); ++f) {
+      const FilterSeries& filter = series.filters[f];
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const std::string stem = result.filters[f].name + "_dref_" + state_names[static_cast<std::size_t>(i)];
+        columns.push_back({stem, [&filter, i](Eigen::Index r) { return filter.reference_distance(r, i); }});
+        columns.push_back({stem + "_rms", [&filter, i](Eigen::Index r) { return filter.reference_distance_rms(r, i); }});
+      }
+    }
+  }
   return columns;
 }
 
@@ -184,6 +205,9 @@ std::string format_stops_csv(const MonteCarloResult& result) {
     for (const RunEvent& e : filter.divergences.events) row(filter.name, "diverged", e);
     for (const RunEvent& e : filter.psd_losses.events) row(filter.name, "psd_loss", e);
   }
+  // The particle reference: runs where every particle diverged (source "reference").
+  if (result.reference)
+    for (const RunEvent& e : result.reference->stopped.events) row("reference", "stopped", e);
   return out;
 }
 

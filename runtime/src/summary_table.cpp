@@ -163,6 +163,31 @@ std::string criterion_section(const MonteCarloResult& result) {
   return out;
 }
 
+// How far each filter's m is from the particle reference's m_ref (docs/theory.md §7.4); empty
+// without a reference, so other tables keep their bytes.
+std::string reference_section(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
+  if (!result.reference) return "";
+  const ReferenceStatistics& reference = *result.reference;
+  std::vector<std::vector<std::string>> rows{{"filter", "state", "runs", "RMS(m - m_ref)", "RMS(x - m)", "RMS(x - m_ref)"}};
+  for (const FilterStatistics& filter : result.filters) {
+    if (!filter.reference) continue;
+    const ReferenceComparison& c = *filter.reference;
+    for (std::size_t i = 0; i < result.n; ++i)
+      rows.push_back({filter.name, state_names[i], count(c.runs), number(c.distance[i]), number(c.filter_rms[i]),
+                      number(c.reference_rms[i])});
+  }
+  for (std::size_t i = 0; i < result.n; ++i)
+    rows.push_back({"reference", state_names[i], count(reference.horizon.runs), "", "", number(reference.horizon.rms[i])});
+  std::ostringstream out;
+  out << "\nDistance to the particle reference (N = " << reference.particles
+      << " particles, bootstrap filter from the filters' prior; RMS over the runs and grid points of [" << time(result.grid.t0)
+      << ", " << time(result.grid.end()) << "] where the filter and the reference reached T; reference: every run it "
+      << "reached T in):\n"
+      << align(rows) << events_line("Reference stopped (every particle diverged)", reference.stopped, result.runs)
+      << "; resampled " << number(reference.mean_resamplings, "%.1f") << " times per run\n";
+  return out.str();
+}
+
 }  // namespace
 
 std::string format_summary_table(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
@@ -228,6 +253,7 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
       out << "\nRuns stopped as too stiff for dt (a grid step needed more filter sub-steps than allowed; "
              "counted as diverged):\n"
           << stiff.str();
+    out << reference_section(result, state_names);
     out << sampled_section(result);
     out << criterion_section(result);
   }
@@ -286,6 +312,10 @@ std::string format_timing(const MonteCarloResult& result) {
           << number(timing.filter_cpu_seconds[f] * 1e6 / static_cast<double>(timing.filter_samples[f]), "%.3f") << ")";
     out << "\n";
   }
+  if (result.reference)
+    out << "  particle reference (N = " << result.reference->particles << "): "
+        << phase(timing.reference_seconds, timing.reference_cpu_seconds, timing.reference_steps)
+        << " (a step: one particle's)\n";
   out << "  statistics: " << number(timing.aggregation_seconds, "%.3f") << " s\n";
   return out.str();
 }

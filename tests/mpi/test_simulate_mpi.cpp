@@ -1,7 +1,8 @@
 // `mpirun -n 2 pfgen simulate` (built with -DPFGEN_WITH_MPI=ON; README, "Monte Carlo across
 // machines (MPI)") against the single process: stdout and every file byte for byte the same as
-// with --threads 1 and 2, for a continuous, a sampled, a delayed and a risk: model; and a failure
-// on any one rank ends the whole job with one error line, without a hang.
+// with --threads 1 and 2, for a continuous, a sampled, a delayed and a risk: model and with the
+// particle reference; and a failure on any one rank ends the whole job with one error line,
+// without a hang.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -131,6 +132,16 @@ TEST_CASE("mpirun -n 2 simulate risk: J table and criterion CSV as one process",
   const std::string out = same_everywhere({"simulate", example("leqg_tracking.yaml"), "--runs", "9", "--T", "2"},
                                           {"-o=r.csv", "--criterion-csv=j.csv", "--stops-csv=s.csv"});
   CHECK(out.find("J") != std::string::npos);
+}
+
+TEST_CASE("mpirun -n 2 simulate --reference particles:N: the reference's table, CSV and plot as one process",
+          "[mpi][compiler]") {
+  // The particle reference's per-run results (run_codec) cross ranks; the shown run (4) is the
+  // second rank's.
+  const std::string out = same_everywhere({"simulate", example("reference/double_well.yaml"), "--runs", "5", "--T", "1",
+                                           "--dt", "1e-2", "--shown-run", "4", "--reference", "particles:100"},
+                                          {"-o=r.csv", "--plot=e.svg", "--stops-csv=s.csv"}, {"e.svg.gp"});
+  CHECK(out.find("Distance to the particle reference (N = 100 particles") != std::string::npos);
 }
 
 TEST_CASE("mpirun -n 2 simulate: a failure on either rank ends the job with one error line", "[mpi][compiler]") {

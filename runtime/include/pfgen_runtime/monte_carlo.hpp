@@ -26,6 +26,7 @@
 #include "pfgen_runtime/criterion.hpp"
 #include "pfgen_runtime/guards.hpp"
 #include "pfgen_runtime/observation.hpp"
+#include "pfgen_runtime/particle_reference.hpp"
 #include "pfgen_runtime/schemes.hpp"
 #include "pfgen_runtime/simulation.hpp"
 
@@ -56,6 +57,9 @@ struct MonteCarloOptions {
   // The exponential criterion J per filter (criterion.hpp), when set; the weight, when given, must
   // be n x n, finite and symmetric.
   std::optional<CriterionOptions> criterion;
+  // The particle reference (particle_reference.hpp) on every run, when set: continuous undelayed
+  // or sampled observations and a truth with noise only (std::invalid_argument otherwise).
+  std::optional<ParticleReferenceOptions> reference;
   // Called from worker threads (must be thread-safe) after each finished run with the number of
   // runs finished so far.
   std::function<void(std::size_t finished, std::size_t total)> on_run_finished;
@@ -136,6 +140,25 @@ struct CriterionStatistics {
   CriterionEstimate completed;    // the runs that reached T
 };
 
+// One filter against the particle reference over [t0, T], on the runs where both the filter and
+// the reference reached T (`runs`), per component: the RMS over runs and grid points of the
+// distance m - m_ref, of the filter's error x - m and of the reference's x - m_ref on those runs
+// (for the exact conditional mean, RMS(x - m)^2 = RMS(x - m_ref)^2 + RMS(m - m_ref)^2 up to Monte
+// Carlo error). NaN when runs == 0.
+struct ReferenceComparison {
+  std::size_t runs = 0;
+  std::vector<double> distance, filter_rms, reference_rms;
+};
+
+// The reference itself: its error x - m_ref over [t0, T] (horizon: the runs it reached T in), the
+// runs where every particle diverged before the truth's end, and its resamplings.
+struct ReferenceStatistics {
+  std::size_t particles = 0;
+  WindowStatistics horizon;
+  EventSummary stopped;
+  double mean_resamplings = 0;  // per run with a reference
+};
+
 struct FilterStatistics {
   std::string name;
   WindowStatistics horizon;              // [t0, T]; horizon.runs runs completed
@@ -149,6 +172,7 @@ struct FilterStatistics {
   std::size_t too_stiff_runs = 0;   // runs stopped (and counted as diverged) for want of sub-steps
   std::optional<SampledMetrics> sampled;  // sampled filters only
   std::optional<CriterionStatistics> criterion;  // when MonteCarloOptions::criterion is set
+  std::optional<ReferenceComparison> reference;  // when MonteCarloOptions::reference is set
 };
 
 // Across runs at each record time, per component; NaN where no run is alive.
@@ -160,6 +184,9 @@ struct FilterSeries {
   Eigen::MatrixXd m, P_diagonal;  // records x n: the shown run; NaN where it had stopped
   SeriesStatistics error;         // e = x - m over the runs alive
   std::vector<std::size_t> alive;  // per record time
+  // With the particle reference (else empty), records x n: the shown run's m - m_ref (NaN where
+  // either had stopped) and, over the runs where both are alive, sqrt(mean (m - m_ref)^2).
+  Eigen::MatrixXd reference_distance, reference_distance_rms;
 };
 
 struct MonteCarloSeries {
@@ -170,6 +197,9 @@ struct MonteCarloSeries {
   SeriesStatistics truth_statistics;
   std::vector<std::size_t> truth_alive;
   std::vector<FilterSeries> filters;  // as the filters passed in
+  // With the particle reference (else empty), records x n: the shown run's m_ref, and over the
+  // runs where the reference is alive sqrt(mean (x - m_ref)^2).
+  Eigen::MatrixXd reference_m, reference_error_rms;
 };
 
 // Wall time of the whole call, and per phase the elapsed (steady_clock) and CPU seconds of the
@@ -184,6 +214,9 @@ struct MonteCarloTiming {
   std::vector<double> filter_seconds, filter_cpu_seconds;
   std::vector<std::uint64_t> filter_steps;
   std::vector<std::uint64_t> filter_samples;  // samples absorbed, over all runs (sampled filters)
+  // The particle reference: its time and the particles' scheme steps, over all runs.
+  double reference_seconds = 0, reference_cpu_seconds = 0;
+  std::uint64_t reference_steps = 0;
   double aggregation_seconds = 0;  // folding the runs into statistics, after they finished
 };
 
@@ -201,6 +234,7 @@ struct MonteCarloResult {
   EventSummary truth_divergences;  // the truth guard's event time
   EventSummary truth_covariance_losses;  // those of them where G lost definiteness
   std::vector<TruthReportStatistics> truth_reports;  // as MonteCarloOptions::report_times
+  std::optional<ReferenceStatistics> reference;  // when MonteCarloOptions::reference is set
   MonteCarloSeries series;
   MonteCarloTiming timing;
 };

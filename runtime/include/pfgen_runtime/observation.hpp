@@ -41,6 +41,10 @@ class LinearObservation {
                  const Eigen::Ref<const Eigen::VectorXd>& x_end, const Eigen::Ref<const Eigen::VectorXd>& dW2,
                  Eigen::Ref<Eigen::VectorXd> dy);
 
+  // A0, A and B at time t into the caller's arrays, which must already be p, p x n and p x r (then
+  // nothing is allocated). Not thread-safe, like increment().
+  void coefficients(double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B);
+
   // h(t, x) = A0(t) + A(t) x, the observation rate.
   Eigen::VectorXd rate(double t, const Eigen::Ref<const Eigen::VectorXd>& x);
 

@@ -70,6 +70,10 @@ inline constexpr std::uint64_t truth_noise = 0;
 inline constexpr std::uint64_t observation_noise = 1;
 inline constexpr std::uint64_t initial_state = 2;
 inline constexpr std::uint64_t truth_refinement = 3;  // Brownian-bridge draws of adaptive schemes
+// The particle reference (particle_reference.hpp): its prior draws, the particles' Wiener
+// increments and the resampling uniforms, and its scheme's own bridge draws.
+inline constexpr std::uint64_t particle_reference = 4;
+inline constexpr std::uint64_t particle_refinement = 5;
 }  // namespace substream
 
 class RandomStream {

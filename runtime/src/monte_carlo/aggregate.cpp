@@ -153,6 +153,68 @@ CriterionStatistics criterion_statistics(const std::vector<RunResult>& runs, std
   return out;
 }
 
+// The reference's own statistics: x - m_ref over the runs it reached T in, its stops, resamplings.
+ReferenceStatistics reference_statistics(const Plan& plan, const std::vector<RunResult>& runs, std::size_t particles) {
+  const std::size_t n = plan.n;
+  const auto steps = static_cast<std::ptrdiff_t>(plan.grid.steps);
+  ReferenceStatistics out;
+  out.particles = particles;
+  WindowStatistics& horizon = out.horizon;
+  horizon.first = 0;
+  horizon.last = plan.grid.steps;
+  horizon.a = plan.grid.t0;
+  horizon.b = plan.grid.end();
+  std::vector<double> sum(n, 0.0);
+  std::uint64_t resamplings = 0;
+  std::size_t referenced = 0;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const ReferenceRunResult& reference = runs[r].reference;
+    if (reference.stopped) out.stopped.events.push_back({r, reference.stop_t});
+    if (reference.last >= 0) ++referenced;
+    resamplings += reference.resamplings;
+    if (reference.last != steps) continue;
+    ++horizon.runs;
+    for (std::size_t i = 0; i < n; ++i) sum[i] += reference.mean_square[i];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    horizon.rms.push_back(horizon.runs > 0 ? std::sqrt(sum[i] / static_cast<double>(horizon.runs)) : nan);
+  out.mean_resamplings = referenced > 0 ? static_cast<double>(resamplings) / static_cast<double>(referenced) : nan;
+  return out;
+}
+
+// Filter f against the reference over the runs where both reached T.
+ReferenceComparison reference_comparison(const Plan& plan, const std::vector<RunResult>& runs, std::size_t f) {
+  const std::size_t n = plan.n;
+  const auto steps = static_cast<std::ptrdiff_t>(plan.grid.steps);
+  ReferenceComparison out;
+  std::vector<double> distance(n, 0.0), filter(n, 0.0), reference(n, 0.0);
+  for (const RunResult& run : runs) {
+    const FilterRunResult& result = run.filters[f];
+    if (result.last != steps || run.reference.last != steps) continue;
+    ++out.runs;
+    for (std::size_t i = 0; i < n; ++i) {
+      distance[i] += result.reference_square[i];
+      filter[i] += result.mean_square[i];
+      reference[i] += run.reference.mean_square[i];
+    }
+  }
+  const double runs_counted = static_cast<double>(out.runs);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.distance.push_back(out.runs > 0 ? std::sqrt(distance[i] / runs_counted) : nan);
+    out.filter_rms.push_back(out.runs > 0 ? std::sqrt(filter[i] / runs_counted) : nan);
+    out.reference_rms.push_back(out.runs > 0 ? std::sqrt(reference[i] / runs_counted) : nan);
+  }
+  return out;
+}
+
+// sqrt of the mean of the squares of `values`; NaN when empty. In run order.
+double root_mean_square(const std::vector<double>& values) {
+  if (values.empty()) return nan;
+  double sum = 0;
+  for (double v : values) sum += v * v;
+  return std::sqrt(sum / static_cast<double>(values.size()));
+}
+
 }  // namespace
 
 void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const std::vector<RunResult>& runs,
@@ -263,8 +325,11 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
     if (filters[f].sampled()) stats.sampled = sampled_metrics(runs, f, steps, filters[f].p);
     if (options.criterion) stats.criterion = criterion_statistics(runs, f, plan.grid, options.criterion->epsilon,
                                                                  options.filter_guards.stop_on_psd_loss);
+    if (options.reference) stats.reference = reference_comparison(plan, runs, f);
     result.filters.push_back(std::move(stats));
   }
+
+  if (options.reference) result.reference = reference_statistics(plan, runs, options.reference->particles);
 
   MonteCarloSeries& series = result.series;
   series.index = plan.records;
@@ -280,7 +345,15 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
     filter.P_diagonal = records_matrix(shown.filters[f].P_record, records, n);
     filter.error = make_series_statistics(records, n);
     filter.alive.assign(records, 0);
+    if (options.reference) {
+      filter.reference_distance = records_matrix(shown.filters[f].reference_record, records, n);
+      filter.reference_distance_rms.resize(static_cast<Eigen::Index>(records), static_cast<Eigen::Index>(n));
+    }
     series.filters.push_back(std::move(filter));
+  }
+  if (options.reference) {
+    series.reference_m = records_matrix(shown.reference.m_record, records, n);
+    series.reference_error_rms.resize(static_cast<Eigen::Index>(records), static_cast<Eigen::Index>(n));
   }
   // Across runs at each record time. Record times are independent (each writes its own rows), so
   // they are shared among threads without changing a bit; the sorting for the quantiles is most
@@ -308,6 +381,21 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
           if (run.filters[f].last >= index) values.push_back(run.filters[f].error_record[r * n + i]);
         filter.alive[r] = values.size();
         summarize(values, filter.error, row, static_cast<Eigen::Index>(i));
+      }
+    }
+    if (!options.reference) return;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto column = static_cast<Eigen::Index>(i);
+      values.clear();
+      for (const RunResult& run : runs)
+        if (run.reference.last >= index) values.push_back(run.reference.error_record[r * n + i]);
+      series.reference_error_rms(row, column) = root_mean_square(values);
+      for (std::size_t f = 0; f < filters.size(); ++f) {
+        values.clear();
+        for (const RunResult& run : runs)
+          if (run.reference.last >= index && run.filters[f].last >= index)
+            values.push_back(run.filters[f].reference_record[r * n + i]);
+        series.filters[f].reference_distance_rms(row, column) = root_mean_square(values);
       }
     }
   });

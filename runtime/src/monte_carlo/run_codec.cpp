@@ -14,8 +14,8 @@ namespace {
 // A new field of RunResult or FilterRunResult must be written and read below, or processes'
 // runs would lose it on the way: the sizes are checked where they are known, to make that loud.
 #if defined(__x86_64__) && defined(__GLIBCXX__)
-static_assert(sizeof(RunResult) == 96, "RunResult changed: encode the new field in run_codec.cpp");
-static_assert(sizeof(FilterRunResult) == 232, "FilterRunResult changed: encode the new field in run_codec.cpp");
+static_assert(sizeof(RunResult) == 200, "RunResult changed: encode the new field in run_codec.cpp");
+static_assert(sizeof(FilterRunResult) == 280, "FilterRunResult changed: encode the new field in run_codec.cpp");
 #endif
 
 constexpr char kMagic[8] = {'p', 'f', 'g', 'e', 'n', 'r', 'u', '1'};
@@ -86,6 +86,8 @@ void filter_fields(IO& io, Run& f) {
   io.put_or_get(f.samples);
   io.put_or_get(f.update_failed);
   io.put_or_get(f.integral);
+  io.put_or_get(f.reference_square);
+  io.put_or_get(f.reference_record);
 }
 
 template <class IO, class Run>
@@ -100,6 +102,13 @@ void run_fields(IO& io, Run& r) {
   io.put_or_get(filters);
   if constexpr (!std::is_const_v<Run>) r.filters.resize(static_cast<std::size_t>(filters));
   for (auto& f : r.filters) filter_fields(io, f);
+  io.put_or_get(r.reference.last);
+  io.put_or_get(r.reference.stopped);
+  io.put_or_get(r.reference.stop_t);
+  io.put_or_get(r.reference.resamplings);
+  io.put_or_get(r.reference.mean_square);
+  io.put_or_get(r.reference.error_record);
+  io.put_or_get(r.reference.m_record);
 }
 
 struct Encode {
@@ -131,6 +140,9 @@ std::vector<char> encode_share(const std::vector<RunResult>& runs, const MonteCa
   io.put_or_get(timing.filter_cpu_seconds);
   io.put_or_get(timing.filter_steps);
   io.put_or_get(timing.filter_samples);
+  io.put_or_get(timing.reference_seconds);
+  io.put_or_get(timing.reference_cpu_seconds);
+  io.put_or_get(timing.reference_steps);
   io.put_or_get(static_cast<std::uint64_t>(runs.size()));
   for (const RunResult& run : runs) run_fields(io, run);
   return std::move(io.writer.out);
@@ -153,6 +165,9 @@ void decode_share(const std::vector<char>& bytes, std::size_t filters, std::vect
   io.put_or_get(block.filter_cpu_seconds);
   io.put_or_get(block.filter_steps);
   io.put_or_get(block.filter_samples);
+  io.put_or_get(block.reference_seconds);
+  io.put_or_get(block.reference_cpu_seconds);
+  io.put_or_get(block.reference_steps);
   if (block.filter_seconds.size() != filters || block.filter_cpu_seconds.size() != filters ||
       block.filter_steps.size() != filters || (block.filter_samples.size() != filters && !block.filter_samples.empty()))
     Reader::fail();
@@ -170,6 +185,9 @@ void decode_share(const std::vector<char>& bytes, std::size_t filters, std::vect
   timing.truth_seconds += block.truth_seconds;
   timing.truth_cpu_seconds += block.truth_cpu_seconds;
   timing.truth_steps += block.truth_steps;
+  timing.reference_seconds += block.reference_seconds;
+  timing.reference_cpu_seconds += block.reference_cpu_seconds;
+  timing.reference_steps += block.reference_steps;
   for (std::size_t f = 0; f < filters; ++f) {
     timing.filter_seconds[f] += block.filter_seconds[f];
     timing.filter_cpu_seconds[f] += block.filter_cpu_seconds[f];

@@ -33,6 +33,22 @@ struct FilterRunResult {
   // The criterion's I = int L dt by the trapezoid rule over the grid points visited so far (the
   // whole horizon when last == steps); 0 unless MonteCarloOptions::criterion is set.
   double integral = 0;
+  // With the particle reference (else empty): (m - m_ref)^2 averaged over the horizon's grid
+  // points (n; NaN unless the filter and the reference reached T), and m - m_ref at the record
+  // points (records x n; NaN where either had stopped).
+  std::vector<double> reference_square;
+  std::vector<double> reference_record;
+};
+
+// The particle reference's run (MonteCarloOptions::reference).
+struct ReferenceRunResult {
+  std::ptrdiff_t last = -1;  // last grid index with a reference mean; -1: none
+  bool stopped = false;      // every particle diverged before the truth's end
+  double stop_t = nan;
+  std::uint64_t resamplings = 0;
+  std::vector<double> mean_square;   // n: (x - m_ref)^2 over the horizon's grid points; NaN unless last == steps
+  std::vector<double> error_record;  // records x n: x - m_ref; NaN where not reached
+  std::vector<double> m_record;      // records x n, the shown run only
 };
 
 struct RunResult {
@@ -43,6 +59,7 @@ struct RunResult {
   std::vector<double> truth_record;  // records x n
   std::vector<double> truth_report;  // reports x n; NaN where the truth had stopped
   std::vector<FilterRunResult> filters;
+  ReferenceRunResult reference;
 };
 
 }  // namespace pfgen_runtime::monte_carlo_detail

@@ -38,6 +38,13 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
     weight_ = options.criterion->weight;
     weighted_ = weight_.size() > 0;
   }
+  if (options.reference) {
+    const double bound = options.truth_guard.bound();
+    reference_ = measurement ? std::make_unique<ParticleReference>(scheme, *measurement, *options.reference, bound)
+                             : std::make_unique<ParticleReference>(scheme, observation, *options.reference, bound);
+    reference_mean_.resize(static_cast<Eigen::Index>(plan.n), static_cast<Eigen::Index>(plan.grid.steps + 1));
+    distance_sums_.resize(plan.n);
+  }
 }
 
 void Worker::run(std::size_t run, RunResult& out) {
@@ -46,6 +53,13 @@ void Worker::run(std::size_t run, RunResult& out) {
   simulate_truth(run, out);
   truth_seconds += seconds_since(start);
   truth_cpu_seconds += thread_cpu_seconds() - cpu_start;
+  if (reference_) {
+    start = Clock::now();
+    cpu_start = thread_cpu_seconds();
+    run_reference(run, run == options_.shown_run, out);
+    reference_seconds += seconds_since(start);
+    reference_cpu_seconds += thread_cpu_seconds() - cpu_start;
+  }
   out.filters.resize(filters_.size());
   for (std::size_t f = 0; f < filters_.size(); ++f) {
     start = Clock::now();
@@ -83,6 +97,45 @@ void Worker::simulate_truth(std::size_t run, RunResult& out) {
       for (std::size_t i = 0; i < n; ++i) out.truth_report[q * n + i] = path_(i, plan_.reports[q]);
 }
 
+// The particle reference on the run's increments (or samples), and its own error x - m_ref.
+void Worker::run_reference(std::size_t run, bool shown, RunResult& out) {
+  const std::size_t n = plan_.n, steps = plan_.grid.steps;
+  const ParticleReferenceRun outcome =
+      measurement_ ? reference_->run_sampled(plan_.grid, steps_per_sample_, noisy_, samples_, out.truth_last,
+                                             options_.seed, run, reference_mean_)
+                   : reference_->run(plan_.grid, dy_, out.truth_last, options_.seed, run, reference_mean_);
+  reference_last_ = outcome.last;
+  reference_steps += outcome.particle_steps;
+  ReferenceRunResult& reference = out.reference;
+  reference.last = outcome.last;
+  reference.stopped = outcome.stopped;
+  if (outcome.stopped) reference.stop_t = outcome.stop_t;
+  reference.resamplings = outcome.resamplings;
+  reference.mean_square.assign(n, nan);
+  reference.error_record.assign(plan_.records.size() * n, nan);
+  if (shown) reference.m_record.assign(plan_.records.size() * n, nan);
+  if (outcome.last == static_cast<std::ptrdiff_t>(steps)) {
+    for (std::size_t i = 0; i < n; ++i) {
+      double sum = 0;
+      for (std::size_t j = 0; j <= steps; ++j) {
+        const double e = path_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) -
+                         reference_mean_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+        sum += e * e;
+      }
+      reference.mean_square[i] = sum / static_cast<double>(steps + 1);
+    }
+  }
+  for (std::size_t r = 0; r < plan_.records.size(); ++r) {
+    const auto j = static_cast<Eigen::Index>(plan_.records[r]);
+    if (j > outcome.last) break;  // records are in grid order
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      reference.error_record[r * n + i] = path_(row, j) - reference_mean_(row, j);
+      if (shown) reference.m_record[r * n + i] = reference_mean_(row, j);
+    }
+  }
+}
+
 // run_filter (simulation.cpp) over the thread's truth buffers, with the run's statistics
 // accumulated as it goes.
 void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, FilterRunResult& out) {
@@ -97,6 +150,11 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, Filter
   if (shown) {
     out.m_record.assign(plan_.records.size() * n, nan);
     out.P_record.assign(plan_.records.size() * n, nan);
+  }
+  if (reference_) {
+    out.reference_square.assign(n, nan);
+    out.reference_record.assign(plan_.records.size() * n, nan);
+    std::fill(distance_sums_.begin(), distance_sums_.end(), 0.0);
   }
   if (run.truth_last < 0) return;  // no truth to compare with
 
@@ -131,6 +189,7 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, Filter
     filter_samples[f] += out.samples;
     if (out.last == static_cast<std::ptrdiff_t>(grid.steps))
       for (std::size_t i = 0; i < n; ++i) out.mean_square[i] = sums_[i] / static_cast<double>(grid.steps + 1);
+    finish_reference_distance(out);
     return;
   }
   const std::uint64_t refined_before = stepper_.refined_steps();
@@ -154,6 +213,15 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, Filter
   out.refined_steps = stepper_.refined_steps() - refined_before;
   if (out.last == static_cast<std::ptrdiff_t>(grid.steps))
     for (std::size_t i = 0; i < n; ++i) out.mean_square[i] = sums_[i] / static_cast<double>(grid.steps + 1);
+  finish_reference_distance(out);
+}
+
+// The horizon's mean (m - m_ref)^2, when the filter and the reference both reached T.
+void Worker::finish_reference_distance(FilterRunResult& out) {
+  const auto steps = static_cast<std::ptrdiff_t>(plan_.grid.steps);
+  if (!reference_ || out.last != steps || reference_last_ != steps) return;
+  for (std::size_t i = 0; i < plan_.n; ++i)
+    out.reference_square[i] = distance_sums_[i] / static_cast<double>(steps + 1);
 }
 
 // A sampled filter over the truth's grid (docs/theory.md, section 2.5): grid step k lies in the
@@ -219,6 +287,10 @@ void Worker::visit(std::size_t j, const double* state, bool shown, FilterRunResu
     for (std::size_t w : active_) sums_[(1 + w) * n + i] += square;
   }
   if (criterion_) accumulate_criterion(j, out);
+  const bool referenced = reference_ && static_cast<std::ptrdiff_t>(j) <= reference_last_;
+  const double* m_ref = referenced ? reference_mean_.data() + j * n : nullptr;
+  if (referenced)
+    for (std::size_t i = 0; i < n; ++i) distance_sums_[i] += (state[i] - m_ref[i]) * (state[i] - m_ref[i]);
   while (next_event_ < plan_.events.size() && plan_.events[next_event_].index == j) {
     const Plan::Event& event = plan_.events[next_event_++];
     const std::size_t slot = event.slot;
@@ -230,6 +302,8 @@ void Worker::visit(std::size_t j, const double* state, bool shown, FilterRunResu
             out.m_record[slot * n + i] = state[i];
             out.P_record[slot * n + i] = state[n + packed_diagonal(n, i)];
           }
+        if (referenced)
+          for (std::size_t i = 0; i < n; ++i) out.reference_record[slot * n + i] = state[i] - m_ref[i];
         break;
       case Plan::Kind::report:
         for (std::size_t i = 0; i < n; ++i) out.report_error[slot * n + i] = error_[i];

@@ -38,14 +38,18 @@ class Worker {
   std::vector<double> filter_seconds, filter_cpu_seconds;
   std::vector<std::uint64_t> filter_steps;
   std::vector<std::uint64_t> filter_samples;  // samples absorbed (sampled filters)
+  double reference_seconds = 0, reference_cpu_seconds = 0;
+  std::uint64_t reference_steps = 0;  // particle steps
 
  private:
   void simulate_truth(std::size_t run, RunResult& out);
+  void run_reference(std::size_t run, bool shown, RunResult& out);
   void step_filter(std::size_t f, bool shown, const RunResult& run, FilterRunResult& out);
   void step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth_last, FilterRunResult& out,
                            const std::function<bool(double)>& guard, bool shown, std::uint64_t& steps);
   void visit(std::size_t j, const double* state, bool shown, FilterRunResult& out);
   void accumulate_criterion(std::size_t j, FilterRunResult& out);
+  void finish_reference_distance(FilterRunResult& out);
 
   std::unique_ptr<TruthScheme> scheme_;
   LinearObservation observation_;
@@ -68,6 +72,12 @@ class Worker {
   bool criterion_ = false, weighted_ = false;
   Eigen::MatrixXd weight_;
   double previous_L_ = 0;
+  // The particle reference: its mean on the current run's grid (n x (steps + 1)) up to
+  // reference_last_, and a filter pass's sums of (m - m_ref)^2 (n).
+  std::unique_ptr<ParticleReference> reference_;
+  Eigen::MatrixXd reference_mean_;
+  std::ptrdiff_t reference_last_ = -1;
+  std::vector<double> distance_sums_;
 };
 
 }  // namespace pfgen_runtime::monte_carlo_detail

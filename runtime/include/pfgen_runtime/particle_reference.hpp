@@ -1,0 +1,119 @@
+#pragma once
+// The particle reference (docs/theory.md §7.4): a bootstrap particle filter on one run's
+// observation increments dy, whose weighted mean estimates the true conditional mean E[x_t | Y_t]
+// for the filters' prior N(m0, P0). `pfgen simulate --reference particles:N` runs it beside the
+// filters and reports how far each filter's m is from it.
+//
+// - Prior: N particles drawn from N(m0, P0) (P0's symmetric square root, so a singular P0 is fine).
+// - Propagation: each particle by the truth's own scheme (a clone) over each grid step, with its
+//   own Wiener increments.
+// - Weights (continuous observation dy = (A0 + A x) dt + B dW, R = B B^T): per grid step the
+//   Girsanov log-likelihood increment
+//     log w_i += h_i^T R^-1 dy - 1/2 h_i^T R^-1 h_i dt,
+//   with h_i = 1/2 [(A0 + A x_i)(t) + (A0 + A x_i)(t + dt)], the trapezoid the truth's dy uses
+//   (LinearObservation::increment), and R at the step's left end as its noise term. Normalised
+//   with the largest log-weight subtracted.
+// - Sampled observations y_k = C0 + C x(t_k) + Uv v_k instead: the weights change only at the
+//   samples, by log w_i += -1/2 (y_k - C0 - C x_i)^T (Uv Uv^T)^-1 (y_k - C0 - C x_i).
+// - Resampling: systematic (one uniform), when the effective sample size 1 / sum w^2 (w
+//   normalised) falls below kResampleFraction N.
+// - A particle whose state is non-finite or beyond the run's divergence bound, or whose step the
+//   scheme could not finish, gets weight 0 and is no longer stepped; when every particle has, the
+//   reference stops for the run.
+//
+// Random numbers: RandomStream(seed, run, substream::particle_reference), consumed in order (n
+// normals per particle for the prior, then per grid step q normals per particle in particle
+// order, dead ones included, and one uniform per resampling); an adaptive scheme's bridge draws
+// come from substream::particle_refinement. So the reference depends on (seed, run, N) only, never
+// on threads. Continuous undelayed or sampled observations and a truth with noise (q > 0) only:
+// without process noise the particles never spread, and a delayed observation's likelihood
+// depends on the path h back.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "pfgen_runtime/observation.hpp"
+#include "pfgen_runtime/random.hpp"
+#include "pfgen_runtime/schemes.hpp"
+#include "pfgen_runtime/simulation.hpp"
+
+namespace pfgen_runtime {
+
+// Resample when the effective sample size falls below this fraction of N (the customary 1/2).
+inline constexpr double kResampleFraction = 0.5;
+// The largest N `pfgen simulate` accepts (N particles of n doubles each per thread).
+inline constexpr std::size_t kMaxParticles = 1000000;
+
+struct ParticleReferenceOptions {
+  std::size_t particles = 1000;  // N, 1 .. kMaxParticles
+  Eigen::VectorXd m0;            // the filters' prior mean (n)
+  Eigen::MatrixXd P0;            // and covariance (n x n, symmetric positive semi-definite)
+};
+
+// What one run of the reference did.
+struct ParticleReferenceRun {
+  std::ptrdiff_t last = -1;   // last grid index with a reference mean (-1: none)
+  bool stopped = false;       // every particle diverged (or R was not positive definite) before the truth's end
+  double stop_t = 0;          // the grid time it stopped at (when stopped)
+  std::uint64_t resamplings = 0;
+  std::uint64_t particle_steps = 0;  // scheme steps taken, for the timing line
+};
+
+class ParticleReference {
+ public:
+  // std::invalid_argument: N outside 1 .. kMaxParticles, m0 or P0 not the truth's n, P0 not
+  // symmetric positive semi-definite, an observation with a delay or of other n, or q == 0.
+  // `bound`: the divergence bound of the truth (DivergenceGuard) that ends a particle.
+  ParticleReference(const TruthScheme& scheme, const LinearObservation& observation,
+                    const ParticleReferenceOptions& options, double bound);
+  // For sampled observations y_k = C0 + C x(t_k) + Uv v_k: weights change only at the samples,
+  // by the Gaussian likelihood log w_i += -1/2 (y_k - C0 - C x_i)^T (Uv Uv^T)^-1 (y_k - C0 - C x_i).
+  ParticleReference(const TruthScheme& scheme, const SampledMeasurement& measurement,
+                    const ParticleReferenceOptions& options, double bound);
+
+  // Runs the filter over the increments dy.col(0 .. truth_last - 1) of run `run` on `grid`,
+  // writing the weighted mean at grid index j into mean.col(j) for j = 0 .. result.last (mean is
+  // n x (grid.steps + 1), sized by the caller). truth_last < 0: nothing (last = -1).
+  ParticleReferenceRun run(const TimeGrid& grid, const Eigen::MatrixXd& dy, std::ptrdiff_t truth_last,
+                           std::uint64_t seed, std::uint64_t run, Eigen::MatrixXd& mean);
+
+  // The same for sampled observations (the second constructor): the samples y_1 .. y_count in the
+  // columns of `samples` (draw_samples' `noisy`), y_s at grid index s steps_per_sample.
+  ParticleReferenceRun run_sampled(const TimeGrid& grid, std::size_t steps_per_sample, const Eigen::MatrixXd& samples,
+                                   std::size_t count, std::ptrdiff_t truth_last, std::uint64_t seed, std::uint64_t run,
+                                   Eigen::MatrixXd& mean);
+
+  std::size_t particles() const { return N_; }
+
+ private:
+  void initialise(const ParticleReferenceOptions& options);
+  void draw_prior(RandomStream& stream);
+  void propagate(double t, double dt, RandomStream& stream, ParticleReferenceRun& result);
+  bool step_particle(std::size_t i, double t, double dt);
+  void set_rate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> rate) const;
+  // Weighted mean into `out` and, when the ESS is low, systematic resampling. False when every
+  // weight is 0 (or not finite).
+  bool weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, RandomStream& stream, std::uint64_t& resamplings);
+
+  std::unique_ptr<TruthScheme> scheme_;
+  std::optional<LinearObservation> observation_;    // continuous observations
+  std::optional<SampledMeasurement> measurement_;  // or sampled ones
+  std::size_t N_, n_, q_, p_;
+  Eigen::VectorXd m0_;
+  Eigen::MatrixXd root_;  // P0^(1/2)
+  double bound_;
+  Eigen::MatrixXd particles_, spare_;        // n x N (spare_: the resampled set being built)
+  Eigen::MatrixXd rate_start_, rate_spare_;  // p x N: A0 + A x_i at the step's left end
+  std::vector<double> log_weight_, weight_;
+  std::vector<char> alive_, alive_spare_;
+  Eigen::VectorXd dW_, z_, A0_, R_inv_dy_, h_, R_inv_h_;
+  Eigen::MatrixXd A_, B_, R_inv_;
+  std::vector<double> C0_, C_, Uv_;  // a sample's coefficients, row-major
+  Eigen::VectorXd innovation_;
+};
+
+}  // namespace pfgen_runtime
