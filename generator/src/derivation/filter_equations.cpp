@@ -52,20 +52,36 @@ std::size_t observed_states(const ObservationModel& observation) {
   return observation.is_sampled() ? observed_states(observation.sampled().C) : observed_states(observation.rate().A);
 }
 
+// A diffusion covariance's upper triangle, G_ij for i <= j row by row, as polynomials in the states.
+std::vector<Polynomial> upper_polynomials(const ExMatrix& G, const Model& model) {
+  std::vector<Polynomial> upper;
+  for (std::size_t i = 0; i < G.size(); ++i)
+    for (std::size_t j = i; j < G.size(); ++j) upper.push_back(Polynomial::from_ex(G[i][j], model.states));
+  return upper;
+}
+
+// The model file's field a budget error about that diffusion names.
+std::string diffusion_field(const Diffusion& diffusion, bool additive) {
+  return std::string(additive ? "additive_" : "") + (diffusion.g ? "diffusion" : "diffusion_covariance");
+}
+
+// The budget of a kind built from the model's own f, its Jacobian J and G (not from moment_terms):
+// counted as Gaussian expectations when `gaussian`, else as the polynomials read at m.
+void check_model_terms_budget(const Model& model, bool gaussian, const std::vector<Polynomial>& f, const PolyMatrix& J) {
+  check_derivation_budget(model, DerivationInputs{gaussian, f, J, upper_polynomials(model.diffusion.G, model),
+                                                  diffusion_field(model.diffusion, false),
+                                                  observed_states(model.observation)});
+}
+
 MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariables& vars) {
   const std::size_t n = model.n();
   std::vector<Polynomial> f = state_polynomials(model.drift, model);
   PolyMatrix J = jacobian(f);
   const bool additive = uses_additive_diffusion(kind);
   const Diffusion& diffusion = additive ? *model.additive_diffusion : model.diffusion;
-  const ExMatrix& G = diffusion.G;
-  std::vector<Polynomial> G_upper;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j) G_upper.push_back(Polynomial::from_ex(G[i][j], model.states));
-
-  const std::string diffusion_field = std::string(additive ? "additive_" : "") +
-                                      (diffusion.g ? "diffusion" : "diffusion_covariance");
-  check_derivation_budget(model, DerivationInputs{!is_extended_kalman(kind), f, J, G_upper, diffusion_field,
+  std::vector<Polynomial> G_upper = upper_polynomials(diffusion.G, model);
+  check_derivation_budget(model, DerivationInputs{!is_extended_kalman(kind), f, J, G_upper,
+                                                  diffusion_field(diffusion, additive),
                                                   observed_states(model.observation)});
 
   // State x_i and mean m_i share variable index i (FilterVariables), so the
@@ -119,16 +135,12 @@ FilterEquations equations_frame(const Model& model) {
 // Jacobian at m that its transport term is made of, for code generation's shared form.
 FilterEquations risk_sensitive_filter(const Model& model, FilterEquations eq) {
   const std::vector<Polynomial> f = state_polynomials(model.drift, model);
-  std::vector<Polynomial> G_upper;
-  for (std::size_t i = 0; i < model.n(); ++i)
-    for (std::size_t j = i; j < model.n(); ++j) G_upper.push_back(Polynomial::from_ex(model.diffusion.G[i][j], model.states));
-  check_derivation_budget(model, DerivationInputs{false, f, jacobian(f), G_upper,
-                                                  model.diffusion.g ? "diffusion" : "diffusion_covariance",
-                                                  observed_states(model.observation)});
+  PolyMatrix J = jacobian(f);
+  check_model_terms_budget(model, false, f, J);
   RiskSensitiveTerms terms = risk_sensitive_terms(model, eq.variables);
   eq.m_drift = std::move(terms.m_drift);
   eq.gain = std::move(terms.gain);
-  eq.jacobian_term = jacobian(f);
+  eq.jacobian_term = std::move(J);
   eq.P_moment = std::move(terms.P_moment);
   eq.P_diffusion = std::move(terms.P_diffusion);
   eq.P_correction = std::move(terms.P_correction);
@@ -142,15 +154,10 @@ FilterEquations risk_sensitive_filter(const Model& model, FilterEquations eq) {
 // Jacobian term (P_moment is not of the form P J^T + J P for a J polynomial in m and P), so code
 // generation takes the expanded form.
 FilterEquations unscented_filter(const Model& model, FilterEquations eq) {
-  const std::vector<Polynomial> f = state_polynomials(model.drift, model);
-  std::vector<Polynomial> G_upper;
-  for (std::size_t i = 0; i < model.n(); ++i)
-    for (std::size_t j = i; j < model.n(); ++j) G_upper.push_back(Polynomial::from_ex(model.diffusion.G[i][j], model.states));
   // The Gaussian closure's budget is this derivation's bound too: a monomial's sigma-point sum has
   // no more terms in m than its Gaussian expectation (one per sub-monomial of even co-degree).
-  check_derivation_budget(model, DerivationInputs{true, f, jacobian(f), G_upper,
-                                                  model.diffusion.g ? "diffusion" : "diffusion_covariance",
-                                                  observed_states(model.observation)});
+  const std::vector<Polynomial> f = state_polynomials(model.drift, model);
+  check_model_terms_budget(model, true, f, jacobian(f));
   UnscentedTerms terms = unscented_terms(model, eq.variables);
   eq.definitions = std::move(terms.cholesky);
   eq.m_drift = std::move(terms.m_drift);
