@@ -15,19 +15,15 @@
 
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
+#include "support/symbolic_mismatch.hpp"
 #include "support/test_paths.hpp"
 
 using namespace pfgen;
+using pfgen_test::text;
 using GiNaC::ex;
 using pfgen_test::example;
 
 namespace {
-
-std::string text(const ex& e) {
-  std::ostringstream out;
-  out << e;
-  return out.str();
-}
 
 // The model's parameter of that name.
 ex parameter(const Model& model, const std::string& name) {

@@ -13,25 +13,15 @@
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model_builder.hpp"
 
+#include "support/symbolic_mismatch.hpp"
+
 using namespace pfgen;
+using pfgen_test::mismatch;
+using pfgen_test::text;
 using GiNaC::ex;
 using GiNaC::numeric;
 
 namespace {
-
-std::string text(const ex& e) {
-  std::ostringstream out;
-  out << e;
-  return out.str();
-}
-
-// Empty when equal. R^-1 with symbolic B gives rational functions, so a
-// difference that does not expand to zero gets one normal() pass too.
-std::string mismatch(const ex& expected, const ex& derived) {
-  const ex diff = (expected - derived).expand();
-  if (diff.is_zero() || diff.normal().is_zero()) return {};
-  return "expected " + text(expected) + "\nderived  " + text(derived) + "\ndifference " + text(diff.normal());
-}
 
 GiNaC::matrix to_matrix(const ExMatrix& m) {
   GiNaC::matrix out(static_cast<unsigned>(m.size()), static_cast<unsigned>(m.at(0).size()));

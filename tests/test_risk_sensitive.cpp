@@ -17,24 +17,15 @@
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 
+#include "support/symbolic_mismatch.hpp"
+
 using namespace pfgen;
+using pfgen_test::mismatch;
+using pfgen_test::text;
 using GiNaC::ex;
 using GiNaC::numeric;
 
 namespace {
-
-std::string text(const ex& e) {
-  std::ostringstream out;
-  out << e;
-  return out.str();
-}
-
-// Empty when equal (one normal() pass for the rational coefficients 1/eps and R^-1 bring).
-std::string mismatch(const ex& expected, const ex& derived) {
-  const ex diff = (expected - derived).expand();
-  if (diff.is_zero() || diff.normal().is_zero()) return {};
-  return "expected " + text(expected) + "\nderived  " + text(derived) + "\ndifference " + text(diff.normal());
-}
 
 // The filter's variables as GiNaC symbols, and its equations as expressions in them.
 struct Symbolic {

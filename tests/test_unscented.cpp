@@ -19,25 +19,13 @@
 #include "pfgen/model/yaml_model_loader.hpp"
 #include "support/cli_helpers.hpp"
 #include "support/json_reader.hpp"
+#include "support/symbolic_mismatch.hpp"
 
 using namespace pfgen;
 using namespace pfgen_test;
 using GiNaC::ex;
 
 namespace {
-
-std::string text(const ex& e) {
-  std::ostringstream out;
-  out << e;
-  return out.str();
-}
-
-// Empty when equal (normal() for the rational functions of P the Cholesky entries bring).
-std::string mismatch(const ex& expected, const ex& derived) {
-  const ex diff = (expected - derived).expand();
-  if (diff.is_zero() || diff.normal().is_zero()) return {};
-  return "expected " + text(expected) + "\nderived  " + text(derived) + "\ndifference " + text(diff.normal());
-}
 
 // A polynomial of the filter with the definitions (L's entries) put in, in their order.
 struct Substituted {
