@@ -1,6 +1,8 @@
 #include "pfgen/model/decimal_literals.hpp"
 
 #include <cctype>
+#include <cstdint>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -64,10 +66,39 @@ GiNaC::numeric literal_value(const std::string& literal) {
   return value;
 }
 
+// Appends "(n)" or "(n/d)", the reduced value of a literal of digits with at most one '.' and at
+// most 18 digits (the common case: 0.3, 12, 1.25), as the general path below writes it, in 64-bit
+// integers instead of CLN numbers and a stream; false, appending nothing, for any other literal.
+bool append_small_decimal(const std::string& s, std::size_t pos, std::size_t length, std::string& out) {
+  std::uint64_t numerator = 0, denominator = 1;
+  std::size_t digits = 0;
+  bool after_dot = false;
+  for (std::size_t i = pos; i < pos + length; ++i) {
+    const char c = s[i];
+    if (c == '.') {
+      after_dot = true;
+      continue;
+    }
+    if (!std::isdigit(static_cast<unsigned char>(c)) || ++digits > 18) return false;
+    numerator = numerator * 10 + static_cast<std::uint64_t>(c - '0');
+    if (after_dot) denominator *= 10;
+  }
+  const std::uint64_t common = std::gcd(numerator, denominator);  // gcd(0, d) = d: 0/1
+  out += '(';
+  out += std::to_string(numerator / common);
+  if (denominator / common != 1) {
+    out += '/';
+    out += std::to_string(denominator / common);
+  }
+  out += ')';
+  return true;
+}
+
 }  // namespace
 
 std::string rationalize_decimal_literals(const std::string& expression) {
   std::string out;
+  out.reserve(expression.size() * 2);
   std::size_t i = 0;
   while (i < expression.size()) {
     char c = expression[i];
@@ -79,6 +110,10 @@ std::string rationalize_decimal_literals(const std::string& expression) {
       continue;
     }
     std::size_t length = scan_number(expression, i);
+    if (length > 0 && append_small_decimal(expression, i, length, out)) {
+      i += length;
+      continue;
+    }
     if (length > 0) {
       GiNaC::numeric value = literal_value(expression.substr(i, length));
       std::ostringstream rational;

@@ -65,6 +65,15 @@ void complete(Diffusion& d) {
 }  // namespace
 
 GiNaC::ex exact_rationals(const GiNaC::ex& e) {
+  // Rebuilding an expression re-evaluates every sum and product in it: a dense drift entry of
+  // thousands of terms whose decimals the parser already made exact is looked at, not rebuilt.
+  bool inexact = false;
+  for (auto it = e.preorder_begin(); it != e.preorder_end() && !inexact; ++it)
+    if (GiNaC::is_a<GiNaC::numeric>(*it)) {  // as ExactRationals tests
+      const auto& number = GiNaC::ex_to<GiNaC::numeric>(*it);
+      inexact = number.is_real() && !number.is_rational();
+    }
+  if (!inexact) return e;
   ExactRationals convert;
   return convert(e);
 }

@@ -14,6 +14,7 @@
 #include "pfgen/model/expansion_bound.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/model_filters.hpp"
+#include "pfgen/model/polynomial_shape.hpp"
 #include "pfgen/model/reserved_names.hpp"
 #include "pfgen/model/simulation_rules.hpp"
 #include "pfgen/model/text_characters.hpp"
@@ -25,12 +26,6 @@ namespace {
 
 // In the canonical order of pfgen's printer: GiNaC's own varies from run to run.
 std::string to_text(const GiNaC::ex& e) { return TextPrinter().print(e); }
-
-GiNaC::lst state_list(const Model& model) {
-  GiNaC::lst states;
-  for (const auto& s : model.states) states.append(s);
-  return states;
-}
 
 // Row and column are reported 1-based, as a user counts them in the file.
 std::optional<int> one_based(std::size_t index) { return static_cast<int>(index + 1); }
@@ -81,16 +76,26 @@ void require_bounded_expansion(const GiNaC::ex& e, const std::string& field, std
                      row, column);
 }
 
+// The degree check of one variable, on a shape already found (polynomial_shape).
+void require_degree_within_limit(const GiNaC::ex& e, std::int64_t degree, const std::string& what,
+                                 const std::string& field, std::optional<int> row, std::optional<int> column) {
+  if (degree > kMaxDegree)
+    throw ModelError(field,
+                     "'" + to_text(e) + "' has a degree in " + what + " above the limit of " +
+                         std::to_string(kMaxDegree),
+                     row, column);
+}
+
 void require_polynomial(const Model& model, const GiNaC::ex& e, const std::string& field,
                         std::optional<int> row, std::optional<int> column) {
-  if (!e.is_polynomial(state_list(model)))
+  const PolynomialShape shape = polynomial_shape(e, model.states, kMaxDegree);
+  if (!shape.polynomial)
     throw ModelError(field,
                      "'" + to_text(e) + "' is not polynomial in the states (only non-negative "
                      "integer powers of states are allowed; sin(x), 1/x, x^0.5 are not)",
                      row, column);
-  const std::vector<GiNaC::ex> huge = huge_powers(e);
   for (std::size_t k = 0; k < model.states.size(); ++k)
-    require_bounded_degree(e, huge, model.states[k], "state '" + model.state_names[k] + "'", field, row, column);
+    require_degree_within_limit(e, shape.degrees[k], "state '" + model.state_names[k] + "'", field, row, column);
   require_bounded_expansion(e, field, row, column);
 }
 
@@ -365,16 +370,15 @@ void validate_risk(const Model& model) {
 // A double as the user wrote it, near enough: shortest round-trip is not needed in messages.
 void require_polynomial_in(const std::vector<GiNaC::symbol>& variables, const GiNaC::ex& e, const std::string& field,
                            std::optional<int> row, std::optional<int> column) {
-  GiNaC::lst list;
-  for (const auto& v : variables) list.append(v);
-  if (!e.is_polynomial(list))
+  const PolynomialShape shape = polynomial_shape(e, variables, kMaxDegree);
+  if (!shape.polynomial)
     throw ModelError(field,
                      "'" + to_text(e) + "' is not polynomial in the filter's m and P entries (only non-negative "
                      "integer powers of m1, P11, ... are allowed; name a quotient such as 1/P11 under `define:` "
                      "and use the name)",
                      row, column);
-  const std::vector<GiNaC::ex> huge = huge_powers(e);
-  for (const auto& v : variables) require_bounded_degree(e, huge, v, "'" + v.get_name() + "'", field, row, column);
+  for (std::size_t k = 0; k < variables.size(); ++k)
+    require_degree_within_limit(e, shape.degrees[k], "'" + variables[k].get_name() + "'", field, row, column);
   require_bounded_expansion(e, field, row, column);
 }
 

@@ -50,6 +50,15 @@ std::string ExpressionPrinter::print_sum(std::vector<Term> terms) const {
   return out;
 }
 
+std::string ExpressionPrinter::join_factors(const std::vector<std::string>& factors) const {
+  std::vector<const std::string*> pointers;
+  pointers.reserve(factors.size());
+  for (const std::string& factor : factors) pointers.push_back(&factor);
+  std::string out;
+  append_factors(out, pointers.data(), pointers.size());
+  return out;
+}
+
 std::string ExpressionPrinter::print_term_body(const Term& term) const {
   std::vector<std::string> numerator;
   if (term.magnitude != 1 || term.numerator_factors.empty()) numerator.push_back(number(term.magnitude));

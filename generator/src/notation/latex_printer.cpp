@@ -54,10 +54,11 @@ std::string LatexPrinter::power(const std::string& base, const std::string& expo
   return base + "^{" + exponent + "}";
 }
 
-std::string LatexPrinter::join_factors(const std::vector<std::string>& factors) const {
-  std::string out;
-  for (std::size_t k = 0; k < factors.size(); ++k) out += (k ? "\\," : "") + factors[k];
-  return out;
+void LatexPrinter::append_factors(std::string& out, const std::string* const* factors, std::size_t count) const {
+  for (std::size_t k = 0; k < count; ++k) {
+    if (k) out += "\\,";
+    out += *factors[k];
+  }
 }
 
 std::string LatexPrinter::quotient(const std::string& numerator, const std::string& denominator) const {

@@ -22,21 +22,20 @@ std::string TextPrinter::power(const std::string& base, const std::string& expon
   return base + "^" + (plain ? exponent : "(" + exponent + ")");
 }
 
-std::string TextPrinter::join_factors(const std::vector<std::string>& factors) const {
-  std::string out;  // appended piece by piece: a report joins millions of factors
-  for (std::size_t k = 0; k < factors.size(); ++k) {
+void TextPrinter::append_factors(std::string& out, const std::string* const* factors, std::size_t count) const {
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::string& factor = *factors[k];
     if (k) out += '*';
     // A fraction coefficient needs parentheses to stay one factor: (1/3)*m1.
-    bool fraction = factors[k].find('/') != std::string::npos && factors[k].front() != '(';
-    if (fraction && factors.size() > 1) {
+    bool fraction = factor.find('/') != std::string::npos && factor.front() != '(';
+    if (fraction && count > 1) {
       out += '(';
-      out += factors[k];
+      out += factor;
       out += ')';
     } else {
-      out += factors[k];
+      out += factor;
     }
   }
-  return out;
 }
 
 std::string TextPrinter::quotient(const std::string& numerator, const std::string& denominator) const {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include <ginac/ginac.h>
@@ -137,6 +138,11 @@ class Polynomial {
   std::vector<std::pair<Monomial, GiNaC::ex>> ordered_terms() const;
   // The same order as pointers into terms(), copying no monomial or coefficient (printers).
   std::vector<const Terms::value_type*> ordered_view() const;
+  // The terms of several polynomials together in display order, each with the position of its
+  // polynomial in `parts`; a monomial's terms are adjacent, in the order of the parts (printers
+  // of a sum, without building it).
+  static std::vector<std::pair<std::size_t, const Terms::value_type*>> ordered_union_view(
+      const std::vector<const Polynomial*>& parts);
   bool is_zero() const { return terms_.empty(); }
   std::uint32_t degree() const;
 
@@ -161,6 +167,9 @@ class Polynomial {
  private:
   template <class M>
   void accumulate(M&& monomial, const GiNaC::ex& coefficient);
+  // Adds a term whose monomial is greater than every present one (sum_of's sorted runs); none
+  // when the coefficient is absent (the run summed to zero).
+  void append_greatest(Monomial&& monomial, std::optional<GiNaC::ex>&& coefficient);
 
   Terms terms_;
 };

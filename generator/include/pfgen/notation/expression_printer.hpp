@@ -42,7 +42,10 @@ class ExpressionPrinter {
   virtual std::string number(const GiNaC::numeric& non_negative) const = 0;
   virtual std::string symbol_name(const std::string& name) const = 0;
   virtual std::string power(const std::string& base, const std::string& exponent) const = 0;
-  virtual std::string join_factors(const std::vector<std::string>& factors) const = 0;
+  // Appends the product of already printed factors to `out` (the writer's hot path: no string
+  // is built per term); join_factors returns the same as a string.
+  virtual void append_factors(std::string& out, const std::string* const* factors, std::size_t count) const = 0;
+  std::string join_factors(const std::vector<std::string>& factors) const;
   virtual std::string quotient(const std::string& numerator, const std::string& denominator) const = 0;
   virtual std::string function_call(const std::string& name, const std::vector<std::string>& args) const = 0;
   virtual std::string parenthesized(const std::string& inner) const = 0;

@@ -47,17 +47,29 @@ class PolynomialWriter {
   struct NumericEqual {
     bool operator()(const GiNaC::numeric& a, const GiNaC::numeric& b) const { return a.is_equal(b); }
   };
+  // A numeric coefficient as printed: its sign, whether its magnitude is 1, and the magnitude's text.
+  struct PrintedNumber {
+    bool negative;
+    bool unit;
+    std::string magnitude;
+  };
+  // Powers up to this exponent of variables below this index are looked up by index (a table
+  // that grows to the largest index seen), the others by hash.
+  static constexpr std::uint32_t kTabulatedExponents = 16;
+  static constexpr std::uint32_t kTabulatedVariables = 1u << 16;
 
   void append_term(std::string& out, const Monomial& monomial, const GiNaC::ex& coefficient, bool negated,
                    bool first);
-  const std::string& number(const GiNaC::numeric& non_negative);
+  // Keyed by the signed coefficient as the polynomial holds it, whose hash GiNaC keeps once computed.
+  const PrintedNumber& number(const GiNaC::numeric& value);
   const std::string& variable_power(std::uint32_t variable, std::uint32_t exponent);
 
   const ExpressionPrinter& printer_;
   ExpressionPrinter::VariableNamer name_;
-  std::unordered_map<GiNaC::numeric, std::string, NumericHash, NumericEqual> numbers_;
-  std::unordered_map<std::uint64_t, std::string> powers_;  // key: variable << 32 | exponent
-  std::vector<std::string> factors_;                       // scratch, reused term after term
+  std::unordered_map<GiNaC::numeric, PrintedNumber, NumericHash, NumericEqual> numbers_;
+  std::vector<std::vector<std::string>> tabulated_powers_;  // [variable][exponent], "" until printed
+  std::unordered_map<std::uint64_t, std::string> other_powers_;  // key: variable << 32 | exponent
+  std::vector<const std::string*> factors_;                       // scratch, reused term after term
 };
 
 }  // namespace pfgen

@@ -10,7 +10,7 @@ class TextPrinter : public ExpressionPrinter {
   std::string number(const GiNaC::numeric& non_negative) const override;
   std::string symbol_name(const std::string& name) const override;
   std::string power(const std::string& base, const std::string& exponent) const override;
-  std::string join_factors(const std::vector<std::string>& factors) const override;
+  void append_factors(std::string& out, const std::string* const* factors, std::size_t count) const override;
   std::string quotient(const std::string& numerator, const std::string& denominator) const override;
   std::string function_call(const std::string& name, const std::vector<std::string>& args) const override;
   std::string parenthesized(const std::string& inner) const override;
