@@ -6,11 +6,12 @@
 # file and the printing cost.
 #
 # whole_s: median wall-clock seconds of `pfgen derive MODEL --format F >/dev/null` over RUNS runs
-# (after one warm-up run); whole_4k_s: the same with PFGEN_HUGE_PAGES=0 (glibc's default heap
-# pages), the runs of the two interleaved, and x4k their ratio whole_4k_s / whole_s; derive_s: bench_derive's median for the same n in this session, with
-# glibc's default 4 kB heap pages, and derive_thp_s the same with the transparent-huge-page heap
-# that `pfgen` itself uses (generator/cli/huge_page_heap.hpp; PFGEN_HUGE_PAGES=0 turns it off);
-# out_MB: the size of the output. Targets: n = 10 in <= 0.2 s, n = 20 in <= 3 s, text and JSON.
+# (after one warm-up run), as users run it (glibc's default 4 kB heap pages); whole_thp_s: the same
+# with PFGEN_HUGE_PAGES=1 (the transparent-huge-page heap, generator/cli/huge_page_heap.hpp), the
+# runs of the two interleaved, and xthp their ratio whole_thp_s / whole_s (below 1: huge pages pay
+# on this machine); derive_s: bench_derive's median for the same n in this session, with 4 kB
+# pages, and derive_thp_s the same with the huge-page heap; out_MB: the size of the output.
+# Targets: n = 10 in <= 0.2 s, n = 20 in <= 3 s, text and JSON.
 #
 # Usage: benchmarks/bench_derive_cli.sh [BUILD_DIR] [SIZES] [RUNS] [FORMATS]
 #        (defaults: build, "10 20", 5, "text json latex"); needs -DPFGEN_BUILD_BENCHMARKS=ON.
@@ -36,25 +37,25 @@ seconds() {  # wall-clock seconds of one run of the command, its output discarde
   awk -v s="$start" -v e="$end" 'BEGIN {print e - s}'
 }
 
-printf '%4s %-6s %10s %10s %12s %6s %10s %12s %8s %12s\n' "n" "format" "whole_s" "derive_s" "derive_thp_s" "|" "whole_4k_s" "x4k" "out_MB" "min..max"
+printf '%4s %-6s %10s %10s %12s %6s %11s %12s %8s %12s\n' "n" "format" "whole_s" "derive_s" "derive_thp_s" "|" "whole_thp_s" "xthp" "out_MB" "min..max"
 for n in $sizes; do
   model="$work/dense_cubic_$n.yaml"
   "$build/benchmarks/dense_cubic_yaml" "$n" >"$model"
   derive=$(env -u GLIBC_TUNABLES "$build/benchmarks/bench_derive" --sizes "$n" --repeats "$runs" --baseline-max-n 0 | awk 'NR == 2 {print $4}')
   derive_thp=$(GLIBC_TUNABLES=glibc.malloc.hugetlb=1 "$build/benchmarks/bench_derive" --sizes "$n" --repeats "$runs" --baseline-max-n 0 | awk 'NR == 2 {print $4}')
   for format in $formats; do
-    "$pfgen" derive "$model" --format "$format" >"$work/out"  # warm-up, and the output's size
+    env -u PFGEN_HUGE_PAGES "$pfgen" derive "$model" --format "$format" >"$work/out"  # warm-up, and the output's size
     bytes=$(stat -c %s "$work/out")
     : >"$work/times"
-    : >"$work/times_4k"
+    : >"$work/times_thp"
     for _ in $(seq "$runs"); do
-      seconds "$pfgen" derive "$model" --format "$format" >>"$work/times"
-      seconds env PFGEN_HUGE_PAGES=0 "$pfgen" derive "$model" --format "$format" >>"$work/times_4k"
+      seconds env -u PFGEN_HUGE_PAGES "$pfgen" derive "$model" --format "$format" >>"$work/times"
+      seconds env PFGEN_HUGE_PAGES=1 "$pfgen" derive "$model" --format "$format" >>"$work/times_thp"
     done
     whole=$(median <"$work/times")
-    whole_4k=$(median <"$work/times_4k")
+    whole_thp=$(median <"$work/times_thp")
     range=$(sort -g "$work/times" | awk 'NR == 1 {lo = $1} {hi = $1} END {printf "%.2f..%.2f", lo, hi}')
-    printf '%4s %-6s %10.3f %10.3f %12.3f %6s %10.3f %11.2fx %8.1f %12s\n' "$n" "$format" "$whole" "$derive" "$derive_thp" "|" \
-      "$whole_4k" "$(awk -v a="$whole_4k" -v b="$whole" 'BEGIN {print a / b}')" "$(awk -v b="$bytes" 'BEGIN {print b / 1e6}')" "$range"
+    printf '%4s %-6s %10.3f %10.3f %12.3f %6s %11.3f %11.2fx %8.1f %12s\n' "$n" "$format" "$whole" "$derive" "$derive_thp" "|" \
+      "$whole_thp" "$(awk -v a="$whole_thp" -v b="$whole" 'BEGIN {print a / b}')" "$(awk -v b="$bytes" 'BEGIN {print b / 1e6}')" "$range"
   done
 done

@@ -1,7 +1,8 @@
-// pfgen executes itself once with glibc's transparent-huge-page tunable (cli/huge_page_heap.hpp).
-// What a user can rely on: the output does not change by a byte, the opt-out works, a user's own
-// GLIBC_TUNABLES are kept, and where the machine can give huge pages the tunable reaches the
-// process (seen through the environment pfgen hands to the plugin compiler).
+// With PFGEN_HUGE_PAGES=1, pfgen executes itself once with glibc's transparent-huge-page tunable
+// (cli/huge_page_heap.hpp). What a user can rely on: the output does not change by a byte, nothing
+// happens without the opt-in, a user's own GLIBC_TUNABLES are kept, and where the machine can give
+// huge pages the tunable reaches the process (seen through the environment pfgen hands to the
+// plugin compiler).
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -49,32 +50,37 @@ bool has_line(const std::string& text, const std::string& line) {
 
 }  // namespace
 
-TEST_CASE("huge page heap: output identical with and without it, and a user's tunables kept", "[integration]") {
+TEST_CASE("huge page heap: opt-in, output identical with and without it, and a user's tunables kept", "[integration]") {
   const std::string derive = shell_quote(pfgen_executable()) + " derive " +
                              shell_quote(example("basin2006_quadratic.yaml")) + " --format json";
-  ProcessResult plain = run_process("env -u GLIBC_TUNABLES " + derive);
-  ProcessResult opted_out = run_process("env -u GLIBC_TUNABLES PFGEN_HUGE_PAGES=0 " + derive);
-  ProcessResult with_user_tunable = run_process("env GLIBC_TUNABLES=glibc.malloc.perturb=0 " + derive);
+  ProcessResult plain = run_process("env -u GLIBC_TUNABLES -u PFGEN_HUGE_PAGES " + derive);
+  ProcessResult opted_in = run_process("env -u GLIBC_TUNABLES PFGEN_HUGE_PAGES=1 " + derive);
+  ProcessResult with_user_tunable =
+      run_process("env GLIBC_TUNABLES=glibc.malloc.perturb=0 PFGEN_HUGE_PAGES=1 " + derive);
   REQUIRE(plain.exit_code == 0);
-  REQUIRE(opted_out.exit_code == 0);
+  REQUIRE(opted_in.exit_code == 0);
   REQUIRE(with_user_tunable.exit_code == 0);
-  CHECK(plain.out == opted_out.out);
+  CHECK(plain.out == opted_in.out);
   CHECK(plain.out == with_user_tunable.out);
-  CHECK(plain.err.empty());
+  CHECK(opted_in.err.empty());
 
   TempDir dir;
-  const std::string opted_out_env = environment_seen_by_compiler(dir, "PFGEN_HUGE_PAGES=0");
-  REQUIRE(has_line(opted_out_env, "PFGEN_HUGE_PAGES=0"));  // the script ran
-  CHECK(opted_out_env.find("GLIBC_TUNABLES") == std::string::npos);
+  // Without the opt-in (or with any other value) the heap is left as it is.
+  for (const std::string& prefix : {std::string("PFGEN_HUGE_PAGES=0"), std::string("PFGEN_HUGE_PAGES=yes")}) {
+    const std::string seen = environment_seen_by_compiler(dir, prefix);
+    REQUIRE(has_line(seen, prefix));  // the script ran
+    CHECK(seen.find("GLIBC_TUNABLES") == std::string::npos);
+  }
+  CHECK(environment_seen_by_compiler(dir, "").find("GLIBC_TUNABLES") == std::string::npos);
   if (!machine_gives_huge_pages_when_asked()) {
     WARN("this machine's glibc or kernel gives no huge pages on request: the tunable is not set");
-    CHECK(environment_seen_by_compiler(dir, "").find("GLIBC_TUNABLES") == std::string::npos);
+    CHECK(environment_seen_by_compiler(dir, "PFGEN_HUGE_PAGES=1").find("GLIBC_TUNABLES") == std::string::npos);
     return;
   }
-  CHECK(has_line(environment_seen_by_compiler(dir, ""), "GLIBC_TUNABLES=glibc.malloc.hugetlb=1"));
-  CHECK(has_line(environment_seen_by_compiler(dir, "GLIBC_TUNABLES=glibc.malloc.perturb=0"),
+  CHECK(has_line(environment_seen_by_compiler(dir, "PFGEN_HUGE_PAGES=1"), "GLIBC_TUNABLES=glibc.malloc.hugetlb=1"));
+  CHECK(has_line(environment_seen_by_compiler(dir, "PFGEN_HUGE_PAGES=1 GLIBC_TUNABLES=glibc.malloc.perturb=0"),
                  "GLIBC_TUNABLES=glibc.malloc.perturb=0:glibc.malloc.hugetlb=1"));
   // A user who sets the tunable (to 0, say) decides: pfgen neither adds it again nor executes twice.
-  CHECK(has_line(environment_seen_by_compiler(dir, "GLIBC_TUNABLES=glibc.malloc.hugetlb=0"),
+  CHECK(has_line(environment_seen_by_compiler(dir, "PFGEN_HUGE_PAGES=1 GLIBC_TUNABLES=glibc.malloc.hugetlb=0"),
                  "GLIBC_TUNABLES=glibc.malloc.hugetlb=0"));
 }

@@ -36,8 +36,9 @@ bool kernel_gives_huge_pages_when_asked() {
 
 void use_huge_page_heap(char** argv) {
 #if defined(__GLIBC__) && defined(__linux__)
-  const char* opt_out = std::getenv("PFGEN_HUGE_PAGES");
-  if (opt_out != nullptr && std::strcmp(opt_out, "0") == 0) return;
+  // Opt-in: whether huge pages pay depends on the machine (README, "Deriving at scale").
+  const char* opt_in = std::getenv("PFGEN_HUGE_PAGES");
+  if (opt_in == nullptr || std::strcmp(opt_in, "1") != 0) return;
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   const std::string before = tunables != nullptr ? tunables : "";
   // Already set (by the user, or by this function before the execution): never execute twice.
