@@ -315,8 +315,7 @@ Polynomial Polynomial::sum_of(std::vector<std::pair<Monomial, GiNaC::ex>>&& term
 }
 
 void Polynomial::append_greatest(Monomial&& monomial, std::optional<GiNaC::ex>&& coefficient) {
-  // Sorted runs arrive in increasing order: inserting at the end costs no search.
-  if (coefficient) terms_.emplace_hint(terms_.end(), std::move(monomial), std::move(*coefficient));
+  if (coefficient) terms_.emplace_back(std::move(monomial), std::move(*coefficient));
 }
 
 Polynomial Polynomial::from_ex(const GiNaC::ex& e, const std::vector<GiNaC::symbol>& variables) {
@@ -340,7 +339,7 @@ Polynomial Polynomial::from_ex(const GiNaC::ex& e, const std::vector<GiNaC::symb
     }
     return false;
   };
-  Polynomial out;
+  std::vector<std::pair<Monomial, GiNaC::ex>> terms;
   GiNaC::ex expanded = e.expand();
   auto add_one_term = [&](const GiNaC::ex& term) {
     Monomial monomial;
@@ -351,14 +350,14 @@ Polynomial Polynomial::from_ex(const GiNaC::ex& e, const std::vector<GiNaC::symb
     } else if (!as_factor(term, monomial)) {
       coefficient = term;
     }
-    out.add_term(monomial, coefficient);
+    terms.emplace_back(std::move(monomial), std::move(coefficient));
   };
   if (GiNaC::is_exactly_a<GiNaC::add>(expanded)) {
     for (std::size_t k = 0; k < expanded.nops(); ++k) add_one_term(expanded.op(k));
   } else {
     add_one_term(expanded);
   }
-  return out;
+  return sum_of(std::move(terms));
 }
 
 GiNaC::ex Polynomial::to_ex(const std::vector<GiNaC::ex>& variables) const {
@@ -387,30 +386,56 @@ template <class M>
 void Polynomial::accumulate(M&& monomial, const GiNaC::ex& coefficient) {
   GiNaC::ex c = normalize_coefficient(coefficient);
   if (coefficient_is_zero(c)) return;
-  // Look up before inserting: map::emplace would build (allocate) a node only to drop it
-  // when the monomial is already there, the common case when sums collect like terms.
-  auto it = terms_.lower_bound(monomial);
+  auto it = std::lower_bound(terms_.begin(), terms_.end(), monomial,
+                             [](const Terms::value_type& term, const Monomial& m) { return term.first < m; });
   if (it == terms_.end() || !(it->first == monomial)) {
-    terms_.emplace_hint(it, std::forward<M>(monomial), std::move(c));
+    terms_.emplace(it, std::forward<M>(monomial), std::move(c));
     return;
   }
   it->second = coefficient_sum(it->second, c);
   if (coefficient_is_zero(it->second)) terms_.erase(it);
 }
 
+void Polynomial::merge_in(const Terms& other, bool negated) {
+  if (&other == &terms_) {  // p += p: merge a copy, the terms are moved from below
+    const Terms copy = other;
+    merge_in(copy, negated);
+    return;
+  }
+  // add_term for each of other's terms (their monomials are distinct, so the order of the calls
+  // does not matter), in one pass over both sorted lists.
+  Terms merged;
+  merged.reserve(terms_.size() + other.size());
+  auto a = terms_.begin();
+  for (const auto& [monomial, coefficient] : other) {
+    for (; a != terms_.end() && a->first < monomial; ++a) merged.push_back(std::move(*a));
+    GiNaC::ex c = normalize_coefficient(negated ? coefficient_product(coefficient, -1) : coefficient);
+    const bool present = a != terms_.end() && a->first == monomial;
+    if (coefficient_is_zero(c)) continue;  // add_term leaves the polynomial as it is
+    if (!present) {
+      merged.emplace_back(monomial, std::move(c));
+      continue;
+    }
+    GiNaC::ex sum = coefficient_sum(a->second, c);
+    if (!coefficient_is_zero(sum)) merged.emplace_back(std::move(a->first), std::move(sum));
+    ++a;
+  }
+  for (; a != terms_.end(); ++a) merged.push_back(std::move(*a));
+  terms_ = std::move(merged);
+}
+
 Polynomial& Polynomial::add_times_monomial(const Polynomial& p, const Monomial& monomial) {
-  for (const auto& [m, coefficient] : p.terms_) add_term(m * monomial, coefficient);
+  merge_in(p.times_monomial(monomial).terms_, false);
   return *this;
 }
 
 Polynomial& Polynomial::operator+=(const Polynomial& other) {
-  for (const auto& [monomial, coefficient] : other.terms_) add_term(monomial, coefficient);
+  merge_in(other.terms_, false);
   return *this;
 }
 
 Polynomial& Polynomial::operator-=(const Polynomial& other) {
-  for (const auto& [monomial, coefficient] : other.terms_)
-    add_term(monomial, coefficient_product(coefficient, -1));
+  merge_in(other.terms_, true);
   return *this;
 }
 
@@ -427,45 +452,54 @@ Polynomial Polynomial::operator-(const Polynomial& other) const {
 }
 
 Polynomial Polynomial::operator*(const Polynomial& other) const {
-  Polynomial out;
+  std::vector<std::pair<Monomial, GiNaC::ex>> products;
+  products.reserve(terms_.size() * other.terms_.size());
   for (const auto& [ma, ca] : terms_)
-    for (const auto& [mb, cb] : other.terms_) out.add_term(ma * mb, coefficient_product(ca, cb));
-  return out;
+    for (const auto& [mb, cb] : other.terms_) products.emplace_back(ma * mb, coefficient_product(ca, cb));
+  return sum_of(std::move(products));
 }
 
 Polynomial Polynomial::scaled(const GiNaC::ex& factor) const {
   Polynomial out;
   if (factor.is_zero()) return out;
-  for (const auto& [monomial, coefficient] : terms_)
-    out.add_term(monomial, coefficient_product(coefficient, factor));
+  // The monomials stay as they are, and in order.
+  out.terms_.reserve(terms_.size());
+  for (const auto& [monomial, coefficient] : terms_) {
+    GiNaC::ex c = normalize_coefficient(coefficient_product(coefficient, factor));
+    if (!coefficient_is_zero(c)) out.terms_.emplace_back(monomial, std::move(c));
+  }
   return out;
 }
 
 Polynomial Polynomial::times_monomial(const Monomial& monomial) const {
+  // Distinct monomials stay distinct, but not in order: multiplying changes std::map-style
+  // lexicographic comparisons ((x2) < (x3), but (x2^2) > (x2, x3) after multiplying by x2).
   Polynomial out;
-  for (const auto& [m, coefficient] : terms_) out.terms_.emplace(m * monomial, coefficient);
+  out.terms_.reserve(terms_.size());
+  for (const auto& [m, coefficient] : terms_) out.terms_.emplace_back(m * monomial, coefficient);
+  std::sort(out.terms_.begin(), out.terms_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   return out;
 }
 
 Polynomial Polynomial::derivative(std::uint32_t index) const {
-  Polynomial out;
+  std::vector<std::pair<Monomial, GiNaC::ex>> terms;
   for (const auto& [monomial, coefficient] : terms_) {
     std::uint32_t e = monomial.exponent_of(index);
     if (e == 0) continue;
-    out.add_term(monomial.without_one(index), coefficient_product(coefficient, GiNaC::numeric(e)));
+    terms.emplace_back(monomial.without_one(index), coefficient_product(coefficient, GiNaC::numeric(e)));
   }
-  return out;
+  return sum_of(std::move(terms));
 }
 
 Polynomial Polynomial::renumbered(const std::vector<std::uint32_t>& new_index) const {
-  Polynomial out;
+  std::vector<std::pair<Monomial, GiNaC::ex>> terms;
   for (const auto& [monomial, coefficient] : terms_) {
     Monomial m;
     for (const auto& [var, exponent] : monomial.factors())
       m = m * Monomial::variable(new_index.at(var), exponent);
-    out.add_term(m, coefficient);
+    terms.emplace_back(std::move(m), coefficient);
   }
-  return out;
+  return sum_of(std::move(terms));
 }
 
 bool Polynomial::operator==(const Polynomial& other) const { return (*this - other).is_zero(); }

@@ -6,7 +6,6 @@
 // the arithmetic avoids GiNaC's general-purpose simplifier.
 #include <algorithm>
 #include <cstdint>
-#include <map>
 #include <optional>
 #include <vector>
 
@@ -114,7 +113,11 @@ bool displays_before(const Monomial& a, const Monomial& b);
 
 class Polynomial {
  public:
-  using Terms = std::map<Monomial, GiNaC::ex>;
+  // Sorted by Monomial::operator<, monomials distinct, no zero coefficient. A sorted vector, not a
+  // std::map: the dense cubic n = 20 filter holds 3.3 million terms, and a map's node per term
+  // (its allocation, page faults, rebalancing and pointer-chasing walks) was a third of `pfgen
+  // derive`'s time.
+  using Terms = std::vector<std::pair<Monomial, GiNaC::ex>>;
 
   Polynomial() = default;
   static Polynomial constant(const GiNaC::ex& c);
@@ -170,6 +173,8 @@ class Polynomial {
   // Adds a term whose monomial is greater than every present one (sum_of's sorted runs); none
   // when the coefficient is absent (the run summed to zero).
   void append_greatest(Monomial&& monomial, std::optional<GiNaC::ex>&& coefficient);
+  // add_term(m, c) for each term of `other`, or add_term(m, -c) when `negated`, in one merge.
+  void merge_in(const Terms& other, bool negated);
 
   Terms terms_;
 };
