@@ -141,6 +141,55 @@ std::size_t GraphBuilder::polynomial(const Polynomial& p) {
   return first ? graph_.constant(0) : sum;
 }
 
+// A product's factors in the order of their printed text. GiNaC keeps a sum in a product either
+// as it is or negated with the -1 in the product's number, by a term order that varies from run to
+// run: (P23 - L21*L31)/L22 is -(L21*L31 - P23)/L22 in one run and (-L21*L31 + P23)/L22 in the
+// next. As the printers do (ExpressionPrinter::to_term), the sum whose printed terms begin with a
+// + is taken, an odd power's sign moved to the product's number, so that both runs give one graph.
+// The negated sum's power is built here, not by GiNaC, which would move the sign back out.
+std::size_t GraphBuilder::product(const GiNaC::ex& e) {
+  struct Factor {
+    std::string key;       // the printed text the factors are ordered by
+    GiNaC::ex value;       // the factor, or the sum a power is taken of
+    long exponent = 0;     // 0: `value` is the factor itself
+  };
+  const TextPrinter printer;
+  std::vector<Factor> factors;
+  GiNaC::numeric number = 1;
+  for (std::size_t k = 0; k < e.nops(); ++k) {
+    const GiNaC::ex op = e.op(k);
+    if (GiNaC::is_exactly_a<GiNaC::numeric>(op)) {
+      number *= GiNaC::ex_to<GiNaC::numeric>(op);
+      continue;
+    }
+    const bool whole = GiNaC::is_exactly_a<GiNaC::add>(op);
+    const bool power_of_sum = GiNaC::is_exactly_a<GiNaC::power>(op) && GiNaC::is_exactly_a<GiNaC::add>(op.op(0)) &&
+                              op.op(1).info(GiNaC::info_flags::integer);
+    const GiNaC::ex sum = whole ? op : power_of_sum ? op.op(0) : GiNaC::ex(0);
+    if ((!whole && !power_of_sum) || printer.print(sum).front() != '-') {
+      factors.push_back(Factor{printer.print(op), op, 0});
+      continue;
+    }
+    const long exponent = whole ? 1 : GiNaC::ex_to<GiNaC::numeric>(op.op(1)).to_long();
+    if (exponent % 2 != 0) number = -number;
+    const GiNaC::ex negated = -sum;  // a sum again: GiNaC multiplies a lone sum's terms out
+    // Keyed by the text of the factor it stands for, as the other run's factor is keyed (the
+    // printer makes that text canonical too, however GiNaC holds the power).
+    factors.push_back(Factor{printer.print(GiNaC::pow(negated, exponent)), negated, exponent});
+  }
+  // The number as GiNaC would hold it: a factor unless it is 1.
+  if (number != 1) factors.push_back(Factor{printer.print(number), number, 0});
+  std::stable_sort(factors.begin(), factors.end(), [](const Factor& a, const Factor& b) { return a.key < b.key; });
+  auto node = [&](const Factor& f) {
+    if (f.exponent == 0) return expression(f.value);
+    const std::size_t base = expression(f.value);
+    return f.exponent == 1 ? base : integer_power(base, f.exponent);
+  };
+  std::size_t out = node(factors[0]);
+  for (std::size_t k = 1; k < factors.size(); ++k) out = graph_.mul(out, node(factors[k]));
+  return out;
+}
+
 std::size_t GraphBuilder::expression(const GiNaC::ex& e) {
   if (GiNaC::is_exactly_a<GiNaC::numeric>(e)) {
     const GiNaC::numeric& value = GiNaC::ex_to<GiNaC::numeric>(e);
@@ -158,12 +207,7 @@ std::size_t GraphBuilder::expression(const GiNaC::ex& e) {
     for (std::size_t k = 1; k < ops.size(); ++k) sum = graph_.add(sum, expression(ops[k]));
     return sum;
   }
-  if (GiNaC::is_exactly_a<GiNaC::mul>(e)) {
-    std::vector<GiNaC::ex> ops = canonical_operands(e);
-    std::size_t product = expression(ops[0]);
-    for (std::size_t k = 1; k < ops.size(); ++k) product = graph_.mul(product, expression(ops[k]));
-    return product;
-  }
+  if (GiNaC::is_exactly_a<GiNaC::mul>(e)) return product(e);
   if (GiNaC::is_exactly_a<GiNaC::power>(e)) {
     const GiNaC::ex& exponent = e.op(1);
     std::size_t base = expression(e.op(0));

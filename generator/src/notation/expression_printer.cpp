@@ -1,6 +1,7 @@
 #include "pfgen/notation/expression_printer.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "pfgen/notation/polynomial_writer.hpp"
 
@@ -9,6 +10,16 @@ namespace {
 
 bool is_negative_integer_power(const GiNaC::ex& e) {
   return GiNaC::is_exactly_a<GiNaC::power>(e) && e.op(1).info(GiNaC::info_flags::negint);
+}
+
+// The sum in a factor that is a sum, or a sum to a (non-zero, int-sized) integer power.
+std::optional<GiNaC::ex> sum_with_integer_exponent(const GiNaC::ex& factor) {
+  if (GiNaC::is_exactly_a<GiNaC::add>(factor)) return factor;
+  if (!GiNaC::is_exactly_a<GiNaC::power>(factor) || !GiNaC::is_exactly_a<GiNaC::add>(factor.op(0))) return std::nullopt;
+  if (!factor.op(1).info(GiNaC::info_flags::integer)) return std::nullopt;
+  const GiNaC::numeric exponent = GiNaC::ex_to<GiNaC::numeric>(factor.op(1));
+  if (exponent.is_zero() || GiNaC::abs(exponent) > GiNaC::numeric(1L << 30)) return std::nullopt;
+  return factor.op(0);
 }
 
 }  // namespace
@@ -78,6 +89,24 @@ ExpressionPrinter::Term ExpressionPrinter::to_term(const GiNaC::ex& e) const {
         value = -value;
       }
       term.magnitude *= value;
+    } else if (const std::optional<GiNaC::ex> sum = sum_with_integer_exponent(factor)) {
+      // GiNaC keeps a sum in a product either as it is or negated with -1 outside, by its own
+      // term order, which varies from run to run (docs/theory.md §9.1): (P23 - L21*L31)/L22 came
+      // out as -(L21*L31 - P23)/L22 in one run and (-L21*L31 + P23)/L22 in the next. Of the sum
+      // and its negative, the one whose printed terms begin with a + is printed, and an odd
+      // power's sign goes to the term.
+      const long exponent = GiNaC::is_exactly_a<GiNaC::add>(factor) ? 1 : GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).to_long();
+      std::string text = print(*sum);
+      if (!text.empty() && text.front() == '-') {
+        text = print(-*sum);
+        if (exponent % 2 != 0) term.negative = !term.negative;
+      }
+      const std::string base = parenthesized(text);
+      if (exponent > 0) {
+        term.numerator_factors.push_back(print_integer_power(base, exponent));
+      } else {
+        term.denominator_factors.push_back(print_integer_power(base, -exponent));
+      }
     } else if (is_negative_integer_power(factor)) {
       long exponent = -GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).to_long();
       term.denominator_factors.push_back(print_integer_power(print_factor(factor.op(0)), exponent));

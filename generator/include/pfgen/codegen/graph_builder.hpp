@@ -65,6 +65,7 @@ class GraphBuilder {
   std::size_t variable_power(std::uint32_t variable, std::uint32_t exponent);
   std::size_t integer_power(std::size_t base, long exponent);
   std::size_t monomial(const Monomial& m);
+  std::size_t product(const GiNaC::ex& e);  // a GiNaC mul, its sums' signs made canonical
 
   ExpressionGraph& graph_;
   std::vector<std::size_t> variable_inputs_;
