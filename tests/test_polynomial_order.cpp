@@ -2,7 +2,7 @@
 // the writer's merged sums) against the plain definitions they replace: add_term one term after
 // another, a sort by displays_before, and printing the built sum. Monomials that have no packed key
 // (five factors, an exponent of 256 or more, a variable index beyond 2^24) take the old paths and are
-// mixed in, so both paths and their boundary are checked.
+// mixed in, so both paths and their boundary are checked; long lists take the radix sort.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -30,7 +30,9 @@ Monomial random_monomial(std::mt19937& rng, bool allow_unkeyed) {
   if (k == 3) return Monomial::variable((1u << 24) + rng() % 3, 1 + rng() % 2);  // variable beyond 24 bits
   std::uniform_int_distribution<int> factors(0, 3);
   const int count = factors(rng);
-  for (int f = 0; f < count; ++f) m = m * Monomial::variable(rng() % 6, 1 + rng() % 3);
+  // Mostly few variables (like terms to merge); some indices up to 70,000, so that the keys
+  // differ in several bytes (each a radix pass).
+  for (int f = 0; f < count; ++f) m = m * Monomial::variable(rng() % (rng() % 4 == 0 ? 70000 : 6), 1 + rng() % 3);
   return m;
 }
 
@@ -73,7 +75,8 @@ TEST_CASE("polynomial order: sum_of equals add_term term after term, keyed and u
   for (int trial = 0; trial < 200; ++trial) {
     const bool unkeyed = trial % 2 == 1;
     std::vector<std::pair<Monomial, GiNaC::ex>> terms;
-    const int count = 1 + static_cast<int>(rng() % 60);
+    // Short sums are sorted by comparisons, long ones (256 terms and more) by radix passes.
+    const int count = 1 + static_cast<int>(rng() % (trial < 100 ? 60 : 1500));
     for (int k = 0; k < count; ++k) terms.emplace_back(random_monomial(rng, unkeyed), random_coefficient(rng, a));
     Polynomial one_by_one;
     for (const auto& [m, c] : terms) one_by_one.add_term(m, c);
@@ -87,7 +90,7 @@ TEST_CASE("polynomial order: ordered_view equals a sort by displays_before", "[p
   std::mt19937 rng(7);
   const GiNaC::symbol a("a");
   for (int trial = 0; trial < 200; ++trial) {
-    const Polynomial p = random_polynomial(rng, a, trial % 2 == 1, 1 + static_cast<int>(rng() % 80));
+    const Polynomial p = random_polynomial(rng, a, trial % 2 == 1, 1 + static_cast<int>(rng() % (trial < 100 ? 80 : 1500)));
     INFO("trial " << trial);
     CHECK(p.ordered_view() == reference_display_order(p));
   }

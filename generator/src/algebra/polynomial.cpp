@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "pfgen/algebra/coefficient.hpp"
+#include "pfgen/algebra/monomial_keys.hpp"
 
 namespace pfgen {
 
@@ -99,62 +100,6 @@ Monomial Monomial::without_one(std::uint32_t index) const {
 
 namespace {
 
-// A monomial as a 128-bit integer whose order is one of the two monomial orders below, so that
-// sorting millions of terms compares two integers instead of walking two factor lists. Up to four
-// factors, the first in the highest bits; a monomial with more factors, or whose variable or
-// exponent does not fit, has no key (the callers then sort by the factor lists).
-struct MonomialKey {
-  std::uint64_t high = 0;
-  std::uint64_t low = 0;
-  bool operator==(const MonomialKey& other) const { return high == other.high && low == other.low; }
-  bool operator<(const MonomialKey& other) const { return high != other.high ? high < other.high : low < other.low; }
-};
-
-struct KeyedIndex {
-  MonomialKey key;
-  std::uint32_t index;  // position among the terms being sorted; breaks ties, so the sort is stable
-  bool zero = false;    // sum_of: the term's coefficient is zero
-  bool operator<(const KeyedIndex& other) const { return key < other.key || (key == other.key && index < other.index); }
-};
-
-// Monomial::operator< (std::map's order): the (variable, exponent) pairs compared
-// lexicographically, a proper prefix first. Factor k is (v + 1) << 8 | e, an absent one 0.
-bool map_order_key(const Monomial& m, MonomialKey& key) {
-  const FactorList& factors = m.factors();
-  if (factors.size() > 4) return false;
-  std::uint64_t fields[4] = {0, 0, 0, 0};
-  for (std::size_t k = 0; k < factors.size(); ++k) {
-    const auto [variable, exponent] = factors[k];
-    if (variable >= (1u << 24) - 1 || exponent >= (1u << 8)) return false;
-    fields[k] = (std::uint64_t{variable} + 1) << 8 | exponent;
-  }
-  key.high = fields[0] << 32 | fields[1];
-  key.low = fields[2] << 32 | fields[3];
-  return true;
-}
-
-// displays_before's order: total degree descending, then the factors compared in turn, a lower
-// variable first (its exponent is larger than the other's 0), a larger exponent first, a longer
-// list first. 16 bits of 0xffff - degree, then four factors of 28 bits, (v + 1) << 8 | (255 - e),
-// an absent one all ones.
-bool display_order_key(const Monomial& m, MonomialKey& key) {
-  const FactorList& factors = m.factors();
-  if (factors.size() > 4) return false;
-  constexpr std::uint64_t kAbsent = (std::uint64_t{1} << 28) - 1;
-  std::uint64_t fields[4] = {kAbsent, kAbsent, kAbsent, kAbsent};
-  std::uint64_t degree = 0;
-  for (std::size_t k = 0; k < factors.size(); ++k) {
-    const auto [variable, exponent] = factors[k];
-    if (variable >= (1u << 20) - 2 || exponent >= (1u << 8)) return false;
-    degree += exponent;
-    fields[k] = (std::uint64_t{variable} + 1) << 8 | (255 - exponent);
-  }
-  // Bits 127..112: the inverted degree; 111..84, 83..56, 55..28, 27..0: the factors.
-  key.high = (0xffff - degree) << 48 | fields[0] << 20 | fields[1] >> 8;
-  key.low = fields[1] << 56 | fields[2] << 28 | fields[3];
-  return true;
-}
-
 // A coefficient as add_term takes it: normalised (a number is its own normal form, and the
 // check saves a call per term).
 GiNaC::ex normalized(GiNaC::ex&& coefficient) {
@@ -225,7 +170,7 @@ std::vector<std::pair<std::size_t, const Polynomial::Terms::value_type*>> Polyno
     keyed.push_back(KeyedIndex{key, static_cast<std::uint32_t>(keyed.size())});
   }
   if (keyed.size() == count) {
-    std::sort(keyed.begin(), keyed.end());
+    sort_by_key(keyed);
     std::vector<std::pair<std::size_t, const Terms::value_type*>> sorted;
     sorted.reserve(count);
     for (const KeyedIndex& entry : keyed) sorted.push_back(ordered[entry.index]);
@@ -292,7 +237,7 @@ Polynomial Polynomial::sum_of(std::vector<std::pair<Monomial, GiNaC::ex>>&& term
     }
     return out;
   }
-  std::sort(keyed.begin(), keyed.end());
+  sort_by_key(keyed);
   // After the sort the terms are read in no order of memory: each is asked for a few runs ahead.
   constexpr std::size_t kAhead = 8;
   for (std::size_t run = 0; run < keyed.size();) {
