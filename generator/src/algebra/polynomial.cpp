@@ -238,6 +238,9 @@ Polynomial Polynomial::sum_of(std::vector<std::pair<Monomial, GiNaC::ex>>&& term
     return out;
   }
   sort_by_key(keyed);
+  std::size_t distinct = keyed.empty() ? 0 : 1;  // the result's size at most: reserved, not grown
+  for (std::size_t k = 1; k < keyed.size(); ++k) distinct += !(keyed[k].key == keyed[k - 1].key);
+  out.terms_.reserve(distinct);
   // After the sort the terms are read in no order of memory: each is asked for a few runs ahead.
   constexpr std::size_t kAhead = 8;
   for (std::size_t run = 0; run < keyed.size();) {
