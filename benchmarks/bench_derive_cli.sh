@@ -10,7 +10,9 @@
 # with PFGEN_HUGE_PAGES=1 (the transparent-huge-page heap, generator/cli/huge_page_heap.hpp), the
 # runs of the two interleaved, and xthp their ratio whole_thp_s / whole_s (below 1: huge pages pay
 # on this machine); derive_s: bench_derive's median for the same n in this session, with 4 kB
-# pages, and derive_thp_s the same with the huge-page heap; out_MB: the size of the output.
+# pages, and derive_thp_s the same with the huge-page heap; out_MB: the size of the output;
+# read/derive/print: the medians of the whole_s runs' own phases (`pfgen derive --timing`): reading
+# and checking the model file, deriving in that fresh process, printing.
 # Targets: n = 10 in <= 0.2 s, n = 20 in <= 3 s, text and JSON.
 #
 # Usage: benchmarks/bench_derive_cli.sh [BUILD_DIR] [SIZES] [RUNS] [FORMATS]
@@ -37,7 +39,7 @@ seconds() {  # wall-clock seconds of one run of the command, its output discarde
   awk -v s="$start" -v e="$end" 'BEGIN {print e - s}'
 }
 
-printf '%4s %-6s %10s %10s %12s %6s %11s %12s %8s %12s\n' "n" "format" "whole_s" "derive_s" "derive_thp_s" "|" "whole_thp_s" "xthp" "out_MB" "min..max"
+printf '%4s %-6s %10s %10s %12s %6s %11s %12s %8s %12s  %s\n' "n" "format" "whole_s" "derive_s" "derive_thp_s" "|" "whole_thp_s" "xthp" "out_MB" "min..max" "read/derive/print"
 for n in $sizes; do
   model="$work/dense_cubic_$n.yaml"
   "$build/benchmarks/dense_cubic_yaml" "$n" >"$model"
@@ -48,14 +50,18 @@ for n in $sizes; do
     bytes=$(stat -c %s "$work/out")
     : >"$work/times"
     : >"$work/times_thp"
+    : >"$work/phases"
     for _ in $(seq "$runs"); do
-      seconds env -u PFGEN_HUGE_PAGES "$pfgen" derive "$model" --format "$format" >>"$work/times"
+      seconds env -u PFGEN_HUGE_PAGES "$pfgen" derive "$model" --format "$format" --timing "$work/timing.json" >>"$work/times"
+      cat "$work/timing.json" >>"$work/phases"
       seconds env PFGEN_HUGE_PAGES=1 "$pfgen" derive "$model" --format "$format" >>"$work/times_thp"
     done
     whole=$(median <"$work/times")
     whole_thp=$(median <"$work/times_thp")
     range=$(sort -g "$work/times" | awk 'NR == 1 {lo = $1} {hi = $1} END {printf "%.2f..%.2f", lo, hi}')
-    printf '%4s %-6s %10.3f %10.3f %12.3f %6s %11.3f %11.2fx %8.1f %12s\n' "$n" "$format" "$whole" "$derive" "$derive_thp" "|" \
-      "$whole_thp" "$(awk -v a="$whole_thp" -v b="$whole" 'BEGIN {print a / b}')" "$(awk -v b="$bytes" 'BEGIN {print b / 1e6}')" "$range"
+    phase() { sed -E "s/.*\"$1\": ([^,}]*).*/\1/" "$work/phases" | median; }
+    phases=$(printf '%.2f/%.2f/%.2f' "$(phase read_seconds)" "$(phase derive_seconds)" "$(phase print_seconds)")
+    printf '%4s %-6s %10.3f %10.3f %12.3f %6s %11.3f %11.2fx %8.1f %12s  %s\n' "$n" "$format" "$whole" "$derive" "$derive_thp" "|" \
+      "$whole_thp" "$(awk -v a="$whole_thp" -v b="$whole" 'BEGIN {print a / b}')" "$(awk -v b="$bytes" 'BEGIN {print b / 1e6}')" "$range" "$phases"
   done
 done

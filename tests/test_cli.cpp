@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <map>
 #include <memory>
+#include <regex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -590,4 +591,36 @@ TEST_CASE("latex --filter writes the requested filters only, and overwrites atom
   CHECK(pdf.exit_code == 1);
   CHECK(pdf.err.find("must end in .tex") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(out + ".pdf"));
+}
+
+TEST_CASE("derive --timing writes the phases' seconds and changes nothing else", "[cli][integration]") {
+  TempDir dir;
+  const std::string model = example("basin2006_quadratic.yaml");
+  for (const std::string& extra : {std::string(""), std::string("--coefficients")}) {
+    std::vector<std::string> plain{"derive", model, "--format", "json"};
+    if (!extra.empty()) plain.push_back(extra);
+    std::vector<std::string> timed = plain;
+    timed.insert(timed.end(), {"--timing", dir.file("t.json")});
+    ProcessResult a = run_pfgen(plain);
+    ProcessResult b = run_pfgen(timed);
+    REQUIRE(a.exit_code == 0);
+    REQUIRE(b.exit_code == 0);
+    CHECK(a.out == b.out);
+    CHECK(b.err.empty());
+    const std::string timing = read_file(dir.file("t.json"));
+    INFO(timing);
+    // {"read_seconds": x, "derive_seconds": y, "print_seconds": z}, each a non-negative number.
+    CHECK(std::regex_match(timing, std::regex(R"(\{"read_seconds": [0-9.e+-]+, "derive_seconds": [0-9.e+-]+, )"
+                                              R"("print_seconds": [0-9.e+-]+\}\n)")));
+    CHECK(timing.find(": -") == std::string::npos);
+  }
+  // Refused before any work: nothing on stdout, exit non-zero, the option named.
+  for (const auto& [path, why] : std::vector<std::pair<std::string, std::string>>{
+           {dir.path(), "is a directory"}, {dir.file("none/t.json"), "does not exist"}, {model, "the model file"}}) {
+    ProcessResult r = run_pfgen({"derive", model, "--timing", path});
+    INFO(r.err);
+    CHECK(r.exit_code != 0);
+    CHECK(r.out.empty());
+    CHECK(r.err.find(why) != std::string::npos);
+  }
 }

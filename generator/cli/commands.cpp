@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <cmath>
 #include <filesystem>
@@ -24,6 +25,25 @@
 
 namespace pfgen::cli {
 namespace {
+
+// Wall-clock seconds of a command's phases, one after the other, for --timing.
+class PhaseTimer {
+ public:
+  void end_phase(const std::string& name) {
+    const auto now = std::chrono::steady_clock::now();
+    phases_.emplace_back(name, std::chrono::duration<double>(now - last_).count());
+    last_ = now;
+  }
+  std::string json() const {
+    Json out = Json::object();
+    for (const auto& [name, seconds] : phases_) out.add(name, Json::number(seconds));
+    return out.dump_line();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  std::vector<std::pair<std::string, double>> phases_;
+};
 
 std::string single_filter(const std::string& name, const Model& model) {
   std::vector<std::string> names = parse_filter_list("--filter", name, model);
@@ -135,12 +155,19 @@ int run_codegen(const CodegenCliOptions& options) {
 }
 
 int run_derive(const DeriveOptions& options) {
+  if (!options.timing_path.empty()) {
+    check_distinct_outputs({{"the model file", options.model_path}}, {{"--timing", options.timing_path}});
+    check_output_file({"--timing", options.timing_path});
+  }
+  PhaseTimer timer;
   Model model = load_model_file(options.model_path);
+  timer.end_phase("read_seconds");
   if (options.coefficients) {
     if (!options.filter.empty())
       throw CliValueError("--coefficients: shows the model's coefficient form, not a filter's equations; drop --filter");
     const DriftCoefficients drift = extract_drift_coefficients(model);
     const ObservationCoefficients observation = extract_observation_coefficients(model);
+    timer.end_phase("derive_seconds");
     if (options.format == "text") {
       std::cout << coefficients_text(model, drift, observation);
     } else if (options.format == "latex") {
@@ -148,23 +175,33 @@ int run_derive(const DeriveOptions& options) {
     } else {
       std::cout << coefficients_json(model, drift, observation).dump();
     }
-    return 0;
-  }
-  // Without --filter: the model's first filter (optimal, cd-optimal or delay-optimal).
-  const std::string name =
-      options.filter.empty() ? default_filter_names(model).front() : single_filter(options.filter, model);
-  // Kept, never freed: the process ends after printing, and freeing a big filter's millions of terms
-  // one by one (dense cubic n = 20: 3.3 million) costs a tenth of the whole command. A static pointer
-  // keeps them reachable, so leak checkers do not report them.
-  static const FilterEquations* kept_until_exit = nullptr;
-  kept_until_exit = new FilterEquations(derive_named_filter(model, name));
-  const FilterEquations& eq = *kept_until_exit;
-  if (options.format == "text") {
-    write_equations_text(std::cout, model, eq);
-  } else if (options.format == "latex") {
-    std::cout << noise_latex(model) << equations_latex(eq);
   } else {
-    equations_json(model, eq).dump(std::cout);
+    // Without --filter: the model's first filter (optimal, cd-optimal or delay-optimal).
+    const std::string name =
+        options.filter.empty() ? default_filter_names(model).front() : single_filter(options.filter, model);
+    // Kept, never freed: the process ends after printing, and freeing a big filter's millions of terms
+    // one by one (dense cubic n = 20: 3.3 million) costs a tenth of the whole command. A static pointer
+    // keeps them reachable, so leak checkers do not report them.
+    static const FilterEquations* kept_until_exit = nullptr;
+    kept_until_exit = new FilterEquations(derive_named_filter(model, name));
+    const FilterEquations& eq = *kept_until_exit;
+    timer.end_phase("derive_seconds");
+    if (options.format == "text") {
+      write_equations_text(std::cout, model, eq);
+    } else if (options.format == "latex") {
+      std::cout << noise_latex(model) << equations_latex(eq);
+    } else {
+      equations_json(model, eq).dump(std::cout);
+    }
+  }
+  std::cout.flush();
+  timer.end_phase("print_seconds");
+  if (!options.timing_path.empty()) {
+    try {
+      pfgen_support::write_file_atomically(options.timing_path, timer.json());
+    } catch (const pfgen_support::AtomicWriteError&) {
+      throw CliValueError("--timing: cannot write '" + options.timing_path + "'");
+    }
   }
   return 0;
 }

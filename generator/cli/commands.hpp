@@ -13,6 +13,7 @@ struct DeriveOptions {
   std::string filter;  // empty: the model's first filter in the registry's order
   std::string format = "text";
   bool coefficients = false;  // the model's coefficient form A..A3, E, E1 instead of a filter
+  std::string timing_path;    // --timing: the phases' seconds as JSON, written after the report
 };
 
 struct LatexOptions {

@@ -57,6 +57,8 @@ int main(int argc, char** argv) {
   derive_cmd->add_flag("--coefficients", derive.coefficients,
                        "Print the model's coefficient form instead of a filter: f = A + A1 x + A2 x x + A3 x x x, "
                        "observation rate E + E1 x (drift of degree <= 3)");
+  derive_cmd->add_option("--timing", derive.timing_path,
+                         "Write the seconds spent reading the model, deriving and printing as JSON to FILE");
 
   LatexOptions latex;
   CLI::App* latex_cmd = app.add_subcommand("latex", "Write a standalone LaTeX document of the model and its filters");

@@ -22,4 +22,9 @@ bool same_file(const std::string& a, const std::string& b);
 // ("-o file/x.csv" with `file` a regular file).
 void check_distinct_outputs(const std::vector<NamedPath>& inputs, const std::vector<NamedPath>& outputs);
 
+// Throws CliValueError when the file an option names cannot be written as a file: its directory
+// does not exist, or it is itself a directory. Checked before any work, so that no result is
+// printed and then lost.
+void check_output_file(const NamedPath& output);
+
 }  // namespace pfgen::cli

@@ -80,16 +80,8 @@ void check_output_paths(const SimulateOptions& options) {
                                                                 {&options.timing_path, "--timing"},
                                                                 {&options.criterion_csv_path, "--criterion-csv"},
                                                                 {&options.stops_csv_path, "--stops-csv"}};
-  for (const auto& [path, option] : outputs) {
-    if (path->empty()) continue;
-    const auto parent = std::filesystem::path(*path).parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent))
-      throw CliValueError("'" + *path + "': directory '" + parent.string() + "' does not exist");
-    // A directory is no output file: -o DIR failed only after the whole run, and --plot DIR.png
-    // removed an empty DIR.png (the stale-plot removal) before gnuplot failed on it.
-    if (std::filesystem::is_directory(*path))
-      throw CliValueError(std::string(option) + ": '" + *path + "' is a directory, not a file");
-  }
+  for (const auto& [path, option] : outputs)
+    if (!path->empty()) check_output_file({option, *path});
 }
 
 // Each thread keeps one run's truth path and observation increments; the statistics keep the
