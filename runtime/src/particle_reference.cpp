@@ -172,31 +172,35 @@ void ParticleReference::propagate(double t, double dt, RandomStream& stream, Par
   }
 }
 
+RandomStream ParticleReference::begin_run(std::uint64_t seed, std::uint64_t run) {
+  RandomStream stream(seed, run, substream::particle_reference);
+  scheme_->start_run(RandomStream::derive_key(seed, run, substream::particle_refinement), run);
+  scheme_->set_escape_bound(bound_);
+  draw_prior(stream);
+  return stream;
+}
+
+ParticleReferenceRun ParticleReference::stopped(ParticleReferenceRun result, double t) {
+  result.stopped = true;
+  result.stop_t = t;
+  return result;
+}
+
 ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::MatrixXd& dy, std::ptrdiff_t truth_last,
                                             std::uint64_t seed, std::uint64_t run, Eigen::MatrixXd& mean) {
   if (!observation_) throw std::logic_error("particle reference: made for sampled observations, run with increments");
   ParticleReferenceRun result;
   if (truth_last < 0) return result;
-  RandomStream stream(seed, run, substream::particle_reference);
-  scheme_->start_run(RandomStream::derive_key(seed, run, substream::particle_refinement), run);
-  scheme_->set_escape_bound(bound_);
+  RandomStream stream = begin_run(seed, run);
   const auto p = static_cast<Eigen::Index>(p_);
 
-  // The prior, with every particle's rate at t0.
-  draw_prior(stream);
+  // Every particle's rate at t0.
   observation_->coefficients(grid.t0, A0_, A_, B_);
   for (std::size_t i = 0; i < N_; ++i) {
     const auto column = static_cast<Eigen::Index>(i);
     set_rate(particles_.col(column), rate_start_.col(column));
   }
-  std::uint64_t resamplings = 0;
-  auto stop = [&](std::size_t k) {
-    result.stopped = true;
-    result.stop_t = grid.time(k);
-    result.resamplings = resamplings;
-    return result;
-  };
-  if (!weigh_and_resample(mean.col(0), stream, resamplings)) return stop(0);
+  if (!weigh_and_resample(mean.col(0), stream, result.resamplings)) return stopped(result, grid.time(0));
   result.last = 0;
 
   for (std::size_t k = 0; static_cast<std::ptrdiff_t>(k) < truth_last; ++k) {
@@ -204,7 +208,7 @@ ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::M
     // R = B B^T at the step's left end, as the truth's noise term.
     observation_->coefficients(t, A0_, A_, B_);
     const Eigen::LLT<Eigen::MatrixXd> R(B_ * B_.transpose());
-    if (R.info() != Eigen::Success) return stop(k);
+    if (R.info() != Eigen::Success) return stopped(result, grid.time(k));
     R_inv_ = R.solve(Eigen::MatrixXd::Identity(p, p));
     R_inv_dy_.noalias() = R_inv_ * dy.col(static_cast<Eigen::Index>(k));
 
@@ -222,10 +226,10 @@ ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::M
       log_weight_[i] += h_.dot(R_inv_dy_ - 0.5 * grid.dt * R_inv_h_);
       if (!std::isfinite(log_weight_[i])) alive_[i] = 0;
     }
-    if (!weigh_and_resample(mean.col(static_cast<Eigen::Index>(k + 1)), stream, resamplings)) return stop(k + 1);
+    if (!weigh_and_resample(mean.col(static_cast<Eigen::Index>(k + 1)), stream, result.resamplings))
+      return stopped(result, grid.time(k + 1));
     result.last = static_cast<std::ptrdiff_t>(k + 1);
   }
-  result.resamplings = resamplings;
   return result;
 }
 
@@ -236,20 +240,9 @@ ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::s
   if (!measurement_) throw std::logic_error("particle reference: made for increments dy, run with samples");
   ParticleReferenceRun result;
   if (truth_last < 0) return result;
-  RandomStream stream(seed, run, substream::particle_reference);
-  scheme_->start_run(RandomStream::derive_key(seed, run, substream::particle_refinement), run);
-  scheme_->set_escape_bound(bound_);
+  RandomStream stream = begin_run(seed, run);
   const std::size_t q = measurement_->q();
-
-  draw_prior(stream);
-  std::uint64_t resamplings = 0;
-  auto stop = [&](std::size_t k) {
-    result.stopped = true;
-    result.stop_t = grid.time(k);
-    result.resamplings = resamplings;
-    return result;
-  };
-  if (!weigh_and_resample(mean.col(0), stream, resamplings)) return stop(0);
+  if (!weigh_and_resample(mean.col(0), stream, result.resamplings)) return stopped(result, grid.time(0));
   result.last = 0;
 
   for (std::size_t k = 0; static_cast<std::ptrdiff_t>(k) < truth_last; ++k) {
@@ -263,7 +256,7 @@ ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::s
       const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Uv(
           Uv_.data(), p, static_cast<Eigen::Index>(q));
       const Eigen::LLT<Eigen::MatrixXd> S(Uv * Uv.transpose());
-      if (S.info() != Eigen::Success) return stop(k + 1);
+      if (S.info() != Eigen::Success) return stopped(result, grid.time(k + 1));
       const auto y = samples.col(static_cast<Eigen::Index>(sample - 1));
       for (std::size_t i = 0; i < N_; ++i) {
         if (!alive_[i]) continue;
@@ -278,10 +271,10 @@ ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::s
         if (!std::isfinite(log_weight_[i])) alive_[i] = 0;
       }
     }
-    if (!weigh_and_resample(mean.col(static_cast<Eigen::Index>(k + 1)), stream, resamplings)) return stop(k + 1);
+    if (!weigh_and_resample(mean.col(static_cast<Eigen::Index>(k + 1)), stream, result.resamplings))
+      return stopped(result, grid.time(k + 1));
     result.last = static_cast<std::ptrdiff_t>(k + 1);
   }
-  result.resamplings = resamplings;
   return result;
 }
 

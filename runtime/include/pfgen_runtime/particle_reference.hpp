@@ -91,6 +91,11 @@ class ParticleReference {
 
  private:
   void initialise(const ParticleReferenceOptions& options);
+  // A run's start for both observation kinds: the truth's scheme keyed for the run, the particles'
+  // own stream, and the prior drawn from it.
+  RandomStream begin_run(std::uint64_t seed, std::uint64_t run);
+  // `result` marked as stopped at t (every weight 0, or a covariance that is not positive definite).
+  static ParticleReferenceRun stopped(ParticleReferenceRun result, double t);
   void draw_prior(RandomStream& stream);
   void propagate(double t, double dt, RandomStream& stream, ParticleReferenceRun& result);
   bool step_particle(std::size_t i, double t, double dt);
