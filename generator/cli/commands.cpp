@@ -53,11 +53,11 @@ std::string single_filter(const std::string& name, const Model& model) {
 
 }  // namespace
 
-void write_file_atomically(const std::string& path, const std::string& contents) {
+void write_file_atomically(const std::string& option, const std::string& path, const std::string& contents) {
   try {
     pfgen_support::write_file_atomically(path, contents);
   } catch (const pfgen_support::AtomicWriteError&) {
-    throw CliValueError("-o: cannot write '" + path + "'");
+    throw CliValueError(option + ": cannot write '" + path + "'");
   }
 }
 
@@ -115,9 +115,9 @@ int run_codegen(const CodegenCliOptions& options) {
       std::error_code error;
       std::filesystem::create_directories(path.parent_path(), error);
       if (error) throw CliValueError("-o: cannot create directory '" + path.parent_path().string() + "'");
-      write_file_atomically(path.string(), file.contents);
+      write_file_atomically("-o", path.string(), file.contents);
       if (!file.eigen_relative_path.empty())
-        write_file_atomically((std::filesystem::path(options.output_dir) / file.eigen_relative_path).string(),
+        write_file_atomically("-o", (std::filesystem::path(options.output_dir) / file.eigen_relative_path).string(),
                               file.eigen_contents);
     }
   }
@@ -196,13 +196,7 @@ int run_derive(const DeriveOptions& options) {
   }
   std::cout.flush();
   timer.end_phase("print_seconds");
-  if (!options.timing_path.empty()) {
-    try {
-      pfgen_support::write_file_atomically(options.timing_path, timer.json());
-    } catch (const pfgen_support::AtomicWriteError&) {
-      throw CliValueError("--timing: cannot write '" + options.timing_path + "'");
-    }
-  }
+  if (!options.timing_path.empty()) write_file_atomically("--timing", options.timing_path, timer.json());
   return 0;
 }
 
@@ -217,7 +211,7 @@ int run_latex(const LatexOptions& options) {
   std::vector<FilterEquations> filters;
   for (const std::string& name : parse_filter_list("--filter", options.filters, model))
     filters.push_back(derive_named_filter(model, name));
-  write_file_atomically(options.output_path, latex_document(model, filters, options.coefficients));
+  write_file_atomically("-o", options.output_path, latex_document(model, filters, options.coefficients));
   return 0;
 }
 

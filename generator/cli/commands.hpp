@@ -54,7 +54,8 @@ int run_eval(const EvalOptions& options);
 
 // Writes `contents` to `path` through a temporary file and a rename, so that a
 // failure never leaves a partial output file behind (pfgen_support::write_file_atomically;
-// concurrent writers of one path each use their own temporary).
-void write_file_atomically(const std::string& path, const std::string& contents);
+// concurrent writers of one path each use their own temporary). A failure is a CliValueError
+// naming `option`, the option that gave the path.
+void write_file_atomically(const std::string& option, const std::string& path, const std::string& contents);
 
 }  // namespace pfgen::cli

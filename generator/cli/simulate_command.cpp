@@ -409,15 +409,8 @@ int run_simulate(const SimulateOptions& options, JobGroup& group) {
   if (!options.stops_csv_path.empty()) pfgen_runtime::write_stops_csv(options.stops_csv_path, result);
 
   // Before the table, like the other files: a failed write must not follow a printed result.
-  // (write_file_atomically's own messages name codegen's -o.)
-  if (!options.timing_path.empty()) {
-    try {
-      write_file_atomically(options.timing_path,
-                            timing_json(result, build, derive_seconds, seconds_since(start)));
-    } catch (const CliValueError&) {
-      throw CliValueError("--timing: cannot write '" + options.timing_path + "'");
-    }
-  }
+  if (!options.timing_path.empty())
+    write_file_atomically("--timing", options.timing_path, timing_json(result, build, derive_seconds, seconds_since(start)));
 
   // Timing first (stderr), so that the output ends with the table and the paths of the files.
   if (talk) std::cerr << pfgen_runtime::format_timing(result) << std::flush;
