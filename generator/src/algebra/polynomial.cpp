@@ -122,9 +122,6 @@ std::optional<GiNaC::ex> summed_like_add_term(Coefficients&& coefficients) {
   return sum;
 }
 
-// Starts loading the object behind `e` into the cache; taking its address does not read it.
-void prefetch(const GiNaC::ex& e) { __builtin_prefetch(&GiNaC::ex_to<GiNaC::basic>(e)); }
-
 }  // namespace
 
 bool displays_before(const Monomial& a, const Monomial& b) {
@@ -245,7 +242,7 @@ Polynomial Polynomial::sum_of(std::vector<std::pair<Monomial, GiNaC::ex>>&& term
   constexpr std::size_t kAhead = 8;
   for (std::size_t run = 0; run < keyed.size();) {
     if (run + 2 * kAhead < keyed.size()) __builtin_prefetch(&terms[keyed[run + 2 * kAhead].index]);
-    if (run + kAhead < keyed.size()) prefetch(terms[keyed[run + kAhead].index].second);
+    if (run + kAhead < keyed.size()) prefetch_coefficient(terms[keyed[run + kAhead].index].second);
     std::size_t next = run + 1;
     while (next < keyed.size() && keyed[next].key == keyed[run].key) ++next;
     auto& [monomial, coefficient] = terms[keyed[run].index];

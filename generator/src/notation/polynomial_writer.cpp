@@ -8,10 +8,7 @@
 namespace pfgen {
 namespace {
 
-constexpr std::size_t kPrefetchDistance = 8;
-
-// Starts loading the object behind `e` into the cache; taking its address does not read it.
-void prefetch_coefficient(const GiNaC::ex& e) { __builtin_prefetch(&GiNaC::ex_to<GiNaC::basic>(e)); }
+constexpr std::size_t kPrefetchDistance = 8;  // terms ahead (prefetch_coefficient)
 
 }  // namespace
 
