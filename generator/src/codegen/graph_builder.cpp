@@ -141,12 +141,10 @@ std::size_t GraphBuilder::polynomial(const Polynomial& p) {
   return first ? graph_.constant(0) : sum;
 }
 
-// A product's factors in the order of their printed text. GiNaC keeps a sum in a product either
-// as it is or negated with the -1 in the product's number, by a term order that varies from run to
-// run: (P23 - L21*L31)/L22 is -(L21*L31 - P23)/L22 in one run and (-L21*L31 + P23)/L22 in the
-// next. As the printers do (ExpressionPrinter::to_term), the sum whose printed terms begin with a
-// + is taken, an odd power's sign moved to the product's number, so that both runs give one graph.
-// The negated sum's power is built here, not by GiNaC, which would move the sign back out.
+// A product's factors in the order of their printed text, its sums with pfgen's sign
+// (canonical_sum_factor, as the printers take them): a negated sum's odd power moves its sign to
+// the product's number, so that every run gives one graph. The negated sum's power is built here,
+// not by GiNaC, which would move the sign back out.
 std::size_t GraphBuilder::product(const GiNaC::ex& e) {
   struct Factor {
     std::string key;       // the printed text the factors are ordered by
@@ -162,20 +160,15 @@ std::size_t GraphBuilder::product(const GiNaC::ex& e) {
       number *= GiNaC::ex_to<GiNaC::numeric>(op);
       continue;
     }
-    const bool whole = GiNaC::is_exactly_a<GiNaC::add>(op);
-    const bool power_of_sum = GiNaC::is_exactly_a<GiNaC::power>(op) && GiNaC::is_exactly_a<GiNaC::add>(op.op(0)) &&
-                              op.op(1).info(GiNaC::info_flags::integer);
-    const GiNaC::ex sum = whole ? op : power_of_sum ? op.op(0) : GiNaC::ex(0);
-    if ((!whole && !power_of_sum) || printer.print(sum).front() != '-') {
+    const std::optional<CanonicalSumFactor> sum = canonical_sum_factor(op, printer);
+    if (!sum || !sum->negated) {
       factors.push_back(Factor{printer.print(op), op, 0});
       continue;
     }
-    const long exponent = whole ? 1 : GiNaC::ex_to<GiNaC::numeric>(op.op(1)).to_long();
-    if (exponent % 2 != 0) number = -number;
-    const GiNaC::ex negated = -sum;  // a sum again: GiNaC multiplies a lone sum's terms out
+    if (sum->flips_sign()) number = -number;
     // Keyed by the text of the factor it stands for, as the other run's factor is keyed (the
     // printer makes that text canonical too, however GiNaC holds the power).
-    factors.push_back(Factor{printer.print(GiNaC::pow(negated, exponent)), negated, exponent});
+    factors.push_back(Factor{printer.print(GiNaC::pow(sum->sum, sum->exponent)), sum->sum, sum->exponent});
   }
   // The number as GiNaC would hold it: a factor unless it is 1.
   if (number != 1) factors.push_back(Factor{printer.print(number), number, 0});

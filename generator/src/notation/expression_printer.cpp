@@ -12,17 +12,24 @@ bool is_negative_integer_power(const GiNaC::ex& e) {
   return GiNaC::is_exactly_a<GiNaC::power>(e) && e.op(1).info(GiNaC::info_flags::negint);
 }
 
-// The sum in a factor that is a sum, or a sum to a (non-zero, int-sized) integer power.
-std::optional<GiNaC::ex> sum_with_integer_exponent(const GiNaC::ex& factor) {
-  if (GiNaC::is_exactly_a<GiNaC::add>(factor)) return factor;
-  if (!GiNaC::is_exactly_a<GiNaC::power>(factor) || !GiNaC::is_exactly_a<GiNaC::add>(factor.op(0))) return std::nullopt;
-  if (!factor.op(1).info(GiNaC::info_flags::integer)) return std::nullopt;
-  const GiNaC::numeric exponent = GiNaC::ex_to<GiNaC::numeric>(factor.op(1));
-  if (exponent.is_zero() || GiNaC::abs(exponent) > GiNaC::numeric(1L << 30)) return std::nullopt;
-  return factor.op(0);
-}
-
 }  // namespace
+
+std::optional<CanonicalSumFactor> canonical_sum_factor(const GiNaC::ex& factor, const ExpressionPrinter& printer) {
+  long exponent = 1;
+  GiNaC::ex sum = factor;
+  if (!GiNaC::is_exactly_a<GiNaC::add>(factor)) {
+    if (!GiNaC::is_exactly_a<GiNaC::power>(factor) || !GiNaC::is_exactly_a<GiNaC::add>(factor.op(0))) return std::nullopt;
+    if (!factor.op(1).info(GiNaC::info_flags::integer)) return std::nullopt;
+    const GiNaC::numeric k = GiNaC::ex_to<GiNaC::numeric>(factor.op(1));
+    if (k.is_zero() || GiNaC::abs(k) > GiNaC::numeric(1L << 30)) return std::nullopt;
+    exponent = k.to_long();
+    sum = factor.op(0);
+  }
+  std::string text = printer.print(sum);
+  if (text.empty() || text.front() != '-') return CanonicalSumFactor{sum, std::move(text), exponent, false};
+  const GiNaC::ex negated = -sum;  // a sum again: GiNaC multiplies a lone sum's terms out
+  return CanonicalSumFactor{negated, printer.print(negated), exponent, true};
+}
 
 std::string ExpressionPrinter::print(const GiNaC::ex& e) const {
   std::vector<Term> terms;
@@ -89,23 +96,14 @@ ExpressionPrinter::Term ExpressionPrinter::to_term(const GiNaC::ex& e) const {
         value = -value;
       }
       term.magnitude *= value;
-    } else if (const std::optional<GiNaC::ex> sum = sum_with_integer_exponent(factor)) {
-      // GiNaC keeps a sum in a product either as it is or negated with -1 outside, by its own
-      // term order, which varies from run to run (docs/theory.md §9.1): (P23 - L21*L31)/L22 came
-      // out as -(L21*L31 - P23)/L22 in one run and (-L21*L31 + P23)/L22 in the next. Of the sum
-      // and its negative, the one whose printed terms begin with a + is printed, and an odd
-      // power's sign goes to the term.
-      const long exponent = GiNaC::is_exactly_a<GiNaC::add>(factor) ? 1 : GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).to_long();
-      std::string text = print(*sum);
-      if (!text.empty() && text.front() == '-') {
-        text = print(-*sum);
-        if (exponent % 2 != 0) term.negative = !term.negative;
-      }
-      const std::string base = parenthesized(text);
-      if (exponent > 0) {
-        term.numerator_factors.push_back(print_integer_power(base, exponent));
+    } else if (const std::optional<CanonicalSumFactor> sum = canonical_sum_factor(factor, *this)) {
+      // The sum with pfgen's sign, not GiNaC's run-dependent one; an odd power's sign goes to the term.
+      if (sum->flips_sign()) term.negative = !term.negative;
+      const std::string base = parenthesized(sum->text);
+      if (sum->exponent > 0) {
+        term.numerator_factors.push_back(print_integer_power(base, sum->exponent));
       } else {
-        term.denominator_factors.push_back(print_integer_power(base, -exponent));
+        term.denominator_factors.push_back(print_integer_power(base, -sum->exponent));
       }
     } else if (is_negative_integer_power(factor)) {
       long exponent = -GiNaC::ex_to<GiNaC::numeric>(factor.op(1)).to_long();

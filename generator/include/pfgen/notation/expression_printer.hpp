@@ -8,6 +8,7 @@
 // Subclasses (text, LaTeX; later C++) supply only the notation, in the manner
 // of GiNaC's hierarchy of print contexts.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,5 +59,23 @@ class ExpressionPrinter {
   std::string print_factor(const GiNaC::ex& e) const;   // an operand of a product, parenthesised if needed
   std::string print_integer_power(const std::string& base, long exponent) const;
 };
+
+// A factor of a product that is a sum, or a sum to a non-zero integer power, with its sign chosen
+// by pfgen rather than by GiNaC. GiNaC keeps such a sum either as written or negated with -1 in the
+// product's number, by a term order that varies from run to run (docs/theory.md §9.1):
+// (P23 - L21*L31)/L22 is -(L21*L31 - P23)/L22 in one run and (-L21*L31 + P23)/L22 in the next. Of
+// the sum and its negative, `sum` is the one whose printed terms (by `printer`) begin with a +, and
+// `text` its printed form. The printers and the code generator both make products canonical so.
+struct CanonicalSumFactor {
+  GiNaC::ex sum;
+  std::string text;
+  long exponent;
+  bool negated;  // `sum` is the factor's sum negated
+  // The product's sign changes with the choice: a negated sum to an odd power.
+  bool flips_sign() const { return negated && exponent % 2 != 0; }
+};
+
+// Empty unless `factor` is a sum, or a sum to an integer power of at most 2^30 in magnitude.
+std::optional<CanonicalSumFactor> canonical_sum_factor(const GiNaC::ex& factor, const ExpressionPrinter& printer);
 
 }  // namespace pfgen
