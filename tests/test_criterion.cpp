@@ -213,6 +213,27 @@ TEST_CASE("criterion: J approaches mean int L as eps grows, J - mean I = Var(I) 
   }
 }
 
+TEST_CASE("criterion: J stays exact as eps -> infinity: mean I + Var(I) / (2 eps), its standard error mean I's",
+          "[criterion][runtime][unit]") {
+  const MonteCarloResult result = scalar_run(5, 200, 1.0);
+  const std::vector<double>& I = result.filters.front().criterion->integrals;
+  double mean = 0, variance = 0;
+  for (double v : I) mean += v;
+  mean /= static_cast<double>(I.size());
+  for (double v : I) variance += (v - mean) * (v - mean);
+  variance /= static_cast<double>(I.size());
+  const CriterionEstimate reference = estimate_criterion(I, 1e4);
+  // A shift by the largest integral gave J = max I + eps log(mean w): 0.1863 against mean I = 0.115
+  // at eps = 1e14 and the largest single run from 1e16 on.
+  for (const double epsilon : {1e6, 1e9, 1e12, 1e14, 1e15, 1e16, 1e20, 1e100, 1e300}) {
+    CAPTURE(epsilon);
+    const CriterionEstimate e = estimate_criterion(I, epsilon);
+    CHECK(std::abs(e.J - (mean + variance / (2 * epsilon))) < 1e-13 * mean);
+    CHECK(e.J_se == Approx(reference.mean_integral_se).epsilon(1e-4));
+    CHECK(e.ess == Approx(static_cast<double>(I.size())).epsilon(1e-9));
+  }
+}
+
 TEST_CASE("criterion: identical J, SE and integrals for 1 and 2 threads", "[criterion][runtime][unit]") {
   const MonteCarloResult one = scalar_run(9, 37, 0.3, 1), two = scalar_run(9, 37, 0.3, 2);
   const CriterionStatistics &a = *one.filters.front().criterion, &b = *two.filters.front().criterion;

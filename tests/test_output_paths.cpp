@@ -112,3 +112,78 @@ TEST_CASE("codegen refuses a header that would replace the model file or another
   CHECK(std::vector<std::string>{"basin2006_quadratic"} ==
         std::vector<std::string>{std::filesystem::directory_iterator(dir.file("out"))->path().filename().string()});
 }
+
+TEST_CASE("an empty file name is refused by every option that names a file", "[output_paths][integration]") {
+  const std::string model = example("basin2006_quadratic.yaml");
+  const struct {
+    std::vector<std::string> args;
+    std::string option;
+  } cases[] = {
+      {{"derive", model, "--timing", ""}, "--timing"},
+      {{"latex", model, "-o", ""}, "--output"},
+      {{"codegen", model, "-o", ""}, "--output"},
+      {{"simulate", model, "-o", ""}, "--output"},
+      {{"simulate", model, "--plot", ""}, "--plot"},
+      {{"simulate", model, "--stops-csv", ""}, "--stops-csv"},
+      {{"simulate", model, "--criterion-csv", ""}, "--criterion-csv"},
+      {{"simulate", model, "--timing", ""}, "--timing"},
+      {{"simulate", model, "--cache-dir", ""}, "--cache-dir"},
+      {{"simulate", model, "--compiler", ""}, "--compiler"},
+  };
+  for (const auto& c : cases) {
+    const auto result = run_pfgen(c.args);
+    INFO(c.args.front() << " " << c.option << ": " << result.err);
+    CHECK(result.exit_code != 0);
+    CHECK(result.out.empty());
+    CHECK(count_lines(result.err) == 1);
+    CHECK(result.err.find(c.option + ": the file name is empty") != std::string::npos);
+  }
+}
+
+TEST_CASE("outputs that are devices or links to them are written into, and a failed write fails the command",
+          "[output_paths][integration]") {
+  const std::string model = example("basin2006_quadratic.yaml");
+  TempDir dir;
+  const std::string full = dir.file("full.json"), null = dir.file("null.json");
+  std::filesystem::create_symlink("/dev/full", full);
+  std::filesystem::create_symlink("/dev/null", null);
+  // /dev/full: ENOSPC. The timing was written after the report, and the rename over the link
+  // (as root, over the device itself) hid the failure.
+  auto timed = run_pfgen({"derive", model, "--timing", full});
+  INFO(timed.err);
+  CHECK(timed.exit_code == 1);
+  CHECK(count_lines(timed.err) == 1);
+  CHECK(timed.err.find("--timing: cannot write '" + full + "': No space left on device") != std::string::npos);
+  CHECK(std::filesystem::is_symlink(full));
+  // /dev/null through a link: success, and the link stays.
+  timed = run_pfgen({"derive", model, "--timing", null});
+  CHECK(timed.exit_code == 0);
+  CHECK(std::filesystem::is_symlink(null));
+  // -o through a link to this process's standard output: the document arrives there.
+  const std::string to_stdout = dir.file("stdout.tex");
+  std::filesystem::create_symlink("/proc/self/fd/1", to_stdout);
+  const auto latex = run_pfgen({"latex", model, "-o", to_stdout, "--filter", "optimal"});
+  CHECK(latex.exit_code == 0);
+  CHECK(latex.out.find("\\begin{document}") != std::string::npos);
+  CHECK(std::filesystem::is_symlink(to_stdout));
+  // A report that cannot reach standard output is a failure.
+  const auto into_full =
+      run_process(shell_quote(pfgen_executable()) + " derive " + shell_quote(model) + " > /dev/full");
+  CHECK(into_full.exit_code == 1);
+  CHECK(into_full.err.find("cannot write standard output: No space left on device") != std::string::npos);
+}
+
+TEST_CASE("codegen writes all of its headers or none", "[output_paths][integration]") {
+  TempDir dir;
+  // A directory in the way of ekf's header: optimal's, written first, must not be left behind.
+  std::filesystem::create_directories(dir.file("out/basin2006_quadratic/ekf.hpp"));
+  const auto result =
+      run_pfgen({"codegen", example("basin2006_quadratic.yaml"), "-o", dir.file("out"), "--filter", "optimal,ekf"});
+  INFO(result.err);
+  CHECK(result.exit_code == 1);
+  CHECK(count_lines(result.err) == 1);
+  CHECK(result.err.find("ekf.hpp': it exists and is not a regular file; no header was written") != std::string::npos);
+  CHECK(std::vector<std::string>{"ekf.hpp"} ==
+        std::vector<std::string>{
+            std::filesystem::directory_iterator(dir.file("out/basin2006_quadratic"))->path().filename().string()});
+}

@@ -175,3 +175,111 @@ TEST_CASE("support: processes writing one path concurrently leave one whole file
   CHECK(is_whole(read_file(path)));
   CHECK(dir.entries() == std::vector<std::string>{"shared.txt"});
 }
+
+// What exists at a path and is not a regular file is written into, never replaced: rename()
+// over a link to /dev/null replaced the link, and as root over /dev/null itself the device.
+TEST_CASE("support: a device, a FIFO or a link to one is written through, never replaced", "[unit][support]") {
+  TempDir dir;
+  struct stat info {};
+  // A link to /dev/null: the write succeeds and the link stays a link to the device.
+  const std::string to_null = dir.file("null-link");
+  REQUIRE(::symlink("/dev/null", to_null.c_str()) == 0);
+  write_file_atomically(to_null, "into the device\n");
+  REQUIRE(::lstat(to_null.c_str(), &info) == 0);
+  CHECK(S_ISLNK(info.st_mode));
+  REQUIRE(::stat("/dev/null", &info) == 0);
+  CHECK(S_ISCHR(info.st_mode));
+  // A link to /dev/full: ENOSPC is the command's failure, not a success.
+  const std::string to_full = dir.file("full-link");
+  REQUIRE(::symlink("/dev/full", to_full.c_str()) == 0);
+  try {
+    write_file_atomically(to_full, "nowhere to go\n");
+    FAIL("writing into /dev/full succeeded");
+  } catch (const AtomicWriteError& e) {
+    CHECK(e.stage() == AtomicWriteError::Stage::write_through);
+    CHECK(e.error_number() == ENOSPC);
+    CHECK(std::string(e.what()) == "cannot write '" + to_full + "': No space left on device");
+  }
+  REQUIRE(::lstat(to_full.c_str(), &info) == 0);
+  CHECK(S_ISLNK(info.st_mode));
+  // A FIFO with a reader gets the bytes and stays a FIFO; one without a reader is an error at once
+  // (O_NONBLOCK on the open), not a wait without end.
+  const std::string fifo = dir.file("fifo");
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  try {
+    write_file_atomically(fifo, "x");
+    FAIL("writing into a FIFO without a reader succeeded");
+  } catch (const AtomicWriteError& e) {
+    CHECK(e.error_number() == ENXIO);
+    CHECK(std::string(e.what()).find("no process is reading it") != std::string::npos);
+  }
+  std::string received;
+  std::thread reader([&] { received = read_file(fifo); });
+  const std::string sent(100000, 'f');  // beyond a pipe's buffer: the writer blocks until read
+  for (int attempt = 0;; ++attempt) {   // until the reader has opened its end
+    try {
+      write_file_atomically(fifo, sent);
+      break;
+    } catch (const AtomicWriteError& e) {
+      REQUIRE(e.error_number() == ENXIO);
+      REQUIRE(attempt < 5000);
+      ::usleep(1000);
+    }
+  }
+  reader.join();
+  CHECK(received == sent);
+  REQUIRE(::lstat(fifo.c_str(), &info) == 0);
+  CHECK(S_ISFIFO(info.st_mode));
+  CHECK(dir.entries() == std::vector<std::string>{"fifo", "full-link", "null-link"});
+}
+
+TEST_CASE("support: a link to a regular file keeps the link and replaces its target; a dangling link is refused",
+          "[unit][support]") {
+  TempDir dir;
+  const std::string target = dir.file("target.txt"), link = dir.file("link.txt");
+  pfgen_test::write_file(target, "old\n");
+  REQUIRE(::symlink("target.txt", link.c_str()) == 0);
+  write_file_atomically(link, "new\n");
+  struct stat info {};
+  REQUIRE(::lstat(link.c_str(), &info) == 0);
+  CHECK(S_ISLNK(info.st_mode));
+  CHECK(read_file(target) == "new\n");
+  const std::string dangling = dir.file("dangling");
+  REQUIRE(::symlink("missing/nothing", dangling.c_str()) == 0);
+  try {
+    write_file_atomically(dangling, "x");
+    FAIL("writing through a dangling link succeeded");
+  } catch (const AtomicWriteError& e) {
+    CHECK(e.stage() == AtomicWriteError::Stage::dangling_link);
+    CHECK(std::string(e.what()) ==
+          "cannot write '" + dangling + "': it is a symbolic link to a file that does not exist");
+  }
+  CHECK(dir.entries() == std::vector<std::string>{"dangling", "link.txt", "target.txt"});
+}
+
+TEST_CASE("support: write_files_together writes all or none", "[unit][support]") {
+  TempDir dir;
+  const std::string a = dir.file("a.hpp"), b = dir.file("b.hpp"), c = dir.file("c.hpp");
+  pfgen_test::write_file(a, "old a\n");
+  REQUIRE(::mkdir(b.c_str(), 0777) == 0);  // a directory in the way of the second
+  try {
+    pfgen_support::write_files_together({{a, "new a\n"}, {b, "new b\n"}, {c, "new c\n"}});
+    FAIL("a directory in the way was replaced");
+  } catch (const AtomicWriteError& e) {
+    CHECK(e.stage() == AtomicWriteError::Stage::not_a_file);
+    CHECK(std::string(e.what()) == "cannot write '" + b + "': it exists and is not a regular file");
+  }
+  CHECK(read_file(a) == "old a\n");
+  CHECK(dir.entries() == std::vector<std::string>{"a.hpp", "b.hpp"});
+  // A failed temporary (its directory missing) replaces none of the targets either.
+  CHECK_THROWS_AS(pfgen_support::write_files_together({{a, "new a\n"}, {dir.file("missing/d.hpp"), "d\n"}}),
+                  AtomicWriteError);
+  CHECK(read_file(a) == "old a\n");
+  CHECK(dir.entries() == std::vector<std::string>{"a.hpp", "b.hpp"});
+  ::rmdir(b.c_str());
+  pfgen_support::write_files_together({{a, "new a\n"}, {b, "new b\n"}, {c, "new c\n"}});
+  CHECK(read_file(a) == "new a\n");
+  CHECK(read_file(b) == "new b\n");
+  CHECK(read_file(c) == "new c\n");
+  CHECK(dir.entries() == std::vector<std::string>{"a.hpp", "b.hpp", "c.hpp"});
+}

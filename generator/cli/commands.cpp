@@ -56,8 +56,8 @@ std::string single_filter(const std::string& name, const Model& model) {
 void write_file_atomically(const std::string& option, const std::string& path, const std::string& contents) {
   try {
     pfgen_support::write_file_atomically(path, contents);
-  } catch (const pfgen_support::AtomicWriteError&) {
-    throw CliValueError(option + ": cannot write '" + path + "'");
+  } catch (const pfgen_support::AtomicWriteError& e) {
+    throw CliValueError(option + ": " + e.what());  // "cannot write 'PATH': the reason"
   }
 }
 
@@ -107,18 +107,29 @@ int run_codegen(const CodegenCliOptions& options) {
   for (const std::string& name : names)
     files.push_back(codegen::generate_filter_code(model, derive_named_filter(model, name), codegen_options));
   if (!options.output_dir.empty()) {
+    // All the headers or none: a directory in the way of the last header left the first ones
+    // written. Checked, then every temporary written, then renamed (write_files_together).
+    std::vector<std::pair<std::string, std::string>> outputs;
     for (std::size_t k = 0; k < files.size(); ++k) {
       const auto& file = files[k];
       if (file.relative_path != relative_paths[k])
         throw std::logic_error("codegen: " + file.relative_path + " is not the checked path " + relative_paths[k]);
-      std::filesystem::path path = std::filesystem::path(options.output_dir) / file.relative_path;
-      std::error_code error;
-      std::filesystem::create_directories(path.parent_path(), error);
-      if (error) throw CliValueError("-o: cannot create directory '" + path.parent_path().string() + "'");
-      write_file_atomically("-o", path.string(), file.contents);
+      outputs.emplace_back((std::filesystem::path(options.output_dir) / file.relative_path).string(), file.contents);
       if (!file.eigen_relative_path.empty())
-        write_file_atomically("-o", (std::filesystem::path(options.output_dir) / file.eigen_relative_path).string(),
-                              file.eigen_contents);
+        outputs.emplace_back((std::filesystem::path(options.output_dir) / file.eigen_relative_path).string(),
+                             file.eigen_contents);
+    }
+    for (const auto& output : outputs) {  // one directory, DIR/<model>
+      const std::filesystem::path directory = std::filesystem::path(output.first).parent_path();
+      std::error_code error;
+      std::filesystem::create_directories(directory, error);
+      if (error) throw CliValueError("-o: cannot create directory '" + directory.string() + "'");
+    }
+    try {
+      pfgen_support::write_files_together(outputs);
+    } catch (const pfgen_support::AtomicWriteError& e) {
+      const bool none_written = e.stage() != pfgen_support::AtomicWriteError::Stage::rename;
+      throw CliValueError(std::string("-o: ") + e.what() + (none_written ? "; no header was written" : ""));
     }
   }
   if (options.stats) {

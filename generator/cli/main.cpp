@@ -1,9 +1,13 @@
 // pfgen: derive, print and evaluate optimal filters for polynomial stochastic systems.
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <charconv>
+#include <cstdio>
+#include <cstring>
 #include <cstdint>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 
 #include "cli_options.hpp"
@@ -29,6 +33,16 @@ std::string one_line(std::string text) {
   return text;
 }
 
+// A report that did not reach standard output (`pfgen derive m.yaml > /dev/full`: ENOSPC) is a
+// failure, not a success with nothing printed.
+void check_standard_output_written() {
+  std::cout.flush();
+  // errno as the failed write left it (a later successful call does not reset it).
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout))
+    throw std::runtime_error(std::string("cannot write standard output: ") +
+                             (errno ? std::strerror(errno) : "write error"));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -46,6 +60,12 @@ int main(int argc, char** argv) {
   const std::string one_filter_help = join(pfgen::filter_kind_names(), " | ") + " | a filter of the model's filters: section";
   const std::string scheme_help = "Truth scheme: " + join(pfgen::simulation_schemes(), " | ");
 
+  // An empty file name is refused wherever a file is named: simulate and derive used to skip an
+  // output given as "" without a word, while codegen and latex refused it.
+  const CLI::Validator named_file(
+      [](std::string& text) -> std::string { return text.empty() ? "the file name is empty" : std::string(); },
+      "FILE");
+
   DeriveOptions derive;
   CLI::App* derive_cmd = app.add_subcommand("derive", "Print the closed filter equations of a model");
   derive_cmd->add_option("MODEL", derive.model_path, "Model file (YAML)")->required();
@@ -58,12 +78,13 @@ int main(int argc, char** argv) {
                        "Print the model's coefficient form instead of a filter: f = A + A1 x + A2 x x + A3 x x x, "
                        "observation rate E + E1 x (drift of degree <= 3)");
   derive_cmd->add_option("--timing", derive.timing_path,
-                         "Write the seconds spent reading the model, deriving and printing as JSON to FILE");
+                         "Write the seconds spent reading the model, deriving and printing as JSON to FILE")
+      ->check(named_file);
 
   LatexOptions latex;
   CLI::App* latex_cmd = app.add_subcommand("latex", "Write a standalone LaTeX document of the model and its filters");
   latex_cmd->add_option("MODEL", latex.model_path, "Model file (YAML)")->required();
-  latex_cmd->add_option("-o,--output", latex.output_path, "Output .tex file")->required();
+  latex_cmd->add_option("-o,--output", latex.output_path, "Output .tex file")->required()->check(named_file);
   latex_cmd->add_option("--filter", latex.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)");
   latex_cmd->add_flag("--coefficients", latex.coefficients,
                       "Add a section with the model's coefficient form A..A3, E, E1 (drift of degree <= 3)");
@@ -89,7 +110,8 @@ int main(int argc, char** argv) {
   CodegenCliOptions codegen;
   CLI::App* codegen_cmd = app.add_subcommand("codegen", "Write header-only C++ of a model's filters");
   codegen_cmd->add_option("MODEL", codegen.model_path, "Model file (YAML)")->required();
-  codegen_cmd->add_option("-o,--output", codegen.output_dir, "Output directory; files go to DIR/<model>/<filter>.hpp");
+  codegen_cmd->add_option("-o,--output", codegen.output_dir, "Output directory; files go to DIR/<model>/<filter>.hpp")
+      ->check(named_file);
   codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)");
   codegen_cmd->add_option("--scalar", codegen.scalar, "float | double | template")
       ->check(CLI::IsMember({"float", "double", "template"}))
@@ -147,14 +169,17 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--shown-run", so.shown_run, "The run whose path goes into the CSV and plot (default 0)")
       ->check(whole_number);
   simulate_cmd->add_option("--bound", so.bound, "A run stops when |x|, |m| exceed this (default 1e8)");
-  simulate_cmd->add_option("-o,--output", simulate.csv_path, "CSV of time series");
-  simulate_cmd->add_option("--plot", simulate.plot_path, "Plot of the errors, FILE.png or FILE.svg (gnuplot)");
+  simulate_cmd->add_option("-o,--output", simulate.csv_path, "CSV of time series")->check(named_file);
+  simulate_cmd->add_option("--plot", simulate.plot_path, "Plot of the errors, FILE.png or FILE.svg (gnuplot)")
+      ->check(named_file);
   simulate_cmd->add_option("--plot-ylim", simulate.plot_ylim,
                            "Fix the plot's y range to [-Y, Y] so one diverging filter does not flatten the rest");
   simulate_cmd->add_option("--cache-dir", simulate.cache_dir,
-                           "Compiled plugins (default: $PFGEN_CACHE_DIR, $XDG_CACHE_HOME/pfgen, ~/.cache/pfgen)");
-  simulate_cmd->add_option("--compiler", simulate.compiler, "C++ compiler for the plugin (default: $CXX, else c++)");
-  simulate_cmd->add_option("--timing", simulate.timing_path, "Write phase times as JSON to FILE");
+                           "Compiled plugins (default: $PFGEN_CACHE_DIR, $XDG_CACHE_HOME/pfgen, ~/.cache/pfgen)")
+      ->check(named_file);
+  simulate_cmd->add_option("--compiler", simulate.compiler, "C++ compiler for the plugin (default: $CXX, else c++)")
+      ->check(named_file);
+  simulate_cmd->add_option("--timing", simulate.timing_path, "Write phase times as JSON to FILE")->check(named_file);
   simulate_cmd->add_option("--set", simulate.assignments, "Parameter value for this job, name=value (repeatable)");
   simulate_cmd->add_option("--risk-epsilon", so.risk_epsilon,
                            "Report the exponential criterion J = eps log E[exp(int L dt / eps)] of every filter with "
@@ -164,9 +189,11 @@ int main(int argc, char** argv) {
                            "conditional mean; the table adds each filter's RMS distance from it (not for delayed "
                            "observations or a truth without noise)");
   simulate_cmd->add_option("--criterion-csv", simulate.criterion_csv_path,
-                           "Write J per filter as CSV to FILE (needs --risk-epsilon or a risk: section)");
+                           "Write J per filter as CSV to FILE (needs --risk-epsilon or a risk: section)")
+      ->check(named_file);
   simulate_cmd->add_option("--stops-csv", simulate.stops_csv_path,
-                           "Write every run that stopped before T (truth or filter, event, run, t) as CSV to FILE");
+                           "Write every run that stopped before T (truth or filter, event, run, t) as CSV to FILE")
+      ->check(named_file);
   simulate_cmd->add_flag("-q,--quiet", simulate.quiet, "No plugin and timing lines on stderr");
 
   try {
@@ -175,20 +202,23 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
-    if (*derive_cmd) return run_derive(derive);
-    if (*codegen_cmd) return run_codegen(codegen);
-    if (*latex_cmd) return run_latex(latex);
-    if (*eval_cmd) return run_eval(eval);
+    int status = 1;
+    if (*derive_cmd) status = run_derive(derive);
+    if (*codegen_cmd) status = run_codegen(codegen);
+    if (*latex_cmd) status = run_latex(latex);
+    if (*eval_cmd) status = run_eval(eval);
     if (*simulate_cmd) {
 #ifdef PFGEN_WITH_MPI
       // Started by mpirun: the ranks share the runs, rank 0 writes (mpi_runs.hpp).
       if (launched_by_mpi()) {
         MpiJob job(argc, argv);
-        return run_simulate(simulate, job);
-      }
+        status = run_simulate(simulate, job);
+      } else
 #endif
-      return run_simulate(simulate);
+        status = run_simulate(simulate);
     }
+    check_standard_output_written();
+    return status;
   } catch (const FailedElsewhere&) {
     // Another process of the job failed and said why.
   } catch (const pfgen::ModelError& e) {

@@ -82,6 +82,12 @@ void check_output_paths(const SimulateOptions& options) {
                                                                 {&options.stops_csv_path, "--stops-csv"}};
   for (const auto& [path, option] : outputs)
     if (!path->empty()) check_output_file({option, *path});
+  // gnuplot reads the CSV back from its file: -o /dev/stdout with --plot would draw nothing.
+  std::error_code error;
+  if (!options.plot_path.empty() && !options.csv_path.empty() && std::filesystem::exists(options.csv_path, error) &&
+      !std::filesystem::is_regular_file(options.csv_path, error))
+    throw CliValueError("-o: '" + options.csv_path +
+                        "' is not a regular file, and --plot reads the CSV back from it; give -o a file, or drop it");
 }
 
 // Each thread keeps one run's truth path and observation increments; the statistics keep the

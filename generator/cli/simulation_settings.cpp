@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli_options.hpp"
+#include "pfgen/algebra/numeric_value.hpp"
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/simulation_rules.hpp"
@@ -93,7 +94,7 @@ std::string place_of(const std::string& field, const SimulationOverrides& cli, c
 double risk_value(const Model& model, const GiNaC::ex& e, const std::string& field) {
   GiNaC::exmap values;
   for (const Parameter& parameter : model.parameters) values[parameter.symbol] = parameter.default_value;
-  const GiNaC::ex value = e.subs(values).evalf();
+  const GiNaC::ex value = pfgen::numeric_value(e, values).evalf();
   if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real())
     throw CliValueError(model.source + ": " + field + ": not a real number at this job's parameter values");
   return GiNaC::ex_to<GiNaC::numeric>(value).to_double();

@@ -21,25 +21,38 @@ CriterionEstimate estimate_criterion(const std::vector<double>& integrals, doubl
     out.J = out.J_se = out.ess = out.mean_integral = out.mean_integral_se = nan;
     return out;
   }
-  double top = -std::numeric_limits<double>::infinity();
+  double sum_I = 0;
   for (double I : integrals) {
     if (!std::isfinite(I)) throw std::invalid_argument("criterion: an integral of L is not finite");
-    top = std::max(top, I);
-  }
-  // w_r = exp((I_r - max I) / eps) lies in (0, 1] and is 1 at the maximum: no overflow for any
-  // I / eps, and the sums below are at least 1.
-  const double N = static_cast<double>(integrals.size());
-  double sum_w = 0, sum_w2 = 0, sum_I = 0;
-  for (double I : integrals) {
-    const double w = std::exp((I - top) / epsilon);
-    sum_w += w;
-    sum_w2 += w * w;
     sum_I += I;
   }
-  const double mean_w = sum_w / N;
-  out.J = top + epsilon * std::log(mean_w);
-  out.ess = sum_w * sum_w / sum_w2;
+  const double N = static_cast<double>(integrals.size());
   out.mean_integral = sum_I / N;
+  // J = mean I + eps log mean exp(u_r), u_r = (I_r - mean I) / eps. Written about the mean, J is
+  // exact in both limits:
+  //  - small spread (max u <= 1, every large eps): e_r = expm1(u_r) keeps each run's tiny
+  //    departure, and eps log1p(mean e) -> mean I + var(I) / (2 eps) with no cancellation (a shift
+  //    by the maximum would leave J = max I + eps log(mean w), the difference of two numbers of
+  //    size eps, all round-off for eps >= 1e12);
+  //  - large spread (small eps): w_r = exp((I_r - max I) / eps) lies in (0, 1] and is 1 at the
+  //    maximum, so nothing overflows and the few runs that carry J are kept.
+  double top = -std::numeric_limits<double>::infinity();
+  for (double I : integrals) top = std::max(top, I);
+  const bool about_mean = (top - out.mean_integral) / epsilon <= 1;
+  // In either form the weight is scale * (1 + e_r): about the mean scale = 1 and e_r = expm1(u_r);
+  // about the maximum scale = 1 and e_r = w_r - 1 (w_r itself carries the information there).
+  auto excess = [&](double I) {
+    return about_mean ? std::expm1((I - out.mean_integral) / epsilon) : std::exp((I - top) / epsilon) - 1;
+  };
+  double sum_e = 0, sum_w2 = 0;
+  for (double I : integrals) {
+    const double e = excess(I);
+    sum_e += e;
+    sum_w2 += (1 + e) * (1 + e);
+  }
+  const double mean_e = sum_e / N, mean_w = 1 + mean_e;
+  out.J = about_mean ? out.mean_integral + epsilon * std::log1p(mean_e) : top + epsilon * std::log(mean_w);
+  out.ess = (N * mean_w) * (N * mean_w) / sum_w2;
   if (integrals.size() < 2) {
     out.J_se = out.mean_integral_se = nan;
     return out;
@@ -48,13 +61,14 @@ CriterionEstimate estimate_criterion(const std::vector<double>& integrals, doubl
   // constant, and then the difference would be all round-off).
   double squares_w = 0, squares_I = 0;
   for (double I : integrals) {
-    const double dw = std::exp((I - top) / epsilon) - mean_w, dI = I - out.mean_integral;
-    squares_w += dw * dw;
+    // eps dw, not dw: for eps -> infinity dw = O(1 / eps), and its square would underflow to 0.
+    const double scaled_dw = epsilon * (excess(I) - mean_e), dI = I - out.mean_integral;
+    squares_w += scaled_dw * scaled_dw;
     squares_I += dI * dI;
   }
   // Delta method on J = eps log(mean w) + const: dJ = eps d(mean w) / mean w, and mean w has the
-  // standard error sd(w) / sqrt(N).
-  out.J_se = epsilon * std::sqrt(squares_w / (N - 1)) / (std::sqrt(N) * mean_w);
+  // standard error sd(w) / sqrt(N). As eps -> infinity, eps sd(w) -> sd(I): J_se -> mean I's.
+  out.J_se = std::sqrt(squares_w / (N - 1)) / (std::sqrt(N) * mean_w);
   out.mean_integral_se = std::sqrt(squares_I / (N - 1) / N);
   return out;
 }

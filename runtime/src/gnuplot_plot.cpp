@@ -6,10 +6,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
-
-#include <sys/stat.h>
 
 #include "pfgen_runtime/results_csv.hpp"
 #include "pfgen_support/atomic_file.hpp"
@@ -142,26 +143,42 @@ std::string gnuplot_script_path(const std::string& plot_path) { return plot_path
 
 void write_error_plot(const std::string& plot_path, const std::string& csv_path, const MonteCarloResult& result,
                       const std::vector<std::string>& state_names, const std::string& title, double y_limit) {
-  const std::string script = gnuplot_error_script(plot_path, csv_path, result, state_names, title, y_limit);
+  // gnuplot draws into a temporary beside the plot (same extension, so the same terminal), run from
+  // a script of its own; only a whole plot then reaches plot_path, through write_file_atomically,
+  // which replaces a file and writes into a device without replacing it. The script kept for the
+  // user names plot_path itself.
   const std::string script_path = gnuplot_script_path(plot_path);
-  try {
-    pfgen_support::write_file_atomically(script_path, script);
-  } catch (const pfgen_support::AtomicWriteError&) {
-    throw std::runtime_error("cannot write the gnuplot script '" + script_path + "'");
-  }
-  std::remove(plot_path.c_str());  // so a stale plot cannot pass for this one
+  const std::string drawn =
+      pfgen_support::unique_temporary_path(plot_path) + std::filesystem::path(plot_path).extension().string();
+  const std::string drawing_script = pfgen_support::unique_temporary_path(script_path);
+  auto write = [](const std::string& path, const std::string& text, const std::string& what) {
+    try {
+      pfgen_support::write_file_atomically(path, text);
+    } catch (const pfgen_support::AtomicWriteError& e) {
+      throw std::runtime_error("cannot write the " + what + ": " + e.what());
+    }
+  };
+  write(script_path, gnuplot_error_script(plot_path, csv_path, result, state_names, title, y_limit), "gnuplot script");
+  struct Cleanup {
+    std::vector<std::string> paths;
+    ~Cleanup() {
+      for (const auto& path : paths) std::remove(path.c_str());
+    }
+  } cleanup{{drawing_script, drawn}};
+  write(drawing_script, gnuplot_error_script(drawn, csv_path, result, state_names, title, y_limit),
+        "gnuplot script");
   std::string errors;
-  const int status = run_gnuplot(script_path, errors);
-  struct stat info {};
-  const bool written = stat(plot_path.c_str(), &info) == 0 && info.st_size > 0;
-  if (status != 0 || !written) {
-    std::remove(plot_path.c_str());
+  const int status = run_gnuplot(drawing_script, errors);
+  std::ifstream in(drawn, std::ios::binary);
+  const std::string plot((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (status != 0 || plot.empty()) {
     std::ostringstream message;
     message << "gnuplot failed on '" << script_path << "' (exit status " << status << ")";
     if (status == 0) message << " and wrote no plot '" << plot_path << "'";
     if (!errors.empty()) message << ":\n" << errors;
     throw std::runtime_error(message.str());
   }
+  write(plot_path, plot, "plot");
 }
 
 }  // namespace pfgen_runtime

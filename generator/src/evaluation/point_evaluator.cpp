@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "pfgen/algebra/numeric_value.hpp"
+
 namespace pfgen {
 namespace {
 
@@ -61,7 +63,7 @@ class PolynomialEvaluator {
   GiNaC::ex exact(const Polynomial& p) const {
     GiNaC::ex sum = 0;
     for (const auto& [monomial, coefficient] : p.terms()) {
-      GiNaC::ex term = coefficient.subs(coefficient_values_);
+      GiNaC::ex term = numeric_value(coefficient, coefficient_values_);
       for (const auto& [variable, exponent] : monomial.factors())
         term *= GiNaC::pow(variable_values_[variable], exponent);
       sum += term;
@@ -92,7 +94,7 @@ class PolynomialEvaluator {
       const std::string what = "definition '" + d.name.get_name() + "'";
       GiNaC::ex value;
       try {
-        value = d.value.subs(values).evalf();
+        value = numeric_value(d.value, values).evalf();
       } catch (const std::exception&) {  // GiNaC's pole_error for 1/0, CLN's overflow
         throw EvaluationError(what + " cannot be computed at this point (a division by zero or an overflow)");
       }

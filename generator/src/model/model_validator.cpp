@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "pfgen/algebra/numeric_value.hpp"
 #include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/expansion_bound.hpp"
 #include "pfgen/model/model_error.hpp"
@@ -127,7 +128,7 @@ GiNaC::ex at_defaults(const Model& model, const GiNaC::ex& e) {
   GiNaC::exmap values;
   for (const auto& p : model.parameters) values[p.symbol] = p.default_value;
   values[model.time] = 0;
-  return e.subs(values).evalf();
+  return numeric_value(e, values).evalf();
 }
 
 void validate_names(const Model& model) {

@@ -5,7 +5,9 @@
 // every grid step); the fold below turns the runs' integrals into J, its standard error and the
 // effective sample size, in run order, so the result does not depend on the thread count.
 //
-// For small eps, J is carried by the few runs with the largest I: exp(I / eps) is computed as
+// J is computed about the mean integral: for large eps as mean I + eps log1p(mean expm1(u)),
+// u = (I - mean I) / eps, which keeps J -> mean I + Var(I) / (2 eps) exact as eps -> infinity; for
+// small eps, where J is carried by the few runs with the largest I, exp(I / eps) is computed as
 // exp((I - max I) / eps) (log-sum-exp), which neither overflows nor loses the largest terms.
 #include <cstddef>
 #include <string>
@@ -26,7 +28,7 @@ struct CriterionOptions {
 // standard errors with fewer than 2 runs).
 struct CriterionEstimate {
   std::size_t runs = 0;
-  double J = 0;                   // eps (max I + log mean w), w_r = exp((I_r - max I) / eps)
+  double J = 0;                   // eps log mean exp(I_r / eps), without overflow or cancellation
   double J_se = 0;                // delta method: eps sd(w) / (sqrt(N) mean(w))
   double ess = 0;                 // effective sample size (sum w)^2 / sum w^2, in [1, N]
   double mean_integral = 0;       // mean I: J's limit as eps -> infinity

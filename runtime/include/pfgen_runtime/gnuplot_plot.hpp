@@ -22,7 +22,10 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
 // is neither an input nor another output).
 std::string gnuplot_script_path(const std::string& plot_path);
 
-// Writes that script to gnuplot_script_path(plot_path) and runs gnuplot on it (pfgen_support::run_program: no shell).
+// Writes that script to gnuplot_script_path(plot_path) and runs gnuplot (pfgen_support::run_program:
+// no shell) on a copy that draws into a temporary; only a whole plot reaches plot_path, by
+// pfgen_support::write_file_atomically (a device or a link to one is written into, never replaced),
+// and a failure leaves plot_path as it was.
 // std::runtime_error when gnuplot is not on PATH (install it: scripts/install-deps.sh), when it
 // fails (with its error output), or when it leaves no plot file.
 void write_error_plot(const std::string& plot_path, const std::string& csv_path, const MonteCarloResult& result,

@@ -7,16 +7,21 @@
 // Not fsync()ed: this guards against concurrent writers and failed writes, not power loss.
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace pfgen_support {
 
 class AtomicWriteError : public std::runtime_error {
  public:
-  enum class Stage { write, rename };  // writing the temporary (creating it included), or renaming it
+  // writing the temporary (creating it included), renaming it, writing into a device, FIFO or
+  // socket, a symbolic link whose target does not exist, or (write_files_together) a target that
+  // exists and is not a regular file
+  enum class Stage { write, rename, write_through, dangling_link, not_a_file };
   AtomicWriteError(Stage stage, const std::string& path, const std::string& temporary, int error_number);
   Stage stage() const { return stage_; }
   const std::string& path() const { return path_; }
-  const std::string& temporary() const { return temporary_; }  // already removed
+  const std::string& temporary() const { return temporary_; }  // already removed; empty if none
   int error_number() const { return error_number_; }           // errno of the failed call
 
  private:
@@ -30,9 +35,19 @@ class AtomicWriteError : public std::runtime_error {
 // place. The file itself is not created.
 std::string unique_temporary_path(const std::string& target);
 
-// Writes `contents` to `path` through a unique temporary and rename(). On failure the temporary
-// is removed, the target is left as it was, and AtomicWriteError names the path and the reason
-// ("cannot write '<path>': <strerror>").
+// Writes `contents` to `path` through a unique temporary and rename() when `path` is a regular
+// file or does not exist yet; a symbolic link to a regular file keeps the link, and its target is
+// replaced. Anything else that exists (a device such as /dev/null or /dev/stdout, a FIFO, a
+// socket, or a link to one) is opened and written into, never replaced; a write that fails there
+// (ENOSPC on /dev/full, a FIFO without a reader) is an error too. On failure the temporary is
+// removed, a replaced target is left as it was, and AtomicWriteError names the path and the
+// reason ("cannot write '<path>': <strerror>").
 void write_file_atomically(const std::string& path, const std::string& contents);
+
+// Several files as one output (a codegen's headers): all or nothing. Every target must be a
+// regular file or not exist (else Stage::not_a_file, before anything is written); all the
+// temporaries are written first, so a failed write (a full disk) replaces none of the targets,
+// then each is renamed into place.
+void write_files_together(const std::vector<std::pair<std::string, std::string>>& files);
 
 }  // namespace pfgen_support
