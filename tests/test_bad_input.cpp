@@ -167,6 +167,8 @@ const std::vector<BadModel>& bad_models() {
       {"duplicate_key_in_filter.yaml", "filters.mine.gain", 0, 0, 8, "given twice in one mapping"},
       {"second_yaml_document.yaml", "", 0, 0, 8, "the file holds 2 YAML documents"},
       {"fuzz_endless_documents.yaml", "", 0, 0, 4, "not valid YAML from here on"},
+      // Nested aliases ("billion laughs"): refused by counting before any node is walked.
+      {"yaml_alias_expansion.yaml", "", 0, 0, 10, "its aliases expand to more than 1000000 YAML nodes"},
       {"simulation_report_times_not_increasing.yaml", "simulation.report_times", 3, 0, 11,
        "report time 5 is not after the previous one, 6"},
       {"simulation_window_twice.yaml", "simulation.windows", 2, 0, 11, "window [0, 4] is given twice"},

@@ -142,7 +142,11 @@ TEST_CASE("simulate: bad settings are one-line errors naming the option or field
       {{"--shown-run", "300"}, "--shown-run: run 300 is not among the 200 runs (numbered from 0)"},
       {{"--plot", dir.file("e.pdf")}, "--plot: '" + dir.file("e.pdf") + "' must end in .png or .svg"},
       {{"-o", dir.file("missing/r.csv")}, "does not exist"},
-      {{"--dt", "1e-8", "--threads", "2"}, "the job needs about 27.4 GiB"},
+      {{"--dt", "1e-8", "--threads", "2"}, "--dt: the job needs about 27.4 GiB"},
+      // Threads and recorded points bounded by the machine, named by their option.
+      {{"--threads", "100000", "--runs", "100000"}, "--threads: 100000 threads on a machine with"},
+      {{"--dt", "1e-6", "--record-points", "10000000", "-o", dir.file("r.csv")},
+       "--record-points: the job needs about"},
       // Review: a T that is no whole number of steps used to run to another horizon (T = 1, dt = 0.3
       // ran to 0.9); a window within one step failed after the build, naming no option; unsigned
       // options took -1 as 2^64 - 1 and saturated overflows; a repeated filter and a scheme the

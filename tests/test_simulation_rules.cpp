@@ -115,3 +115,33 @@ TEST_CASE("simulation rules: the model file and the command line refuse a value 
   }
   CHECK_FALSE(std::filesystem::exists(dir.file("cache")));  // refused before anything is compiled
 }
+
+TEST_CASE("simulation rules: one budget of 1e9 steps per run, the truth's and each sampled filter's sub-steps",
+          "[unit][simulation]") {
+  const Model model = load_model_file(example("paper003/example1_gamma0.yaml"));  // period 1, substeps 10
+  auto breach_of = [&model](const SimulationSection& s) { return check_simulation_settings(model, s); };
+  SimulationSection s;
+  s.T = 2000;
+  s.dt = 0.01;
+  s.filters = std::vector<std::string>{"cd-optimal", "cd-euler@100000"};  // 2e8 sub-steps: within
+  CHECK(!breach_of(s));
+  s.filters = std::vector<std::string>{"cd-optimal", "cd-euler@1000000"};  // 2e9: beyond, like 2e9 truth steps
+  auto filters = breach_of(s);
+  REQUIRE(filters);
+  CHECK(filters->field == "filters");
+  CHECK(filters->entry == std::optional<std::size_t>(1));
+  CHECK(filters->message.find("filter 'cd-euler@1000000' would take 2e+09 prediction sub-steps per run") == 0);
+  CHECK(filters->message.find("the budget of one run is 1e9 steps") != std::string::npos);
+  // The model's own substeps with no filters given: the horizon is what breaks the budget.
+  s.filters.reset();
+  s.T = 2e8;
+  s.dt = 1;
+  auto horizon = breach_of(s);
+  REQUIRE(horizon);
+  CHECK(horizon->field == "T");
+  s.dt = 0.1;  // 2e9 truth steps: the same budget
+  auto truth = breach_of(s);
+  REQUIRE(truth);
+  CHECK(truth->field == "dt");
+  CHECK(truth->message.find("more than 1e9 steps") == 0);
+}

@@ -123,15 +123,18 @@ namespace detail {
 // 1: its end), given the state at that time (`now`: the start state, or the predicted end state)
 // and the state at the step's start (`start`). Grid index j is in the history for j <= k - 1; j = k
 // (delay_steps = 1, the end) is the start state, and delay_steps = 0 reads `now` itself.
-// Phi*_ii = x*_i(t - h) / x*_i(t): 0 where x*_i(t) = 0 and before t = h (j < 0), 1 when h = 0.
+// Phi*_ii = x*_i(t - h) / x*_i(t): 0 where x*_i(t) = 0, 1 when h = 0, and 0 over the whole of
+// every step that starts before h (k < delay_steps), its end included: Phi* jumps at t = h, and
+// the step that ends there lies on the zero side (its gain would otherwise act on an increment
+// observed before h, and the filter converge like sqrt(dt) instead of dt).
 template <class Scalar>
 inline void delayed_inputs(const Scalar* history, const Scalar* start, const Scalar* now, std::size_t k,
                            std::size_t offset, Scalar* delayed) {
   const Scalar* m_past = now;
   const Scalar* x_star_past = now + (state_size - n);
-  bool before_start = false;
+  bool step_starts_before_h = false;
   if (delay_steps > 0) {
-    before_start = k + offset < delay_steps;
+    step_starts_before_h = k < delay_steps;
     if (offset == 1 && delay_steps == 1) {
       m_past = start;
       x_star_past = start + (state_size - n);
@@ -147,14 +150,14 @@ inline void delayed_inputs(const Scalar* history, const Scalar* start, const Sca
     for (std::size_t i = 0; i < n; ++i) {
       if (delay_steps == 0)
         delayed[n + i] = Scalar(1);
-      else if (before_start || x_star_now[i] == Scalar(0))
+      else if (step_starts_before_h || x_star_now[i] == Scalar(0))
         delayed[n + i] = Scalar(0);
       else
         delayed[n + i] = x_star_past[i] / x_star_now[i];
     }
   } else {
     (void)x_star_past;
-    (void)before_start;
+    (void)step_starts_before_h;
   }
 }
 

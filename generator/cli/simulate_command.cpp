@@ -11,6 +11,8 @@
 #include <sstream>
 #include <thread>
 
+#include <unistd.h>
+
 #include "cli_options.hpp"
 #include "commands.hpp"
 #include "job_group.hpp"
@@ -41,10 +43,38 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-unsigned thread_count(unsigned requested) {
-  if (requested > 0) return requested;
+unsigned core_count() {
   const unsigned cores = std::thread::hardware_concurrency();
   return cores > 0 ? cores : 1;
+}
+
+// At most this many threads per core: results do not depend on the count, and beyond a few per
+// core more threads only cost memory (--threads 10000 ended in "Resource temporarily unavailable").
+constexpr unsigned kThreadsPerCore = 16;
+
+// Only min(threads, runs) threads start (run_monte_carlo), so --threads 1000000 --runs 3 is fine.
+unsigned thread_count(unsigned requested, std::size_t runs) {
+  if (requested == 0) return core_count();
+  if (std::min<std::size_t>(requested, runs) > kThreadsPerCore * core_count())
+    throw CliValueError("--threads: " + std::to_string(requested) + " threads on a machine with " +
+                        std::to_string(core_count()) + " cores; at most " + std::to_string(kThreadsPerCore) +
+                        " per core (" + std::to_string(kThreadsPerCore * core_count()) +
+                        "), or 0 for one per core; results do not depend on the count");
+  return requested;
+}
+
+// The time series (record points) only feed the CSV and the plot: without either, each run records
+// its two ends only, so --record-points 10000000 costs nothing it does not write.
+std::size_t effective_record_points(const SimulateOptions& options, const SimulationSettings& s) {
+  return options.csv_path.empty() && options.plot_path.empty() ? 1 : s.record_points;
+}
+
+// Half the machine's memory, and never more than 8 GiB.
+double memory_limit_bytes() {
+  constexpr double cap = 8.0 * 1024 * 1024 * 1024;
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page <= 0) return cap;
+  return std::min(cap, 0.5 * static_cast<double>(pages) * static_cast<double>(page));
 }
 
 // The CSV the plot reads: -o's file, or one beside the plot.
@@ -92,7 +122,8 @@ void check_output_paths(const SimulateOptions& options) {
 
 // Each thread keeps one run's truth path and observation increments; the statistics keep the
 // recorded points of every run. Refuse a job that would not fit instead of dying in bad_alloc.
-void check_memory(const Model& model, const SimulationSettings& s, unsigned threads, std::size_t filters) {
+void check_memory(const Model& model, const SimulationSettings& s, unsigned threads, std::size_t filters,
+                  std::size_t record_points) {
   const double steps = std::floor(s.T / s.dt + 0.5);
   // A delayed filter also keeps D = h / dt grid values of m and x* (at most 2n each) per thread.
   const double history = std::round(model.observation.delay().to_double() / s.dt) * 2.0 *
@@ -105,21 +136,29 @@ void check_memory(const Model& model, const SimulationSettings& s, unsigned thre
                                : 0.0;
   const double per_thread =
       ((steps + 1) * static_cast<double>(model.n() + model.p()) + history + particles) * sizeof(double);
-  const double records = std::min(steps + 1, static_cast<double>(s.record_points) + 1);
+  const double records = std::min(steps + 1, static_cast<double>(record_points) + 1);
   // Per run and record point: the truth and each filter's error; with the particle reference also
   // its error and each filter's distance from it.
   const double recorded = static_cast<double>((filters + 1) * (s.reference_particles ? 2 : 1));
   const double statistics = static_cast<double>(s.runs) * records * recorded * static_cast<double>(model.n()) *
                             sizeof(double);
   // Only min(threads, runs) threads are started (run_monte_carlo): --threads 1000000 --runs 2 is fine.
-  const double bytes = per_thread * static_cast<double>(std::min<std::size_t>(threads, s.runs)) + statistics;
-  constexpr double limit = 8.0 * 1024 * 1024 * 1024;
+  const double paths = per_thread * static_cast<double>(std::min<std::size_t>(threads, s.runs));
+  const double bytes = paths + statistics, limit = memory_limit_bytes();
   if (bytes > limit) {
-    char text[200];
+    // Named by the larger part: the recorded series (--record-points, with the CSV or plot), or the
+    // paths the threads keep.
+    const bool series = statistics > paths;
+    char text[300];
     std::snprintf(text, sizeof text,
-                  "the job needs about %.1f GiB (%.3g steps per run on %u threads, %zu runs x %.0f recorded points); "
-                  "the limit is 8 GiB: raise --dt or lower --runs, --record-points or --threads",
-                  bytes / (1024.0 * 1024 * 1024), steps, threads, s.runs, records);
+                  series ? "--record-points: the job needs about %.1f GiB (%.0f runs x %.0f recorded points); the "
+                           "limit on this machine is %.1f GiB (half its memory, at most 8): lower --record-points "
+                           "or --runs"
+                         : "--dt: the job needs about %.1f GiB (%.3g steps per run on %.0f threads); the limit on "
+                           "this machine is %.1f GiB (half its memory, at most 8): raise --dt, lower --T, or lower "
+                           "--threads",
+                  bytes / (1024.0 * 1024 * 1024), series ? static_cast<double>(s.runs) : steps,
+                  series ? records : static_cast<double>(threads), limit / (1024.0 * 1024 * 1024));
     throw CliValueError(text);
   }
 }
@@ -233,7 +272,8 @@ PreparedJob prepare(const SimulateOptions& options, bool speaks, Clock::time_poi
   std::vector<FilterEquations> filters;
   for (const std::string& name : settings.filters.empty() ? default_filter_names(model) : settings.filters)
     filters.push_back(derive_named_filter(model, name));
-  check_memory(model, settings, thread_count(options.threads), filters.size());
+  check_memory(model, settings, thread_count(options.threads, settings.runs), filters.size(),
+               effective_record_points(options, settings));
   // Delayed observations: filters generated for this grid step (settings checked D = h / dt).
   const std::string source = codegen::generate_simulation_plugin(model, filters, settings.dt);
   const double derive_seconds = seconds_since(start);
@@ -369,8 +409,8 @@ int run_simulate(const SimulateOptions& options, JobGroup& group) {
     mc.grid = pfgen_runtime::TimeGrid::to_horizon(0.0, settings.T, settings.dt);
     mc.runs = settings.runs;
     mc.seed = settings.seed;
-    mc.threads = thread_count(options.threads);
-    mc.record_points = settings.record_points;
+    mc.threads = thread_count(options.threads, settings.runs);
+    mc.record_points = effective_record_points(options, settings);
     mc.shown_run = settings.shown_run;
     mc.report_times = settings.report_times;
     mc.windows = settings.windows;

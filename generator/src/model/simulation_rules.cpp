@@ -37,7 +37,9 @@ Breach check_grid(const SimulationSection& s) {
   const double T = *s.T, dt = *s.dt;
   if (!(dt < T)) return breach("dt", "the step dt = " + number_text(dt) + " must be smaller than T = " + number_text(T));
   const double steps = T / dt;
-  if (steps > 1e9) return breach("dt", "more than 1e9 steps of dt = " + number_text(dt) + " to T = " + number_text(T));
+  if (steps > kMaxStepsPerRun)
+    return breach("dt", "more than 1e9 steps of dt = " + number_text(dt) + " to T = " + number_text(T) +
+                            " (the budget of one run, the truth's steps and each filter's sub-steps alike)");
   // The grid has round(T / dt) steps of dt: a T that is not a whole number of steps would
   // silently become another horizon (T = 1, dt = 0.7 ran to t = 0.7 and labelled it [0, 0.7]).
   // The slack covers the rounding of a decimal T and dt (9.2 / 1e-4 = 91999.99999999999).
@@ -98,6 +100,26 @@ Breach check_filters(const Model& model, const SimulationSection& s) {
   return {};
 }
 
+// A sampled filter predicts in `substeps` sub-steps per period (the model's, or S of a KIND@S
+// name): (T / period) x substeps of them per run, under the same budget as the truth's steps.
+Breach check_substeps(const Model& model, const SimulationSection& s) {
+  if (!model.observation.is_sampled() || !s.T) return {};
+  const double samples = std::floor(*s.T / model.observation.sampled().period.to_double());
+  const std::vector<std::string> names = s.filters ? *s.filters : default_filter_names(model);
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const auto split = split_substeps(names[k]);
+    const double substeps = static_cast<double>(split ? split->second : model.observation.sampled().substeps);
+    if (samples * substeps > kMaxStepsPerRun)
+      return breach(s.filters ? "filters" : "T",
+                    "filter '" + names[k] + "' would take " + number_text(samples * substeps) +
+                        " prediction sub-steps per run (" + number_text(samples) + " periods to T = " +
+                        number_text(*s.T) + ", " + number_text(substeps) +
+                        " sub-steps each); the budget of one run is 1e9 steps, the truth's and each filter's alike",
+                    s.filters ? std::optional<std::size_t>(k) : std::nullopt);
+  }
+  return {};
+}
+
 Breach check_times(const SimulationSection& s) {
   for (std::size_t k = 0; k < s.report_times.size(); ++k) {
     const double time = s.report_times[k];
@@ -137,6 +159,7 @@ std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model
   if (auto b = check_counts(settings)) return b;
   if (auto b = check_scheme(model, settings)) return b;
   if (auto b = check_filters(model, settings)) return b;
+  if (auto b = check_substeps(model, settings)) return b;
   return check_times(settings);
 }
 

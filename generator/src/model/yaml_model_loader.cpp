@@ -18,6 +18,7 @@
 #include "pfgen/model/model_builder.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/model_validator.hpp"
+#include "pfgen/model/yaml_alias_bound.hpp"
 #include "pfgen/model/yaml_documents.hpp"
 
 namespace pfgen {
@@ -563,6 +564,11 @@ void refuse_second_document(const std::string& text, const std::string& path) {
 
 Model load_model_text(const std::string& text, const std::string& path) {
   if (!is_text(text)) throw located(ModelError("", "not a model file: the file is binary, not UTF-8 text"), path, {});
+  const YamlAliasExpansion expansion = expand_yaml_aliases(text);
+  if (expansion.exceeded)
+    throw located(ModelError("", "its aliases expand to more than " + std::to_string(kMaxYamlNodes) +
+                                     " YAML nodes (nested aliases of aliases); a model file needs far fewer"),
+                  path, {expansion.line + 1, expansion.column + 1});
   YAML::Node root;
   try {
     root = YAML::Load(text);

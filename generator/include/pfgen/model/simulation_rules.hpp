@@ -20,8 +20,14 @@ struct SimulationRuleBreach {
   std::string message;               // what is wrong, without the place
 };
 
+// The budget of one run, the truth's grid steps T / dt and each sampled filter's prediction
+// sub-steps (T / period) x substeps alike: beyond it a run takes hours, or its step count no longer
+// fits the counters the runtime keeps exact.
+inline constexpr double kMaxStepsPerRun = 1e9;
+
 // The first rule the settings break, in a fixed order (T, dt, the observation delay against dt,
-// runs, record points, bound, shown run, scheme, filters, report times, windows), or nothing.
+// runs, record points, bound, shown run, scheme, filters, the sampled filters' sub-steps against
+// kMaxStepsPerRun, report times, windows), or nothing.
 std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model, const SimulationSection& settings);
 
 // Whether the model's diffusion is identically zero (a deterministic truth).
