@@ -167,6 +167,13 @@ const std::vector<BadModel>& bad_models() {
       {"duplicate_key_in_filter.yaml", "filters.mine.gain", 0, 0, 8, "given twice in one mapping"},
       {"second_yaml_document.yaml", "", 0, 0, 8, "the file holds 2 YAML documents"},
       {"fuzz_endless_documents.yaml", "", 0, 0, 4, "not valid YAML from here on"},
+      // Numbers no double holds, named by file and field (they used to reach the code generator).
+      {"delay_below_double.yaml", "observation.delay", 0, 0, 7, "'1e-400' is below the smallest normal double"},
+      {"period_below_double.yaml", "observation.sampled.period", 0, 0, 8,
+       "'1e-400' is below the smallest normal double"},
+      {"constant_below_double.yaml", "drift", 1, 0, 4, "holds a number, about 1.0E-400, that is below the smallest"},
+      // A quoted expression is cut at 200 characters.
+      {"unknown_symbol_long_expression.yaml", "drift", 1, 0, 4, "+ 0.5*x + ...' (9602 characters)"},
       // Nested aliases ("billion laughs"): refused by counting before any node is walked.
       {"yaml_alias_expansion.yaml", "", 0, 0, 10, "its aliases expand to more than 1000000 YAML nodes"},
       {"simulation_report_times_not_increasing.yaml", "simulation.report_times", 3, 0, 11,

@@ -624,3 +624,44 @@ TEST_CASE("derive --timing writes the phases' seconds and changes nothing else",
     CHECK(r.err.find(why) != std::string::npos);
   }
 }
+
+// Messages name what is wrong, in one line of reasonable length.
+TEST_CASE("option values no double holds, and filters a model does not offer, are named in one short line",
+          "[cli][integration]") {
+  const std::string quadratic = example("basin2006_quadratic.yaml");
+  TempDir dir;
+  const std::string undelayed = dir.file("delay0.yaml");
+  write_file(undelayed, "name: d0\nstates: [x]\ndrift: [\"-x\"]\ndiffusion: [[\"1\"]]\n"
+                        "observation: {delay: 0, A: [[\"1\"]], B: [[\"1\"]]}\n");
+  const std::string stratonovich = dir.file("strat.yaml");
+  write_file(stratonovich, "name: strat\nnoise: stratonovich\nstates: [x]\ndrift: [\"-x\"]\n"
+                           "diffusion: [[\"0.1*x^3\"]]\nobservation: {A: [[\"1\"]], B: [[\"1\"]]}\n");
+  const struct {
+    std::vector<std::string> args;
+    std::string message;
+  } cases[] = {
+      {{"eval", example("delay_linear.yaml"), "--filter", "delay-optimal", "--m=1", "--P", "1", "--phi", "1e400"},
+       "--phi: '1e400' is beyond the largest double"},
+      {{"eval", quadratic, "--filter", "optimal", "--m=1e-400", "--P", "1"}, "--m: '1e-400' is below the smallest"},
+      {{"simulate", quadratic, "--risk-epsilon", "1e-9999"}, "--risk-epsilon: '1e-9999' is outside the range of a double"},
+      {{"simulate", quadratic, "--T", "1e400"}, "--T: '1e400' is outside the range of a double"},
+      {{"simulate", quadratic, "--risk-epsilon", std::string(10000, '9')}, "...' (10000 characters) is outside"},
+      {{"eval", quadratic, "--filter", "optimal", "--m=1", "--P", "1", "--set", std::string(5000, 'q') + "=1"},
+       "has no parameter 'qqq"},
+      {{"derive", example("paper003/example1_gamma0.yaml"), "--filter", "ukf"},
+       "'ukf' is not derived for sampled observations in model allahyani_date_example1_gamma0 (available: "
+       "cd-optimal, cd-ekf, cd-euler)"},
+      {{"derive", undelayed, "--filter", "delay-optimal"}, "delay: 0, or none, is the undelayed model"},
+      {{"derive", stratonovich, "--coefficients"},
+       "drift[1] has degree 5 once the Stratonovich correction 1/2 g dg/dx is added (as written: degree 1)"},
+  };
+  for (const auto& c : cases) {
+    const auto result = run_pfgen(c.args);
+    INFO(c.args.front() << " " << c.args.at(2) << ": " << result.err);
+    CHECK(result.exit_code != 0);  // 1, or CLI11's 105 for a value its validator refuses
+    CHECK(result.out.empty());
+    CHECK(count_lines(result.err) == 1);
+    CHECK(result.err.size() < 600);
+    CHECK(result.err.find(c.message) != std::string::npos);
+  }
+}

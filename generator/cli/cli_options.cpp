@@ -4,11 +4,12 @@
 #include <set>
 #include <sstream>
 
-#include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen/model/model_validator.hpp"
+#include "pfgen_support/quoted_text.hpp"
 
 namespace pfgen::cli {
 
@@ -29,7 +30,10 @@ std::string join(const std::vector<std::string>& parts, const std::string& separ
 
 GiNaC::numeric parse_number(const std::string& option, const std::string& text) {
   auto value = parse_exact_number(text);
-  if (!value) throw CliValueError(option + ": '" + text + "' is not a number");
+  if (!value) throw CliValueError(option + ": " + pfgen_support::quoted(text) + " is not a number");
+  // --phi 1e400 was accepted and reported later as "gain[1][1] is not finite", naming no option.
+  if (auto problem = double_range_problem(*value))
+    throw CliValueError(option + ": " + pfgen_support::quoted(text) + " " + *problem);
   return *value;
 }
 
@@ -50,7 +54,7 @@ std::vector<std::vector<GiNaC::numeric>> parse_number_matrix(const std::string& 
 std::pair<std::string, GiNaC::numeric> parse_assignment(const std::string& option, const std::string& text) {
   std::size_t eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
-    throw CliValueError(option + ": expected name=value, got '" + text + "'");
+    throw CliValueError(option + ": expected name=value, got " + pfgen_support::quoted(text));
   return {text.substr(0, eq), parse_number(option, text.substr(eq + 1))};
 }
 
@@ -61,8 +65,9 @@ void apply_parameter_assignments(Model& model, const std::vector<std::string>& a
     auto parameter = std::find_if(model.parameters.begin(), model.parameters.end(),
                                   [&name = name](const Parameter& p) { return p.name == name; });
     if (parameter == model.parameters.end())
-      throw CliValueError("--set: model " + model.name + " has no parameter '" + name + "'");
-    if (!given.insert(name).second) throw CliValueError("--set: parameter '" + name + "' is given twice");
+      throw CliValueError("--set: model " + model.name + " has no parameter " + pfgen_support::quoted(name));
+    if (!given.insert(name).second)
+      throw CliValueError("--set: parameter " + pfgen_support::quoted(name) + " is given twice");
     parameter->default_value = value;
   }
   if (assignments.empty()) return;

@@ -4,6 +4,8 @@
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <cstdint>
 #include <iostream>
@@ -22,6 +24,7 @@
 #include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/model_error.hpp"
+#include "pfgen_support/quoted_text.hpp"
 
 namespace {
 
@@ -59,6 +62,21 @@ int main(int argc, char** argv) {
   // the help never disagrees with what the options accept.
   const std::string one_filter_help = join(pfgen::filter_kind_names(), " | ") + " | a filter of the model's filters: section";
   const std::string scheme_help = "Truth scheme: " + join(pfgen::simulation_schemes(), " | ");
+
+  // A number option's text itself, before CLI11 converts it: strtod turns 1e-9999 into 0 and 1e400
+  // into infinity, and the message then quoted what the conversion made of it.
+  const CLI::Validator double_number(
+      [](std::string& text) -> std::string {
+        errno = 0;
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size()) return pfgen_support::quoted(text) + " is not a number";
+        if (errno == ERANGE || !std::isfinite(value))
+          return pfgen_support::quoted(text) +
+                 " is outside the range of a double (magnitudes from about 2.2e-308 to 1.8e308)";
+        return std::string();
+      },
+      "NUMBER");
 
   // An empty file name is refused wherever a file is named: simulate and derive used to skip an
   // output given as "" without a word, while codegen and latex refused it.
@@ -122,7 +140,8 @@ int main(int argc, char** argv) {
                         "Also write DIR/<model>/<filter>_eigen.hpp: wrappers taking m and P as Eigen matrices");
   codegen_cmd->add_option("--dt", codegen.dt,
                           "Delayed observations: the grid step of the filters, a divisor of the delay (default: "
-                          "simulation.dt)");
+                          "simulation.dt)")
+      ->check(double_number);
   codegen_cmd->add_flag("--no-cse", codegen.no_cse, "Emit without common-subexpression elimination (benchmark baseline)");
 
   // CLI11 reads unsigned options with strtoull, which takes "-1" as 2^64 - 1 and saturates an
@@ -151,8 +170,9 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--filters", so.filters,
                            "Comma-separated filters, built-in kinds or the model's own (default: simulation.filters, "
                            "else every filter of the model but the opt-in ukf)");
-  simulate_cmd->add_option("--T", so.T, "Horizon (default: simulation.T)");
-  simulate_cmd->add_option("--dt", so.dt, "Time step of the truth and the filters (default: simulation.dt, else 1e-3)");
+  simulate_cmd->add_option("--T", so.T, "Horizon (default: simulation.T)")->check(double_number);
+  simulate_cmd->add_option("--dt", so.dt, "Time step of the truth and the filters (default: simulation.dt, else 1e-3)")
+      ->check(double_number);
   simulate_cmd->add_option("--runs", so.runs, "Monte Carlo runs (default: simulation.runs, else 100)")
       ->check(whole_number);
   simulate_cmd->add_option("--seed", so.seed, "Seed; run r uses streams derived from (seed, r) (default 1)")
@@ -168,12 +188,14 @@ int main(int argc, char** argv) {
       ->check(whole_number);
   simulate_cmd->add_option("--shown-run", so.shown_run, "The run whose path goes into the CSV and plot (default 0)")
       ->check(whole_number);
-  simulate_cmd->add_option("--bound", so.bound, "A run stops when |x|, |m| exceed this (default 1e8)");
+  simulate_cmd->add_option("--bound", so.bound, "A run stops when |x|, |m| exceed this (default 1e8)")
+      ->check(double_number);
   simulate_cmd->add_option("-o,--output", simulate.csv_path, "CSV of time series")->check(named_file);
   simulate_cmd->add_option("--plot", simulate.plot_path, "Plot of the errors, FILE.png or FILE.svg (gnuplot)")
       ->check(named_file);
   simulate_cmd->add_option("--plot-ylim", simulate.plot_ylim,
-                           "Fix the plot's y range to [-Y, Y] so one diverging filter does not flatten the rest");
+                           "Fix the plot's y range to [-Y, Y] so one diverging filter does not flatten the rest")
+      ->check(double_number);
   simulate_cmd->add_option("--cache-dir", simulate.cache_dir,
                            "Compiled plugins (default: $PFGEN_CACHE_DIR, $XDG_CACHE_HOME/pfgen, ~/.cache/pfgen)")
       ->check(named_file);
@@ -183,7 +205,8 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--set", simulate.assignments, "Parameter value for this job, name=value (repeatable)");
   simulate_cmd->add_option("--risk-epsilon", so.risk_epsilon,
                            "Report the exponential criterion J = eps log E[exp(int L dt / eps)] of every filter with "
-                           "this eps (default: the model's risk.epsilon; without either, no J)");
+                           "this eps (default: the model's risk.epsilon; without either, no J)")
+      ->check(double_number);
   simulate_cmd->add_option("--reference", so.reference,
                            "particles:N: on each run a bootstrap particle filter with N particles estimates the true "
                            "conditional mean; the table adds each filter's RMS distance from it (not for delayed "

@@ -54,8 +54,16 @@ void check_coefficient_form_degree(const Model& model) {
     const std::uint32_t degree = Polynomial::from_ex(model.drift[i], model.states).degree();
     if (degree <= kCoefficientFormDegree) continue;
     const std::string row = std::to_string(i + 1);
+    // With Stratonovich noise the degree may be the correction's, not the written drift's.
+    std::string source;
+    if (model.noise == NoiseCalculus::Stratonovich && i < model.stated_drift.size()) {
+      const std::uint32_t written = Polynomial::from_ex(model.stated_drift[i], model.states).degree();
+      if (written < degree)
+        source = " once the Stratonovich correction 1/2 g dg/dx is added (as written: degree " +
+                 std::to_string(written) + ")";
+    }
     ModelError error("drift",
-                     "drift[" + row + "] has degree " + std::to_string(degree) +
+                     "drift[" + row + "] has degree " + std::to_string(degree) + source +
                          "; the coefficient form A..A3 holds degree <= " + std::to_string(kCoefficientFormDegree),
                      static_cast<int>(i + 1));
     error.set_file(model.source);

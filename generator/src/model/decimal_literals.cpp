@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -148,6 +149,16 @@ std::optional<GiNaC::numeric> parse_exact_number(const std::string& text) {
     return std::nullopt;
   }
   return negative ? -value : value;
+}
+
+std::optional<std::string> double_range_problem(const GiNaC::numeric& value) {
+  if (value.is_zero() || !value.is_real()) return std::nullopt;
+  const GiNaC::numeric magnitude = GiNaC::abs(value);
+  if (magnitude < GiNaC::numeric(std::numeric_limits<double>::min()))
+    return "is below the smallest normal double (about 2.2e-308 in magnitude): it would be lost in generated code and simulation";
+  if (magnitude > GiNaC::numeric(std::numeric_limits<double>::max()))
+    return "is beyond the largest double (about 1.8e308)";
+  return std::nullopt;
 }
 
 }  // namespace pfgen

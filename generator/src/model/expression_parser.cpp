@@ -1,11 +1,13 @@
 #include "pfgen/model/expression_parser.hpp"
 
 #include <cctype>
+#include <sstream>
 
 #include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/model/expression_limits.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/text_characters.hpp"
+#include "pfgen_support/quoted_text.hpp"
 
 namespace pfgen {
 namespace {
@@ -56,6 +58,18 @@ std::string parse_error_reason(const std::string& message) {
   return why.empty() ? "syntax error" : why;
 }
 
+// A number's order of magnitude for a message: 1/10^400 as 1.0E-400, not as its 401 digits.
+std::string approximately(const GiNaC::ex& number) {
+  std::ostringstream out;
+  out << GiNaC::ex(number).evalf();
+  std::string text = out.str();
+  const auto exponent = text.find('E');
+  const auto dot = text.find('.');
+  if (dot != std::string::npos && exponent != std::string::npos && exponent > dot + 3)
+    text.erase(dot + 3, exponent - dot - 3);
+  return text;
+}
+
 }  // namespace
 
 ExpressionParser::ExpressionParser(const GiNaC::symtab& symbols) : symbols_(symbols) {}
@@ -71,25 +85,30 @@ GiNaC::ex ExpressionParser::parse(const std::string& text, const ExpressionSite&
       throw fail("expression contains a control character");
   }
   if (auto character = first_non_ascii(text))
-    throw fail("'" + text + "' contains " + *character +
+    throw fail(pfgen_support::quoted(text) + " contains " + *character +
                "; expressions are ASCII: names of letters, digits and _, numbers, + - * / ^ ( ) ,");
   // Before GiNaC's parser, which recurses per nesting level and evaluates numeric powers at once.
   if (auto problem = expression_limit_problem(text)) throw fail(*problem);
   std::string unknown = first_identifier_not_in(text, symbols_);
-  if (!unknown.empty()) throw fail("unknown symbol '" + unknown + "' in '" + text + "'");
+  if (!unknown.empty()) throw fail("unknown symbol " + pfgen_support::quoted(unknown) + " in " + pfgen_support::quoted(text));
   GiNaC::parser reader(symbols_, /*strict=*/true);
   GiNaC::ex value;
   try {
     value = reader(rationalize_decimal_literals(text));
   } catch (const GiNaC::parse_error& e) {
-    throw fail("cannot parse '" + text + "': " + parse_error_reason(e.what()));
+    throw fail("cannot parse " + pfgen_support::quoted(text) + ": " + parse_error_reason(e.what()));
   } catch (const std::exception& e) {
     // GiNaC's parser reads a^b^c as a power of three operands and fails while evaluating it.
     if (std::string(e.what()).find("power should have exactly 2 operands") != std::string::npos)
-      throw fail("cannot parse '" + text + "': a power of a power needs parentheses, (a^b)^c or a^(b^c)");
-    throw fail("cannot evaluate '" + text + "': " + e.what());
+      throw fail("cannot parse " + pfgen_support::quoted(text) + ": a power of a power needs parentheses, (a^b)^c or a^(b^c)");
+    throw fail("cannot evaluate " + pfgen_support::quoted(text) + ": " + e.what());
   }
-  if (has_imaginary_part(value)) throw fail("'" + text + "' is not real");
+  if (has_imaginary_part(value)) throw fail(pfgen_support::quoted(text) + " is not real");
+  // A number no double holds (1e-400 would be 0 in generated code and simulation, 1e400 infinite).
+  for (GiNaC::const_preorder_iterator it = value.preorder_begin(); it != value.preorder_end(); ++it)
+    if (GiNaC::is_a<GiNaC::numeric>(*it))
+      if (auto problem = double_range_problem(GiNaC::ex_to<GiNaC::numeric>(*it)))
+        throw fail(pfgen_support::quoted(text) + " holds a number, about " + approximately(*it) + ", that " + *problem);
   return value;
 }
 

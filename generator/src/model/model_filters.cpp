@@ -80,9 +80,19 @@ std::optional<std::string> filter_name_problem(const Model& model, const std::st
              "sub-steps";
     return filter_name_problem(model, split->first);
   }
-  if (auto kind = parse_filter_kind(name))
-    if (auto reason = unsupported_reason(model, *kind)) return "'" + name + "' " + *reason + " in model " + model.name;
   const std::vector<std::string> available = available_filter_names(model);
+  if (auto kind = parse_filter_kind(name))
+    if (auto reason = unsupported_reason(model, *kind)) {
+      std::string message = "'" + name + "' " + *reason + " in model " + model.name;
+      // A delay kind on a model without a delay: `delay: 0` (or none) is the undelayed model.
+      const auto& observations = filter_kind_info(*kind).observations;
+      const bool delay_kind = observations.size() == 1 && observations.front() == ObservationKind::Delayed;
+      if (delay_kind && !model.observation.is_delayed() && !model.observation.is_sampled())
+        message += " (the delay kinds need observation.delay h > 0; delay: 0, or none, is the undelayed model)";
+      std::string known;
+      for (const auto& filter : available) known += (known.empty() ? "" : ", ") + filter;
+      return message + " (available: " + known + ")";
+    }
   std::string known;
   for (const auto& filter : available) {
     if (filter == name) return std::nullopt;

@@ -20,6 +20,7 @@
 #include "pfgen/model/model_validator.hpp"
 #include "pfgen/model/yaml_alias_bound.hpp"
 #include "pfgen/model/yaml_documents.hpp"
+#include "pfgen_support/quoted_text.hpp"
 
 namespace pfgen {
 namespace {
@@ -235,8 +236,10 @@ class Loader {
     if (YAML::Node delay_node = obs["delay"]; delay_node && !delay_node.IsNull()) {
       const std::string text = scalar(delay_node, "observation.delay");
       auto delay = parse_exact_number(text);
-      if (!delay) throw ModelError("observation.delay", "'" + text + "' is not a number: the delay h is a plain number of "
+      if (!delay) throw ModelError("observation.delay", pfgen_support::quoted(text) + " is not a number: the delay h is a plain number of "
                                                                    "time units (no parameters or expressions)");
+      if (auto problem = double_range_problem(*delay))
+        throw ModelError("observation.delay", pfgen_support::quoted(text) + " " + *problem);
       if (!delay->is_zero()) {
         builder.delayed_observation(*delay, A0, A, B);
         return;
@@ -261,7 +264,9 @@ class Loader {
     // sample grid need its value, whatever the parameters are set to.
     const std::string period_text = scalar(sampled["period"], field + ".period");
     auto period = parse_exact_number(period_text);
-    if (!period) throw ModelError(field + ".period", "'" + period_text + "' is not a number");
+    if (!period) throw ModelError(field + ".period", pfgen_support::quoted(period_text) + " is not a number");
+    if (auto problem = double_range_problem(*period))
+      throw ModelError(field + ".period", pfgen_support::quoted(period_text) + " " + *problem);
     std::size_t substeps = 1;
     if (YAML::Node s = sampled["substeps"]; s && !s.IsNull())
       substeps = static_cast<std::size_t>(whole_number(s, field + ".substeps", 1000000));
