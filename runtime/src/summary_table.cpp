@@ -113,6 +113,54 @@ std::string sampled_section(const MonteCarloResult& result) {
   return out;
 }
 
+// The main table's RMS and |e|@t with their standard errors, and each filter paired run by run with
+// the first: whether 0.2189 and 0.2156 differ is the paired difference against its standard error,
+// without the spread the runs share.
+std::string precision_section(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
+  const FilterStatistics& first = result.filters.front();
+  auto cell = [](double mean, double error) { return number(mean) + " ± " + number(error, "%.2g"); };
+  auto diff = [](double mean, double error) { return number(mean, "%+.4g") + " ± " + number(error, "%.2g"); };
+  auto window_header = [](const char* what, const WindowStatistics& w) {
+    return what + ("[" + time(w.a) + "," + time(w.b) + "]");
+  };
+  std::vector<std::vector<std::string>> errors{{"filter", "state", window_header("RMS", first.horizon)}};
+  std::vector<std::vector<std::string>> paired{{"filter", "state", "runs", window_header("dMS", first.horizon)}};
+  for (const WindowStatistics& w : first.windows) {
+    errors.front().push_back(window_header("RMS", w));
+    paired.front().push_back(window_header("dMS", w));
+  }
+  for (const ReportStatistics& r : first.reports) {
+    errors.front().push_back("|e|@" + time(r.t));
+    paired.front().push_back("d|e|@" + time(r.t));
+  }
+  for (const FilterStatistics& filter : result.filters)
+    for (std::size_t i = 0; i < result.n; ++i) {
+      std::vector<std::string> row{filter.name, state_names[i], cell(filter.horizon.rms[i], filter.horizon.rms_se[i])};
+      for (const WindowStatistics& w : filter.windows) row.push_back(cell(w.rms[i], w.rms_se[i]));
+      for (const ReportStatistics& r : filter.reports) row.push_back(cell(r.mean_abs[i], r.mean_abs_se[i]));
+      errors.push_back(std::move(row));
+      if (filter.horizon.paired_difference.empty()) continue;
+      std::vector<std::string> pair{filter.name, state_names[i], count(filter.horizon.paired_runs),
+                                    diff(filter.horizon.paired_difference[i], filter.horizon.paired_difference_se[i])};
+      for (const WindowStatistics& w : filter.windows)
+        pair.push_back(diff(w.paired_difference[i], w.paired_difference_se[i]));
+      for (const ReportStatistics& r : filter.reports)
+        pair.push_back(diff(r.paired_abs_difference[i], r.paired_abs_difference_se[i]));
+      paired.push_back(std::move(pair));
+    }
+  std::string out =
+      "\nWith standard errors over the runs counted (RMS: the delta method on the runs' mean squares; |e|@t: of the "
+      "mean):\n" +
+      align(errors);
+  if (paired.size() > 1)
+    out += "\nPaired against " + first.name +
+           " run by run (dMS: this filter's mean square error over the window minus its, over the runs both "
+           "completed; d|e|@t: |e| minus its, over the runs both have at t; mean ± standard error; the first "
+           "runs column counts the horizon):\n" +
+           align(paired);
+  return out;
+}
+
 // How L was weighted: "M = identity" or the matrix row by row.
 std::string weight_text(const Eigen::MatrixXd& weight) {
   if (weight.size() == 0) return "M = identity";
@@ -234,6 +282,7 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
     }
     out << align(rows);
     out << "\nRuns counted (truth and filter alive to the window's end, or at the report time):\n" << align(counts);
+    out << precision_section(result, state_names);
     // Which runs stopped, so that one can be looked at (--shown-run) and replayed.
     std::ostringstream stopped;
     for (const FilterStatistics& filter : result.filters)

@@ -74,6 +74,13 @@ struct WindowStatistics {
   std::size_t first = 0, last = 0;  // their grid indices
   std::size_t runs = 0;             // runs that entered
   std::vector<double> rms;          // per state component: sqrt(mean over runs); NaN when runs == 0
+  // Its standard error by the delta method, sd(runs' mean squares) / (sqrt(runs) 2 rms); NaN when
+  // runs < 2.
+  std::vector<double> rms_se;
+  // Paired run by run with the first filter (empty for the first filter itself): over the runs both
+  // completed, the mean of this filter's mean square minus the first's, and its standard error.
+  std::size_t paired_runs = 0;
+  std::vector<double> paired_difference, paired_difference_se;
 };
 
 struct ReportStatistics {
@@ -85,6 +92,10 @@ struct ReportStatistics {
   // standard errors (sample standard deviation / sqrt(alive)) of it and of mean_abs; per
   // component, NaN when alive == 0 (the standard errors: alive < 2). format_report_errors prints them.
   std::vector<double> mean_error, mean_error_se, mean_abs_se;
+  // Paired with the first filter (empty for the first itself): over the runs both have alive at t,
+  // the mean of |e| minus the first's |e|, and its standard error.
+  std::size_t paired_alive = 0;
+  std::vector<double> paired_abs_difference, paired_abs_difference_se;
 };
 
 // The truth itself at a report time, over the runs whose truth is alive there (a paper's

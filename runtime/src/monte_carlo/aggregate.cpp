@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "parallel_for.hpp"
 #include "pfgen_runtime/statistics.hpp"
@@ -215,6 +216,66 @@ double root_mean_square(const std::vector<double>& values) {
   return std::sqrt(sum / static_cast<double>(values.size()));
 }
 
+// Mean and standard error (sample sd / sqrt(count)) of values, in their order; NaN where undefined.
+std::pair<double, double> mean_and_standard_error(const std::vector<double>& values) {
+  if (values.empty()) return {nan, nan};
+  const double count = static_cast<double>(values.size());
+  double sum = 0;
+  for (double v : values) sum += v;
+  const double mean = sum / count;
+  if (values.size() < 2) return {mean, nan};
+  double squares = 0;  // about the mean: differences of near-equal mean squares are common
+  for (double v : values) squares += (v - mean) * (v - mean);
+  return {mean, std::sqrt(squares / (count - 1) / count)};
+}
+
+// Window w's standard error of filter f's RMS and its pairing with filter 0, per component, in run order.
+void window_errors(const std::vector<RunResult>& runs, std::size_t f, std::size_t w, WindowStatistics& window) {
+  const std::size_t n = window.rms.size();
+  const auto reached = [&window](const FilterRunResult& filter) {
+    return filter.last >= static_cast<std::ptrdiff_t>(window.last);
+  };
+  std::vector<double> squares, differences;
+  for (std::size_t i = 0; i < n; ++i) {
+    squares.clear();
+    differences.clear();
+    for (const RunResult& run : runs) {
+      if (!reached(run.filters[f])) continue;
+      squares.push_back(run.filters[f].mean_square[w * n + i]);
+      if (f > 0 && reached(run.filters[0]))
+        differences.push_back(run.filters[f].mean_square[w * n + i] - run.filters[0].mean_square[w * n + i]);
+    }
+    const double square_se = mean_and_standard_error(squares).second;
+    window.rms_se.push_back(window.rms[i] > 0 ? square_se / (2 * window.rms[i]) : nan);
+    if (f == 0) continue;
+    window.paired_runs = differences.size();
+    const auto [mean, se] = mean_and_standard_error(differences);
+    window.paired_difference.push_back(mean);
+    window.paired_difference_se.push_back(se);
+  }
+}
+
+// Report q's |e| of filter f paired with filter 0's, per component, over the runs both have alive.
+void report_pairs(const std::vector<RunResult>& runs, std::size_t f, std::size_t q, std::size_t n,
+                  ReportStatistics& report) {
+  if (f == 0) return;
+  const auto alive = [&report](const FilterRunResult& filter) {
+    return filter.last >= static_cast<std::ptrdiff_t>(report.index);
+  };
+  std::vector<double> differences;
+  for (std::size_t i = 0; i < n; ++i) {
+    differences.clear();
+    for (const RunResult& run : runs)
+      if (alive(run.filters[f]) && alive(run.filters[0]))
+        differences.push_back(std::abs(run.filters[f].report_error[q * n + i]) -
+                              std::abs(run.filters[0].report_error[q * n + i]));
+    report.paired_alive = differences.size();
+    const auto [mean, se] = mean_and_standard_error(differences);
+    report.paired_abs_difference.push_back(mean);
+    report.paired_abs_difference_se.push_back(se);
+  }
+}
+
 }  // namespace
 
 void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const std::vector<RunResult>& runs,
@@ -269,6 +330,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       }
       for (std::size_t i = 0; i < n; ++i)
         window.rms.push_back(window.runs > 0 ? std::sqrt(sum[i] / static_cast<double>(window.runs)) : nan);
+      window_errors(runs, f, w, window);
       if (w == 0)
         stats.horizon = std::move(window);
       else
@@ -298,6 +360,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
         const double variance = (squares - alive * mean * mean) / (alive - 1);
         return std::sqrt(std::max(variance, 0.0) / alive);
       };
+      report_pairs(runs, f, q, n, report);
       for (std::size_t i = 0; i < n; ++i) {
         report.mean_abs.push_back(report.alive > 0 ? sum_abs[i] / alive : nan);
         report.rms.push_back(report.alive > 0 ? std::sqrt(sum_square[i] / alive) : nan);
