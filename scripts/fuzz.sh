@@ -15,6 +15,8 @@ cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Rel
 cmake --build "$build" -j"$(nproc)" --target pfgen_fuzz_model
 mkdir -p "$build/corpus" "$build/seeds" "$build/findings"
 cp "$root"/examples/*.yaml "$root"/tests/data/bad/*.yaml "$build/seeds/"
+# tests/data: user filters with define:, delayed and sampled test models, sums inside products.
+for f in "$root"/tests/data/*.yaml; do cp "$f" "$build/seeds/data_$(basename "$f")"; done
 for f in "$root"/examples/*/*.yaml; do cp "$f" "$build/seeds/$(basename "$(dirname "$f")")_$(basename "$f")"; done
 # The first directory collects new inputs; the seeds are read only.
 # -timeout 10: a model that takes longer to load and derive is a finding (a missing limit);

@@ -67,7 +67,7 @@ TEST_CASE("simulate --reference: identical table and CSV for 1 and 2 threads, an
   CHECK(read_file(dir.file("one.csv")) == read_file(dir.file("two.csv")));
   CHECK(one.out.find("Distance to the particle reference (N = 200 particles") != std::string::npos);
   CHECK(std::regex_search(one.out, std::regex("\noptimal +x1 +4 +[0-9.e-]+ ")));
-  CHECK(std::regex_search(one.out, std::regex("\nreference +x2 +4 +[0-9.e-]+\n")));
+  CHECK(std::regex_search(one.out, std::regex("\nreference +x2 +4 +[0-9.e-]+ ± [0-9.e-]+\n")));
   CHECK(std::regex_search(one.err, std::regex("particle reference \\(N = 200\\): [0-9.]+ thread-s")));
   const std::string header = read_file(dir.file("one.csv")).substr(0, read_file(dir.file("one.csv")).find('\n'));
   CHECK(header.find(",reference_m_x1,reference_err_x1,reference_err_x1_rms,") != std::string::npos);
@@ -130,7 +130,9 @@ TEST_CASE("simulate --reference: sampled observations (paper 003) get the refere
   REQUIRE(one.exit_code == 0);
   REQUIRE(two.exit_code == 0);
   INFO(one.out << one.err);
-  CHECK(one.err.empty());  // no skip note
+  CHECK(one.err.find("skipped") == std::string::npos);  // no skip note
+  // x0 = 1 against m0 = 0: the note that the reference is the conditional mean for prior draws only.
+  CHECK(one.err.find("note: --reference: every run's truth starts at x0 = (1)") != std::string::npos);
   CHECK(one.out == two.out);
   CHECK(one.out.find("Distance to the particle reference (N = 300 particles") != std::string::npos);
   CHECK(std::regex_search(one.out, std::regex("\ncd-optimal +x +3 +[0-9.e-]+ ")));

@@ -211,6 +211,9 @@ int main(int argc, char** argv) {
                            "particles:N: on each run a bootstrap particle filter with N particles estimates the true "
                            "conditional mean; the table adds each filter's RMS distance from it (not for delayed "
                            "observations or a truth without noise)");
+  simulate_cmd->add_option("--x0", so.x0,
+                           "prior: each run's truth starts from a draw of N(m0, P0), the filters' prior (as the "
+                           "particle reference assumes); model: the model's x0 (default: the model's initial: x0)");
   simulate_cmd->add_option("--criterion-csv", simulate.criterion_csv_path,
                            "Write J per filter as CSV to FILE (needs --risk-epsilon or a risk: section)")
       ->check(named_file);

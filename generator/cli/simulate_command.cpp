@@ -253,8 +253,9 @@ PreparedJob prepare(const SimulateOptions& options, bool speaks, Clock::time_poi
       throw CliValueError(model.source + ": observation.sampled.period: " + text + "; choose --dt = T/N");
     }
   }
-  if (!model.initial || model.initial->x0.empty())
-    throw CliValueError(model.source + ": initial: the model gives no x0, the truth's initial state");
+  if (!settings.x0_from_prior && (!model.initial || model.initial->x0.empty()))
+    throw CliValueError(model.source + ": initial: the model gives no x0, the truth's initial state (or x0: prior, "
+                        "or --x0 prior, to draw it from N(m0, P0) in each run)");
   // An x0 or m0 beyond the divergence bound stops every run at t = 0: the table was all '-'
   // with "Truth diverged: 3 of 3 runs, first at t = 0" and no hint why. Say so instead.
   const std::pair<const char*, const std::vector<GiNaC::numeric>*> starts[] = {{"x0", &model.initial->x0},
@@ -293,7 +294,8 @@ std::string job_text(const PreparedJob& job) {
     text += digits;
   };
   text += "\nscheme " + s.scheme + " runs " + std::to_string(s.runs) + " seed " + std::to_string(s.seed) +
-          " record_points " + std::to_string(s.record_points) + " shown_run " + std::to_string(s.shown_run) + "\n";
+          " record_points " + std::to_string(s.record_points) + " shown_run " + std::to_string(s.shown_run) +
+          (s.x0_from_prior ? " x0 prior" : "") + "\n";
   for (double value : {s.T, s.dt, s.bound}) number(value);
   text += "\nreports";
   for (double t : s.report_times) number(t);
@@ -345,18 +347,46 @@ std::string reference_obstacle(const Model& model, const pfgen_runtime::Simulati
 }
 
 // The reference's settings: N, and the filters' prior N(m0, P0) from the model.
+// The filters' prior N(m0, P0) as numbers: where the particle reference starts, and what --x0
+// prior draws each run's truth from.
+pfgen_runtime::InitialPrior filters_prior(const Model& model) {
+  pfgen_runtime::InitialPrior out;
+  const auto n = static_cast<Eigen::Index>(model.n());
+  out.mean.resize(n);
+  out.covariance.resize(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    out.mean[i] = model.initial->m0[static_cast<std::size_t>(i)].to_double();
+    for (Eigen::Index j = 0; j < n; ++j)
+      out.covariance(i, j) = model.initial->P0[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)].to_double();
+  }
+  return out;
+}
+
 pfgen_runtime::ParticleReferenceOptions reference_options(const Model& model, std::size_t particles) {
   pfgen_runtime::ParticleReferenceOptions out;
   out.particles = particles;
-  const auto n = static_cast<Eigen::Index>(model.n());
-  out.m0.resize(n);
-  out.P0.resize(n, n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    out.m0[i] = model.initial->m0[static_cast<std::size_t>(i)].to_double();
-    for (Eigen::Index j = 0; j < n; ++j)
-      out.P0(i, j) = model.initial->P0[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)].to_double();
-  }
+  const pfgen_runtime::InitialPrior prior = filters_prior(model);
+  out.m0 = prior.mean;
+  out.P0 = prior.covariance;
   return out;
+}
+
+// The particle reference is E[x | Y] only for truths drawn from the prior it starts from: with a
+// fixed x0 away from m0 it can lose to ekf, and RMS(x - m)^2 = RMS(x - m_ref)^2 + RMS(m - m_ref)^2
+// no longer holds. Said once, on stderr.
+void warn_fixed_x0_against_reference(const Model& model, const SimulationSettings& settings) {
+  if (!settings.reference_particles || settings.x0_from_prior) return;
+  const InitialConditions& initial = *model.initial;
+  if (initial.x0 == initial.m0) return;
+  std::string x0, m0;
+  for (std::size_t i = 0; i < initial.x0.size(); ++i) {
+    x0 += (i ? ", " : "") + pfgen_support::shortest_chars(initial.x0[i].to_double());
+    m0 += (i ? ", " : "") + pfgen_support::shortest_chars(initial.m0[i].to_double());
+  }
+  std::cerr << "pfgen: note: --reference: every run's truth starts at x0 = (" << x0
+            << "), not from the filters' prior N(m0, P0) with m0 = (" << m0
+            << "): the reference is the conditional mean only for truths drawn from that prior; --x0 prior draws "
+               "them so\n";
 }
 
 }  // namespace
@@ -419,20 +449,23 @@ int run_simulate(const SimulateOptions& options, JobGroup& group) {
     mc.filter_guards.covariance_guard =
         pfgen_runtime::DivergenceGuard(std::max(1e16, settings.bound * settings.bound));
     if (settings.criterion) mc.criterion = criterion_options(*settings.criterion, model.n());
+    if (settings.x0_from_prior) mc.initial_prior = filters_prior(model);
     if (settings.reference_particles) {
       const std::string obstacle = reference_obstacle(model, plugin);
-      if (obstacle.empty())
+      if (obstacle.empty()) {
         mc.reference = reference_options(model, *settings.reference_particles);
-      else if (speaks)
+        if (speaks) warn_fixed_x0_against_reference(model, settings);
+      } else if (speaks)
         std::cerr << "pfgen: --reference: skipped, " << obstacle << "\n";
     }
     mc.on_run_finished = [&progress](std::size_t finished, std::size_t) { progress.update(finished); };
     mc.share = std::move(share);
 
-    folded = plugin.is_sampled() ? pfgen_runtime::run_monte_carlo(*scheme, plugin.measurement(),
-                                                                  plugin.truth_initial_state(), plugin.filters(), mc)
-                                 : pfgen_runtime::run_monte_carlo(*scheme, plugin.observation(),
-                                                                  plugin.truth_initial_state(), plugin.filters(), mc);
+    // With --x0 prior each run draws its own x0; the fixed one is then only a placeholder.
+    const Eigen::VectorXd x0 = mc.initial_prior ? mc.initial_prior->mean : plugin.truth_initial_state();
+    folded = plugin.is_sampled()
+                 ? pfgen_runtime::run_monte_carlo(*scheme, plugin.measurement(), x0, plugin.filters(), mc)
+                 : pfgen_runtime::run_monte_carlo(*scheme, plugin.observation(), x0, plugin.filters(), mc);
   });
   progress.finish();
   if (!folded->folded) return 0;  // another process of the job writes the outputs

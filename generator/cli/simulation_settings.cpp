@@ -10,6 +10,7 @@
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/simulation_rules.hpp"
+#include "pfgen_support/quoted_text.hpp"
 #include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::cli {
@@ -200,6 +201,15 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
     throw CliValueError(place_of(breach->field, cli, file, s) + ": " + breach->message);
   s.criterion = resolve_criterion(model, cli);
   if (cli.reference) s.reference_particles = parse_reference(*cli.reference);
+  s.x0_from_prior = model.initial && model.initial->x0_from_prior;
+  if (cli.x0) {
+    if (*cli.x0 != "prior" && *cli.x0 != "model")
+      throw CliValueError("--x0: " + pfgen_support::quoted(*cli.x0) +
+                          " is neither prior (each run's truth drawn from N(m0, P0)) nor model (the model's x0)");
+    s.x0_from_prior = *cli.x0 == "prior";
+  }
+  if (s.x0_from_prior && !model.initial)
+    throw CliValueError("--x0 prior: " + model.source + " gives no initial: m0 and P0 to draw from");
   std::cerr << notes;
   return s;
 }

@@ -26,6 +26,7 @@ struct SimulationOverrides {
   std::optional<std::string> windows;       // "0:4,4:9.2"
   std::optional<double> risk_epsilon;       // --risk-epsilon: J's eps, over the model's risk.epsilon
   std::optional<std::string> reference;     // --reference particles:N
+  std::optional<std::string> x0;            // --x0 prior | model
 };
 
 // The most particles --reference accepts (the runtime's kMaxParticles; simulate_command checks
@@ -59,6 +60,9 @@ struct SimulationSettings {
   // --reference particles:N: the bootstrap particle filter's N (docs/theory.md §7.4); unset: no
   // reference, the output as before.
   std::optional<std::size_t> reference_particles;
+  // Each run's truth from a draw of N(m0, P0) (--x0 prior, or the model's `x0: prior`), instead of
+  // the model's fixed x0.
+  bool x0_from_prior = false;
 };
 
 // Throws CliValueError naming the option (or the model file's field) and what is wrong.

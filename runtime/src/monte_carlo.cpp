@@ -34,6 +34,11 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
   const std::size_t p = measurement ? measurement->p() : observation.p();
   if (static_cast<std::size_t>(x0.size()) != n || observation.n() != n || (measurement && measurement->n() != n))
     throw std::invalid_argument("monte carlo: x0 and the observation must have the truth's n states");
+  if (options.initial_prior &&
+      (static_cast<std::size_t>(options.initial_prior->mean.size()) != n ||
+       static_cast<std::size_t>(options.initial_prior->covariance.rows()) != n ||
+       static_cast<std::size_t>(options.initial_prior->covariance.cols()) != n))
+    throw std::invalid_argument("monte carlo: the initial prior must have the truth's n states");
   if (!(options.grid.dt > 0) || options.grid.steps == 0 || !std::isfinite(options.grid.t0) ||
       !std::isfinite(options.grid.end()))
     throw std::invalid_argument("monte carlo: the time grid needs dt > 0 and at least one step");
@@ -186,6 +191,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   result.runs = options.runs;
   result.seed = options.seed;
   result.scheme = scheme.name();
+  result.x0_from_prior = options.initial_prior.has_value();
   result.n = plan.n;
   result.criterion = options.criterion;
   aggregate(plan, filters, runs, options, threads, result);

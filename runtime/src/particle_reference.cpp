@@ -7,28 +7,11 @@
 #include <string>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 
+#include "pfgen_runtime/gaussian_draw.hpp"
 #include "pfgen_runtime/sde_system.hpp"
 
 namespace pfgen_runtime {
-
-namespace {
-
-// P0's symmetric square root S (S S^T = P0) by eigen-decomposition; round-off negative
-// eigenvalues are clipped, a clearly negative one refused (the filters' P0 must be a covariance).
-Eigen::MatrixXd symmetric_root(const Eigen::MatrixXd& P0) {
-  if (!P0.allFinite() || !P0.isApprox(P0.transpose(), 1e-12))
-    throw std::invalid_argument("particle reference: P0 must be finite and symmetric");
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(P0);
-  const Eigen::VectorXd values = solver.eigenvalues();
-  const double scale = std::max(values.cwiseAbs().maxCoeff(), 1e-300);
-  if (values.minCoeff() < -1e-10 * scale)
-    throw std::invalid_argument("particle reference: P0 is not positive semi-definite");
-  return solver.eigenvectors() * values.cwiseMax(0.0).cwiseSqrt().asDiagonal() * solver.eigenvectors().transpose();
-}
-
-}  // namespace
 
 ParticleReference::ParticleReference(const TruthScheme& scheme, const LinearObservation& observation,
                                      const ParticleReferenceOptions& options, double bound)
@@ -73,7 +56,7 @@ void ParticleReference::initialise(const ParticleReferenceOptions& options) {
       static_cast<std::size_t>(options.P0.cols()) != n_)
     throw std::invalid_argument("particle reference: m0 and P0 must have the truth's n states");
   if (!m0_.allFinite()) throw std::invalid_argument("particle reference: m0 must be finite");
-  root_ = symmetric_root(options.P0);
+  root_ = covariance_square_root(options.P0, "particle reference: P0");
   const auto n = static_cast<Eigen::Index>(n_), N = static_cast<Eigen::Index>(N_);
   particles_.resize(n, N);
   spare_.resize(n, N);

@@ -305,7 +305,12 @@ class Loader {
       }
     }
     InitialConditions ic;
-    if (YAML::Node x0 = init["x0"]; x0 && !x0.IsNull()) ic.x0 = number_list(x0, "initial.x0");
+    if (YAML::Node x0 = init["x0"]; x0 && !x0.IsNull()) {
+      if (x0.IsScalar() && x0.Scalar() == "prior")
+        ic.x0_from_prior = true;  // drawn per run from N(m0, P0) by simulate
+      else
+        ic.x0 = number_list(x0, "initial.x0");
+    }
     if (!init["m0"] || init["m0"].IsNull()) throw ModelError("initial.m0", "missing required field");
     if (!init["P0"] || init["P0"].IsNull()) throw ModelError("initial.P0", "missing required field");
     ic.m0 = number_list(init["m0"], "initial.m0");

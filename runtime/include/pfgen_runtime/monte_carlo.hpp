@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -43,6 +44,15 @@ struct RunShare {
   std::function<std::vector<std::vector<char>>(std::vector<char> mine)> gather;
 };
 
+// The truth's initial state drawn per run from N(mean, covariance) instead of a fixed x0: the
+// setting under which a Bayes filter started from that prior (the particle reference) is the
+// conditional mean. Run r draws from RandomStream(seed, r, substream::initial_state), so the draw
+// is the same for any thread or rank count; the covariance may be singular (positive semi-definite).
+struct InitialPrior {
+  Eigen::VectorXd mean;
+  Eigen::MatrixXd covariance;
+};
+
 struct MonteCarloOptions {
   TimeGrid grid;
   std::size_t runs = 100;
@@ -60,6 +70,8 @@ struct MonteCarloOptions {
   // The particle reference (particle_reference.hpp) on every run, when set: continuous undelayed
   // or sampled observations and a truth with noise only (std::invalid_argument otherwise).
   std::optional<ParticleReferenceOptions> reference;
+  // Set: each run's truth starts from a draw of this prior, and the x0 argument is not used.
+  std::optional<InitialPrior> initial_prior;
   // Called from worker threads (must be thread-safe) after each finished run with the number of
   // runs finished so far.
   std::function<void(std::size_t finished, std::size_t total)> on_run_finished;
@@ -159,6 +171,20 @@ struct CriterionStatistics {
 struct ReferenceComparison {
   std::size_t runs = 0;
   std::vector<double> distance, filter_rms, reference_rms;
+  // Their standard errors by the delta method on the runs' mean squares; NaN when runs < 2.
+  std::vector<double> distance_se, filter_rms_se, reference_rms_se;
+};
+
+// Per state component, the filter closest to the reference and whether it is closer than the
+// runner-up beyond the Monte Carlo error: the paired difference of the runs' mean squared distances
+// (runner-up minus closest, over the runs where both and the reference reached T) and its standard
+// error. Indices into MonteCarloResult::filters; no runner-up with one filter.
+struct ClosestToReference {
+  std::size_t closest = 0;
+  std::optional<std::size_t> runner_up;
+  std::size_t runs = 0;
+  double difference = std::numeric_limits<double>::quiet_NaN(), difference_se = std::numeric_limits<double>::quiet_NaN();
+  bool significant() const { return difference > 2 * difference_se; }
 };
 
 // The reference itself: its error x - m_ref over [t0, T] (horizon: the runs it reached T in), the
@@ -166,6 +192,7 @@ struct ReferenceComparison {
 struct ReferenceStatistics {
   std::size_t particles = 0;
   WindowStatistics horizon;
+  std::vector<ClosestToReference> closest;  // per state component
   EventSummary stopped;
   double mean_resamplings = 0;  // per run with a reference
 };
@@ -239,6 +266,7 @@ struct MonteCarloResult {
   std::size_t runs = 0;
   std::uint64_t seed = 0;
   std::string scheme;  // the truth scheme's name()
+  bool x0_from_prior = false;  // each run's truth started from a draw of MonteCarloOptions::initial_prior
   std::size_t n = 0;   // state components
   std::vector<FilterStatistics> filters;
   std::optional<CriterionOptions> criterion;  // as asked (the writers say which L was used)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <utility>
 
 #include "parallel_for.hpp"
@@ -154,6 +155,25 @@ CriterionStatistics criterion_statistics(const std::vector<RunResult>& runs, std
   return out;
 }
 
+// Mean and standard error (sample sd / sqrt(count)) of values, in their order; NaN where undefined.
+std::pair<double, double> mean_and_standard_error(const std::vector<double>& values) {
+  if (values.empty()) return {nan, nan};
+  const double count = static_cast<double>(values.size());
+  double sum = 0;
+  for (double v : values) sum += v;
+  const double mean = sum / count;
+  if (values.size() < 2) return {mean, nan};
+  double squares = 0;  // about the mean: differences of near-equal mean squares are common
+  for (double v : values) squares += (v - mean) * (v - mean);
+  return {mean, std::sqrt(squares / (count - 1) / count)};
+}
+
+// The standard error of sqrt(mean of values) by the delta method: se(mean) / (2 sqrt(mean)).
+double rms_standard_error(const std::vector<double>& squares) {
+  const auto [mean, se] = mean_and_standard_error(squares);
+  return mean > 0 ? se / (2 * std::sqrt(mean)) : nan;
+}
+
 // The reference's own statistics: x - m_ref over the runs it reached T in, its stops, resamplings.
 ReferenceStatistics reference_statistics(const Plan& plan, const std::vector<RunResult>& runs, std::size_t particles) {
   const std::size_t n = plan.n;
@@ -177,8 +197,13 @@ ReferenceStatistics reference_statistics(const Plan& plan, const std::vector<Run
     ++horizon.runs;
     for (std::size_t i = 0; i < n; ++i) sum[i] += reference.mean_square[i];
   }
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < n; ++i) {
     horizon.rms.push_back(horizon.runs > 0 ? std::sqrt(sum[i] / static_cast<double>(horizon.runs)) : nan);
+    std::vector<double> squares;
+    for (const RunResult& run : runs)
+      if (run.reference.last == steps) squares.push_back(run.reference.mean_square[i]);
+    horizon.rms_se.push_back(rms_standard_error(squares));
+  }
   out.mean_resamplings = referenced > 0 ? static_cast<double>(resamplings) / static_cast<double>(referenced) : nan;
   return out;
 }
@@ -200,10 +225,60 @@ ReferenceComparison reference_comparison(const Plan& plan, const std::vector<Run
     }
   }
   const double runs_counted = static_cast<double>(out.runs);
+  std::vector<double> distances, filters, references;
   for (std::size_t i = 0; i < n; ++i) {
     out.distance.push_back(out.runs > 0 ? std::sqrt(distance[i] / runs_counted) : nan);
     out.filter_rms.push_back(out.runs > 0 ? std::sqrt(filter[i] / runs_counted) : nan);
     out.reference_rms.push_back(out.runs > 0 ? std::sqrt(reference[i] / runs_counted) : nan);
+    distances.clear();
+    filters.clear();
+    references.clear();
+    for (const RunResult& run : runs) {
+      const FilterRunResult& result = run.filters[f];
+      if (result.last != steps || run.reference.last != steps) continue;
+      distances.push_back(result.reference_square[i]);
+      filters.push_back(result.mean_square[i]);
+      references.push_back(run.reference.mean_square[i]);
+    }
+    out.distance_se.push_back(rms_standard_error(distances));
+    out.filter_rms_se.push_back(rms_standard_error(filters));
+    out.reference_rms_se.push_back(rms_standard_error(references));
+  }
+  return out;
+}
+
+// Per component, the filter with the smallest RMS(m - m_ref), and its paired margin over the next.
+std::vector<ClosestToReference> closest_to_reference(const Plan& plan, const std::vector<RunResult>& runs,
+                                                     const std::vector<FilterStatistics>& filters) {
+  const std::size_t n = plan.n;
+  const auto steps = static_cast<std::ptrdiff_t>(plan.grid.steps);
+  std::vector<ClosestToReference> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    // Filters by distance, in filter order among equals; a filter with no run counted comes last.
+    std::vector<std::size_t> order;
+    for (std::size_t f = 0; f < filters.size(); ++f)
+      if (filters[f].reference && std::isfinite(filters[f].reference->distance[i])) order.push_back(f);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return filters[a].reference->distance[i] < filters[b].reference->distance[i];
+    });
+    ClosestToReference c;
+    if (order.empty()) {
+      out.push_back(c);
+      continue;
+    }
+    c.closest = order[0];
+    if (order.size() > 1) {
+      c.runner_up = order[1];
+      std::vector<double> differences;
+      for (const RunResult& run : runs) {
+        const FilterRunResult &a = run.filters[c.closest], &b = run.filters[*c.runner_up];
+        if (a.last != steps || b.last != steps || run.reference.last != steps) continue;
+        differences.push_back(b.reference_square[i] - a.reference_square[i]);
+      }
+      c.runs = differences.size();
+      std::tie(c.difference, c.difference_se) = mean_and_standard_error(differences);
+    }
+    out.push_back(c);
   }
   return out;
 }
@@ -214,19 +289,6 @@ double root_mean_square(const std::vector<double>& values) {
   double sum = 0;
   for (double v : values) sum += v * v;
   return std::sqrt(sum / static_cast<double>(values.size()));
-}
-
-// Mean and standard error (sample sd / sqrt(count)) of values, in their order; NaN where undefined.
-std::pair<double, double> mean_and_standard_error(const std::vector<double>& values) {
-  if (values.empty()) return {nan, nan};
-  const double count = static_cast<double>(values.size());
-  double sum = 0;
-  for (double v : values) sum += v;
-  const double mean = sum / count;
-  if (values.size() < 2) return {mean, nan};
-  double squares = 0;  // about the mean: differences of near-equal mean squares are common
-  for (double v : values) squares += (v - mean) * (v - mean);
-  return {mean, std::sqrt(squares / (count - 1) / count)};
 }
 
 // Window w's standard error of filter f's RMS and its pairing with filter 0, per component, in run order.
@@ -392,7 +454,10 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
     result.filters.push_back(std::move(stats));
   }
 
-  if (options.reference) result.reference = reference_statistics(plan, runs, options.reference->particles);
+  if (options.reference) {
+    result.reference = reference_statistics(plan, runs, options.reference->particles);
+    result.reference->closest = closest_to_reference(plan, runs, result.filters);
+  }
 
   MonteCarloSeries& series = result.series;
   series.index = plan.records;

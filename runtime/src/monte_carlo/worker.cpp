@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "clock.hpp"
+#include "pfgen_runtime/gaussian_draw.hpp"
 
 namespace pfgen_runtime::monte_carlo_detail {
 
@@ -38,6 +39,8 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
     weight_ = options.criterion->weight;
     weighted_ = weight_.size() > 0;
   }
+  if (options.initial_prior)
+    prior_root_ = covariance_square_root(options.initial_prior->covariance, "monte carlo: the initial prior's covariance");
   if (options.reference) {
     const double bound = options.truth_guard.bound();
     reference_ = measurement ? std::make_unique<ParticleReference>(scheme, *measurement, *options.reference, bound)
@@ -73,6 +76,10 @@ void Worker::run(std::size_t run, RunResult& out) {
 // simulate_truth's loop (simulation.cpp) into the thread's buffers, so the same bits.
 void Worker::simulate_truth(std::size_t run, RunResult& out) {
   std::optional<DivergenceEvent> divergence;
+  if (options_.initial_prior) {  // the run's own draw, from its own stream
+    RandomStream initial(options_.seed, run, substream::initial_state);
+    x0_ = draw_gaussian(options_.initial_prior->mean, prior_root_, initial);
+  }
   out.truth_last = simulate_truth_into(*scheme_, observation_, x0_, plan_.grid, options_.seed, run,
                                        options_.truth_guard, path_, dy_, divergence);
   if (divergence) {

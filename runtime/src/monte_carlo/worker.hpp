@@ -54,7 +54,8 @@ class Worker {
   std::unique_ptr<TruthScheme> scheme_;
   LinearObservation observation_;
   std::vector<FilterModel> filters_;
-  Eigen::VectorXd x0_;
+  Eigen::VectorXd x0_;          // the truth's initial state: fixed, or the current run's draw
+  Eigen::MatrixXd prior_root_;  // MonteCarloOptions::initial_prior's covariance square root
   const Plan& plan_;
   const MonteCarloOptions& options_;
   Eigen::MatrixXd path_;  // n x (steps + 1): x at the grid times of the current run

@@ -34,6 +34,9 @@ struct Diffusion {
 
 struct InitialConditions {
   std::vector<GiNaC::numeric> x0;  // may be empty when the model gives no truth initial state
+  // `x0: prior`: each simulated run's truth starts from a draw of N(m0, P0), the filters' prior
+  // (then x0 is empty). With a fixed x0 the particle reference is not the conditional mean.
+  bool x0_from_prior = false;
   std::vector<GiNaC::numeric> m0;
   std::vector<std::vector<GiNaC::numeric>> P0;
 };
