@@ -85,6 +85,9 @@ Polynomial to_polynomial(const ExpressionGraph& graph, std::size_t root, const F
           value[id] = Polynomial::constant(functions.at(node.name)(constant_of(a[0])));
         }
         break;
+      case OpKind::ZeroWhereZero:
+        value[id] = constant_of(a[0]).is_zero() ? Polynomial() : value[a[1]];
+        break;
     }
   }
   return value[root];

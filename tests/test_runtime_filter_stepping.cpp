@@ -110,3 +110,26 @@ TEST_CASE("FilterStepper stops a grid step that would need more sub-steps than i
   std::vector<double> k{0.0, 1.0};
   CHECK(fine.advance(stiff, k.data(), 0.0, 0.01, &dy) > 1);
 }
+
+TEST_CASE("FilterStepper tells equations that are not finite at the state from a step that is too stiff",
+          "[runtime][stepping][unit]") {
+  FilterStepControl control;
+  control.max_substeps = 100;
+  const double dy = 0;
+  // P doubles on every step, however short: too stiff, but its rates are finite at the state.
+  auto exploding = [](double* s, double, double, const double*) { s[1] *= 2; };
+  FilterStepper stiff(1, 1, control);
+  std::vector<double> a{0.0, 1.0};
+  REQUIRE(stiff.advance(exploding, a.data(), 0.0, 0.1, &dy) == 0);
+  CHECK(stiff.equations_finite_at_start(exploding, 0.0));
+  // A definition 1 / (m - 0.5) at m = 0.5: the rates themselves are not finite, whatever the step.
+  auto undefined = [](double* s, double, double dt, const double*) {
+    const double r = 1 / (s[0] - 0.5);
+    s[0] += r * dt;
+    s[1] += r * dt;
+  };
+  FilterStepper stepper(1, 1, control);
+  std::vector<double> b{0.5, 1.0};
+  REQUIRE(stepper.advance(undefined, b.data(), 0.0, 0.1, &dy) == 0);
+  CHECK_FALSE(stepper.equations_finite_at_start(undefined, 0.0));
+}

@@ -128,3 +128,29 @@ TEST_CASE("summary precision: the standard errors of an RMS and of a paired diff
   // sqrt(se_a^2 + se_b^2) of the mean squares.
   CHECK(average(difference_se) < 0.5 * 2 * average(rms) * average(rms_se) * std::sqrt(2.0));
 }
+
+TEST_CASE("summary: a filter whose equations are not finite at its state is reported as that, not as too stiff",
+          "[summary][runtime][unit]") {
+  const ScalarLinear model;
+  FilterModel undefined;
+  undefined.name = "undefined";
+  undefined.n = 1;
+  undefined.p = 1;
+  undefined.initial_state = [](double* state) {
+    state[0] = 0.5;
+    state[1] = 1;
+  };
+  undefined.step = [](double* state, double, double dt, const double*) {
+    const double r = 1 / (state[0] - 0.5);  // a definition that cannot be computed at m = 0.5
+    state[0] += r * dt;
+    state[1] += r * dt;
+  };
+  const MonteCarloResult result = run(3, 5, {scaled_gain_filter(model, "kb", 1.0), undefined});
+  const FilterStatistics& stats = result.filters[1];
+  CHECK(stats.undefined_runs == 5);
+  CHECK(stats.too_stiff_runs == 0);
+  CHECK(stats.divergences.count() == 5);
+  const std::string table = format_summary_table(result, {"x"});
+  CHECK(table.find("Runs stopped where the filter's equations were not finite at its own state") != std::string::npos);
+  CHECK(table.find("too stiff") == std::string::npos);
+}

@@ -13,6 +13,8 @@ FilterStepper::FilterStepper(std::size_t n, std::size_t p, const FilterStepContr
   const auto levels = static_cast<std::size_t>(control.max_depth) + 1;
   saved_.assign(levels * size_, 0.0);
   half_dy_.assign(levels * p_, 0.0);
+  probe_.assign(size_, 0.0);
+  zero_dy_.assign(p_, 0.0);
 }
 
 }  // namespace pfgen_runtime

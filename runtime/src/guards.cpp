@@ -17,6 +17,11 @@ std::string DivergenceEvent::describe() const {
     out << "a grid step needs more sub-steps than allowed at t = " << t << " (too stiff for this dt)";
     return out.str();
   }
+  if (kind == DivergenceKind::equations_undefined) {
+    out << "the filter's equations are not finite at its own state at t = " << t
+        << " (a definition such as a Cholesky entry cannot be computed there)";
+    return out.str();
+  }
   if (kind == DivergenceKind::covariance_indefinite) {
     out << "the diffusion covariance G is not positive semi-definite at t = " << t << " (eigenvalue " << value << ")";
     return out.str();

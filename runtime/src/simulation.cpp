@@ -189,7 +189,9 @@ FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const Fil
     if (filter.fixed_step()) {
       filter.step(state.data(), grid.time(k), grid.dt, dy);  // once per grid step, never refined
     } else if (stepper.advance(filter.step, state.data(), grid.time(k), grid.dt, dy) == 0) {
-      result.divergence = DivergenceEvent{grid.time(k), 0, 0.0, DivergenceKind::too_stiff};
+      const bool defined = stepper.equations_finite_at_start(filter.step, grid.time(k));
+      result.divergence = DivergenceEvent{grid.time(k), 0, 0.0,
+                                          defined ? DivergenceKind::too_stiff : DivergenceKind::equations_undefined};
       going = false;
       break;
     }

@@ -322,6 +322,13 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
       out << "\nRuns stopped as too stiff for dt (a grid step needed more filter sub-steps than allowed; "
              "counted as diverged):\n"
           << stiff.str();
+    std::ostringstream undefined;
+    for (const FilterStatistics& filter : result.filters)
+      if (filter.undefined_runs > 0) undefined << "  " << filter.name << ": " << filter.undefined_runs << " runs\n";
+    if (!undefined.str().empty())
+      out << "\nRuns stopped where the filter's equations were not finite at its own state (a definition, such as a "
+             "Cholesky entry, could not be computed there; counted as diverged; no smaller step would help):\n"
+          << undefined.str();
     out << reference_section(result, state_names);
     out << sampled_section(result);
     out << criterion_section(result);

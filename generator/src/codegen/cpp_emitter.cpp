@@ -79,6 +79,10 @@ std::string CppEmitter::operation(const ExpressionGraph&, const Node& node,
     case OpKind::Mul: return a[0] + " * " + a[1];
     case OpKind::Div: return a[0] + " / " + a[1];
     case OpKind::Neg: return "-" + a[0];
+    case OpKind::ZeroWhereZero: {
+      const std::string zero = literal(GiNaC::numeric(0));
+      return "(" + a[0] + " == " + zero + " ? " + zero + " : " + a[1] + ")";
+    }
     case OpKind::Call: {
       std::string out = node.name + "(";
       for (std::size_t k = 0; k < a.size(); ++k) out += (k ? ", " : "") + a[k];

@@ -13,6 +13,7 @@ OpCounts own_cost(const Node& node) {
     case OpKind::Mul: c.muls = 1; break;
     case OpKind::Div: c.divs = 1; break;
     case OpKind::Call: c.calls = 1; break;
+    case OpKind::ZeroWhereZero: c.adds = 1; break;  // a comparison and a select
     case OpKind::Input: case OpKind::Constant: break;
   }
   return c;
@@ -56,6 +57,9 @@ std::size_t ExpressionGraph::mul(std::size_t a, std::size_t b) {
   return intern(Node{OpKind::Mul, "", "", 0, {std::min(a, b), std::max(a, b)}});
 }
 std::size_t ExpressionGraph::div(std::size_t a, std::size_t b) { return intern(Node{OpKind::Div, "", "", 0, {a, b}}); }
+std::size_t ExpressionGraph::zero_where_zero(std::size_t guard, std::size_t value) {
+  return intern(Node{OpKind::ZeroWhereZero, "", "", 0, {guard, value}});
+}
 std::size_t ExpressionGraph::neg(std::size_t a) { return intern(Node{OpKind::Neg, "", "", 0, {a}}); }
 std::size_t ExpressionGraph::call(const std::string& function, const std::vector<std::size_t>& args) {
   return intern(Node{OpKind::Call, function, "", 0, args});

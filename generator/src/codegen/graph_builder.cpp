@@ -90,7 +90,10 @@ void GraphBuilder::define(const std::vector<FilterDefinition>& definitions,
                           const std::vector<GiNaC::ex>& variable_symbols) {
   for (std::size_t v = 0; v < variable_symbols.size() && v < variable_inputs_.size(); ++v)
     symbols_[variable_symbols[v]] = variable_inputs_[v];
-  for (const auto& d : definitions) symbols_[d.name] = expression(d.value);
+  for (const auto& d : definitions) {
+    const std::size_t value = expression(d.value);
+    symbols_[d.name] = d.zero_where_zero ? graph_.zero_where_zero(expression(*d.zero_where_zero), value) : value;
+  }
 }
 
 std::size_t GraphBuilder::variable_power(std::uint32_t variable, std::uint32_t exponent) {

@@ -85,7 +85,9 @@ UnscentedTerms unscented_terms(const Model& model, const FilterVariables& vars) 
     for (std::size_t i = j + 1; i < n; ++i) {
       GiNaC::ex entry = P(i, j);
       for (std::size_t k = 0; k < j; ++k) entry -= L[i][k] * L[j][k];
-      out.cholesky.push_back(FilterDefinition{GiNaC::ex_to<GiNaC::symbol>(L[i][j]), entry / L[j][j]});
+      // Below a zero pivot the column is 0: P positive semi-definite with a zero pivot has entry 0
+      // there too, and 0/0 would stop the filter at a prior such as P0 = diag(0, 5).
+      out.cholesky.push_back(FilterDefinition{GiNaC::ex_to<GiNaC::symbol>(L[i][j]), entry / L[j][j], L[j][j]});
     }
   }
 

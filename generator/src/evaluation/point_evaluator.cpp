@@ -94,6 +94,11 @@ class PolynomialEvaluator {
       const std::string what = "definition '" + d.name.get_name() + "'";
       GiNaC::ex value;
       try {
+        // A Cholesky entry below a zero pivot is 0 (FilterDefinition::zero_where_zero).
+        if (d.zero_where_zero && numeric_value(*d.zero_where_zero, values).is_zero()) {
+          coefficient_values_[d.name] = values[d.name] = GiNaC::ex(0);
+          continue;
+        }
         value = numeric_value(d.value, values).evalf();
       } catch (const std::exception&) {  // GiNaC's pole_error for 1/0, CLN's overflow
         throw EvaluationError(what + " cannot be computed at this point (a division by zero or an overflow)");

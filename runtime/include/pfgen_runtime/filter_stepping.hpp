@@ -61,6 +61,19 @@ class FilterStepper {
   }
   std::uint64_t refined_steps() const { return refined_; }  // grid steps that needed sub-steps
 
+  // After advance() gave up (0): whether the filter's equations are finite at the grid step's
+  // start, a finite state. A step of length 0 with dy = 0 leaves a state unchanged exactly when
+  // its rates are finite; where they are not (a definition that cannot be computed there: 0/0,
+  // the root of a negative number) no sub-step helps, and the run must not be called too stiff.
+  template <class Step>
+  bool equations_finite_at_start(const Step& step, double t) {
+    for (std::size_t i = 0; i < size_; ++i) probe_[i] = saved_[i];
+    step(probe_.data(), t, 0.0, zero_dy_.data());
+    for (std::size_t i = 0; i < size_; ++i)
+      if (!std::isfinite(probe_[i])) return false;
+    return true;
+  }
+
  private:
   // Undoes the step taken at `depth` (its start is saved there) and takes two halves with dy / 2.
   template <class Step>
@@ -112,6 +125,7 @@ class FilterStepper {
   FilterStepControl control_;
   std::vector<double> saved_;    // (max_depth + 1) states
   std::vector<double> half_dy_;  // (max_depth + 1) increments
+  std::vector<double> probe_, zero_dy_;  // equations_finite_at_start's state and dy
   std::uint64_t refined_ = 0;
   std::uint64_t calls_ = 0;  // step() calls of the grid step being refined
   bool exhausted_ = false;   // that grid step ran out of control_.max_substeps

@@ -18,10 +18,12 @@
 namespace pfgen_runtime {
 
 // too_stiff: a grid step of the filter would need more sub-steps than FilterStepControl allows.
+// equations_undefined: the filter's equations are not finite at its own finite state (one of its
+// definitions cannot be computed there), so no sub-step would help.
 // covariance_indefinite: the truth's diffusion covariance G(t, x) has a negative eigenvalue
 // beyond round-off (a model's state-dependent G can lose definiteness as x moves; `value` is
 // the eigenvalue).
-enum class DivergenceKind { non_finite, bound_exceeded, too_stiff, covariance_indefinite };
+enum class DivergenceKind { non_finite, bound_exceeded, too_stiff, covariance_indefinite, equations_undefined };
 
 struct DivergenceEvent {
   double t = 0;           // the grid time at which the offending value was first seen

@@ -446,6 +446,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       stats.refined_steps += filter.refined_steps;
       stats.refined_runs += filter.refined_steps > 0;
       stats.too_stiff_runs += filter.too_stiff;
+      stats.undefined_runs += filter.undefined;
     }
     if (filters[f].sampled()) stats.sampled = sampled_metrics(runs, f, steps, filters[f].p);
     if (options.criterion) stats.criterion = criterion_statistics(runs, f, plan.grid, options.criterion->epsilon,

@@ -206,7 +206,8 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, Filter
     if (fixed_step) {
       filter.step(state, grid.time(k), grid.dt, dy + k * plan_.p);
     } else if (stepper_.advance(filter.step, state, grid.time(k), grid.dt, dy + k * plan_.p) == 0) {
-      out.diverged = out.too_stiff = true;  // mid-step: the state is not stored
+      out.diverged = true;  // mid-step: the state is not stored
+      (stepper_.equations_finite_at_start(filter.step, grid.time(k)) ? out.too_stiff : out.undefined) = true;
       out.divergence_t = grid.time(k);
       break;
     }

@@ -15,7 +15,8 @@
 
 namespace pfgen::codegen {
 
-enum class OpKind { Input, Constant, Add, Sub, Mul, Div, Neg, Call };
+// ZeroWhereZero(guard, value): 0 where guard == 0, else value (a Cholesky entry below a zero pivot).
+enum class OpKind { Input, Constant, Add, Sub, Mul, Div, Neg, Call, ZeroWhereZero };
 
 struct Node {
   OpKind kind;
@@ -46,6 +47,7 @@ class ExpressionGraph {
   std::size_t div(std::size_t a, std::size_t b);
   std::size_t neg(std::size_t a);
   std::size_t call(const std::string& function, const std::vector<std::size_t>& args);
+  std::size_t zero_where_zero(std::size_t guard, std::size_t value);
 
   const Node& node(std::size_t id) const { return nodes_.at(id); }
   std::size_t size() const { return nodes_.size(); }

@@ -47,8 +47,14 @@ struct InitialConditions {
 // polynomial of m and P, such as a filter printed in the information matrix Q = -eps P^-1, can
 // be written as printed while m_drift, P_drift and gain stay polynomial in m and P.
 struct FilterDefinition {
+  FilterDefinition(GiNaC::symbol name_, GiNaC::ex value_, std::optional<GiNaC::ex> zero_where_zero_ = std::nullopt)
+      : name(std::move(name_)), value(std::move(value_)), zero_where_zero(std::move(zero_where_zero_)) {}
   GiNaC::symbol name;
   GiNaC::ex value;
+  // Set: the definition is 0 wherever this expression is 0, and `value` there is not computed.
+  // A Cholesky entry below a zero pivot (the ukf with a positive semi-definite P: a state with
+  // variance 0 has a zero column) is entry / pivot = 0/0 as written; the column is 0.
+  std::optional<GiNaC::ex> zero_where_zero;
 };
 
 // A filter the model file gives by its equations (`filters:`), not derived by pfgen:
