@@ -1,5 +1,7 @@
 #include "pfgen/codegen/filter_codegen.hpp"
 
+#include <cstdio>
+
 #include "pfgen/codegen/cholesky_solve.hpp"
 #include "pfgen/codegen/correction_factor.hpp"
 #include "pfgen/codegen/cpp_names.hpp"
@@ -278,6 +280,12 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
   const std::size_t n = eq.n();
   const SampledUpdate& u = eq.update;
   const std::size_t r = u.r();
+  if (r > kMaxSampledOutputs)
+    throw CodegenError("filter '" + eq.name + "' of model " + model.name + " samples " + std::to_string(r) +
+                       " outputs; its generated update writes the Cholesky solve out for every output (O(r^3) "
+                       "code: 1.2 MB of C++ at r = 64, 27 MB at r = 200, which a compiler takes minutes over), so "
+                       "code generation takes at most " + std::to_string(kMaxSampledOutputs) +
+                       " outputs; derive and eval take any");
   const FunctionNames names = function_names(model);
   FunctionCode derivatives = derivatives_code(model, eq, options, names);
   const bool euler = !eq.P_euler.empty();
@@ -458,7 +466,33 @@ OpCounts GeneratedFilter::cse_total() const {
   return total;
 }
 
+double codegen_terms(const FilterEquations& eq) {
+  double terms = 0;
+  auto add = [&terms](const std::vector<Polynomial>& polynomials) {
+    for (const Polynomial& p : polynomials) terms += static_cast<double>(p.terms().size());
+  };
+  add(eq.m_drift);
+  for (const auto& row : eq.gain) add(row);
+  add(eq.predicted_observation);
+  for (const auto& row : eq.jacobian_term) add(row);
+  add(eq.P_moment);
+  add(eq.P_diffusion);
+  add(eq.P_correction);
+  add(eq.P_euler);
+  add(eq.x_star_drift);
+  return terms;
+}
+
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
+  if (const double terms = codegen_terms(eq); terms > kMaxCodegenTerms) {
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "filter '%s' of model %s has %.0f terms in its equations; code generation holds at most %.0f "
+                  "(about 1.1 kB each while it builds the code: this would need about %.1f GB); derive and eval "
+                  "handle it, and a model with fewer states or a lower degree generates",
+                  eq.name.c_str(), model.name.c_str(), terms, kMaxCodegenTerms, terms * 1.1e3 / 1e9);
+    throw CodegenError(text);
+  }
   if (eq.is_sampled()) return generate_sampled_code(model, eq, options);
   if (eq.is_delayed()) return generate_delayed_code(model, eq, options);
   const FilterVariables& vars = eq.variables;

@@ -49,6 +49,23 @@ struct GeneratedFilter {
   OpCounts cse_total() const;
 };
 
+// Code generation holds a graph of every expanded equation beside the structured form it may
+// emit instead, about 1.1 kB per equation term: the dense cubic models' optimal filters took
+// 150 MB at n = 10 (0.13 million terms), 670 MB at n = 14 (0.64 million), 1.6 GB at n = 16 (1.2
+// million) and ended in bad_alloc at n = 20 (3.6 million), where derive needs 250 MB. A filter with
+// more terms than this is refused before any of it is built, naming the filter and its count
+// (CodegenError).
+inline constexpr double kMaxCodegenTerms = 1500000;
+
+// A sampled filter's update writes its Cholesky solve out for every output, O(r^3) straight-line
+// code: 1.2 MB of C++ at r = 64, 4 MB at r = 100 and 27 MB at r = 200, which a compiler takes
+// minutes over. Code generation takes at most this many outputs (derive and eval take any).
+inline constexpr std::size_t kMaxSampledOutputs = 64;
+
+// The terms of the polynomials code generation reads from `eq` (drifts, gain, predicted
+// observation, the P equations' parts, x*'s drift).
+double codegen_terms(const FilterEquations& eq);
+
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
 
 }  // namespace pfgen::codegen

@@ -1,0 +1,59 @@
+// Code generation's budget (codegen::kMaxCodegenTerms): a filter whose equations have more terms
+// than code generation can hold in memory is refused before any of it is built, in one message
+// naming the filter, its terms and the memory it would need; the dense cubic n = 20 optimal filter
+// (3.6 million terms) ran 92 s and ended in bad_alloc at 2.66 GB. Smaller filters are untouched.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "pfgen/codegen/filter_codegen.hpp"
+#include "pfgen/codegen/graph_builder.hpp"
+#include "pfgen/derivation/filter_equations.hpp"
+#include "support/cli_helpers.hpp"
+#include "support/dense_cubic_model.hpp"
+#include "support/test_paths.hpp"
+
+using namespace pfgen;
+
+TEST_CASE("codegen refuses a filter beyond its budget of equation terms, before building any code",
+          "[codegen][unit]") {
+  const Model big = pfgen_test::dense_cubic_model(20);
+  const FilterEquations optimal = derive_filter(big, FilterKind::Optimal);
+  CHECK(codegen::codegen_terms(optimal) > codegen::kMaxCodegenTerms);
+  try {
+    (void)codegen::generate_filter_code(big, optimal, codegen::CodegenOptions{});
+    FAIL("the 20-state dense cubic optimal filter was generated");
+  } catch (const codegen::CodegenError& e) {
+    const std::string message = e.what();
+    CHECK(message.find("filter 'optimal' of model dense_cubic_20 has 3604699 terms in its equations; code "
+                       "generation holds at most 1500000") == 0);
+    CHECK(message.find("would need about 4.0 GB") != std::string::npos);
+  }
+  // Within the budget: the 4-state model generates as before.
+  const Model small = pfgen_test::dense_cubic_model(4);
+  const FilterEquations within = derive_filter(small, FilterKind::Optimal);
+  CHECK(codegen::codegen_terms(within) < codegen::kMaxCodegenTerms);
+  CHECK_NOTHROW(codegen::generate_filter_code(small, within, codegen::CodegenOptions{}));
+}
+
+TEST_CASE("codegen and simulate refuse a sampled observation of more outputs than the unrolled update takes",
+          "[codegen][integration]") {
+  using namespace pfgen_test;
+  TempDir dir;
+  const std::string model = test_data_dir() + "/sampled_65_outputs.yaml";
+  const std::string message = "filter 'cd-optimal' of model sampled_65_outputs samples 65 outputs";
+  for (const auto& args : {std::vector<std::string>{"codegen", model, "-o", dir.file("out")},
+                           std::vector<std::string>{"simulate", model, "--cache-dir", dir.file("cache"), "-q"}}) {
+    const auto r = run_pfgen(args);
+    INFO(r.err);
+    CHECK(r.exit_code == 1);
+    CHECK(count_lines(r.err) == 1);
+    CHECK(r.err.find(message) != std::string::npos);
+    CHECK(r.err.find("code generation takes at most 64 outputs") != std::string::npos);
+  }
+  CHECK_FALSE(std::filesystem::exists(dir.file("out")));
+  CHECK_FALSE(std::filesystem::exists(dir.file("cache")));
+  CHECK(run_pfgen({"derive", model}).exit_code == 0);  // derive and eval take any number of outputs
+}
