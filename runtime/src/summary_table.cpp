@@ -315,20 +315,19 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
     if (!refined.str().empty())
       out << "\nGrid steps integrated in sub-steps (one step would have changed P by more than its tolerance):\n"
           << refined.str();
-    std::ostringstream stiff;
-    for (const FilterStatistics& filter : result.filters)
-      if (filter.too_stiff_runs > 0) stiff << "  " << filter.name << ": " << filter.too_stiff_runs << " runs\n";
-    if (!stiff.str().empty())
-      out << "\nRuns stopped as too stiff for dt (a grid step needed more filter sub-steps than allowed; "
-             "counted as diverged):\n"
-          << stiff.str();
-    std::ostringstream undefined;
-    for (const FilterStatistics& filter : result.filters)
-      if (filter.undefined_runs > 0) undefined << "  " << filter.name << ": " << filter.undefined_runs << " runs\n";
-    if (!undefined.str().empty())
-      out << "\nRuns stopped where the filter's equations were not finite at its own state (a definition, such as a "
-             "Cholesky entry, could not be computed there; counted as diverged; no smaller step would help):\n"
-          << undefined.str();
+    // Runs stopped for a reason of their own, a section each: "  name: N runs" per filter with any.
+    auto stopped_runs = [&](const std::string& heading, std::size_t FilterStatistics::*runs) {
+      std::ostringstream lines;
+      for (const FilterStatistics& filter : result.filters)
+        if (filter.*runs > 0) lines << "  " << filter.name << ": " << filter.*runs << " runs\n";
+      if (!lines.str().empty()) out << "\n" << heading << ":\n" << lines.str();
+    };
+    stopped_runs("Runs stopped as too stiff for dt (a grid step needed more filter sub-steps than allowed; counted as "
+                 "diverged)",
+                 &FilterStatistics::too_stiff_runs);
+    stopped_runs("Runs stopped where the filter's equations were not finite at its own state (a definition, such as "
+                 "a Cholesky entry, could not be computed there; counted as diverged; no smaller step would help)",
+                 &FilterStatistics::undefined_runs);
     out << reference_section(result, state_names);
     out << sampled_section(result);
     out << criterion_section(result);
