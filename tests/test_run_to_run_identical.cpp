@@ -42,16 +42,23 @@ TEST_CASE("run to run: sums in products print and generate the same in every run
 
 // eval sums floating-point values (a ukf's Cholesky entries, a user filter's definitions); GiNaC's
 // subs() then evalf() added them in its hash order, and the last digit changed in about one run in
-// a dozen (pfgen/algebra/numeric_value.hpp). Every kind of two models, at a point where the
-// Cholesky entries and definitions are irrational, with a parameter set on the command line.
+// a dozen (pfgen/algebra/numeric_value.hpp). Every kind of five models (continuous, sampled,
+// delayed, risk-sensitive), at points where the Cholesky entries and definitions are irrational,
+// with parameters set on the command line.
 TEST_CASE("run to run: eval prints the same digits in every run, for every kind", "[determinism][integration]") {
   constexpr int kRuns = 6;
-  const std::string P = "1.3,0.21,-0.17;0.21,2.7,0.33;-0.17,0.33,1.9";
+  const std::string m3 = "--m=0.37,-1.21,2.9", P3 = "1.3,0.21,-0.17;0.21,2.7,0.33;-0.17,0.33,1.9";
+  const std::string m2 = "--m=0.37,-1.21", P2 = "1.3,0.21;0.21,2.7";
+  // Continuous (with the ukf and a user filter's definitions), sampled, delayed and risk-sensitive.
   const struct {
-    std::string model, assignment;
-  } models[] = {{"lorenz_multiplicative.yaml", "q=0.37"}, {"sums_in_products.yaml", "a=0.3"}};
+    std::string model, assignment, m, P;
+  } models[] = {{test_data_dir() + "/lorenz_multiplicative.yaml", "q=0.37", m3, P3},
+                {test_data_dir() + "/sums_in_products.yaml", "a=0.3", m3, P3},
+                {example("paper003/example2_gamma05.yaml"), "", m2, P2},
+                {example("delay_linear.yaml"), "a=-0.37", "--m=0.37", "1.3"},
+                {example("paper002/reactor.yaml"), "", m2, P2}};
   for (const auto& m : models) {
-    const std::string model = test_data_dir() + "/" + m.model;
+    const std::string& model = m.model;
     // Every filter the model offers, from the message that lists them: "... (known: a, b, c)".
     const std::string refused = run_pfgen({"derive", model, "--filter", "nonexistent"}).err;
     const auto open = refused.find("(known: ");
@@ -64,8 +71,9 @@ TEST_CASE("run to run: eval prints the same digits in every run, for every kind"
     for (const std::string& filter : filters) {
       std::set<std::string> outputs;
       for (int run = 0; run < kRuns; ++run) {
-        ProcessResult r = run_pfgen({"eval", model, "--filter", filter, "--m=0.37,-1.21,2.9", "--P", P, "--set",
-                                     m.assignment});
+        std::vector<std::string> args{"eval", model, "--filter", filter, m.m, "--P", m.P};
+        if (!m.assignment.empty()) args.insert(args.end(), {"--set", m.assignment});
+        ProcessResult r = run_pfgen(args);
         INFO(m.model << " " << filter << ": " << r.err);
         REQUIRE(r.exit_code == 0);
         outputs.insert(r.out);
