@@ -192,8 +192,9 @@ int run_derive(const DeriveOptions& options) {
         options.filter.empty() ? default_filter_names(model).front() : single_filter(options.filter, model);
     // Kept, never freed: the process ends after printing, and freeing a big filter's millions of terms
     // one by one (dense cubic n = 20: 3.3 million) costs a tenth of the whole command. A static pointer
-    // keeps them reachable, so leak checkers do not report them.
-    static const FilterEquations* kept_until_exit = nullptr;
+    // keeps them reachable, so leak checkers do not report them; volatile, because the optimiser
+    // drops a store to a static nobody reads, and LeakSanitizer then reported the filter as leaked.
+    static const FilterEquations* volatile kept_until_exit = nullptr;
     kept_until_exit = new FilterEquations(derive_named_filter(model, name));
     const FilterEquations& eq = *kept_until_exit;
     timer.end_phase("derive_seconds");

@@ -54,7 +54,14 @@ ex value_of(const ex& e, const GiNaC::exmap& values) {
   }
   if (GiNaC::is_a<GiNaC::power>(e)) {
     const ex base = value_of(e.op(0), values), exponent = value_of(e.op(1), values);
-    if (GiNaC::is_a<numeric>(base) && GiNaC::is_a<numeric>(exponent)) return settled(GiNaC::pow(base, exponent));
+    if (GiNaC::is_a<numeric>(base) && GiNaC::is_a<numeric>(exponent)) {
+      // 0 to a negative power is thrown here: GiNaC's pow() would throw from inside its evaluation
+      // and leak the power it had allocated.
+      const numeric& b = GiNaC::ex_to<numeric>(base);
+      const numeric& x = GiNaC::ex_to<numeric>(exponent);
+      if (b.is_zero() && x.is_real() && x.is_negative()) throw GiNaC::pole_error("numeric_value: division by zero", 1);
+      return settled(GiNaC::pow(base, exponent));
+    }
     return GiNaC::pow(base, exponent);
   }
   if (GiNaC::is_a<GiNaC::function>(e)) {
