@@ -1,5 +1,5 @@
 #!/bin/sh
-# Compile time and peak memory of the generated dense cubic optimal filter (README, "Benchmarks",
+# Compile time and peak memory of the generated dense cubic optimal filter (docs/benchmarks.md,
 # "Compiling large generated functions"). For each n, the model (dense_cubic_yaml) is generated with
 # `pfgen codegen --filter optimal` (template scalar, the default), once as is and, with --whole,
 # also with --max-function-ops 0 (one function, as before the split); a translation unit including

@@ -1,7 +1,7 @@
 // ns per step of pfgen's generated optimal filter against a hand-written fixed-size Eigen
 // implementation of the same Heun step, for the dense linear models of
 // tests/support/dense_linear_system.hpp (n = 4, 8, 16, dense stable A, dense constant G, p = 3;
-// float for n = 4 and 8, see benchmarks/CMakeLists.txt), where the optimal filter is the Kalman-Bucy filter (README, "Generated code against hand-written
+// float for n = 4 and 8, see benchmarks/CMakeLists.txt), where the optimal filter is the Kalman-Bucy filter (docs/benchmarks.md, "Generated code against hand-written
 // code").
 //
 // Before timing, every case runs both filters from their initial states over the same 1000

@@ -1,4 +1,4 @@
-// bench_ins16: the 16-state strapdown INS of examples/ins16.yaml (README, "A 16-state INS").
+// bench_ins16: the 16-state strapdown INS of examples/ins16.yaml (docs/benchmarks.md, "A 16-state INS").
 //
 // 1. Operation counts of `derivatives()` for its `ekf` and `optimal` filters, with CSE and without
 //    (the counts `pfgen codegen --stats` reports: every output as its own expression tree, or

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole-command times for examples/ins16.yaml (README, "A 16-state INS"): `pfgen derive` of its
+# Whole-command times for examples/ins16.yaml (docs/benchmarks.md, "A 16-state INS"): `pfgen derive` of its
 # `ekf` and `optimal` filters (text and JSON) and `pfgen codegen` of both, as a user meets them
 # (reading and checking the model file, the derivation, printing or generating, the process's
 # exit). Median wall-clock and CPU (user + system) seconds over RUNS runs after one warm-up run,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scaling of `mpirun -n K pfgen simulate` from 1 to 2 ranks (issue 14; README, "Monte Carlo across
+# Scaling of `mpirun -n K pfgen simulate` from 1 to 2 ranks (issue 14; docs/guide/mpi.md
 # machines (MPI)"): RUNS runs (default 2000) of paper 002's satellite example, --threads 1 per
 # rank, warm plugin cache. Each repeat times the whole mpirun command with 1 rank, then with 2
 # (alternating, so that a change in the machine's load hits both), and prints the medians and the
@@ -45,7 +45,7 @@ awk -v runs="$runs" -v r="$repeats" '
   }
   $1 == 1 { one[++n1] = $2 } $1 == 2 { two[++n2] = $2; ratio[n2] = one[n2] / $2 }
   END {
-    printf "%d runs of paper 002 satellite (4 filters, 1000 steps a run), --threads 1 per rank, median of %d:\n", runs, r
+    printf "%d runs of the Alcorta-Garcia et al. 2011 satellite (4 filters, 1000 steps a run), --threads 1 per rank, median of %d:\n", runs, r
     printf "  mpirun -n 1: %.2f s wall\n", median(one, n1)
     printf "  mpirun -n 2: %.2f s wall   (speed-up, median of the pairs: %.2fx)\n", median(two, n2), median(ratio, n2)
     printf "  stdout and CSV of 1 rank, 2 ranks and the single process: identical\n"

@@ -31,7 +31,7 @@ initial: {x0: [0.5, 0.5, 0.5, 0.5], m0: [0, 0, 0, 0], P0: [[1, 0, 0, 0], [0, 1, 
 EOF
 
 filters="cd-euler@10,cd-optimal@10,cd-ekf@10"
-printf '%-40s %-14s %12s %10s\n' "model" "filter" "us/sample" "ratio"
+printf '%-46s %-14s %12s %10s\n' "model" "filter" "us/sample" "ratio"
 bench() {  # label model T dt
   "$pfgen" simulate "$2" --filters "$filters" --runs "$runs" --T "$3" --dt "$4" --threads 1 --seed 1 \
     --cache-dir "$work/cache" >"$work/table.txt" 2>"$work/timing.txt"
@@ -40,10 +40,10 @@ bench() {  # label model T dt
   base=$(awk '$1 == "cd-euler@10:" {for (i = 1; i <= NF; ++i) if ($i == "us/sample") {v = $(i + 2); sub(/\)/, "", v); print v}}' "$work/timing.txt")
   for f in cd-euler@10 cd-optimal@10 cd-ekf@10; do
     awk -v f="$f:" -v label="$1" -v base="$base" '$1 == f {for (i = 1; i <= NF; ++i) if ($i == "us/sample") {
-      v = $(i + 2); sub(/\)/, "", v); printf "%-40s %-14s %12.3f %10.2f\n", label, substr(f, 1, length(f) - 1), v, v / base}}' "$work/timing.txt"
+      v = $(i + 2); sub(/\)/, "", v); printf "%-46s %-14s %12.3f %10.2f\n", label, substr(f, 1, length(f) - 1), v, v / base}}' "$work/timing.txt"
   done
 }
-bench "paper 003 example 1 (n = 1), gamma = 1" "$root/examples/allahyani_date_example1_gamma1.yaml" 200 1
-bench "paper 003 example 2 (n = 2), gamma = 1" "$root/examples/paper003/example2_gamma1.yaml" 200 1
+bench "Allahyani & Date example 1 (n = 1), gamma = 1" "$root/examples/allahyani_date_example1_gamma1.yaml" 200 1
+bench "Allahyani & Date example 2 (n = 2), gamma = 1" "$root/examples/paper003/example2_gamma1.yaml" 200 1
 bench "dense cubic n = 4, period 0.1" "$work/dense.yaml" 2 0.1
 echo "($runs runs each, 1 thread; us/sample = CPU time of the filter pass / samples absorbed)"

@@ -3,7 +3,7 @@
 // the state augmented with its delayed copies (tests/support/delayed_linear_reference.hpp), all
 // fed the same dy of the same truths: dx = a x dt + sigma dW1 sampled exactly on the grid,
 // dy_k = (x(t_k - h) + x(t_{k+1} - h)) dt/2 + dW2 (the runtime's trapezoid), x(s) = x(0) for
-// s < 0, x(0) ~ N(m0 = 1, P0 = 1). README, "How good is Φ*?", shows the output and the command.
+// s < 0, x(0) ~ N(m0 = 1, P0 = 1). docs/reproductions/basin-rodriguez-gonzalez-martinez-zuniga-2004.md shows the output and the command.
 //
 //   delay_reference [RUNS [T [SEED]]]     (defaults 2000 runs, T = 10, seed 1)
 //

@@ -10,7 +10,7 @@
 // as the runtime forms it, dW2 from pfgen_runtime::RandomStream(seed, run, observation noise), so the
 // x(0) reading is the same data as `pfgen simulate` draws. Prints the mean estimate at t = 1..4 of
 // each filter over the runs, ± standard error, beside the paper's printed values, and the mean |x - m|
-// (README, "Paper 004").
+// (docs/reproductions/basin-rodriguez-gonzalez-martinez-zuniga-2004.md).
 //
 //   paper004_prehistory [RUNS [SEED]]     (defaults 2000 runs, seed 4)
 #include <cmath>

@@ -1,4 +1,4 @@
-// libFuzzer target (README, "Fuzzing"): model file text -> load_model_text -> every filter the
+// libFuzzer target (docs/development.md, "Fuzzing"): model file text -> load_model_text -> every filter the
 // model offers (the opt-in ukf, risk-sensitive, user filters with define:, sampled and delayed kinds,
 // Stratonovich models' Ito drift) derived, evaluated at the model's prior (m0, P0, t = 0: the
 // deterministic numeric evaluation, the Cholesky entries, the sampled update) and generated as code

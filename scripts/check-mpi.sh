@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The optional MPI build (README, "Monte Carlo across machines (MPI)"): installs Debian's Open MPI
+# The optional MPI build (docs/guide/mpi.md): installs Debian's Open MPI
 # when missing, configures build-mpi/ (or $PFGEN_MPI_BUILD_DIR) with -DPFGEN_WITH_MPI=ON, builds
 # pfgen and the MPI tests, and runs them (`ctest -L mpi`: mpirun -n 2 against the single process).
 # Not part of scripts/run-tests.sh: the default build and CI need no MPI.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Embedded proof (README, "Embedded (Cortex-M4F)"): the float code `pfgen codegen --scalar float`
+# Embedded proof (docs/guide/embedded.md): the float code `pfgen codegen --scalar float`
 # writes for paper 000's and paper 001's examples (optimal filter), for paper 003's Example 1
 # with gamma = 1 (sampled observations, cd-optimal: predict/update) and for delay_linear (delayed
 # observations, delay-optimal with its history ring), cross-compiled for a
@@ -35,7 +35,7 @@ while [ $# -gt 0 ]; do
   esac
 done
 
-# The tolerance, justified in README "Embedded (Cortex-M4F)": float's unit roundoff is
+# The tolerance, justified in docs/guide/embedded.md: float's unit roundoff is
 # u = 2^-24 = 6e-8; with k = 10-20 roundings per state entry per step, rounding errors that add
 # up like a random walk over N = 500 steps give sqrt(N) * k * u = 1.3e-5 to 2.7e-5 relative, and
 # RTOL keeps a factor 4-8 over that (the filters are stable, so the linear worst case

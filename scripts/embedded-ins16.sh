@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The 16-state INS's float `ekf` on a Cortex-M4F (README, "A 16-state INS"): the path of
+# The 16-state INS's float `ekf` on a Cortex-M4F (docs/benchmarks.md, "A 16-state INS"): the path of
 # scripts/embedded-check.sh (same toolchain, flags, start-up code and linker script, same QEMU
 # machine) for embedded/ins16_main.cpp, which steps the filter 1000 times (dt = 0.01) with Params
 # set before each step. Reports flash and RAM, the step function's code size, the measured stack

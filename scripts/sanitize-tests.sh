@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (README, "Tests"):
+# The whole test suite under AddressSanitizer and UndefinedBehaviorSanitizer (docs/development.md):
 # a separate build directory (build-sanitize/, or $PFGEN_SANITIZE_BUILD_DIR) with
 # -fsanitize=address,undefined, then every ctest test except the embedded and package ones
 # (they cross-compile or install, and run no pfgen code of their own under the sanitizers).

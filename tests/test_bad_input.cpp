@@ -37,7 +37,7 @@ const std::vector<BadModel>& bad_models() {
       {"syntax_division_by_zero.yaml", "diffusion", 1, 1, 5, "division by zero"},
       {"complex_coefficient.yaml", "drift", 1, 0, 4, "is not real"},
       {"huge_exponent_literal.yaml", "drift", 1, 0, 4, "exponent of '1e99999999999' is too large"},
-      // limits on one expression, checked before GiNaC parses it (README, "Model file reference")
+      // limits on one expression, checked before GiNaC parses it (docs/guide/model-file.md)
       {"nesting_parentheses.yaml", "drift", 1, 0, 4, "expression nests deeper than 256 parentheses"},
       {"nesting_unary_minus.yaml", "diffusion", 1, 1, 5, "expression nests signs and exponents deeper than 256 levels"},
       {"nesting_power_chain.yaml", "drift", 1, 0, 4, "expression nests signs and exponents deeper than 256 levels"},
@@ -78,7 +78,7 @@ const std::vector<BadModel>& bad_models() {
        "expected a single value, found none (YAML reads ~ and null, Null or NULL as no value"},
       {"state_named_like_time.yaml", "states", 1, 0, 3,
        "'t' is the name of time (t unless the field `time:` names it otherwise); give this one another name"},
-      // expanded term counts, bounded before anything expands (README, "Model file reference")
+      // expanded term counts, bounded before anything expands (docs/guide/model-file.md)
       {"expansion_power_of_sum.yaml", "drift", 1, 0, 4,
        "'(1 + x + y)^1000' would expand to up to 501501 terms, above the limit of 100000"},
       {"expansion_g_times_g_transpose.yaml", "diffusion", 1, 0, 5,

@@ -1,5 +1,5 @@
 // The augmented-state Kalman filter of tests/support/delayed_linear_reference.hpp, the exact
-// reference the delay filter kinds are measured against (README, "How good is Φ*?"), checked
+// reference the delay filter kinds are measured against (docs/reproductions/basin-rodriguez-gonzalez-martinez-zuniga-2004.md), checked
 // against what does not share its code: the scalar Kalman filter written out here (no delay),
 // and its own truth simulation (its error variance must be its P).
 #include <catch2/catch.hpp>

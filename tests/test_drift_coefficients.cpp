@@ -340,24 +340,3 @@ TEST_CASE("pfgen latex --coefficients compiles with pdflatex", "[coefficients][c
     CHECK(std::filesystem::exists(dir.file(stem + ".pdf")));
   }
 }
-
-TEST_CASE("README's sample of derive --coefficients is the program's output", "[coefficients][integration]") {
-  const std::string readme = read_file(source_dir() + "/README.md");
-  const std::string command = "      $ build/generator/pfgen derive tests/data/coefficients/satellite.yaml --coefficients\n";
-  const std::size_t at = readme.find(command);
-  REQUIRE(at != std::string::npos);
-  // The indented lines after the command (blank lines inside kept), up to the first unindented one.
-  std::string sample;
-  std::size_t pos = at + command.size();
-  while (pos < readme.size()) {
-    const std::size_t end = readme.find('\n', pos);
-    const std::string line = readme.substr(pos, end - pos);
-    if (!line.empty() && line.rfind("      ", 0) != 0) break;
-    sample += (line.empty() ? line : line.substr(6)) + "\n";
-    pos = end + 1;
-  }
-  while (sample.size() >= 2 && sample.compare(sample.size() - 2, 2, "\n\n") == 0) sample.pop_back();
-  const ProcessResult r = run_pfgen({"derive", fixture("satellite.yaml"), "--coefficients"});
-  REQUIRE(r.exit_code == 0);
-  CHECK(r.out == sample);
-}

@@ -21,9 +21,9 @@ using namespace pfgen_test;
 
 namespace {
 
-// The rows of the README's "Filter kinds" table: the cells of each row, backticks removed.
+// The rows of the table in docs/guide/filter-kinds.md: the cells of each row, backticks removed.
 std::vector<std::vector<std::string>> readme_kind_table() {
-  const std::string readme = read_file(source_dir() + "/README.md");
+  const std::string readme = read_file(source_dir() + "/docs/guide/filter-kinds.md");
   const std::size_t header = readme.find("| `--filter` | expectations |");
   REQUIRE(header != std::string::npos);
   std::vector<std::vector<std::string>> rows;
@@ -95,12 +95,12 @@ TEST_CASE("kind registry: names are unique, valid, and parse back to their kind"
   CHECK(!parse_filter_kind(""));
 }
 
-TEST_CASE("kind registry: the README's table is the registry written out", "[unit][kinds]") {
+TEST_CASE("kind registry: the guide's table is the registry written out", "[unit][kinds]") {
   const auto rows = readme_kind_table();
   REQUIRE(rows.size() == filter_kinds().size());
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const FilterKindInfo& info = filter_kinds()[k];
-    INFO("README row " << k + 1 << ", kind " << info.name);
+    INFO("docs/guide/filter-kinds.md row " << k + 1 << ", kind " << info.name);
     REQUIRE(rows[k].size() >= 7);
     CHECK(rows[k][0] == info.name);
     CHECK(rows[k][1] == expectation_words(info.expectation));
@@ -198,7 +198,7 @@ TEST_CASE("kind registry: command-line help, errors and defaults list the regist
   }
 }
 
-TEST_CASE("scheme registry: the runtime, the model file, the command line and the README name the same schemes",
+TEST_CASE("scheme registry: the runtime, the model file, the command line and the guide name the same schemes",
           "[integration][kinds]") {
   namespace rt = pfgen_runtime;
   const auto& schemes = pfgen_support::truth_schemes();
@@ -231,6 +231,6 @@ TEST_CASE("scheme registry: the runtime, the model file, the command line and th
   }
   const ProcessResult help = run_pfgen({"simulate", "--help"});
   CHECK(help.out.find(bar) != std::string::npos);
-  const std::string readme = read_file(source_dir() + "/README.md");
+  const std::string readme = read_file(source_dir() + "/docs/guide/model-file.md");
   CHECK(readme.find("| `scheme` | truth scheme | " + readme_cell + " |") != std::string::npos);
 }

@@ -1,6 +1,6 @@
 // scripts/reproduce-paper002.sh with small settings (Tables 1, 2 and 4, their first eps, gamma = 1,
 // 8 runs, dt = 0.01): its parsing and layout, the initial matrices it repairs and derives, and part 2's
-// run of the invalid printed P(0) and Q(0). The figures of the full run are in the README ("Paper 002").
+// run of the invalid printed P(0) and Q(0). The figures of the full run are in docs/reproductions/alcorta-garcia-2011.md.
 #include <catch2/catch.hpp>
 
 #include <array>

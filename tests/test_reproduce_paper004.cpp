@@ -1,7 +1,7 @@
 // scripts/reproduce-paper004.sh with small settings (2 runs, dt = 0.01: the delay is 80 steps): its
 // parsing and layout, and the facts that do not depend on the number of runs (the as-printed truth
 // blows up before t = 1; the variant's truth is the paper's printed x(1), x(2), x(4)). The figures
-// of the full run are in the README ("Paper 004").
+// of the full run are in docs/reproductions/basin-rodriguez-gonzalez-martinez-zuniga-2004.md.
 #include <catch2/catch.hpp>
 
 #include <regex>

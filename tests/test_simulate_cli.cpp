@@ -1,6 +1,6 @@
 // `pfgen simulate` end to end: the real program derives, compiles (into a per-test cache) and
 // runs the example models. Short horizons and few runs keep each case to a few seconds; the
-// full reproductions are commands of their own (README, "Reproductions").
+// full reproductions are commands of their own (docs/reproductions/).
 #include <catch2/catch.hpp>
 
 #include <cmath>

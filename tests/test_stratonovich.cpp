@@ -150,7 +150,7 @@ TEST_CASE("stratonovich: paper 000's truth blows up with the inverse Gaussian la
 }
 
 // scripts/paper000-blowup.sh with small settings: its table (both readings beside the exact law)
-// and the simulate sections it quotes. The figures of the full run are in the README.
+// and the simulate sections it quotes. The figures of the full run are in docs/reproductions/basin-perez-skliar-2006.md.
 TEST_CASE("stratonovich: the paper 000 blow-up script runs with small settings", "[stratonovich][simulate][compiler]") {
   TempDir dir;
   const auto result = run_program({"env", "PFGEN=" + pfgen_executable(), "THREADS=1",

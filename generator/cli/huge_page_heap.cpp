@@ -36,7 +36,7 @@ bool kernel_gives_huge_pages_when_asked() {
 
 void use_huge_page_heap(char** argv) {
 #if defined(__GLIBC__) && defined(__linux__)
-  // Opt-in: whether huge pages pay depends on the machine (README, "Benchmarks").
+  // Opt-in: whether huge pages pay depends on the machine (docs/benchmarks.md).
   const char* opt_in = std::getenv("PFGEN_HUGE_PAGES");
   if (opt_in == nullptr || std::strcmp(opt_in, "1") != 0) return;
   const char* tunables = std::getenv("GLIBC_TUNABLES");

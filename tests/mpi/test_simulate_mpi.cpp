@@ -1,4 +1,4 @@
-// `mpirun -n 2 pfgen simulate` (built with -DPFGEN_WITH_MPI=ON; README, "Monte Carlo across
+// `mpirun -n 2 pfgen simulate` (built with -DPFGEN_WITH_MPI=ON; docs/guide/mpi.md
 // machines (MPI)") against the single process: stdout and every file byte for byte the same as
 // with --threads 1 and 2, for a continuous, a sampled, a delayed and a risk: model and with the
 // particle reference; and a failure on any one rank ends the whole job with one error line,

@@ -1,6 +1,6 @@
 #pragma once
 // The exact optimal filter of a time-discretised scalar linear model with a delayed observation:
-// the reference against which the delayed filter kinds are measured (README, "How good is Φ*?").
+// the reference against which the delayed filter kinds are measured (docs/reproductions/basin-rodriguez-gonzalez-martinez-zuniga-2004.md).
 //
 // The model, on the grid t_k = k dt with the delay h = D dt:
 //   x_{k+1} = F x_k + w_k,        F = e^{a dt},  w_k ~ N(0, Q),  Q = σ² (e^{2a dt} − 1)/(2a)

@@ -1,6 +1,6 @@
 #pragma once
 // The Kalman-Bucy filter of a DenseLinearSystem written by hand with fixed-size Eigen matrices, as
-// a user without pfgen would write it: the baseline of benchmarks/bench_handwritten (README,
+// a user without pfgen would write it: the baseline of benchmarks/bench_handwritten (docs/benchmarks.md,
 // "Generated code against hand-written code") and of tests/test_handwritten_agreement.cpp.
 //
 // It takes the same Heun step as the generated `step` of the `optimal` filter

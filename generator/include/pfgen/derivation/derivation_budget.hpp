@@ -6,7 +6,7 @@
 // 800 MB; x^160 y^160 exhausted 3 GB. The covariance equations grow as n^2 times the terms of the
 // Jacobian and of the observation term. Both are counted exactly or bounded from above, from the
 // polynomials the derivation starts from, and a model beyond a limit is refused with one line
-// naming the field (README, "Model file reference", limits).
+// naming the field (docs/guide/model-file.md, limits).
 #include <cstddef>
 #include <string>
 #include <vector>

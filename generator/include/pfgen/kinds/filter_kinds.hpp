@@ -2,7 +2,7 @@
 // The one table of pfgen's built-in filter kinds. Every list of kind names is read from it: the
 // model validator's (user filter names, simulation.filters), the command line's help texts and
 // checks, the default filters of derive/latex/codegen/simulate, and the tests;
-// tests/test_kind_registry.cpp fails if any list, or the README's table, disagrees with it.
+// tests/test_kind_registry.cpp fails if any list, or the table of docs/guide/filter-kinds.md, disagrees with it.
 // The two axes say how a kind's equations are formed (derivation/filter_equations.cpp reads
 // them); adding a kind is a row here, and DESIGN.md's recipe says what else changes.
 #include <optional>

@@ -4,7 +4,7 @@
 // The degree limit (1000 per state) does not bound the work of expanding: (x+y+1)^1000 has
 // degree 1000 but 501501 terms, each with a coefficient of hundreds of digits, and expanding it
 // exhausted 4 GB. The validator compares this bound with kMaxExpandedTerms before anything is
-// expanded (README, "Model file reference", limits).
+// expanded (docs/guide/model-file.md, limits).
 #include <ginac/ginac.h>
 
 namespace pfgen {

@@ -1,6 +1,6 @@
 #pragma once
-// Limits on one expression's text, checked before GiNaC parses or evaluates it (README, "Model
-// file reference"). GiNaC's parser recurses once per parenthesis, sign and exponent, so 10000
+// Limits on one expression's text, checked before GiNaC parses or evaluates it (docs/guide/model-file.md,
+// limits). GiNaC's parser recurses once per parenthesis, sign and exponent, so 10000
 // nested parentheses or 100000 unary minuses overflowed the stack (signal 11); and GiNaC evaluates
 // numeric powers at once, so -2^(2^40)*x or ((1e9999)^1000)^1000 ran for minutes or aborted in
 // GMP. Each limit gives one reason, which the parser reports with the file, field, row and column.

@@ -1,5 +1,5 @@
 #pragma once
-// Reads a model file (YAML). See README.md, "Model file reference".
+// Reads a model file (YAML). See docs/guide/model-file.md.
 #include <string>
 
 #include "pfgen/model/model.hpp"
