@@ -25,7 +25,7 @@ echo "LaTeX: $out/basin2006_quadratic.tex"
 echo "PDF:   $out/basin2006_quadratic.pdf"
 "$pfgen" codegen "$model" -o "$out/generated" --stats
 echo "C++:   $out/generated/basin2006_quadratic/*.hpp"
-echo "================================================================ simulation (paper 000, section 4)"
+echo "================================================================ simulation (Basin, Perez & Skliar 2006, section 4)"
 # Settings from the model file's simulation: section (T = 9.2, dt = 1e-4, 200 runs, seed 1).
 # The plugin is cached under the build directory; a second run starts at once.
 "$pfgen" simulate "$model" --threads "$(nproc)" --cache-dir "$build/plugin-cache" \

@@ -78,7 +78,7 @@ summary() {  # label stops-csv
 align() { awk -F'\t' '{ for (i = 1; i <= NF; ++i) { c[NR, i] = $i; if (length($i) > w[i]) w[i] = length($i) } n[NR] = NF }
   END { for (r = 1; r <= NR; ++r) { s = ""; for (i = 1; i <= n[r]; ++i) s = s (i < n[r] ? sprintf("%-" w[i] + 2 "s", c[r, i]) : c[r, i]); print s } }'; }
 
-echo "Paper 000's state x0 = 1.1, dx = 0.1x^2 dt + 0.1x^2 dW1: blow-up times of the truth, $runs runs, dt = $dt, T = $T, seed 1"
+echo "Basin, Perez & Skliar 2006: the state x0 = 1.1, dx = 0.1x^2 dt + 0.1x^2 dW1: blow-up times of the truth, $runs runs, dt = $dt, T = $T, seed 1"
 echo "(noise-free blow-up at 1/0.11 = 9.091; the paper's horizon 9.2, its asymptotic time 9.205)"
 {
   printf "reading\tblown up by 9.2\tblown up by T\tmean (blown up)\tq05\tq25\tmedian\tq75\tq95\n"

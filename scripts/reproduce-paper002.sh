@@ -165,7 +165,7 @@ gamma_of() {  # reading eps
 truth_table() { awk '/^Truth at the report times/ {s = 1; next} s && /^t = / {print; next} s {exit}' "$1"; }
 same_truths=0
 verdict_rs=0; verdict_total=0
-echo "Paper 002 reproduction: $runs runs per job, dt = $dt, seed $seed; J ± standard error (delta method)"
+echo "Alcorta-Garcia et al. 2011 reproduction: $runs runs per job, dt = $dt, seed $seed; J ± standard error (delta method)"
 echo "(J over the runs that reached T when some stopped: [k stop @t] = k runs stopped, the first at t;"
 echo " '!' = fewer than 20 runs carry J (effective sample size); '-' = no run reached T)."
 for name in $cases; do

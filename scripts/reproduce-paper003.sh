@@ -85,7 +85,7 @@ table() {  # title job field-rmse field-mrae cdf-filter
   echo
 }
 
-echo "Paper 003 reproduction: $runs runs of $samples samples, truth dt = $dt, seed 3 (mean ± standard error over runs)"
+echo "Allahyani & Date reproduction: $runs runs of $samples samples, truth dt = $dt, seed 3 (mean ± standard error over runs)"
 echo
 for reading in clean noisy; do
   if [ "$reading" = clean ]; then fr=5; fm=8; label="Y = C x(t_k), noise-free"; else fr=11; fm=14; label="Y = y_k, the noisy sample"; fi

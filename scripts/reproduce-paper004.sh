@@ -72,7 +72,7 @@ paper_line() {  # label values...
 }
 variant="$out/quadratic_009.txt"
 
-echo "Paper 004 reproduction: $runs runs, dt = $dt (delay 0.8 = $(awk -v d="$dt" 'BEGIN {printf "%d", 0.8 / d + 0.5}') steps), seed 4; mean over runs ± standard error"
+echo "Basin, Rodriguez-Gonzalez & Martinez-Zuniga 2004 reproduction: $runs runs, dt = $dt (delay 0.8 = $(awk -v d="$dt" 'BEGIN {printf "%d", 0.8 / d + 0.5}') steps), seed 4; mean over runs ± standard error"
 echo
 echo "1. The example as printed (dx = x^2 dt from x0 = 1.1): the truth blows up at t = 1/1.1 = 0.909"
 grep -m1 '^Truth diverged' "$out/as_printed.txt" | sed 's/^/   /'
