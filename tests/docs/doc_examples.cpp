@@ -221,6 +221,11 @@ Options parse_options(int argc, char** argv) {
   }
   if (options.source.empty() || options.bin.empty() || options.work.empty() || options.pages.empty())
     throw std::runtime_error("--source, --bin, --work and at least one page are needed");
+  // The scratch directories' links and PATH must not depend on where the runner was started.
+  options.source = fs::absolute(options.source);
+  options.bin = fs::absolute(options.bin);
+  options.work = fs::absolute(options.work);
+  if (!options.build.empty()) options.build = fs::absolute(options.build);
   return options;
 }
 
