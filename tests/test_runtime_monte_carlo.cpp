@@ -17,6 +17,8 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -545,6 +547,117 @@ TEST_CASE("monte carlo: the table and CSV are byte-identical across calls and th
   }
   CHECK_THROWS_AS(format_summary_table(first, {"x", "y"}), std::invalid_argument);
   std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+// A result with the given filters and n = 2 (x1, x2), only as far as gnuplot_error_script reads
+// it: the CSV's column names and the titles.
+MonteCarloResult plotted_result(const std::vector<std::string>& filter_names, bool with_reference) {
+  MonteCarloResult result;
+  result.grid = TimeGrid::to_horizon(0.0, 2.0, 0.01);
+  result.runs = 10;
+  result.n = 2;
+  for (const std::string& name : filter_names) {
+    FilterStatistics filter;
+    filter.name = name;
+    result.filters.push_back(filter);
+  }
+  result.series.filters.resize(filter_names.size());
+  if (with_reference) {
+    result.reference.emplace();
+    result.reference->particles = 200;
+  }
+  return result;
+}
+
+// One curve of a plot command: its style and its key title.
+struct PlottedLine {
+  std::string width, dash, color, title;
+};
+
+// The `with lines ... title '...'` curves of every plot command of the script, command by command.
+std::vector<std::vector<PlottedLine>> plotted_lines(const std::string& script) {
+  std::vector<std::vector<PlottedLine>> commands;
+  const std::regex curve("with lines lw ([0-9.]+) dt ([0-9(),]+) lc rgb '(#[0-9A-Fa-f]{6})' title '([^']*)'");
+  std::istringstream in(std::regex_replace(script, std::regex(", \\\\\n     "), ", "));
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("plot ", 0) != 0) continue;
+    commands.emplace_back();
+    for (std::sregex_iterator it(line.begin(), line.end(), curve), end; it != end; ++it)
+      commands.back().push_back({(*it)[1], (*it)[2], (*it)[3], (*it)[4]});
+  }
+  return commands;
+}
+
+}  // namespace
+
+TEST_CASE("monte carlo: the plot gives every filter its own dash type and width, the reference black dashed on top, the key below", "[montecarlo][runtime][gnuplot][unit]") {
+  const std::vector<std::string> four{"optimal", "additive", "ekf-additive", "ekf"};
+  const std::string script =
+      gnuplot_error_script("errors.png", "results.csv", plotted_result(four, true), {"x1", "x2"}, "van der Pol");
+  INFO(script);
+  CHECK(script == gnuplot_error_script("errors.png", "results.csv", plotted_result(four, true), {"x1", "x2"},
+                                       "van der Pol"));  // a pure function of its inputs
+  // The key does not take a column of its own beside the panels: below each, in rows.
+  CHECK(script.find("set key outside below center horizontal") != std::string::npos);
+  CHECK(script.find("right top") == std::string::npos);
+  CHECK(script.find("set rmargin 4\n") != std::string::npos);
+
+  const auto commands = plotted_lines(script);
+  REQUIRE(commands.size() == 4);  // per state: the shown run, the median and band
+  for (std::size_t c = 0; c < commands.size(); ++c) {
+    const bool run_panel = c % 2 == 0;
+    const auto& lines = commands[c];
+    // Every filter in the command's order, then (run panels) the reference.
+    REQUIRE(lines.size() == four.size() + (run_panel ? 1 : 0));
+    std::set<std::string> dashes, widths;
+    for (std::size_t f = 0; f < four.size(); ++f) {
+      CHECK(lines[f].title == four[f]);
+      CHECK(lines[f].dash != "2");  // dashed is the reference's
+      dashes.insert(lines[f].dash);
+      widths.insert(lines[f].width);
+      // The same style in every panel.
+      CHECK(lines[f].width == commands[0][f].width);
+      CHECK(lines[f].dash == commands[0][f].dash);
+      CHECK(lines[f].color == commands[0][f].color);
+      // Drawn widest first: each later curve is narrower, so the ones beneath stay visible.
+      if (f > 0) CHECK(std::stod(lines[f].width) < std::stod(lines[f - 1].width));
+    }
+    CHECK(dashes.size() == four.size());
+    CHECK(widths.size() == four.size());
+    CHECK(lines[0].dash == "1");  // the first filter solid, underneath
+    CHECK(std::stod(lines[0].width) >= 2 * std::stod(lines[3].width));
+    if (run_panel) {
+      const PlottedLine& reference = lines.back();
+      CHECK(reference.title == "reference (N=200)");
+      CHECK(reference.dash == "2");
+      CHECK(reference.color == "#000000");
+    }
+  }
+  // The bands before every median, so no band veils a median drawn before it.
+  const std::size_t band_start = script.find("5-95 % band");
+  const std::string band_command = script.substr(band_start, script.find("set ylabel", band_start) - band_start);
+  REQUIRE(band_command.find("filledcurves") != std::string::npos);
+  CHECK(band_command.rfind("filledcurves") < band_command.find("with lines"));
+
+  // Without the reference no black dashed curve; nine filters: the first eight have distinct dash
+  // types, and all nine distinct widths, widest first.
+  std::vector<std::string> nine;
+  for (int f = 0; f < 9; ++f) nine.push_back("f" + std::to_string(f));
+  const std::string many = gnuplot_error_script("e.svg", "r.csv", plotted_result(nine, false), {"x1", "x2"}, "t");
+  CHECK(many.find("dt 2 ") == std::string::npos);
+  const auto first = plotted_lines(many).at(0);
+  REQUIRE(first.size() == 9);
+  std::set<std::string> dashes, widths;
+  for (std::size_t f = 0; f < 9; ++f) {
+    if (f < 8) dashes.insert(first[f].dash);
+    widths.insert(first[f].width);
+  }
+  CHECK(dashes.size() == 8);
+  CHECK(widths.size() == 9);
+  CHECK(first.front().width == "6");
+  CHECK(first.back().width == "2");
 }
 
 TEST_CASE("monte carlo: gnuplot draws the error plot as SVG and PNG", "[montecarlo][runtime][gnuplot][compiler]") {

@@ -23,6 +23,28 @@ namespace {
 // Colour-blind-safe (Okabe-Ito), fixed, so plots do not change between runs.
 const char* const colors[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442"};
 
+// Filters' errors often coincide, and a curve drawn over another of the same width hides it. So
+// each filter has its own dash type and width as well as its colour: the first filter is drawn
+// first, solid and widest (its colour stays as a rim around the others), each later one narrower
+// and broken by its own dashes, through which the curves beneath show. None is dt 2 (dashed),
+// which is the particle reference's (black, on top). Eight dash types, then they repeat.
+const char* const dash_types[] = {"1", "4", "5", "(20,5)", "3", "(20,5,5,5)", "(30,5,2,5,2,5)", "(10,4,4,4)"};
+constexpr double widest = 6.0, narrowest = 2.0;
+
+// Line width of filter f of `count`: from `widest` (the first) down to `narrowest` (the last) in
+// equal steps, so no two filters share one; a lone filter is drawn `narrowest` wide.
+double line_width(std::size_t f, std::size_t count) {
+  if (count < 2) return narrowest;
+  return widest - (widest - narrowest) * static_cast<double>(f) / static_cast<double>(count - 1);
+}
+
+// "lw W dt D lc rgb 'C'": filter f's line, W with at most 3 decimals (a pure function of f and count).
+std::string filter_line_style(std::size_t f, std::size_t count) {
+  char width[32];
+  std::snprintf(width, sizeof width, "%.3g", line_width(f, count));
+  return std::string("lw ") + width + " dt " + dash_types[f % 8] + " lc rgb '" + colors[f % 8] + "'";
+}
+
 // A gnuplot single-quoted string: nothing is interpreted inside except '' for a quote.
 std::string quoted(const std::string& text) {
   std::string out = "'";
@@ -102,7 +124,10 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
       << "set output " << quoted(plot_path) << "\n"
       << "set datafile separator comma\n"  // an empty cell (a stopped run) is a missing point
       << "set multiplot layout " << panels << ",1 title " << quoted(title) << "\n"
-      << "set grid\nset key outside right top\nset xlabel 't'\nset lmargin 12\nset rmargin 24\n"
+      << "set grid\nset xlabel 't'\nset lmargin 12\nset rmargin 4\n"
+      // The key below each panel, in rows, so the curves get the whole width; samples long enough
+      // to show each dash type; height 1 keeps its first row clear of the x label.
+      << "set key outside below center horizontal Left reverse samplen 5 height 1\n"
       << "set xrange [" << exact(result.grid.t0) << ":" << exact(result.grid.end()) << "]\n";
   // A diverging filter's errors would otherwise set the scale and flatten everyone else's.
   if (y_limit > 0) out << "set yrange [" << exact(-y_limit) << ":" << exact(y_limit) << "]\n";
@@ -113,10 +138,11 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
     out << "set ylabel " << quoted(x + " - m") << "\n";
     out << "set title " << quoted(x + ": run " + std::to_string(result.series.shown_run) + clipped) << "\n";
     if (result.filters.empty()) out << "plot 0 with lines notitle\n";
-    for (std::size_t f = 0; f < result.filters.size(); ++f) {
+    const std::size_t count = result.filters.size();
+    for (std::size_t f = 0; f < count; ++f) {
       const std::string& name = result.filters[f].name;
       out << (f == 0 ? "plot " : ", \\\n     ") << data << " skip 1 using 1:" << column(columns, name + "_err_" + x)
-          << " with lines lw 1.5 lc rgb '" << colors[f % 8] << "' title " << quoted(name);
+          << " with lines " << filter_line_style(f, count) << " title " << quoted(name);
     }
     // The particle reference's x - m_ref beside them: how far from the conditional mean they are.
     if (result.reference && !result.filters.empty())
@@ -126,12 +152,18 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
     out << "\n";
     out << "set title " << quoted(x + ": median over " + std::to_string(result.runs) + " runs, 5-95 % band" + clipped) << "\n";
     if (result.filters.empty()) out << "plot 0 with lines notitle\n";
-    for (std::size_t f = 0; f < result.filters.size(); ++f) {
-      const std::string& name = result.filters[f].name, stem = name + "_err_" + x;
+    // Every band first, then the medians over them in the order and styles above: a later band
+    // would veil an earlier filter's median.
+    for (std::size_t f = 0; f < count; ++f) {
+      const std::string stem = result.filters[f].name + "_err_" + x;
       out << (f == 0 ? "plot " : ", \\\n     ") << data << " skip 1 using 1:" << column(columns, stem + "_q05") << ":"
           << column(columns, stem + "_q95") << " with filledcurves fs transparent solid 0.2 noborder lc rgb '"
-          << colors[f % 8] << "' notitle, \\\n     " << data << " skip 1 using 1:" << column(columns, stem + "_q50")
-          << " with lines lw 1.5 lc rgb '" << colors[f % 8] << "' title " << quoted(name);
+          << colors[f % 8] << "' notitle";
+    }
+    for (std::size_t f = 0; f < count; ++f) {
+      const std::string& name = result.filters[f].name;
+      out << ", \\\n     " << data << " skip 1 using 1:" << column(columns, name + "_err_" + x + "_q50")
+          << " with lines " << filter_line_style(f, count) << " title " << quoted(name);
     }
     out << "\n";
   }

@@ -11,9 +11,12 @@ namespace pfgen_runtime {
 // of every filter (like the papers' figures), and each filter's median error over the runs with
 // its 5-95 % band (transparent). It reads csv_path as write_results_csv writes it (columns by
 // position) and writes plot_path with the pngcairo or svg terminal, by plot_path's extension
-// (.png or .svg, any case; std::invalid_argument otherwise). Fixed size, fonts and colors, so the
-// same inputs give the same script (and the same SVG). y_limit > 0 fixes every panel's y range to
-// [-y_limit, y_limit] (curves beyond it are clipped, and the titles say so); 0 autoscales.
+// (.png or .svg, any case; std::invalid_argument otherwise). Each filter has its own colour, dash
+// type and line width, the first drawn first, solid and widest, each later one narrower on top, so
+// that coinciding curves all stay visible; the particle reference is black and dashed, drawn last;
+// the key sits below each panel. Fixed size, fonts and styles, so the same inputs give the same
+// script (and the same SVG). y_limit > 0 fixes every panel's y range to [-y_limit, y_limit]
+// (curves beyond it are clipped, and the titles say so); 0 autoscales.
 std::string gnuplot_error_script(const std::string& plot_path, const std::string& csv_path,
                                  const MonteCarloResult& result, const std::vector<std::string>& state_names,
                                  const std::string& title, double y_limit = 0);
