@@ -4,6 +4,7 @@
 #include "pfgen/printing/equation_report.hpp"
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/rich_text.hpp"
 #include "pfgen/printing/latex_matrix.hpp"
 #include "pfgen/printing/noise_report.hpp"
 
@@ -119,8 +120,9 @@ std::string latex_document(const Model& model, const std::vector<FilterEquations
   out += "\n";
   for (const auto& eq : filters) {
     out += "\\section*{Filter \\texttt{" + latex_escape_text(eq.name) + "}}\n";
-    const bool has_stop = !eq.description.empty() && eq.description.back() == '.';
-    out += latex_escape_text(eq.description) + (has_stop ? "\n\n" : ".\n\n");
+    const std::string plain = rich_text_plain(eq.description);
+    const bool has_stop = !plain.empty() && plain.back() == '.';
+    out += rich_text_latex(eq.description) + (has_stop ? "\n\n" : ".\n\n");
     out += equations_latex(eq);
   }
   out += "\\end{document}\n";
