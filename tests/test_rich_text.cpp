@@ -25,7 +25,7 @@ TEST_CASE("rich text: the text side keeps the plain spelling, LaTeX typesets the
 }
 
 TEST_CASE("rich text: a user's words go through rich_text_literal and print as written", "[unit][latex]") {
-  for (const std::string text : {std::string("plain"), std::string("costs $5 | $6 \\ or \"7\""),
+  for (const std::string& text : {std::string("plain"), std::string("costs $5 | $6 \\ or \"7\""),
                                  std::string("$a|b$"), std::string("\\"), std::string("")}) {
     INFO(text);
     CHECK(rich_text_plain(rich_text_literal(text)) == text);

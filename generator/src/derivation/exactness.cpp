@@ -219,7 +219,7 @@ ExactnessReport risk_sensitive_exactness(const ModelFacts& facts) {
   report.condition = "none";
   report.explanation = "approximation (the construction of Alcorta-Garcia et al. 2011): the equation of the "
                        "risk-sensitive information state's logarithm is expanded about $m|m$ to second order in "
-                       "$x - m|x - m$; the terms of order 3 and above, which the degree of $f|f$ above 1 brings, are "
+                       "$x - m|x - m$; the terms of order 3 and above, which $f|f$'s degree above 1 brings, are "
                        "dropped";
   report.failed.push_back("LEQG: " + nonaffine);
   return report;
