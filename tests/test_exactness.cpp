@@ -16,6 +16,7 @@
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model_builder.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
+#include "pfgen/notation/rich_text.hpp"
 #include "support/process.hpp"
 #include "support/test_paths.hpp"
 
@@ -35,13 +36,15 @@ void require_exact(const ExactnessReport& r, const std::string& condition) {
   CHECK(r.exact);
   CHECK(r.condition == condition);
   CHECK(r.failed.empty());
-  CHECK_THAT(r.explanation, StartsWith("exact:"));
+  CHECK_THAT(rich_text_plain(r.explanation), StartsWith("exact:"));
 }
 
-// One expected failure: the condition's name and a fragment of its reason.
+// One expected failure: the condition's name and a fragment of its reason (as text, and as
+// LaTeX where the reason has math).
 struct Failure {
   std::string condition;
   std::string reason;
+  std::string latex_reason = reason;
 };
 
 // Checks an approximation report lists exactly these failures, in order.
@@ -49,16 +52,16 @@ void require_approximation(const ExactnessReport& r, const std::vector<Failure>&
   INFO("explanation: " << r.explanation);
   CHECK_FALSE(r.exact);
   CHECK(r.condition == "none");
-  CHECK_THAT(r.explanation, StartsWith("approximation:"));
+  CHECK_THAT(rich_text_plain(r.explanation), StartsWith("approximation:"));
   REQUIRE(r.failed.size() == failures.size());
   for (std::size_t k = 0; k < failures.size(); ++k) {
     INFO("failed[" << k << "] = " << r.failed[k]);
-    CHECK_THAT(r.failed[k], StartsWith(failures[k].condition + ": "));
-    CHECK_THAT(r.failed[k], Contains(failures[k].reason));
+    CHECK_THAT(rich_text_plain(r.failed[k]), StartsWith(failures[k].condition + ": "));
+    CHECK_THAT(rich_text_plain(r.failed[k]), Contains(failures[k].reason));
   }
 }
 
-// Paper 001's example (x1' = 0.1(x1^2 + x2), x2' = 0.1 x2, y = x1) with its
+// Basin & Skliar's example (x1' = 0.1(x1^2 + x2), x2' = 0.1 x2, y = x1) with its
 // pieces replaceable, so each variant breaks exactly one paper-001 condition.
 struct Paper001Variant {
   std::string f2 = "linear";        // "linear": 0.1 x2; "coupled": 0.1 x2 + 0.1 x1
@@ -93,9 +96,9 @@ const char* approximation_yaml =
 
 const std::vector<Failure> approximation_failures = {
     {"Kalman-Bucy", "drift of x1 has degree 2"},
-    {"paper 000", "A is 1 x 2, not square"},
-    {"paper 000 linear case", "drift of x1 has degree 2"},
-    {"paper 001", "no components with their own linear dynamics to leave unmeasured"}};
+    {"Basin-Perez-Skliar 2006", "A is 1 x 2, not square", "$A$ is $1 \\times 2$, not square"},
+    {"Basin-Perez-Skliar 2006 linear case", "drift of x1 has degree 2"},
+    {"Basin-Skliar", "no components with their own linear dynamics to leave unmeasured"}};
 
 // A model file in a fresh temporary path, removed again on destruction.
 class TemporaryModelFile {
@@ -174,7 +177,7 @@ TEST_CASE("exactness: Kalman-Bucy for affine f and state-free g", "[exactness][u
 }
 
 // ---------------------------------------------------------------------------
-// Paper 000: any polynomial f and g when A is square and invertible.
+// Basin, Perez & Skliar 2006: any polynomial f and g when A is square and invertible.
 // ---------------------------------------------------------------------------
 TEST_CASE("exactness: paper 000 for quadratic f and g with square invertible A", "[exactness][unit]") {
   ModelBuilder b("paper000_square");
@@ -183,12 +186,12 @@ TEST_CASE("exactness: paper 000 for quadratic f and g with square invertible A",
       .diffusion({{tenth * x1 * x1}, {x2}})
       .observation({0, 0}, {{1, 1}, {0, 1}}, {{1, 0}, {0, 1}});  // det A = 1, A not diagonal
   Model model = b.build();
-  require_exact(assess_exactness(model, FilterKind::Optimal), "paper 000");
+  require_exact(assess_exactness(model, FilterKind::Optimal), "Basin-Perez-Skliar 2006");
 
   // The example file (scalar, A = 1), for the optimal and the additive kind.
   Model example = load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
-  require_exact(assess_exactness(example, FilterKind::Optimal), "paper 000");
-  require_exact(assess_exactness(example, FilterKind::Additive), "paper 000");
+  require_exact(assess_exactness(example, FilterKind::Optimal), "Basin-Perez-Skliar 2006");
+  require_exact(assess_exactness(example, FilterKind::Additive), "Basin-Perez-Skliar 2006");
 }
 
 TEST_CASE("exactness: a square but singular A fails paper 000", "[exactness][unit]") {
@@ -200,20 +203,20 @@ TEST_CASE("exactness: a square but singular A fails paper 000", "[exactness][uni
   Model model = b.build();
   require_approximation(assess_exactness(model, FilterKind::Optimal),
                         {{"Kalman-Bucy", "drift of x1 has degree 2"},
-                         {"paper 000", "A is singular"},
-                         {"paper 000 linear case", "drift of x1 has degree 2"},
-                         {"paper 001", "the nonlinear components (x1) are seen by 2 observation rows, so A1 is not square"}});
+                         {"Basin-Perez-Skliar 2006", "A is singular"},
+                         {"Basin-Perez-Skliar 2006 linear case", "drift of x1 has degree 2"},
+                         {"Basin-Skliar", "the nonlinear components (x1) are seen by 2 observation rows, so A1 is not square"}});
 }
 
 // ---------------------------------------------------------------------------
-// Paper 000 linear case (eqs 10-11): f affine and g affine, for any A.
+// Basin, Perez & Skliar 2006's linear case (eqs 10-11): f affine and g affine, for any A.
 // ---------------------------------------------------------------------------
 TEST_CASE("exactness: paper 000 linear case for affine f and affine multiplicative g", "[exactness][unit]") {
   ModelBuilder b("paper000_linear");
   GiNaC::symbol x1 = b.state("x1"), x2 = b.state("x2");
   b.drift({x2, -x1 + 1}).diffusion({{tenth * x1 + 1}, {numeric(1, 5) * x2}}).observation({0}, {{1, 0}}, {{1}});
   Model model = b.build();
-  require_exact(assess_exactness(model, FilterKind::Optimal), "paper 000 linear case");
+  require_exact(assess_exactness(model, FilterKind::Optimal), "Basin-Perez-Skliar 2006 linear case");
   // The EKF uses g(m) g(m)^T where E[g g^T] has the extra b1 P b1^T: not exact.
   require_approximation(assess_exactness(model, FilterKind::Ekf),
                         {{"Kalman-Bucy", "the diffusion depends on the state (multiplicative noise)"}});
@@ -226,7 +229,7 @@ TEST_CASE("exactness: paper 000 linear case with G = g g^T given directly", "[ex
     b.drift({x2, -x1})
         .diffusion_covariance({{x1 * x1 + 1, x1 * x2}, {x1 * x2, x2 * x2}})
         .observation({0}, {{1, 0}}, {{1}});
-    require_exact(assess_exactness(b.build(), FilterKind::Optimal), "paper 000 linear case");
+    require_exact(assess_exactness(b.build(), FilterKind::Optimal), "Basin-Perez-Skliar 2006 linear case");
   }
   SECTION("G of degree 3 is not") {
     ModelBuilder b("paper000_cubic_G");
@@ -234,9 +237,9 @@ TEST_CASE("exactness: paper 000 linear case with G = g g^T given directly", "[ex
     b.drift({x2, -x1}).diffusion_covariance({{x1 * x1 * x2 + 1, 0}, {0, 1}}).observation({0}, {{1, 0}}, {{1}});
     require_approximation(assess_exactness(b.build(), FilterKind::Optimal),
                           {{"Kalman-Bucy", "the diffusion depends on the state (multiplicative noise)"},
-                           {"paper 000", "A is 1 x 2, not square"},
-                           {"paper 000 linear case", "G = g g^T has degree above 2 (g not affine)"},
-                           {"paper 001", "no nonlinear components"}});
+                           {"Basin-Perez-Skliar 2006", "A is 1 x 2, not square"},
+                           {"Basin-Perez-Skliar 2006 linear case", "G = g g^T has degree above 2 (g not affine)"},
+                           {"Basin-Skliar", "no nonlinear components"}});
   }
 }
 
@@ -246,21 +249,21 @@ TEST_CASE("exactness: affine f with quadratic g and non-square A is an approxima
   b.drift({x2, -x1}).diffusion({{tenth * x1 * x1}, {0}}).observation({0}, {{1, 0}}, {{1}});
   require_approximation(assess_exactness(b.build(), FilterKind::Optimal),
                         {{"Kalman-Bucy", "the diffusion depends on the state (multiplicative noise)"},
-                         {"paper 000", "A is 1 x 2, not square"},
-                         {"paper 000 linear case", "g is not affine in the state"},
-                         {"paper 001", "no nonlinear components"}});
+                         {"Basin-Perez-Skliar 2006", "A is 1 x 2, not square"},
+                         {"Basin-Perez-Skliar 2006 linear case", "g is not affine in the state"},
+                         {"Basin-Skliar", "no nonlinear components"}});
 }
 
 // ---------------------------------------------------------------------------
-// Paper 001: nonlinear x1 measured through a square invertible block, linear
+// Basin & Skliar: nonlinear x1 measured through a square invertible block, linear
 // self-contained x2, block-diagonal A and B B^T, additive noise.
 // ---------------------------------------------------------------------------
 TEST_CASE("exactness: paper 001 for the example file", "[exactness][unit]") {
   Model model = load_model_file(pfgen_test::example("basin_skliar_partial.yaml"));
-  require_exact(assess_exactness(model, FilterKind::Optimal), "paper 001");
-  CHECK(derive_filter(model, FilterKind::Optimal).exactness.condition == "paper 001");
+  require_exact(assess_exactness(model, FilterKind::Optimal), "Basin-Skliar");
+  CHECK(derive_filter(model, FilterKind::Optimal).exactness.condition == "Basin-Skliar");
   // The same model built in code.
-  require_exact(assess_exactness(paper001_variant({}), FilterKind::Optimal), "paper 001");
+  require_exact(assess_exactness(paper001_variant({}), FilterKind::Optimal), "Basin-Skliar");
 }
 
 TEST_CASE("exactness: paper 001 allows f1 nonlinear in x2 and a partly measured linear block", "[exactness][unit]") {
@@ -271,20 +274,20 @@ TEST_CASE("exactness: paper 001 allows f1 nonlinear in x2 and a partly measured 
   b.drift({x1 * x1 + x2 * x2, tenth * x2 + x3, -x2})
       .diffusion({{1, 0}, {0, 1}, {0, 0}})
       .observation({0, 0}, {{1, 0, 0}, {0, 0, 1}}, {{1, 0}, {0, 2}});
-  require_exact(assess_exactness(b.build(), FilterKind::Optimal), "paper 001");
+  require_exact(assess_exactness(b.build(), FilterKind::Optimal), "Basin-Skliar");
 }
 
 TEST_CASE("exactness: paper 001 variants that break one condition each", "[exactness][unit]") {
   const Failure kalman{"Kalman-Bucy", "drift of x1 has degree 2"};
-  const Failure p000{"paper 000", "A is 1 x 2, not square"};
-  const Failure p000_linear{"paper 000 linear case", "drift of x1 has degree 2"};
+  const Failure p000{"Basin-Perez-Skliar 2006", "A is 1 x 2, not square"};
+  const Failure p000_linear{"Basin-Perez-Skliar 2006 linear case", "drift of x1 has degree 2"};
 
   SECTION("the linear block depends on x1") {
     Paper001Variant v;
     v.f2 = "coupled";
     require_approximation(assess_exactness(paper001_variant(v), FilterKind::Optimal),
                           {kalman, p000, p000_linear,
-                           {"paper 001", "no components with their own linear dynamics to leave unmeasured"}});
+                           {"Basin-Skliar", "no components with their own linear dynamics to leave unmeasured"}});
   }
   SECTION("A mixes x1 and x2") {
     Paper001Variant v;
@@ -292,14 +295,14 @@ TEST_CASE("exactness: paper 001 variants that break one condition each", "[exact
     require_approximation(
         assess_exactness(paper001_variant(v), FilterKind::Optimal),
         {kalman, p000, p000_linear,
-         {"paper 001", "observation row 1 mixes nonlinear (x1) and linear (x2) components: A is not block-diagonal"}});
+         {"Basin-Skliar", "observation row 1 mixes nonlinear (x1) and linear (x2) components: A is not block-diagonal"}});
   }
   SECTION("multiplicative noise") {
     Paper001Variant v;
     v.multiplicative = true;
     require_approximation(assess_exactness(paper001_variant(v), FilterKind::Optimal),
                           {kalman, p000, p000_linear,
-                           {"paper 001", "the diffusion depends on the state (multiplicative noise)"}});
+                           {"Basin-Skliar", "the diffusion depends on the state (multiplicative noise)"}});
   }
   SECTION("multiplicative noise, but the additive kinds use the additive g") {
     Paper001Variant v;
@@ -308,7 +311,7 @@ TEST_CASE("exactness: paper 001 variants that break one condition each", "[exact
     Model model = paper001_variant(v);
     CHECK_FALSE(assess_exactness(model, FilterKind::Optimal).exact);
     ExactnessReport additive = assess_exactness(model, FilterKind::Additive);
-    require_exact(additive, "paper 001");
+    require_exact(additive, "Basin-Skliar");
     CHECK_THAT(additive.explanation, Contains("additive diffusion"));
   }
 }
@@ -322,9 +325,9 @@ TEST_CASE("exactness: paper 001 fails on a singular A1 block and on correlated o
         .observation({0, 0}, {{1, 1, 0}, {2, 2, 0}}, {{1, 0}, {0, 1}});
     require_approximation(assess_exactness(b.build(), FilterKind::Optimal),
                           {{"Kalman-Bucy", "drift of x1 has degree 2"},
-                           {"paper 000", "A is 2 x 3, not square"},
-                           {"paper 000 linear case", "drift of x1 has degree 2"},
-                           {"paper 001", "the block A1 measuring (x1, x2) is singular"}});
+                           {"Basin-Perez-Skliar 2006", "A is 2 x 3, not square"},
+                           {"Basin-Perez-Skliar 2006 linear case", "drift of x1 has degree 2"},
+                           {"Basin-Skliar", "the block A1 measuring (x1, x2) is singular"}});
   }
   SECTION("y1 and y2 correlated") {
     ModelBuilder b("paper001_correlated");
@@ -334,9 +337,9 @@ TEST_CASE("exactness: paper 001 fails on a singular A1 block and on correlated o
         .observation({0, 0}, {{1, 0, 0}, {0, 1, 0}}, {{1, 0}, {1, 1}});  // B B^T = [1 1; 1 2]
     require_approximation(assess_exactness(b.build(), FilterKind::Optimal),
                           {{"Kalman-Bucy", "drift of x1 has degree 2"},
-                           {"paper 000", "A is 2 x 3, not square"},
-                           {"paper 000 linear case", "drift of x1 has degree 2"},
-                           {"paper 001", "observation noises of y1 and y2 are correlated"}});
+                           {"Basin-Perez-Skliar 2006", "A is 2 x 3, not square"},
+                           {"Basin-Perez-Skliar 2006 linear case", "drift of x1 has degree 2"},
+                           {"Basin-Skliar", "observation noises of y1 and y2 are correlated"}});
   }
 }
 
@@ -357,7 +360,7 @@ TEST_CASE("exactness: approximation names every failed condition", "[exactness][
 
 // ---------------------------------------------------------------------------
 // Extended Kalman-Bucy kinds: exact only in the Kalman-Bucy case, even where
-// the optimal filter is exact under paper 000 or 001.
+// the optimal filter is exact under Basin, Perez & Skliar 2006 or Basin & Skliar.
 // ---------------------------------------------------------------------------
 TEST_CASE("exactness: ekf kinds are approximations unless Kalman-Bucy", "[exactness][ekf][unit]") {
   Model p000 = load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
@@ -386,7 +389,8 @@ TEST_CASE("exactness: pfgen derive prints the diagnostic in text, latex and json
 
     std::string exact = derive_output(paper000, "optimal", "text");
     CHECK_THAT(exact, Contains("exactness: exact:"));
-    CHECK_THAT(exact, Contains("paper 000"));
+    CHECK_THAT(exact, Contains("(Basin, Perez & Skliar 2006)"));
+    CHECK_THAT(exact, !Contains("paper 0"));
     CHECK_THAT(exact, !Contains("failed:"));
 
     std::string ekf = derive_output(paper000, "ekf", "text");
@@ -398,10 +402,11 @@ TEST_CASE("exactness: pfgen derive prints the diagnostic in text, latex and json
     CHECK_THAT(out, Contains("\\textbf{Exactness:} approximation:"));
     CHECK_THAT(out, Contains("\\begin{itemize}"));
     for (const auto& f : approximation_failures)
-      CHECK_THAT(out, Contains("\\item " + f.condition + ": " + f.reason + "\n"));
+      CHECK_THAT(out, Contains("\\item " + f.condition + ": " + f.latex_reason + "\n"));
 
     std::string exact = derive_output(paper000, "optimal", "latex");
-    CHECK_THAT(exact, Contains("\\textbf{Exactness:} exact:"));
+    CHECK_THAT(exact, Contains("\\textbf{Exactness:} exact: $A$ is square and invertible, so $x - m$ is "
+                               "conditionally Gaussian (Basin, Perez \\& Skliar 2006)"));
     CHECK_THAT(exact, !Contains("\\begin{itemize}"));
   }
   SECTION("json") {
@@ -416,7 +421,7 @@ TEST_CASE("exactness: pfgen derive prints the diagnostic in text, latex and json
 
     std::string exact = compact_json(derive_output(paper000, "optimal", "json"));
     CHECK_THAT(exact, Contains("\"exact\":true"));
-    CHECK_THAT(exact, Contains("\"condition\":\"paper 000\""));
+    CHECK_THAT(exact, Contains("\"condition\":\"Basin-Perez-Skliar 2006\""));
     CHECK_THAT(exact, Contains("\"failed\":[]"));
 
     std::string ekf = compact_json(derive_output(paper000, "ekf-additive", "json"));

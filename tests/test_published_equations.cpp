@@ -217,7 +217,7 @@ TEST_CASE("paper 000 eqs 10-11: linear state, linear multiplicative noise, n = 2
   check_filter(eq, want);
   // A = I is square and invertible, so the paper-000 condition is the one reported.
   CHECK(eq.exactness.exact);
-  CHECK(eq.exactness.condition == "paper 000");
+  CHECK(eq.exactness.condition == "Basin-Perez-Skliar 2006");
 }
 
 // Eq (11) holds "for any A" (the paper's remark after eq 11): the same linear
@@ -249,7 +249,7 @@ TEST_CASE("paper 000 eqs 10-11 with a non-square symbolic observation", "[publis
   want.P_drift[1][0] = want.P_drift[0][1];
   check_filter(eq, want);
   CHECK(eq.exactness.exact);
-  CHECK(eq.exactness.condition == "paper 000 linear case");
+  CHECK(eq.exactness.condition == "Basin-Perez-Skliar 2006 linear case");
 }
 
 // ---------------------------------------------------------------------------
@@ -298,7 +298,7 @@ TEST_CASE("paper 000 eqs 14-18, scalar bilinear state with bilinear noise", "[pu
   want.gain = {{P * c / (s * s)}};        // P A^T (B B^T)^-1
   want.P_drift = {{cross + E_gg - correction}};  // eq (18)
   check_filter(eq, want);
-  CHECK(eq.exactness.condition == "paper 000");
+  CHECK(eq.exactness.condition == "Basin-Perez-Skliar 2006");
 }
 
 // Eqs (14)-(15) for n = 2 with a general 3-tensor a2 (f_k = ... + sum_ij a2_kij
@@ -379,7 +379,7 @@ TEST_CASE("paper 000 example: eqs 21-22 (optimal) and 23-24 (additive noise)", "
   // Eq (22): 0.4 P m + 0.03 P^2 + 0.06 P m^2 + 0.01 m^4 - P^2.
   want21.P_drift = {{q(4, 10) * P * m + q(3, 100) * P * P + q(6, 100) * P * m * m + q(1, 100) * pow(m, 4) - P * P}};
   check_filter(opt, want21);
-  CHECK(opt.exactness.condition == "paper 000");
+  CHECK(opt.exactness.condition == "Basin-Perez-Skliar 2006");
 
   // Eqs (23)-(24): 0.1 x^2 dW1 replaced by 0.1 dW1, so G = 0.01.
   FilterEquations add = derive_filter(model, FilterKind::Additive);
@@ -391,7 +391,7 @@ TEST_CASE("paper 000 example: eqs 21-22 (optimal) and 23-24 (additive noise)", "
   want23.P_drift = {{q(4, 10) * P1 * m1 + q(1, 100) - P1 * P1}};
   check_filter(add, want23);
   CHECK(add.exactness.exact);
-  CHECK(add.exactness.condition == "paper 000");
+  CHECK(add.exactness.condition == "Basin-Perez-Skliar 2006");
 }
 
 // The extended Kalman-Bucy comparators of paper 000. Eq (25)-(26) as printed
@@ -441,7 +441,7 @@ TEST_CASE("paper 001 example: eqs 17-19", "[published][paper001][unit]") {
   want.P_drift[1][0] = want.P_drift[0][1];
   check_filter(eq, want);
   CHECK(eq.exactness.exact);
-  CHECK(eq.exactness.condition == "paper 001");
+  CHECK(eq.exactness.condition == "Basin-Skliar");
 }
 
 // Paper 001's comparator, eqs (20)-(22) as printed:

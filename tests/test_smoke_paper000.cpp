@@ -20,5 +20,5 @@ TEST_CASE("paper 000 example file gives eqs 21-22", "[derivation][paper000][unit
   CHECK((eq.P_drift(0, 0).to_ex(vars) - P_drift).expand().is_zero());
   CHECK((eq.gain[0][0].to_ex(vars) - P).expand().is_zero());
   CHECK(eq.exactness.exact);
-  CHECK(eq.exactness.condition == "paper 000");
+  CHECK(eq.exactness.condition == "Basin-Perez-Skliar 2006");
 }

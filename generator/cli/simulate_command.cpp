@@ -495,8 +495,9 @@ int run_simulate(const SimulateOptions& options, JobGroup& group) {
   if (talk) std::cerr << pfgen_runtime::format_timing(result) << std::flush;
   std::cout << "model: " << model.name << " (" << options.model_path << ")" << delay_note(model, settings) << "\n"
             << pfgen_runtime::format_summary_table(result, model.state_names);
-  // Delayed observations (paper 004's printed estimates are compared through mean m = x - mean e):
-  // the signed errors at the report times with standard errors. Other models' output is unchanged.
+  // Delayed observations (the printed estimates of Basin, Rodriguez-Gonzalez & Martinez-Zuniga 2004 are
+  // compared through mean m = x - mean e): the signed errors at the report times with standard errors.
+  // Other models' output is unchanged.
   if (model.observation.is_delayed()) std::cout << pfgen_runtime::format_report_errors(result, model.state_names);
   if (!options.csv_path.empty()) std::cout << "csv: " << options.csv_path << "\n";
   if (!options.criterion_csv_path.empty()) std::cout << "criterion csv: " << options.criterion_csv_path << "\n";

@@ -67,7 +67,7 @@ std::string run_list(const std::string& label, const EventSummary& events) {
   return out.str();
 }
 
-// Paper 003's metrics of the sampled filters, each as "mean ± standard error" over the runs.
+// Allahyani & Date's metrics of the sampled filters, each as "mean ± standard error" over the runs.
 std::string sampled_section(const MonteCarloResult& result) {
   std::vector<std::vector<std::string>> rows{{"filter", "output", "runs", "samples", "AvRMSE clean", "AvMRAE clean",
                                               "AvRMSE noisy", "AvMRAE noisy"}};
@@ -84,7 +84,7 @@ std::string sampled_section(const MonteCarloResult& result) {
   }
   if (rows.size() == 1) return "";
   std::string out =
-      "\nAt the samples t_k (paper 003's metrics; Yhat = C0 + C m(t_k|t_k); clean: Y = C0 + C x(t_k), noisy: Y = y_k; "
+      "\nAt the samples t_k (Allahyani & Date's metrics; Yhat = C0 + C m(t_k|t_k); clean: Y = C0 + C x(t_k), noisy: Y = y_k; "
       "mean over the runs that absorbed every sample ± standard error):\n" +
       align(rows);
   // The same metrics paired run by run against the first filter: the standard error of a

@@ -7,6 +7,11 @@
 namespace pfgen {
 namespace {
 
+// The published conditions' short labels (ExactnessReport::condition, and the prefix of a failed one).
+constexpr const char* kBasinPerezSkliar = "Basin-Perez-Skliar 2006";
+constexpr const char* kBasinPerezSkliarLinear = "Basin-Perez-Skliar 2006 linear case";
+constexpr const char* kBasinSkliar = "Basin-Skliar";
+
 std::string join_indices(const std::vector<std::size_t>& indices, const Model& model) {
   std::string out;
   for (std::size_t k = 0; k < indices.size(); ++k) out += (k ? ", " : "") + model.state_names[indices[k]];
@@ -39,12 +44,13 @@ struct ModelFacts {
     if (diffusion.g) {
       for (const auto& row : *diffusion.g)
         for (const auto& e : row)
-          if (Polynomial::from_ex(e, model.states).degree() > 1) return "g is not affine in the state";
+          if (Polynomial::from_ex(e, model.states).degree() > 1) return "$g|g$ is not affine in the state";
       return {};
     }
     for (const auto& row : diffusion.G)
       for (const auto& e : row)
-        if (Polynomial::from_ex(e, model.states).degree() > 2) return "G = g g^T has degree above 2 (g not affine)";
+        if (Polynomial::from_ex(e, model.states).degree() > 2)
+          return "$G = g g^T|G = g\\,g^{T}$ has degree above 2 ($g|g$ not affine)";
     return {};
   }
 };
@@ -59,14 +65,15 @@ GiNaC::ex determinant(const ExMatrix& m, const std::vector<std::size_t>& rows,
 
 std::string square_invertible_A(const Model& model) {
   if (model.p() != model.n())
-    return "A is " + std::to_string(model.p()) + " x " + std::to_string(model.n()) + ", not square";
+    return "$A|A$ is $" + std::to_string(model.p()) + " x " + std::to_string(model.n()) + "|" +
+           std::to_string(model.p()) + " \\times " + std::to_string(model.n()) + "$, not square";
   std::vector<std::size_t> all(model.n());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-  if (determinant(model.observation.rate().A, all, all).is_zero()) return "A is singular";
+  if (determinant(model.observation.rate().A, all, all).is_zero()) return "$A|A$ is singular";
   return {};
 }
 
-// Paper 001: x = (x1, x2) where x2 has its own linear dynamics independent of
+// Basin & Skliar: x = (x1, x2) where x2 has its own linear dynamics independent of
 // x1, x1 is measured through a square invertible block A1, A and B B^T are
 // block-diagonal and the noise is additive. The split tried is the largest
 // self-contained set of affine components (x2), the rest being x1.
@@ -106,17 +113,17 @@ std::string partially_measured_split(const ModelFacts& facts) {
     for (std::size_t i : x2) sees_x2 = sees_x2 || !A[r][i].is_zero();
     if (sees_x1 && sees_x2)
       return "observation row " + std::to_string(r + 1) + " mixes nonlinear (" + join_indices(x1, model) +
-             ") and linear (" + join_indices(x2, model) + ") components: A is not block-diagonal";
+             ") and linear (" + join_indices(x2, model) + ") components: $A|A$ is not block-diagonal";
     (sees_x1 ? rows1 : rows2).push_back(r);
   }
   if (rows1.size() != x1.size())
     return "the nonlinear components (" + join_indices(x1, model) + ") are seen by " + std::to_string(rows1.size()) +
-           " observation rows, so A1 is not square";
-  if (determinant(A, rows1, x1).is_zero()) return "the block A1 measuring (" + join_indices(x1, model) + ") is singular";
+           " observation rows, so $A1|A_1$ is not square";
+  if (determinant(A, rows1, x1).is_zero()) return "the block $A1|A_1$ measuring (" + join_indices(x1, model) + ") is singular";
   ExMatrix R = multiply_by_transpose(model.observation.rate().B);
   for (std::size_t a : rows1)
     for (std::size_t b : rows2)
-      if (!R[a][b].is_zero()) return "observation noises of y1 and y2 are correlated (B B^T not block-diagonal)";
+      if (!R[a][b].is_zero()) return "observation noises of $y1|y_1$ and $y2|y_2$ are correlated ($B B^T|B B^{T}$ not block-diagonal)";
   return {};
 }
 
@@ -133,20 +140,21 @@ ExactnessReport sampled_exactness(const ModelFacts& facts, FilterKind kind) {
     report.condition = uses_euler_map(kind) ? "Kalman (Euler model)" : "Kalman";
     report.explanation =
         uses_euler_map(kind)
-            ? "exact for the Euler-discretised model: f is affine and g does not depend on x, so this is the "
-              "Kalman filter of x' = x + f dt + g sqrt(dt) xi sampled every sub-step"
-            : "exact: f is affine and g does not depend on x, so this is the Kalman filter of the sampled linear "
-              "system (up to the sub-steps' integration error)";
+            ? "exact for the Euler-discretised model: $f|f$ is affine and $g|g$ does not depend on $x|x$, so this "
+              "is the Kalman filter of $x' = x + f dt + g sqrt(dt) xi|x' = x + f\\,dt + g \\sqrt{dt}\\,\\xi$ "
+              "sampled every sub-step"
+            : "exact: $f|f$ is affine and $g|g$ does not depend on $x|x$, so this is the Kalman filter of the "
+              "sampled linear system (up to the sub-steps' integration error)";
     return report;
   }
   report.condition = "none";
   if (uses_euler_map(kind) && nonaffine.empty())
-    report.explanation = "linear minimum-variance filter (paper 003): with affine f the predicted m and P are the "
-                         "exact moments of the Euler-discretised model, but x is not Gaussian, so the update is "
-                         "the best linear one, not the optimal one";
+    report.explanation = "linear minimum-variance filter (Allahyani & Date): with affine $f|f$ the predicted $m|m$ "
+                         "and $P|P$ are the exact moments of the Euler-discretised model, but $x|x$ is not Gaussian, "
+                         "so the update is the best linear one, not the optimal one";
   else if (is_extended_kalman(kind))
-    report.explanation = "approximation: the extended Kalman filter linearises f at m; it is exact only in the "
-                         "linear Gaussian case";
+    report.explanation = "approximation: the extended Kalman filter linearises $f|f$ at $m|m$; it is exact only "
+                         "in the linear Gaussian case";
   else
     report.explanation = "approximation: Gaussian assumed density between samples and a Kalman update at each";
   report.failed.push_back("Kalman: " + failure);
@@ -156,14 +164,15 @@ ExactnessReport sampled_exactness(const ModelFacts& facts, FilterKind kind) {
 ExactnessReport undelayed_exactness(const Model& model, FilterKind kind);
 
 // Delayed observations (docs/theory.md §2.6). With h = 0 the delay kinds are their undelayed
-// counterparts; with h > 0 no finite set of moments of x(t) is exact, and paper 004's filter
+// counterparts; with h > 0 no finite set of moments of x(t) is exact, and the filter of Basin,
+// Rodriguez-Gonzalez & Martinez-Zuniga 2004
 // makes two approximations on top of the Gaussian closure, which the report names.
 ExactnessReport delayed_exactness(const ModelFacts& facts, FilterKind kind) {
   const Model& model = facts.model;
   const FilterKind counterpart = is_extended_kalman(kind) ? FilterKind::Ekf : FilterKind::Optimal;
   if (model.observation.delay().is_zero()) {
     ExactnessReport report = undelayed_exactness(model, counterpart);
-    report.explanation += " (h = 0: the delayed filter is the '" + filter_kind_name(counterpart) + "' filter)";
+    report.explanation += " ($h = 0|h = 0$: the delayed filter is the '" + filter_kind_name(counterpart) + "' filter)";
     return report;
   }
   ExactnessReport report;
@@ -171,20 +180,25 @@ ExactnessReport delayed_exactness(const ModelFacts& facts, FilterKind kind) {
   const std::string multiplicative = facts.state_dependent_noise();
   const std::string extension =
       multiplicative.empty() ? ""
-                             : "; paper 004 treats additive state noise only, so with state-dependent g these "
-                               "equations are a Gaussian-closure extension of its filter";
+                             : "; Basin, Rodriguez-Gonzalez & Martinez-Zuniga 2004 treat additive state noise "
+                               "only, so with state-dependent $g|g$ these equations are a Gaussian-closure extension "
+                               "of their filter";
   if (is_extended_kalman(kind))
-    report.explanation = "approximation: the extended Kalman-Bucy filter linearises f at m and compares dy with "
-                         "A m(t - h) under the undelayed gain";
+    report.explanation = "approximation: the extended Kalman-Bucy filter linearises $f|f$ at $m|m$ and compares "
+                         "$dy|dy$ with $A m(t - h)|A\\,m(t-h)$ under the undelayed gain";
   else if (uses_transition_gain(kind))
-    report.explanation = "approximation (paper 004): the innovation uses m(t - h), the estimate made at t - h, for "
-                         "E[x(t - h) | Y(t)], which the observations since t - h also inform, and E[x(t) (x(t - h) - m(t - h))^T] is taken as P Phi*^T, Phi* "
-                         "from the noise-free solution x* started at m0 (paper 004, eqs 3 and 5)" + extension;
+    report.explanation = "approximation (Basin, Rodriguez-Gonzalez & Martinez-Zuniga 2004): the innovation uses "
+                         "$m(t - h)|m(t-h)$, the estimate made at $t - h|t-h$, for "
+                         "$E[x(t - h) \\| Y(t)]|E[x(t-h) \\mid Y(t)]$, which the observations since $t - h|t-h$ also "
+                         "inform, and $E[x(t) (x(t - h) - m(t - h))^T]|E\\bigl[x(t)\\,(x(t-h) - m(t-h))^{T}\\bigr]$ is "
+                         "taken as $P Phi*^T|P\\,\\Phi^{*T}$, $Phi*|\\Phi^{*}$ from the noise-free solution $x*|x^{*}$ "
+                         "started at $m0|m_0$ (Basin, Rodriguez-Gonzalez & Martinez-Zuniga 2004, eqs 3 and 5)" +
+                         extension;
   else
-    report.explanation = "approximation: the undelayed gain P A^T R^-1 with the delayed innovation (paper 004's "
-                         "eqs 19-20, its comparator)" + extension;
-  report.failed.push_back("delay: h > 0; the conditional law of x(t) depends on the path over [t - h, t], so no filter "
-                          "of m(t) and P(t) alone is exact");
+    report.explanation = "approximation: the undelayed gain $P A^T R^-1|P A^{T} R^{-1}$ with the delayed innovation "
+                         "(Basin, Rodriguez-Gonzalez & Martinez-Zuniga 2004, eqs 19-20, their comparator)" + extension;
+  report.failed.push_back("delay: $h > 0|h > 0$; the conditional law of $x(t)|x(t)$ depends on the path over "
+                          "$[t - h, t]|[t-h, t]$, so no filter of $m(t)|m(t)$ and $P(t)|P(t)$ alone is exact");
   return report;
 }
 
@@ -197,15 +211,16 @@ ExactnessReport risk_sensitive_exactness(const ModelFacts& facts) {
   if (nonaffine.empty()) {
     report.exact = true;
     report.condition = "LEQG";
-    report.explanation = "exact: f is affine and the noise additive, so the information state stays Gaussian and "
-                         "this is the linear risk-sensitive (LEQG) filter for the criterion J; m is its estimate, "
-                         "not the conditional mean";
+    report.explanation = "exact: $f|f$ is affine and the noise additive, so the information state stays Gaussian "
+                         "and this is the linear risk-sensitive (LEQG) filter for the criterion $J|J$; $m|m$ is its "
+                         "estimate, not the conditional mean";
     return report;
   }
   report.condition = "none";
-  report.explanation = "approximation (paper 002's construction): the equation of the risk-sensitive information "
-                       "state's logarithm is expanded about m to second order in x - m; the terms of order 3 and "
-                       "above, which f's degree above 1 brings, are dropped";
+  report.explanation = "approximation (the construction of Alcorta-Garcia et al. 2011): the equation of the "
+                       "risk-sensitive information state's logarithm is expanded about $m|m$ to second order in "
+                       "$x - m|x - m$; the terms of order 3 and above, which $f|f$'s degree above 1 brings, are "
+                       "dropped";
   report.failed.push_back("LEQG: " + nonaffine);
   return report;
 }
@@ -221,15 +236,16 @@ ExactnessReport unscented_exactness(const ModelFacts& facts) {
   if (nonaffine.empty() && multiplicative.empty()) {
     report.exact = true;
     report.condition = "Kalman-Bucy";
-    report.explanation = "exact: f is affine and g does not depend on x, so the sigma-point sums are the Gaussian "
-                         "expectations and this is the Kalman-Bucy filter";
+    report.explanation = "exact: $f|f$ is affine and $g|g$ does not depend on $x|x$, so the sigma-point sums are "
+                         "the Gaussian expectations and this is the Kalman-Bucy filter";
     return report;
   }
   report.condition = "none";
-  report.explanation = "approximation (unscented, Sarkka 2007): E[f], E[(x-m) f^T] and E[g g^T] under N(m, P) are "
-                       "replaced by weighted sums over 2n+1 sigma points; the sums equal those expectations when "
-                       "f has degree <= 2 and G degree <= 3, and beyond that only for terms that move along one "
-                       "sigma axis (docs/theory.md 2.8), on top of the Gaussian assumed density";
+  report.explanation = "approximation (unscented, Sarkka 2007): $E[f]|E[f]$, $E[(x-m) f^T]|E[(x-m) f^{T}]$ and "
+                       "$E[g g^T]|E[g\\,g^{T}]$ under $N(m, P)|N(m, P)$ are replaced by weighted sums over $2n+1|2n+1$ "
+                       "sigma points; the sums equal those expectations when $f|f$ has degree $<= 2|\\le 2$ and $G|G$ "
+                       "degree $<= 3|\\le 3$, and beyond that only for terms that move along one sigma axis "
+                       "(docs/theory.md 2.8), on top of the Gaussian assumed density";
   report.failed.push_back("Kalman-Bucy: " + (!nonaffine.empty() ? nonaffine : multiplicative));
   return report;
 }
@@ -253,58 +269,60 @@ ExactnessReport undelayed_exactness(const Model& model, FilterKind kind) {
   const std::string nonaffine = facts.nonaffine_drift();
   const std::string multiplicative = facts.state_dependent_noise();
   const std::string suffix =
-      uses_additive_diffusion(kind) ? " (for the model with its additive diffusion in place of g)" : "";
+      uses_additive_diffusion(kind) ? " (for the model with its additive diffusion in place of $g|g$)" : "";
 
   if (nonaffine.empty() && multiplicative.empty()) {
     report.exact = true;
     report.condition = "Kalman-Bucy";
-    report.explanation = "exact: f is affine and g does not depend on x, so this is the Kalman-Bucy filter" + suffix;
+    report.explanation =
+        "exact: $f|f$ is affine and $g|g$ does not depend on $x|x$, so this is the Kalman-Bucy filter" + suffix;
     return report;
   }
   std::string kalman_failure = !nonaffine.empty() ? nonaffine : multiplicative;
   if (is_extended_kalman(kind)) {
     report.condition = "none";
-    report.explanation = "approximation: the extended Kalman-Bucy filter linearises f at m; it is exact only "
-                         "in the Kalman-Bucy case" + suffix;
+    report.explanation = "approximation: the extended Kalman-Bucy filter linearises $f|f$ at $m|m$; it is exact "
+                         "only in the Kalman-Bucy case" + suffix;
     report.failed.push_back("Kalman-Bucy: " + kalman_failure);
     return report;
   }
-  // Papers 000 and 001 pass from their eq 5 to eq 6 by dropping the third
+  // Basin, Perez & Skliar 2006 and Basin & Skliar pass from their eq 5 to eq 6 by dropping the third
   // central moment, which needs x - m conditionally Gaussian. With state-
   // dependent noise that is the paper's claim rather than a proven fact.
   const std::string claim =
       multiplicative.empty() ? ""
                              : "; with state-dependent noise this is the paper's claim, not a proven fact (it drops "
-                               "the third central moment of x - m)";
+                               "the third central moment of $x - m|x - m$)";
   const std::string square = square_invertible_A(model);
   if (square.empty()) {
     report.exact = true;
-    report.condition = "paper 000";
-    report.explanation = "exact: A is square and invertible, so x - m is conditionally Gaussian "
-                         "(paper 000, Basin-Perez-Skliar 2006)" + claim + suffix;
+    report.condition = kBasinPerezSkliar;
+    report.explanation = "exact: $A|A$ is square and invertible, so $x - m|x - m$ is conditionally Gaussian "
+                         "(Basin, Perez & Skliar 2006)" + claim + suffix;
     return report;
   }
   const std::string linear_case = !nonaffine.empty() ? nonaffine : facts.nonaffine_noise();
   if (linear_case.empty()) {
     report.exact = true;
-    report.condition = "paper 000 linear case";
-    report.explanation = "exact: f and g are affine in x (paper 000, eqs 10-11), for any A" + claim + suffix;
+    report.condition = kBasinPerezSkliarLinear;
+    report.explanation = "exact: $f|f$ and $g|g$ are affine in $x|x$ (Basin, Perez & Skliar 2006, eqs 10-11), for "
+                         "any $A|A$" + claim + suffix;
     return report;
   }
   const std::string split = partially_measured_split(facts);
   if (split.empty()) {
     report.exact = true;
-    report.condition = "paper 001";
+    report.condition = kBasinSkliar;
     report.explanation = "exact: the nonlinear components are measured through a square invertible block and "
                          "the rest follow their own linear dynamics, with additive noise "
-                         "(paper 001, Basin-Skliar)" + suffix;
+                         "(Basin & Skliar)" + suffix;
     return report;
   }
   report.condition = "none";
   report.explanation = "approximation: no published exactness condition holds, so this filter is a Gaussian "
                        "assumed-density approximation" + suffix;
-  report.failed = {"Kalman-Bucy: " + kalman_failure, "paper 000: " + square,
-                   "paper 000 linear case: " + linear_case, "paper 001: " + split};
+  report.failed = {"Kalman-Bucy: " + kalman_failure, std::string(kBasinPerezSkliar) + ": " + square,
+                   std::string(kBasinPerezSkliarLinear) + ": " + linear_case, std::string(kBasinSkliar) + ": " + split};
   return report;
 }
 

@@ -7,6 +7,7 @@
 #include "pfgen/derivation/observation_terms.hpp"
 #include "pfgen/derivation/risk_sensitive.hpp"
 #include "pfgen/derivation/unscented.hpp"
+#include "pfgen/notation/rich_text.hpp"
 
 namespace pfgen {
 namespace {
@@ -233,8 +234,9 @@ FilterEquations derive_user_filter(const Model& model, const UserFilter& filter)
   const std::size_t n = model.n();
   FilterEquations eq = equations_frame(model);
   eq.name = filter.name;
+  // The model file's words, printed as written (no math spans).
   eq.description = filter.description.empty() ? "user-defined filter given by its equations in the model file"
-                                               : filter.description;
+                                               : rich_text_literal(filter.description);
   eq.exactness.exact = false;
   eq.exactness.condition = "user-defined";
   eq.exactness.explanation = "given by its equations in the model file; not derived by pfgen";

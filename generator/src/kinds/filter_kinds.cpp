@@ -13,42 +13,52 @@ const std::vector<FilterKindInfo>& filter_kinds() {
   const std::vector<ObservationKind> delayed = {ObservationKind::Delayed};
   static const std::vector<FilterKindInfo> kinds = {
       {FilterKind::Optimal, "optimal",
-       "Gaussian-closure optimal filter: E[f], E[(x-m)f^T] + E[f(x-m)^T], E[g g^T] expanded exactly", E::Gaussian,
-       D::Model, continuous},
-      {FilterKind::Ekf, "ekf", "extended Kalman-Bucy filter (textbook): f(m), Jacobian of f at m, g(m) g(m)^T",
+       "Gaussian-closure optimal filter: $E[f]|E[f]$, $E[(x-m)f^T] + E[f(x-m)^T]|E[(x-m)f^{T}] + E[f(x-m)^{T}]$, "
+       "$E[g g^T]|E[g\\,g^{T}]$ expanded exactly",
+       E::Gaussian, D::Model, continuous},
+      {FilterKind::Ekf, "ekf", "extended Kalman-Bucy filter (textbook): $f(m)|f(m)$, Jacobian of $f|f$ at $m|m$, "
+       "$g(m) g(m)^T|g(m)\\,g(m)^{T}$",
        E::AtMean, D::Model, continuous},
       {FilterKind::Additive, "additive",
-       "Gaussian-closure filter with the model's additive (state-independent) diffusion in place of g", E::Gaussian,
-       D::Additive, continuous},
+       "Gaussian-closure filter with the model's additive (state-independent) diffusion in place of $g|g$",
+       E::Gaussian, D::Additive, continuous},
       {FilterKind::EkfAdditive, "ekf-additive",
-       "extended Kalman-Bucy filter with the model's additive (state-independent) diffusion in place of g",
+       "extended Kalman-Bucy filter with the model's additive (state-independent) diffusion in place of $g|g$",
        E::AtMean, D::Additive, continuous},
       {FilterKind::CdOptimal, "cd-optimal",
        "continuous-discrete Gaussian-closure filter: the closed moment ODEs between samples, Kalman update at each",
        E::Gaussian, D::Model, sampled, Prediction::Ode},
       {FilterKind::CdEkf, "cd-ekf",
-       "continuous-discrete extended Kalman filter: f(m), Jacobian at m, g(m) g(m)^T between samples, Kalman update",
+       "continuous-discrete extended Kalman filter: $f(m)|f(m)$, Jacobian at $m|m$, $g(m) g(m)^T|g(m)\\,g(m)^{T}$ "
+       "between samples, Kalman update",
        E::AtMean, D::Model, sampled, Prediction::Ode},
       {FilterKind::CdEuler, "cd-euler",
-       "exact Gaussian-closure moments of the Euler-discretised model per sub-step, Kalman update (paper 003's CDF)",
+       "exact Gaussian-closure moments of the Euler-discretised model per sub-step, Kalman update (Allahyani & Date's CDF)",
        E::Gaussian, D::Model, sampled, Prediction::EulerMap},
       {FilterKind::DelayOptimal, "delay-optimal",
-       "Gaussian-closure filter for delayed observations: gain P Phi*^T A^T R^-1 with Phi* = diag(x*(t-h)/x*(t)) of "
-       "the noise-free x*, innovation dy - (A0 + A m(t-h)) dt (paper 004)",
+       "Gaussian-closure filter for delayed observations: gain $P Phi*^T A^T R^-1|P\\,\\Phi^{*T} A^{T} R^{-1}$ with "
+       "$Phi* = diag(x*(t-h)/x*(t))|\\Phi^{*} = \\operatorname{diag}\\bigl(x^{*}(t-h)/x^{*}(t)\\bigr)$ of "
+       "the noise-free $x*|x^{*}$, innovation $dy - (A0 + A m(t-h)) dt|dy - (A_0 + A\\,m(t-h))\\,dt$ "
+       "(Basin, Rodriguez-Gonzalez & Martinez-Zuniga 2004)",
        E::Gaussian, D::Model, delayed, Prediction::Ode, DelayGain::Transition},
       {FilterKind::DelayUncorrected, "delay-uncorrected",
-       "Gaussian-closure filter with the undelayed gain P A^T R^-1 and the delayed innovation dy - (A0 + A m(t-h)) dt",
+       "Gaussian-closure filter with the undelayed gain $P A^T R^-1|P A^{T} R^{-1}$ and the delayed innovation "
+       "$dy - (A0 + A m(t-h)) dt|dy - (A_0 + A\\,m(t-h))\\,dt$",
        E::Gaussian, D::Model, delayed, Prediction::Ode, DelayGain::Undelayed},
       {FilterKind::DelayEkf, "delay-ekf",
-       "extended Kalman-Bucy filter (textbook) with the delayed innovation dy - (A0 + A m(t-h)) dt",
+       "extended Kalman-Bucy filter (textbook) with the delayed innovation "
+       "$dy - (A0 + A m(t-h)) dt|dy - (A_0 + A\\,m(t-h))\\,dt$",
        E::AtMean, D::Model, delayed, Prediction::Ode, DelayGain::Undelayed},
       {FilterKind::RiskSensitive, "risk-sensitive",
-       "risk-sensitive filter for the model's risk: criterion J (paper 002): f(m) - P grad(div f)(m), "
-       "Jacobian at m, and -P (Hess(div f)(m) - (2/eps) M) P in dP; LEQG for linear models",
+       "risk-sensitive filter for the model's risk: criterion $J|J$ (Alcorta-Garcia et al. 2011): "
+       "$f(m) - P grad(div f)(m)|f(m) - P\\,\\nabla(\\operatorname{div} f)(m)$, Jacobian at $m|m$, and "
+       "$-P (Hess(div f)(m) - (2/eps) M) P|-P\\bigl(\\nabla^{2}(\\operatorname{div} f)(m) - \\tfrac{2}{\\varepsilon} M\\bigr)P$ "
+       "in $dP|dP$; LEQG for linear models",
        E::AtMean, D::Model, continuous, Prediction::Ode, DelayGain::Undelayed, Criterion::RiskSensitive},
       {FilterKind::Ukf, "ukf",
-       "unscented Kalman-Bucy filter (Sarkka 2007): E[f], E[(x-m)f^T], E[g g^T] as weighted sums over the 2n+1 "
-       "sigma points m, m +- sqrt(c) L_j, L the Cholesky factor of P; opt-in (not among the defaults)",
+       "unscented Kalman-Bucy filter (Sarkka 2007): $E[f]|E[f]$, $E[(x-m)f^T]|E[(x-m)f^{T}]$, $E[g g^T]|E[g\\,g^{T}]$ "
+       "as weighted sums over the $2n+1|2n+1$ sigma points $m, m +- sqrt(c) L_j|m, m \\pm \\sqrt{c}\\,L_j$, $L|L$ the "
+       "Cholesky factor of $P|P$; opt-in (not among the defaults)",
        E::SigmaPoints, D::Model, continuous, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
        /*in_defaults=*/false},
   };

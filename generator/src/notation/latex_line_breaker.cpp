@@ -11,7 +11,7 @@ namespace {
 // width (\frac counts its wider argument, below). Any other command is one glyph (\alpha, \sin).
 bool prints_nothing(const std::string& command) {
   return command == "left" || command == "right" || command == "Bigl" || command == "Bigr" || command == "," ||
-         command == "mathrm" || command == "operatorname" || command == "frac";
+         command == "mathrm" || command == "operatorname" || command == "frac" || command == "displaystyle";
 }
 
 class WidthEstimator {
@@ -33,6 +33,14 @@ class WidthEstimator {
         if (command == "frac") {
           const double numerator = group_width(i, to), denominator = group_width(i, to);
           total += std::max(numerator, denominator) + 0.5;
+        } else if (command == "\\") {
+          // A matrix's row break counts as one glyph, as before; its optional extra space ("\\[1ex]")
+          // takes no width.
+          total += 1;
+          if (i < to && text_[i] == '[') {
+            const std::size_t close = text_.find(']', i);
+            if (close != std::string::npos && close < to) i = close + 1;
+          }
         } else if (command == "quad") {
           total += 2;
         } else if (!prints_nothing(command)) {

@@ -82,12 +82,22 @@ std::string LatexPrinter::constant(const GiNaC::ex& c) const {
 
 std::string latex_escape_text(const std::string& text) {
   std::string out;
-  for (char c : text) {
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const char c = text[k];
     switch (c) {
       case '&': case '%': case '$': case '#': case '_': case '{': case '}': out += std::string("\\") + c; break;
       case '~': out += "\\textasciitilde{}"; break;
       case '^': out += "\\textasciicircum{}"; break;
       case '\\': out += "\\textbackslash{}"; break;
+      // The OT1 text fonts put other glyphs at these positions (h > 0 would print as h ¿ 0, a | b
+      // as a — b): the text commands take them from fonts that have them.
+      case '<': out += "\\textless{}"; break;
+      case '>': out += "\\textgreater{}"; break;
+      case '|': out += "\\textbar{}"; break;
+      case '"': out += "{\\ttfamily\\char34}"; break;  // a straight double quote; OT1 has none in roman
+      case '`': out += "\\textasciigrave{}"; break;
+      // "--" would join into a dash.
+      case '-': out += (k + 1 < text.size() && text[k + 1] == '-') ? "-{}" : "-"; break;
       default: out += c;
     }
   }

@@ -6,6 +6,7 @@
 #include "pfgen/derivation/unscented.hpp"
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/rich_text.hpp"
 #include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/definitions_report.hpp"
 #include "pfgen/printing/delayed_report.hpp"
@@ -87,7 +88,7 @@ std::string text_report(const Model& model, const FilterEquations& eq, std::ostr
   std::string out;
   out += "model: " + model.name + "\n";
   out += noise_text(model);
-  out += "filter: " + eq.name + " (" + eq.description + ")\n";
+  out += "filter: " + eq.name + " (" + rich_text_plain(eq.description) + ")\n";
   out += "exactness: " + exactness_text(eq.exactness) + "\n";
   out += is_risk_sensitive_report(eq) ? risk_header_text(model, eq) : mean_square_header_text(model, eq);
   out += definitions_text(eq);
@@ -208,7 +209,7 @@ Json equations_json(const Model& model, const FilterEquations& eq) {
   out.add("model", Json::string(model.name));
   add_noise_json(model, out);
   out.add("filter", Json::string(eq.name));
-  out.add("description", Json::string(eq.description));
+  out.add("description", Json::string(rich_text_plain(eq.description)));
   out.add("exactness", exactness);
   out.add("variables", variables);
   add_definitions_json(eq, out);

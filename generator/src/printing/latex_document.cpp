@@ -4,6 +4,7 @@
 #include "pfgen/printing/equation_report.hpp"
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/rich_text.hpp"
 #include "pfgen/printing/latex_matrix.hpp"
 #include "pfgen/printing/noise_report.hpp"
 
@@ -75,13 +76,39 @@ std::string model_section(const Model& model) {
   if (model.initial) {
     const InitialConditions& ic = *model.initial;
     out += " \\\\\n";
-    if (!ic.x0.empty()) out += "x_0 &= " + bmatrix(printer, column(ExVector(ic.x0.begin(), ic.x0.end()))) + ", \\quad ";
-    else out += "&";
-    out += "m_0 = " + bmatrix(printer, column(ExVector(ic.m0.begin(), ic.m0.end()))) +
-           ", \\quad P_0 = " + bmatrix(printer, numeric_matrix(ic.P0));
+    const ExMatrix x0 = column(ExVector(ic.x0.begin(), ic.x0.end())), m0 = column(ExVector(ic.m0.begin(), ic.m0.end()));
+    const ExMatrix P0 = numeric_matrix(ic.P0);
+    std::string line = ic.x0.empty() ? "&" : "x_0 &= " + bmatrix(printer, x0) + ", \\quad ";
+    line += "m_0 = " + bmatrix(printer, m0) + ", \\quad P_0 = " + bmatrix(printer, P0);
+    // A P0 of more than amsmath's 10 matrix columns (16 states) cannot be one bmatrix, nor fit a
+    // line: then x0, m0 and P0 are written as the matrices above are, entry by entry where too wide.
+    if (model.n() <= 10)
+      out += line;
+    else
+      out += (ic.x0.empty() ? "" : matrix_lines(printer, "x_0", "(x_0)", x0) + " \\\\\n") +
+             matrix_lines(printer, "m_0", "(m_0)", m0) + " \\\\\n" + matrix_lines(printer, "P_0", "(P_0)", P0);
   }
   out += "\n\\end{align*}\n";
   return out + noise_latex(model);
+}
+
+// The document ends with a filter's last display. \allowdisplaybreaks lets TeX break a page
+// between any two of its rows, so a document could end on a page holding one or two rows. The
+// last two row breaks of that display are made \\* (no page break there): its last three rows
+// (or all of a shorter one, which then keeps the line before it, \predisplaypenalty) share the
+// last page. Page breaks elsewhere are TeX's as before.
+void keep_last_rows_together(std::string& document) {
+  const std::size_t end = document.rfind("\\end{align*}");
+  if (end == std::string::npos) return;
+  const std::size_t begin = document.rfind("\\begin{align*}", end);
+  if (begin == std::string::npos) return;
+  const std::string row_break = " \\\\\n";
+  std::size_t at = end;
+  for (int k = 0; k < 2; ++k) {
+    at = document.rfind(row_break, at - 1);
+    if (at == std::string::npos || at < begin) return;
+    document.insert(at + 3, "*");
+  }
 }
 
 }  // namespace
@@ -119,10 +146,12 @@ std::string latex_document(const Model& model, const std::vector<FilterEquations
   out += "\n";
   for (const auto& eq : filters) {
     out += "\\section*{Filter \\texttt{" + latex_escape_text(eq.name) + "}}\n";
-    const bool has_stop = !eq.description.empty() && eq.description.back() == '.';
-    out += latex_escape_text(eq.description) + (has_stop ? "\n\n" : ".\n\n");
+    const std::string plain = rich_text_plain(eq.description);
+    const bool has_stop = !plain.empty() && plain.back() == '.';
+    out += rich_text_latex(eq.description) + (has_stop ? "\n\n" : ".\n\n");
     out += equations_latex(eq);
   }
+  keep_last_rows_together(out);
   out += "\\end{document}\n";
   return out;
 }

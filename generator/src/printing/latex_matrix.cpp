@@ -7,10 +7,25 @@
 namespace pfgen {
 
 std::string bmatrix(const LatexPrinter& printer, const ExMatrix& m) {
+  std::vector<std::vector<std::string>> cells;
+  bool fractions = false;
+  for (const auto& row : m) {
+    cells.emplace_back();
+    for (const auto& e : row) {
+      cells.back().push_back(printer.print(e));
+      fractions = fractions || cells.back().back().find("\\frac") != std::string::npos;
+    }
+  }
+  // A matrix's cells are set in text style, where \frac{1}{3} shrinks to script-size digits and
+  // rows crowd each other: a cell with a fraction is set in display style, and the rows of such a
+  // matrix 1ex apart. A matrix without fractions is written as before.
   std::string out = "\\begin{bmatrix}";
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    for (std::size_t j = 0; j < m[i].size(); ++j) out += (j ? " & " : "") + printer.print(m[i][j]);
-    out += i + 1 < m.size() ? " \\\\ " : "";
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    for (std::size_t j = 0; j < cells[i].size(); ++j) {
+      const bool fraction = cells[i][j].find("\\frac") != std::string::npos;
+      out += (j ? " & " : "") + std::string(fraction ? "\\displaystyle " : "") + cells[i][j];
+    }
+    out += i + 1 < cells.size() ? (fractions ? " \\\\[1ex] " : " \\\\ ") : "";
   }
   return out + "\\end{bmatrix}";
 }

@@ -1,6 +1,7 @@
 #include "pfgen/printing/report_parts.hpp"
 
 #include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/rich_text.hpp"
 
 namespace pfgen {
 
@@ -22,16 +23,16 @@ std::string join_parts(PolynomialWriter& writer, const std::vector<ReportPart>& 
 }
 
 std::string exactness_text(const ExactnessReport& report) {
-  std::string out = report.explanation;
-  for (const auto& failed : report.failed) out += "\n  failed: " + failed;
+  std::string out = rich_text_plain(report.explanation);
+  for (const auto& failed : report.failed) out += "\n  failed: " + rich_text_plain(failed);
   return out;
 }
 
 std::string exactness_latex(const ExactnessReport& report) {
-  std::string out = "\\noindent\\textbf{Exactness:} " + latex_escape_text(report.explanation) + ".\n";
+  std::string out = "\\noindent\\textbf{Exactness:} " + rich_text_latex(report.explanation) + ".\n";
   if (!report.failed.empty()) {
     out += "\\begin{itemize}\n";
-    for (const auto& f : report.failed) out += "\\item " + latex_escape_text(f) + "\n";
+    for (const auto& f : report.failed) out += "\\item " + rich_text_latex(f) + "\n";
     out += "\\end{itemize}\n";
   }
   return out;
@@ -41,9 +42,9 @@ Json exactness_json(const ExactnessReport& report) {
   Json exactness = Json::object();
   exactness.add("exact", Json::boolean(report.exact));
   exactness.add("condition", Json::string(report.condition));
-  exactness.add("explanation", Json::string(report.explanation));
+  exactness.add("explanation", Json::string(rich_text_plain(report.explanation)));
   Json failed = Json::array();
-  for (const auto& f : report.failed) failed.push(Json::string(f));
+  for (const auto& f : report.failed) failed.push(Json::string(rich_text_plain(f)));
   exactness.add("failed", failed);
   return exactness;
 }

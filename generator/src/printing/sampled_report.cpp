@@ -2,6 +2,7 @@
 
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/rich_text.hpp"
 #include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/noise_report.hpp"
 #include "pfgen/printing/report_parts.hpp"
@@ -30,7 +31,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   std::string out;
   out += "model: " + model.name + "\n";
   out += noise_text(model);
-  out += "filter: " + eq.name + " (" + eq.description + ")\n";
+  out += "filter: " + eq.name + " (" + rich_text_plain(eq.description) + ")\n";
   out += "exactness: " + exactness_text(eq.exactness);
   out += "\nvariables: ";
   for (std::size_t i = 0; i < n; ++i)
@@ -206,7 +207,7 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   out.add("model", Json::string(model.name));
   add_noise_json(model, out);
   out.add("filter", Json::string(eq.name));
-  out.add("description", Json::string(eq.description));
+  out.add("description", Json::string(rich_text_plain(eq.description)));
   out.add("exactness", exactness);
   out.add("variables", variables);
   out.add("period", Json::string(printer.print(u.period)));

@@ -13,8 +13,8 @@ namespace pfgen {
 struct ExactnessReport {
   bool exact = false;
   std::string condition;                // short name of the condition that holds, or "none"
-  std::string explanation;              // one sentence for the user
-  std::vector<std::string> failed;      // each failed condition with its reason
+  std::string explanation;              // one sentence for the user, rich text (notation/rich_text.hpp)
+  std::vector<std::string> failed;      // each failed condition with its reason, rich text
 };
 
 ExactnessReport assess_exactness(const Model& model, FilterKind kind);

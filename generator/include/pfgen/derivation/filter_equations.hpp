@@ -35,7 +35,7 @@ namespace pfgen {
 
 struct FilterEquations {
   std::string name;          // the kind's name ("ekf-additive") or the user filter's
-  std::string description;   // one line: the kind's description or the user filter's
+  std::string description;   // one line of rich text (notation/rich_text.hpp): the kind's description or the user filter's
   std::optional<FilterKind> kind;  // empty for a user filter
   ObservationKind observation = ObservationKind::Continuous;  // the model's, which the equations are for
   FilterVariables variables;

@@ -39,8 +39,11 @@ enum class Prediction {
 // How a delayed-observation kind forms its gain (other kinds: Undelayed). The innovation of every
 // delayed kind is dy - (A0 + A m(t - h)) dt (docs/theory.md §2.6).
 enum class DelayGain {
-  Undelayed,   // P A^T R^-1, as if the observation were not delayed (paper 004's eqs 19-20)
-  Transition,  // P Phi*^T A^T R^-1, Phi* = diag(x*(t - h) / x*(t)) from the noise-free x* (paper 004's eq 6)
+  // P A^T R^-1, as if the observation were not delayed (Basin, Rodriguez-Gonzalez & Martinez-Zuniga
+  // 2004, eqs 19-20)
+  Undelayed,
+  // P Phi*^T A^T R^-1, Phi* = diag(x*(t - h) / x*(t)) from the noise-free x* (the same, eq 6)
+  Transition,
 };
 
 // What a kind's estimate is optimal for (docs/theory.md §2.7).
@@ -53,7 +56,7 @@ enum class Criterion {
 struct FilterKindInfo {
   FilterKind kind;
   std::string name;         // the --filter name, and (with '-' as '_') the generated code's
-  std::string description;  // one line
+  std::string description;  // one line of rich text (notation/rich_text.hpp): $plain|latex$ math spans
   ExpectationRule expectation;
   DiffusionSource diffusion;
   std::vector<ObservationKind> observations;  // the observation models it is derived for
@@ -81,8 +84,8 @@ struct FilterKindNeeds {
   unsigned drift_degree = 0;               // the highest total degree of a drift entry in the states
   unsigned drift_degree_row = 0;           // 1-based row of the first entry of that degree
 };
-// The risk-sensitive kind is derived for drifts of degree <= 3 (paper 002's second- and
-// third-degree systems; the construction's dropped terms grow with the degree).
+// The risk-sensitive kind is derived for drifts of degree <= 3 (the second- and third-degree systems
+// of Alcorta-Garcia et al. 2011; the construction's dropped terms grow with the degree).
 inline constexpr unsigned kRiskSensitiveMaxDegree = 3;
 // Why the kind cannot be derived for such a model ("needs additive_diffusion or ..."), or
 // nothing when it can.

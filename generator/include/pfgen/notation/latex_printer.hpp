@@ -20,7 +20,8 @@ class LatexPrinter : public ExpressionPrinter {
   std::string constant(const GiNaC::ex& c) const override;
 };
 
-// Escapes text-mode special characters (& % $ # _ { } ~ ^ \) for prose around the math.
+// Escapes text-mode special characters (& % $ # _ { } ~ ^ \) for prose around the math, and
+// writes < > | " ` and -- so that they print as written in the document's OT1 fonts.
 std::string latex_escape_text(const std::string& text);
 
 }  // namespace pfgen
