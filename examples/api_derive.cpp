@@ -1,5 +1,5 @@
 // Building a model in C++ instead of a model file, then deriving and printing
-// its optimal filter. This is paper 000's example (examples/basin2006_quadratic.yaml).
+// its optimal filter. This is Basin, Perez & Skliar 2006's example (examples/basin2006_quadratic.yaml).
 //   build/examples/api_derive
 #include <iostream>
 

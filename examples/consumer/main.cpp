@@ -1,4 +1,4 @@
-// Drives the generated optimal filter of paper 000's example (dx = 0.1 x^2 dt + 0.1 x^2 dW1,
+// Drives the generated optimal filter of Basin, Perez & Skliar 2006's example (dx = 0.1 x^2 dt + 0.1 x^2 dW1,
 // dy = x dt + dW2) against a simulated truth with pfgen's runtime (pfgen::runtime), without the
 // `pfgen simulate` command: the truth by the adaptive Euler scheme, its observations, seeded
 // Monte Carlo runs with guards. A trivial estimate runs beside the filter on the same runs: m
