@@ -109,7 +109,7 @@ TEST_CASE("user filters: paper 000's printed comparator (eqs 25-26) as written",
   FilterEquations printed = derive_named_filter(model, "ekf-printed");
   CHECK(printed.name == "ekf-printed");
   CHECK(printed.is_user_filter());
-  CHECK_THAT(printed.description, Contains("Paper 000 eqs 25-26 as printed"));
+  CHECK_THAT(printed.description, Contains("Basin, Perez & Skliar 2006 eqs 25-26 as printed"));
   CHECK_FALSE(printed.exactness.exact);
   CHECK(printed.exactness.condition == "user-defined");
   CHECK(printed.jacobian_term.empty());
@@ -307,7 +307,7 @@ TEST_CASE("user filters: every command takes them by name, after the built-in ki
   SECTION("derive in text, json and latex") {
     ProcessResult text = run_pfgen({"derive", model, "--filter", "ekf-printed"});
     REQUIRE(text.exit_code == 0);
-    CHECK_THAT(text.out, Contains("filter: ekf-printed (Paper 001 eqs 20-22 as printed"));
+    CHECK_THAT(text.out, Contains("filter: ekf-printed (Basin & Skliar eqs 20-22 as printed"));
     CHECK_THAT(text.out, Contains("dP terms: as given in the model file"));
     CHECK_THAT(text.out, Contains("dP11 = (-P11^2 + 0.2*P12) dt"));
     CHECK_THAT(text.out, Contains("dP12 = (-P11*P12 + 0.1*P12 + 0.1*P22) dt"));
