@@ -584,8 +584,11 @@ std::vector<std::vector<PlottedLine>> plotted_lines(const std::string& script) {
   for (std::string line; std::getline(in, line);) {
     if (line.rfind("plot ", 0) != 0) continue;
     commands.emplace_back();
-    for (std::sregex_iterator it(line.begin(), line.end(), curve), end; it != end; ++it)
-      commands.back().push_back({(*it)[1], (*it)[2], (*it)[3], (*it)[4]});
+    for (std::sregex_iterator it(line.begin(), line.end(), curve), end; it != end; ++it) {
+      const std::string title = (*it)[4];
+      if (title.size() > 7 && title.compare(title.size() - 7, 7, " 5-95 %") == 0) continue;  // a band's edge
+      commands.back().push_back({(*it)[1], (*it)[2], (*it)[3], title});
+    }
   }
   return commands;
 }
@@ -635,11 +638,24 @@ TEST_CASE("monte carlo: the plot gives every filter its own dash type and width,
       CHECK(reference.color == "#000000");
     }
   }
-  // The bands before every median, so no band veils a median drawn before it.
+  // The bands before every median, so no band veils a median drawn before it: the first filter's
+  // filled, each other filter's as its two thin edges in its own colour and dash type, each band
+  // in the key, so that bands that coincide do not merge into one grey area of unknown owner.
   const std::size_t band_start = script.find("5-95 % band");
   const std::string band_command = script.substr(band_start, script.find("set ylabel", band_start) - band_start);
   REQUIRE(band_command.find("filledcurves") != std::string::npos);
-  CHECK(band_command.rfind("filledcurves") < band_command.find("with lines"));
+  CHECK(band_command.find("filledcurves") == band_command.rfind("filledcurves"));  // one filled band
+  CHECK(band_command.find("title 'optimal 5-95 %'") != std::string::npos);
+  const std::size_t first_median = band_command.find("title 'optimal'");
+  REQUIRE(first_median != std::string::npos);
+  CHECK(band_command.rfind("filledcurves") < first_median);
+  for (std::size_t f = 1; f < four.size(); ++f) {
+    const std::string edge = "with lines lw 1 dt " + commands[0][f].dash + " lc rgb '" + commands[0][f].color + "'";
+    const std::size_t titled = band_command.find(edge + " title '" + four[f] + " 5-95 %'");
+    REQUIRE(titled != std::string::npos);
+    CHECK(band_command.find(edge + " notitle", titled) != std::string::npos);  // the other edge
+    CHECK(titled < first_median);
+  }
 
   // Without the reference no black dashed curve; nine filters: the first eight have distinct dash
   // types, and all nine distinct widths, widest first.

@@ -152,13 +152,22 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
     out << "\n";
     out << "set title " << quoted(x + ": median over " + std::to_string(result.runs) + " runs, 5-95 % band" + clipped) << "\n";
     if (result.filters.empty()) out << "plot 0 with lines notitle\n";
-    // Every band first, then the medians over them in the order and styles above: a later band
-    // would veil an earlier filter's median.
+    // The bands, then the medians over them in the order and styles above. Filled bands of
+    // filters that track each other stack into one grey area whose owner no one can tell, so
+    // only the first filter's band is filled; every other filter's band is its two edges, thin,
+    // in its own colour and dash type. Each band has its key entry ("NAME 5-95 %").
     for (std::size_t f = 0; f < count; ++f) {
       const std::string stem = result.filters[f].name + "_err_" + x;
-      out << (f == 0 ? "plot " : ", \\\n     ") << data << " skip 1 using 1:" << column(columns, stem + "_q05") << ":"
-          << column(columns, stem + "_q95") << " with filledcurves fs transparent solid 0.2 noborder lc rgb '"
-          << colors[f % 8] << "' notitle";
+      const std::string band = quoted(result.filters[f].name + " 5-95 %");
+      out << (f == 0 ? "plot " : ", \\\n     ") << data << " skip 1 using 1:";
+      if (f == 0) {
+        out << column(columns, stem + "_q05") << ":" << column(columns, stem + "_q95")
+            << " with filledcurves fs transparent solid 0.2 noborder lc rgb '" << colors[f % 8] << "' title " << band;
+        continue;
+      }
+      const std::string edge = std::string(" with lines lw 1 dt ") + dash_types[f % 8] + " lc rgb '" + colors[f % 8] + "'";
+      out << column(columns, stem + "_q05") << edge << " title " << band << ", \\\n     " << data
+          << " skip 1 using 1:" << column(columns, stem + "_q95") << edge << " notitle";
     }
     for (std::size_t f = 0; f < count; ++f) {
       const std::string& name = result.filters[f].name;
