@@ -59,3 +59,22 @@ TEST_CASE("embedded templates are the files of templates/", "[unit][codegen]") {
         pfgen_test::read_file(pfgen_test::source_dir() + "/runtime/include/pfgen_runtime/plugin_abi.h"));
   CHECK_THROWS_AS(embedded_template("cpp/missing.tmpl"), std::logic_error);
 }
+
+TEST_CASE("template filler: an include line becomes the partial, whose placeholders are filled too", "[unit][codegen]") {
+  const std::string& head = embedded_template("cpp/partials/eigen_layer_head.hpp.tmpl");
+  REQUIRE(!head.empty());
+  REQUIRE(head.back() == '\n');
+  // A line holding only the include becomes the partial's lines, with no blank line added.
+  const std::map<std::string, std::string> values = {
+      {"banner", "// b"}, {"kind_header", "k.hpp"}, {"namespace", "ns"}, {"template_prefix", ""}};
+  const std::string filled = fill_template("t", "{{> cpp/partials/eigen_layer_head.hpp.tmpl}}\nrest {{namespace}}\n", values);
+  CHECK(filled == fill_template("t", head + "rest {{namespace}}\n", values));
+  CHECK(filled.find("{{") == std::string::npos);
+  // Both Eigen layers share it; each template still reads as its own file once expanded.
+  for (const char* file : {"cpp/filter_eigen.hpp.tmpl", "cpp/sampled_filter_eigen.hpp.tmpl"})
+    CHECK(embedded_template(file).rfind("{{> cpp/partials/eigen_layer_head.hpp.tmpl}}\n", 0) == 0);
+  const std::string missing = logic_error_of([] { fill_template("t", "{{> cpp/partials/none.tmpl}}", {}); });
+  CHECK(missing.find("no template cpp/partials/none.tmpl") != std::string::npos);
+  const std::string open = logic_error_of([] { fill_template("t", "{{> cpp/partials/eigen", {}); });
+  CHECK(open.find("unterminated include") != std::string::npos);
+}

@@ -4,9 +4,39 @@
 #include <stdexcept>
 
 namespace pfgen::codegen {
+namespace {
 
-std::string fill_template(const std::string& name, const std::string& text,
+// `{{> PATH}}` is replaced by the embedded template PATH (a partial shared by several templates),
+// itself expanded; a line holding only the include takes the partial's own final newline. Partials
+// nest at most kMaxIncludeDepth deep, so a cycle is an error, not a hang.
+constexpr int kMaxIncludeDepth = 8;
+
+std::string expand_includes(const std::string& name, const std::string& text, int depth) {
+  if (depth > kMaxIncludeDepth) throw std::logic_error(name + ": partials nest too deep (a cycle?)");
+  std::string out;
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t open = text.find("{{>", pos);
+    if (open == std::string::npos) break;
+    const std::size_t close = text.find("}}", open);
+    if (close == std::string::npos) throw std::logic_error(name + ": unterminated include");
+    std::string path = text.substr(open + 3, close - open - 3);
+    path.erase(0, path.find_first_not_of(' '));
+    path.erase(path.find_last_not_of(' ') + 1);
+    out.append(text, pos, open - pos);
+    out += expand_includes(path, embedded_template(path), depth + 1);
+    pos = close + 2;
+    if (pos < text.size() && text[pos] == '\n' && !out.empty() && out.back() == '\n') ++pos;
+  }
+  out.append(text, pos, std::string::npos);
+  return out;
+}
+
+}  // namespace
+
+std::string fill_template(const std::string& name, const std::string& raw_text,
                           const std::map<std::string, std::string>& values) {
+  const std::string text = expand_includes(name, raw_text, 0);
   std::string out;
   std::set<std::string> used;
   std::size_t pos = 0;

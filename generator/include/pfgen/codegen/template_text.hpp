@@ -1,7 +1,8 @@
 #pragma once
-// Fills `{{key}}` placeholders in a template. Every placeholder must have a
-// value and every value a placeholder: a mismatch is a programming error in
-// pfgen, reported rather than silently producing broken code.
+// Fills `{{key}}` placeholders in a template, after replacing each `{{> PATH}}` by the embedded
+// partial PATH (templates/<lang>/partials/: text several templates share, written once). Every
+// placeholder must have a value and every value a placeholder: a mismatch is a programming error
+// in pfgen, reported rather than silently producing broken code.
 #include <map>
 #include <string>
 
