@@ -86,20 +86,18 @@ int run_codegen(const CodegenCliOptions& options) {
   if (options.dt && !(*options.dt > 0 && std::isfinite(*options.dt)))
     throw CliValueError("--dt: the step must be positive and finite");
   const std::vector<std::string> names = parse_filter_list("--filter", options.filters, model);
-  // The files' names follow from the model's and the filters' names (GeneratedFilter's
-  // relative_path), so they are checked before any derivation: a header must not replace the
-  // model file, nor one filter's header another's (a user filter `optimal-eigen` and optimal's
-  // Eigen wrapper are both optimal_eigen.hpp).
+  // The files' names follow from the model's and the filters' names (filter_header_paths), so
+  // they are checked before any derivation: a header must not replace the model file, nor one
+  // filter's header another's (a user filter `optimal-eigen` and optimal's Eigen wrapper are both
+  // optimal_eigen.hpp).
   std::vector<NamedPath> written;
-  std::vector<std::string> relative_paths;
   if (!options.output_dir.empty())
     for (const std::string& name : names) {
-      const std::string stem = model.name + "/" + filter_identifier(name);
-      relative_paths.push_back(stem + ".hpp");
-      written.push_back({"-o (filter " + name + ")", (std::filesystem::path(options.output_dir) / (stem + ".hpp")).string()});
+      const codegen::FilterHeaderPaths paths = codegen::filter_header_paths(model.name, name);
+      written.push_back({"-o (filter " + name + ")", (std::filesystem::path(options.output_dir) / paths.header).string()});
       if (eigen)
         written.push_back({"-o (filter " + name + ", --eigen)",
-                           (std::filesystem::path(options.output_dir) / (stem + "_eigen.hpp")).string()});
+                           (std::filesystem::path(options.output_dir) / paths.eigen_header).string()});
     }
   check_distinct_outputs({{"the model file", options.model_path}}, written);
   // Everything is generated in memory first: a failure leaves no partial output.
@@ -110,10 +108,7 @@ int run_codegen(const CodegenCliOptions& options) {
     // All the headers or none: a directory in the way of the last header left the first ones
     // written. Checked, then every temporary written, then renamed (write_files_together).
     std::vector<std::pair<std::string, std::string>> outputs;
-    for (std::size_t k = 0; k < files.size(); ++k) {
-      const auto& file = files[k];
-      if (file.relative_path != relative_paths[k])
-        throw std::logic_error("codegen: " + file.relative_path + " is not the checked path " + relative_paths[k]);
+    for (const auto& file : files) {
       outputs.emplace_back((std::filesystem::path(options.output_dir) / file.relative_path).string(), file.contents);
       if (!file.eigen_relative_path.empty())
         outputs.emplace_back((std::filesystem::path(options.output_dir) / file.eigen_relative_path).string(),

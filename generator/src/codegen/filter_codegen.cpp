@@ -305,7 +305,7 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
   const std::string identifier = filter_identifier(eq.name);
   GeneratedFilter result;
   result.name = eq.name;
-  result.relative_path = model.name + "/" + identifier + ".hpp";
+  result.relative_path = filter_header_paths(model.name, eq.name).header;
   result.functions = {derivatives.stats};
   if (euler) result.functions.push_back(square.stats);
   result.functions.push_back(innovation_code.stats);
@@ -370,7 +370,7 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
         {"kind_header", identifier + ".hpp"},
         {"template_prefix", prefix},
     };
-    result.eigen_relative_path = model.name + "/" + identifier + "_eigen.hpp";
+    result.eigen_relative_path = filter_header_paths(model.name, eq.name).eigen_header;
     result.eigen_contents = fill_template("cpp/sampled_filter_eigen.hpp.tmpl",
                                           embedded_template("cpp/sampled_filter_eigen.hpp.tmpl"), eigen_values);
   }
@@ -397,7 +397,7 @@ GeneratedFilter generate_delayed_code(const Model& model, const FilterEquations&
   const std::string identifier = filter_identifier(eq.name);
   GeneratedFilter result;
   result.name = eq.name;
-  result.relative_path = model.name + "/" + identifier + ".hpp";
+  result.relative_path = filter_header_paths(model.name, eq.name).header;
   result.functions = {functions.derivatives.stats, functions.gain.stats, functions.observation.stats};
 
   CppEmitter emitter(options.scalar);
@@ -454,6 +454,11 @@ GeneratedFilter generate_delayed_code(const Model& model, const FilterEquations&
 
 }  // namespace
 
+FilterHeaderPaths filter_header_paths(const std::string& model_name, const std::string& filter_name) {
+  const std::string stem = model_name + "/" + filter_identifier(filter_name);
+  return {stem + ".hpp", stem + "_eigen.hpp"};
+}
+
 OpCounts GeneratedFilter::naive_total() const {
   OpCounts total;
   for (const auto& f : functions) total += f.naive;
@@ -503,7 +508,7 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
   const std::string identifier = filter_identifier(eq.name);
   GeneratedFilter result;
   result.name = eq.name;
-  result.relative_path = model.name + "/" + identifier + ".hpp";
+  result.relative_path = filter_header_paths(model.name, eq.name).header;
   result.functions = {functions.derivatives.stats, functions.gain.stats, functions.observation.stats};
 
   CppEmitter emitter(options.scalar);
@@ -541,7 +546,7 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
         {"kind_header", kind_header},
         {"template_prefix", values.at("template_prefix")},
     };
-    result.eigen_relative_path = model.name + "/" + identifier + "_eigen.hpp";
+    result.eigen_relative_path = filter_header_paths(model.name, eq.name).eigen_header;
     result.eigen_contents =
         fill_template("cpp/filter_eigen.hpp.tmpl", embedded_template("cpp/filter_eigen.hpp.tmpl"), eigen_values);
   }

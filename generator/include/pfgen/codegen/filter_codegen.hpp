@@ -38,6 +38,16 @@ struct FunctionStats {
   OpCounts cse;          // after common-subexpression elimination
 };
 
+// Where a filter's headers go, relative to `pfgen codegen -o DIR`: "<model>/<identifier>.hpp" and
+// its Eigen layer "<model>/<identifier>_eigen.hpp", identifier = filter_identifier(filter_name).
+// The one place these names are made: the generator names its files by it, and the command line
+// checks the paths it will write before anything is derived.
+struct FilterHeaderPaths {
+  std::string header;
+  std::string eigen_header;
+};
+FilterHeaderPaths filter_header_paths(const std::string& model_name, const std::string& filter_name);
+
 struct GeneratedFilter {
   std::string name;            // the filter's name: "ekf-additive", or a user filter's
   std::string relative_path;   // "<model>/<identifier>.hpp", identifier = filter_identifier(name)
