@@ -10,11 +10,12 @@ using namespace pfgen::codegen;
 
 TEST_CASE("expression graph: the same operation on the same operands is one node", "[unit][codegen]") {
   ExpressionGraph g;
-  const std::size_t x = g.input("x", "state[0]");
-  const std::size_t y = g.input("y", "state[1]");
-  CHECK(g.input("x", "state[0]") == x);
+  const std::size_t x = g.input("x", InputSource::element("state", 0));
+  const std::size_t y = g.input("y", InputSource::element("state", 1));
+  CHECK(g.input("x", InputSource::element("state", 0)) == x);
   CHECK(g.input("x") == x);  // a name is one input, whatever the source given later
-  CHECK(g.node(x).source == "state[0]");
+  CHECK(g.node(x).source.container == "state");
+  CHECK(g.node(x).source.index == 0);
   CHECK(x != y);
 
   const std::size_t third = g.constant(GiNaC::numeric(1, 3));
@@ -30,9 +31,9 @@ TEST_CASE("expression graph: the same operation on the same operands is one node
   CHECK(g.neg(x) == g.neg(x));
   CHECK(g.neg(x) != g.neg(y));
   CHECK(g.mul(x, y) != g.add(x, y));
-  CHECK(g.call("std::sin", {x}) == g.call("std::sin", {x}));
-  CHECK(g.call("std::sin", {x}) != g.call("std::cos", {x}));
-  CHECK(g.call("std::pow", {x, y}) != g.call("std::pow", {y, x}));
+  CHECK(g.call(Function::Sin, {x}) == g.call(Function::Sin, {x}));
+  CHECK(g.call(Function::Sin, {x}) != g.call(Function::Cos, {x}));
+  CHECK(g.call(Function::Pow, {x, y}) != g.call(Function::Pow, {y, x}));
 
   const std::size_t before = g.size();
   g.mul(g.add(y, x), g.mul(y, x));  // both operands exist: one new node only
@@ -41,10 +42,10 @@ TEST_CASE("expression graph: the same operation on the same operands is one node
 
 TEST_CASE("expression graph: nodes are numbered in creation order, operands first", "[unit][codegen]") {
   ExpressionGraph g;
-  const std::size_t x = g.input("x", "state[0]");
+  const std::size_t x = g.input("x", InputSource::element("state", 0));
   const std::size_t two = g.constant(2);
   const std::size_t square = g.mul(x, x);
-  const std::size_t sum = g.add(g.mul(two, square), g.call("std::exp", {x}));
+  const std::size_t sum = g.add(g.mul(two, square), g.call(Function::Exp, {x}));
   CHECK(x == 0);
   CHECK(two == 1);
   CHECK(square == 2);
@@ -58,9 +59,9 @@ TEST_CASE("expression graph: nodes are numbered in creation order, operands firs
 
 TEST_CASE("expression graph: what outputs need, in topological order without leaves", "[unit][codegen]") {
   ExpressionGraph g;
-  const std::size_t x = g.input("x", "state[0]");
-  const std::size_t y = g.input("y", "state[1]");
-  const std::size_t z = g.input("z", "state[2]");
+  const std::size_t x = g.input("x", InputSource::element("state", 0));
+  const std::size_t y = g.input("y", InputSource::element("state", 1));
+  const std::size_t z = g.input("z", InputSource::element("state", 2));
   const std::size_t xy = g.mul(x, y);
   const std::size_t unused = g.mul(y, z);
   const std::size_t out = g.add(xy, g.neg(x));
@@ -81,12 +82,12 @@ TEST_CASE("expression graph: what outputs need, in topological order without lea
 
 TEST_CASE("expression graph: operation counts with and without sharing", "[unit][codegen]") {
   ExpressionGraph g;
-  const std::size_t x = g.input("x", "state[0]");
-  const std::size_t y = g.input("y", "state[1]");
+  const std::size_t x = g.input("x", InputSource::element("state", 0));
+  const std::size_t y = g.input("y", InputSource::element("state", 1));
   const std::size_t xy = g.mul(x, y);                         // 1 mul
   const std::size_t a = g.add(xy, g.constant(1));             // 1 add
   const std::size_t b = g.sub(xy, g.div(x, y));               // 1 add (sub), 1 div
-  const std::size_t c = g.neg(g.call("std::sin", {xy}));      // 1 add (neg), 1 call
+  const std::size_t c = g.neg(g.call(Function::Sin, {xy}));      // 1 add (neg), 1 call
   const std::vector<std::size_t> outputs = {a, b, c};
 
   const OpCounts shared = g.shared_counts(outputs);

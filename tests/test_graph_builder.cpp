@@ -10,6 +10,7 @@
 #include <map>
 #include <random>
 
+#include "pfgen/codegen/cpp_emitter.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 
@@ -50,10 +51,10 @@ Polynomial to_polynomial(const ExpressionGraph& graph, std::size_t root, const F
   std::map<std::string, std::uint32_t> variables;
   for (std::uint32_t v = 0; v < vars.count(); ++v) variables[vars.text_name(v)] = v;
   const std::map<std::string, std::function<GiNaC::ex(const GiNaC::ex&)>> functions = {
-      {"std::sin", [](const GiNaC::ex& e) { return GiNaC::sin(e); }},
-      {"std::cos", [](const GiNaC::ex& e) { return GiNaC::cos(e); }},
-      {"std::exp", [](const GiNaC::ex& e) { return GiNaC::exp(e); }},
-      {"std::sqrt", [](const GiNaC::ex& e) { return GiNaC::sqrt(e); }}};
+      {"sin", [](const GiNaC::ex& e) { return GiNaC::sin(e); }},
+      {"cos", [](const GiNaC::ex& e) { return GiNaC::cos(e); }},
+      {"exp", [](const GiNaC::ex& e) { return GiNaC::exp(e); }},
+      {"sqrt", [](const GiNaC::ex& e) { return GiNaC::sqrt(e); }}};
 
   std::vector<Polynomial> value(graph.size());
   auto constant_of = [&](std::size_t id) {
@@ -78,11 +79,11 @@ Polynomial to_polynomial(const ExpressionGraph& graph, std::size_t root, const F
       case OpKind::Neg: value[id] = value[a[0]].scaled(-1); break;
       case OpKind::Div: value[id] = value[a[0]].scaled(1 / constant_of(a[1])); break;
       case OpKind::Call:
-        if (node.name == "std::pow") {
+        if (node.function == pfgen::codegen::Function::Pow) {
           value[id] = Polynomial::constant(GiNaC::pow(constant_of(a[0]), constant_of(a[1])));
         } else {
-          REQUIRE(functions.count(node.name) == 1);
-          value[id] = Polynomial::constant(functions.at(node.name)(constant_of(a[0])));
+          REQUIRE(functions.count(function_name(node.function)) == 1);
+          value[id] = Polynomial::constant(functions.at(function_name(node.function))(constant_of(a[0])));
         }
         break;
       case OpKind::ZeroWhereZero:
@@ -126,23 +127,30 @@ TEST_CASE("graph builder: inputs are named as printed and read from their argume
   const FilterVariables vars(2);
   GraphBuilder builder(graph, model(), vars, "s", "q");
   const std::vector<std::size_t> order = builder.declaration_order();
+  // Each input's source, as the C++ emitter spells it (the graph holds it unspelled).
+  const pfgen::codegen::CppEmitter cpp(pfgen::codegen::ScalarMode::Double);
   std::vector<std::pair<std::string, std::string>> declared;
-  for (std::size_t id : order) declared.emplace_back(graph.node(id).name, graph.node(id).source);
+  for (std::size_t id : order) declared.emplace_back(graph.node(id).name, cpp.input_source(graph.node(id)));
   CHECK(declared == std::vector<std::pair<std::string, std::string>>{
                         {"m1", "s[0]"}, {"m2", "s[1]"}, {"P11", "s[2]"}, {"P12", "s[3]"}, {"P22", "s[4]"},
                         {"a", "q.a"}, {"b", "q.b"}});
-  // The time is the function's argument itself: no source.
+  CHECK(graph.node(order[3]).source.kind == pfgen::codegen::InputSource::Kind::Element);
+  CHECK(graph.node(order[3]).source.container == "s");
+  CHECK(graph.node(order[3]).source.index == 3);
+  CHECK(graph.node(order[5]).source.kind == pfgen::codegen::InputSource::Kind::Field);
+  CHECK(graph.node(order[5]).source.container == "q");
+  // The time is the function's argument itself.
   const std::size_t t = builder.expression(model().time);
   CHECK(graph.node(t).kind == OpKind::Input);
   CHECK(graph.node(t).name == "t");
-  CHECK(graph.node(t).source.empty());
+  CHECK(graph.node(t).source.kind == pfgen::codegen::InputSource::Kind::Argument);
   CHECK(builder.variable(vars.P(1, 0)) == order[3]);
 
   // From n = 10 on the indices are separated, as pfgen prints them.
   ExpressionGraph big;
   GraphBuilder ten(big, model(), FilterVariables(10), "state", "params");
   CHECK(big.node(ten.variable(FilterVariables(10).P(0, 9))).name == "P1_10");
-  CHECK(big.node(ten.variable(FilterVariables(10).P(0, 9))).source == "state[19]");
+  CHECK(big.node(ten.variable(FilterVariables(10).P(0, 9))).source.index == 19);
 }
 
 TEST_CASE("graph builder: which arguments the outputs read", "[unit][codegen]") {
@@ -216,12 +224,12 @@ TEST_CASE("graph builder: coefficients with functions of time become calls of <c
   const GiNaC::ex t = model().time;
   auto call_name = [&](const GiNaC::ex& e) {
     const Node& node = graph.node(builder.expression(e));
-    return node.kind == OpKind::Call ? node.name : std::string("(not a call)");
+    return node.kind == OpKind::Call ? std::string(function_name(node.function)) : std::string("(not a call)");
   };
-  CHECK(call_name(GiNaC::sin(t)) == "std::sin");
-  CHECK(call_name(GiNaC::exp(t)) == "std::exp");
-  CHECK(call_name(GiNaC::sqrt(t)) == "std::sqrt");
-  CHECK(call_name(GiNaC::pow(t, GiNaC::numeric(1, 3))) == "std::pow");
+  CHECK(call_name(GiNaC::sin(t)) == "sin");
+  CHECK(call_name(GiNaC::exp(t)) == "exp");
+  CHECK(call_name(GiNaC::sqrt(t)) == "sqrt");
+  CHECK(call_name(GiNaC::pow(t, GiNaC::numeric(1, 3))) == "pow");
   CHECK_THROWS_AS(builder.expression(GiNaC::tgamma(t)), CodegenError);
   CHECK_THROWS_AS(builder.expression(GiNaC::I * t), CodegenError);
   CHECK_THROWS_AS(builder.expression(GiNaC::symbol("stranger")), CodegenError);

@@ -84,12 +84,22 @@ std::string CppEmitter::operation(const ExpressionGraph&, const Node& node,
       return "(" + a[0] + " == " + zero + " ? " + zero + " : " + a[1] + ")";
     }
     case OpKind::Call: {
-      std::string out = node.name + "(";
+      std::string out = std::string("std::") + function_name(node.function) + "(";
       for (std::size_t k = 0; k < a.size(); ++k) out += (k ? ", " : "") + a[k];
       return out + ")";
     }
     case OpKind::Input: return node.name;
     case OpKind::Constant: return literal(node.value);
+  }
+  return "?";
+}
+
+// The C++ that reads an input: `state[3]`, `params.a`, or the argument's own name.
+std::string CppEmitter::input_source(const Node& node) const {
+  switch (node.source.kind) {
+    case InputSource::Kind::Argument: return node.name;
+    case InputSource::Kind::Element: return node.source.container + "[" + std::to_string(node.source.index) + "]";
+    case InputSource::Kind::Field: return node.source.container + "." + node.name;
   }
   return "?";
 }
@@ -100,8 +110,8 @@ std::string CppEmitter::input_declarations(const ExpressionGraph& graph, const s
   std::string text;
   for (std::size_t id : order) {
     const Node& node = graph.node(id);
-    if (needed.at(id) && node.kind == OpKind::Input && !node.source.empty())
-      text += "  const Scalar " + node.name + " = " + node.source + ";\n";
+    if (needed.at(id) && node.kind == OpKind::Input && node.source.kind != InputSource::Kind::Argument)
+      text += "  const Scalar " + node.name + " = " + input_source(node) + ";\n";
   }
   return text;
 }

@@ -4,6 +4,27 @@
 #include <sstream>
 
 namespace pfgen::codegen {
+
+namespace {
+const std::pair<Function, const char*> kFunctionNames[] = {
+    {Function::Sin, "sin"},   {Function::Cos, "cos"},   {Function::Tan, "tan"},   {Function::Exp, "exp"},
+    {Function::Log, "log"},   {Function::Sinh, "sinh"}, {Function::Cosh, "cosh"}, {Function::Tanh, "tanh"},
+    {Function::Asin, "asin"}, {Function::Acos, "acos"}, {Function::Atan, "atan"}, {Function::Abs, "abs"},
+    {Function::Sqrt, "sqrt"}, {Function::Pow, "pow"}};
+}  // namespace
+
+const char* function_name(Function function) {
+  for (const auto& [f, name] : kFunctionNames)
+    if (f == function) return name;
+  return "?";
+}
+
+std::optional<Function> function_named(const std::string& name) {
+  for (const auto& [f, known] : kFunctionNames)
+    if (name == known) return f;
+  return std::nullopt;
+}
+
 namespace {
 
 OpCounts own_cost(const Node& node) {
@@ -32,7 +53,8 @@ OpCounts& OpCounts::operator+=(const OpCounts& other) {
 std::size_t ExpressionGraph::intern(Node node) {
   std::ostringstream value;
   if (node.kind == OpKind::Constant) value << node.value;
-  Key key{static_cast<int>(node.kind), node.name, value.str(), node.args};
+  const std::string name = node.kind == OpKind::Call ? function_name(node.function) : node.name;
+  Key key{static_cast<int>(node.kind), name, value.str(), node.args};
   auto it = index_.find(key);
   if (it != index_.end()) return it->second;
   nodes_.push_back(std::move(node));
@@ -40,29 +62,30 @@ std::size_t ExpressionGraph::intern(Node node) {
   return nodes_.size() - 1;
 }
 
-std::size_t ExpressionGraph::input(const std::string& name, const std::string& source) {
-  return intern(Node{OpKind::Input, name, source, 0, {}});
+std::size_t ExpressionGraph::input(const std::string& name, InputSource source) {
+  Node node{OpKind::Input, name, std::move(source), Function::Sin, 0, {}};
+  return intern(std::move(node));
 }
 
 std::size_t ExpressionGraph::constant(const GiNaC::numeric& value) {
-  return intern(Node{OpKind::Constant, "", "", value, {}});
+  return intern(Node{OpKind::Constant, "", {}, Function::Sin, value, {}});
 }
 
 // Commutative operations list their operands in a fixed order, so a*b and b*a share a node.
 std::size_t ExpressionGraph::add(std::size_t a, std::size_t b) {
-  return intern(Node{OpKind::Add, "", "", 0, {std::min(a, b), std::max(a, b)}});
+  return intern(Node{OpKind::Add, "", {}, Function::Sin, 0, {std::min(a, b), std::max(a, b)}});
 }
-std::size_t ExpressionGraph::sub(std::size_t a, std::size_t b) { return intern(Node{OpKind::Sub, "", "", 0, {a, b}}); }
+std::size_t ExpressionGraph::sub(std::size_t a, std::size_t b) { return intern(Node{OpKind::Sub, "", {}, Function::Sin, 0, {a, b}}); }
 std::size_t ExpressionGraph::mul(std::size_t a, std::size_t b) {
-  return intern(Node{OpKind::Mul, "", "", 0, {std::min(a, b), std::max(a, b)}});
+  return intern(Node{OpKind::Mul, "", {}, Function::Sin, 0, {std::min(a, b), std::max(a, b)}});
 }
-std::size_t ExpressionGraph::div(std::size_t a, std::size_t b) { return intern(Node{OpKind::Div, "", "", 0, {a, b}}); }
+std::size_t ExpressionGraph::div(std::size_t a, std::size_t b) { return intern(Node{OpKind::Div, "", {}, Function::Sin, 0, {a, b}}); }
 std::size_t ExpressionGraph::zero_where_zero(std::size_t guard, std::size_t value) {
-  return intern(Node{OpKind::ZeroWhereZero, "", "", 0, {guard, value}});
+  return intern(Node{OpKind::ZeroWhereZero, "", {}, Function::Sin, 0, {guard, value}});
 }
-std::size_t ExpressionGraph::neg(std::size_t a) { return intern(Node{OpKind::Neg, "", "", 0, {a}}); }
-std::size_t ExpressionGraph::call(const std::string& function, const std::vector<std::size_t>& args) {
-  return intern(Node{OpKind::Call, function, "", 0, args});
+std::size_t ExpressionGraph::neg(std::size_t a) { return intern(Node{OpKind::Neg, "", {}, Function::Sin, 0, {a}}); }
+std::size_t ExpressionGraph::call(Function function, const std::vector<std::size_t>& args) {
+  return intern(Node{OpKind::Call, "", {}, function, 0, args});
 }
 
 bool ExpressionGraph::is_leaf(std::size_t id) const {

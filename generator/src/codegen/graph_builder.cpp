@@ -8,12 +8,6 @@
 namespace pfgen::codegen {
 namespace {
 
-// GiNaC functions that have a <cmath> counterpart of the same meaning.
-const std::map<std::string, std::string> kFunctions = {
-    {"sin", "std::sin"},   {"cos", "std::cos"},   {"tan", "std::tan"},   {"exp", "std::exp"},
-    {"log", "std::log"},   {"sinh", "std::sinh"}, {"cosh", "std::cosh"}, {"tanh", "std::tanh"},
-    {"asin", "std::asin"}, {"acos", "std::acos"}, {"atan", "std::atan"}, {"abs", "std::abs"}};
-
 // Operands of sums and products in the order of their canonical text, so the
 // generated code does not depend on GiNaC's address-seeded term order.
 std::vector<GiNaC::ex> canonical_operands(const GiNaC::ex& e) {
@@ -57,13 +51,13 @@ GraphBuilder::GraphBuilder(ExpressionGraph& graph, const Model& model, std::vect
                            const std::string& params)
     : graph_(graph), variable_arrays_(arrays) {
   for (const auto& p : model.parameters) {
-    parameter_inputs_.push_back(graph_.input(p.name, params + "." + p.name));
+    parameter_inputs_.push_back(graph_.input(p.name, InputSource::field(params)));
     symbols_[p.symbol] = parameter_inputs_.back();
   }
   time_input_ = graph_.input(model.time.get_name());
   symbols_[model.time] = time_input_;
   for (std::size_t v = 0; v < names.size(); ++v)
-    variable_inputs_.push_back(graph_.input(names[v], arrays.at(v) + "[" + std::to_string(indices.at(v)) + "]"));
+    variable_inputs_.push_back(graph_.input(names[v], InputSource::element(arrays.at(v), indices.at(v))));
 }
 
 std::vector<std::size_t> GraphBuilder::declaration_order() const {
@@ -209,16 +203,18 @@ std::size_t GraphBuilder::expression(const GiNaC::ex& e) {
     std::size_t base = expression(e.op(0));
     if (exponent.info(GiNaC::info_flags::integer))
       return integer_power(base, GiNaC::ex_to<GiNaC::numeric>(exponent).to_long());
-    if (exponent == GiNaC::numeric(1, 2)) return graph_.call("std::sqrt", {base});
-    return graph_.call("std::pow", {base, expression(exponent)});
+    if (exponent == GiNaC::numeric(1, 2)) return graph_.call(Function::Sqrt, {base});
+    return graph_.call(Function::Pow, {base, expression(exponent)});
   }
   if (GiNaC::is_a<GiNaC::function>(e)) {
     std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
-    auto it = kFunctions.find(name);
-    if (it == kFunctions.end()) throw CodegenError("function '" + name + "' has no C++ counterpart in <cmath>");
+    // A model's functions of time and parameters; sqrt and pow are powers in GiNaC, never functions.
+    const std::optional<Function> function = function_named(name);
+    if (!function || *function == Function::Sqrt || *function == Function::Pow)
+      throw CodegenError("function '" + name + "' has no C++ counterpart in <cmath>");
     std::vector<std::size_t> args;
     for (std::size_t k = 0; k < e.nops(); ++k) args.push_back(expression(e.op(k)));
-    return graph_.call(it->second, args);
+    return graph_.call(*function, args);
   }
   if (GiNaC::is_exactly_a<GiNaC::constant>(e)) return graph_.constant(GiNaC::ex_to<GiNaC::numeric>(e.evalf()));
   throw CodegenError("cannot generate code for '" + TextPrinter().print(e) + "'");

@@ -22,6 +22,8 @@ class CppEmitter {
       : mode_(mode), temporary_prefix_(std::move(temporary_prefix)) {}
 
   std::string literal(const GiNaC::numeric& value) const;
+  // How the function reads an input: `state[3]`, `params.a`, or an argument's own name.
+  std::string input_source(const Node& node) const;
 
   // `const Scalar <name> = <source>;` for each input of `order` that the outputs read, in that
   // order: the top of a function, so that its body reads each input by its own name. Inputs
