@@ -4,7 +4,7 @@
 // test_codegen_names.cpp's part.
 #include <catch2/catch.hpp>
 
-#include "pfgen/codegen/cpp_names.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_names.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 
 using pfgen::codegen::CppNames;

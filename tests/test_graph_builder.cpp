@@ -10,7 +10,7 @@
 #include <map>
 #include <random>
 
-#include "pfgen/codegen/cpp_emitter.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 

@@ -2,9 +2,9 @@
 
 #include <cstdio>
 
-#include "pfgen/codegen/cholesky_solve.hpp"
+#include "pfgen/codegen/backends/cpp/cholesky_solve.hpp"
 #include "pfgen/codegen/correction_factor.hpp"
-#include "pfgen/codegen/cpp_names.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_names.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/codegen/template_text.hpp"
 #include "pfgen/model/delay_grid.hpp"

@@ -4,7 +4,7 @@
 #include <optional>
 #include <set>
 
-#include "pfgen/codegen/cpp_emitter.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/codegen/template_text.hpp"

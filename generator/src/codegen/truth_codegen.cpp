@@ -3,8 +3,8 @@
 #include <vector>
 
 #include "pfgen/algebra/polynomial.hpp"
-#include "pfgen/codegen/cpp_emitter.hpp"
-#include "pfgen/codegen/cpp_names.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_names.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/model/simulation_rules.hpp"
 

@@ -12,7 +12,7 @@
 #include <optional>
 #include <string>
 
-#include "pfgen/codegen/cpp_emitter.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 
 namespace pfgen::codegen {

@@ -1,4 +1,4 @@
-#include "pfgen/codegen/cpp_emitter.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -71,27 +71,15 @@ std::string CppEmitter::literal(const GiNaC::numeric& value) const {
   return d < 0 ? "(" + text + ")" : text;
 }
 
-std::string CppEmitter::operation(const ExpressionGraph&, const Node& node,
-                                  const std::vector<std::string>& a) const {
-  switch (node.kind) {
-    case OpKind::Add: return a[0] + " + " + a[1];
-    case OpKind::Sub: return a[0] + " - " + a[1];
-    case OpKind::Mul: return a[0] + " * " + a[1];
-    case OpKind::Div: return a[0] + " / " + a[1];
-    case OpKind::Neg: return "-" + a[0];
-    case OpKind::ZeroWhereZero: {
-      const std::string zero = literal(GiNaC::numeric(0));
-      return "(" + a[0] + " == " + zero + " ? " + zero + " : " + a[1] + ")";
-    }
-    case OpKind::Call: {
-      std::string out = std::string("std::") + function_name(node.function) + "(";
-      for (std::size_t k = 0; k < a.size(); ++k) out += (k ? ", " : "") + a[k];
-      return out + ")";
-    }
-    case OpKind::Input: return node.name;
-    case OpKind::Constant: return literal(node.value);
-  }
-  return "?";
+std::string CppEmitter::call(Function function, const std::vector<std::string>& args) const {
+  std::string out = std::string("std::") + function_name(function) + "(";
+  for (std::size_t k = 0; k < args.size(); ++k) out += (k ? ", " : "") + args[k];
+  return out + ")";
+}
+
+std::string CppEmitter::zero_where_zero(const std::string& guard, const std::string& value) const {
+  const std::string zero = literal(GiNaC::numeric(0));
+  return "(" + guard + " == " + zero + " ? " + zero + " : " + value + ")";
 }
 
 // The C++ that reads an input: `state[3]`, `params.a`, or the argument's own name.
@@ -127,7 +115,7 @@ std::string CppEmitter::shared_body(const ExpressionGraph& graph, const std::vec
     return chunked_body(graph, outputs, destinations);
   std::map<std::size_t, std::string> names;
   auto spell = [&](std::size_t id) {
-    if (graph.is_leaf(id)) return operation(graph, graph.node(id), {});
+    if (graph.is_leaf(id)) return expression(graph.node(id), {});
     return names.at(id);
   };
   std::string body;
@@ -136,7 +124,7 @@ std::string CppEmitter::shared_body(const ExpressionGraph& graph, const std::vec
     std::vector<std::string> operands;
     for (std::size_t arg : node.args) operands.push_back(spell(arg));
     std::string name = temporary_prefix_ + std::to_string(names.size());
-    body += "  const Scalar " + name + " = " + operation(graph, node, operands) + ";\n";
+    body += "  const Scalar " + name + " = " + expression(node, operands) + ";\n";
     names[id] = name;
   }
   for (std::size_t k = 0; k < outputs.size(); ++k)
@@ -153,10 +141,10 @@ std::string CppEmitter::tree_body(const ExpressionGraph& graph, const std::vecto
                                   const std::string& target) const {
   std::function<std::string(std::size_t)> spell = [&](std::size_t id) -> std::string {
     const Node& node = graph.node(id);
-    if (graph.is_leaf(id)) return operation(graph, node, {});
+    if (graph.is_leaf(id)) return expression(node, {});
     std::vector<std::string> operands;
     for (std::size_t arg : node.args) operands.push_back(spell(arg));
-    std::string text = operation(graph, node, operands);
+    std::string text = expression(node, operands);
     return node.kind == OpKind::Call ? text : "(" + text + ")";
   };
   std::string body;

@@ -1,11 +1,12 @@
 #pragma once
-// Writes an ExpressionGraph as C++ statements. Literals follow the scalar
+// The C++ backend's emitter: writes an ExpressionGraph as C++ statements. Literals follow the scalar
 // mode so that float code stays float: `0.1f` (float), `0.1` (double) or
 // `Scalar(0.1)` (template), never a bare double in float code.
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "pfgen/codegen/emitter.hpp"
 #include "pfgen/codegen/expression_graph.hpp"
 
 namespace pfgen::codegen {
@@ -14,7 +15,7 @@ enum class ScalarMode { Template, Float, Double };
 
 std::string scalar_mode_name(ScalarMode mode);  // "template", "float", "double"
 
-class CppEmitter {
+class CppEmitter : public Emitter {
  public:
   // Temporaries are named temporary_prefix + 0, 1, ... (CppNames::temporary_prefix keeps them
   // apart from the model's names).
@@ -22,6 +23,17 @@ class CppEmitter {
       : mode_(mode), temporary_prefix_(std::move(temporary_prefix)) {}
 
   std::string literal(const GiNaC::numeric& value) const;
+
+  // Emitter: one method per node kind (C++ operators, <cmath>'s std:: functions).
+  std::string constant(const GiNaC::numeric& value) const override { return literal(value); }
+  std::string input(const Node& node) const override { return node.name; }
+  std::string add(const std::string& a, const std::string& b) const override { return a + " + " + b; }
+  std::string sub(const std::string& a, const std::string& b) const override { return a + " - " + b; }
+  std::string mul(const std::string& a, const std::string& b) const override { return a + " * " + b; }
+  std::string div(const std::string& a, const std::string& b) const override { return a + " / " + b; }
+  std::string neg(const std::string& a) const override { return "-" + a; }
+  std::string call(Function function, const std::vector<std::string>& args) const override;
+  std::string zero_where_zero(const std::string& guard, const std::string& value) const override;
   // How the function reads an input: `state[3]`, `params.a`, or an argument's own name.
   std::string input_source(const Node& node) const;
 
@@ -50,8 +62,6 @@ class CppEmitter {
  private:
   std::string chunked_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                            const std::vector<std::string>& destinations) const;
-  std::string operation(const ExpressionGraph& graph, const Node& node,
-                        const std::vector<std::string>& operand_text) const;
   ScalarMode mode_;
   std::string temporary_prefix_;
   std::size_t max_ops_ = 0;

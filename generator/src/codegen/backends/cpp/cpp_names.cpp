@@ -1,4 +1,4 @@
-#include "pfgen/codegen/cpp_names.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_names.hpp"
 
 #include <algorithm>
 #include <cctype>

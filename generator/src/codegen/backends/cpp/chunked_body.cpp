@@ -14,7 +14,7 @@
 #include <map>
 #include <set>
 
-#include "pfgen/codegen/cpp_emitter.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 
 namespace pfgen::codegen {
 
@@ -44,7 +44,7 @@ std::string CppEmitter::chunked_body(const ExpressionGraph& graph, const std::ve
 
   auto temporary = [&](std::size_t id) { return temporary_prefix_ + std::to_string(number.at(id)); };
   auto spell = [&](std::size_t id) {
-    return graph.is_leaf(id) ? operation(graph, graph.node(id), {}) : temporary(id);
+    return graph.is_leaf(id) ? expression(graph.node(id), {}) : temporary(id);
   };
   std::string body = "  // " + std::to_string(operations.size()) + " operations in " + std::to_string(parts) +
                      " parts of at most " + std::to_string(max_ops_) +
@@ -63,7 +63,7 @@ std::string CppEmitter::chunked_body(const ExpressionGraph& graph, const std::ve
       const std::size_t id = operations[next];
       std::vector<std::string> operands;
       for (std::size_t arg : graph.node(id).args) operands.push_back(spell(arg));
-      body += "    const Scalar " + temporary(id) + " = " + operation(graph, graph.node(id), operands) + ";\n";
+      body += "    const Scalar " + temporary(id) + " = " + expression(graph.node(id), operands) + ";\n";
       auto shared = slot.find(id);
       if (shared != slot.end())
         stores += "    " + shared_array_ + "[" + std::to_string(shared->second) + "] = " + temporary(id) + ";\n";

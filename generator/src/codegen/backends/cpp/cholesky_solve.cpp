@@ -1,4 +1,4 @@
-#include "pfgen/codegen/cholesky_solve.hpp"
+#include "pfgen/codegen/backends/cpp/cholesky_solve.hpp"
 
 namespace pfgen::codegen {
 namespace {
