@@ -7,12 +7,13 @@
 
 #include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
+#include "pfgen_support/error.hpp"
 
 namespace pfgen::cli {
 
-class CliValueError : public std::runtime_error {
+class CliValueError : public pfgen_support::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using pfgen_support::Error::Error;
 };
 
 // "a,b,,c" -> {"a", "b", "", "c"}; a trailing separator gives a last empty part.

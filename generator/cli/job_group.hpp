@@ -10,14 +10,16 @@
 #include <string>
 
 #include "pfgen_runtime/monte_carlo.hpp"
+#include "pfgen_support/error.hpp"
 
 namespace pfgen::cli {
 
 // Thrown on the processes of a job whose step failed on another process, which reports the
 // error: the program exits non-zero without a second message.
-class FailedElsewhere : public std::runtime_error {
+class FailedElsewhere : public pfgen_support::Error {
  public:
-  FailedElsewhere() : std::runtime_error("failed on another process of the job") {}
+  FailedElsewhere() : pfgen_support::Error("failed on another process of the job") {}
+  std::string report() const override { return ""; }  // the failing process said why
 };
 
 class JobGroup {

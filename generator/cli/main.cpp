@@ -245,15 +245,13 @@ int main(int argc, char** argv) {
     }
     check_standard_output_written();
     return status;
-  } catch (const FailedElsewhere&) {
-    // Another process of the job failed and said why.
-  } catch (const pfgen::ModelError& e) {
-    std::cerr << "pfgen: " << one_line(e.what()) << "\n";
-  } catch (const CliValueError& e) {
-    std::cerr << "pfgen: error: " << one_line(e.what()) << "\n";
-  } catch (const pfgen::EvaluationError& e) {
-    std::cerr << "pfgen: error: " << one_line(e.what()) << "\n";
+  } catch (const pfgen_support::Error& e) {
+    // Every error pfgen reports (pfgen_support/error.hpp) says its one line itself; an empty one
+    // means another process of the job failed and said why (FailedElsewhere).
+    const std::string line = e.report();
+    if (!line.empty()) std::cerr << "pfgen: " << one_line(line) << "\n";
   } catch (const std::exception& e) {
+    // Not one of pfgen's: out of memory, or a library's error no room turned into its own.
     std::cerr << "pfgen: error: " << one_line(e.what()) << "\n";
   }
   return 1;

@@ -73,7 +73,7 @@ int write_all(int fd, const std::string& contents) {
 
 AtomicWriteError::AtomicWriteError(Stage stage, const std::string& path, const std::string& temporary,
                                    int error_number)
-    : std::runtime_error(describe(stage, path, temporary, error_number)),
+    : Error(describe(stage, path, temporary, error_number), ErrorPlace{path}),
       stage_(stage),
       path_(path),
       temporary_(temporary),

@@ -68,7 +68,7 @@ void drain(int out_fd, std::string& out, int err_fd, std::string& err) {
 }  // namespace
 
 ProcessError::ProcessError(Stage stage, const std::string& program, int error_number)
-    : std::runtime_error(describe(stage, program, error_number)), stage_(stage), error_number_(error_number) {}
+    : Error(describe(stage, program, error_number)), stage_(stage), error_number_(error_number) {}
 
 std::string command_line(const std::vector<std::string>& argv) {
   std::string out;

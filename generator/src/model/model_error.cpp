@@ -7,12 +7,13 @@ namespace pfgen {
 
 ModelError::ModelError(std::string field, std::string message, std::optional<int> row,
                        std::optional<int> column)
-    : std::runtime_error(message), field_(std::move(field)), message_(std::move(message)),
+    : pfgen_support::Error(message), field_(std::move(field)), message_(std::move(message)),
       row_(row), column_(column) {
   rebuild();
 }
 
 void ModelError::rebuild() {
+  place_ = pfgen_support::ErrorPlace{file_, location_.line, location_.column, field_, row_, column_};
   std::string text = file_.empty() ? std::string("<model>") : file_;
   if (location_.line > 0) {
     text += ":" + std::to_string(location_.line);

@@ -16,12 +16,13 @@
 #include "pfgen_runtime/plugin_abi.h"
 #include "pfgen_runtime/sde_system.hpp"
 #include "pfgen_runtime/simulation.hpp"
+#include "pfgen_support/error.hpp"
 
 namespace pfgen_runtime {
 
-class PluginLoadError : public std::runtime_error {
+class PluginLoadError : public pfgen_support::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using pfgen_support::Error::Error;
 };
 
 class SimulationPlugin {

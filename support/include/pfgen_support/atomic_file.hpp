@@ -10,9 +10,11 @@
 #include <utility>
 #include <vector>
 
+#include "pfgen_support/error.hpp"
+
 namespace pfgen_support {
 
-class AtomicWriteError : public std::runtime_error {
+class AtomicWriteError : public Error {
  public:
   // writing the temporary (creating it included), renaming it, writing into a device, FIFO or
   // socket, a symbolic link whose target does not exist, or (write_files_together) a target that

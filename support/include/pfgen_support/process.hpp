@@ -8,9 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "pfgen_support/error.hpp"
+
 namespace pfgen_support {
 
-class ProcessError : public std::runtime_error {
+class ProcessError : public Error {
  public:
   enum class Stage { pipe, spawn, wait };  // creating a pipe, starting the program, waiting for it
   ProcessError(Stage stage, const std::string& program, int error_number);

@@ -14,12 +14,13 @@
 #include "pfgen/codegen/expression_graph.hpp"
 #include "pfgen/derivation/filter_variables.hpp"
 #include "pfgen/model/model.hpp"
+#include "pfgen_support/error.hpp"
 
 namespace pfgen::codegen {
 
-class CodegenError : public std::runtime_error {
+class CodegenError : public pfgen_support::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using pfgen_support::Error::Error;
 };
 
 // What a function's outputs read of its arguments.

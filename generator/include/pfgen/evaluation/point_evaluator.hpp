@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen_support/error.hpp"
 
 namespace pfgen {
 
@@ -42,9 +43,9 @@ struct EvaluatedFilter {
 
 // A problem with the point itself (wrong sizes, asymmetric P, unknown parameter, a delayed input
 // for a filter that does not read it).
-class EvaluationError : public std::runtime_error {
+class EvaluationError : public pfgen_support::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using pfgen_support::Error::Error;
 };
 
 EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const EvaluationPoint& point);

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "pfgen_support/error.hpp"
+
 namespace pfgen {
 
 struct SourceLocation {
@@ -12,7 +14,7 @@ struct SourceLocation {
   int column = 0;  // 1-based column in the model file; 0 when unknown
 };
 
-class ModelError : public std::runtime_error {
+class ModelError : public pfgen_support::Error {
  public:
   ModelError(std::string field, std::string message, std::optional<int> row = std::nullopt,
              std::optional<int> column = std::nullopt);
@@ -40,6 +42,8 @@ class ModelError : public std::runtime_error {
 
  public:
   const char* what() const noexcept override { return what_.c_str(); }
+  // what() already says "<file>:<line>:<column>: error: field ...".
+  std::string report() const override { return what_; }
 };
 
 // A count (of terms, digits, steps) as a message gives it: whole below 1e15 ("501501"), else in

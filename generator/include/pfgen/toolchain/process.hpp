@@ -7,13 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "pfgen_support/error.hpp"
 #include "pfgen_support/process.hpp"
 
 namespace pfgen::toolchain {
 
-class ToolchainError : public std::runtime_error {
+class ToolchainError : public pfgen_support::Error {
  public:
-  using std::runtime_error::runtime_error;
+  using pfgen_support::Error::Error;
 };
 
 using pfgen_support::command_line;  // argv joined with spaces, for messages and logs
