@@ -275,6 +275,29 @@ const char* const kEulerPredict =
 // A filter for sampled observations (templates/cpp/sampled_filter.hpp.tmpl): the prediction's
 // derivatives (and cd-euler's dt^2 term), the update's polynomial parts P C^T and S, C and R, the
 // predicted sample, and the unrolled Cholesky solve of the gain.
+// The placeholders every filter template has (filter.hpp, sampled_filter.hpp, delayed_filter.hpp):
+// the namespace, the dimensions, the scalar, the parameters and the names of the functions'
+// arguments. Each kind adds its own to these.
+std::map<std::string, std::string> common_template_values(const Model& model, const std::string& identifier,
+                                                          const CodegenOptions& options, std::size_t n,
+                                                          std::size_t p, std::size_t state_size,
+                                                          const FunctionNames& names, const CppEmitter& emitter) {
+  const bool templated = options.scalar == ScalarMode::Template;
+  return {
+      {"namespace", options.name_space + "::" + model.name + "::" + identifier},
+      {"n", std::to_string(n)},
+      {"p", std::to_string(p)},
+      {"state_size", std::to_string(state_size)},
+      {"scalar_alias", templated ? "" : "\nusing Scalar = " + scalar_mode_name(options.scalar) + ";\n"},
+      {"template_prefix", templated ? "template <class Scalar>\n" : ""},
+      {"params_members", params_members(model, emitter)},
+      {"t", names.time},
+      {"state", names.state},
+      {"params", names.params},
+      {"out", names.out},
+  };
+}
+
 GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
@@ -314,7 +337,6 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
 
   CppEmitter emitter(options.scalar);
   const bool templated = options.scalar == ScalarMode::Template;
-  const std::string params = params_members(model, emitter);
   const std::string prefix = templated ? "template <class Scalar>\n" : "";
   std::string euler_function;
   if (euler)
@@ -330,22 +352,13 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
               "// continuous filters: second order in dt.";
 
   // A sampled model has no filters of its own (the validator refuses them): no user-filter line.
-  std::map<std::string, std::string> values = {
+  std::map<std::string, std::string> values =
+      common_template_values(model, identifier, options, n, r, vars.count(), names, emitter);
+  values.insert({
       {"banner", ops_banner(model, eq, options, result)},
-      {"namespace", options.name_space + "::" + model.name + "::" + identifier},
-      {"n", std::to_string(n)},
-      {"p", std::to_string(r)},
-      {"state_size", std::to_string(vars.count())},
       {"substeps", std::to_string(u.substeps)},
-      {"scalar_alias", templated ? "" : "\nusing Scalar = " + scalar_mode_name(options.scalar) + ";\n"},
-      {"template_prefix", prefix},
-      {"params_members", params},
       {"period", emitter.literal(u.period)},
       {"period_call", templated ? "<Scalar>" : ""},
-      {"t", names.time},
-      {"state", names.state},
-      {"params", names.params},
-      {"out", names.out},
       {"h", names.h},
       {"derivatives_ops", ops_comment(derivatives.stats)},
       {"derivatives_body", derivatives.body},
@@ -360,7 +373,7 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
       {"solve_body", cholesky_gain_body(r)},
       {"predict_comment", predict_comment},
       {"predict_body", euler ? kEulerPredict : kHeunPredict},
-  };
+  });
   result.contents =
       fill_template("cpp/sampled_filter.hpp.tmpl", embedded_template("cpp/sampled_filter.hpp.tmpl"), values);
   if (options.eigen_wrapper) {
@@ -411,12 +424,10 @@ GeneratedFilter generate_delayed_code(const Model& model, const FilterEquations&
   std::string gain_meaning = "P A^T (B B^T)^-1";
   if (eq.is_user_filter()) gain_meaning = "as given in the model file";
   else if (x_star) gain_meaning = "P Phi*^T A^T (B B^T)^-1, Phi* = diag(phi)";
-  std::map<std::string, std::string> values = {
+  std::map<std::string, std::string> values =
+      common_template_values(model, identifier, options, n, eq.p, vars.count() + (x_star ? n : 0), names, emitter);
+  values.insert({
       {"banner", ops_banner(model, eq, options, result, extra)},
-      {"namespace", options.name_space + "::" + model.name + "::" + identifier},
-      {"n", std::to_string(n)},
-      {"p", std::to_string(eq.p)},
-      {"state_size", std::to_string(vars.count() + (x_star ? n : 0))},
       {"scalar_call", templated ? "<Scalar>" : ""},
       {"delay", real_literal(eq.delay.to_double())},
       {"dt", real_literal(*options.grid_step)},
@@ -428,14 +439,7 @@ GeneratedFilter generate_delayed_code(const Model& model, const FilterEquations&
        x_star ? "\n// then x* (n entries), the noise-free solution dx*/dt = f(x*, t) from x*(0) = m0." : ""},
       {"out_x_star", x_star ? ", x* drift f(x*, t)" : ""},
       {"initial_x_star", x_star ? ", and x*(0) = m0" : ""},
-      {"scalar_alias", templated ? "" : "\nusing Scalar = " + scalar_mode_name(options.scalar) + ";\n"},
-      {"template_prefix", templated ? "template <class Scalar>\n" : ""},
-      {"params_members", params_members(model, emitter)},
-      {"t", names.time},
-      {"state", names.state},
       {"delayed", names.delayed},
-      {"params", names.params},
-      {"out", names.out},
       {"K", names.K},
       {"h", names.h},
       {"derivatives_ops", ops_comment(functions.derivatives.stats)},
@@ -446,7 +450,7 @@ GeneratedFilter generate_delayed_code(const Model& model, const FilterEquations&
       {"observation_ops", ops_comment(functions.observation.stats)},
       {"observation_body", functions.observation.body},
       {"initial_body", initial_body(model, vars, emitter, x_star)},
-  };
+  });
   result.contents =
       fill_template("cpp/delayed_filter.hpp.tmpl", embedded_template("cpp/delayed_filter.hpp.tmpl"), values);
   return result;
@@ -512,20 +516,10 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
   result.functions = {functions.derivatives.stats, functions.gain.stats, functions.observation.stats};
 
   CppEmitter emitter(options.scalar);
-  const bool templated = options.scalar == ScalarMode::Template;
-  std::map<std::string, std::string> values = {
+  std::map<std::string, std::string> values =
+      common_template_values(model, identifier, options, n, eq.p, vars.count(), names, emitter);
+  values.insert({
       {"banner", ops_banner(model, eq, options, result)},
-      {"namespace", options.name_space + "::" + model.name + "::" + identifier},
-      {"n", std::to_string(n)},
-      {"p", std::to_string(eq.p)},
-      {"state_size", std::to_string(vars.count())},
-      {"scalar_alias", templated ? "" : "\nusing Scalar = " + scalar_mode_name(options.scalar) + ";\n"},
-      {"template_prefix", templated ? "template <class Scalar>\n" : ""},
-      {"params_members", params_members(model, emitter)},
-      {"t", names.time},
-      {"state", names.state},
-      {"params", names.params},
-      {"out", names.out},
       {"K", names.K},
       {"h", names.h},
       {"derivatives_ops", ops_comment(functions.derivatives.stats)},
@@ -536,7 +530,7 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
       {"observation_ops", ops_comment(functions.observation.stats)},
       {"observation_body", functions.observation.body},
       {"initial_body", initial_body(model, vars, emitter)},
-  };
+  });
   result.contents = fill_template("cpp/filter.hpp.tmpl", embedded_template("cpp/filter.hpp.tmpl"), values);
   if (options.eigen_wrapper) {
     const std::string kind_header = identifier + ".hpp";
