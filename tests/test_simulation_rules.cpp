@@ -145,3 +145,18 @@ TEST_CASE("simulation rules: one budget of 1e9 steps per run, the truth's and ea
   CHECK(truth->field == "dt");
   CHECK(truth->message.find("more than 1e9 steps") == 0);
 }
+
+TEST_CASE("simulation rules: the truth scheme auto stands for follows the model's drift and diffusion",
+          "[unit][simulation]") {
+  auto scheme_of = [](const std::string& drift, const std::string& diffusion) {
+    return choose_truth_scheme(load_model_text("name: s\nstates: [x]\ndrift: [\"" + drift + "\"]\ndiffusion: [[\"" +
+                                                   diffusion + "\"]]\nobservation: {A: [[\"1\"]], B: [[\"1\"]]}\n",
+                                               "s.yaml"));
+  };
+  CHECK(scheme_of("-x", "0") == "rk4");                          // no noise
+  CHECK(scheme_of("-x", "0.3") == "euler-maruyama");             // additive noise
+  CHECK(scheme_of("-x", "0.3*x") == "milstein");                 // g linear in x
+  CHECK(scheme_of("-x^3", "0.3") == "adaptive-euler");           // superlinear drift
+  CHECK(scheme_of("-x", "0.1*x^2") == "adaptive-euler");         // superlinear diffusion
+  CHECK(choose_truth_scheme(example_model()) == "adaptive-euler");  // 0.1 x^2 dt + 0.1 x^2 dW
+}

@@ -20,6 +20,7 @@
 #include "progress_bar.hpp"
 #include "pfgen/codegen/simulation_plugin.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/model/simulation_rules.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 #include "pfgen/toolchain/plugin_compiler.hpp"
 #include "pfgen_runtime/gnuplot_plot.hpp"

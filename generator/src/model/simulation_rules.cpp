@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/model/delay_grid.hpp"
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen_support/shortest_double.hpp"
@@ -170,6 +171,21 @@ bool diffusion_is_zero(const Model& model) {
     for (const auto& entry : row)
       if (!entry.expand().is_zero()) return false;
   return true;
+}
+
+std::string choose_truth_scheme(const Model& model) {
+  const std::vector<GiNaC::symbol>& x = model.states;
+  auto degree = [&x](const GiNaC::ex& e) { return Polynomial::from_ex(e.expand(), x).degree(); };
+  if (diffusion_is_zero(model)) return "rk4";
+  std::uint32_t drift_degree = 0, diffusion_degree = 0;
+  for (const auto& f : model.drift) drift_degree = std::max(drift_degree, degree(f));
+  // G = g g^T has twice g's degree, and is given whichever form the model file uses.
+  for (const auto& row : model.diffusion.G)
+    for (const auto& entry : row)
+      if (!entry.expand().is_zero()) diffusion_degree = std::max(diffusion_degree, (degree(entry) + 1) / 2);
+  if (drift_degree > 1 || diffusion_degree > 1) return "adaptive-euler";
+  if (diffusion_degree == 1) return model.diffusion.g ? "milstein" : "derivative-free-milstein";
+  return "euler-maruyama";
 }
 
 }  // namespace pfgen

@@ -33,4 +33,11 @@ std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model
 // Whether the model's diffusion is identically zero (a deterministic truth).
 bool diffusion_is_zero(const Model& model);
 
+// The truth scheme `auto` stands for: rk4 for a deterministic truth (g identically zero);
+// adaptive-euler when the drift or the diffusion is superlinear in the states (Euler-Maruyama and
+// Milstein overshoot and overflow there where the true process does not: docs/theory.md §6);
+// milstein when g depends on the states linearly; euler-maruyama for additive noise (then it has
+// strong order 1).
+std::string choose_truth_scheme(const Model& model);
+
 }  // namespace pfgen
