@@ -257,21 +257,6 @@ ContinuousFunctions continuous_functions(const Model& model, const FilterEquatio
   return f;
 }
 
-const char* const kHeunPredict =
-    "  std::array<Scalar, state_size> first{}, predicted{}, second{};\n"
-    "  derivatives(t, state, params, first.data());\n"
-    "  for (std::size_t i = 0; i < state_size; ++i) predicted[i] = state[i] + first[i] * dt;\n"
-    "  derivatives(t + dt, predicted.data(), params, second.data());\n"
-    "  for (std::size_t i = 0; i < state_size; ++i) state[i] += (first[i] + second[i]) * dt / Scalar(2);\n";
-
-const char* const kEulerPredict =
-    "  std::array<Scalar, state_size> rates{};\n"
-    "  std::array<Scalar, state_size - n> square{};\n"
-    "  derivatives(t, state, params, rates.data());\n"
-    "  euler_square(t, state, params, square.data());\n"
-    "  for (std::size_t i = 0; i < state_size; ++i) state[i] += rates[i] * dt;\n"
-    "  for (std::size_t i = n; i < state_size; ++i) state[i] += square[i - n] * dt * dt;\n";
-
 // A filter for sampled observations (templates/cpp/sampled_filter.hpp.tmpl): the prediction's
 // derivatives (and cd-euler's dt^2 term), the update's polynomial parts P C^T and S, C and R, the
 // predicted sample, and the unrolled Cholesky solve of the gain.
@@ -338,18 +323,23 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
   CppEmitter emitter(options.scalar);
   const bool templated = options.scalar == ScalarMode::Template;
   const std::string prefix = templated ? "template <class Scalar>\n" : "";
+  // cd-euler's Cov(f) dt^2 term and the prediction sub-step: the C++ of each in its own partial
+  // (templates/cpp/partials/), filled here.
   std::string euler_function;
   if (euler)
-    euler_function = "\n// out = Cov(f) = E[f f^T] - E[f] E[f]^T (upper triangle of P), the dt^2 term of one Euler sub-step:\n"
-                     "//   m' = m + m_drift dt,  P' = P + P_drift dt + out dt^2.\n// " + ops_comment(square.stats) + "\n" +
-                     prefix + "inline void euler_square(Scalar " + names.time + ", const Scalar* " + names.state +
-                     ", const Params<Scalar>& " + names.params + ", Scalar* " + names.out + ") {\n" + square.body + "}\n";
-  const std::string predict_comment =
-      euler ? "// cd-euler: the exact mean and covariance of one Euler step x + f dt + g sqrt(dt) xi under the\n"
-              "// Gaussian closure (m' = m + m_drift dt, P' = P + P_drift dt + Cov(f) dt^2).\n"
-              "// dt = period() / substeps gives the filter as derived; substeps = 1 is the discrete-discrete filter."
-            : "// Heun's predictor-corrector (trapezoidal) scheme on the prediction ODEs, as step() of the\n"
-              "// continuous filters: second order in dt.";
+    euler_function = fill_template("cpp/partials/euler_square.hpp.tmpl",
+                                   embedded_template("cpp/partials/euler_square.hpp.tmpl"),
+                                   {{"euler_ops", ops_comment(square.stats)},
+                                    {"template_prefix", prefix},
+                                    {"t", names.time},
+                                    {"state", names.state},
+                                    {"params", names.params},
+                                    {"out", names.out},
+                                    {"euler_body", square.body}});
+  const std::string predict_partial = euler ? "cpp/partials/predict_euler.hpp.tmpl" : "cpp/partials/predict_heun.hpp.tmpl";
+  std::string predict_function =
+      fill_template(predict_partial, embedded_template(predict_partial), {{"template_prefix", prefix}});
+  predict_function.pop_back();  // its last newline: the template's line after {{predict_function}} ends it
 
   // A sampled model has no filters of its own (the validator refuses them): no user-filter line.
   std::map<std::string, std::string> values =
@@ -371,8 +361,7 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
       {"observation_body", observation.body},
       {"initial_body", initial_body(model, vars, emitter)},
       {"solve_body", cholesky_gain_body(r)},
-      {"predict_comment", predict_comment},
-      {"predict_body", euler ? kEulerPredict : kHeunPredict},
+      {"predict_function", predict_function},
   });
   result.contents =
       fill_template("cpp/sampled_filter.hpp.tmpl", embedded_template("cpp/sampled_filter.hpp.tmpl"), values);
