@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "pfgen/codegen/filter_codegen.hpp"
-#include "pfgen/codegen/truth_codegen.hpp"
+#include "pfgen/codegen/backends/cpp/truth_codegen.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 #include "support/cli_helpers.hpp"

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "pfgen/codegen/simulation_plugin.hpp"
+#include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model_builder.hpp"
 #include "pfgen/model/simulation_rules.hpp"

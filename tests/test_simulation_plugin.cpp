@@ -25,7 +25,7 @@
 #include "generated/basin2006_quadratic/optimal.hpp"
 #include "generated/basin_skliar_partial/ekf.hpp"
 #include "generated/basin_skliar_partial/optimal.hpp"
-#include "pfgen/codegen/simulation_plugin.hpp"
+#include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/model_builder.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"

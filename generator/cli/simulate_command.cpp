@@ -18,7 +18,7 @@
 #include "job_group.hpp"
 #include "output_paths.hpp"
 #include "progress_bar.hpp"
-#include "pfgen/codegen/simulation_plugin.hpp"
+#include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/simulation_rules.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"

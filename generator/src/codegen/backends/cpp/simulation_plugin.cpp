@@ -1,4 +1,4 @@
-#include "pfgen/codegen/simulation_plugin.hpp"
+#include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 
 #include <map>
 #include <optional>
@@ -8,7 +8,7 @@
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/codegen/template_text.hpp"
-#include "pfgen/codegen/truth_codegen.hpp"
+#include "pfgen/codegen/backends/cpp/truth_codegen.hpp"
 #include "pfgen/model/delay_grid.hpp"
 #include "pfgen_support/shortest_double.hpp"
 

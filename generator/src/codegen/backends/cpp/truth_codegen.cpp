@@ -1,4 +1,4 @@
-#include "pfgen/codegen/truth_codegen.hpp"
+#include "pfgen/codegen/backends/cpp/truth_codegen.hpp"
 
 #include <vector>
 
