@@ -38,11 +38,16 @@ double line_width(std::size_t f, std::size_t count) {
   return widest - (widest - narrowest) * static_cast<double>(f) / static_cast<double>(count - 1);
 }
 
-// "lw W dt D lc rgb 'C'": filter f's line, W with at most 3 decimals (a pure function of f and count).
+// "lw W dt D lc rgb 'C'": a line of filter f's dash type and colour, `width` wide.
+std::string line_style(const std::string& width, std::size_t f) {
+  return "lw " + width + " dt " + dash_types[f % 8] + " lc rgb '" + colors[f % 8] + "'";
+}
+
+// Filter f's own line, its width with at most 3 decimals (a pure function of f and count).
 std::string filter_line_style(std::size_t f, std::size_t count) {
   char width[32];
   std::snprintf(width, sizeof width, "%.3g", line_width(f, count));
-  return std::string("lw ") + width + " dt " + dash_types[f % 8] + " lc rgb '" + colors[f % 8] + "'";
+  return line_style(width, f);
 }
 
 // A gnuplot single-quoted string: nothing is interpreted inside except '' for a quote.
@@ -165,7 +170,7 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
             << " with filledcurves fs transparent solid 0.2 noborder lc rgb '" << colors[f % 8] << "' title " << band;
         continue;
       }
-      const std::string edge = std::string(" with lines lw 1 dt ") + dash_types[f % 8] + " lc rgb '" + colors[f % 8] + "'";
+      const std::string edge = " with lines " + line_style("1", f);
       out << column(columns, stem + "_q05") << edge << " title " << band << ", \\\n     " << data
           << " skip 1 using 1:" << column(columns, stem + "_q95") << edge << " notitle";
     }

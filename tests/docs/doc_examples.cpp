@@ -21,10 +21,8 @@
 // and `build` to the build tree (--build), so that pages name paths as a user in the source tree does.
 // `update` rewrites the outputs that differ (as `regenerate` does for generated/), keeping "[...]"
 // lines that still match; a differing output with a "..." line is left for a person to edit.
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>

@@ -27,6 +27,15 @@ std::optional<Function> function_named(const std::string& name) {
 
 namespace {
 
+// A node of `kind` on `args`; the fields of the other kinds (a name, a source, a function, a
+// value) keep their defaults.
+Node operation(OpKind kind, std::vector<std::size_t> args) {
+  Node node{};
+  node.kind = kind;
+  node.args = std::move(args);
+  return node;
+}
+
 OpCounts own_cost(const Node& node) {
   OpCounts c;
   switch (node.kind) {
@@ -63,29 +72,35 @@ std::size_t ExpressionGraph::intern(Node node) {
 }
 
 std::size_t ExpressionGraph::input(const std::string& name, InputSource source) {
-  Node node{OpKind::Input, name, std::move(source), Function::Sin, 0, {}};
+  Node node = operation(OpKind::Input, {});
+  node.name = name;
+  node.source = std::move(source);
   return intern(std::move(node));
 }
 
 std::size_t ExpressionGraph::constant(const GiNaC::numeric& value) {
-  return intern(Node{OpKind::Constant, "", {}, Function::Sin, value, {}});
+  Node node = operation(OpKind::Constant, {});
+  node.value = value;
+  return intern(std::move(node));
 }
 
 // Commutative operations list their operands in a fixed order, so a*b and b*a share a node.
 std::size_t ExpressionGraph::add(std::size_t a, std::size_t b) {
-  return intern(Node{OpKind::Add, "", {}, Function::Sin, 0, {std::min(a, b), std::max(a, b)}});
+  return intern(operation(OpKind::Add, {std::min(a, b), std::max(a, b)}));
 }
-std::size_t ExpressionGraph::sub(std::size_t a, std::size_t b) { return intern(Node{OpKind::Sub, "", {}, Function::Sin, 0, {a, b}}); }
+std::size_t ExpressionGraph::sub(std::size_t a, std::size_t b) { return intern(operation(OpKind::Sub, {a, b})); }
 std::size_t ExpressionGraph::mul(std::size_t a, std::size_t b) {
-  return intern(Node{OpKind::Mul, "", {}, Function::Sin, 0, {std::min(a, b), std::max(a, b)}});
+  return intern(operation(OpKind::Mul, {std::min(a, b), std::max(a, b)}));
 }
-std::size_t ExpressionGraph::div(std::size_t a, std::size_t b) { return intern(Node{OpKind::Div, "", {}, Function::Sin, 0, {a, b}}); }
+std::size_t ExpressionGraph::div(std::size_t a, std::size_t b) { return intern(operation(OpKind::Div, {a, b})); }
 std::size_t ExpressionGraph::zero_where_zero(std::size_t guard, std::size_t value) {
-  return intern(Node{OpKind::ZeroWhereZero, "", {}, Function::Sin, 0, {guard, value}});
+  return intern(operation(OpKind::ZeroWhereZero, {guard, value}));
 }
-std::size_t ExpressionGraph::neg(std::size_t a) { return intern(Node{OpKind::Neg, "", {}, Function::Sin, 0, {a}}); }
+std::size_t ExpressionGraph::neg(std::size_t a) { return intern(operation(OpKind::Neg, {a})); }
 std::size_t ExpressionGraph::call(Function function, const std::vector<std::size_t>& args) {
-  return intern(Node{OpKind::Call, "", {}, function, 0, args});
+  Node node = operation(OpKind::Call, args);
+  node.function = function;
+  return intern(std::move(node));
 }
 
 bool ExpressionGraph::is_leaf(std::size_t id) const {

@@ -313,7 +313,8 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
   const std::string identifier = filter_identifier(eq.name);
   GeneratedFilter result;
   result.name = eq.name;
-  result.relative_path = filter_header_paths(model.name, eq.name).header;
+  const FilterHeaderPaths paths = filter_header_paths(model.name, eq.name);
+  result.relative_path = paths.header;
   result.functions = {derivatives.stats};
   if (euler) result.functions.push_back(square.stats);
   result.functions.push_back(innovation_code.stats);
@@ -322,7 +323,10 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
 
   CppEmitter emitter(options.scalar);
   const bool templated = options.scalar == ScalarMode::Template;
-  const std::string prefix = templated ? "template <class Scalar>\n" : "";
+  // A sampled model has no filters of its own (the validator refuses them): no user-filter line.
+  std::map<std::string, std::string> values =
+      common_template_values(model, identifier, options, n, r, vars.count(), names, emitter);
+  const std::string& prefix = values.at("template_prefix");
   // cd-euler's Cov(f) dt^2 term and the prediction sub-step: the C++ of each in its own partial
   // (templates/cpp/partials/), filled here.
   std::string euler_function;
@@ -341,9 +345,6 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
       fill_template(predict_partial, embedded_template(predict_partial), {{"template_prefix", prefix}});
   predict_function.pop_back();  // its last newline: the template's line after {{predict_function}} ends it
 
-  // A sampled model has no filters of its own (the validator refuses them): no user-filter line.
-  std::map<std::string, std::string> values =
-      common_template_values(model, identifier, options, n, r, vars.count(), names, emitter);
   values.insert({
       {"banner", ops_banner(model, eq, options, result)},
       {"substeps", std::to_string(u.substeps)},
@@ -372,7 +373,7 @@ GeneratedFilter generate_sampled_code(const Model& model, const FilterEquations&
         {"kind_header", identifier + ".hpp"},
         {"template_prefix", prefix},
     };
-    result.eigen_relative_path = filter_header_paths(model.name, eq.name).eigen_header;
+    result.eigen_relative_path = paths.eigen_header;
     result.eigen_contents = fill_template("cpp/sampled_filter_eigen.hpp.tmpl",
                                           embedded_template("cpp/sampled_filter_eigen.hpp.tmpl"), eigen_values);
   }
@@ -399,7 +400,8 @@ GeneratedFilter generate_delayed_code(const Model& model, const FilterEquations&
   const std::string identifier = filter_identifier(eq.name);
   GeneratedFilter result;
   result.name = eq.name;
-  result.relative_path = filter_header_paths(model.name, eq.name).header;
+  const FilterHeaderPaths paths = filter_header_paths(model.name, eq.name);
+  result.relative_path = paths.header;
   result.functions = {functions.derivatives.stats, functions.gain.stats, functions.observation.stats};
 
   CppEmitter emitter(options.scalar);
@@ -501,7 +503,8 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
   const std::string identifier = filter_identifier(eq.name);
   GeneratedFilter result;
   result.name = eq.name;
-  result.relative_path = filter_header_paths(model.name, eq.name).header;
+  const FilterHeaderPaths paths = filter_header_paths(model.name, eq.name);
+  result.relative_path = paths.header;
   result.functions = {functions.derivatives.stats, functions.gain.stats, functions.observation.stats};
 
   CppEmitter emitter(options.scalar);
@@ -529,7 +532,7 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
         {"kind_header", kind_header},
         {"template_prefix", values.at("template_prefix")},
     };
-    result.eigen_relative_path = filter_header_paths(model.name, eq.name).eigen_header;
+    result.eigen_relative_path = paths.eigen_header;
     result.eigen_contents =
         fill_template("cpp/filter_eigen.hpp.tmpl", embedded_template("cpp/filter_eigen.hpp.tmpl"), eigen_values);
   }

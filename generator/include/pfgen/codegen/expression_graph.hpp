@@ -1,6 +1,6 @@
 #pragma once
 // A straight-line program as a DAG of scalar operations, in no language's syntax (each backend's
-// emitter spells it; codegen/cpp_emitter for C++), built by hash-consing:
+// emitter spells it; codegen/backends/cpp/cpp_emitter for C++), built by hash-consing:
 // asking twice for the same operation on the same operands returns the same
 // node, so common subexpressions across every output of a filter (derived P
 // equations repeat products such as P_ij * m_k heavily) are computed once.
