@@ -12,8 +12,9 @@
 // scripts/embedded-ins16.sh turns the ticks of each 100 steps into instructions per step. QEMU
 // executes instructions; it does not model the M4's pipeline, so this is not a cycle count.
 //
-// One source, two builds (scripts/embedded-ins16.sh): firmware with PFGEN_EMBEDDED_TARGET and the
-// `--scalar float` header; host with the `--scalar double` header. Output lines:
+// One source, three builds (scripts/embedded-ins16.sh): firmware with PFGEN_EMBEDDED_TARGET and the
+// `--scalar float` header; the same firmware on the C99 backend's float code (PFGEN_EMBEDDED_C);
+// host with the `--scalar double` header. Output lines:
 //   traj <group> <k> <t> <8 values>   groups m1..m8, m9..m16, P11..P88 (diagonal), P99..P16_16
 //   ticks <k> <SysTick ticks of the 100 steps before step k>   (firmware only)
 //   calibration <iterations> <ticks>                           (firmware only)
@@ -21,7 +22,11 @@
 #include <cstddef>
 #include <cstdint>
 
+#if defined(PFGEN_EMBEDDED_C)
+#include "ins16/ekf.h"
+#else
 #include "ins16/ekf.hpp"
+#endif
 #include "text_line.hpp"
 
 #if defined(PFGEN_EMBEDDED_TARGET)
@@ -31,7 +36,28 @@
 #include <cstdio>
 #endif
 
-namespace ekf = pfgen_models::ins16::ekf;
+// The filter as this program calls it: the C++ backend's header, or with PFGEN_EMBEDDED_C the C99
+// backend's (`pfgen codegen --language c --scalar float`), whose step computes the same numbers.
+namespace ekf {
+#if defined(PFGEN_EMBEDDED_C)
+using Scalar = float;
+constexpr int n = pfgen_models_ins16_ekf_n, p = pfgen_models_ins16_ekf_p, state_size = pfgen_models_ins16_ekf_state_size;
+using Params = pfgen_models_ins16_ekf_params;
+inline void initial_state(Scalar* state) { pfgen_models_ins16_ekf_initial_state(state); }
+inline Params default_params() {
+  Params params;
+  pfgen_models_ins16_ekf_default_params(&params);
+  return params;
+}
+inline void step(Scalar* state, Scalar t, Scalar dt, const Scalar* dy, const Params& params) {
+  pfgen_models_ins16_ekf_step(state, t, dt, dy, &params);
+}
+#else
+using namespace pfgen_models::ins16::ekf;
+using Params = pfgen_models::ins16::ekf::Params<Scalar>;
+inline Params default_params() { return Params{}; }
+#endif
+}  // namespace ekf
 using pfgen_embedded::Line;
 using Scalar = ekf::Scalar;
 
@@ -40,7 +66,7 @@ static_assert(ekf::n == 16 && ekf::p == 6, "ins16: 16 states, velocity and posit
 // Out of line with a C name, so that the script can disassemble and size exactly the filter step.
 extern "C" __attribute__((noinline)) void pfgen_embedded_step_ins16(Scalar* state, Scalar t, Scalar dt,
                                                                     const Scalar* dy,
-                                                                    const ekf::Params<Scalar>& params) {
+                                                                    const ekf::Params& params) {
   ekf::step(state, t, dt, dy, params);
 }
 
@@ -106,7 +132,7 @@ void print_state(int k, Scalar t, const Scalar* state, bool& ok) {
 int main() {
   Scalar state[ekf::state_size];
   ekf::initial_state(state);
-  ekf::Params<Scalar> params{};
+  ekf::Params params = ekf::default_params();
   const Scalar dt = Scalar(dt_float);
   // The circle: v = V (cos wt, sin wt, 0), p = (V / w) (sin wt, 1 - cos wt, 0), V = 10, w = 0.2.
   const double speed = 10.0, rate = 0.2, step = static_cast<double>(dt_float);

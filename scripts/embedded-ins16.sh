@@ -6,10 +6,13 @@
 # peak, and instructions executed per step: QEMU runs with -icount shift=0 (its virtual clock
 # advances 1 ns per instruction) and the firmware reads SysTick, calibrated against a loop of known
 # instruction count. QEMU does not model the M4's pipeline: these are instructions, not cycles.
+# Twice: with the C++ backend's header, and with the C99 backend's .h/.c (`--language c`) compiled
+# as strict C99, side by side.
 #
 # Checks, each fatal: no heap symbol linked; the step is single-precision FPU code only (no
-# software floating point, no double, no libm call); the emulated run ends normally; every printed
-# value of the float run agrees with the host's double run within |f - d| <= ATOL + RTOL |d|.
+# software floating point, no double, no libm call); the emulated runs end normally; the C
+# firmware prints exactly what the C++ firmware prints; every printed value of the float run agrees
+# with the host's double run within |f - d| <= ATOL + RTOL |d|.
 #
 # Usage: scripts/embedded-ins16.sh [--pfgen PATH] [--work DIR]
 #   (the Debian packages of scripts/embedded-check.sh must be installed; run that script once)
@@ -51,78 +54,108 @@ cd "$work"
 
 "$pfgen" codegen "$root/examples/ins16.yaml" --filter ekf --scalar float -o gen-float
 "$pfgen" codegen "$root/examples/ins16.yaml" --filter ekf --scalar double -o gen-double
+"$pfgen" codegen "$root/examples/ins16.yaml" --filter ekf --language c --scalar float -o gen-c-float
 
-arm_flags=(-std=c++17 -O2 -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -fno-math-errno
-           -fno-exceptions -fno-rtti -fno-threadsafe-statics -fno-use-cxa-atexit
-           -ffunction-sections -fdata-sections -Wall -Wextra -Wdouble-promotion -Werror)
-arm-none-eabi-g++ "${arm_flags[@]}" -DPFGEN_EMBEDDED_TARGET -I gen-float -I "$root/embedded" \
-  "$root/embedded/ins16_main.cpp" "$root/embedded/startup.cpp" \
-  -nostartfiles -T "$root/embedded/link.ld" -Wl,--defsym=STACK_SIZE="$stack_size" -Wl,--gc-sections -Wl,-Map=fw.map \
-  --specs=rdimon.specs -lrdimon -o fw.elf
+common_flags=(-O2 -mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -fno-math-errno
+              -ffunction-sections -fdata-sections -Wall -Wextra -Wdouble-promotion -Werror)
+arm_flags=(-std=c++17 "${common_flags[@]}" -fno-exceptions -fno-rtti -fno-threadsafe-statics -fno-use-cxa-atexit)
+# The C filter as a C code base compiles it: strict C99. GCC contracts a * b + c into one fused
+# multiply-add by default in C++ but not in ISO C (-std=c99 implies -ffp-contract=off); the same
+# contraction for both is what makes their results comparable bit for bit.
+c_flags=(-std=c99 -Wpedantic "${common_flags[@]}" -ffp-contract=fast)
 
-heap_symbols=$(arm-none-eabi-nm fw.elf | awk '{ print $NF }' |
-  grep -E '^(malloc|free|calloc|realloc|_malloc_r|_free_r|_calloc_r|_realloc_r|__malloc_lock|_sbrk|_sbrk_r|_Znw.*|_Zna.*|_Zdl.*|_Zda.*)$' || true)
-[ -z "$heap_symbols" ] || fail "heap symbols linked into fw.elf: $(tr "\n" " " <<< "$heap_symbols")"
+# One firmware per backend: main.o with the C++ header, or with the C header and the C filter's
+# object. Sets text, data, bss, stack_reserved, step_bytes, instructions, f32, stack_peak,
+# step_instructions, per_tick, cpi and step_cycles for the variant; its files are <variant>.*.
+measure() {
+  local variant="$1"
+  local sources=("$root/embedded/ins16_main.cpp" "$root/embedded/startup.cpp")
+  local defines=(-DPFGEN_EMBEDDED_TARGET -I gen-float)
+  local functions='5ins163ekf'  # the generated C++ functions (mangled)
+  if [ "$variant" = c ]; then
+    arm-none-eabi-gcc "${c_flags[@]}" -c gen-c-float/ins16/ekf.c -o c-ekf.o
+    sources+=(c-ekf.o)
+    defines=(-DPFGEN_EMBEDDED_TARGET -DPFGEN_EMBEDDED_C -I gen-c-float)
+    functions='^pfgen_models_ins16_ekf_'
+  fi
+  arm-none-eabi-g++ "${arm_flags[@]}" "${defines[@]}" -I "$root/embedded" "${sources[@]}" \
+    -nostartfiles -T "$root/embedded/link.ld" -Wl,--defsym=STACK_SIZE="$stack_size" -Wl,--gc-sections \
+    -Wl,-Map="$variant.map" --specs=rdimon.specs -lrdimon -o "$variant.elf"
 
-# The step and every function it calls (the generated derivatives() is written in parts, each
-# its own function): single-precision FPU code only.
-arm-none-eabi-objdump -d --no-show-raw-insn fw.elf > fw.s
-awk -v s="$symbol" '
-  /^[0-9a-f]+ <.*>:$/ { name = $2; gsub(/[<>:]/, "", name); inside = (name == s || name ~ /5ins163ekf/) }
-  inside' fw.s > step.s
-f32=$(grep -c '\.f32' step.s || true)
-soft=$(grep -cE '__aeabi_|__(add|sub|mul|div)[sd]f3|\.f64|<(sqrtf?|__errno)>' step.s || true)
-instructions=$(grep -cE '^ +[0-9a-f]+:' step.s || true)
-[ "$f32" -gt 0 ] || fail "$symbol: no single-precision FPU instruction found"
-[ "$soft" -eq 0 ] || fail "$symbol: software floating point, double precision or a libm call ($work/step.s)"
-step_bytes=0
-for size in $(arm-none-eabi-nm -S fw.elf | awk -v s="$symbol" '$4 == s || $4 ~ /5ins163ekf/ { print $2 }'); do
-  step_bytes=$((step_bytes + 16#$size))
-done
+  heap_symbols=$(arm-none-eabi-nm "$variant.elf" | awk '{ print $NF }' |
+    grep -E '^(malloc|free|calloc|realloc|_malloc_r|_free_r|_calloc_r|_realloc_r|__malloc_lock|_sbrk|_sbrk_r|_Znw.*|_Zna.*|_Zdl.*|_Zda.*)$' || true)
+  [ -z "$heap_symbols" ] || fail "$variant: heap symbols linked: $(tr "\n" " " <<< "$heap_symbols")"
 
-read -r text data bss < <(arm-none-eabi-size fw.elf | awk 'NR == 2 { print $1, $2, $3 }')
-stack_reserved=$(arm-none-eabi-size -A fw.elf | awk '$1 == ".stack" { print $2 }')
+  # The step and every function it calls (the generated derivatives() is written in parts, each
+  # its own function): single-precision FPU code only.
+  arm-none-eabi-objdump -d --no-show-raw-insn "$variant.elf" > "$variant.s"
+  awk -v s="$symbol" -v f="$functions" '
+    /^[0-9a-f]+ <.*>:$/ { name = $2; gsub(/[<>:]/, "", name); inside = (name == s || name ~ f) }
+    inside' "$variant.s" > "$variant-step.s"
+  f32=$(grep -c '\.f32' "$variant-step.s" || true)
+  soft=$(grep -cE '__aeabi_|__(add|sub|mul|div)[sd]f3|\.f64|<(sqrtf?|__errno)>' "$variant-step.s" || true)
+  instructions=$(grep -cE '^ +[0-9a-f]+:' "$variant-step.s" || true)
+  [ "$f32" -gt 0 ] || fail "$variant: $symbol: no single-precision FPU instruction found"
+  [ "$soft" -eq 0 ] || fail "$variant: $symbol: software floating point, double precision or a libm call ($work/$variant-step.s)"
+  step_bytes=0
+  for size in $(arm-none-eabi-nm -S "$variant.elf" | awk -v s="$symbol" -v f="$functions" '$4 == s || $4 ~ f { print $2 }'); do
+    step_bytes=$((step_bytes + 16#$size))
+  done
+  read -r text data bss < <(arm-none-eabi-size "$variant.elf" | awk 'NR == 2 { print $1, $2, $3 }')
+  stack_reserved=$(arm-none-eabi-size -A "$variant.elf" | awk '$1 == ".stack" { print $2 }')
+
+  set +e
+  timeout 120 qemu-system-arm -machine mps2-an386 -nographic -monitor none -serial none -icount shift=0 \
+    -chardev file,id=semihosting,path="$variant.txt" \
+    -semihosting-config enable=on,target=native,chardev=semihosting \
+    -kernel "$variant.elf" > "$variant-qemu.log" 2>&1
+  local status=$?
+  set -e
+  [ "$status" -eq 0 ] || fail "$variant: the firmware exited with status $status ($work/$variant.txt, $work/$variant-qemu.log)"
+  grep -qx 'end ok' "$variant.txt" || fail "$variant: the firmware did not report 'end ok' ($work/$variant.txt)"
+  stack_peak=$(awk '$1 == "info" { for (i = 2; i < NF; i++) if ($i == "stack_peak") print $(i + 1) }' "$variant.txt")
+  [ "$stack_peak" -lt "$stack_reserved" ] || fail "$variant: the stack peak reached the reserved $stack_reserved bytes"
+
+  # Instructions per step: SysTick ticks of every 100 steps times instructions per tick.
+  local per_step
+  per_step=$(awk '
+    $1 == "calibration" { per_tick = $2 / $3 }
+    $1 == "ticks" { ticks += $3; steps += 100 }
+    END { if (!per_tick || !steps) exit 1; printf "%.0f %.2f", ticks * per_tick / steps, per_tick }' "$variant.txt") ||
+    fail "$variant: no SysTick figures in $work/$variant.txt"
+  read -r step_instructions per_tick <<< "$per_step"
+  # A cycle estimate, not a measurement: the step code's static instruction mix weighted by the
+  # Cortex-M4 TRM's cycle counts without wait states or pipelining of neighbouring loads (VLDR, VSTR,
+  # LDR 2; VFMA, VFMS, VMLA, VMLS, VNMLA 3; VDIV, VSQRT 14; LDRD, STRD 3; BL 4; others 1), which bounds
+  # cycles per instruction from above (back-to-back loads pipeline to 1 cycle each); every part of
+  # derivatives() and gain() runs twice per Heun step, so the executed mix is close to the static one.
+  cpi=$(awk '
+    /^ +[0-9a-f]+:/ {
+      op = $2; sub(/\..*/, "", op); n++
+      if (op ~ /^(vldr|vstr|ldr|ldrb|ldrh)$/) c += 2
+      else if (op ~ /^(vfma|vfms|vfnma|vfnms|vmla|vmls|vnmla|vnmls|ldrd|strd)$/) c += 3
+      else if (op ~ /^(vdiv|vsqrt)$/) c += 14
+      else if (op ~ /^(bl|blx)$/) c += 4
+      else c += 1
+    }
+    END { printf "%.2f", c / n }' "$variant-step.s")
+  step_cycles=$(awk -v i="$step_instructions" -v c="$cpi" 'BEGIN { printf "%.0f", i * c }')
+  report+="$(printf '  %-4s flash %7d B (text %d, data %d)  step code %6d B, %5d instructions  stack peak %5d B of %d  %6d instructions/step  <= ~%6d cycles/step (%s cpi)' \
+    "$variant" $((text + data)) "$text" "$data" "$step_bytes" "$instructions" "$stack_peak" "$stack_reserved" \
+    "$step_instructions" "$step_cycles" "$cpi")"$'\n'
+}
+
+report=""
+measure cpp
+measure c
+# The two backends compute the same operations in the same order: every printed value is the same.
+cmp -s <(grep '^traj' cpp.txt) <(grep '^traj' c.txt) ||
+  fail "the C filter's trajectory differs from the C++ filter's ($work/cpp.txt, $work/c.txt)"
 
 c++ -std=c++17 -O2 -Wall -Wextra -Wdouble-promotion -Werror -I gen-double -I "$root/embedded" \
   "$root/embedded/ins16_main.cpp" -o host
 ./host > host.txt
-
-set +e
-timeout 120 qemu-system-arm -machine mps2-an386 -nographic -monitor none -serial none -icount shift=0 \
-  -chardev file,id=semihosting,path=target.txt \
-  -semihosting-config enable=on,target=native,chardev=semihosting \
-  -kernel fw.elf > qemu.log 2>&1
-status=$?
-set -e
-[ "$status" -eq 0 ] || fail "the firmware exited with status $status ($work/target.txt, $work/qemu.log)"
-grep -qx 'end ok' target.txt || fail "the firmware did not report 'end ok' ($work/target.txt)"
 grep -qx 'end ok' host.txt || fail "the host run did not report 'end ok' ($work/host.txt)"
-stack_peak=$(awk '$1 == "info" { for (i = 2; i < NF; i++) if ($i == "stack_peak") print $(i + 1) }' target.txt)
-[ "$stack_peak" -lt "$stack_reserved" ] || fail "the stack peak reached the reserved $stack_reserved bytes"
-
-# Instructions per step: SysTick ticks of every 100 steps times instructions per tick.
-per_step=$(awk '
-  $1 == "calibration" { per_tick = $2 / $3 }
-  $1 == "ticks" { ticks += $3; steps += 100 }
-  END { if (!per_tick || !steps) exit 1; printf "%.0f %.2f", ticks * per_tick / steps, per_tick }' target.txt) ||
-  fail "no SysTick figures in $work/target.txt"
-read -r step_instructions per_tick <<< "$per_step"
-# A cycle estimate, not a measurement: the step code's static instruction mix weighted by the
-# Cortex-M4 TRM's cycle counts without wait states or pipelining of neighbouring loads (VLDR, VSTR,
-# LDR 2; VFMA, VFMS, VMLA, VMLS, VNMLA 3; VDIV, VSQRT 14; LDRD, STRD 3; BL 4; others 1), which bounds
-# cycles per instruction from above (back-to-back loads pipeline to 1 cycle each); every part of
-# derivatives() and gain() runs twice per Heun step, so the executed mix is close to the static one.
-cpi=$(awk '
-  /^ +[0-9a-f]+:/ {
-    op = $2; sub(/\..*/, "", op); n++
-    if (op ~ /^(vldr|vstr|ldr|ldrb|ldrh)$/) c += 2
-    else if (op ~ /^(vfma|vfms|vfnma|vfnms|vmla|vmls|vnmla|vnmls|ldrd|strd)$/) c += 3
-    else if (op ~ /^(vdiv|vsqrt)$/) c += 14
-    else if (op ~ /^(bl|blx)$/) c += 4
-    else c += 1
-  }
-  END { printf "%.2f", c / n }' step.s)
-step_cycles=$(awk -v i="$step_instructions" -v c="$cpi" 'BEGIN { printf "%.0f", i * c }')
 
 compare=$(awk -v rtol="$RTOL" -v atol="$ATOL" '
   function abs(x) { return x < 0 ? -x : x }
@@ -142,16 +175,14 @@ compare=$(awk -v rtol="$RTOL" -v atol="$ATOL" '
     printf "%d values, largest absolute deviation %.2e (%s), largest relative %.2e (%s)\n", count, worst_abs,
       where_abs, worst, where
     exit bad
-  }' host.txt target.txt) ||
+  }' host.txt cpp.txt) ||
   fail "float and double runs disagree: $compare"
 
 {
-  echo "embedded-ins16: ins16 ekf (--scalar float) on Cortex-M4F (qemu-system-arm -machine mps2-an386 -icount shift=0)"
-  echo "  flash (text + data): $((text + data)) bytes   [text $text, data $data]"
-  echo "  step code: $step_bytes bytes ($symbol and the generated functions it calls), $instructions instructions, $f32 .f32"
-  echo "  RAM (data + bss): $((data + bss)) bytes   [stack reserved $stack_reserved, stack peak measured $stack_peak]"
-  echo "  executed instructions per step: $step_instructions   (mean over 1000 steps; $per_tick instructions per SysTick tick)"
-  echo "  estimated cycles per step: at most about $step_cycles   ($cpi cycles per instruction from the step's instruction mix and the M4 TRM)"
+  echo "embedded-ins16: ins16 ekf (--scalar float) on Cortex-M4F (qemu-system-arm -machine mps2-an386 -icount shift=0),"
+  echo "  the C++ backend's header and the C99 backend's .h/.c (--language c) side by side:"
+  printf '%s' "$report"
+  echo "  C and C++ trajectories: identical, bit for bit ($(grep -c '^traj' c.txt) lines)"
   echo "  float vs host double: $compare; tolerance $ATOL + $RTOL |double|"
   echo "embedded-ins16: OK"
 } | tee report.txt

@@ -135,7 +135,7 @@ Generated generate(const pfgen::Model& model, pfgen::codegen::ScalarMode scalar)
   for (const std::string& name : pfgen::available_filter_names(model)) {
     pfgen::codegen::GeneratedFilter f =
         pfgen::codegen::generate_filter_code(model, pfgen::derive_named_filter(model, name), options);
-    out.headers[f.relative_path] = f.contents;
+    out.headers[f.files.at(0).relative_path] = f.files.at(0).contents;
     out.identifiers.push_back(pfgen::filter_identifier(name));
   }
   return out;

@@ -25,7 +25,7 @@ std::string generated_optimal(const pfgen::Model& model, const std::string& name
   pfgen::codegen::CodegenOptions options;
   options.name_space = name_space;
   options.max_function_ops = max_ops;
-  return pfgen::codegen::generate_filter_code(model, pfgen::derive_named_filter(model, "optimal"), options).contents;
+  return pfgen::codegen::generate_filter_code(model, pfgen::derive_named_filter(model, "optimal"), options).files.at(0).contents;
 }
 
 const char* const kProgram = R"(#include <cstdio>

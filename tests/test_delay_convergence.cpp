@@ -59,10 +59,10 @@ TEST_CASE("the generated delay filters converge with first order in dt on one ob
     options.name_space = "grid" + std::to_string(g);
     for (FilterKind kind : kinds) {
       const codegen::GeneratedFilter file = codegen::generate_filter_code(model, derive_filter(model, kind), options);
-      const std::filesystem::path path = dir / ("grid" + std::to_string(g)) / file.relative_path;
+      const std::filesystem::path path = dir / ("grid" + std::to_string(g)) / file.files.at(0).relative_path;
       std::filesystem::create_directories(path.parent_path());
-      std::ofstream(path) << file.contents;
-      program += "#include \"grid" + std::to_string(g) + "/" + file.relative_path + "\"\n";
+      std::ofstream(path) << file.files.at(0).contents;
+      program += "#include \"grid" + std::to_string(g) + "/" + file.files.at(0).relative_path + "\"\n";
     }
   }
   // m(T) of each kind on each grid, for one path given as the finest grid's increments.

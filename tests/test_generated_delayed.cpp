@@ -170,8 +170,8 @@ TEST_CASE("with h = 0 the generated delay filters step as the undelayed ones", "
   options.scalar = codegen::ScalarMode::Double;
   options.grid_step = 0.01;
   auto write = [&](const codegen::GeneratedFilter& file) {
-    std::filesystem::create_directories((dir / file.relative_path).parent_path());
-    std::ofstream(dir / file.relative_path) << file.contents;
+    std::filesystem::create_directories((dir / file.files.at(0).relative_path).parent_path());
+    std::ofstream(dir / file.files.at(0).relative_path) << file.files.at(0).contents;
   };
   const std::vector<std::pair<FilterKind, FilterKind>> pairs = {{FilterKind::DelayOptimal, FilterKind::Optimal},
                                                                 {FilterKind::DelayUncorrected, FilterKind::Optimal},

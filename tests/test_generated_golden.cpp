@@ -28,15 +28,18 @@ struct Mode {
 const std::vector<Mode>& modes() {
   static const std::vector<Mode> list = {{"", {"--eigen"}},
                                          {"float", {"--eigen", "--scalar", "float"}},
-                                         {"double", {"--eigen", "--scalar", "double"}}};
+                                         {"double", {"--eigen", "--scalar", "double"}},
+                                         {"c/float", {"--language", "c", "--scalar", "float"}},
+                                         {"c/double", {"--language", "c", "--scalar", "double"}}};
   return list;
 }
 
-// Every .hpp under root, relative to it.
+// Every generated file (.hpp, .h, .c) under root, relative to it.
 std::set<std::string> header_files(const fs::path& root) {
   std::set<std::string> files;
   for (const auto& entry : fs::recursive_directory_iterator(root))
-    if (entry.is_regular_file() && entry.path().extension() == ".hpp")
+    if (entry.is_regular_file() &&
+        (entry.path().extension() == ".hpp" || entry.path().extension() == ".h" || entry.path().extension() == ".c"))
       files.insert(fs::relative(entry.path(), root).generic_string());
   return files;
 }
@@ -89,7 +92,8 @@ TEST_CASE("generated/ matches a fresh pfgen codegen of every example in every sc
   const std::set<std::string> present = header_files(golden);
   // Every mode and the Eigen wrappers are covered.
   for (const char* file : {"basin2006_quadratic/optimal.hpp", "basin2006_quadratic/optimal_eigen.hpp",
-                           "float/basin2006_quadratic/optimal.hpp", "double/basin_skliar_partial/ekf_eigen.hpp"})
+                           "float/basin2006_quadratic/optimal.hpp", "double/basin_skliar_partial/ekf_eigen.hpp",
+                           "c/float/basin2006_quadratic/optimal.h", "c/double/delay_linear/delay_optimal.c"})
     CHECK(expected.count(file) == 1);
   for (const auto& file : expected) {
     if (!present.count(file)) {

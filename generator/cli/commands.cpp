@@ -69,9 +69,15 @@ int run_codegen(const CodegenCliOptions& options) {
   for (const auto& part : split(std::regex_replace(options.name_space, std::regex("::"), ":"), ':'))
     if (auto problem = namespace_name_problem(part)) throw CliValueError("--namespace: " + *problem);
   codegen::CodegenOptions codegen_options;
-  codegen_options.scalar = options.scalar == "float"    ? codegen::ScalarMode::Float
-                           : options.scalar == "double" ? codegen::ScalarMode::Double
-                                                        : codegen::ScalarMode::Template;
+  codegen_options.language = options.language == "c" ? codegen::Language::C : codegen::Language::Cpp;
+  const bool c = codegen_options.language == codegen::Language::C;
+  if (c && options.scalar_given && options.scalar == "template")
+    throw CliValueError("--scalar template: C has no templates; give float or double");
+  // C's scalar defaults to double: the default `template` is C++'s.
+  codegen_options.scalar = options.scalar == "float"         ? codegen::ScalarMode::Float
+                           : options.scalar == "double" || c ? codegen::ScalarMode::Double
+                                                             : codegen::ScalarMode::Template;
+  if (c && options.eigen) throw CliValueError("--eigen: the Eigen wrappers are C++; drop --eigen for --language c");
   codegen_options.name_space = options.name_space;
   codegen_options.eliminate_common_subexpressions = !options.no_cse;
   if (options.max_function_ops) codegen_options.max_function_ops = static_cast<std::size_t>(*options.max_function_ops);
@@ -86,18 +92,17 @@ int run_codegen(const CodegenCliOptions& options) {
   if (options.dt && !(*options.dt > 0 && std::isfinite(*options.dt)))
     throw CliValueError("--dt: the step must be positive and finite");
   const std::vector<std::string> names = parse_filter_list("--filter", options.filters, model);
-  // The files' names follow from the model's and the filters' names (filter_header_paths), so
-  // they are checked before any derivation: a header must not replace the model file, nor one
-  // filter's header another's (a user filter `optimal-eigen` and optimal's Eigen wrapper are both
+  // The files' names follow from the model's and the filters' names (filter_file_paths), so
+  // they are checked before any derivation: a file must not replace the model file, nor one
+  // filter's file another's (a user filter `optimal-eigen` and optimal's Eigen wrapper are both
   // optimal_eigen.hpp).
   std::vector<NamedPath> written;
   if (!options.output_dir.empty())
     for (const std::string& name : names) {
-      const codegen::FilterHeaderPaths paths = codegen::filter_header_paths(model.name, name);
-      written.push_back({"-o (filter " + name + ")", (std::filesystem::path(options.output_dir) / paths.header).string()});
-      if (eigen)
-        written.push_back({"-o (filter " + name + ", --eigen)",
-                           (std::filesystem::path(options.output_dir) / paths.eigen_header).string()});
+      const std::vector<std::string> paths = codegen::filter_file_paths(model.name, name, codegen_options);
+      for (std::size_t k = 0; k < paths.size(); ++k)
+        written.push_back({"-o (filter " + name + (k == 0 || c ? ")" : ", --eigen)"),
+                           (std::filesystem::path(options.output_dir) / paths[k]).string()});
     }
   check_distinct_outputs({{"the model file", options.model_path}}, written);
   // Everything is generated in memory first: a failure leaves no partial output.
@@ -105,15 +110,12 @@ int run_codegen(const CodegenCliOptions& options) {
   for (const std::string& name : names)
     files.push_back(codegen::generate_filter_code(model, derive_named_filter(model, name), codegen_options));
   if (!options.output_dir.empty()) {
-    // All the headers or none: a directory in the way of the last header left the first ones
+    // All the files or none: a directory in the way of the last file left the first ones
     // written. Checked, then every temporary written, then renamed (write_files_together).
     std::vector<std::pair<std::string, std::string>> outputs;
-    for (const auto& file : files) {
-      outputs.emplace_back((std::filesystem::path(options.output_dir) / file.relative_path).string(), file.contents);
-      if (!file.eigen_relative_path.empty())
-        outputs.emplace_back((std::filesystem::path(options.output_dir) / file.eigen_relative_path).string(),
-                             file.eigen_contents);
-    }
+    for (const auto& filter : files)
+      for (const auto& file : filter.files)
+        outputs.emplace_back((std::filesystem::path(options.output_dir) / file.relative_path).string(), file.contents);
     for (const auto& output : outputs) {  // one directory, DIR/<model>
       const std::filesystem::path directory = std::filesystem::path(output.first).parent_path();
       std::error_code error;

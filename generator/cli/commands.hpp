@@ -38,7 +38,9 @@ struct CodegenCliOptions {
   std::string model_path;
   std::string output_dir;  // may be empty with --stats
   std::string filters;     // comma-separated; empty: every kind the model supports
+  std::string language = "cpp";
   std::string scalar = "template";
+  bool scalar_given = false;  // --scalar was on the command line (C's default scalar is double)
   std::string name_space = "pfgen_models";
   bool stats = false;
   bool no_cse = false;     // benchmark baseline only

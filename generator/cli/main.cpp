@@ -126,15 +126,19 @@ int main(int argc, char** argv) {
                        "delay-optimal: the diagonal of Phi* itself, used as given (instead of --x-star-delayed)");
 
   CodegenCliOptions codegen;
-  CLI::App* codegen_cmd = app.add_subcommand("codegen", "Write header-only C++ of a model's filters");
+  CLI::App* codegen_cmd = app.add_subcommand("codegen", "Write a model's filters as C++ headers or C99 .h/.c pairs");
   codegen_cmd->add_option("MODEL", codegen.model_path, "Model file (YAML)")->required();
-  codegen_cmd->add_option("-o,--output", codegen.output_dir, "Output directory; files go to DIR/<model>/<filter>.hpp")
+  codegen_cmd->add_option("-o,--output", codegen.output_dir, "Output directory; files go to DIR/<model>/<filter>.hpp (C: .h and .c)")
       ->check(named_file);
   codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)");
-  codegen_cmd->add_option("--scalar", codegen.scalar, "float | double | template")
+  codegen_cmd->add_option("--language", codegen.language, "cpp | c: header-only C++, or C99 .h/.c pairs")
+      ->check(CLI::IsMember({"cpp", "c"}))
+      ->capture_default_str();
+  CLI::Option* scalar_option = codegen_cmd->add_option("--scalar", codegen.scalar, "float | double | template (C: float | double, default double)")
       ->check(CLI::IsMember({"float", "double", "template"}))
       ->capture_default_str();
-  codegen_cmd->add_option("--namespace", codegen.name_space, "Outer C++ namespace")->capture_default_str();
+  codegen_cmd->add_option("--namespace", codegen.name_space, "Outer C++ namespace (C: the names' prefix, :: written _)")
+      ->capture_default_str();
   codegen_cmd->add_flag("--stats", codegen.stats, "Print operation counts as JSON, one line per filter kind");
   codegen_cmd->add_flag("--eigen", codegen.eigen,
                         "Also write DIR/<model>/<filter>_eigen.hpp: wrappers taking m and P as Eigen matrices");
@@ -230,7 +234,10 @@ int main(int argc, char** argv) {
   try {
     int status = 1;
     if (*derive_cmd) status = run_derive(derive);
-    if (*codegen_cmd) status = run_codegen(codegen);
+    if (*codegen_cmd) {
+      codegen.scalar_given = scalar_option->count() > 0;
+      status = run_codegen(codegen);
+    }
     if (*latex_cmd) status = run_latex(latex);
     if (*eval_cmd) status = run_eval(eval);
     if (*simulate_cmd) {

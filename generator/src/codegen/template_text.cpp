@@ -34,6 +34,10 @@ std::string expand_includes(const std::string& name, const std::string& text, in
 
 }  // namespace
 
+std::string expanded_template(const std::string& relative_path) {
+  return expand_includes(relative_path, embedded_template(relative_path), 0);
+}
+
 std::string fill_template(const std::string& name, const std::string& raw_text,
                           const std::map<std::string, std::string>& values) {
   const std::string text = expand_includes(name, raw_text, 0);

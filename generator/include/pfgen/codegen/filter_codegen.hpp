@@ -1,63 +1,68 @@
 #pragma once
-// Generates the header-only C++ of one filter (a built-in kind or a user filter of the model
-// file) from templates/cpp/filter.hpp.tmpl.
-// Generated API (namespace <NS>::<model>::<filter>, the filter's name with '-' written '_'):
-//   n, p, state_size; Params<Scalar>; derivatives(); gain(); predicted_observation();
-//   initial_state(); step()  -- see the template for their contracts.
-// A filter for delayed observations (templates/cpp/delayed_filter.hpp.tmpl) steps on a fixed grid
-// dt and keeps its own fixed-size history: CodegenOptions::grid_step must give that dt, and the
-// delay must be a whole number of it (model/delay_grid.hpp); otherwise CodegenError.
-// With CodegenOptions::eigen_wrapper, also <filter>_eigen.hpp: pack()/unpack() between the flat
-// state and Eigen m, P, and overloads of the functions above taking them.
+// Generates the code of one filter (a built-in kind or a user filter of the model file) in an
+// output language: the language-neutral functions (filter_functions.hpp) written by that
+// language's backend (codegen/backends/<language>/) into its templates (templates/<language>/).
+//   C++ (cpp_filter_code.hpp): a header-only file per filter, namespace <NS>::<model>::<filter>
+//     (the filter's name with '-' written '_'): n, p, state_size; Params<Scalar>; derivatives();
+//     gain(); predicted_observation(); initial_state(); step(); with
+//     CodegenOptions::eigen_wrapper also <filter>_eigen.hpp.
+//   C99 (c_filter_code.hpp): a .h/.c pair per filter, every name prefixed <NS>_<model>_<filter>_.
+// A filter for delayed observations steps on a fixed grid dt and keeps its own fixed-size
+// history: CodegenOptions::grid_step must give that dt, and the delay must be a whole number of it
+// (model/delay_grid.hpp); otherwise CodegenError.
 #include <optional>
 #include <string>
+#include <vector>
 
-#include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
+#include "pfgen/codegen/codegen_error.hpp"
+#include "pfgen/codegen/filter_functions.hpp"
+#include "pfgen/codegen/scalar_mode.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/model/delay_grid.hpp"
 
 namespace pfgen::codegen {
 
+enum class Language { Cpp, C };
+std::string language_name(Language language);  // "cpp", "c": what `--language` takes
+
 struct CodegenOptions {
-  ScalarMode scalar = ScalarMode::Template;
-  std::string name_space = "pfgen_models";
+  Language language = Language::Cpp;
+  ScalarMode scalar = ScalarMode::Template;     // C: Float or Double
+  std::string name_space = "pfgen_models";      // C: the names' prefix, `::` written `_`
   bool eliminate_common_subexpressions = true;  // false only for the benchmark's baseline
-  bool eigen_wrapper = false;                   // also write <kind>_eigen.hpp (templates/cpp/filter_eigen.hpp.tmpl)
+  bool eigen_wrapper = false;                   // C++: also write <kind>_eigen.hpp (templates/cpp/filter_eigen.hpp.tmpl)
   // Delayed observations only: the grid step dt the filter is generated for (`--dt`, else the
   // model's simulation dt). Ignored by the other filters.
   std::optional<double> grid_step;
   // A generated function with more operations (after CSE) than this is written in parts of at most
-  // this many, each its own function (CppEmitter::split_above): g++ -O2 needs minutes and gigabytes
-  // for one function of tens of thousands of operations. Every header in generated/ is far below.
-  // 0: never split (tests lower it to compare split and unsplit code on a small model).
+  // this many, each its own function (CFamilyEmitter::split_above): g++ -O2 needs minutes and
+  // gigabytes for one function of tens of thousands of operations. Every example but ins16 is far
+  // below. 0: never split (tests lower it to compare split and unsplit code on a small model).
   std::size_t max_function_ops = 500;
 };
 
-struct FunctionStats {
-  std::string function;  // derivatives, gain, predicted_observation
-  OpCounts naive;        // every output evaluated as its own expression tree
-  OpCounts cse;          // after common-subexpression elimination
+struct GeneratedFile {
+  std::string relative_path;  // relative to `pfgen codegen -o DIR`: "<model>/<identifier>.hpp"
+  std::string contents;
 };
-
-// Where a filter's headers go, relative to `pfgen codegen -o DIR`: "<model>/<identifier>.hpp" and
-// its Eigen layer "<model>/<identifier>_eigen.hpp", identifier = filter_identifier(filter_name).
-// The one place these names are made: the generator names its files by it, and the command line
-// checks the paths it will write before anything is derived.
-struct FilterHeaderPaths {
-  std::string header;
-  std::string eigen_header;
-};
-FilterHeaderPaths filter_header_paths(const std::string& model_name, const std::string& filter_name);
 
 struct GeneratedFilter {
-  std::string name;            // the filter's name: "ekf-additive", or a user filter's
-  std::string relative_path;   // "<model>/<identifier>.hpp", identifier = filter_identifier(name)
-  std::string contents;
-  std::string eigen_relative_path;  // "<model>/<identifier>_eigen.hpp", empty unless options.eigen_wrapper
-  std::string eigen_contents;       // Eigen wrappers (m, P as Eigen matrices) around contents
+  std::string name;  // the filter's name: "ekf-additive", or a user filter's
+  // The filter's header first (C++: <identifier>.hpp, then <identifier>_eigen.hpp with the Eigen
+  // layer; C: <identifier>.h, then <identifier>.c).
+  std::vector<GeneratedFile> files;
   std::vector<FunctionStats> functions;
   OpCounts naive_total() const;
   OpCounts cse_total() const;
 };
+
+// Where a filter's files go, relative to `pfgen codegen -o DIR`, in the order of
+// GeneratedFilter::files: "<model>/<identifier>.hpp" (and "_eigen.hpp"), or ".h" and ".c";
+// identifier = filter_identifier(filter_name). The one place these names are made: the backends
+// name their files by it, and the command line checks the paths it will write before anything is
+// derived.
+std::vector<std::string> filter_file_paths(const std::string& model_name, const std::string& filter_name,
+                                           const CodegenOptions& options);
 
 // Code generation holds a graph of every expanded equation beside the structured form it may
 // emit instead, about 1.1 kB per equation term: the dense cubic models' optimal filters took
@@ -77,5 +82,10 @@ inline constexpr std::size_t kMaxSampledOutputs = 64;
 double codegen_terms(const FilterEquations& eq);
 
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
+
+// For the backends: a delayed filter's delay in steps of options.grid_step (CodegenError when
+// there is no grid step or the delay is not a whole number of it), and what its gain() computes.
+DelaySteps filter_delay_steps(const FilterEquations& eq, const CodegenOptions& options);
+std::string gain_meaning(const FilterEquations& eq);
 
 }  // namespace pfgen::codegen

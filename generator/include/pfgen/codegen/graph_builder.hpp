@@ -11,17 +11,12 @@
 #include <vector>
 
 #include "pfgen/algebra/polynomial.hpp"
+#include "pfgen/codegen/codegen_error.hpp"
 #include "pfgen/codegen/expression_graph.hpp"
 #include "pfgen/derivation/filter_variables.hpp"
 #include "pfgen/model/model.hpp"
-#include "pfgen_support/error.hpp"
 
 namespace pfgen::codegen {
-
-class CodegenError : public pfgen_support::Error {
- public:
-  using pfgen_support::Error::Error;
-};
 
 // What a function's outputs read of its arguments.
 struct InputUse {

@@ -11,6 +11,9 @@ namespace pfgen::codegen {
 std::string fill_template(const std::string& name, const std::string& text,
                           const std::map<std::string, std::string>& values);
 
+// The embedded template with its partials in place, placeholders unfilled.
+std::string expanded_template(const std::string& relative_path);
+
 // The template files of templates/, compiled into pfgen (see generator/CMakeLists.txt), and
 // "pfgen_runtime/plugin_abi.h", the runtime's plugin ABI header (see simulation_plugin.hpp).
 const std::string& embedded_template(const std::string& relative_path);

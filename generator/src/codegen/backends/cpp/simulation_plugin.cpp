@@ -165,7 +165,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
     names.push_back(name);
     labels.push_back(eq.name);
     GeneratedFilter generated = generate_filter_code(model, eq, options);
-    filter_sources += without_pragma_once(std::move(generated.contents)) + "\n";
+    filter_sources += without_pragma_once(std::move(generated.files.at(0).contents)) + "\n";
   }
 
   const TruthCode truth = generate_truth_code(model);

@@ -4,7 +4,7 @@
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
-#include "pfgen/codegen/backends/cpp/cpp_names.hpp"
+#include "pfgen/codegen/local_names.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/model/simulation_rules.hpp"
 
@@ -12,18 +12,18 @@ namespace pfgen::codegen {
 namespace {
 
 // The truth functions' arguments, their local `params` and their temporaries, named clear of the
-// model's states, parameters and time (cpp_names.hpp); the time argument has the model's name.
+// model's states, parameters and time (local_names.hpp); the time argument has the model's name.
 struct TruthNames {
   explicit TruthNames(const Model& model)
-      : cpp(truth_input_names(model)),
+      : local(truth_input_names(model)),
         time(model.time.get_name()),
-        x(cpp.take("x")),
-        params(cpp.take("params")),
-        temporary_prefix(cpp.temporary_prefix()) {}
+        x(local.take("x")),
+        params(local.take("params")),
+        temporary_prefix(local.temporary_prefix()) {}
   // An output argument: `preferred` unless the model or an earlier argument took it.
-  std::string take(const std::string& preferred) { return cpp.take(preferred); }
+  std::string take(const std::string& preferred) { return local.take(preferred); }
 
-  CppNames cpp;  // first: the names below are taken from it
+  LocalNames local;  // first: the names below are taken from it
   const std::string time, x, params, temporary_prefix;
 };
 

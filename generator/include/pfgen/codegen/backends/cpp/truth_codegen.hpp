@@ -4,7 +4,7 @@
 // all at the parameters' default values. The simulation plugin (simulation_plugin.hpp) places
 // these definitions in a namespace of its own. Each function names the inputs it reads at its top,
 // as the model does (`const Scalar y = x[1];`, `const Scalar a = params.a;`); its arguments and
-// temporaries keep clear of those names (cpp_names.hpp), the time argument has the model's name.
+// temporaries keep clear of those names (local_names.hpp), the time argument has the model's name.
 #include <cstddef>
 #include <string>
 
@@ -25,7 +25,7 @@ struct TruthCode {
   double period = 0;                     // sampled: T
   double delay = 0;                      // delayed: h (the observation functions are A0, A, B as ever)
   // Definitions, in this order (bracketed ones only when they exist; argument names as below
-  // unless the model uses them, see cpp_names.hpp):
+  // unless the model uses them, see local_names.hpp):
   //   using Scalar = double;  struct Params { <parameters with defaults> };
   //   void drift(double t, const double* x, double* f);                      // f: n
   //   [void diffusion(double t, const double* x, double* g);]                // n x q row-major

@@ -1,4 +1,4 @@
-#include "pfgen/codegen/backends/cpp/cpp_names.hpp"
+#include "pfgen/codegen/local_names.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -26,7 +26,7 @@ std::set<std::string> parameters_and_time(const Model& model) {
 
 }  // namespace
 
-CppNames::CppNames(std::set<std::string> inputs) : taken_(std::move(inputs)), temporary_prefix_("tmp") {
+LocalNames::LocalNames(std::set<std::string> inputs) : taken_(std::move(inputs)), temporary_prefix_("tmp") {
   auto clashes = [&] {
     return std::any_of(taken_.begin(), taken_.end(),
                        [&](const std::string& name) { return has_form(name, temporary_prefix_); });
@@ -34,9 +34,9 @@ CppNames::CppNames(std::set<std::string> inputs) : taken_(std::move(inputs)), te
   while (clashes()) temporary_prefix_ += "_";
 }
 
-bool CppNames::is_temporary(const std::string& name) const { return has_form(name, temporary_prefix_); }
+bool LocalNames::is_temporary(const std::string& name) const { return has_form(name, temporary_prefix_); }
 
-std::string CppNames::take(const std::string& preferred) {
+std::string LocalNames::take(const std::string& preferred) {
   std::string name = preferred;
   while (taken_.count(name) || is_temporary(name)) name += "_";
   taken_.insert(name);

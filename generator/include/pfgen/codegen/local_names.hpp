@@ -13,10 +13,10 @@
 
 namespace pfgen::codegen {
 
-class CppNames {
+class LocalNames {
  public:
   // `inputs`: every name the function's inputs may have (see filter_input_names).
-  explicit CppNames(std::set<std::string> inputs);
+  explicit LocalNames(std::set<std::string> inputs);
 
   // `preferred` + "_"...: the first spelling neither an input, nor a temporary, nor given out
   // before by take(). Each call reserves the name it returns.

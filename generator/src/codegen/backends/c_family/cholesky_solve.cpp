@@ -1,4 +1,4 @@
-#include "pfgen/codegen/backends/cpp/cholesky_solve.hpp"
+#include "pfgen/codegen/backends/c_family/cholesky_solve.hpp"
 
 namespace pfgen::codegen {
 namespace {
@@ -11,37 +11,38 @@ std::string packed(std::size_t a, std::size_t b, std::size_t r) {
 
 }  // namespace
 
-std::string cholesky_gain_body(std::size_t r) {
+std::string cholesky_gain_body(std::size_t r, const CFamilyEmitter& emitter, const CholeskySpelling& spelling) {
+  const std::string& scalar = emitter.scalar_type();
   std::string body;
   // S = L L^T, column by column: L_jj = sqrt(S_jj - sum_k L_jk^2), L_ij = (S_ji - sum_k L_ik L_jk) / L_jj.
   for (std::size_t j = 0; j < r; ++j) {
     std::string pivot = "S[" + packed(j, j, r) + "]";
     for (std::size_t k = 0; k < j; ++k) pivot += " - " + L(j, k) + " * " + L(j, k);
     const std::string d = "d" + std::to_string(j);
-    body += "  const Scalar " + d + " = " + pivot + ";\n";
-    body += "  if (!(" + d + " > Scalar(0))) return false;\n";
-    body += "  const Scalar " + L(j, j) + " = std::sqrt(" + d + ");\n";
+    body += "  const " + scalar + " " + d + " = " + pivot + ";\n";
+    body += "  if (!(" + d + " > " + spelling.zero + ")) return " + spelling.failure + ";\n";
+    body += "  const " + scalar + " " + L(j, j) + " = " + emitter.call(Function::Sqrt, {d}) + ";\n";
     for (std::size_t i = j + 1; i < r; ++i) {
       std::string entry = "S[" + packed(j, i, r) + "]";
       for (std::size_t k = 0; k < j; ++k) entry += " - " + L(i, k) + " * " + L(j, k);
-      body += "  const Scalar " + L(i, j) + " = (" + entry + ") / " + L(j, j) + ";\n";
+      body += "  const " + scalar + " " + L(i, j) + " = (" + entry + ") / " + L(j, j) + ";\n";
     }
   }
   // Each row k of K solves S k = b (b the row of PCt): L z = b, then L^T k = z.
-  body += "  for (std::size_t i = 0; i < n; ++i) {\n";
-  body += "    const Scalar* b = PCt + i * p;\n";
-  body += "    Scalar* k = K + i * p;\n";
+  body += "  for (" + spelling.size_type + " i = 0; i < " + spelling.n + "; ++i) {\n";
+  body += "    const " + scalar + "* b = PCt + i * " + spelling.p + ";\n";
+  body += "    " + scalar + "* k = K + i * " + spelling.p + ";\n";
   for (std::size_t a = 0; a < r; ++a) {
     std::string z = "b[" + std::to_string(a) + "]";
     for (std::size_t c = 0; c < a; ++c) z += " - " + L(a, c) + " * z" + std::to_string(c);
-    body += "    const Scalar z" + std::to_string(a) + " = (" + z + ") / " + L(a, a) + ";\n";
+    body += "    const " + scalar + " z" + std::to_string(a) + " = (" + z + ") / " + L(a, a) + ";\n";
   }
   for (std::size_t a = r; a-- > 0;) {
     std::string x = "z" + std::to_string(a);
     for (std::size_t c = a + 1; c < r; ++c) x += " - " + L(c, a) + " * k[" + std::to_string(c) + "]";
     body += "    k[" + std::to_string(a) + "] = (" + x + ") / " + L(a, a) + ";\n";
   }
-  body += "  }\n  return true;\n";
+  body += "  }\n  return " + spelling.success + ";\n";
   return body;
 }
 

@@ -1,16 +1,16 @@
-// CppNames (codegen/cpp_names.hpp): the generated code's own names keep clear of the model's.
+// LocalNames (codegen/local_names.hpp): the generated code's own names keep clear of the model's.
 // The usual spelling when it is free, `_` appended until it is; temporaries `tmp<N>` move to
 // `tmp_<N>`, `tmp__<N>`, ... while a model name has that form. Compiling such code is
 // test_codegen_names.cpp's part.
 #include <catch2/catch.hpp>
 
-#include "pfgen/codegen/backends/cpp/cpp_names.hpp"
+#include "pfgen/codegen/local_names.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 
-using pfgen::codegen::CppNames;
+using pfgen::codegen::LocalNames;
 
-TEST_CASE("cpp names: the usual spellings when the model leaves them free", "[unit][codegen]") {
-  CppNames names({"m1", "P11", "a", "t", "temp", "tmp", "tmpx", "tmp1x", "x"});
+TEST_CASE("local names: the usual spellings when the model leaves them free", "[unit][codegen]") {
+  LocalNames names({"m1", "P11", "a", "t", "temp", "tmp", "tmpx", "tmp1x", "x"});
   CHECK(names.temporary_prefix() == "tmp");  // tmp, tmpx and tmp1x are no tmp<digits>
   CHECK(names.take("state") == "state");
   CHECK(names.take("params") == "params");
@@ -18,8 +18,8 @@ TEST_CASE("cpp names: the usual spellings when the model leaves them free", "[un
   CHECK(names.take("x") == "x_");
 }
 
-TEST_CASE("cpp names: a taken name gets `_` until free, and each name is given once", "[unit][codegen]") {
-  CppNames names({"state", "state_", "K"});
+TEST_CASE("local names: a taken name gets `_` until free, and each name is given once", "[unit][codegen]") {
+  LocalNames names({"state", "state_", "K"});
   CHECK(names.take("state") == "state__");
   CHECK(names.take("K") == "K_");
   CHECK(names.take("K") == "K__");  // K_ is given out now
@@ -27,17 +27,17 @@ TEST_CASE("cpp names: a taken name gets `_` until free, and each name is given o
   CHECK(names.take("h") == "h_");
 }
 
-TEST_CASE("cpp names: temporaries move away from model names of their form", "[unit][codegen]") {
-  CHECK(CppNames({"tmp0"}).temporary_prefix() == "tmp_");
-  CHECK(CppNames({"tmp12", "tmp_3"}).temporary_prefix() == "tmp__");
-  CHECK(CppNames({"tmp_3"}).temporary_prefix() == "tmp");  // tmp_3 is not tmp<digits>
+TEST_CASE("local names: temporaries move away from model names of their form", "[unit][codegen]") {
+  CHECK(LocalNames({"tmp0"}).temporary_prefix() == "tmp_");
+  CHECK(LocalNames({"tmp12", "tmp_3"}).temporary_prefix() == "tmp__");
+  CHECK(LocalNames({"tmp_3"}).temporary_prefix() == "tmp");  // tmp_3 is not tmp<digits>
   // An argument never takes the temporaries' form.
-  CppNames names({"tmp0"});
+  LocalNames names({"tmp0"});
   CHECK(names.take("tmp_7") == "tmp_7_");
   CHECK(names.take("tmp7") == "tmp7");
 }
 
-TEST_CASE("cpp names: the inputs of a filter and of the truth", "[unit][codegen]") {
+TEST_CASE("local names: the inputs of a filter and of the truth", "[unit][codegen]") {
   const pfgen::Model model = pfgen::load_model_text(R"model(name: unit
 states: [x, y]
 time: s

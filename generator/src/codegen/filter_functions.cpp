@@ -1,0 +1,213 @@
+#include "pfgen/codegen/filter_functions.hpp"
+
+#include "pfgen/codegen/correction_factor.hpp"
+#include "pfgen/codegen/filter_codegen.hpp"
+#include "pfgen/codegen/graph_builder.hpp"
+#include "pfgen/codegen/local_names.hpp"
+
+namespace pfgen::codegen {
+namespace {
+
+// Where each filter variable is read from: array[index], named as the equations name it. An
+// undelayed filter reads its count() variables from the state; a delayed one also reads x* from
+// the state (after m and P) and m(t - h), Phi* from the `delayed` argument (docs/theory.md §2.6).
+struct InputLayout {
+  std::vector<std::string> names, arrays;
+  std::vector<std::size_t> indices;
+  std::vector<std::string> array_arguments;  // the functions' array arguments, in signature order
+};
+
+InputLayout input_layout(const FilterVariables& vars, const FunctionNames& names) {
+  InputLayout layout;
+  layout.array_arguments = {names.state};
+  const std::size_t count = vars.count(), n = vars.n();
+  auto add = [&](std::uint32_t v, const std::string& array, std::size_t index) {
+    layout.names.push_back(vars.text_name(v));
+    layout.arrays.push_back(array);
+    layout.indices.push_back(index);
+  };
+  for (std::size_t v = 0; v < count; ++v) add(static_cast<std::uint32_t>(v), names.state, v);
+  if (!vars.delayed()) return layout;
+  layout.array_arguments.push_back(names.delayed);
+  for (std::size_t i = 0; i < n; ++i) add(vars.m_delayed(i), names.delayed, i);
+  for (std::size_t i = 0; i < n; ++i) add(vars.phi(i), names.delayed, n + i);
+  for (std::size_t i = 0; i < n; ++i) add(vars.x_star(i), names.state, count + i);
+  return layout;
+}
+
+GraphBuilder graph_builder(ExpressionGraph& graph, const Model& model, const InputLayout& layout,
+                           const FunctionNames& names) {
+  return GraphBuilder(graph, model, layout.names, layout.arrays, layout.indices, names.params);
+}
+
+FunctionSignature signature(const std::string& function, const FunctionNames& names, const InputLayout& layout,
+                            const std::string& target) {
+  return {function, names.time, layout.array_arguments, names.params, target};
+}
+
+FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
+                           const std::string& target, const Model& model, const FilterEquations& eq,
+                           const CodegenOptions& options, const FunctionNames& names, const CFamilyEmitter& emitter) {
+  ExpressionGraph graph;
+  const InputLayout layout = input_layout(eq.variables, names);
+  GraphBuilder builder = graph_builder(graph, model, layout, names);
+  builder.define(eq.definitions, eq.variables.symbols());
+  std::vector<std::size_t> roots;
+  for (const auto& p : outputs) roots.push_back(builder.polynomial(p));
+  FunctionCode code;
+  code.stats = FunctionStats{function, graph.tree_counts(roots), graph.shared_counts(roots)};
+  code.body = emitter.function_body(graph, roots, signature(function, names, layout, target),
+                                    builder.declaration_order(), options.eliminate_common_subexpressions);
+  return code;
+}
+
+// derivatives() may also be built from the derivation's structure: the P
+// moment terms are sum_k P_ik J_jk + J_ik P_kj, so each entry of J (E[d_k f_j]
+// or its EKF stand-in) is computed once and shared by every P equation,
+// instead of being expanded into each. The naive count stays that of the
+// expanded equations; the emitted graph is whichever of the two forms needs
+// fewer operations after sharing. A user filter has no Jacobian term (its P
+// drift is given whole), so it always takes the expanded form. The structured
+// form also writes the correction P A^T R^-1 A P as K (A P), K the gain, where
+// correction_factor() has checked that this is the same polynomial.
+FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                              const FunctionNames& names, const CFamilyEmitter& emitter) {
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n();
+  std::vector<Polynomial> expanded = eq.m_drift;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) expanded.push_back(eq.P_drift(i, j));
+  // A delayed filter with Phi* integrates x* beside m and P: its drift follows them in `out`.
+  expanded.insert(expanded.end(), eq.x_star_drift.begin(), eq.x_star_drift.end());
+  FunctionCode flat = function_code("derivatives", expanded, names.out, model, eq, options, names, emitter);
+  if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty()) return flat;
+
+  ExpressionGraph graph;
+  const InputLayout layout = input_layout(vars, names);
+  GraphBuilder builder = graph_builder(graph, model, layout, names);
+  builder.define(eq.definitions, eq.variables.symbols());
+  std::vector<std::size_t> roots;
+  for (const auto& p : eq.m_drift) roots.push_back(builder.polynomial(p));
+  std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t k = 0; k < n; ++k)
+      if (!eq.jacobian_term[j][k].is_zero()) J[j][k] = builder.polynomial(eq.jacobian_term[j][k]);
+  // The correction's factors: K (n x p) and H = A P (p x n), each entry built once.
+  const auto H = correction_factor(eq);
+  std::vector<std::vector<std::size_t>> K_node, H_node;
+  if (H) {
+    K_node.assign(n, std::vector<std::size_t>(eq.p));
+    H_node.assign(eq.p, std::vector<std::size_t>(n));
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t r = 0; r < eq.p; ++r)
+        if (!eq.gain[i][r].is_zero()) K_node[i][r] = builder.polynomial(eq.gain[i][r]);
+    for (std::size_t r = 0; r < eq.p; ++r)
+      for (std::size_t j = 0; j < n; ++j)
+        if (!(*H)[r][j].is_zero()) H_node[r][j] = builder.polynomial((*H)[r][j]);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      const std::size_t u = vars.upper_index(i, j);
+      std::vector<std::size_t> terms;
+      for (std::size_t k = 0; k < n; ++k) {
+        if (!eq.jacobian_term[j][k].is_zero()) terms.push_back(graph.mul(builder.variable(vars.P(i, k)), J[j][k]));
+        if (!eq.jacobian_term[i][k].is_zero()) terms.push_back(graph.mul(J[i][k], builder.variable(vars.P(k, j))));
+      }
+      if (!eq.P_diffusion[u].is_zero()) terms.push_back(builder.polynomial(eq.P_diffusion[u]));
+      std::size_t sum = terms.empty() ? graph.constant(0) : terms[0];
+      for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
+      if (eq.P_correction[u].is_zero()) {
+      } else if (H) {
+        std::vector<std::size_t> products;
+        for (std::size_t r = 0; r < eq.p; ++r)
+          if (!eq.gain[i][r].is_zero() && !(*H)[r][j].is_zero()) products.push_back(graph.mul(K_node[i][r], H_node[r][j]));
+        std::size_t correction = products[0];  // not empty: the correction is not zero
+        for (std::size_t k = 1; k < products.size(); ++k) correction = graph.add(correction, products[k]);
+        sum = graph.sub(sum, correction);
+      } else {
+        sum = graph.sub(sum, builder.polynomial(eq.P_correction[u]));
+      }
+      roots.push_back(sum);
+    }
+  for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
+  OpCounts structured = graph.shared_counts(roots);
+  if (structured.total() >= flat.stats.cse.total()) return flat;
+  FunctionCode code;
+  code.stats = FunctionStats{"derivatives", flat.stats.naive, structured};
+  code.body = emitter.function_body(graph, roots, signature("derivatives", names, layout, names.out),
+                                    builder.declaration_order(), true);
+  return code;
+}
+
+}  // namespace
+
+std::string counts_text(const OpCounts& c) {
+  return std::to_string(c.total()) + " (" + std::to_string(c.adds) + " add, " + std::to_string(c.muls) + " mul, " +
+         std::to_string(c.divs) + " div, " + std::to_string(c.calls) + " call)";
+}
+
+std::string ops_comment(const FunctionStats& s) {
+  return "Ops: " + counts_text(s.naive) + " without CSE, " + counts_text(s.cse) + " with CSE.";
+}
+
+FunctionNames function_names(const Model& model) {
+  LocalNames names(filter_input_names(model));
+  FunctionNames f;
+  f.time = model.time.get_name();
+  f.state = names.take("state");
+  f.params = names.take("params");
+  f.out = names.take("out");
+  f.K = names.take("K");
+  f.h = names.take("h");
+  // Taken last, so that the names above are spelled as before for every model.
+  f.delayed = names.take("delayed");
+  f.shared = names.take("shared");  // the local array of a function written in parts (split_body)
+  f.temporary_prefix = names.temporary_prefix();
+  return f;
+}
+
+ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                         const FunctionNames& names, const CFamilyEmitter& emitter) {
+  std::vector<Polynomial> gain_outputs;
+  for (const auto& row : eq.gain) gain_outputs.insert(gain_outputs.end(), row.begin(), row.end());
+  ContinuousFunctions f;
+  f.derivatives = derivatives_code(model, eq, options, names, emitter);
+  f.gain = function_code("gain", gain_outputs, names.K, model, eq, options, names, emitter);
+  f.observation =
+      function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
+  return f;
+}
+
+SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                   const FunctionNames& names, const CFamilyEmitter& emitter) {
+  const SampledUpdate& u = eq.update;
+  SampledFunctions f;
+  f.derivatives = derivatives_code(model, eq, options, names, emitter);
+  if (!eq.P_euler.empty())
+    f.euler_square = function_code("euler_square", eq.P_euler, names.out, model, eq, options, names, emitter);
+  std::vector<Polynomial> innovation;
+  for (const auto& row : u.PCt) innovation.insert(innovation.end(), row.begin(), row.end());
+  innovation.insert(innovation.end(), u.S.begin(), u.S.end());
+  f.innovation = function_code("innovation_terms", innovation, names.out, model, eq, options, names, emitter);
+  std::vector<Polynomial> matrices;
+  for (const auto& row : u.C) matrices.insert(matrices.end(), row.begin(), row.end());
+  matrices.insert(matrices.end(), u.R.begin(), u.R.end());
+  f.matrices = function_code("observation_matrices", matrices, names.out, model, eq, options, names, emitter);
+  f.observation =
+      function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
+  return f;
+}
+
+std::vector<GiNaC::numeric> initial_values(const Model& model, const FilterVariables& vars, bool x_star) {
+  std::vector<GiNaC::numeric> values(vars.count() + (x_star ? vars.n() : 0), 0);
+  if (model.initial) {
+    for (std::size_t i = 0; i < vars.n(); ++i) {
+      values[vars.m(i)] = model.initial->m0[i];
+      for (std::size_t j = i; j < vars.n(); ++j) values[vars.P(i, j)] = model.initial->P0[i][j];
+      if (x_star) values[vars.count() + i] = model.initial->m0[i];
+    }
+  }
+  return values;
+}
+
+}  // namespace pfgen::codegen
