@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <set>
 #include <string>
@@ -532,4 +533,33 @@ TEST_CASE("latex -o to an unwritable place gives one error line and leaves nothi
                                 dir.file("out.tex")}),
                      {"--filter", "unknown filter 'bogus'"});
   CHECK(dir.entries() == std::vector<std::string>{"taken.tex"});
+}
+
+TEST_CASE("codegen --language c refuses what C cannot have, in one line, writing nothing",
+          "[cli][bad_input][integration]") {
+  TempDir dir;
+  const std::string model = example("van_der_pol.yaml");
+  check_option_error(run_pfgen({"codegen", model, "--language", "c", "--scalar", "template", "-o", dir.path()}),
+                     {"--scalar template", "C has no templates"});
+  check_option_error(run_pfgen({"codegen", model, "--language", "c", "--eigen", "-o", dir.path()}),
+                     {"--eigen", "C++"});
+  check_option_error(run_pfgen({"codegen", model, "--language", "fortran", "-o", dir.path()}), {"--language"});
+  // Names a model file accepts that C code cannot declare: C99's own keyword, and a <math.h>
+  // function of the scalar type that the generated code may call (float: sqrtf; double: fabs).
+  for (const auto& [name, scalar] : std::vector<std::pair<std::string, std::string>>{
+           {"restrict", "float"}, {"sqrtf", "float"}, {"fabs", "double"}}) {
+    const std::string path = dir.file("c_names_" + name + ".yaml");
+    std::ofstream(path) << "name: c_names\nstates: [x]\nparameters: {" << name
+                        << ": 0.5}\ndrift: [\"-" << name << "*x\"]\ndiffusion: [[\"1\"]]\n"
+                           "observation: {A: [[\"1\"]], B: [[\"1\"]]}\n";
+    const ProcessResult cpp = run_pfgen({"codegen", path, "--filter", "optimal", "-o", dir.file("cpp")});
+    INFO(name << ": " << cpp.err);
+    CHECK(cpp.exit_code == 0);  // C++ code qualifies its calls (std::sqrt) and has no `restrict`
+    check_option_error(run_pfgen({"codegen", path, "--language", "c", "--scalar", scalar, "-o", dir.file("c")}),
+                       {"--language c", "'" + name + "'", "rename it in the model file"});
+  }
+  // fabs is no name of the float code: a local `fabs` hides nothing it calls.
+  CHECK(run_pfgen({"codegen", dir.file("c_names_fabs.yaml"), "--language", "c", "--scalar", "float", "-o",
+                   dir.file("c-float")}).exit_code == 0);
+  CHECK_FALSE(std::filesystem::exists(dir.file("c")));
 }
