@@ -197,8 +197,10 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
   combined.record_points = s.record_points;
   combined.bound = s.bound;
   combined.shown_run = s.shown_run;
-  if (auto breach = check_simulation_settings(model, combined))
-    throw CliValueError(place_of(breach->field, cli, file, s) + ": " + breach->message);
+  if (auto breach = check_simulation_job(model, combined))
+    throw CliValueError((breach->model_field.empty() ? place_of(breach->field, cli, file, s)
+                                                     : model.source + ": " + breach->model_field) +
+                        ": " + breach->message);
   s.criterion = resolve_criterion(model, cli);
   if (cli.reference) s.reference_particles = parse_reference(*cli.reference);
   s.x0_from_prior = model.initial && model.initial->x0_from_prior;
