@@ -146,6 +146,33 @@ TEST_CASE("simulation rules: one budget of 1e9 steps per run, the truth's and ea
   CHECK(truth->message.find("more than 1e9 steps") == 0);
 }
 
+TEST_CASE("simulation rules: a job's dt must divide a sampled model's period, a model file's alone need not",
+          "[unit][simulation]") {
+  const Model model = load_model_file(example("paper003/example1_gamma0.yaml"));  // period 1
+  SimulationSection s;
+  s.T = 3;
+  s.dt = 0.3;
+  // At load the file's dt is a default the command line may replace: no rule holds it to the period.
+  CHECK(!check_simulation_settings(model, s));
+  auto period = check_simulation_job(model, s);
+  REQUIRE(period);
+  CHECK(period->field == "dt");
+  CHECK(period->model_field == "observation.sampled.period");  // named at the model's period
+  CHECK(period->message == "the sampling period 1 is not a whole number of steps dt = 0.29999999999999999 "
+                           "(T/dt = 3.3333333333333335); choose --dt = T/N");
+  s.dt = 1.5;  // a whole number of steps of T, but more than the period
+  REQUIRE(check_simulation_job(model, s));
+  CHECK(check_simulation_job(model, s)->message.find("(T/dt = 0.66666666666666663)") != std::string::npos);
+  s.dt = 0.25;
+  CHECK(!check_simulation_job(model, s));
+  // The rules the file shares come first: a runs of 0 is named before the period.
+  s.dt = 0.3;
+  s.runs = 0;
+  REQUIRE(check_simulation_job(model, s));
+  CHECK(check_simulation_job(model, s)->field == "runs");
+  CHECK(check_simulation_job(model, s)->model_field.empty());
+}
+
 TEST_CASE("simulation rules: the truth scheme auto stands for follows the model's drift and diffusion",
           "[unit][simulation]") {
   auto scheme_of = [](const std::string& drift, const std::string& diffusion) {

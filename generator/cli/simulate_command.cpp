@@ -30,7 +30,6 @@
 #include "pfgen_runtime/simulation_plugin.hpp"
 #include "pfgen_runtime/summary_table.hpp"
 #include "pfgen_support/shortest_double.hpp"
-#include "pfgen_support/whole_steps.hpp"
 
 namespace pfgen::cli {
 namespace {
@@ -242,18 +241,6 @@ PreparedJob prepare(const SimulateOptions& options, bool speaks, Clock::time_poi
   if (!options.criterion_csv_path.empty() && !settings.criterion)
     throw CliValueError("--criterion-csv: no criterion J to write; give --risk-epsilon or a risk: section in " +
                         model.source);
-  // Samples at t_k = k T on the truth's grid: T must be a whole number of steps dt.
-  if (model.observation.is_sampled()) {
-    const double period = model.observation.sampled().period.to_double();
-    const double ratio = period / settings.dt;
-    const std::optional<double> whole = pfgen_support::whole_steps(period, settings.dt);
-    if (!whole || *whole < 1) {
-      char text[200];
-      std::snprintf(text, sizeof text, "the sampling period %.17g is not a whole number of steps dt = %.17g (T/dt = %.17g)",
-                    period, settings.dt, ratio);
-      throw CliValueError(model.source + ": observation.sampled.period: " + text + "; choose --dt = T/N");
-    }
-  }
   if (!settings.x0_from_prior && (!model.initial || model.initial->x0.empty()))
     throw CliValueError(model.source + ": initial: the model gives no x0, the truth's initial state (or x0: prior, "
                         "or --x0 prior, to draw it from N(m0, P0) in each run)");

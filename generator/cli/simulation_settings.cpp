@@ -2,10 +2,9 @@
 
 #include <cmath>
 #include <iostream>
-#include <map>
-#include <sstream>
 
 #include "cli_options.hpp"
+#include "simulation_settings_merge.hpp"
 #include "pfgen/algebra/numeric_value.hpp"
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/model/model.hpp"
@@ -16,79 +15,8 @@
 namespace pfgen::cli {
 namespace {
 
-double parse_double(const std::string& option, const std::string& text) {
-  std::size_t used = 0;
-  double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(value))
-    throw CliValueError(option + ": '" + text + "' is not a finite number");
-  return value;
-}
-
 // Shortest round-trip text, fixed or scientific whichever is shorter ("20", not "2e+01").
 std::string number_text(double value) { return pfgen_support::shortest_chars(value); }
-
-// The command line's value, else the model file's, else `value` keeps pfgen's default.
-template <class T>
-void take(T& value, const std::optional<T>& command_line, const std::optional<T>& file) {
-  if (command_line) value = *command_line;
-  else if (file) value = *file;
-}
-
-// The model file's report times and windows are defaults for its own horizon: with a shorter
-// --T, those beyond it are left out (said on stderr) rather than refused, so that a quick
-// `--T 1` run of any model just works. Within one source (the file alone) they stay errors.
-// Returns the note to print once every setting has passed its checks (an error line is the only
-// line a refused job prints).
-template <class Item, class End, class Text>
-std::string drop_beyond_horizon(std::vector<Item>& items, double T, bool T_from_command_line, const std::string& field,
-                                End end, Text text) {
-  if (!T_from_command_line) return {};
-  std::vector<Item> kept;
-  std::string dropped;
-  for (const Item& item : items) {
-    if (end(item) <= T) kept.push_back(item);
-    else dropped += (dropped.empty() ? "" : ", ") + text(item);
-  }
-  items = std::move(kept);
-  if (dropped.empty()) return {};
-  return "pfgen: note: simulation." + field + " " + dropped + " beyond --T " + number_text(T) + " left out\n";
-}
-
-// Where a setting's value came from, for messages: the option when the command line gave it, the
-// field's place when the model file did, else the option with pfgen's default.
-std::string place_of(const std::string& field, const SimulationOverrides& cli, const SimulationSection& file,
-                     const SimulationSettings& s) {
-  struct Source {
-    std::string option;
-    bool on_command_line, in_file;
-    std::string default_value;
-  };
-  const std::map<std::string, Source> sources = {
-      {"T", {"--T", cli.T.has_value(), file.T.has_value(), number_text(s.T)}},
-      {"dt", {"--dt", cli.dt.has_value(), file.dt.has_value(), number_text(s.dt)}},
-      {"runs", {"--runs", cli.runs.has_value(), file.runs.has_value(), std::to_string(s.runs)}},
-      {"record_points",
-       {"--record-points", cli.record_points.has_value(), file.record_points.has_value(),
-        std::to_string(s.record_points)}},
-      {"bound", {"--bound", cli.bound.has_value(), file.bound.has_value(), number_text(s.bound)}},
-      {"shown_run", {"--shown-run", cli.shown_run.has_value(), file.shown_run.has_value(), std::to_string(s.shown_run)}},
-      {"scheme", {"--scheme", cli.scheme.has_value(), file.scheme.has_value(), s.scheme}},
-      {"filters", {"--filters", cli.filters.has_value(), file.filters.has_value(), "every filter"}},
-      {"report_times", {"--report-times", cli.report_times.has_value(), !file.report_times.empty(), "none"}},
-      {"windows", {"--windows", cli.windows.has_value(), !file.windows.empty(), "none"}},
-  };
-  const auto found = sources.find(field);
-  if (found == sources.end()) return "simulation." + field;
-  const Source& source = found->second;
-  if (source.on_command_line) return source.option;
-  if (source.in_file) return file.location_of(field) + ": simulation." + field;
-  return source.option + " (default " + source.default_value + ")";
-}
 
 // A `risk:` entry at this job's parameter values (the model's defaults after --set): the
 // validator has checked that it is a real number of parameters alone.
@@ -145,60 +73,26 @@ std::size_t parse_reference(const std::string& text) {
 }
 
 SimulationSettings resolve_simulation_settings(const Model& model, const SimulationOverrides& cli) {
-  const SimulationSection& file = model.simulation;
+  // Merged once, checked once: the rules name a broken one where its value came from.
+  const MergedSimulation merged = merge_simulation_settings(model, cli);
+  const SimulationSection& job = merged.values;
+  if (auto breach = check_simulation_job(model, job)) {
+    const std::string place =
+        breach->model_field.empty() ? merged.places.at(breach->field) : model.source + ": " + breach->model_field;
+    throw CliValueError(place + ": " + breach->message);
+  }
   SimulationSettings s;
-  if (cli.T) s.T = *cli.T;
-  else if (file.T) s.T = *file.T;
-  else throw CliValueError("--T: no horizon; give --T or simulation.T in " + model.source);
-  take(s.dt, cli.dt, file.dt);
-  take(s.runs, cli.runs, file.runs);
-  take(s.seed, cli.seed, file.seed);
-  take(s.scheme, cli.scheme, file.scheme);
-  take(s.record_points, cli.record_points, file.record_points);
-  take(s.bound, cli.bound, file.bound);
-  take(s.shown_run, cli.shown_run, file.shown_run);
-  if (cli.filters) s.filters = parse_filter_list("--filters", *cli.filters, model);
-  else if (file.filters) s.filters = *file.filters;
-
-  std::string notes;
-  if (cli.report_times) {
-    for (const auto& part : split(*cli.report_times, ',')) s.report_times.push_back(parse_double("--report-times", part));
-  } else {
-    s.report_times = file.report_times;
-    notes += drop_beyond_horizon(s.report_times, s.T, cli.T.has_value(), "report_times",
-                        [](double t) { return t; }, [](double t) { return number_text(t); });
-  }
-  if (cli.windows) {
-    for (const auto& part : split(*cli.windows, ',')) {
-      const auto ends = split(part, ':');
-      if (ends.size() != 2) throw CliValueError("--windows: '" + part + "' is not a:b");
-      s.windows.emplace_back(parse_double("--windows", ends[0]), parse_double("--windows", ends[1]));
-    }
-  } else {
-    s.windows = file.windows;
-    notes += drop_beyond_horizon(s.windows, s.T, cli.T.has_value(), "windows",
-                        [](const std::pair<double, double>& w) { return w.second; },
-                        [](const std::pair<double, double>& w) {
-                          return "[" + number_text(w.first) + ", " + number_text(w.second) + "]";
-                        });
-  }
-
-  // The combined settings obey the same rules as a model file's section (simulation_rules.cpp);
-  // a broken rule names where its value came from.
-  SimulationSection combined;
-  combined.T = s.T;
-  combined.dt = s.dt;
-  combined.runs = s.runs;
-  combined.seed = s.seed;
-  if (cli.filters || file.filters) combined.filters = s.filters;
-  combined.scheme = s.scheme;
-  combined.report_times = s.report_times;
-  combined.windows = s.windows;
-  combined.record_points = s.record_points;
-  combined.bound = s.bound;
-  combined.shown_run = s.shown_run;
-  if (auto breach = check_simulation_settings(model, combined))
-    throw CliValueError(place_of(breach->field, cli, file, s) + ": " + breach->message);
+  s.T = *job.T;
+  s.dt = *job.dt;
+  s.runs = *job.runs;
+  s.seed = *job.seed;
+  if (job.filters) s.filters = *job.filters;
+  s.scheme = *job.scheme;
+  s.report_times = job.report_times;
+  s.windows = job.windows;
+  s.record_points = *job.record_points;
+  s.bound = *job.bound;
+  s.shown_run = *job.shown_run;
   s.criterion = resolve_criterion(model, cli);
   if (cli.reference) s.reference_particles = parse_reference(*cli.reference);
   s.x0_from_prior = model.initial && model.initial->x0_from_prior;
@@ -210,7 +104,7 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
   }
   if (s.x0_from_prior && !model.initial)
     throw CliValueError("--x0 prior: " + model.source + " gives no initial: m0 and P0 to draw from");
-  std::cerr << notes;
+  std::cerr << merged.notes;
   return s;
 }
 

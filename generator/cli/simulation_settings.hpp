@@ -1,7 +1,8 @@
 #pragma once
 // The settings of one `pfgen simulate` job: the command line overrides the model file's
-// `simulation:` section, which overrides pfgen's defaults. Resolution also checks the combined
-// settings (a --T shorter than a window of the model file is an error naming both).
+// `simulation:` section, which overrides pfgen's defaults (merged once, in
+// simulation_settings_merge), checked once by the model's simulation rules; then the options
+// that are the command line's alone (J's criterion, --reference, --x0).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -44,17 +45,18 @@ struct CriterionSettings {
   std::vector<double> weight;  // M, n x n row-major; empty: the identity
 };
 
+// The `simulation:` fields as checked; pfgen's defaults are the merge's, not these zeros.
 struct SimulationSettings {
   double T = 0;
-  double dt = 1e-3;
-  std::size_t runs = 100;
-  std::uint64_t seed = 1;
+  double dt = 0;
+  std::size_t runs = 0;
+  std::uint64_t seed = 0;
   std::vector<std::string> filters;  // empty: every filter of the model
-  std::string scheme = "auto";
+  std::string scheme;
   std::vector<double> report_times;
   std::vector<std::pair<double, double>> windows;
-  std::size_t record_points = 1000;
-  double bound = 1e8;
+  std::size_t record_points = 0;
+  double bound = 0;
   std::size_t shown_run = 0;
   std::optional<CriterionSettings> criterion;  // unset: J is not computed, the output is as before
   // --reference particles:N: the bootstrap particle filter's N (docs/theory.md §7.4); unset: no

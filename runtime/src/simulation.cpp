@@ -96,12 +96,13 @@ SampledMeasurement::SampledMeasurement(std::size_t p, std::size_t n, std::size_t
 }
 
 std::size_t SampledMeasurement::steps_per_sample(const TimeGrid& grid) const {
-  const double ratio = period_ / grid.dt;
   const std::optional<double> whole = pfgen_support::whole_steps(period_, grid.dt);
+  // A precondition of the API: `pfgen simulate` refuses such a dt before, naming the model's
+  // period and the option to change, so this short message is for library users only.
   if (!whole || *whole < 1) {
-    char text[200];
-    std::snprintf(text, sizeof text, "the sampling period %.17g is not a whole number of steps dt = %.17g (T/dt = %.17g)",
-                  period_, grid.dt, ratio);
+    char text[120];
+    std::snprintf(text, sizeof text, "steps_per_sample: period / dt = %.17g is not a whole number of steps >= 1",
+                  period_ / grid.dt);
     throw std::invalid_argument(text);
   }
   return static_cast<std::size_t>(*whole);

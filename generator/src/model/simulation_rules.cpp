@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/model/delay_grid.hpp"
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen_support/shortest_double.hpp"
+#include "pfgen_support/whole_steps.hpp"
 
 namespace pfgen {
 namespace {
@@ -22,7 +24,7 @@ std::string window_text(const std::pair<double, double>& w) {
 using Breach = std::optional<SimulationRuleBreach>;
 
 Breach breach(const std::string& field, const std::string& message, std::optional<std::size_t> entry = {}) {
-  return SimulationRuleBreach{field, entry, message};
+  return SimulationRuleBreach{field, entry, message, {}};
 }
 
 Breach positive(const std::optional<double>& value, const std::string& field, const std::string& what) {
@@ -152,6 +154,23 @@ Breach check_times(const SimulationSection& s) {
   return {};
 }
 
+// Samples fall at t_k = k T (T the period) on the truth's grid: T must be a whole number of steps
+// dt, by the one rule the runtime's guard also applies (pfgen_support::whole_steps). Its numbers
+// are written in full (%.17g), not in the other rules' shortest form: the message has read so
+// since before the rules were gathered here.
+Breach check_sampling_period(const Model& model, const SimulationSection& s) {
+  if (!model.observation.is_sampled() || !s.dt) return {};
+  const double period = model.observation.sampled().period.to_double(), dt = *s.dt;
+  const std::optional<double> steps = pfgen_support::whole_steps(period, dt);
+  if (steps && *steps >= 1) return {};
+  char text[200];
+  std::snprintf(text, sizeof text, "the sampling period %.17g is not a whole number of steps dt = %.17g (T/dt = %.17g)",
+                period, dt, period / dt);
+  Breach out = breach("dt", std::string(text) + "; choose --dt = T/N");
+  out->model_field = "observation.sampled.period";
+  return out;
+}
+
 }  // namespace
 
 std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model, const SimulationSection& settings) {
@@ -162,6 +181,11 @@ std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model
   if (auto b = check_filters(model, settings)) return b;
   if (auto b = check_substeps(model, settings)) return b;
   return check_times(settings);
+}
+
+std::optional<SimulationRuleBreach> check_simulation_job(const Model& model, const SimulationSection& job) {
+  if (auto b = check_simulation_settings(model, job)) return b;
+  return check_sampling_period(model, job);
 }
 
 bool diffusion_is_zero(const Model& model) {

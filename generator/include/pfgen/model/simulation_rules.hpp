@@ -1,11 +1,12 @@
 #pragma once
 // The rules of `pfgen simulate`'s settings, in one place. The model file's `simulation:` section
-// (validate_model) and the command line over the file over pfgen's defaults
-// (cli/simulation_settings) check their values here, so both say the same words; only where a
-// value came from, which the caller puts in front, differs. A rule applies when the values it
-// needs are known: a file that gives dt but no T is checked for dt > 0, and for dt < T only once
-// the command line gives T. The runtime's own checks are preconditions for library users; the
-// command line never reaches them with settings these rules refuse.
+// (validate_model, check_simulation_settings) and a job's settings, the command line over the
+// file over pfgen's defaults merged once (cli/simulation_settings_merge, check_simulation_job),
+// are checked here, so both say the same words; only where a value came from, which the caller
+// puts in front, differs. A rule applies when the values it needs are known: a file that gives dt
+// but no T is checked for dt > 0, and for dt < T only once the command line gives T. The
+// runtime's own checks are preconditions for library users; the command line never reaches them
+// with settings these rules refuse.
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -18,6 +19,9 @@ struct SimulationRuleBreach {
   std::string field;                 // the setting, as the model file names it: "dt", "windows", ...
   std::optional<std::size_t> entry;  // 0-based entry of a list setting
   std::string message;               // what is wrong, without the place
+  // Set when the breach is named at a field of the model rather than at the setting: the job's dt
+  // against the sampling period is "observation.sampled.period", whichever place gave dt.
+  std::string model_field;
 };
 
 // The budget of one run, the truth's grid steps T / dt and each sampled filter's prediction
@@ -29,6 +33,13 @@ inline constexpr double kMaxStepsPerRun = 1e9;
 // runs, record points, bound, shown run, scheme, filters, the sampled filters' sub-steps against
 // kMaxStepsPerRun, report times, windows), or nothing.
 std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model, const SimulationSection& settings);
+
+// The rules of one simulate job's merged settings (every field known but filters): those above,
+// then the job's dt against a sampled model's period, which must be a whole number (at least 1)
+// of steps dt for the samples to fall on the truth's grid. That one is the job's alone: a model
+// file's dt that does not divide the period is no error at load (derive and codegen do not use
+// dt, and simulate --dt may replace it). Checked last, after every rule the file shares.
+std::optional<SimulationRuleBreach> check_simulation_job(const Model& model, const SimulationSection& job);
 
 // Whether the model's diffusion is identically zero (a deterministic truth).
 bool diffusion_is_zero(const Model& model);
