@@ -155,6 +155,6 @@ TEST_CASE("reserved names: names of the printed equations are refused for symbol
     INFO(name);
     CHECK(!pfgen::symbol_name_problem(name));
   }
-  CHECK(pfgen::cpp_name_problem("namespace"));
-  CHECK(!pfgen::cpp_name_problem("dt"));  // fine in C++, ambiguous only in the printed equations
+  CHECK(pfgen::code_name_problem("namespace"));
+  CHECK(!pfgen::code_name_problem("dt"));  // fine in C++, ambiguous only in the printed equations
 }

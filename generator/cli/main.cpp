@@ -22,6 +22,7 @@
 #endif
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/kinds/filter_kinds.hpp"
+#include "pfgen/kinds/output_languages.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen_support/quoted_text.hpp"
@@ -131,8 +132,10 @@ int main(int argc, char** argv) {
   codegen_cmd->add_option("-o,--output", codegen.output_dir, "Output directory; files go to DIR/<model>/<filter>.hpp (C: .h and .c)")
       ->check(named_file);
   codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)");
+  std::vector<std::string> language_names;
+  for (const auto& language : output_languages()) language_names.push_back(language.name);
   codegen_cmd->add_option("--language", codegen.language, "cpp | c: header-only C++, or C99 .h/.c pairs")
-      ->check(CLI::IsMember({"cpp", "c"}))
+      ->check(CLI::IsMember(language_names))
       ->capture_default_str();
   CLI::Option* scalar_option = codegen_cmd->add_option("--scalar", codegen.scalar, "float | double | template (C: float | double, default double)")
       ->check(CLI::IsMember({"float", "double", "template"}))

@@ -7,14 +7,6 @@
 
 namespace pfgen::codegen {
 
-std::string language_name(Language language) {
-  switch (language) {
-    case Language::Cpp: return "cpp";
-    case Language::C: return "c";
-  }
-  return "?";
-}
-
 std::vector<std::string> filter_file_paths(const std::string& model_name, const std::string& filter_name,
                                            const CodegenOptions& options) {
   switch (options.language) {

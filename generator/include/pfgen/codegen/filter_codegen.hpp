@@ -18,12 +18,13 @@
 #include "pfgen/codegen/filter_functions.hpp"
 #include "pfgen/codegen/scalar_mode.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/kinds/output_languages.hpp"
 #include "pfgen/model/delay_grid.hpp"
 
 namespace pfgen::codegen {
 
-enum class Language { Cpp, C };
-std::string language_name(Language language);  // "cpp", "c": what `--language` takes
+// The output languages are the kind registry's (kinds/output_languages.hpp); each has a backend.
+using Language = OutputLanguage;
 
 struct CodegenOptions {
   Language language = Language::Cpp;

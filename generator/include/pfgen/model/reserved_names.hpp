@@ -1,22 +1,23 @@
 #pragma once
 // Names a model may not give its states, parameters, time symbol, itself or its filters, because
-// the printed equations or the generated C++ could not use them. Refusing them when the model is
+// the printed equations or the generated code, in any output language, could not use them. Refusing them when the model is
 // read gives one clear line instead of ambiguous equations or kilobytes of compiler errors.
 #include <optional>
 #include <string>
 
 namespace pfgen {
 
-// Why `name` cannot be used in generated C++ (a keyword, a macro of the headers the code
-// includes, a type the code itself uses, an identifier C++ reserves), or nothing.
-std::optional<std::string> cpp_name_problem(const std::string& name);
+// Why `name` cannot be used in the code of some output language (kinds/output_languages.hpp: a
+// keyword, a macro of the headers the code includes, a type or function the code itself uses, an
+// identifier the language reserves), or nothing: a model file is valid for every language.
+std::optional<std::string> code_name_problem(const std::string& name);
 
 // Why `name` cannot name a namespace of the generated code (the model, a filter, a part of
-// --namespace): cpp_name_problem, or a namespace the generated code itself qualifies names with
+// --namespace): code_name_problem, or a namespace the generated code itself qualifies names with
 // (std, Eigen), which a namespace of that name inside pfgen_models would hide.
 std::optional<std::string> namespace_name_problem(const std::string& name);
 
-// Why `name` cannot name a symbol of the model's equations: cpp_name_problem, or a name the
+// Why `name` cannot name a symbol of the model's equations: code_name_problem, or a name the
 // printed equations use themselves (m1, P12, dm1, dP12, K1_1, dy1, dt), or nothing.
 std::optional<std::string> symbol_name_problem(const std::string& name);
 

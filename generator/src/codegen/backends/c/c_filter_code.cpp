@@ -1,7 +1,6 @@
 #include "pfgen/codegen/backends/c/c_filter_code.hpp"
 
 #include <regex>
-#include <set>
 
 #include "pfgen/codegen/backends/c/c_emitter.hpp"
 #include "pfgen/codegen/backends/c_family/cholesky_solve.hpp"
@@ -11,28 +10,6 @@
 
 namespace pfgen::codegen {
 namespace {
-
-// Names a model may give its parameters or time (the model file refuses C++'s keywords and the
-// library's macros) that C code cannot declare as locals: C99's own keywords, and the <math.h>
-// functions the generated code calls, which a local of that name would hide.
-void check_c_names(const Model& model, const CEmitter& emitter) {
-  static const std::set<std::string> keywords = {"restrict", "_Bool", "_Complex", "_Imaginary"};
-  std::set<std::string> functions;
-  for (Function f : {Function::Sin, Function::Cos, Function::Tan, Function::Exp, Function::Log, Function::Sinh,
-                     Function::Cosh, Function::Tanh, Function::Asin, Function::Acos, Function::Atan, Function::Abs,
-                     Function::Sqrt, Function::Pow})
-    functions.insert(emitter.function_spelling(f));
-  std::vector<std::pair<std::string, std::string>> names = {{"the time", model.time.get_name()}};
-  for (const auto& p : model.parameters) names.push_back({"parameter", p.name});
-  for (const auto& [what, name] : names) {
-    if (keywords.count(name))
-      throw CodegenError("--language c: " + what + " '" + name + "' of model " + model.name +
-                         " is a C keyword, so the C code could not use it; rename it in the model file");
-    if (functions.count(name))
-      throw CodegenError("--language c: " + what + " '" + name + "' of model " + model.name +
-                         " would hide the C function " + name + "() the code calls; rename it in the model file");
-  }
-}
 
 std::string params_members(const Model& model, const CEmitter& emitter) {
   if (model.parameters.empty()) return "  char unused;  // C has no empty record\n";
@@ -72,7 +49,6 @@ struct CFilterWriter {
         names(function_names(m)),
         prefix(c_symbol_prefix(o.name_space, m.name, e.name)),
         emitter(o.scalar, names.temporary_prefix, prefix, prefix + "_params") {
-    check_c_names(model, emitter);
     emitter.split_above(options.max_function_ops, names.shared);
     result.name = eq.name;
     for (const std::string& path : c_filter_paths(model.name, eq.name)) result.files.push_back({path, ""});

@@ -1,0 +1,27 @@
+#include <set>
+
+#include "pfgen/kinds/output_languages.hpp"
+
+namespace pfgen {
+
+// What C99 code cannot declare beyond what C++ already refuses (cpp_reserved_words.cpp: the
+// keywords both share, the library's macros, reserved spellings): C99's own keyword, and the
+// <math.h> functions the C backend calls, in double and in float, since a local of that name
+// would hide the function from the code after it (C++ code calls std::sin, which no local hides).
+std::optional<std::string> c_reserved_name_problem(const std::string& name) {
+  if (name == "restrict") return "'restrict' is a C keyword, so the generated C code could not use it";
+  static const std::set<std::string> functions = [] {
+    std::set<std::string> names;
+    for (const char* f : {"sin", "cos", "tan", "exp", "log", "sinh", "cosh", "tanh", "asin", "acos", "atan", "fabs",
+                          "sqrt", "pow"}) {
+      names.insert(f);
+      names.insert(std::string(f) + "f");
+    }
+    return names;
+  }();
+  if (functions.count(name))
+    return "'" + name + "' is a <math.h> function the generated C code calls, which a variable of that name would hide";
+  return std::nullopt;
+}
+
+}  // namespace pfgen
