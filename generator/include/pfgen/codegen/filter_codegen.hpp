@@ -7,9 +7,10 @@
 //     gain(); predicted_observation(); initial_state(); step(); with
 //     CodegenOptions::eigen_wrapper also <filter>_eigen.hpp.
 //   C99 (c_filter_code.hpp): a .h/.c pair per filter, every name prefixed <NS>_<model>_<filter>_.
-// A filter for delayed observations steps on a fixed grid dt and keeps its own fixed-size
-// history: CodegenOptions::grid_step must give that dt, and the delay must be a whole number of it
-// (model/delay_grid.hpp); otherwise CodegenError.
+// Each backend writes a filter through its observation module (observation_code.hpp), whose
+// templates it fills. A filter for delayed observations steps on a fixed grid dt and keeps its
+// own fixed-size history: CodegenOptions::grid_step must give that dt, and the delay must be a
+// whole number of it (model/delay_grid.hpp); otherwise CodegenError.
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,7 +19,6 @@
 #include "pfgen/codegen/filter_functions.hpp"
 #include "pfgen/codegen/scalar_mode.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
-#include "pfgen/model/delay_grid.hpp"
 
 namespace pfgen::codegen {
 
@@ -72,20 +72,10 @@ std::vector<std::string> filter_file_paths(const std::string& model_name, const 
 // (CodegenError).
 inline constexpr double kMaxCodegenTerms = 1500000;
 
-// A sampled filter's update writes its Cholesky solve out for every output, O(r^3) straight-line
-// code: 1.2 MB of C++ at r = 64, 4 MB at r = 100 and 27 MB at r = 200, which a compiler takes
-// minutes over. Code generation takes at most this many outputs (derive and eval take any).
-inline constexpr std::size_t kMaxSampledOutputs = 64;
-
 // The terms of the polynomials code generation reads from `eq` (drifts, gain, predicted
 // observation, the P equations' parts, x*'s drift).
 double codegen_terms(const FilterEquations& eq);
 
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
-
-// For the backends: a delayed filter's delay in steps of options.grid_step (CodegenError when
-// there is no grid step or the delay is not a whole number of it), and what its gain() computes.
-DelaySteps filter_delay_steps(const FilterEquations& eq, const CodegenOptions& options);
-std::string gain_meaning(const FilterEquations& eq);
 
 }  // namespace pfgen::codegen
