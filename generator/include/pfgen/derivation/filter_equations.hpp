@@ -76,8 +76,6 @@ struct FilterEquations {
 
   std::size_t n() const { return variables.n(); }
   bool is_user_filter() const { return !kind.has_value(); }
-  bool is_sampled() const { return observation == ObservationKind::Sampled; }
-  bool is_delayed() const { return observation == ObservationKind::Delayed; }
   bool uses_x_star() const { return !x_star_drift.empty(); }
   // The dt-coefficient of dP_ij, all parts combined (i, j in either order).
   Polynomial P_drift(std::size_t i, std::size_t j) const;
