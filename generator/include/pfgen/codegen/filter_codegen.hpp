@@ -30,7 +30,7 @@ struct CodegenOptions {
   ScalarMode scalar = ScalarMode::Template;     // C: Float or Double
   std::string name_space = "pfgen_models";      // C: the names' prefix, `::` written `_`
   bool eliminate_common_subexpressions = true;  // false only for the benchmark's baseline
-  bool eigen_wrapper = false;                   // C++: also write <kind>_eigen.hpp (templates/cpp/filter_eigen.hpp.tmpl)
+  bool eigen_wrapper = false;                   // C++: also write <kind>_eigen.hpp (the observation module's *_eigen.hpp.tmpl)
   // Delayed observations only: the grid step dt the filter is generated for (`--dt`, else the
   // model's simulation dt). Ignored by the other filters.
   std::optional<double> grid_step;

@@ -24,9 +24,10 @@ class ObservationCode {
   // Refuses (CodegenError), before any graph is built, a filter whose code this observation's
   // form cannot hold at its size; nothing by default.
   virtual void check_size(const Model& model, const FilterEquations& eq) const;
-  // The filter's files (GeneratedFilter::files in filter_file_paths' order) from the templates of
-  // each backend: templates/cpp/ (header-only C++, with CodegenOptions::eigen_wrapper its Eigen
-  // layer where the observation has one) and templates/c/ (a .h/.c pair).
+  // The filter's files (GeneratedFilter::files in filter_file_paths' order) from the module's
+  // templates for each backend (generator/src/observations/<kind>/templates/): cpp/ (header-only
+  // C++, with CodegenOptions::eigen_wrapper its Eigen layer where the observation has one) and c/
+  // (a .h/.c pair).
   virtual GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const = 0;
   virtual GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const = 0;
 

@@ -1,4 +1,4 @@
-// A filter for continuous observations in C99 (templates/c/filter.h.tmpl and filter.c.tmpl).
+// A filter for continuous observations in C99 (its templates/c/filter.h.tmpl and filter.c.tmpl).
 #include "pfgen/codegen/backends/c/c_filter_writer.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
 

@@ -1,4 +1,4 @@
-// A filter for continuous observations in C++ (templates/cpp/filter.hpp.tmpl, and with --eigen
+// A filter for continuous observations in C++ (its templates/cpp/filter.hpp.tmpl, and with --eigen
 // filter_eigen.hpp.tmpl): derivatives(), gain(), predicted_observation(), initial_state(), step().
 #include "pfgen/codegen/backends/c_family/file_banner.hpp"
 #include "pfgen/codegen/backends/cpp/cpp_filter_parts.hpp"

@@ -1,4 +1,4 @@
-// A filter for delayed observations in C99 (templates/c/delayed_filter.h.tmpl and .c.tmpl): its
+// A filter for delayed observations in C99 (its templates/c/delayed_filter.h.tmpl and .c.tmpl): its
 // history an array the caller owns, the parts of the .c that depend on the delay in steps and on
 // x* written for the values this filter has.
 #include "pfgen/codegen/backends/c/c_filter_writer.hpp"

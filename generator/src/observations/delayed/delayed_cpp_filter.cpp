@@ -1,4 +1,4 @@
-// A filter for delayed observations in C++ (templates/cpp/delayed_filter.hpp.tmpl; docs/theory.md
+// A filter for delayed observations in C++ (its templates/cpp/delayed_filter.hpp.tmpl; docs/theory.md
 // §2.6): the functions read m(t - h) and Phi* from a second array, x* follows m and P in the state,
 // and the step keeps the history on the fixed grid the filter is generated for.
 #include "pfgen/codegen/backends/c_family/file_banner.hpp"

@@ -1,4 +1,4 @@
-// A filter for sampled observations in C99 (templates/c/sampled_filter.h.tmpl and .c.tmpl, with
+// A filter for sampled observations in C99 (its templates/c/sampled_filter.h.tmpl and .c.tmpl, with
 // the partials of cd-euler's dt^2 term and of the prediction sub-step).
 #include "pfgen/codegen/backends/c/c_filter_writer.hpp"
 #include "pfgen/codegen/template_text.hpp"
@@ -24,7 +24,7 @@ GeneratedFilter SampledCode::c_filter(const Model& model, const FilterEquations&
   CFilterWriter::add_function(values, "matrices", f.matrices);
   CFilterWriter::add_function(values, "observation", f.observation);
   values.insert({{"h", w.names.h}, {"substeps", std::to_string(eq.update.substeps)}});
-  // cd-euler's Cov(f) dt^2 function and the prediction sub-step, each a partial (templates/c/partials/).
+  // cd-euler's Cov(f) dt^2 function and the prediction sub-step, each a partial (its templates/c/partials/).
   std::string euler_function, euler_declaration;
   if (euler) {
     std::map<std::string, std::string> euler_values = {{"prefix", w.prefix}, {"scalar", w.emitter.scalar_type()},

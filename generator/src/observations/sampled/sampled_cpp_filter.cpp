@@ -1,4 +1,4 @@
-// A filter for sampled observations in C++ (templates/cpp/sampled_filter.hpp.tmpl, and with
+// A filter for sampled observations in C++ (its templates/cpp/sampled_filter.hpp.tmpl, and with
 // --eigen sampled_filter_eigen.hpp.tmpl): the prediction's derivatives (and cd-euler's dt^2 term),
 // the update's polynomial parts P C^T and S, C and R, the predicted sample, and the unrolled
 // Cholesky solve of the gain.
@@ -35,7 +35,7 @@ GeneratedFilter SampledCode::cpp_filter(const Model& model, const FilterEquation
       cpp_template_values(model, filter_identifier(eq.name), options, n, r, vars.count(), names, emitter);
   const std::string& prefix = values.at("template_prefix");
   // cd-euler's Cov(f) dt^2 term and the prediction sub-step: the C++ of each in its own partial
-  // (templates/cpp/partials/), filled here.
+  // (its templates/cpp/partials/), filled here.
   std::string euler_function;
   if (euler)
     euler_function = fill_template("cpp/partials/euler_square.hpp.tmpl",

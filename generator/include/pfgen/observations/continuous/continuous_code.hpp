@@ -1,7 +1,7 @@
 #pragma once
 // The continuous observation dy = (A0 + A x) dt + B dW2 in code generation: ContinuousCode, its
-// methods by file (continuous_cpp_filter.cpp: templates/cpp/filter.hpp.tmpl and its Eigen layer;
-// continuous_c_filter.cpp: templates/c/filter.h.tmpl and .c.tmpl; continuous_plugin.cpp: the
+// methods by file (continuous_cpp_filter.cpp: the module's templates/cpp/filter.hpp.tmpl and its
+// Eigen layer; continuous_c_filter.cpp: templates/c/filter.h.tmpl and .c.tmpl; continuous_plugin.cpp: the
 // truth's observation and the plugin's table), and what the delayed module, whose filters have the
 // same functions and matrices, takes from it.
 #include <functional>

@@ -1,6 +1,6 @@
 #pragma once
 // The delayed observation dy = (A0 + A x(t - h)) dt + B dW2 in code generation (docs/theory.md
-// §2.6): DelayedCode, its methods by file (delayed_cpp_filter.cpp: templates/cpp/delayed_filter.hpp.tmpl,
+// §2.6): DelayedCode, its methods by file (delayed_cpp_filter.cpp: the module's templates/cpp/delayed_filter.hpp.tmpl,
 // no Eigen layer; delayed_c_filter.cpp: templates/c/delayed_filter.h.tmpl and .c.tmpl;
 // delayed_plugin.cpp: the truth's observation and the plugin's table, ABI version 3). Its filters
 // have the continuous module's functions (continuous_code.hpp), reading m(t - h) and Phi* from a

@@ -1,6 +1,6 @@
 #pragma once
 // The sampled observation y_k = C0 + C x(t_k) + Uv v_k in code generation: SampledCode, its
-// methods by file (sampled_cpp_filter.cpp: templates/cpp/sampled_filter.hpp.tmpl and its Eigen
+// methods by file (sampled_cpp_filter.cpp: the module's templates/cpp/sampled_filter.hpp.tmpl and its Eigen
 // layer; sampled_c_filter.cpp: templates/c/sampled_filter.h.tmpl and .c.tmpl; sampled_plugin.cpp:
 // the truth's sampled observation and the plugin's table), and the functions its filters consist of.
 #include <cstddef>

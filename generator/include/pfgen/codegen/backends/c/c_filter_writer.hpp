@@ -1,6 +1,6 @@
 #pragma once
 // What every C filter's .h/.c pair shares, whatever its observation (each observation module's
-// <kind>_c_filter fills its own templates/c/ pair with these and its functions' bodies): the
+// <kind>_c_filter fills its own c/ pair of templates with these and its functions' bodies): the
 // writer of both files, with C's own checks on the model's names.
 #include <map>
 #include <string>
@@ -33,7 +33,7 @@ struct CFilterWriter {
   // A function's ops comment, helpers (a split body's parts) and body, under `key`_ops etc.
   static void add_function(std::map<std::string, std::string>& values, const std::string& key, const FunctionCode& code);
 
-  // Fills the .h and .c templates (templates/c/<kind>.h.tmpl and .c.tmpl): `values` holds what both
+  // Fills the .h and .c templates (c/<kind>.h.tmpl and .c.tmpl, a module's): `values` holds what both
   // need; header_only and source_only what one of them has alone (every value must meet its
   // placeholder).
   void write(const std::string& kind, std::map<std::string, std::string> values,

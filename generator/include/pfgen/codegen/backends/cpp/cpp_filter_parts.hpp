@@ -26,7 +26,7 @@ std::map<std::string, std::string> cpp_template_values(const Model& model, const
 GeneratedFilter cpp_filter_result(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
 
 // With options.eigen_wrapper, the Eigen layer around the header (`template_name`:
-// templates/cpp/filter_eigen.hpp.tmpl, sampled_filter_eigen.hpp.tmpl) as the result's second file.
+// the module's cpp/filter_eigen.hpp.tmpl, cpp/sampled_filter_eigen.hpp.tmpl) as the result's second file.
 void add_eigen_layer(GeneratedFilter& result, const std::string& template_name, const Model& model,
                      const FilterEquations& eq, const CodegenOptions& options,
                      const std::map<std::string, std::string>& values);
