@@ -5,7 +5,6 @@
 
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
-#include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/latex_matrix.hpp"
 #include "pfgen/printing/rate_report.hpp"
 

@@ -3,12 +3,12 @@
 // and its lines in the standalone document and the coefficient form.
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/rich_text.hpp"
 #include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/latex_matrix.hpp"
 #include "pfgen/printing/noise_report.hpp"
 #include "pfgen/printing/observation_report.hpp"
 #include "pfgen/printing/report_parts.hpp"
-#include "pfgen/notation/rich_text.hpp"
 
 namespace pfgen {
 namespace {
