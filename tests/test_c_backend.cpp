@@ -37,7 +37,7 @@ std::string drive(const Model& model, const FilterEquations& eq, const std::stri
   const std::string c = codegen::c_symbol_prefix("c_side", model.name, eq.name);
   std::string s = "  {\n    namespace F = " + ns + ";\n    using S = " + scalar + ";\n    const char* name = \"" +
                   model.name + "/" + eq.name + "\";\n";
-  if (eq.is_delayed()) {
+  if (eq.observation == pfgen::ObservationKind::Delayed) {
     s += "    F::Filter a;\n    " + c + "_filter b;\n    " + c + "_filter_init(&b);\n";
     s += "    same(name, \"initial\", a.state.data(), b.state, F::state_size);\n";
     s += "    for (std::size_t k = 0; k < 3 * F::delay_steps + 7; ++k) {\n"
@@ -57,7 +57,7 @@ std::string drive(const Model& model, const FilterEquations& eq, const std::stri
        "        if (i == j) a[k] += S(0.5);\n"
        "    }\n    b = a;\n";
   s += "    const F::Params<S> pa{};\n    " + c + "_params pb;\n    " + c + "_default_params(&pb);\n";
-  if (eq.is_sampled()) {
+  if (eq.observation == pfgen::ObservationKind::Sampled) {
     s += "    S t = 0;\n    for (int k = 0; k < 12; ++k) {\n"
          "      S y[F::p];\n"
          "      for (std::size_t r = 0; r < F::p; ++r) y[r] = S(0.3) * std::sin(S(k + 3 * r + 1));\n"

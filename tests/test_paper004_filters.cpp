@@ -29,7 +29,7 @@ void check_filter(const pfgen::Model& model, const std::string& name, Build expe
   const pfgen::FilterEquations equations = pfgen::derive_named_filter(model, name);
   const auto& s = equations.variables.symbols();
   INFO("filter " << name);
-  REQUIRE(equations.is_delayed());
+  REQUIRE(equations.observation == pfgen::ObservationKind::Delayed);
   REQUIRE(s.size() == 5);
   const Expected expected = expected_of(Names{s[0], s[1], s[2], s[3], s[4]});
   CHECK((equations.m_drift.at(0).to_ex(s) - expected.m_drift).expand().is_zero());

@@ -17,7 +17,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // The names to try: C++ keywords and alternative tokens, library macros, and every identifier
-// the templates contain (read from templates/, so a new template name is tried at once).
+// the C++ templates contain (read from templates/cpp and each observation module's
+// templates/cpp, so a new template name is tried at once).
 std::set<std::string> candidate_names() {
   std::set<std::string> names = {
       "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
@@ -32,11 +33,15 @@ std::set<std::string> candidate_names() {
       "override", "import", "module", "M_PI", "M_E", "NAN", "INFINITY", "HUGE_VAL", "NULL", "errno", "assert",
       "EOF", "stdin", "stdout", "offsetof", "std", "size_t", "Scalar", "Params", "_Reserved", "a__b", "main", "Eigen", "NULL", "true", "no"};
   const std::regex identifier("[A-Za-z_][A-Za-z0-9_]*");
-  for (const auto& entry : fs::directory_iterator(source_dir() + "/templates/cpp")) {
-    std::string text = std::regex_replace(read_file(entry.path().string()), std::regex("\\{\\{[a-z_]+\\}\\}"), " ");
-    for (auto it = std::sregex_iterator(text.begin(), text.end(), identifier); it != std::sregex_iterator(); ++it)
-      names.insert(it->str());
-  }
+  std::vector<std::string> folders = {source_dir() + "/templates/cpp"};
+  for (const auto& module : fs::directory_iterator(source_dir() + "/generator/src/observations"))
+    if (fs::is_directory(module.path() / "templates" / "cpp")) folders.push_back((module.path() / "templates" / "cpp").string());
+  for (const auto& folder : folders)
+    for (const auto& entry : fs::directory_iterator(folder)) {
+      std::string text = std::regex_replace(read_file(entry.path().string()), std::regex("\\{\\{[a-z_]+\\}\\}"), " ");
+      for (auto it = std::sregex_iterator(text.begin(), text.end(), identifier); it != std::sregex_iterator(); ++it)
+        names.insert(it->str());
+    }
   // The test model's own symbols (state x, parameter a, time t) would clash for another reason.
   for (const char* own : {"x", "a", "t"}) names.erase(own);
   return names;

@@ -176,7 +176,7 @@ TEST_CASE("cd-optimal on a linear model with constant g is the Kalman filter of 
       linear_model_text("  sampled:\n    period: 0.5\n    C0: [\"0.1\"]\n    C: [[\"1\", \"0.5\"]]\n    Uv: [[\"0.4\"]]\n"),
       "linear.yaml");
   const FilterEquations eq = derive_filter(model, FilterKind::CdOptimal);
-  REQUIRE(eq.is_sampled());
+  REQUIRE(eq.observation == pfgen::ObservationKind::Sampled);
   REQUIRE(eq.exactness.exact);
   const VectorXd C0 = VectorXd::Constant(1, 0.1);
   const MatrixXd R = MatrixXd::Constant(1, 1, 0.16);

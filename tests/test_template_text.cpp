@@ -1,10 +1,12 @@
 // fill_template and embedded_template (codegen/template_text.hpp): every `{{key}}` is replaced
 // by its value; a placeholder without a value, a value without a placeholder and an unterminated
 // placeholder are errors, never half-filled code; the templates compiled into pfgen are the
-// files of templates/.
+// files of templates/ and of each observation module's templates/.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 #include "pfgen/codegen/template_text.hpp"
 #include "support/cli_helpers.hpp"
@@ -50,11 +52,23 @@ TEST_CASE("template filler: a placeholder without value, a value without placeho
   CHECK(open.find("unterminated placeholder") != std::string::npos);
 }
 
-TEST_CASE("embedded templates are the files of templates/", "[unit][codegen]") {
-  for (const char* file : {"cpp/filter.hpp.tmpl", "cpp/filter_eigen.hpp.tmpl", "cpp/simulation_plugin.cpp.tmpl"}) {
-    INFO(file);
-    CHECK(embedded_template(file) == pfgen_test::read_file(pfgen_test::source_dir() + "/templates/" + file));
-  }
+TEST_CASE("embedded templates are the files of templates/ and of the observation modules' templates/",
+          "[unit][codegen]") {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> roots = {fs::path(pfgen_test::source_dir()) / "templates"};
+  for (const auto& module : fs::directory_iterator(fs::path(pfgen_test::source_dir()) / "generator/src/observations"))
+    if (fs::is_directory(module.path() / "templates")) roots.push_back(module.path() / "templates");
+  REQUIRE(roots.size() == 4);  // templates/, and the continuous, sampled and delayed modules'
+  std::size_t files = 0;
+  for (const fs::path& root : roots)
+    for (const auto& entry : fs::recursive_directory_iterator(root)) {
+      if (entry.path().extension() != ".tmpl") continue;
+      const std::string name = entry.path().lexically_relative(root).generic_string();
+      INFO(name);
+      CHECK(embedded_template(name) == pfgen_test::read_file(entry.path().string()));
+      ++files;
+    }
+  CHECK(files >= 24);
   CHECK(embedded_template("pfgen_runtime/plugin_abi.h") ==
         pfgen_test::read_file(pfgen_test::source_dir() + "/runtime/include/pfgen_runtime/plugin_abi.h"));
   CHECK_THROWS_AS(embedded_template("cpp/missing.tmpl"), std::logic_error);

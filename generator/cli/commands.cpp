@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "cli_options.hpp"
+#include "observation_command.hpp"
 #include "output_paths.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/derivation/drift_coefficients.hpp"
@@ -81,12 +82,11 @@ int run_codegen(const CodegenCliOptions& options) {
   codegen_options.name_space = options.name_space;
   codegen_options.eliminate_common_subexpressions = !options.no_cse;
   if (options.max_function_ops) codegen_options.max_function_ops = static_cast<std::size_t>(*options.max_function_ops);
-  // A delayed filter's state carries x* and it keeps a history: it has no Eigen wrapper (the
-  // plain header's Filter is its interface), so --eigen writes none for it, and says so.
-  const bool eigen = options.eigen && !model.observation.is_delayed();
-  if (options.eigen && !eigen)
-    std::cerr << "pfgen: note: --eigen: no Eigen wrappers for the filters of delayed observations (model "
-              << model.name << "); their headers have a Filter type instead\n";
+  // An observation whose filters have no Eigen layer (a delayed one's) gets none, and --eigen says so.
+  const std::string without_eigen =
+      options.eigen ? observation_command(model.observation.kind()).without_eigen_layer(model) : "";
+  const bool eigen = options.eigen && without_eigen.empty();
+  if (options.eigen && !eigen) std::cerr << "pfgen: note: --eigen: " << without_eigen << "\n";
   codegen_options.eigen_wrapper = eigen;
   codegen_options.grid_step = options.dt ? options.dt : model.simulation.dt;
   if (options.dt && !(*options.dt > 0 && std::isfinite(*options.dt)))
@@ -241,47 +241,10 @@ int run_eval(const EvalOptions& options) {
   point.phi = optional_list("--phi", options.phi);
   EvaluatedFilter value = evaluate_at(model, eq, point);
 
-  auto vector_json = [](const std::vector<double>& v) {
-    Json a = Json::array();
-    for (double x : v) a.push(Json::number(x));
-    return a;
-  };
-  auto matrix_json = [&](const std::vector<std::vector<double>>& m) {
-    Json a = Json::array();
-    for (const auto& row : m) a.push(vector_json(row));
-    return a;
-  };
   Json out = Json::object();
   out.add("model", Json::string(model.name));
   out.add("filter", Json::string(eq.name));
-  if (eq.is_sampled()) {
-    // Prediction and update kept apart, as `derive` shows them.
-    Json prediction = Json::object();
-    prediction.add("m_drift", vector_json(value.m_drift));
-    prediction.add("P_drift", matrix_json(value.P_drift));
-    if (!value.P_dt2.empty()) prediction.add("P_dt2", matrix_json(value.P_dt2));
-    Json update = Json::object();
-    update.add("innovation_covariance", matrix_json(value.innovation_covariance));
-    update.add("gain", matrix_json(value.gain));
-    out.add("prediction", prediction);
-    out.add("update", update);
-  } else {
-    out.add("m_drift", vector_json(value.m_drift));
-    out.add("gain", matrix_json(value.gain));
-    out.add("P_drift", matrix_json(value.P_drift));
-  }
-  if (eq.is_delayed()) {
-    // A0 + A m(t-h), the delayed inputs as used (after the defaults and phi's rule), x*'s own drift.
-    out.add("predicted_observation", vector_json(value.predicted_observation));
-    Json inputs = Json::object();
-    inputs.add("m_delayed", vector_json(value.m_delayed));
-    if (eq.uses_x_star()) {
-      inputs.add("x_star", vector_json(value.x_star));
-      inputs.add("phi", vector_json(value.phi));
-    }
-    out.add("delayed_inputs", inputs);
-    if (eq.uses_x_star()) out.add("x_star_drift", vector_json(value.x_star_drift));
-  }
+  observation_command(eq.observation).add_eval_json(eq, value, out);
   std::cout << out.dump();
   return 0;
 }

@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
       ->check(named_file);
   codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)");
   std::vector<std::string> language_names;
-  for (const auto& language : output_languages()) language_names.push_back(language.name);
+  for (const auto& language : pfgen::output_languages()) language_names.push_back(language.name);
   codegen_cmd->add_option("--language", codegen.language, "cpp | c: header-only C++, or C99 .h/.c pairs")
       ->check(CLI::IsMember(language_names))
       ->capture_default_str();

@@ -16,6 +16,7 @@
 #include "cli_options.hpp"
 #include "commands.hpp"
 #include "job_group.hpp"
+#include "observation_command.hpp"
 #include "output_paths.hpp"
 #include "progress_bar.hpp"
 #include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
@@ -179,16 +180,6 @@ std::string timing_json(const pfgen_runtime::MonteCarloResult& result, const too
   return out.str();
 }
 
-// The header line's note on a delayed observation: every filter and the truth's dy read x or m
-// h = D dt back. Empty for other models, whose output stays as it was.
-std::string delay_note(const Model& model, const SimulationSettings& s) {
-  if (!model.observation.is_delayed()) return {};
-  const double h = model.observation.delay().to_double();
-  const long long steps = std::llround(h / s.dt);
-  return ", observation delay h = " + pfgen_support::shortest_chars(h) + " = " + std::to_string(steps) +
-         (steps == 1 ? " step" : " steps") + " of dt = " + pfgen_support::shortest_chars(s.dt);
-}
-
 // The runtime's form of J's settings: M as an Eigen matrix, left empty (L = |x - m|^2, printed
 // "M = identity") when it is the identity.
 pfgen_runtime::CriterionOptions criterion_options(const CriterionSettings& criterion, std::size_t n) {
@@ -325,7 +316,8 @@ pfgen_runtime::SimulationPlugin load_plugin(const std::string& source, const too
 
 // Why the particle reference cannot run on this model (empty: it can). docs/theory.md §7.4.
 std::string reference_obstacle(const Model& model, const pfgen_runtime::SimulationPlugin& plugin) {
-  if (model.observation.is_delayed()) return "the observations are delayed, and the reference weighs undelayed ones only";
+  const std::string observation = observation_command(model.observation.kind()).reference_obstacle(model);
+  if (!observation.empty()) return observation;
   if (plugin.diffusion_is_zero())
     return "the truth has no process noise (g = 0): the particles would never spread, so their weights would "
            "collapse onto one";
@@ -451,9 +443,8 @@ int run_simulate(const SimulateOptions& options, JobGroup& group) {
 
     // With --x0 prior each run draws its own x0; the fixed one is then only a placeholder.
     const Eigen::VectorXd x0 = mc.initial_prior ? mc.initial_prior->mean : plugin.truth_initial_state();
-    folded = plugin.is_sampled()
-                 ? pfgen_runtime::run_monte_carlo(*scheme, plugin.measurement(), x0, plugin.filters(), mc)
-                 : pfgen_runtime::run_monte_carlo(*scheme, plugin.observation(), x0, plugin.filters(), mc);
+    // The observations drawn and fed to the filters as the model's are made (its observation module).
+    folded = observation_command(model.observation.kind()).run(*scheme, plugin, x0, mc);
   });
   progress.finish();
   if (!folded->folded) return 0;  // another process of the job writes the outputs
@@ -481,12 +472,12 @@ int run_simulate(const SimulateOptions& options, JobGroup& group) {
 
   // Timing first (stderr), so that the output ends with the table and the paths of the files.
   if (talk) std::cerr << pfgen_runtime::format_timing(result) << std::flush;
-  std::cout << "model: " << model.name << " (" << options.model_path << ")" << delay_note(model, settings) << "\n"
-            << pfgen_runtime::format_summary_table(result, model.state_names);
-  // Delayed observations (the printed estimates of Basin, Rodriguez-Gonzalez & Martinez-Zuniga 2004 are
-  // compared through mean m = x - mean e): the signed errors at the report times with standard errors.
-  // Other models' output is unchanged.
-  if (model.observation.is_delayed()) std::cout << pfgen_runtime::format_report_errors(result, model.state_names);
+  // What the observation adds to the header line (a delayed one's h in steps) and after the table
+  // (its signed errors at the report times); nothing for the others.
+  const ObservationCommand& observation = observation_command(model.observation.kind());
+  std::cout << "model: " << model.name << " (" << options.model_path << ")" << observation.header_note(model, settings.dt)
+            << "\n" << pfgen_runtime::format_summary_table(result, model.state_names);
+  std::cout << observation.after_table(result, model.state_names);
   if (!options.csv_path.empty()) std::cout << "csv: " << options.csv_path << "\n";
   if (!options.criterion_csv_path.empty()) std::cout << "criterion csv: " << options.criterion_csv_path << "\n";
   if (!options.stops_csv_path.empty()) std::cout << "stops csv: " << options.stops_csv_path << "\n";

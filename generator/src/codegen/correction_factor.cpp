@@ -22,7 +22,10 @@ std::optional<std::vector<std::vector<GiNaC::ex>>> observation_matrix(const Filt
 
 std::optional<std::vector<std::vector<Polynomial>>> correction_factor(const FilterEquations& eq) {
   const std::size_t n = eq.n();
-  if (eq.is_user_filter() || eq.is_sampled() || eq.is_delayed() || eq.p == 0) return std::nullopt;
+  // The checks below admit only a correction built from a predicted observation A0 + A m and a gain
+  // of that A: a sampled filter has no gain (its update is apart), a delayed one predicts from
+  // md = m(t - h), not m, so neither passes them, whatever its observation module.
+  if (eq.is_user_filter() || eq.p == 0) return std::nullopt;
   if (eq.gain.size() != n || eq.P_correction.size() != n * (n + 1) / 2) return std::nullopt;
   const auto A = observation_matrix(eq);
   if (!A) return std::nullopt;

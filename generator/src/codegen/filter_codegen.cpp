@@ -4,6 +4,7 @@
 
 #include "pfgen/codegen/backends/c/c_filter_code.hpp"
 #include "pfgen/codegen/backends/cpp/cpp_filter_code.hpp"
+#include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
 
@@ -45,21 +46,6 @@ double codegen_terms(const FilterEquations& eq) {
   return terms;
 }
 
-DelaySteps filter_delay_steps(const FilterEquations& eq, const CodegenOptions& options) {
-  if (!options.grid_step)
-    throw CodegenError("filter '" + eq.name + "': a filter for delayed observations steps on a fixed grid: give --dt "
-                       "(or simulation: dt in the model file)");
-  const DelaySteps steps = delay_steps(eq.delay, *options.grid_step);
-  if (!steps.problem.empty()) throw CodegenError("filter '" + eq.name + "': " + steps.problem);
-  return steps;
-}
-
-std::string gain_meaning(const FilterEquations& eq) {
-  if (eq.is_user_filter()) return "as given in the model file";
-  if (eq.uses_x_star()) return "P Phi*^T A^T (B B^T)^-1, Phi* = diag(phi)";
-  return "P A^T (B B^T)^-1";
-}
-
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
   if (const double terms = codegen_terms(eq); terms > kMaxCodegenTerms) {
     char text[400];
@@ -70,13 +56,7 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
                   eq.name.c_str(), model.name.c_str(), terms, kMaxCodegenTerms, terms * 1.1e3 / 1e9);
     throw CodegenError(text);
   }
-  if (eq.is_sampled() && eq.update.r() > kMaxSampledOutputs)
-    throw CodegenError("filter '" + eq.name + "' of model " + model.name + " samples " +
-                       std::to_string(eq.update.r()) +
-                       " outputs; its generated update writes the Cholesky solve out for every output (O(r^3) "
-                       "code: 1.2 MB of C++ at r = 64, 27 MB at r = 200, which a compiler takes minutes over), so "
-                       "code generation takes at most " + std::to_string(kMaxSampledOutputs) +
-                       " outputs; derive and eval take any");
+  observation_code(eq.observation).check_size(model, eq);
   switch (options.language) {
     case Language::Cpp: return cpp_filter_code(model, eq, options);
     case Language::C: return c_filter_code(model, eq, options);

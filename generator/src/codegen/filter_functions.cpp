@@ -45,6 +45,8 @@ FunctionSignature signature(const std::string& function, const FunctionNames& na
   return {function, names.time, layout.array_arguments, names.params, target};
 }
 
+}  // namespace
+
 FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
                            const std::string& target, const Model& model, const FilterEquations& eq,
                            const CodegenOptions& options, const FunctionNames& names, const CFamilyEmitter& emitter) {
@@ -139,8 +141,6 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
   return code;
 }
 
-}  // namespace
-
 std::string counts_text(const OpCounts& c) {
   return std::to_string(c.total()) + " (" + std::to_string(c.adds) + " add, " + std::to_string(c.muls) + " mul, " +
          std::to_string(c.divs) + " div, " + std::to_string(c.calls) + " call)";
@@ -163,38 +163,6 @@ FunctionNames function_names(const Model& model) {
   f.delayed = names.take("delayed");
   f.shared = names.take("shared");  // the local array of a function written in parts (split_body)
   f.temporary_prefix = names.temporary_prefix();
-  return f;
-}
-
-ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                         const FunctionNames& names, const CFamilyEmitter& emitter) {
-  std::vector<Polynomial> gain_outputs;
-  for (const auto& row : eq.gain) gain_outputs.insert(gain_outputs.end(), row.begin(), row.end());
-  ContinuousFunctions f;
-  f.derivatives = derivatives_code(model, eq, options, names, emitter);
-  f.gain = function_code("gain", gain_outputs, names.K, model, eq, options, names, emitter);
-  f.observation =
-      function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
-  return f;
-}
-
-SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                   const FunctionNames& names, const CFamilyEmitter& emitter) {
-  const SampledUpdate& u = eq.update;
-  SampledFunctions f;
-  f.derivatives = derivatives_code(model, eq, options, names, emitter);
-  if (!eq.P_euler.empty())
-    f.euler_square = function_code("euler_square", eq.P_euler, names.out, model, eq, options, names, emitter);
-  std::vector<Polynomial> innovation;
-  for (const auto& row : u.PCt) innovation.insert(innovation.end(), row.begin(), row.end());
-  innovation.insert(innovation.end(), u.S.begin(), u.S.end());
-  f.innovation = function_code("innovation_terms", innovation, names.out, model, eq, options, names, emitter);
-  std::vector<Polynomial> matrices;
-  for (const auto& row : u.C) matrices.insert(matrices.end(), row.begin(), row.end());
-  matrices.insert(matrices.end(), u.R.begin(), u.R.end());
-  f.matrices = function_code("observation_matrices", matrices, names.out, model, eq, options, names, emitter);
-  f.observation =
-      function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
   return f;
 }
 

@@ -160,4 +160,14 @@ void check_derivation_budget(const Model& model, const DerivationInputs& inputs)
                " terms, above the limit of " + count_text(kMaxEquationTerms));
 }
 
+std::size_t observed_states(const ExMatrix& observation_matrix) {
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < observation_matrix.at(0).size(); ++k) {
+    bool observed = false;
+    for (const auto& row : observation_matrix) observed = observed || !row[k].is_zero();
+    count += observed;
+  }
+  return count;
+}
+
 }  // namespace pfgen

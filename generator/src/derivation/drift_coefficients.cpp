@@ -5,6 +5,7 @@
 
 #include "pfgen/algebra/coefficient.hpp"
 #include "pfgen/algebra/polynomial.hpp"
+#include "pfgen/derivation/observation_derivation.hpp"
 #include "pfgen/model/model_error.hpp"
 
 namespace pfgen {
@@ -94,15 +95,8 @@ DriftCoefficients extract_drift_coefficients(const Model& model) {
 }
 
 ObservationCoefficients extract_observation_coefficients(const Model& model) {
-  ObservationCoefficients out;
+  ObservationCoefficients out = observation_derivation(model.observation.kind()).coefficients(model);
   out.kind = model.observation.kind();
-  if (model.observation.is_sampled()) {
-    out.E = model.observation.sampled().C0;
-    out.E1 = model.observation.sampled().C;
-  } else {
-    out.E = model.observation.rate().A0;
-    out.E1 = model.observation.rate().A;
-  }
   return out;
 }
 

@@ -4,7 +4,7 @@
 
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
-#include "pfgen/derivation/observation_terms.hpp"
+#include "pfgen/derivation/observation_derivation.hpp"
 #include "pfgen/derivation/risk_sensitive.hpp"
 #include "pfgen/derivation/unscented.hpp"
 #include "pfgen/notation/rich_text.hpp"
@@ -36,23 +36,6 @@ struct MomentTerms {
   std::vector<Polynomial> diffusion_upper;
 };
 
-// States whose column of the observation matrix (A, or a sampled observation's C) is not zero:
-// the observation term of the covariance equation (or the update's P C^T S^-1 C P) has one term
-// per pair of them.
-std::size_t observed_states(const ExMatrix& observation_matrix) {
-  std::size_t count = 0;
-  for (std::size_t k = 0; k < observation_matrix.at(0).size(); ++k) {
-    bool observed = false;
-    for (const auto& row : observation_matrix) observed = observed || !row[k].is_zero();
-    count += observed;
-  }
-  return count;
-}
-
-std::size_t observed_states(const ObservationModel& observation) {
-  return observation.is_sampled() ? observed_states(observation.sampled().C) : observed_states(observation.rate().A);
-}
-
 // A diffusion covariance's upper triangle, G_ij for i <= j row by row, as polynomials in the states.
 std::vector<Polynomial> upper_polynomials(const ExMatrix& G, const Model& model) {
   std::vector<Polynomial> upper;
@@ -71,7 +54,7 @@ std::string diffusion_field(const Diffusion& diffusion, bool additive) {
 void check_model_terms_budget(const Model& model, bool gaussian, const std::vector<Polynomial>& f, const PolyMatrix& J) {
   check_derivation_budget(model, DerivationInputs{gaussian, f, J, upper_polynomials(model.diffusion.G, model),
                                                   diffusion_field(model.diffusion, false),
-                                                  observed_states(model.observation)});
+                                                  observation_derivation(model.observation.kind()).observed_states(model)});
 }
 
 MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariables& vars) {
@@ -83,7 +66,7 @@ MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariab
   std::vector<Polynomial> G_upper = upper_polynomials(diffusion.G, model);
   check_derivation_budget(model, DerivationInputs{!is_extended_kalman(kind), f, J, G_upper,
                                                   diffusion_field(diffusion, additive),
-                                                  observed_states(model.observation)});
+                                                  observation_derivation(model.observation.kind()).observed_states(model)});
 
   // State x_i and mean m_i share variable index i (FilterVariables), so the
   // extended filter's f(m), J(m), G(m) are the x-polynomials read as they are.
@@ -99,36 +82,16 @@ MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariab
   return out;
 }
 
-// Cov(f)_ij = E[f_i f_j] - E[f_i] E[f_j] under x ~ N(m, P), upper triangle: the dt^2 term of the
-// covariance of one Euler step x + f(x) dt + g(x) sqrt(dt) xi (docs/theory.md). The cross term
-// E[(x - m + f dt - E[f] dt) g sqrt(dt) xi] vanishes because xi is independent of x with mean 0.
-std::vector<Polynomial> euler_square_term(const Model& model, const FilterVariables& vars) {
-  const std::vector<Polynomial> f = state_polynomials(model.drift, model);
-  GaussianExpectation E(vars);
-  std::vector<Polynomial> Ef;
-  for (const auto& fi : f) Ef.push_back(E.of(fi));
-  std::vector<Polynomial> out;
-  for (std::size_t i = 0; i < f.size(); ++i)
-    for (std::size_t j = i; j < f.size(); ++j) out.push_back(E.of(f[i] * f[j]) - Ef[i] * Ef[j]);
-  return out;
-}
-
-// What every filter of the model shares: its variables, its observation kind and the predicted
-// observation its innovation subtracts (the model's own, for user filters too).
+// What every filter of the model shares: its variables, its observation kind and what its
+// observation module puts in every filter (the predicted observation its innovation subtracts,
+// the model's own, for user filters too).
 FilterEquations equations_frame(const Model& model) {
+  const ObservationDerivation& observation = observation_derivation(model.observation.kind());
   FilterEquations eq;
   eq.observation = model.observation.kind();
-  const bool delayed = model.observation.is_delayed();
-  eq.variables = FilterVariables(model.n(), delayed);
+  eq.variables = observation.variables(model.n());
   eq.p = model.p();
-  if (model.observation.is_sampled()) {
-    eq.predicted_observation = predicted_sample(model.observation.sampled(), eq.variables);
-    eq.update = sampled_update(model.observation.sampled(), eq.variables);
-  } else {
-    // A delayed observation's innovation compares dy with the prediction of x(t - h), m(t - h).
-    eq.predicted_observation = predicted_observation(model.observation.rate(), eq.variables, delayed);
-    eq.delay = model.observation.delay();
-  }
+  observation.frame(model, eq);
   return eq;
 }
 
@@ -150,10 +113,10 @@ FilterEquations risk_sensitive_filter(const Model& model, FilterEquations eq) {
 }
 
 // The unscented kind (unscented.hpp): its moment terms from the sigma points, L's entries as the
-// equations' definitions, and the observation's gain and correction as the optimal kind's: with a
-// linear observation the sigma-point cross-covariance of x and A x is P A^T exactly. There is no
-// Jacobian term (P_moment is not of the form P J^T + J P for a J polynomial in m and P), so code
-// generation takes the expanded form.
+// equations' definitions, and the observation's gain and correction as the optimal kind's (its
+// observation module's terms): with a linear observation the sigma-point cross-covariance of x
+// and A x is P A^T exactly. There is no Jacobian term (P_moment is not of the form P J^T + J P for
+// a J polynomial in m and P), so code generation takes the expanded form.
 FilterEquations unscented_filter(const Model& model, FilterEquations eq) {
   // The Gaussian closure's budget is this derivation's bound too: a monomial's sigma-point sum has
   // no more terms in m than its Gaussian expectation (one per sub-monomial of even co-degree).
@@ -164,9 +127,7 @@ FilterEquations unscented_filter(const Model& model, FilterEquations eq) {
   eq.m_drift = std::move(terms.m_drift);
   eq.P_moment = std::move(terms.P_moment);
   eq.P_diffusion = std::move(terms.P_diffusion);
-  ObservationCorrection correction = observation_correction(model.observation.rate(), eq.variables);
-  eq.gain = std::move(correction.gain);
-  eq.P_correction = std::move(correction.P_correction);
+  observation_derivation(model.observation.kind()).observation_terms(model, FilterKind::Ukf, eq);
   return eq;
 }
 
@@ -211,22 +172,7 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
     }
   eq.jacobian_term = std::move(terms.jacobian);
 
-  if (eq.is_sampled()) {
-    // Between samples there is no observation term; the update is eq.update (equations_frame).
-    eq.P_correction.assign(eq.P_moment.size(), Polynomial());
-    if (uses_euler_map(kind)) eq.P_euler = euler_square_term(model, vars);
-    return eq;
-  }
-  const bool transition = uses_transition_gain(kind);
-  ObservationCorrection correction = observation_correction(model.observation.rate(), vars, transition);
-  eq.gain = std::move(correction.gain);
-  eq.P_correction = std::move(correction.P_correction);
-  if (transition) {
-    // x* solves dx*/dt = f(x*, t): the model's drift with state i read as xs_i.
-    std::vector<std::uint32_t> as_x_star(vars.count());
-    for (std::size_t i = 0; i < n; ++i) as_x_star[i] = vars.x_star(i);
-    for (const auto& fi : state_polynomials(model.drift, model)) eq.x_star_drift.push_back(fi.renumbered(as_x_star));
-  }
+  observation_derivation(model.observation.kind()).observation_terms(model, kind, eq);
   return eq;
 }
 

@@ -2,7 +2,7 @@
 
 #include <map>
 
-#include "pfgen/derivation/observation_terms.hpp"
+#include "pfgen/observations/continuous/observation_terms.hpp"
 
 namespace pfgen {
 namespace {

@@ -247,7 +247,7 @@ void require_positive_definite_noise(const Model& model, const ExMatrix& N, cons
 
 void validate_continuous_observation(const Model& model) {
   const ContinuousObservation& obs = model.observation.rate();
-  if (model.observation.is_delayed() && model.observation.delay() < 0)
+  if (model.observation.delay() < 0)  // h of a delayed observation; 0 for a continuous one
     throw ModelError("observation.delay", "must be 0 or more (the delay h of dy = (A0 + A x(t - h)) dt + B dW2), found " +
                                               to_text(model.observation.delay()));
   std::size_t p = obs.A.size();

@@ -54,9 +54,9 @@ Breach check_grid(const SimulationSection& s) {
 
 // Delayed filters run on the fixed grid t_k = k dt and read their history D = h / dt steps back,
 // as the truth's dy reads x: h must be a whole number of steps (model/delay_grid.hpp), the file's
-// dt and the command line's alike.
+// dt and the command line's alike. An observation without a delay has h = 0, always whole.
 Breach check_delay(const Model& model, const SimulationSection& s) {
-  if (!s.dt || !(*s.dt > 0) || !model.observation.is_delayed()) return {};
+  if (!s.dt || !(*s.dt > 0)) return {};
   const DelaySteps steps = delay_steps(model.observation.delay(), *s.dt);
   if (!steps.problem.empty()) return breach("dt", "observation.delay: " + steps.problem);
   return {};

@@ -4,19 +4,10 @@
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/latex_matrix.hpp"
+#include "pfgen/printing/observation_report.hpp"
 
 namespace pfgen {
 namespace {
-
-// The observation's two names: E, E1 for a rate, C0, C for a sampled observation's samples.
-struct ObservationNames {
-  std::string offset, matrix;
-};
-
-ObservationNames observation_names(const ObservationCoefficients& o) {
-  if (o.kind == ObservationKind::Sampled) return {"C0", "C"};
-  return {"E", "E1"};
-}
 
 // ---- text ----
 
@@ -45,19 +36,6 @@ std::string text_tensor(const TextPrinter& printer, const std::string& name, con
   return out;
 }
 
-std::string observation_text(const Model& model, const TextPrinter& printer) {
-  switch (model.observation.kind()) {
-    case ObservationKind::Sampled:
-      return "observation: sampled, y_k = C0 + C x(t_k) + Uv v_k; it has no rate E + E1 x, its C0 and C are shown\n";
-    case ObservationKind::Delayed:
-      return "observation: dy = (E + E1 x(t-h)) dt + B dW2 with h = " + printer.print(model.observation.delay()) +
-             "; E = A0, E1 = A\n";
-    case ObservationKind::Continuous:
-      break;
-  }
-  return "observation: dy = (E + E1 x) dt + B dW2; E = A0, E1 = A\n";
-}
-
 // ---- LaTeX ----
 
 std::string latex_index(const std::vector<std::uint32_t>& index) {
@@ -74,20 +52,6 @@ void latex_tensor(const LatexPrinter& printer, const std::string& name, const Te
   }
   for (const auto& [index, value] : tensor)
     lines.push_back(latex_align_lines("(" + name + ")_{" + latex_index(index) + "}", printer.print(value)));
-}
-
-std::string observation_latex(const Model& model, const LatexPrinter& printer) {
-  switch (model.observation.kind()) {
-    case ObservationKind::Sampled:
-      return "The observation is sampled, $y_k = C_0 + C x(t_k) + U_v v_k$: it has no rate $E + E_{1} x$; "
-             "its $C_0$ and $C$ are shown.";
-    case ObservationKind::Delayed:
-      return "The observation's rate is $E + E_{1} x(t-h)$, $dy = (E + E_{1} x(t-h))\\,dt + B\\,dW_2$ with $h = " +
-             printer.print(model.observation.delay()) + "$: $E = A_{0}$, $E_{1} = A$.";
-    case ObservationKind::Continuous:
-      break;
-  }
-  return "The observation's rate is $E + E_{1} x$, $dy = (E + E_{1} x)\\,dt + B\\,dW_2$: $E = A_{0}$, $E_{1} = A$.";
 }
 
 // ---- JSON ----
@@ -126,13 +90,14 @@ const char* kConvention =
 std::string coefficients_text(const Model& model, const DriftCoefficients& drift,
                               const ObservationCoefficients& observation) {
   TextPrinter printer;
-  const ObservationNames names = observation_names(observation);
+  const ObservationReport& report = observation_report(observation.kind);
+  const CoefficientNames names = report.coefficient_names();
   std::string out = "model: " + model.name + "\n";
   out += std::string("coefficient form: ") + kConvention + "\n";
   out += "indices from 1, x = (";
   for (std::size_t i = 0; i < model.n(); ++i) out += (i ? ", " : "") + model.state_names[i];
   out += "); A2 and A3 list every nonzero entry, each order of the lower indices\n";
-  out += observation_text(model, printer) + "\n";
+  out += report.coefficients_text(model) + "\n";
   out += "A = " + text_vector(printer, drift.A) + "\n";
   out += "A1 = " + text_matrix(printer, drift.A1) + "\n";
   out += text_tensor(printer, "A2", drift.A2);
@@ -145,7 +110,8 @@ std::string coefficients_text(const Model& model, const DriftCoefficients& drift
 std::string coefficients_latex(const Model& model, const DriftCoefficients& drift,
                                const ObservationCoefficients& observation) {
   LatexPrinter printer;
-  const bool sampled = observation.kind == ObservationKind::Sampled;
+  const ObservationReport& report = observation_report(observation.kind);
+  const CoefficientNames names = report.coefficient_names();
   std::string out =
       "\\paragraph{Coefficient form.} $f_{i}(x,t) = A_{i} + \\sum_{j} (A_{1})_{ij} x_{j} + \\sum_{j,k} (A_{2})_{ijk} "
       "x_{j} x_{k} + \\sum_{j,k,l} (A_{3})_{ijkl} x_{j} x_{k} x_{l}$ with $x = (";
@@ -154,16 +120,14 @@ std::string coefficients_latex(const Model& model, const DriftCoefficients& drif
          "\\partial^{2} f_{i}/\\partial x_{j} \\partial x_{k}$ and $(A_{3})_{ijkl} = \\frac{1}{6}\\,\\partial^{3} "
          "f_{i}/\\partial x_{j} \\partial x_{k} \\partial x_{l}$ at $x = 0$, and every nonzero entry is listed, "
          "each order of the lower indices. " +
-         observation_latex(model, printer) + "\n";
+         report.coefficients_latex(model) + "\n";
   std::vector<std::string> lines;
   lines.push_back(matrix_lines(printer, "A", "A", column(drift.A)));
   lines.push_back(matrix_lines(printer, "A_{1}", "(A_{1})", drift.A1));
   latex_tensor(printer, "A_{2}", drift.A2, lines);
   latex_tensor(printer, "A_{3}", drift.A3, lines);
-  const std::string offset = sampled ? "C_{0}" : "E";
-  const std::string matrix = sampled ? "C" : "E_{1}";
-  lines.push_back(matrix_lines(printer, offset, offset, column(observation.E)));
-  lines.push_back(matrix_lines(printer, matrix, sampled ? matrix : "(" + matrix + ")", observation.E1));
+  lines.push_back(matrix_lines(printer, names.offset_latex, names.offset_latex, column(observation.E)));
+  lines.push_back(matrix_lines(printer, names.matrix_latex, names.entries_latex, observation.E1));
   out += "\\begin{align*}\n";
   for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
   out += "\\end{align*}\n";
@@ -172,12 +136,13 @@ std::string coefficients_latex(const Model& model, const DriftCoefficients& drif
 
 Json coefficients_json(const Model& model, const DriftCoefficients& drift, const ObservationCoefficients& observation) {
   TextPrinter printer;
-  const ObservationNames names = observation_names(observation);
+  const ObservationReport& report = observation_report(observation.kind);
+  const CoefficientNames names = report.coefficient_names();
   Json states = Json::array();
   for (const auto& name : model.state_names) states.push(Json::string(name));
   Json obs = Json::object();
   obs.add("kind", Json::string(observation_kind_info(observation.kind).name));
-  if (model.observation.is_delayed()) obs.add("delay", Json::string(printer.print(model.observation.delay())));
+  report.add_coefficients_json(model, obs);
   obs.add(names.offset, json_vector(printer, observation.E));
   obs.add(names.matrix, json_matrix(printer, observation.E1));
 

@@ -7,6 +7,7 @@
 #include "pfgen/notation/rich_text.hpp"
 #include "pfgen/printing/latex_matrix.hpp"
 #include "pfgen/printing/noise_report.hpp"
+#include "pfgen/printing/observation_report.hpp"
 
 namespace pfgen {
 namespace {
@@ -31,12 +32,11 @@ std::string model_section(const Model& model) {
              printer.print(model.parameters[k].default_value) + "$";
     out += " (kept symbolic below)";
   }
-  // A delayed observation sees the state h ago (docs/theory.md §2.6).
-  const bool delayed = model.observation.is_delayed();
+  const ObservationReport& observation = observation_report(model.observation.kind());
   // With Stratonovich noise f is the drift as written; the Ito drift follows the model (noise_report).
   const bool stratonovich = model.noise == NoiseCalculus::Stratonovich;
   out += std::string(".\n\\[ dx = f\\,dt + g") + (stratonovich ? " \\circ " : "\\,") +
-         "dW_1, \\qquad dy = (A_0 + A " + (delayed ? "x(t-h)" : "x") + ")\\,dt + B\\,dW_2 \\]\n";
+         "dW_1, \\qquad " + observation.equation_latex() + " \\]\n";
   out += "\\begin{align*}\n" + matrix_lines(printer, "f", "f", column(stratonovich ? model.stated_drift : model.drift)) +
          " \\\\\n";
   if (model.diffusion.g) {
@@ -49,30 +49,7 @@ std::string model_section(const Model& model) {
     out += (d.g ? matrix_lines(printer, "g_{\\mathrm{add}}", "g^{\\mathrm{add}}", *d.g) : matrix_lines(printer, "G_{\\mathrm{add}}", "G^{\\mathrm{add}}", d.G)) +
            " \\\\\n";
   }
-  if (model.observation.is_sampled()) {
-    const SampledObservation& sampled = model.observation.sampled();
-    const std::string observation_line = bmatrix(printer, column(sampled.C0)) + ", \\quad C = " +
-                                         bmatrix(printer, sampled.C) + ", \\quad U_v = " + bmatrix(printer, sampled.Uv) +
-                                         ", \\quad T = " + printer.print(sampled.period);
-    if (latex_width("C_0 = " + observation_line) <= kLatexLineWidth)
-      out += "C_0 &= " + observation_line;
-    else
-      out += matrix_lines(printer, "C_0", "C_0", column(sampled.C0)) + " \\\\\n" +
-             matrix_lines(printer, "C", "C", sampled.C) + " \\\\\n" + matrix_lines(printer, "U_v", "U_v", sampled.Uv) +
-             " \\\\\nT &= " + printer.print(sampled.period);
-  } else {
-    const ContinuousObservation& observation = model.observation.rate();
-    const std::string delay = delayed ? ", \\quad h = " + printer.print(model.observation.delay()) : "";
-    const std::string observation_line = bmatrix(printer, column(observation.A0)) + ", \\quad A = " +
-                                         bmatrix(printer, observation.A) + ", \\quad B = " + bmatrix(printer, observation.B) +
-                                         delay;
-    if (latex_width("A_0 = " + observation_line) <= kLatexLineWidth)
-      out += "A_0 &= " + observation_line;
-    else
-      out += matrix_lines(printer, "A_0", "A_0", column(observation.A0)) + " \\\\\n" +
-             matrix_lines(printer, "A", "A", observation.A) + " \\\\\n" + matrix_lines(printer, "B", "B", observation.B) +
-             (delayed ? " \\\\\nh &= " + printer.print(model.observation.delay()) : "");
-  }
+  out += observation.matrices_latex(model);
   if (model.initial) {
     const InitialConditions& ic = *model.initial;
     out += " \\\\\n";
@@ -126,21 +103,7 @@ std::string latex_document(const Model& model, const std::vector<FilterEquations
            coefficients_latex(model, extract_drift_coefficients(model), extract_observation_coefficients(model));
   bool any_user_filter = false;
   for (const auto& eq : filters) any_user_filter = any_user_filter || eq.is_user_filter();
-  if (model.observation.is_sampled())
-    out += "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state and $P_{ij}$ the error covariance. "
-           "Between samples $m$ and $P$ follow the prediction; at each sample $y$ the Kalman update with "
-           "$S = C P C^{T} + U_v U_v^{T}$ and $K = P C^{T} S^{-1}$ applies.";
-  else if (model.observation.is_delayed())
-    out += "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state, $P_{ij}$ the error covariance, "
-           "$K$ the gain and $dy_{r}$ the observation increments; the innovation compares $dy$ with the estimate "
-           "$m(t-h)$ of the delayed state. Each $dP$ is written as $E[(x-m)f^{T}] + E[f(x-m)^{T}]$, then the "
-           "diffusion term, then the correction $-K A \\Phi^{*} P$ (with $\\Phi^{*} = I$ for the filters without "
-           "$\\Phi^{*}$), without merging like terms across the three parts.";
-  else
-    out += "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state, $P_{ij}$ the error covariance, "
-           "$K$ the gain $P A^{T}(B B^{T})^{-1}$ and $dy_{r}$ the observation increments. Each $dP$ is written as "
-           "$E[(x-m)f^{T}] + E[f(x-m)^{T}]$, then the diffusion term, then $-P A^{T}(B B^{T})^{-1} A P$, "
-           "without merging like terms across the three parts.";
+  out += observation_report(model.observation.kind()).notation_latex();
   if (any_user_filter)
     out += " A filter defined in the model file has its $dm$, $K$ and $dP$ as given there, not derived by pfgen.";
   out += "\n";

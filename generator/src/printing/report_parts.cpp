@@ -49,4 +49,9 @@ Json exactness_json(const ExactnessReport& report) {
   return exactness;
 }
 
+std::string latex_variable_name(const FilterVariables& vars, std::uint32_t variable) {
+  const std::string& name = vars.latex_name(variable);
+  return variable < vars.count() ? name : "{" + name + "}";
+}
+
 }  // namespace pfgen

@@ -144,7 +144,7 @@ FilterModel make_filter_model(std::string name, std::size_t n, std::size_t p, vo
   return model;
 }
 
-// Adapts a generated delayed filter's header (templates/cpp/delayed_filter.hpp.tmpl): for namespace F,
+// Adapts a generated delayed filter's header (generator/src/observations/delayed/templates/cpp/delayed_filter.hpp.tmpl): for namespace F,
 //   make_delayed_filter_model("delay-optimal", F::n, F::p, F::state_size, F::history_size, F::dt<double>(),
 //                             &F::initial_state<double>, &F::initial_history<double>, &F::step<double>)
 // The FilterModel's state is [F's state, history]; step(state, t, dt, dy) calls

@@ -7,9 +7,10 @@
 //     gain(); predicted_observation(); initial_state(); step(); with
 //     CodegenOptions::eigen_wrapper also <filter>_eigen.hpp.
 //   C99 (c_filter_code.hpp): a .h/.c pair per filter, every name prefixed <NS>_<model>_<filter>_.
-// A filter for delayed observations steps on a fixed grid dt and keeps its own fixed-size
-// history: CodegenOptions::grid_step must give that dt, and the delay must be a whole number of it
-// (model/delay_grid.hpp); otherwise CodegenError.
+// Each backend writes a filter through its observation module (observation_code.hpp), whose
+// templates it fills. A filter for delayed observations steps on a fixed grid dt and keeps its
+// own fixed-size history: CodegenOptions::grid_step must give that dt, and the delay must be a
+// whole number of it (model/delay_grid.hpp); otherwise CodegenError.
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,7 +20,6 @@
 #include "pfgen/codegen/scalar_mode.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/kinds/output_languages.hpp"
-#include "pfgen/model/delay_grid.hpp"
 
 namespace pfgen::codegen {
 
@@ -31,7 +31,7 @@ struct CodegenOptions {
   ScalarMode scalar = ScalarMode::Template;     // C: Float or Double
   std::string name_space = "pfgen_models";      // C: the names' prefix, `::` written `_`
   bool eliminate_common_subexpressions = true;  // false only for the benchmark's baseline
-  bool eigen_wrapper = false;                   // C++: also write <kind>_eigen.hpp (templates/cpp/filter_eigen.hpp.tmpl)
+  bool eigen_wrapper = false;                   // C++: also write <kind>_eigen.hpp (the observation module's *_eigen.hpp.tmpl)
   // Delayed observations only: the grid step dt the filter is generated for (`--dt`, else the
   // model's simulation dt). Ignored by the other filters.
   std::optional<double> grid_step;
@@ -73,20 +73,10 @@ std::vector<std::string> filter_file_paths(const std::string& model_name, const 
 // (CodegenError).
 inline constexpr double kMaxCodegenTerms = 1500000;
 
-// A sampled filter's update writes its Cholesky solve out for every output, O(r^3) straight-line
-// code: 1.2 MB of C++ at r = 64, 4 MB at r = 100 and 27 MB at r = 200, which a compiler takes
-// minutes over. Code generation takes at most this many outputs (derive and eval take any).
-inline constexpr std::size_t kMaxSampledOutputs = 64;
-
 // The terms of the polynomials code generation reads from `eq` (drifts, gain, predicted
 // observation, the P equations' parts, x*'s drift).
 double codegen_terms(const FilterEquations& eq);
 
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
-
-// For the backends: a delayed filter's delay in steps of options.grid_step (CodegenError when
-// there is no grid step or the delay is not a whole number of it), and what its gain() computes.
-DelaySteps filter_delay_steps(const FilterEquations& eq, const CodegenOptions& options);
-std::string gain_meaning(const FilterEquations& eq);
 
 }  // namespace pfgen::codegen

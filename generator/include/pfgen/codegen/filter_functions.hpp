@@ -1,11 +1,13 @@
 #pragma once
 // The functions a filter's code consists of, built from its equations in no language's syntax
-// and written by a backend's emitter: derivatives(), gain() and predicted_observation() of a
-// continuous or delayed filter; a sampled filter's derivatives(), euler_square() (cd-euler),
-// innovation_terms(), observation_matrices() and predicted_observation(). Each is one
-// ExpressionGraph of all its outputs (common subexpressions shared), its operation counts, and
-// its body as the emitter writes it. The backends (codegen/backends/<language>/) put these
-// bodies into their templates.
+// and written by a backend's emitter: derivatives() (with its structured Stein form) and any other
+// function of the filter variables. Each is one ExpressionGraph of all its outputs (common
+// subexpressions shared), its operation counts, and its body as the emitter writes it. Which
+// functions a filter has is its observation module's (observations/<kind>/<kind>_code.hpp: a
+// continuous or delayed filter's derivatives(), gain() and predicted_observation(); a sampled
+// filter's derivatives(), euler_square() (cd-euler), innovation_terms(), observation_matrices()
+// and predicted_observation()); the backends (codegen/backends/<language>/) put their bodies into
+// their templates.
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,21 +42,15 @@ struct FunctionCode {
   FunctionBody body;
 };
 
-// The three functions of a filter with continuous (or delayed) observations.
-struct ContinuousFunctions {
-  FunctionCode derivatives, gain, observation;
-};
-ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                         const FunctionNames& names, const CFamilyEmitter& emitter);
-
-// The functions of a filter for sampled observations; euler_square only for cd-euler.
-struct SampledFunctions {
-  FunctionCode derivatives;
-  std::optional<FunctionCode> euler_square;
-  FunctionCode innovation, matrices, observation;
-};
-SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                   const FunctionNames& names, const CFamilyEmitter& emitter);
+// The function `function` writing `outputs` to its array argument `target`, with the filter's
+// definitions computed first.
+FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
+                           const std::string& target, const Model& model, const FilterEquations& eq,
+                           const CodegenOptions& options, const FunctionNames& names, const CFamilyEmitter& emitter);
+// derivatives(): m's drift, P's drift (upper triangle) and x*'s drift when the filter has one, to
+// `out`; in the structured form where that needs fewer operations after sharing.
+FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                              const FunctionNames& names, const CFamilyEmitter& emitter);
 
 // The filter state at t = 0: m0 and P0's upper triangle (zeros without an initial section); with
 // `x_star`, x*(0) = m0 after them (a delayed filter's noise-free solution).

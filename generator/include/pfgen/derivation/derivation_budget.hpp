@@ -34,6 +34,10 @@ struct DerivationInputs {
   std::size_t observed_states = 0;                 // states with a nonzero column in the observation
 };
 
+// The states whose column of an observation matrix (A, or a sampled observation's C) is not zero:
+// an observation module's DerivationInputs::observed_states.
+std::size_t observed_states(const ExMatrix& observation_matrix);
+
 // Throws ModelError (file, field, row) when the derivation would go beyond either limit.
 void check_derivation_budget(const Model& model, const DerivationInputs& inputs);
 

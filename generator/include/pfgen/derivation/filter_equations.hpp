@@ -12,13 +12,16 @@
 // samples, without an observation term (gain empty, P_correction zero):
 //   dm = m_drift dt, dP = P_drift dt                      (cd-optimal, cd-ekf: integrated)
 //   m' = m + m_drift dt, P' = P + P_drift dt + P_euler dt^2 (cd-euler: one Euler sub-step dt)
-// and `update` holds the Kalman update at each sample (derivation/sampled_update.hpp).
+// and `update` holds the Kalman update at each sample (observations/sampled/sampled_update.hpp).
 // With delayed observations (the delay-* kinds, and user filters of such a model; docs/theory.md
 // §2.6) the form is the continuous one, with the delayed filter variables (FilterVariables):
 //   predicted_observation = A0 + A md, md = m(t - h), read from the filter's history;
 //   delay-optimal: gain = P Phi A^T R^-1 and P_correction = P Phi A^T R^-1 A Phi P, Phi = diag(phi),
 //   phi_i = xs_i(t - h) / xs_i(t) (0 where xs_i(t) = 0, and for t < h), and xs integrates
 //   x_star_drift = f(xs) from xs(0) = m0 beside m and P.
+// What differs between the observation models is each one's module (observations/<kind>/; its part
+// of the derivation: derivation/observation_derivation.hpp); consumers reach the module of
+// `observation` through their own room's interface, never by testing the kind.
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,10 +29,10 @@
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/derivation/exactness.hpp"
 #include "pfgen/derivation/filter_variables.hpp"
-#include "pfgen/derivation/sampled_update.hpp"
 #include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/model_filters.hpp"
+#include "pfgen/observations/sampled/sampled_update.hpp"
 
 namespace pfgen {
 
@@ -73,8 +76,6 @@ struct FilterEquations {
 
   std::size_t n() const { return variables.n(); }
   bool is_user_filter() const { return !kind.has_value(); }
-  bool is_sampled() const { return observation == ObservationKind::Sampled; }
-  bool is_delayed() const { return observation == ObservationKind::Delayed; }
   bool uses_x_star() const { return !x_star_drift.empty(); }
   // The dt-coefficient of dP_ij, all parts combined (i, j in either order).
   Polynomial P_drift(std::size_t i, std::size_t j) const;

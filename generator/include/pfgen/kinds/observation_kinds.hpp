@@ -1,7 +1,9 @@
 #pragma once
 // The observation models pfgen knows, as plain names: the kind registry says which of them each
 // filter kind supports, and the model room's ObservationModel (model/observation_model.hpp)
-// holds one of them. A new observation model is one row here and one alternative there.
+// holds one of them. What each model means for the rooms above is its module in observations/
+// (DESIGN.md, "A new observation model").
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -22,5 +24,18 @@ struct ObservationKindInfo {
 // Every observation model, in a fixed order.
 const std::vector<ObservationKindInfo>& observation_kinds();
 const ObservationKindInfo& observation_kind_info(ObservationKind kind);
+
+// The number of observation models: every table indexed by ObservationKind has this many rows.
+inline constexpr std::size_t kObservationKindCount = 3;
+
+// A room's part of the observation model `kind`, from that room's table of the modules' parts, one
+// per kind in ObservationKind's order (a table of another length does not compile). Each room that
+// needs what differs between observation models declares an interface and keeps such a table
+// (derivation/observation_derivation.cpp, printing/observation_report.cpp, ...), and calls the part
+// instead of branching on the kind.
+template <class Part>
+const Part& observation_part(ObservationKind kind, const Part* const (&parts)[kObservationKindCount]) {
+  return *parts[static_cast<std::size_t>(kind)];
+}
 
 }  // namespace pfgen

@@ -1,9 +1,10 @@
 #pragma once
 // How the states are observed. The model file's `observation:` section chooses the kind when it
-// is read (kinds/observation_kinds.hpp lists them), and every room asks the ObservationModel for
-// its kind and the alternative it handles, instead of assuming one observation equation; a new
-// kind is one more alternative of the variant below: continuous, dy = (A0 + A x) dt + B dW2, or
-// sampled, y_k = C0 + C x(t_k) + Uv v_k at t_k = k T, or delayed, dy = (A0 + A x(t - h)) dt + B dW2.
+// is read (kinds/observation_kinds.hpp lists them); the rooms above reach what the kind means to
+// them through its module (observations/<kind>/, found by kind()), which reads the alternative it
+// is for, instead of assuming one observation equation. A new kind is one more alternative of the
+// variant below: continuous, dy = (A0 + A x) dt + B dW2, or sampled, y_k = C0 + C x(t_k) + Uv v_k
+// at t_k = k T, or delayed, dy = (A0 + A x(t - h)) dt + B dW2.
 #include <cstddef>
 #include <variant>
 
@@ -48,10 +49,11 @@ class ObservationModel {
   ObservationKind kind() const;
   std::size_t p() const;  // observations per time or per sample (rows of A or of C)
   // The alternative of that kind; std::logic_error when the model's observation is of another
-  // kind (a room that handles it must have checked kind() or the kind registry first).
+  // kind (its module is the one that reads it; the model room checks kind() first).
   const ContinuousObservation& continuous() const;
   const SampledObservation& sampled() const;
   const DelayedObservation& delayed() const;
+  // For the model room, below the modules, where its own rules differ by kind (DESIGN.md).
   bool is_sampled() const { return kind() == ObservationKind::Sampled; }
   bool is_delayed() const { return kind() == ObservationKind::Delayed; }
   // A0, A and B of a continuous or delayed observation (the rate terms of dy); std::logic_error

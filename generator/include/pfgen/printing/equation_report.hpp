@@ -1,13 +1,12 @@
 #pragma once
 // Renders one filter's equations for `pfgen derive`: text, a LaTeX fragment (the
-// exactness diagnostic as a paragraph, then an align* block) and
-// JSON. All three list the same things in the same order: the exactness
-// diagnostic, dm (drift and innovation gain), the gain entries, and dP for the
-// upper triangle of P. In text and LaTeX each dP is written as its three parts
-// in turn, E[(x-m)f^T] + E[f(x-m)^T], then E[g g^T], then - P A^T R^-1 A P, so
-// it reads like the published equations; JSON gives each entry combined.
-// A filter for delayed observations adds what delayed_report.hpp lists (h, the meaning of m(t-h),
-// Phi* and x*'s equations); sampled filters are handed to sampled_report.hpp.
+// exactness diagnostic as a paragraph, then align* blocks) and JSON. What the report holds depends
+// on how the states are observed, so each is its observation module's (printing/observation_report.hpp):
+// continuous and delayed observations' reports are the rate form (rate_report.hpp), dm with the
+// innovation gain, the gain entries and dP part by part, a delayed filter's with what
+// observations/delayed/delayed_report.cpp adds (h, the meaning of m(t-h), Phi* and x*'s
+// equations); a sampled filter's shows its prediction and its update apart
+// (observations/sampled/sampled_report.cpp).
 #include <iosfwd>
 #include <string>
 

@@ -1,11 +1,12 @@
 #pragma once
-// Pieces every filter report shares, continuous or sampled: a sum printed part by part, and the
-// exactness diagnostic as text, LaTeX and JSON.
+// Pieces every filter report shares, whatever its observation: a sum printed part by part, the
+// exactness diagnostic as text, LaTeX and JSON, and the filter variables' LaTeX names.
 #include <string>
 #include <vector>
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/derivation/exactness.hpp"
+#include "pfgen/derivation/filter_variables.hpp"
 #include "pfgen/notation/polynomial_writer.hpp"
 #include "pfgen/printing/json_writer.hpp"
 
@@ -26,5 +27,10 @@ std::string exactness_text(const ExactnessReport& report);
 std::string exactness_latex(const ExactnessReport& report);
 // {exact, condition, explanation, failed}.
 Json exactness_json(const ExactnessReport& report);
+
+// The LaTeX name of a filter variable as the printers must use it: a variable after m and P (a
+// delayed filter's \Phi^*_{1}, x^*_{1}, m_{1}(t-h)) in braces, so that a power of one, phi1^2 in
+// the correction or xs1^2 in the x* drift, is {\Phi^*_{1}}^{2} and not a double superscript.
+std::string latex_variable_name(const FilterVariables& vars, std::uint32_t variable);
 
 }  // namespace pfgen

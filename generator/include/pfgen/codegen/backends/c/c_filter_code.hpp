@@ -1,9 +1,11 @@
 #pragma once
-// The C99 backend's filter code: a .h/.c pair per filter (templates/c/), every external name
+// The C99 backend's filter code: a .h/.c pair per filter (its observation module's templates/c/), every external name
 // prefixed <prefix>_ = <namespace, `::` written `_`>_<model>_<filter identifier>_. No heap, no
 // variable-length arrays; float or double; <math.h> only for sqrt (sampled filters' update) and
 // the functions the model's own equations call. Parameters are a record the caller owns; a delayed
-// filter's history is an array the caller owns (or the <prefix>_filter record).
+// filter's history is an array the caller owns (or the <prefix>_filter record). Each observation
+// module fills its own pair of templates (templates/c/) in its <kind>_c_filter through CFilterWriter
+// (c_filter_writer.hpp).
 #include <string>
 #include <vector>
 

@@ -25,4 +25,10 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
 // The text of pfgen_runtime/plugin_abi.h, compiled into pfgen at build time.
 const std::string& plugin_abi_header();
 
+// For the observation modules' parts of the plugin (ObservationCode::plugin_wrappers, plugin_table):
+// a C string literal of `text`, and the namespace of the plugin's filter of that identifier,
+// ::pfgen_simulation::filters::<model>::<identifier>.
+std::string plugin_c_string(const std::string& text);
+std::string plugin_filter_namespace(const Model& model, const std::string& identifier);
+
 }  // namespace pfgen::codegen

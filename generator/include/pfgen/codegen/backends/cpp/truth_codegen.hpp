@@ -16,14 +16,11 @@ struct TruthCode {
   std::size_t n = 0;  // states
   std::size_t q = 0;  // Wiener processes of the truth: columns of g, n when only G is given, 0 when g = 0
   std::size_t p = 0;  // observations
-  std::size_t r = 0;  // columns of B
+  std::size_t r = 0;  // columns of the observation noise's matrix (B, or a sampled observation's Uv)
   bool diffusion_is_zero = false;        // g identically zero: no diffusion functions at all
   bool diffusion_is_covariance = false;  // only G = g g^T given: diffusion_covariance(), no g, no Jacobian
-  bool observation_is_constant = true;   // A0, A, B free of the time symbol
+  bool observation_is_constant = true;   // A0, A, B free of the time symbol (a sampled observation: true)
   bool has_initial_state = false;        // the model gives initial.x0
-  bool sampled = false;                  // sampled observations: p rows of C, r columns of Uv
-  double period = 0;                     // sampled: T
-  double delay = 0;                      // delayed: h (the observation functions are A0, A, B as ever)
   // Definitions, in this order (bracketed ones only when they exist; argument names as below
   // unless the model uses them, see local_names.hpp):
   //   using Scalar = double;  struct Params { <parameters with defaults> };
@@ -31,6 +28,7 @@ struct TruthCode {
   //   [void diffusion(double t, const double* x, double* g);]                // n x q row-major
   //   [void diffusion_jacobian(double t, const double* x, double* dg);]     // dg[(i*q+j)*n+l] = dg_ij/dx_l
   //   [void diffusion_covariance(double t, const double* x, double* G);]    // n x n row-major
+  //   the observation's function (its module's ObservationCode::truth_observation):
   //   void observation(double t, double* A0, double* A, double* B);         // p, p x n, p x r
   //   (sampled: void sampled_observation(double t, double* C0, double* C, double* Uv), p, p x n, p x r)
   //   [void initial_state(double* x0);]                                     // initial.x0

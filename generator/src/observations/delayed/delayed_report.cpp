@@ -1,10 +1,16 @@
-#include "pfgen/printing/delayed_report.hpp"
-
+// The delayed observation dy = (A0 + A x(t-h)) dt + B dW2 in the reports (docs/theory.md §2.6): the
+// rate form (rate_report.hpp) with what a delayed filter adds to it, the delay h and the
+// observation of x(t-h), what the delayed inputs md_i = m_i(t-h) mean (m0 for t < h), and for the
+// kinds with the Phi* gain the definition of phi_i = Phi*_ii and the auxiliary ODE
+// dxs = f(xs, t) dt, xs(0) = m0; and its lines in the standalone document and the coefficient form.
 #include <functional>
 
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/text_printer.hpp"
+#include "pfgen/observations/continuous/continuous_report.hpp"
+#include "pfgen/printing/rate_report.hpp"
+#include "pfgen/printing/report_parts.hpp"
 
 namespace pfgen {
 namespace {
@@ -18,14 +24,8 @@ std::string list(std::size_t n, const std::function<std::string(std::size_t)>& i
   return out;
 }
 
-}  // namespace
-
-std::string latex_variable_name(const FilterVariables& vars, std::uint32_t variable) {
-  const std::string& name = vars.latex_name(variable);
-  return variable < vars.count() ? name : "{" + name + "}";
-}
-
-std::string correction_words_text(const FilterEquations& eq) {
+// The correction term's words; Phi* = diag(phi) is diagonal, so Phi*^T = Phi*.
+std::string correction_words(const FilterEquations& eq) {
   return eq.uses_x_star() ? "P Phi* A^T (B B^T)^-1 A Phi* P" : "P A^T (B B^T)^-1 A P";
 }
 
@@ -114,6 +114,57 @@ void add_delayed_json(const FilterEquations& eq, Json& out) {
     for (const auto& p : eq.x_star_drift) drift.push(Json::string(printer.print(p, name)));
     out.add("x_star_drift", drift);
   }
+}
+
+class DelayedReport final : public RateReport {
+ public:
+  std::string equation_latex() const override { return "dy = (A_0 + A x(t-h))\\,dt + B\\,dW_2"; }
+
+  std::string matrices_latex(const Model& model) const override {
+    return rate_matrices_latex(model.observation.delayed().rate, model.observation.delay());
+  }
+
+  std::string notation_latex() const override {
+    return "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state, $P_{ij}$ the error covariance, "
+           "$K$ the gain and $dy_{r}$ the observation increments; the innovation compares $dy$ with the estimate "
+           "$m(t-h)$ of the delayed state. Each $dP$ is written as $E[(x-m)f^{T}] + E[f(x-m)^{T}]$, then the "
+           "diffusion term, then the correction $-K A \\Phi^{*} P$ (with $\\Phi^{*} = I$ for the filters without "
+           "$\\Phi^{*}$), without merging like terms across the three parts.";
+  }
+
+  std::string coefficients_text(const Model& model) const override {
+    TextPrinter printer;
+    return "observation: dy = (E + E1 x(t-h)) dt + B dW2 with h = " + printer.print(model.observation.delay()) +
+           "; E = A0, E1 = A\n";
+  }
+
+  std::string coefficients_latex(const Model& model) const override {
+    LatexPrinter printer;
+    return "The observation's rate is $E + E_{1} x(t-h)$, $dy = (E + E_{1} x(t-h))\\,dt + B\\,dW_2$ with $h = " +
+           printer.print(model.observation.delay()) + "$: $E = A_{0}$, $E_{1} = A$.";
+  }
+
+  CoefficientNames coefficient_names() const override { return {"E", "E1", "E", "E_{1}", "(E_{1})"}; }
+
+  void add_coefficients_json(const Model& model, Json& observation) const override {
+    TextPrinter printer;
+    observation.add("delay", Json::string(printer.print(model.observation.delay())));
+  }
+
+ protected:
+  std::string correction_words_text(const FilterEquations& eq) const override { return correction_words(eq); }
+  std::string header_text(const FilterEquations& eq) const override { return delayed_header_text(eq); }
+  std::string trailing_text(const FilterEquations& eq) const override { return x_star_equations_text(eq); }
+  std::string paragraph_latex(const FilterEquations& eq) const override { return delayed_paragraph_latex(eq); }
+  std::vector<std::string> trailing_latex(const FilterEquations& eq) const override { return x_star_lines_latex(eq); }
+  void add_json(const FilterEquations& eq, Json& out) const override { add_delayed_json(eq, out); }
+};
+
+}  // namespace
+
+const ObservationReport& delayed_observation_report() {
+  static const DelayedReport part;
+  return part;
 }
 
 }  // namespace pfgen

@@ -1,4 +1,4 @@
-#include "pfgen/derivation/sampled_update.hpp"
+#include "pfgen/observations/sampled/sampled_update.hpp"
 
 #include "pfgen/model/model.hpp"
 

@@ -1,10 +1,13 @@
-#include "pfgen/printing/sampled_report.hpp"
-
+// The sampled observation y_k = C0 + C x(t_k) + Uv v_k in the reports: a sampled filter's
+// prediction between samples and its update at each sample, shown apart, as text, LaTeX and JSON;
+// and its lines in the standalone document and the coefficient form.
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/rich_text.hpp"
 #include "pfgen/notation/text_printer.hpp"
+#include "pfgen/printing/latex_matrix.hpp"
 #include "pfgen/printing/noise_report.hpp"
+#include "pfgen/printing/observation_report.hpp"
 #include "pfgen/printing/report_parts.hpp"
 
 namespace pfgen {
@@ -17,8 +20,6 @@ std::string index2(std::size_t i, std::size_t j) { return std::to_string(i + 1) 
 std::string substep_phrase(const SampledUpdate& u) {
   return std::to_string(u.substeps) + (u.substeps == 1 ? " sub-step" : " sub-steps");
 }
-
-}  // namespace
 
 std::string sampled_equations_text(const Model& model, const FilterEquations& eq) {
   TextPrinter printer;
@@ -215,6 +216,59 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   out.add("prediction", prediction);
   out.add("update", update);
   return out;
+}
+
+class SampledReport final : public ObservationReport {
+ public:
+  // The whole report at once: a sampled filter's is small (its update is written out per sample
+  // output, not per term of a large model's P equations).
+  std::string text(const Model& model, const FilterEquations& eq, std::ostream*) const override {
+    return sampled_equations_text(model, eq);
+  }
+  std::string latex(const FilterEquations& eq) const override { return sampled_equations_latex(eq); }
+  Json json(const Model& model, const FilterEquations& eq) const override { return sampled_equations_json(model, eq); }
+
+  // The document's display has read so since sampled observations came: dx's equation beside the
+  // continuous observation's, the sampled one's matrices below it.
+  std::string equation_latex() const override { return "dy = (A_0 + A x)\\,dt + B\\,dW_2"; }
+
+  std::string matrices_latex(const Model& model) const override {
+    LatexPrinter printer;
+    const SampledObservation& sampled = model.observation.sampled();
+    const std::string observation_line = bmatrix(printer, column(sampled.C0)) + ", \\quad C = " +
+                                         bmatrix(printer, sampled.C) + ", \\quad U_v = " + bmatrix(printer, sampled.Uv) +
+                                         ", \\quad T = " + printer.print(sampled.period);
+    if (latex_width("C_0 = " + observation_line) <= kLatexLineWidth) return "C_0 &= " + observation_line;
+    return matrix_lines(printer, "C_0", "C_0", column(sampled.C0)) + " \\\\\n" +
+           matrix_lines(printer, "C", "C", sampled.C) + " \\\\\n" + matrix_lines(printer, "U_v", "U_v", sampled.Uv) +
+           " \\\\\nT &= " + printer.print(sampled.period);
+  }
+
+  std::string notation_latex() const override {
+    return "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state and $P_{ij}$ the error covariance. "
+           "Between samples $m$ and $P$ follow the prediction; at each sample $y$ the Kalman update with "
+           "$S = C P C^{T} + U_v U_v^{T}$ and $K = P C^{T} S^{-1}$ applies.";
+  }
+
+  std::string coefficients_text(const Model&) const override {
+    return "observation: sampled, y_k = C0 + C x(t_k) + Uv v_k; it has no rate E + E1 x, its C0 and C are shown\n";
+  }
+
+  std::string coefficients_latex(const Model&) const override {
+    return "The observation is sampled, $y_k = C_0 + C x(t_k) + U_v v_k$: it has no rate $E + E_{1} x$; "
+           "its $C_0$ and $C$ are shown.";
+  }
+
+  CoefficientNames coefficient_names() const override { return {"C0", "C", "C_{0}", "C", "C"}; }
+
+  void add_coefficients_json(const Model&, Json&) const override {}
+};
+
+}  // namespace
+
+const ObservationReport& sampled_observation_report() {
+  static const SampledReport part;
+  return part;
 }
 
 }  // namespace pfgen

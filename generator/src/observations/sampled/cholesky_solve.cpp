@@ -1,4 +1,4 @@
-#include "pfgen/codegen/backends/c_family/cholesky_solve.hpp"
+#include "pfgen/observations/sampled/cholesky_solve.hpp"
 
 namespace pfgen::codegen {
 namespace {

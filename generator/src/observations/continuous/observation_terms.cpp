@@ -1,4 +1,4 @@
-#include "pfgen/derivation/observation_terms.hpp"
+#include "pfgen/observations/continuous/observation_terms.hpp"
 
 #include "pfgen/algebra/coefficient.hpp"
 

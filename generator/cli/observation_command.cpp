@@ -1,0 +1,40 @@
+#include "observation_command.hpp"
+
+namespace pfgen::cli {
+
+std::string ObservationCommand::without_eigen_layer(const Model&) const { return {}; }
+
+std::string ObservationCommand::header_note(const Model&, double) const { return {}; }
+
+std::string ObservationCommand::reference_obstacle(const Model&) const { return {}; }
+
+std::string ObservationCommand::after_table(const pfgen_runtime::MonteCarloResult&,
+                                            const std::vector<std::string>&) const {
+  return {};
+}
+
+Json values_json(const std::vector<double>& values) {
+  Json a = Json::array();
+  for (double x : values) a.push(Json::number(x));
+  return a;
+}
+
+Json values_json(const std::vector<std::vector<double>>& values) {
+  Json a = Json::array();
+  for (const auto& row : values) a.push(values_json(row));
+  return a;
+}
+
+void add_rate_eval_json(const EvaluatedFilter& value, Json& out) {
+  out.add("m_drift", values_json(value.m_drift));
+  out.add("gain", values_json(value.gain));
+  out.add("P_drift", values_json(value.P_drift));
+}
+
+const ObservationCommand& observation_command(ObservationKind kind) {
+  static const ObservationCommand* const parts[kObservationKindCount] = {
+      &continuous_observation_command(), &sampled_observation_command(), &delayed_observation_command()};
+  return observation_part(kind, parts);
+}
+
+}  // namespace pfgen::cli

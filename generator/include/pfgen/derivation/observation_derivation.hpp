@@ -1,0 +1,42 @@
+#pragma once
+// What the derivation needs of an observation model: its part of every filter's equations. Each
+// module in observations/ implements it (observations/<kind>/<kind>_derivation); derive_filter
+// and the exactness diagnostic call the model's part and never ask which kind it is.
+#include <cstddef>
+
+#include "pfgen/derivation/drift_coefficients.hpp"
+#include "pfgen/derivation/exactness.hpp"
+#include "pfgen/derivation/filter_equations.hpp"
+
+namespace pfgen {
+
+class ObservationDerivation {
+ public:
+  virtual ~ObservationDerivation() = default;
+
+  // The filter variables: m and P, and after them those this observation's filters read besides.
+  virtual FilterVariables variables(std::size_t n) const = 0;
+  // What every filter of the model shares, built-in or user-defined: the predicted observation and
+  // the observation's own data in FilterEquations (a sampled one's update, a delayed one's h).
+  virtual void frame(const Model& model, FilterEquations& eq) const = 0;
+  // The states the observation sees: its correction has one term per pair of them (the derivation
+  // budget counts them before deriving).
+  virtual std::size_t observed_states(const Model& model) const = 0;
+  // The exactness diagnostic of a Gaussian-closure kind (the risk-sensitive and unscented kinds
+  // have their own, exactness.cpp).
+  virtual ExactnessReport exactness(const Model& model, FilterKind kind) const = 0;
+  // A built-in kind's observation terms, after its moment terms are in `eq`: gain and correction,
+  // or what stands for them.
+  virtual void observation_terms(const Model& model, FilterKind kind, FilterEquations& eq) const = 0;
+  // The observation's linear terms in the coefficient form (derive --coefficients); `kind` is set
+  // by the caller.
+  virtual ObservationCoefficients coefficients(const Model& model) const = 0;
+};
+
+// The modules' parts (observations/<kind>/<kind>_derivation.cpp), and the model's, by kind.
+const ObservationDerivation& continuous_observation_derivation();
+const ObservationDerivation& sampled_observation_derivation();
+const ObservationDerivation& delayed_observation_derivation();
+const ObservationDerivation& observation_derivation(ObservationKind kind);
+
+}  // namespace pfgen

@@ -1,0 +1,53 @@
+#pragma once
+// The continuous observation dy = (A0 + A x) dt + B dW2 in code generation: ContinuousCode, its
+// methods by file (continuous_cpp_filter.cpp: the module's templates/cpp/filter.hpp.tmpl and its
+// Eigen layer; continuous_c_filter.cpp: templates/c/filter.h.tmpl and .c.tmpl; continuous_plugin.cpp: the
+// truth's observation and the plugin's table), and what the delayed module, whose filters have the
+// same functions and matrices, takes from it.
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pfgen/codegen/backends/cpp/truth_codegen.hpp"
+#include "pfgen/codegen/backends/cpp/truth_functions.hpp"
+#include "pfgen/codegen/observation_code.hpp"
+
+namespace pfgen::codegen {
+
+class ContinuousCode final : public ObservationCode {
+ public:
+  GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
+  GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
+  void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
+  std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names) const override;
+  std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
+                                                  const std::vector<std::string>& labels,
+                                                  std::optional<double> grid_step) const override;
+};
+
+// The three functions of a filter whose observation is a rate (continuous or delayed):
+// derivatives(), gain() and predicted_observation().
+struct ContinuousFunctions {
+  FunctionCode derivatives, gain, observation;
+};
+ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                         const FunctionNames& names, const CFamilyEmitter& emitter);
+
+// What gain() computes, for the templates' comment.
+std::string gain_meaning(const FilterEquations& eq);
+
+// The truth's observation(t, A0, A, B) of these rate terms (a delayed observation has the same;
+// the runtime applies them to x(t - h)), and TruthCode's r and observation_is_constant.
+void rate_truth_observation(const Model& model, const ContinuousObservation& observation, TruthNames& names,
+                            TruthCode& code);
+
+// The plugin's table of pfgen_plugin_filter entries (names: C++ identifiers, filter_identifier;
+// labels: the filters' own names, for the runtime), `state_fields` writing each entry's size
+// fields from its item prefix ("    list[0].") and its filter's namespace alias ("F0").
+std::string rate_filter_table(const Model& model, const std::vector<std::string>& names,
+                              const std::vector<std::string>& labels,
+                              const std::function<std::string(const std::string& item, const std::string& ns)>& state_fields);
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,45 @@
+#pragma once
+// The sampled observation y_k = C0 + C x(t_k) + Uv v_k in code generation: SampledCode, its
+// methods by file (sampled_cpp_filter.cpp: the module's templates/cpp/sampled_filter.hpp.tmpl and its Eigen
+// layer; sampled_c_filter.cpp: templates/c/sampled_filter.h.tmpl and .c.tmpl; sampled_plugin.cpp:
+// the truth's sampled observation and the plugin's table), and the functions its filters consist of.
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pfgen/codegen/observation_code.hpp"
+
+namespace pfgen::codegen {
+
+// A sampled filter's update writes its Cholesky solve out for every output, O(r^3) straight-line
+// code: 1.2 MB of C++ at r = 64, 4 MB at r = 100 and 27 MB at r = 200, which a compiler takes
+// minutes over. Code generation takes at most this many outputs (derive and eval take any).
+inline constexpr std::size_t kMaxSampledOutputs = 64;
+
+class SampledCode final : public ObservationCode {
+ public:
+  void check_size(const Model& model, const FilterEquations& eq) const override;  // kMaxSampledOutputs
+  GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
+  GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
+  void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
+  std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names) const override;
+  std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
+                                                  const std::vector<std::string>& labels,
+                                                  std::optional<double> grid_step) const override;
+};
+
+// The functions of a filter for sampled observations: the prediction's derivatives() (and
+// cd-euler's euler_square(), its dt^2 term), the update's polynomial parts innovation_terms()
+// (P C^T and S) and observation_matrices() (C and R), and predicted_observation(), the predicted
+// sample.
+struct SampledFunctions {
+  FunctionCode derivatives;
+  std::optional<FunctionCode> euler_square;
+  FunctionCode innovation, matrices, observation;
+};
+SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                   const FunctionNames& names, const CFamilyEmitter& emitter);
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,94 @@
+#include "pfgen/codegen/backends/c/c_filter_writer.hpp"
+
+#include "pfgen/codegen/backends/c/c_filter_code.hpp"
+#include "pfgen/codegen/backends/c_family/file_banner.hpp"
+#include "pfgen/codegen/template_text.hpp"
+
+namespace pfgen::codegen {
+namespace {
+
+std::string params_members(const Model& model, const CEmitter& emitter) {
+  if (model.parameters.empty()) return "  char unused;  // C has no empty record\n";
+  std::string text;
+  for (const auto& p : model.parameters) text += "  " + emitter.scalar_type() + " " + p.name + ";\n";
+  return text;
+}
+
+std::string params_defaults(const Model& model, const CEmitter& emitter) {
+  if (model.parameters.empty()) return "  (void)params;\n";
+  std::string text;
+  for (const auto& p : model.parameters) text += "  params->" + p.name + " = " + emitter.literal(p.default_value) + ";\n";
+  return text;
+}
+
+}  // namespace
+
+std::string c_initial_body(const std::vector<GiNaC::numeric>& values, const CEmitter& emitter) {
+  std::string body;
+  for (std::size_t v = 0; v < values.size(); ++v)
+    body += "  state[" + std::to_string(v) + "] = " + emitter.literal(values[v]) + ";\n";
+  return body;
+}
+
+CFilterWriter::CFilterWriter(const Model& m, const FilterEquations& e, const CodegenOptions& o)
+    : model(m),
+      eq(e),
+      options(o),
+      names(function_names(m)),
+      prefix(c_symbol_prefix(o.name_space, m.name, e.name)),
+      emitter(o.scalar, names.temporary_prefix, prefix, prefix + "_params") {
+  emitter.split_above(options.max_function_ops, names.shared);
+  result.name = eq.name;
+  for (const std::string& path : c_filter_paths(model.name, eq.name)) result.files.push_back({path, ""});
+}
+
+std::map<std::string, std::string> CFilterWriter::common_values(std::size_t p, std::size_t state_size,
+                                                                const std::string& extra) {
+  const std::string header = result.files.at(0).relative_path;
+  return {
+      {"banner", filter_banner(model, eq, options, result, "pfgen codegen --language c", extra)},
+      {"guard", prefix + "_h"},
+      {"header", header.substr(header.find_last_of('/') + 1)},
+      {"prefix", prefix},
+      {"scalar", emitter.scalar_type()},
+      {"n", std::to_string(eq.n())},
+      {"p", std::to_string(p)},
+      {"state_size", std::to_string(state_size)},
+      {"params_members", params_members(model, emitter)},
+      {"params_defaults", params_defaults(model, emitter)},
+      {"t", names.time},
+      {"state", names.state},
+      {"params", names.params},
+      {"out", names.out},
+      {"two", emitter.literal(2)},
+  };
+}
+
+void CFilterWriter::add_function(std::map<std::string, std::string>& values, const std::string& key,
+                                 const FunctionCode& code) {
+  values[key + "_ops"] = ops_comment(code.stats);
+  values[key + "_helpers"] = code.body.helpers;
+  values[key + "_body"] = code.body.statements;
+}
+
+void CFilterWriter::write(const std::string& kind, std::map<std::string, std::string> values,
+                          const std::map<std::string, std::string>& header_only,
+                          const std::map<std::string, std::string>& source_only) {
+  std::map<std::string, std::string> header_values = values, source_values = values;
+  header_values.insert(header_only.begin(), header_only.end());
+  source_values.insert(source_only.begin(), source_only.end());
+  const std::string h = "c/" + kind + ".h.tmpl", c = "c/" + kind + ".c.tmpl";
+  result.files.at(0).contents = fill_template(h, embedded_template(h), keep_used(h, header_values));
+  result.files.at(1).contents = fill_template(c, embedded_template(c), keep_used(c, source_values));
+}
+
+std::map<std::string, std::string> CFilterWriter::keep_used(const std::string& name,
+                                                            const std::map<std::string, std::string>& values) {
+  std::map<std::string, std::string> used;
+  const std::string text = expanded_template(name);
+  for (const auto& [key, value] : values)
+    if (text.find("{{" + key + "}}") != std::string::npos) used.emplace(key, value);
+  return used;
+}
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,24 @@
+// A filter for continuous observations in C99 (its templates/c/filter.h.tmpl and filter.c.tmpl).
+#include "pfgen/codegen/backends/c/c_filter_writer.hpp"
+#include "pfgen/observations/continuous/continuous_code.hpp"
+
+namespace pfgen::codegen {
+
+GeneratedFilter ContinuousCode::c_filter(const Model& model, const FilterEquations& eq,
+                                         const CodegenOptions& options) const {
+  CFilterWriter w(model, eq, options);
+  const ContinuousFunctions f = continuous_functions(model, eq, options, w.names, w.emitter);
+  w.result.functions = {f.derivatives.stats, f.gain.stats, f.observation.stats};
+  std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count());
+  CFilterWriter::add_function(values, "derivatives", f.derivatives);
+  CFilterWriter::add_function(values, "gain", f.gain);
+  CFilterWriter::add_function(values, "observation", f.observation);
+  values.insert({{"K", w.names.K},
+                 {"h", w.names.h},
+                 {"gain_meaning", gain_meaning(eq)},
+                 {"initial_body", c_initial_body(initial_values(model, eq.variables), w.emitter)}});
+  w.write("filter", values, {}, {});
+  return w.result;
+}
+
+}  // namespace pfgen::codegen

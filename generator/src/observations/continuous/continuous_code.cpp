@@ -1,0 +1,29 @@
+// The continuous module's code generation: its filters' functions, language-neutral, and its part.
+#include "pfgen/observations/continuous/continuous_code.hpp"
+
+namespace pfgen::codegen {
+
+ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                         const FunctionNames& names, const CFamilyEmitter& emitter) {
+  std::vector<Polynomial> gain_outputs;
+  for (const auto& row : eq.gain) gain_outputs.insert(gain_outputs.end(), row.begin(), row.end());
+  ContinuousFunctions f;
+  f.derivatives = derivatives_code(model, eq, options, names, emitter);
+  f.gain = function_code("gain", gain_outputs, names.K, model, eq, options, names, emitter);
+  f.observation =
+      function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
+  return f;
+}
+
+std::string gain_meaning(const FilterEquations& eq) {
+  if (eq.is_user_filter()) return "as given in the model file";
+  if (eq.uses_x_star()) return "P Phi*^T A^T (B B^T)^-1, Phi* = diag(phi)";
+  return "P A^T (B B^T)^-1";
+}
+
+const ObservationCode& continuous_observation_code() {
+  static const ContinuousCode part;
+  return part;
+}
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,41 @@
+// A filter for continuous observations in C++ (its templates/cpp/filter.hpp.tmpl, and with --eigen
+// filter_eigen.hpp.tmpl): derivatives(), gain(), predicted_observation(), initial_state(), step().
+#include "pfgen/codegen/backends/c_family/file_banner.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_filter_parts.hpp"
+#include "pfgen/codegen/template_text.hpp"
+#include "pfgen/observations/continuous/continuous_code.hpp"
+
+namespace pfgen::codegen {
+
+GeneratedFilter ContinuousCode::cpp_filter(const Model& model, const FilterEquations& eq,
+                                           const CodegenOptions& options) const {
+  const FilterVariables& vars = eq.variables;
+  const FunctionNames names = function_names(model);
+  CppEmitter emitter(options.scalar, names.temporary_prefix);
+  emitter.split_above(options.max_function_ops, names.shared);
+  const ContinuousFunctions functions = continuous_functions(model, eq, options, names, emitter);
+
+  GeneratedFilter result = cpp_filter_result(model, eq, options);
+  result.functions = {functions.derivatives.stats, functions.gain.stats, functions.observation.stats};
+
+  std::map<std::string, std::string> values = cpp_template_values(model, filter_identifier(eq.name), options, eq.n(),
+                                                                  eq.p, vars.count(), names, emitter);
+  values.insert({
+      {"banner", filter_banner(model, eq, options, result, "pfgen codegen")},
+      {"K", names.K},
+      {"h", names.h},
+      {"derivatives_ops", ops_comment(functions.derivatives.stats)},
+      {"derivatives_body", functions.derivatives.body.statements},
+      {"gain_meaning", gain_meaning(eq)},
+      {"gain_ops", ops_comment(functions.gain.stats)},
+      {"gain_body", functions.gain.body.statements},
+      {"observation_ops", ops_comment(functions.observation.stats)},
+      {"observation_body", functions.observation.body.statements},
+      {"initial_body", cpp_initial_body(initial_values(model, vars), emitter)},
+  });
+  result.files.at(0).contents = fill_template("cpp/filter.hpp.tmpl", embedded_template("cpp/filter.hpp.tmpl"), values);
+  add_eigen_layer(result, "cpp/filter_eigen.hpp.tmpl", model, eq, options, values);
+  return result;
+}
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,66 @@
+// The continuous observation in a simulation plugin: the truth's observation(t, A0, A, B), each
+// filter's step(state, t, dt, dy) behind the ABI's signature, and the table of pfgen_plugin_filter.
+#include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
+#include "pfgen/observations/continuous/continuous_code.hpp"
+
+namespace pfgen::codegen {
+
+void rate_truth_observation(const Model& model, const ContinuousObservation& observation, TruthNames& names,
+                            TruthCode& code) {
+  code.r = observation.B.empty() ? 0 : observation.B.front().size();
+  code.observation_is_constant = !depends_on_time(model, ExMatrix{observation.A0}) &&
+                                 !depends_on_time(model, observation.A) && !depends_on_time(model, observation.B);
+  code.definitions +=
+      matrices_function(model, names, "observation", {{"A0", ExMatrix{observation.A0}}, {"A", observation.A}, {"B", observation.B}});
+}
+
+std::string rate_filter_table(const Model& model, const std::vector<std::string>& names,
+                              const std::vector<std::string>& labels,
+                              const std::function<std::string(const std::string& item, const std::string& ns)>& state_fields) {
+  if (names.empty()) return "";
+  const std::string count = std::to_string(names.size());
+  std::string out = "  static const std::array<pfgen_plugin_filter, " + count + "> filters = [] {\n" +
+                    "    std::array<pfgen_plugin_filter, " + count + "> list{};\n";
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string item = "    list[" + std::to_string(k) + "].";
+    const std::string ns = "F" + std::to_string(k);
+    out += "    namespace " + ns + " = " + plugin_filter_namespace(model, names[k]) + ";\n";
+    out += item + "name = " + plugin_c_string(labels[k]) + ";\n";
+    out += item + "n = " + ns + "::n;\n";
+    out += item + "p = " + ns + "::p;\n";
+    out += state_fields(item, ns);
+    out += item + "initial_state = &pfgen_simulation::entry::" + names[k] + "_initial_state;\n";
+    out += item + "step = &pfgen_simulation::entry::" + names[k] + "_step;\n";
+  }
+  return out + "    return list;\n  }();\n";
+}
+
+void ContinuousCode::truth_observation(const Model& model, TruthNames& names, TruthCode& code) const {
+  rate_truth_observation(model, model.observation.continuous(), names, code);
+}
+
+// The ABI's step and initial_state have no parameters argument: the model's defaults.
+std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names) const {
+  std::string out;
+  for (const auto& name : names) {
+    const std::string alias = "  namespace F = " + plugin_filter_namespace(model, name) + ";\n";
+    out += "void " + name + "_initial_state(double* state) {\n" + alias + "  F::initial_state(state);\n}\n";
+    out += "void " + name + "_step(double* state, double t, double dt, const double* dy) {\n" + alias +
+           "  F::step(state, t, dt, dy, F::Params<double>{});\n}\n\n";
+  }
+  return out;
+}
+
+std::map<std::string, std::string> ContinuousCode::plugin_table(const Model& model, const std::vector<std::string>& names,
+                                                                const std::vector<std::string>& labels,
+                                                                std::optional<double>) const {
+  auto state_size = [](const std::string& item, const std::string& ns) { return item + "state_size = " + ns + "::state_size;\n"; };
+  return {
+      {"filter_table", rate_filter_table(model, names, labels, state_size)},
+      {"filter_count", std::to_string(names.size())},
+      {"filters", names.empty() ? "nullptr" : "filters.data()"},
+      {"observation", "&pfgen_simulation::truth::observation"},
+  };
+}
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,41 @@
+// The sampled module's code generation: its filters' functions, language-neutral, its size limit,
+// and its part.
+#include "pfgen/observations/sampled/sampled_code.hpp"
+
+namespace pfgen::codegen {
+
+void SampledCode::check_size(const Model& model, const FilterEquations& eq) const {
+  if (eq.update.r() <= kMaxSampledOutputs) return;
+  throw CodegenError("filter '" + eq.name + "' of model " + model.name + " samples " + std::to_string(eq.update.r()) +
+                     " outputs; its generated update writes the Cholesky solve out for every output (O(r^3) "
+                     "code: 1.2 MB of C++ at r = 64, 27 MB at r = 200, which a compiler takes minutes over), so "
+                     "code generation takes at most " + std::to_string(kMaxSampledOutputs) +
+                     " outputs; derive and eval take any");
+}
+
+SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                   const FunctionNames& names, const CFamilyEmitter& emitter) {
+  const SampledUpdate& u = eq.update;
+  SampledFunctions f;
+  f.derivatives = derivatives_code(model, eq, options, names, emitter);
+  if (!eq.P_euler.empty())
+    f.euler_square = function_code("euler_square", eq.P_euler, names.out, model, eq, options, names, emitter);
+  std::vector<Polynomial> innovation;
+  for (const auto& row : u.PCt) innovation.insert(innovation.end(), row.begin(), row.end());
+  innovation.insert(innovation.end(), u.S.begin(), u.S.end());
+  f.innovation = function_code("innovation_terms", innovation, names.out, model, eq, options, names, emitter);
+  std::vector<Polynomial> matrices;
+  for (const auto& row : u.C) matrices.insert(matrices.end(), row.begin(), row.end());
+  matrices.insert(matrices.end(), u.R.begin(), u.R.end());
+  f.matrices = function_code("observation_matrices", matrices, names.out, model, eq, options, names, emitter);
+  f.observation =
+      function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
+  return f;
+}
+
+const ObservationCode& sampled_observation_code() {
+  static const SampledCode part;
+  return part;
+}
+
+}  // namespace pfgen::codegen

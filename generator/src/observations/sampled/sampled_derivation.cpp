@@ -1,0 +1,67 @@
+// The sampled observation y_k = C0 + C x(t_k) + Uv v_k in the derivation: no observation term
+// between samples (the equations are the prediction), the Kalman update's polynomial parts at each
+// sample (sampled_update), and for cd-euler the dt^2 term of its Euler moment map.
+#include "pfgen/derivation/derivation_budget.hpp"
+#include "pfgen/derivation/gaussian_expectation.hpp"
+#include "pfgen/derivation/observation_derivation.hpp"
+#include "pfgen/observations/sampled/sampled_exactness.hpp"
+#include "pfgen/observations/sampled/sampled_update.hpp"
+
+namespace pfgen {
+namespace {
+
+// Cov(f)_ij = E[f_i f_j] - E[f_i] E[f_j] under x ~ N(m, P), upper triangle: the dt^2 term of the
+// covariance of one Euler step x + f(x) dt + g(x) sqrt(dt) xi (docs/theory.md). The cross term
+// E[(x - m + f dt - E[f] dt) g sqrt(dt) xi] vanishes because xi is independent of x with mean 0.
+std::vector<Polynomial> euler_square_term(const Model& model, const FilterVariables& vars) {
+  std::vector<Polynomial> f;
+  for (const auto& e : model.drift) f.push_back(Polynomial::from_ex(e, model.states));
+  GaussianExpectation E(vars);
+  std::vector<Polynomial> Ef;
+  for (const auto& fi : f) Ef.push_back(E.of(fi));
+  std::vector<Polynomial> out;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    for (std::size_t j = i; j < f.size(); ++j) out.push_back(E.of(f[i] * f[j]) - Ef[i] * Ef[j]);
+  return out;
+}
+
+class SampledDerivation final : public ObservationDerivation {
+ public:
+  FilterVariables variables(std::size_t n) const override { return FilterVariables(n); }
+
+  void frame(const Model& model, FilterEquations& eq) const override {
+    eq.predicted_observation = predicted_sample(model.observation.sampled(), eq.variables);
+    eq.update = sampled_update(model.observation.sampled(), eq.variables);
+  }
+
+  std::size_t observed_states(const Model& model) const override {
+    return pfgen::observed_states(model.observation.sampled().C);
+  }
+
+  ExactnessReport exactness(const Model& model, FilterKind kind) const override {
+    return sampled_exactness(model, kind);
+  }
+
+  // Between samples there is no observation term; the update is eq.update (frame).
+  void observation_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
+    eq.P_correction.assign(eq.P_moment.size(), Polynomial());
+    if (uses_euler_map(kind)) eq.P_euler = euler_square_term(model, eq.variables);
+  }
+
+  // A sampled observation has no rate: its sample equation's C0 and C stand in the coefficient form.
+  ObservationCoefficients coefficients(const Model& model) const override {
+    ObservationCoefficients out;
+    out.E = model.observation.sampled().C0;
+    out.E1 = model.observation.sampled().C;
+    return out;
+  }
+};
+
+}  // namespace
+
+const ObservationDerivation& sampled_observation_derivation() {
+  static const SampledDerivation part;
+  return part;
+}
+
+}  // namespace pfgen

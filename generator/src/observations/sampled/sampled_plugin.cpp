@@ -1,0 +1,74 @@
+// The sampled observation in a simulation plugin (ABI version 2): the truth's
+// sampled_observation(t, C0, C, Uv), each filter's predict and update behind the ABI's signatures,
+// the period and the table of pfgen_plugin_sampled_filter.
+#include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
+#include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
+#include "pfgen/codegen/backends/cpp/truth_codegen.hpp"
+#include "pfgen/codegen/backends/cpp/truth_functions.hpp"
+#include "pfgen/observations/sampled/sampled_code.hpp"
+
+namespace pfgen::codegen {
+namespace {
+
+// The sampled filters' table: substeps from each filter's own header (the model's, or NAME@S's).
+std::string sampled_filter_table(const Model& model, const std::vector<std::string>& names,
+                                 const std::vector<std::string>& labels) {
+  if (names.empty()) return "";
+  const std::string count = std::to_string(names.size());
+  std::string out = "  static const std::array<pfgen_plugin_sampled_filter, " + count + "> sampled_filters = [] {\n" +
+                    "    std::array<pfgen_plugin_sampled_filter, " + count + "> list{};\n";
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string item = "    list[" + std::to_string(k) + "].";
+    const std::string ns = "F" + std::to_string(k);
+    out += "    namespace " + ns + " = " + plugin_filter_namespace(model, names[k]) + ";\n";
+    out += item + "name = " + plugin_c_string(labels[k]) + ";\n";
+    out += item + "n = " + ns + "::n;\n";
+    out += item + "p = " + ns + "::p;\n";
+    out += item + "state_size = " + ns + "::state_size;\n";
+    out += item + "substeps = " + ns + "::substeps;\n";
+    out += item + "initial_state = &pfgen_simulation::entry::" + names[k] + "_initial_state;\n";
+    out += item + "predict = &pfgen_simulation::entry::" + names[k] + "_predict;\n";
+    out += item + "update = &pfgen_simulation::entry::" + names[k] + "_update;\n";
+  }
+  return out + "    return list;\n  }();\n";
+}
+
+}  // namespace
+
+// C0, C and Uv in one function of t: entry k of C0, then of C, then of Uv. The observation's
+// matrices do not depend on t where the runtime asks (TruthCode's default).
+void SampledCode::truth_observation(const Model& model, TruthNames& names, TruthCode& code) const {
+  const SampledObservation& sampled = model.observation.sampled();
+  code.r = sampled.Uv.empty() ? 0 : sampled.Uv.front().size();
+  code.definitions +=
+      matrices_function(model, names, "sampled_observation", {{"C0", ExMatrix{sampled.C0}}, {"C", sampled.C}, {"Uv", sampled.Uv}});
+}
+
+// The ABI's predict and update have no parameters argument: the model's defaults.
+std::string SampledCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names) const {
+  std::string out;
+  for (const auto& name : names) {
+    const std::string alias = "  namespace F = " + plugin_filter_namespace(model, name) + ";\n";
+    out += "void " + name + "_initial_state(double* state) {\n" + alias + "  F::initial_state(state);\n}\n";
+    out += "void " + name + "_predict(double* state, double t, double dt) {\n" + alias +
+           "  F::predict(state, t, dt, F::Params<double>{});\n}\n";
+    out += "int " + name + "_update(double* state, double t, const double* y) {\n" + alias +
+           "  return F::update(state, t, y, F::Params<double>{}) ? 1 : 0;\n}\n\n";
+  }
+  return out;
+}
+
+std::map<std::string, std::string> SampledCode::plugin_table(const Model& model, const std::vector<std::string>& names,
+                                                             const std::vector<std::string>& labels,
+                                                             std::optional<double>) const {
+  return {
+      {"filter_table", sampled_filter_table(model, names, labels)},
+      {"observation_is_sampled", "1"},
+      {"period", CppEmitter(ScalarMode::Double).literal(model.observation.sampled().period)},
+      {"sampled_observation", "&pfgen_simulation::truth::sampled_observation"},
+      {"sampled_filter_count", std::to_string(names.size())},
+      {"sampled_filters", names.empty() ? "nullptr" : "sampled_filters.data()"},
+  };
+}
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,222 @@
+#include "pfgen/printing/rate_report.hpp"
+
+#include <ostream>
+#include <sstream>
+
+#include "pfgen/derivation/unscented.hpp"
+#include "pfgen/notation/latex_line_breaker.hpp"
+#include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/rich_text.hpp"
+#include "pfgen/notation/text_printer.hpp"
+#include "pfgen/printing/definitions_report.hpp"
+#include "pfgen/printing/noise_report.hpp"
+#include "pfgen/printing/report_parts.hpp"
+#include "pfgen/printing/risk_report.hpp"
+
+namespace pfgen {
+namespace {
+
+std::vector<ReportPart> P_parts(const FilterEquations& eq, std::size_t u) {
+  return {{&eq.P_moment[u]}, {&eq.P_diffusion[u]}, {&eq.P_correction[u], true}};
+}
+
+bool is_single_term(const Polynomial& p) { return p.terms().size() <= 1; }
+
+// The ukf's points and weights (docs/theory.md §2.8) and its dP terms, sums over the points.
+std::string sigma_point_header_text(const FilterEquations& eq, const std::string& correction_words) {
+  const SigmaPointWeights w = sigma_point_weights(eq.n());
+  std::ostringstream c, w0, wi;
+  c << w.c;
+  w0 << w.w0;
+  wi << w.w;
+  return "sigma points: X_0 = m, X_j = m + sqrt(" + c.str() + ") L_j, X_(n+j) = m - sqrt(" + c.str() +
+         ") L_j (j = 1.." + std::to_string(eq.n()) + ", L_j column j of L, L L^T = P: the definitions below); weights w_0 = " +
+         w0.str() + ", w_i = " + wi.str() + "\n" +
+         "dP terms: [sum_i w_i ((X_i-m) f(X_i)^T + f(X_i) (X_i-m)^T)] + [sum_i w_i g(X_i) g(X_i)^T] - [" +
+         correction_words + "]\n\n";
+}
+
+// The same in LaTeX, before the equations.
+std::string sigma_point_paragraph_latex(const FilterEquations& eq) {
+  const SigmaPointWeights w = sigma_point_weights(eq.n());
+  const LatexPrinter printer;
+  const std::string c = printer.print(w.c);
+  return "\\noindent Unscented filter: sigma points $X_0 = m$, $X_j = m + \\sqrt{" + c + "}\\,L_j$, $X_{n+j} = m - \\sqrt{" +
+         c + "}\\,L_j$ ($j = 1, \\ldots, " + std::to_string(eq.n()) +
+         "$; $L_j$ the $j$-th column of the Cholesky factor $L$ of $P$, $L L^T = P$, whose entries are defined "
+         "below), weights $w_0 = " + printer.print(w.w0) + "$, $w_i = " + printer.print(w.w) +
+         "$; $dP/dt = \\sum_i w_i \\left((X_i - m) f(X_i)^T + f(X_i) (X_i - m)^T + g(X_i) g(X_i)^T\\right) - "
+         "P A^T (B B^T)^{-1} A P$.\n\n";
+}
+
+// The variables line (m = E[x], P its covariance), the observation's header lines and which terms
+// make up dP.
+std::string mean_square_header_text(const Model& model, const FilterEquations& eq, const std::string& observation_lines,
+                                    const std::string& correction_words) {
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n();
+  std::string out = "variables: ";
+  for (std::size_t i = 0; i < n; ++i)
+    out += (i ? ", " : "") + vars.text_name(vars.m(i)) + " = E[" + model.state_names[i] + "]";
+  out += "; P = covariance of (";
+  for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
+  out += ")\n";
+  out += observation_lines;
+  if (eq.kind && uses_sigma_points(*eq.kind)) return out + sigma_point_header_text(eq, correction_words);
+  out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
+                              : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [" + correction_words + "]\n\n";
+  return out;
+}
+
+// With a sink, `out` is written to it whenever it passes a megabyte.
+void drain(std::string& out, std::ostream* sink) {
+  if (sink == nullptr || out.size() < (1u << 20)) return;
+  sink->write(out.data(), static_cast<std::streamsize>(out.size()));
+  out.clear();
+}
+
+}  // namespace
+
+std::string RateReport::header_text(const FilterEquations&) const { return {}; }
+std::string RateReport::trailing_text(const FilterEquations&) const { return {}; }
+std::string RateReport::paragraph_latex(const FilterEquations&) const { return {}; }
+std::vector<std::string> RateReport::trailing_latex(const FilterEquations&) const { return {}; }
+void RateReport::add_json(const FilterEquations&, Json&) const {}
+
+std::string RateReport::text(const Model& model, const FilterEquations& eq, std::ostream* sink) const {
+  TextPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  PolynomialWriter writer(printer, name);
+  const std::size_t n = eq.n();
+  const std::vector<Polynomial>& h = eq.predicted_observation;
+
+  std::string out;
+  out += "model: " + model.name + "\n";
+  out += noise_text(model);
+  out += "filter: " + eq.name + " (" + rich_text_plain(eq.description) + ")\n";
+  out += "exactness: " + exactness_text(eq.exactness) + "\n";
+  out += is_risk_sensitive_report(eq)
+             ? risk_header_text(model, eq)
+             : mean_square_header_text(model, eq, header_text(eq), correction_words_text(eq));
+  out += definitions_text(eq);
+  for (std::size_t i = 0; i < n; ++i) {
+    out += "dm" + std::to_string(i + 1) + " = (";
+    writer.append(out, eq.m_drift[i]);
+    out += ") dt";
+    for (std::size_t r = 0; r < eq.p; ++r) {
+      std::string predicted = writer.print(h[r]);
+      if (!is_single_term(h[r])) predicted = "(" + predicted + ")";
+      out += " + K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " (dy" + std::to_string(r + 1) + " - " +
+              predicted + " dt)";
+    }
+    out += "\n";
+    drain(out, sink);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t r = 0; r < eq.p; ++r) {
+      out += "K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " = " + writer.print(eq.gain[i][r]) + "\n";
+      drain(out, sink);
+    }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      out += "d" + vars.text_name(vars.P(i, j)) + " = (";
+      append_parts(out, writer, P_parts(eq, vars.upper_index(i, j)));
+      out += ") dt\n";
+      drain(out, sink);
+    }
+  out += trailing_text(eq);
+  return out;
+}
+
+std::string RateReport::latex(const FilterEquations& eq) const {
+  LatexPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return latex_variable_name(vars, v); };
+  PolynomialWriter writer(printer, name);
+  const std::size_t n = eq.n();
+  const std::vector<Polynomial>& h = eq.predicted_observation;
+  auto K = [](std::size_t i, std::size_t r) { return "K_{" + std::to_string(i + 1) + "," + std::to_string(r + 1) + "}"; };
+
+  std::string out = exactness_latex(eq.exactness);
+  out += paragraph_latex(eq);
+  if (is_risk_sensitive_report(eq)) out += risk_paragraph_latex(eq);
+  if (eq.kind && uses_sigma_points(*eq.kind)) out += sigma_point_paragraph_latex(eq);
+  out += "\\begin{align*}\n";
+  // Each right-hand side is cut into lines that fit the page (latex_line_breaker).
+  std::vector<std::string> lines = definitions_latex_lines(eq);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::string rhs = "\\left(" + writer.print(eq.m_drift[i]) + "\\right)dt";
+    for (std::size_t r = 0; r < eq.p; ++r)
+      rhs += " + " + K(i, r) + "\\left(dy_{" + std::to_string(r + 1) + "} - " +
+             (is_single_term(h[r]) ? writer.print(h[r]) : "\\left(" + writer.print(h[r]) + "\\right)") +
+             "\\,dt\\right)";
+    lines.push_back(latex_align_lines("dm_{" + std::to_string(i + 1) + "}", rhs));
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t r = 0; r < eq.p; ++r) lines.push_back(latex_align_lines(K(i, r), writer.print(eq.gain[i][r])));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j)
+      lines.push_back(latex_align_lines("\\frac{d" + vars.latex_name(vars.P(i, j)) + "}{dt}",
+                                        join_parts(writer, P_parts(eq, vars.upper_index(i, j)))));
+  for (std::string& line : trailing_latex(eq)) lines.push_back(std::move(line));
+  for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
+  out += "\\end{align*}\n";
+  return out;
+}
+
+Json RateReport::json(const Model& model, const FilterEquations& eq) const {
+  TextPrinter printer;
+  const FilterVariables& vars = eq.variables;
+  auto name = [&](std::uint32_t v) { return vars.text_name(v); };
+  PolynomialWriter writer(printer, name);
+  const std::size_t n = eq.n();
+
+  const Json exactness = exactness_json(eq.exactness);
+
+  Json variables = Json::array();
+  for (std::size_t v = 0; v < vars.count(); ++v) variables.push(Json::string(vars.text_name(static_cast<std::uint32_t>(v))));
+  Json m_drift = Json::array();
+  for (const auto& p : eq.m_drift) m_drift.push(Json::string(writer.print(p)));
+  Json gain = Json::array();
+  for (std::size_t i = 0; i < n; ++i) {
+    Json row = Json::array();
+    for (std::size_t r = 0; r < eq.p; ++r) row.push(Json::string(writer.print(eq.gain[i][r])));
+    gain.push(row);
+  }
+  // P is symmetric and P_drift(i, j) is P_drift(j, i): each entry of the upper triangle is
+  // summed and printed once, then written in both places of the full matrix.
+  std::vector<Json> P_upper(n * (n + 1) / 2);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      std::string text;  // P_drift(i, j), merged as FilterEquations::P_drift sums it
+      writer.append_sum(text, P_parts(eq, vars.upper_index(i, j)));
+      P_upper[vars.upper_index(i, j)] = Json::string(std::move(text));
+    }
+  Json P_drift = Json::array();
+  for (std::size_t i = 0; i < n; ++i) {
+    Json row = Json::array();
+    for (std::size_t j = 0; j < n; ++j) row.push(P_upper[vars.upper_index(i, j)]);
+    P_drift.push(row);
+  }
+  Json predicted = Json::array();
+  for (const auto& h : eq.predicted_observation) predicted.push(Json::string(writer.print(h)));
+
+  Json out = Json::object();
+  out.add("model", Json::string(model.name));
+  add_noise_json(model, out);
+  out.add("filter", Json::string(eq.name));
+  out.add("description", Json::string(rich_text_plain(eq.description)));
+  out.add("exactness", exactness);
+  out.add("variables", variables);
+  add_definitions_json(eq, out);
+  out.add("m_drift", m_drift);
+  out.add("gain", gain);
+  out.add("predicted_observation", predicted);
+  out.add("P_drift", P_drift);
+  add_json(eq, out);
+  if (is_risk_sensitive_report(eq)) add_risk_json(eq, out);
+  return out;
+}
+
+}  // namespace pfgen
