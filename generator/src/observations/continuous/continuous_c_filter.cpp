@@ -10,13 +10,8 @@ GeneratedFilter ContinuousCode::c_filter(const Model& model, const FilterEquatio
   const ContinuousFunctions f = continuous_functions(model, eq, options, w.names, w.emitter);
   w.result.functions = {f.derivatives.stats, f.gain.stats, f.observation.stats};
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count());
-  CFilterWriter::add_function(values, "derivatives", f.derivatives);
-  CFilterWriter::add_function(values, "gain", f.gain);
-  CFilterWriter::add_function(values, "observation", f.observation);
-  values.insert({{"K", w.names.K},
-                 {"h", w.names.h},
-                 {"gain_meaning", gain_meaning(eq)},
-                 {"initial_body", c_initial_body(initial_values(model, eq.variables), w.emitter)}});
+  add_rate_function_values(values, f, w.names, eq, true);
+  values.emplace("initial_body", c_initial_body(initial_values(model, eq.variables), w.emitter));
   w.write("filter", values, {}, {});
   return w.result;
 }

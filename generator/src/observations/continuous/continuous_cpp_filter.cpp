@@ -22,17 +22,9 @@ GeneratedFilter ContinuousCode::cpp_filter(const Model& model, const FilterEquat
                                                                   eq.p, vars.count(), names, emitter);
   values.insert({
       {"banner", filter_banner(model, eq, options, result, "pfgen codegen")},
-      {"K", names.K},
-      {"h", names.h},
-      {"derivatives_ops", ops_comment(functions.derivatives.stats)},
-      {"derivatives_body", functions.derivatives.body.statements},
-      {"gain_meaning", gain_meaning(eq)},
-      {"gain_ops", ops_comment(functions.gain.stats)},
-      {"gain_body", functions.gain.body.statements},
-      {"observation_ops", ops_comment(functions.observation.stats)},
-      {"observation_body", functions.observation.body.statements},
       {"initial_body", cpp_initial_body(initial_values(model, vars), emitter)},
   });
+  add_rate_function_values(values, functions, names, eq, false);
   result.files.at(0).contents = fill_template("cpp/filter.hpp.tmpl", embedded_template("cpp/filter.hpp.tmpl"), values);
   add_eigen_layer(result, "cpp/filter_eigen.hpp.tmpl", model, eq, options, values);
   return result;

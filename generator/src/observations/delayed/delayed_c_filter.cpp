@@ -69,15 +69,10 @@ GeneratedFilter DelayedCode::c_filter(const Model& model, const FilterEquations&
   w.result.functions = {f.derivatives.stats, f.gain.stats, f.observation.stats};
   const std::string extra = delay_banner_line(eq, steps, *options.grid_step);
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count() + (x_star ? n : 0), extra);
-  CFilterWriter::add_function(values, "derivatives", f.derivatives);
-  CFilterWriter::add_function(values, "gain", f.gain);
-  CFilterWriter::add_function(values, "observation", f.observation);
+  add_rate_function_values(values, f, w.names, eq, true);
   const std::size_t width = x_star ? 2 * n : n, history = steps.steps * width;
   const DelayedParts parts = delayed_parts(w.prefix, w.emitter.scalar_type(), steps.steps, x_star, w.emitter);
   values.insert({{"delayed", w.names.delayed},
-                 {"K", w.names.K},
-                 {"h", w.names.h},
-                 {"gain_meaning", gain_meaning(eq)},
                  {"history_what", x_star ? " and x*" : ""},
                  {"prehistory_x_star", x_star ? " and x*(s) = m0" : ""},
                  {"out_x_star", x_star ? ", x* drift f(x*, t)" : ""},

@@ -48,17 +48,9 @@ GeneratedFilter DelayedCode::cpp_filter(const Model& model, const FilterEquation
       {"out_x_star", x_star ? ", x* drift f(x*, t)" : ""},
       {"initial_x_star", x_star ? ", and x*(0) = m0" : ""},
       {"delayed", names.delayed},
-      {"K", names.K},
-      {"h", names.h},
-      {"derivatives_ops", ops_comment(functions.derivatives.stats)},
-      {"derivatives_body", functions.derivatives.body.statements},
-      {"gain_meaning", gain_meaning(eq)},
-      {"gain_ops", ops_comment(functions.gain.stats)},
-      {"gain_body", functions.gain.body.statements},
-      {"observation_ops", ops_comment(functions.observation.stats)},
-      {"observation_body", functions.observation.body.statements},
       {"initial_body", cpp_initial_body(initial_values(model, vars, x_star), emitter)},
   });
+  add_rate_function_values(values, functions, names, eq, false);
   result.files.at(0).contents =
       fill_template("cpp/delayed_filter.hpp.tmpl", embedded_template("cpp/delayed_filter.hpp.tmpl"), values);
   return result;

@@ -38,6 +38,13 @@ ContinuousFunctions continuous_functions(const Model& model, const FilterEquatio
 // What gain() computes, for the templates' comment.
 std::string gain_meaning(const FilterEquations& eq);
 
+// The placeholders every rate filter's templates (filter and delayed_filter, C++ and C) have for
+// these functions: `derivatives`, `gain` and `observation` each with `_ops` and `_body` (and with
+// `split_parts`, `_helpers`: C's parts of a split body, which precede the function), the output
+// arrays' names `K` and `h`, and `gain_meaning`. Added to `values` without replacing any.
+void add_rate_function_values(std::map<std::string, std::string>& values, const ContinuousFunctions& functions,
+                              const FunctionNames& names, const FilterEquations& eq, bool split_parts);
+
 // The truth's observation(t, A0, A, B) of these rate terms (a delayed observation has the same;
 // the runtime applies them to x(t - h)), and TruthCode's r and observation_is_constant.
 void rate_truth_observation(const Model& model, const ContinuousObservation& observation, TruthNames& names,
