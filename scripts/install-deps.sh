@@ -9,6 +9,8 @@ packages=(
   libeigen3-dev                        # numerics in the validator and the simulation runtime
   libyaml-cpp-dev libcli11-dev         # model files, command line
   catch2                               # tests
+  python3-dev pybind11-dev             # the Python module (python/), built with pybind11
+  python3-numpy python3-sympy python3-pytest  # its arrays, Filter.to_sympy, and its tests
   texlive-latex-base                   # pdflatex for `pfgen latex` documents
   poppler-utils                        # pdftoppm: tests render LaTeX pages to check the layout
   gnuplot-nox                          # `pfgen simulate --plot` (error plots, PNG via cairo or SVG)

@@ -6,8 +6,12 @@
 #      the runtime on 100 simulated truths, beats the trivial estimate (m held at m0) clearly;
 #   4. a second build does not regenerate; editing the model copy regenerates, rebuilds and changes
 #      the result;
-#   5. the same project against the build tree's package (pfgen_DIR=<build dir>) prints the same.
-# Inputs: PFGEN_BUILD_DIR, PFGEN_SOURCE_DIR, WORK_DIR.
+#   5. the same project against the build tree's package (pfgen_DIR=<build dir>) prints the same;
+#   6. the public C++ API: only <pfgen/pfgen.hpp> of the generator's headers is installed;
+#      examples/api_derive.cpp (examples/api_project) builds against the installed pfgen::generator
+#      and prints what the installed pfgen prints (derive, eval, the error line); and the installed
+#      Python module imports from the prefix (when PFGEN_PYTHON, its interpreter, is given).
+# Inputs: PFGEN_BUILD_DIR, PFGEN_SOURCE_DIR, WORK_DIR; PFGEN_PYTHON, PFGEN_PYTHON_DIR optional.
 foreach(input PFGEN_BUILD_DIR PFGEN_SOURCE_DIR WORK_DIR)
   if(NOT DEFINED ${input})
     message(FATAL_ERROR "consumer_project.cmake: -D${input}=... is required")
@@ -136,5 +140,41 @@ if(NOT tree_out STREQUAL first_out)
   message(FATAL_ERROR "build-tree package and installed package differ:\n${tree_out}\n---\n${first_out}")
 endif()
 
-message(STATUS "consumer project: installed and build-tree packages, regeneration on model change: OK\n${first_out}")
+# 6. The public C++ API and the Python module, installed.
+file(GLOB installed_headers RELATIVE "${prefix}/include/pfgen" "${prefix}/include/pfgen/*")
+if(NOT installed_headers STREQUAL "pfgen.hpp" OR NOT EXISTS "${prefix}/lib/libpfgen_api.a")
+  message(FATAL_ERROR "the generator installs <pfgen/pfgen.hpp> and libpfgen_api.a only; include/pfgen holds: ${installed_headers}")
+endif()
+set(api_build "${WORK_DIR}/build-api")
+run(configure_api COMMAND "${CMAKE_COMMAND}" -S "${PFGEN_SOURCE_DIR}/examples/api_project" -B "${api_build}"
+    -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS=-Wall -Wextra -Werror" "-DCMAKE_PREFIX_PATH=${prefix}")
+run(build_api COMMAND "${CMAKE_COMMAND}" --build "${api_build}")
+set(quadratic "${PFGEN_SOURCE_DIR}/examples/basin2006_quadratic.yaml")
+run(api_built COMMAND "${api_build}/api_derive")
+run(api_loaded COMMAND "${api_build}/api_derive" "${quadratic}")
+run(derive COMMAND "${prefix}/bin/pfgen" derive "${quadratic}")
+execute_process(COMMAND "${prefix}/bin/pfgen" eval "${quadratic}" --filter optimal --m 0.5 --P 1
+                OUTPUT_VARIABLE eval_out)
+string(FIND "${api_built_out}" "${derive_out}eval at m = 0.5, P = I: ${eval_out}\nbasin2006_quadratic/optimal.h: " at)
+if(NOT at EQUAL 0 OR NOT api_loaded_out STREQUAL api_built_out)
+  message(FATAL_ERROR "api_derive does not print what pfgen derive and pfgen eval print:\n${api_built_out}\n---\n"
+                      "${api_loaded_out}\n--- pfgen:\n${derive_out}${eval_out}")
+endif()
+execute_process(COMMAND "${api_build}/api_derive" "${WORK_DIR}/missing.yaml" ERROR_VARIABLE api_error RESULT_VARIABLE api_result)
+execute_process(COMMAND "${prefix}/bin/pfgen" derive "${WORK_DIR}/missing.yaml" ERROR_VARIABLE pfgen_error)
+string(REPLACE "pfgen: " "api_derive: " pfgen_error "${pfgen_error}")
+if(api_result EQUAL 0 OR NOT api_error STREQUAL pfgen_error)
+  message(FATAL_ERROR "api_derive's error is not pfgen's: ${api_error} --- ${pfgen_error}")
+endif()
+if(PFGEN_PYTHON)
+  set(package "${prefix}/${PFGEN_PYTHON_DIR}")
+  run(python COMMAND "${CMAKE_COMMAND}" -E env "PYTHONPATH=${package}" "${PFGEN_PYTHON}" -c
+      "import pfgen; print(pfgen.__file__); print(pfgen.Model.load('${quadratic}').derive('optimal').text, end='')")
+  if(NOT python_out STREQUAL "${package}/pfgen/__init__.py\n${derive_out}")
+    message(FATAL_ERROR "the installed Python module does not derive as pfgen does:\n${python_out}")
+  endif()
+endif()
+
+message(STATUS "consumer project: installed and build-tree packages, regeneration on model change, "
+               "the C++ API and the Python module installed: OK\n${first_out}")
 file(REMOVE_RECURSE "${WORK_DIR}")

@@ -62,14 +62,13 @@ void write_file_atomically(const std::string& option, const std::string& path, c
   }
 }
 
-int run_codegen(const CodegenCliOptions& options) {
-  if (options.output_dir.empty() && !options.stats) throw CliValueError("-o: give an output directory (or --stats)");
-  Model model = load_model_file(options.model_path);
+CodegenJob codegen_job(const CodegenCliOptions& options, const Model& model) {
   if (!std::regex_match(options.name_space, std::regex("[A-Za-z_][A-Za-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)*")))
     throw CliValueError("--namespace: '" + options.name_space + "' is not a C++ namespace name");
   for (const auto& part : split(std::regex_replace(options.name_space, std::regex("::"), ":"), ':'))
     if (auto problem = namespace_name_problem(part)) throw CliValueError("--namespace: " + *problem);
-  codegen::CodegenOptions codegen_options;
+  CodegenJob job;
+  codegen::CodegenOptions& codegen_options = job.options;
   codegen_options.language = options.language == "c" ? codegen::Language::C : codegen::Language::Cpp;
   const bool c = codegen_options.language == codegen::Language::C;
   if (c && options.scalar_given && options.scalar == "template")
@@ -91,44 +90,65 @@ int run_codegen(const CodegenCliOptions& options) {
   codegen_options.grid_step = options.dt ? options.dt : model.simulation.dt;
   if (options.dt && !(*options.dt > 0 && std::isfinite(*options.dt)))
     throw CliValueError("--dt: the step must be positive and finite");
-  const std::vector<std::string> names = parse_filter_list("--filter", options.filters, model);
+  job.names = parse_filter_list("--filter", options.filters, model);
+  return job;
+}
+
+void check_code_paths(const Model& model, const CodegenJob& job, const std::string& output_dir,
+                      const std::string& model_path) {
   // The files' names follow from the model's and the filters' names (filter_file_paths), so
   // they are checked before any derivation: a file must not replace the model file, nor one
   // filter's file another's (a user filter `optimal-eigen` and optimal's Eigen wrapper are both
   // optimal_eigen.hpp).
+  const bool c = job.options.language == codegen::Language::C;
   std::vector<NamedPath> written;
-  if (!options.output_dir.empty())
-    for (const std::string& name : names) {
-      const std::vector<std::string> paths = codegen::filter_file_paths(model.name, name, codegen_options);
-      for (std::size_t k = 0; k < paths.size(); ++k)
-        written.push_back({"-o (filter " + name + (k == 0 || c ? ")" : ", --eigen)"),
-                           (std::filesystem::path(options.output_dir) / paths[k]).string()});
-    }
-  check_distinct_outputs({{"the model file", options.model_path}}, written);
-  // Everything is generated in memory first: a failure leaves no partial output.
-  std::vector<codegen::GeneratedFilter> files;
-  for (const std::string& name : names)
-    files.push_back(codegen::generate_filter_code(model, derive_named_filter(model, name), codegen_options));
-  if (!options.output_dir.empty()) {
-    // All the files or none: a directory in the way of the last file left the first ones
-    // written. Checked, then every temporary written, then renamed (write_files_together).
-    std::vector<std::pair<std::string, std::string>> outputs;
-    for (const auto& filter : files)
-      for (const auto& file : filter.files)
-        outputs.emplace_back((std::filesystem::path(options.output_dir) / file.relative_path).string(), file.contents);
-    for (const auto& output : outputs) {  // one directory, DIR/<model>
-      const std::filesystem::path directory = std::filesystem::path(output.first).parent_path();
-      std::error_code error;
-      std::filesystem::create_directories(directory, error);
-      if (error) throw CliValueError("-o: cannot create directory '" + directory.string() + "'");
-    }
-    try {
-      pfgen_support::write_files_together(outputs);
-    } catch (const pfgen_support::AtomicWriteError& e) {
-      const bool none_written = e.stage() != pfgen_support::AtomicWriteError::Stage::rename;
-      throw CliValueError(std::string("-o: ") + e.what() + (none_written ? "; no header was written" : ""));
-    }
+  for (const std::string& name : job.names) {
+    const std::vector<std::string> paths = codegen::filter_file_paths(model.name, name, job.options);
+    for (std::size_t k = 0; k < paths.size(); ++k)
+      written.push_back({"-o (filter " + name + (k == 0 || c ? ")" : ", --eigen)"),
+                         (std::filesystem::path(output_dir) / paths[k]).string()});
   }
+  std::vector<NamedPath> read;
+  if (!model_path.empty()) read.push_back({"the model file", model_path});
+  check_distinct_outputs(read, written);
+}
+
+std::vector<codegen::GeneratedFilter> generate_code(const Model& model, const CodegenJob& job) {
+  std::vector<codegen::GeneratedFilter> files;
+  for (const std::string& name : job.names)
+    files.push_back(codegen::generate_filter_code(model, derive_named_filter(model, name), job.options));
+  return files;
+}
+
+void write_code(const std::string& output_dir, const std::vector<codegen::GeneratedFilter>& files) {
+  // All the files or none: a directory in the way of the last file left the first ones
+  // written. Checked, then every temporary written, then renamed (write_files_together).
+  std::vector<std::pair<std::string, std::string>> outputs;
+  for (const auto& filter : files)
+    for (const auto& file : filter.files)
+      outputs.emplace_back((std::filesystem::path(output_dir) / file.relative_path).string(), file.contents);
+  for (const auto& output : outputs) {  // one directory, DIR/<model>
+    const std::filesystem::path directory = std::filesystem::path(output.first).parent_path();
+    std::error_code error;
+    std::filesystem::create_directories(directory, error);
+    if (error) throw CliValueError("-o: cannot create directory '" + directory.string() + "'");
+  }
+  try {
+    pfgen_support::write_files_together(outputs);
+  } catch (const pfgen_support::AtomicWriteError& e) {
+    const bool none_written = e.stage() != pfgen_support::AtomicWriteError::Stage::rename;
+    throw CliValueError(std::string("-o: ") + e.what() + (none_written ? "; no header was written" : ""));
+  }
+}
+
+int run_codegen(const CodegenCliOptions& options) {
+  if (options.output_dir.empty() && !options.stats) throw CliValueError("-o: give an output directory (or --stats)");
+  Model model = load_model_file(options.model_path);
+  const CodegenJob job = codegen_job(options, model);
+  if (!options.output_dir.empty()) check_code_paths(model, job, options.output_dir, options.model_path);
+  // Everything is generated in memory first: a failure leaves no partial output.
+  const std::vector<codegen::GeneratedFilter> files = generate_code(model, job);
+  if (!options.output_dir.empty()) write_code(options.output_dir, files);
   if (options.stats) {
     auto counts = [](const codegen::OpCounts& c) {
       Json o = Json::object();
@@ -225,9 +245,16 @@ int run_latex(const LatexOptions& options) {
 }
 
 int run_eval(const EvalOptions& options) {
-  Model model = load_model_file(options.model_path);
+  std::cout << evaluate_filter(load_model_file(options.model_path), options).json;
+  return 0;
+}
+
+EvalOutcome evaluate_filter(Model model, const EvalOptions& options, const FilterEquations* derived) {
   apply_parameter_assignments(model, options.assignments);
-  FilterEquations eq = derive_named_filter(model, single_filter(options.filter, model));
+  // Without --set the model is the one `derived` (the caller's) was derived from: no need to derive again.
+  const std::string name = single_filter(options.filter, model);
+  const bool reuse = derived && options.assignments.empty() && derived->name == name;
+  const FilterEquations eq = reuse ? *derived : derive_named_filter(model, name);
   EvaluationPoint point;
   point.t = parse_number("--t", options.t);
   point.m = parse_number_list("--m", options.m);
@@ -239,14 +266,18 @@ int run_eval(const EvalOptions& options) {
   point.x_star = optional_list("--x-star", options.x_star);
   point.x_star_delayed = optional_list("--x-star-delayed", options.x_star_delayed);
   point.phi = optional_list("--phi", options.phi);
-  EvaluatedFilter value = evaluate_at(model, eq, point);
+  EvalOutcome outcome;
+  outcome.value = evaluate_at(model, eq, point);
+  outcome.json = eval_json(model, eq, outcome.value);
+  return outcome;
+}
 
+std::string eval_json(const Model& model, const FilterEquations& eq, const EvaluatedFilter& value) {
   Json out = Json::object();
   out.add("model", Json::string(model.name));
   out.add("filter", Json::string(eq.name));
   observation_command(eq.observation).add_eval_json(eq, value, out);
-  std::cout << out.dump();
-  return 0;
+  return out.dump();
 }
 
 }  // namespace pfgen::cli

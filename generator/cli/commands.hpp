@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "pfgen/codegen/filter_codegen.hpp"
+#include "pfgen/evaluation/point_evaluator.hpp"
+#include "pfgen/model/model.hpp"
+
 namespace pfgen::cli {
 
 struct DeriveOptions {
@@ -50,9 +54,34 @@ struct CodegenCliOptions {
 };
 
 int run_codegen(const CodegenCliOptions& options);
+
+// codegen's steps, which the API takes one by one too. codegen_job: the options checked and made
+// the generator's (--namespace, --language with --scalar and --eigen, --dt) and the filters named
+// (--filter); a note on stderr when --eigen has nothing to wrap. check_code_paths: no file would
+// replace the model file (model_path, when not empty) or another filter's file. generate_code: every
+// filter's files, in memory. write_code: all of them under output_dir, or none.
+struct CodegenJob {
+  codegen::CodegenOptions options;
+  std::vector<std::string> names;
+};
+CodegenJob codegen_job(const CodegenCliOptions& options, const Model& model);
+void check_code_paths(const Model& model, const CodegenJob& job, const std::string& output_dir,
+                      const std::string& model_path);
+std::vector<codegen::GeneratedFilter> generate_code(const Model& model, const CodegenJob& job);
+void write_code(const std::string& output_dir, const std::vector<codegen::GeneratedFilter>& files);
 int run_derive(const DeriveOptions& options);
 int run_latex(const LatexOptions& options);
 int run_eval(const EvalOptions& options);
+// eval's work once the model is read: --set applied (the model checked again), the filter
+// derived, or `derived` taken when it is that filter and nothing is --set, and evaluated at the point.
+struct EvalOutcome {
+  EvaluatedFilter value;
+  std::string json;  // what `pfgen eval` prints
+};
+EvalOutcome evaluate_filter(Model model, const EvalOptions& options, const FilterEquations* derived = nullptr);
+// What `pfgen eval` prints: the model's and the filter's names, then the values as the filter's
+// observation module lays them out.
+std::string eval_json(const Model& model, const FilterEquations& eq, const EvaluatedFilter& value);
 
 // Writes `contents` to `path` through a temporary file and a rename, so that a
 // failure never leaves a partial output file behind (pfgen_support::write_file_atomically;

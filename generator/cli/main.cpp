@@ -30,12 +30,7 @@
 namespace {
 
 // Every error is reported on exactly one line of stderr.
-std::string one_line(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
-  for (char& c : text)
-    if (c == '\n' || c == '\r') c = ' ';
-  return text;
-}
+using pfgen_support::one_line;
 
 // A report that did not reach standard output (`pfgen derive m.yaml > /dev/full`: ENOSPC) is a
 // failure, not a success with nothing printed.

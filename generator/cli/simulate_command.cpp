@@ -67,7 +67,7 @@ unsigned thread_count(unsigned requested, std::size_t runs) {
 // The time series (record points) only feed the CSV and the plot: without either, each run records
 // its two ends only, so --record-points 10000000 costs nothing it does not write.
 std::size_t effective_record_points(const SimulateOptions& options, const SimulationSettings& s) {
-  return options.csv_path.empty() && options.plot_path.empty() ? 1 : s.record_points;
+  return options.csv_path.empty() && options.plot_path.empty() && !options.keep_series ? 1 : s.record_points;
 }
 
 // Half the machine's memory, and never more than 8 GiB.
@@ -224,7 +224,7 @@ class SilentStderr {
 PreparedJob prepare(const SimulateOptions& options, bool speaks, Clock::time_point start) {
   const SilentStderr quiet(!speaks);
   if (speaks) check_output_paths(options);
-  Model model = load_model_file(options.model_path);
+  Model model = options.model ? *options.model : load_model_file(options.model_path);
   // --set a=0.2: the job's value of a, compiled into the plugin as its default (so a new value
   // is a new source, and a new cache entry).
   apply_parameter_assignments(model, options.assignments);
@@ -376,7 +376,7 @@ int run_simulate(const SimulateOptions& options) {
   return run_simulate(options, alone);
 }
 
-int run_simulate(const SimulateOptions& options, JobGroup& group) {
+SimulationOutcome simulate(const SimulateOptions& options, JobGroup& group) {
   const Clock::time_point start = Clock::now();
   const bool speaks = group.speaks();
   const bool talk = speaks && !options.quiet;  // stderr's messages: one process's only
@@ -388,7 +388,6 @@ int run_simulate(const SimulateOptions& options, JobGroup& group) {
   const SimulationSettings& settings = job->settings;
   const std::vector<FilterEquations>& filters = job->filters;
   const std::string& source = job->source;
-  const double derive_seconds = job->derive_seconds;
 
   toolchain::PluginBuildOptions build_options;
   build_options.cache_dir = options.cache_dir;
@@ -447,8 +446,28 @@ int run_simulate(const SimulateOptions& options, JobGroup& group) {
     folded = observation_command(model.observation.kind()).run(*scheme, plugin, x0, mc);
   });
   progress.finish();
-  if (!folded->folded) return 0;  // another process of the job writes the outputs
-  const pfgen_runtime::MonteCarloResult& result = *folded;
+  SimulationOutcome outcome{std::move(job->model), job->settings, build, job->derive_seconds, start, std::nullopt};
+  if (folded->folded) outcome.result = std::move(folded);  // else another process of the job has them
+  return outcome;
+}
+
+std::string simulation_report(const SimulateOptions& options, const SimulationOutcome& outcome) {
+  const Model& model = outcome.model;
+  // What the observation adds to the header line (a delayed one's h in steps) and after the table
+  // (its signed errors at the report times); nothing for the others.
+  const ObservationCommand& observation = observation_command(model.observation.kind());
+  return "model: " + model.name + " (" + options.model_path + ")" +
+         observation.header_note(model, outcome.settings.dt) + "\n" +
+         pfgen_runtime::format_summary_table(*outcome.result, model.state_names) +
+         observation.after_table(*outcome.result, model.state_names);
+}
+
+int run_simulate(const SimulateOptions& options, JobGroup& group) {
+  const SimulationOutcome outcome = simulate(options, group);
+  if (!outcome.result) return 0;  // another process of the job writes the outputs
+  const pfgen_runtime::MonteCarloResult& result = *outcome.result;
+  const Model& model = outcome.model;
+  const bool talk = !options.quiet;
 
   // Files first, table last: a failed write must not follow a printed result.
   if (!options.csv_path.empty() || !options.plot_path.empty())
@@ -468,16 +487,12 @@ int run_simulate(const SimulateOptions& options, JobGroup& group) {
 
   // Before the table, like the other files: a failed write must not follow a printed result.
   if (!options.timing_path.empty())
-    write_file_atomically("--timing", options.timing_path, timing_json(result, build, derive_seconds, seconds_since(start)));
+    write_file_atomically("--timing", options.timing_path,
+                          timing_json(result, outcome.build, outcome.derive_seconds, seconds_since(outcome.start)));
 
   // Timing first (stderr), so that the output ends with the table and the paths of the files.
   if (talk) std::cerr << pfgen_runtime::format_timing(result) << std::flush;
-  // What the observation adds to the header line (a delayed one's h in steps) and after the table
-  // (its signed errors at the report times); nothing for the others.
-  const ObservationCommand& observation = observation_command(model.observation.kind());
-  std::cout << "model: " << model.name << " (" << options.model_path << ")" << observation.header_note(model, settings.dt)
-            << "\n" << pfgen_runtime::format_summary_table(result, model.state_names);
-  std::cout << observation.after_table(result, model.state_names);
+  std::cout << simulation_report(options, outcome);
   if (!options.csv_path.empty()) std::cout << "csv: " << options.csv_path << "\n";
   if (!options.criterion_csv_path.empty()) std::cout << "criterion csv: " << options.criterion_csv_path << "\n";
   if (!options.stops_csv_path.empty()) std::cout << "stops csv: " << options.stops_csv_path << "\n";

@@ -1,9 +1,11 @@
 // Runs the examples of a documentation page and compares what they print with what the page
 // shows, so that the README and docs/ stay true (docs/development.md, "Executed documentation").
 //
-//   doc_examples check  PAGE.md --source DIR --bin DIR --build DIR --work DIR [--long]
-//   doc_examples update PAGE.md --source DIR --bin DIR --build DIR --work DIR [--long]
+//   doc_examples check  PAGE.md --source DIR --bin DIR --build DIR --work DIR [--long] [--python FILE]
+//   doc_examples update PAGE.md --source DIR --bin DIR --build DIR --work DIR [--long] [--python FILE]
 //
+// --python: the interpreter the Python module was built for (Debian's python3), which the pages'
+// `python3` then runs, whatever else is earlier on PATH.
 // A page's examples are its fenced code blocks (``` lines):
 //   - a block whose info string holds `file=NAME` (```yaml file=model.yaml) is written to NAME in
 //     the page's scratch directory before the blocks after it run; with `source=PATH` as well it
@@ -15,7 +17,9 @@
 //   - in what a command prints, a line "..." stands for any number of lines, and "[...]" inside a
 //     line for any text: the marks for what varies (timings, paths, dates);
 //   - a block preceded by the line <!-- doc-test: long --> runs only with --long (commands that
-//     take minutes; `cmake --build build --target check-docs-long`).
+//     take minutes; `cmake --build build --target check-docs-long`);
+//   - a block preceded by the line <!-- doc-test: python --> runs only with --python (it runs the
+//     Python module, which a build without it, the sanitizers' for one, does not have).
 // A "$ " line outside a fenced block is an error, so no example escapes the test.
 // The scratch directory holds links to the source tree's examples/, tests/, scripts/ and docs/,
 // and `build` to the build tree (--build), so that pages name paths as a user in the source tree does.
@@ -50,6 +54,7 @@ struct Block {
   std::vector<std::string> body;  // the lines between the fences
   std::size_t body_begin = 0;     // page index of body[0]
   bool long_running = false;
+  bool needs_python = false;
   std::vector<Command> commands;
 };
 
@@ -116,6 +121,7 @@ std::vector<Block> parse_page(const std::string& page_name, const std::vector<st
       const std::string previous = trim_right(lines[back]);
       if (previous.empty()) continue;
       block.long_running = previous.find("<!-- doc-test: long -->") != std::string::npos;
+      block.needs_python = previous.find("<!-- doc-test: python -->") != std::string::npos;
       break;
     }
     std::size_t j = i + 1;
@@ -194,7 +200,7 @@ std::string page_slug(const std::string& page) {
 
 struct Options {
   bool update = false, long_running = false;
-  fs::path source, bin, build, work;
+  fs::path source, bin, build, work, python;
   std::vector<std::string> pages;
 };
 
@@ -214,6 +220,7 @@ Options parse_options(int argc, char** argv) {
     else if (arg == "--bin") options.bin = value();
     else if (arg == "--work") options.work = value();
     else if (arg == "--build") options.build = value();
+    else if (arg == "--python") options.python = value();
     else if (arg == "--long") options.long_running = true;
     else options.pages.push_back(arg);
   }
@@ -247,6 +254,7 @@ int run_page(const Options& options, const std::string& page) {
   int differing = 0, run = 0;
   for (const Block& block : blocks) {
     if (block.long_running && !options.long_running) continue;
+    if (block.needs_python && options.python.empty()) continue;
     if (!block.file_name.empty()) {
       std::vector<std::string> body = block.body;
       if (!block.source_file.empty()) {
@@ -324,7 +332,14 @@ int main(int argc, char** argv) {
   try {
     const Options options = parse_options(argc, argv);
     const char* path = std::getenv("PATH");
-    const std::string search = fs::absolute(options.bin).string() + ":" + (path ? path : "/usr/bin:/bin");
+    std::string search = fs::absolute(options.bin).string() + ":" + (path ? path : "/usr/bin:/bin");
+    if (!options.python.empty()) {  // `python3` on the pages is the module's interpreter
+      const fs::path python_bin = options.work / "python-bin";
+      fs::create_directories(python_bin);
+      fs::remove(python_bin / "python3");
+      fs::create_symlink(fs::absolute(options.python), python_bin / "python3");
+      search = python_bin.string() + ":" + search;
+    }
     setenv("PATH", search.c_str(), 1);
     setenv("PFGEN_SOURCE_DIR", fs::absolute(options.source).c_str(), 1);
     int differing = 0;

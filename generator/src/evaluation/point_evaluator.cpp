@@ -6,20 +6,26 @@
 #include "pfgen/evaluation/observation_evaluation.hpp"
 
 namespace pfgen {
+
+void check_point_shape(std::size_t n, std::size_t m_values, const std::vector<std::size_t>& P_row_values) {
+  if (m_values != n)
+    throw EvaluationError("--m: expected " + std::to_string(n) + " values, found " + std::to_string(m_values));
+  if (P_row_values.size() != n)
+    throw EvaluationError("--P: expected " + std::to_string(n) + " rows, found " + std::to_string(P_row_values.size()));
+  for (std::size_t i = 0; i < n; ++i)
+    if (P_row_values[i] != n)
+      throw EvaluationError("--P: row " + std::to_string(i + 1) + " has " + std::to_string(P_row_values[i]) +
+                            " values, expected " + std::to_string(n));
+}
+
 namespace {
 
 void check_point(const Model& model, const FilterEquations& eq, const EvaluationPoint& point,
                  const ObservationEvaluation& observation) {
   const std::size_t n = model.n();
-  if (point.m.size() != n)
-    throw EvaluationError("--m: expected " + std::to_string(n) + " values, found " + std::to_string(point.m.size()));
-  if (point.P.size() != n)
-    throw EvaluationError("--P: expected " + std::to_string(n) + " rows, found " + std::to_string(point.P.size()));
-  for (std::size_t i = 0; i < n; ++i) {
-    if (point.P[i].size() != n)
-      throw EvaluationError("--P: row " + std::to_string(i + 1) + " has " + std::to_string(point.P[i].size()) +
-                            " values, expected " + std::to_string(n));
-  }
+  std::vector<std::size_t> row_sizes;
+  for (const auto& row : point.P) row_sizes.push_back(row.size());
+  check_point_shape(n, point.m.size(), row_sizes);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
       if (point.P[i][j] != point.P[j][i])

@@ -609,9 +609,18 @@ Model load_model_file(const std::string& path) {
     throw located(ModelError("", "cannot read the model file: it is a directory"), path, {});
   std::ifstream in(path, std::ios::binary);
   if (!in) throw located(ModelError("", "cannot open the model file"), path, {});
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return load_model_text(buffer.str(), path);
+  // Read in pieces up to a bound: /dev/zero, or a file as large as the disk, is refused at the
+  // bound instead of filling the memory (the dense cubic n = 20 model is under 3 MB).
+  std::string text;
+  char piece[65536];
+  while (in.read(piece, sizeof piece) || in.gcount() > 0) {
+    text.append(piece, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxModelFileBytes)
+      throw located(ModelError("", "the model file is larger than " + std::to_string(kMaxModelFileBytes >> 20) +
+                                       " MiB: not a model file"),
+                    path, {});
+  }
+  return load_model_text(text, path);
 }
 
 }  // namespace pfgen

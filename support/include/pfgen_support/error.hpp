@@ -33,4 +33,13 @@ class Error : public std::runtime_error {
   ErrorPlace place_;
 };
 
+// An error's text on one line, as the command line prints it: line breaks become spaces, and
+// trailing ones and spaces go.
+inline std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
+  for (char& c : text)
+    if (c == '\n' || c == '\r') c = ' ';
+  return text;
+}
+
 }  // namespace pfgen_support

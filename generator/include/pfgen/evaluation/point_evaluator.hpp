@@ -48,6 +48,10 @@ class EvaluationError : public pfgen_support::Error {
   using pfgen_support::Error::Error;
 };
 
+// The point's sizes against n states: m's values, P's rows and each row's values (EvaluationError
+// naming --m or --P otherwise). evaluate_at checks them first; the API before it reads any number.
+void check_point_shape(std::size_t n, std::size_t m_values, const std::vector<std::size_t>& P_row_values);
+
 EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const EvaluationPoint& point);
 
 }  // namespace pfgen

@@ -1,0 +1,252 @@
+#pragma once
+// pfgen's C++ API: the one header a program includes to load a polynomial model, derive its
+// filters, print them as text, LaTeX or JSON, evaluate them at a point, generate their code and
+// simulate them against a truth. Each call gives what the matching `pfgen` command prints, byte for
+// byte, and fails with the same message (docs/guide/cpp-api.md).
+//
+//   #include <pfgen/pfgen.hpp>
+//
+//   pfgen::api::Model model = pfgen::api::Model::load("examples/basin2006_quadratic.yaml");
+//   pfgen::api::Filter optimal = model.derive("optimal");
+//   std::cout << optimal.text();                                   // pfgen derive
+//   pfgen::api::Evaluation value = optimal.eval({0, {0.5}, {{1}}});  // pfgen eval
+//   pfgen::api::CodegenOptions c;
+//   c.language = "c";
+//   model.codegen("generated", c);                                 // pfgen codegen --language c
+//
+// CMake: find_package(pfgen) and target_link_libraries(app PRIVATE pfgen::generator).
+//
+// Threads: GiNaC, the algebra underneath, is not thread-safe, so pfgen runs one call at a time
+// (a call from a second thread waits). The objects below are handles: copies share one model or
+// filter, which never changes after it is made.
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <ginac/ginac.h>
+
+#include "pfgen_support/error.hpp"
+
+namespace pfgen::api {
+
+// The one exception type pfgen throws for anything wrong with a model, an option, a point or a
+// file: what() is the message; report() is the line the command prints after "pfgen: " (a model
+// file's problem as "FILE:LINE:COLUMN: error: ...", anything else as "error: ..."); place() gives
+// the file, line, column and field where there is one. Other exceptions are not pfgen's
+// (std::bad_alloc).
+using Error = pfgen_support::Error;
+
+// pfgen's version, "0.1.0".
+std::string version();
+
+using Vector = std::vector<double>;
+using Matrix = std::vector<std::vector<double>>;  // row by row
+
+// Where Filter::eval evaluates: `pfgen eval --t --m --P --set`. Numbers are read as the decimals
+// they print as (0.1 is exactly 1/10), as the command reads its options' text. parameters: the
+// model's parameters given other values (the model is checked again with them). The four
+// delayed-observation inputs are read by delayed filters only; empty takes the command's default.
+struct Point {
+  double t = 0;
+  Vector m;
+  Matrix P;
+  std::map<std::string, double> parameters;
+  Vector m_delayed, x_star, x_star_delayed, phi;
+};
+
+// A filter's values at a Point. json is what `pfgen eval` prints; the fields are its numbers
+// (docs/guide/commands.md, "pfgen eval"), empty where the filter's observation has none.
+struct Evaluation {
+  std::string json;
+  Vector m_drift;
+  Matrix gain;
+  Matrix P_drift;
+  Matrix P_dt2;                  // cd-euler only
+  Matrix innovation_covariance;  // sampled observations only
+  Vector predicted_observation, m_delayed, phi, x_star, x_star_drift;  // delayed observations only
+};
+
+// A filter's equations as expressions that Python (and SymPy's sympify) reads: `**` for powers,
+// exact rationals written p/q. Variables as in the text output: m1..mn, P11, P12, ... (P21 is
+// P12), the time symbol and the parameters by their names; a delayed filter's md1, phi1, xs1.
+struct Expressions {
+  std::vector<std::string> m_drift;                 // n
+  std::vector<std::vector<std::string>> gain;       // n x p (n x 0 for a sampled filter)
+  std::vector<std::vector<std::string>> P_drift;    // n x n, symmetric
+  std::vector<std::string> predicted_observation;   // p (empty for a sampled filter)
+  // A user filter's `define:` names or the ukf's Cholesky entries, in order: each value may read
+  // the names before it, and the expressions above may read them all.
+  std::vector<std::pair<std::string, std::string>> definitions;
+  std::vector<std::string> m_names;                 // m1..mn
+  std::vector<std::vector<std::string>> P_names;    // n x n: "P12" at (0, 1) and (1, 0)
+  // Every name the expressions may read: the filter's variables, the parameters, the time
+  // symbol and the definitions (anything else in them is a function: sin, exp, ...).
+  std::vector<std::string> names;
+};
+
+class Model;
+
+// One derived filter of one model.
+class Filter {
+ public:
+  const std::string& name() const;     // "optimal", "ekf-additive", a user filter's name
+  std::string text() const;            // pfgen derive --filter NAME
+  std::string latex() const;           // pfgen derive --filter NAME --format latex
+  std::string json() const;            // pfgen derive --filter NAME --format json
+  Evaluation eval(const Point& point) const;  // pfgen eval --filter NAME
+  Expressions expressions() const;
+
+ private:
+  friend class Model;
+  struct Impl;
+  explicit Filter(std::shared_ptr<const Impl> impl);
+  std::shared_ptr<const Impl> impl_;
+};
+
+// `pfgen codegen`'s options. filters: empty for the model's default filters. language: "cpp" or
+// "c" (`--language`). scalar: "template" (C++ only), "float" or "double"; empty for the language's
+// default (C++: template, C: double). dt: a delayed filter's grid step (else the model's).
+struct CodegenOptions {
+  std::vector<std::string> filters;
+  std::string language = "cpp";
+  std::string scalar;
+  std::string name_space = "pfgen_models";
+  bool eigen = false;
+  std::optional<double> dt;
+};
+
+// A generated file: its path relative to the output directory ("<model>/optimal.hpp") and text.
+struct CodeFile {
+  std::string path;
+  std::string contents;
+};
+
+// `pfgen simulate`'s settings; unset ones come from the model's `simulation:` section, then from
+// pfgen's defaults (docs/guide/simulation.md). reference: the particle reference's N
+// (`--reference particles:N`). x0: "prior" or "model". parameters: as Point's. threads: 0 for one
+// per core (the results do not depend on it). cache_dir and compiler: empty for the defaults.
+struct SimulationOptions {
+  std::optional<std::size_t> runs;
+  std::optional<double> T, dt;
+  std::vector<std::string> filters;
+  std::optional<std::uint64_t> seed;
+  std::optional<std::size_t> reference;
+  std::optional<std::string> scheme, x0;
+  std::optional<std::size_t> record_points, shown_run;
+  std::optional<double> bound, risk_epsilon;
+  std::vector<double> report_times;
+  std::vector<std::pair<double, double>> windows;
+  std::map<std::string, double> parameters;
+  unsigned threads = 0;
+  std::string cache_dir, compiler;
+};
+
+// One filter's (or the particle reference's) statistics over the runs, per state component.
+struct FilterSummary {
+  std::string name;
+  std::size_t completed = 0;   // runs that reached T
+  std::size_t diverged = 0;
+  std::size_t psd_losses = 0;
+  Vector rms, rms_se;          // RMS error over [0, T] and its standard error
+  Vector peak_median, peak_q95;  // of max_t |x - m| over the completed runs
+  // With the particle reference: RMS(m - m_ref) and its standard error (empty without).
+  Vector reference_distance, reference_distance_se;
+};
+
+struct SimulationResult {
+  std::string report;  // what `pfgen simulate` prints before the paths of its files
+  std::string notes;   // what it says on stderr before ("pfgen: note: ..."), line by line
+  std::string csv;     // the CSV `pfgen simulate -o FILE` writes
+  std::vector<std::string> columns;  // the CSV's header
+  std::vector<Vector> series;        // per column, its values down the rows; NaN for an empty cell
+  std::vector<FilterSummary> filters;
+  std::size_t runs = 0;
+  std::size_t steps = 0;
+};
+
+// A model: loaded from a model file or YAML text, or built with ModelBuilder. Checked when made.
+class Model {
+ public:
+  static Model load(const std::string& path);
+  // `source` names the text in error messages and reports.
+  static Model from_yaml(const std::string& text, const std::string& source = "<yaml>");
+
+  const std::string& name() const;
+  const std::string& source() const;  // the file's path, or from_yaml's source
+  std::vector<std::string> state_names() const;
+  std::vector<std::string> parameter_names() const;
+  // Every filter the model offers (the built-in kinds it supports, then its own `filters:`), and
+  // those the commands use when none is named (all but the opt-in ukf).
+  std::vector<std::string> kinds() const;
+  std::vector<std::string> default_kinds() const;
+
+  Filter derive(const std::string& kind) const;
+  // `pfgen latex`: a whole LaTeX document with these filters (empty: the default ones).
+  std::string latex_document(const std::vector<std::string>& filters = {}) const;
+  // `pfgen codegen`: the files in memory, or written under `directory` (all or none; a file
+  // would never replace the model file) with their paths returned.
+  std::vector<CodeFile> codegen(const CodegenOptions& options = {}) const;
+  std::vector<std::string> codegen(const std::string& directory, const CodegenOptions& options = {}) const;
+  // `pfgen simulate`: compiles the filters with the truth into a cached plugin (the first time a
+  // C++ compiler runs, as the command's does) and runs the Monte Carlo.
+  SimulationResult simulate(const SimulationOptions& options = {}) const;
+
+ private:
+  friend class Filter;
+  friend class ModelBuilder;
+  struct Impl;
+  explicit Model(std::shared_ptr<const Impl> impl);
+  std::shared_ptr<const Impl> impl_;
+};
+
+// A model built from GiNaC expressions instead of a file (docs/guide/cpp-api.md). C++ doubles in
+// expressions and numbers (0.1) become the exact rationals of their shortest decimals (1/10).
+//   pfgen::api::ModelBuilder b("quadratic");
+//   GiNaC::symbol x = b.state("x");
+//   b.drift({0.1 * GiNaC::pow(x, 2)}).diffusion({{0.1 * GiNaC::pow(x, 2)}}).observation({0}, {{1}}, {{1}});
+//   pfgen::api::Model model = b.build();
+class ModelBuilder {
+ public:
+  using Exprs = std::vector<GiNaC::ex>;
+  using ExprMatrix = std::vector<std::vector<GiNaC::ex>>;
+
+  explicit ModelBuilder(const std::string& name);
+  ~ModelBuilder();
+  ModelBuilder(ModelBuilder&&) noexcept;
+  ModelBuilder& operator=(ModelBuilder&&) noexcept;
+
+  GiNaC::symbol state(const std::string& name);
+  GiNaC::symbol parameter(const std::string& name, double default_value);
+  GiNaC::symbol time() const;
+
+  ModelBuilder& drift(const Exprs& f);
+  ModelBuilder& diffusion(const ExprMatrix& g);             // g(x, t) dW1
+  ModelBuilder& diffusion_covariance(const ExprMatrix& G);  // g g^T given instead of g
+  ModelBuilder& additive_diffusion(const ExprMatrix& g);
+  ModelBuilder& additive_diffusion_covariance(const ExprMatrix& G);
+  // dy = (A0 + A x) dt + B dW2
+  ModelBuilder& observation(const Exprs& A0, const ExprMatrix& A, const ExprMatrix& B);
+  // dy = (A0 + A x(t - delay)) dt + B dW2
+  ModelBuilder& delayed_observation(double delay, const Exprs& A0, const ExprMatrix& A, const ExprMatrix& B);
+  // y_k = C0 + C x(k period) + Uv v_k
+  ModelBuilder& sampled_observation(double period, const Exprs& C0, const ExprMatrix& C, const ExprMatrix& Uv,
+                                    std::size_t substeps = 1);
+  // The filters' prior N(m0, P0) and the truth's x0 (empty: drawn from the prior in each run).
+  ModelBuilder& initial(const Vector& m0, const Matrix& P0, const Vector& x0 = {});
+  // dW read in Stratonovich's sense (the drift is converted to Ito's form).
+  ModelBuilder& stratonovich();
+
+  // Checks the model (Error on the first problem) and returns it; the builder stays usable.
+  Model build() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pfgen::api

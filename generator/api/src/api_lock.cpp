@@ -1,0 +1,61 @@
+#include <cfloat>
+#include <cmath>
+#include <vector>
+
+#include "api_impl.hpp"
+#include "cli_options.hpp"
+#include "pfgen_support/quoted_text.hpp"
+#include "pfgen_support/shortest_double.hpp"
+
+namespace pfgen::api {
+namespace {
+
+// Guards the list of contents left to destroy, apart from the API's lock.
+std::mutex& pending_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+std::vector<std::function<void()>>& pending() {
+  static std::vector<std::function<void()>> list;
+  return list;
+}
+
+}  // namespace
+
+std::recursive_mutex& api_mutex() {
+  static std::recursive_mutex mutex;
+  return mutex;
+}
+
+void destroy_later(std::function<void()> destroy) {
+  const std::lock_guard<std::mutex> lock(pending_mutex());
+  pending().push_back(std::move(destroy));
+}
+
+void destroy_pending() {
+  std::vector<std::function<void()>> due;
+  {
+    const std::lock_guard<std::mutex> lock(pending_mutex());
+    due.swap(pending());
+  }
+  for (auto& destroy : due) destroy();
+}
+
+std::string number_text(double value) { return pfgen_support::shortest_double(value); }
+
+void check_no_nul(const std::string& what, const std::string& text) {
+  if (text.find('\0') != std::string::npos)
+    throw Error(what + ": " + pfgen_support::quoted(text.substr(0, text.find('\0'))) +
+                " is followed by a NUL character, which no file name or option can hold");
+}
+
+void check_number_option(const std::string& option, double value) {
+  if (!std::isfinite(value) || (value != 0 && std::fabs(value) < DBL_MIN))
+    throw cli::CliValueError(option + ": " + pfgen_support::quoted(number_text(value)) +
+                             " is outside the range of a double (magnitudes from about 2.2e-308 to 1.8e308)");
+}
+
+std::string version() { return PFGEN_VERSION; }
+
+}  // namespace pfgen::api

@@ -1,0 +1,127 @@
+// pfgen::api::Filter: one derived filter, printed, evaluated, and given as expressions.
+#include <sstream>
+
+#include "api_impl.hpp"
+#include "commands.hpp"
+#include "pfgen/printing/equation_report.hpp"
+#include "pfgen/printing/json_writer.hpp"
+#include "pfgen/printing/noise_report.hpp"
+
+namespace pfgen::api {
+
+Filter::Filter(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+
+const std::string& Filter::name() const { return impl_->equations.name; }
+
+std::string Filter::text() const {
+  return guarded([&] { return equations_text(impl_->model->model, impl_->equations); });
+}
+
+std::string Filter::latex() const {
+  return guarded([&] { return noise_latex(impl_->model->model) + equations_latex(impl_->equations); });
+}
+
+std::string Filter::json() const {
+  return guarded([&] { return equations_json(impl_->model->model, impl_->equations).dump(); });
+}
+
+namespace {
+
+std::string list_text(const Vector& values) {
+  std::string text;
+  for (std::size_t i = 0; i < values.size(); ++i) text += (i ? "," : "") + number_text(values[i]);
+  return text;
+}
+
+// --P's syntax: rows separated by ';'.
+std::string matrix_text(const Matrix& values) {
+  std::string text;
+  for (std::size_t i = 0; i < values.size(); ++i) text += (i ? ";" : "") + list_text(values[i]);
+  return text;
+}
+
+}  // namespace
+
+Evaluation Filter::eval(const Point& point) const {
+  return guarded([&] {
+    // The point as `pfgen eval`'s options, read by the command's own code: the same numbers,
+    // the same checks and the same messages.
+    // Sizes first: a P of a million entries is refused before any of it is written as text.
+    std::vector<std::size_t> row_sizes;
+    for (const Vector& row : point.P) row_sizes.push_back(row.size());
+    check_point_shape(impl_->model->model.n(), point.m.size(), row_sizes);
+    cli::EvalOptions options;
+    options.filter = impl_->equations.name;
+    options.t = number_text(point.t);
+    options.m = list_text(point.m);
+    options.P = matrix_text(point.P);
+    for (const auto& [name, value] : point.parameters) {
+      check_no_nul("--set", name);
+      options.assignments.push_back(name + "=" + number_text(value));
+    }
+    options.m_delayed = list_text(point.m_delayed);
+    options.x_star = list_text(point.x_star);
+    options.x_star_delayed = list_text(point.x_star_delayed);
+    options.phi = list_text(point.phi);
+    const cli::EvalOutcome outcome = cli::evaluate_filter(impl_->model->model, options, &impl_->equations);
+    const EvaluatedFilter& value = outcome.value;
+    Evaluation out;
+    out.json = outcome.json;
+    out.m_drift = value.m_drift;
+    out.gain = value.gain;
+    out.P_drift = value.P_drift;
+    out.P_dt2 = value.P_dt2;
+    out.innovation_covariance = value.innovation_covariance;
+    out.predicted_observation = value.predicted_observation;
+    out.m_delayed = value.m_delayed;
+    out.phi = value.phi;
+    out.x_star = value.x_star;
+    out.x_star_drift = value.x_star_drift;
+    return out;
+  });
+}
+
+namespace {
+
+std::string python_text(const GiNaC::ex& e) {
+  std::ostringstream out;
+  out << GiNaC::python << e;
+  return out.str();
+}
+
+}  // namespace
+
+Expressions Filter::expressions() const {
+  return guarded([&] {
+    const FilterEquations& eq = impl_->equations;
+    const std::vector<GiNaC::ex>& symbols = eq.variables.symbols();
+    auto text = [&](const Polynomial& p) { return python_text(p.to_ex(symbols)); };
+    const std::size_t n = eq.n();
+    Expressions out;
+    for (std::size_t i = 0; i < n; ++i) {
+      out.m_drift.push_back(text(eq.m_drift[i]));
+      out.m_names.push_back(eq.variables.text_name(eq.variables.m(i)));
+      std::vector<std::string> gain_row, P_row, name_row;
+      if (i < eq.gain.size())  // a sampled filter has none: its update is at the samples
+        for (const Polynomial& entry : eq.gain[i]) gain_row.push_back(text(entry));
+      for (std::size_t j = 0; j < n; ++j) {
+        P_row.push_back(text(eq.P_drift(i, j)));
+        name_row.push_back(eq.variables.text_name(eq.variables.P(i, j)));
+      }
+      out.gain.push_back(gain_row);
+      out.P_drift.push_back(P_row);
+      out.P_names.push_back(name_row);
+    }
+    for (const Polynomial& y : eq.predicted_observation) out.predicted_observation.push_back(text(y));
+    for (const GiNaC::ex& symbol : symbols) out.names.push_back(GiNaC::ex_to<GiNaC::symbol>(symbol).get_name());
+    for (const Parameter& parameter : impl_->model->model.parameters) out.names.push_back(parameter.symbol.get_name());
+    out.names.push_back(impl_->model->model.time.get_name());
+    for (const FilterDefinition& definition : eq.definitions) {
+      out.definitions.emplace_back(definition.name.get_name(), python_text(definition.value));
+      out.names.push_back(definition.name.get_name());
+    }
+    return out;
+  });
+}
+
+}  // namespace pfgen::api

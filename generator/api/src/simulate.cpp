@@ -1,0 +1,149 @@
+// pfgen::api::Model::simulate: `pfgen simulate` run in this process, its results kept in memory.
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+#include "api_impl.hpp"
+#include "job_group.hpp"
+#include "pfgen_runtime/results_csv.hpp"
+#include "simulate_command.hpp"
+
+namespace pfgen::api {
+namespace {
+
+// What the command says on stderr while the job runs (its notes), kept for the result instead.
+class CapturedStderr {
+ public:
+  CapturedStderr() : saved_(std::cerr.rdbuf(text_.rdbuf())) {}
+  ~CapturedStderr() { std::cerr.rdbuf(saved_); }
+  CapturedStderr(const CapturedStderr&) = delete;
+  CapturedStderr& operator=(const CapturedStderr&) = delete;
+  std::string text() const { return text_.str(); }
+
+ private:
+  std::ostringstream text_;
+  std::streambuf* saved_;
+};
+
+std::string joined(const std::vector<std::string>& parts) {
+  std::string text;
+  for (const std::string& part : parts) text += (text.empty() ? "" : ",") + part;
+  return text;
+}
+
+// SimulationOptions as `pfgen simulate`'s options, which the command's own code then checks.
+cli::SimulateOptions command_options(const pfgen::Model& model, const SimulationOptions& options) {
+  for (const auto& [option, value] : {std::pair{"--T", options.T}, {"--dt", options.dt}, {"--bound", options.bound},
+                                     {"--risk-epsilon", options.risk_epsilon}})
+    if (value) check_number_option(option, *value);
+  for (const std::string& name : options.filters) check_no_nul("--filters", name);
+  for (const auto& [option, text] : {std::pair{"--cache-dir", &options.cache_dir}, {"--compiler", &options.compiler}})
+    check_no_nul(option, *text);
+  if (options.scheme) check_no_nul("--scheme", *options.scheme);
+  if (options.x0) check_no_nul("--x0", *options.x0);
+  for (const auto& [name, value] : options.parameters) check_no_nul("--set", name);
+  cli::SimulateOptions out;
+  out.model = &model;
+  out.model_path = model.source;
+  out.quiet = true;
+  out.keep_series = true;
+  out.threads = options.threads;
+  out.cache_dir = options.cache_dir;
+  out.compiler = options.compiler;
+  for (const auto& [name, value] : options.parameters) out.assignments.push_back(name + "=" + number_text(value));
+  cli::SimulationOverrides& o = out.overrides;
+  o.T = options.T;
+  o.dt = options.dt;
+  o.bound = options.bound;
+  o.runs = options.runs;
+  o.record_points = options.record_points;
+  o.shown_run = options.shown_run;
+  o.seed = options.seed;
+  if (!options.filters.empty()) o.filters = joined(options.filters);
+  o.scheme = options.scheme;
+  o.x0 = options.x0;
+  o.risk_epsilon = options.risk_epsilon;
+  if (options.reference) o.reference = "particles:" + std::to_string(*options.reference);
+  if (!options.report_times.empty()) {
+    std::vector<std::string> times;
+    for (double t : options.report_times) times.push_back(number_text(t));
+    o.report_times = joined(times);
+  }
+  if (!options.windows.empty()) {
+    std::vector<std::string> windows;
+    for (const auto& [a, b] : options.windows) windows.push_back(number_text(a) + ":" + number_text(b));
+    o.windows = joined(windows);
+  }
+  return out;
+}
+
+// The CSV's data rows read back: the numbers are written in shortest round-trip form, so strtod
+// gives the very doubles; an empty cell (a stopped run) is NaN.
+std::vector<Vector> csv_columns(const std::string& csv, std::size_t columns) {
+  std::vector<Vector> out(columns);
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);  // the header
+  while (std::getline(lines, line)) {
+    std::size_t column = 0, start = 0;
+    while (column < columns) {
+      const std::size_t end = std::min(line.find(',', start), line.size());
+      const std::string cell = line.substr(start, end - start);
+      out[column++].push_back(cell.empty() ? std::nan("") : std::strtod(cell.c_str(), nullptr));
+      start = end + 1;
+    }
+  }
+  return out;
+}
+
+FilterSummary summary_of(const std::string& name, const pfgen_runtime::WindowStatistics& horizon) {
+  FilterSummary out;
+  out.name = name;
+  out.completed = horizon.runs;
+  out.rms = horizon.rms;
+  out.rms_se = horizon.rms_se;
+  return out;
+}
+
+}  // namespace
+
+SimulationResult Model::simulate(const SimulationOptions& options) const {
+  return guarded([&] {
+    const cli::SimulateOptions command = command_options(impl_->model, options);
+    CapturedStderr notes;
+    cli::LocalJob alone;
+    const cli::SimulationOutcome outcome = cli::simulate(command, alone);
+    const pfgen_runtime::MonteCarloResult& result = *outcome.result;
+    const std::vector<std::string>& states = outcome.model.state_names;
+
+    SimulationResult out;
+    out.report = cli::simulation_report(command, outcome);
+    out.notes = notes.text();
+    out.csv = pfgen_runtime::format_results_csv(result, states);
+    out.columns = pfgen_runtime::results_csv_columns(result, states);
+    out.series = csv_columns(out.csv, out.columns.size());
+    out.runs = result.runs;
+    out.steps = result.grid.steps;
+    for (const pfgen_runtime::FilterStatistics& filter : result.filters) {
+      FilterSummary summary = summary_of(filter.name, filter.horizon);
+      summary.diverged = filter.divergences.count();
+      summary.psd_losses = filter.psd_losses.count();
+      summary.peak_median = filter.peak_median;
+      summary.peak_q95 = filter.peak_q95;
+      if (filter.reference) {
+        summary.reference_distance = filter.reference->distance;
+        summary.reference_distance_se = filter.reference->distance_se;
+      }
+      out.filters.push_back(std::move(summary));
+    }
+    if (result.reference) {  // the particle reference itself, as a filter of the table
+      FilterSummary summary = summary_of("reference", result.reference->horizon);
+      summary.diverged = result.reference->stopped.count();
+      out.filters.push_back(std::move(summary));
+    }
+    return out;
+  });
+}
+
+}  // namespace pfgen::api

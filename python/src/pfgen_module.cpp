@@ -1,0 +1,165 @@
+// pfgen._pfgen: the C++ API (pfgen/pfgen.hpp) for Python, kept thin; the package pfgen
+// (pfgen/__init__.py) makes it Pythonic (dicts, numpy arrays, SymPy, Jupyter's LaTeX).
+// Every call that does work releases the GIL: other Python threads run while pfgen derives,
+// generates or simulates (pfgen itself runs one call at a time; pfgen.hpp says why).
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <unistd.h>
+
+#include "pfgen/pfgen.hpp"
+
+namespace py = pybind11;
+namespace api = pfgen::api;
+
+namespace {
+
+// The GIL released for a call, and taken back after it, as pybind11's gil_scoped_release does, but
+// for one case: a daemon thread whose call ends while the interpreter is exiting. CPython ends such
+// a thread inside PyEval_RestoreThread with pthread_exit, whose unwinding must be let through (a
+// noexcept destructor, as gil_scoped_release's, aborts the process there: "terminate called
+// without an active exception"); pybind11's dispatcher rethrows it. A thread that sees the exit
+// begun waits for it instead, which ends it.
+class ReleasedGil {
+ public:
+  ReleasedGil() : state_(PyEval_SaveThread()) {}
+  ~ReleasedGil() noexcept(false) {
+    while (_Py_IsFinalizing()) pause();
+    PyEval_RestoreThread(state_);
+  }
+  ReleasedGil(const ReleasedGil&) = delete;
+  ReleasedGil& operator=(const ReleasedGil&) = delete;
+
+ private:
+  PyThreadState* state_;
+};
+
+using Released = py::call_guard<ReleasedGil>;
+
+// A read-only property whose getter releases the GIL: it waits for pfgen's lock when another
+// thread is in pfgen, and must not stop the other Python threads meanwhile.
+template <typename Getter>
+py::cpp_function released_getter(Getter getter) {
+  return py::cpp_function(getter, Released());
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_pfgen, m) {
+  m.doc() = "pfgen's C++ API; use the package pfgen";
+
+  // pfgen.Error: its message is the line the command prints after "pfgen: ".
+  static py::exception<api::Error> error(m, "Error");
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const api::Error& e) {
+      // The whole line, as a Python str (c_str() would stop at a NUL the message quotes).
+      PyErr_SetObject(error.ptr(), py::str(pfgen_support::one_line(e.report())).ptr());
+    }
+  });
+
+  m.def("version", &api::version);
+
+  py::class_<api::Evaluation>(m, "Evaluation").def_readonly("json", &api::Evaluation::json);
+
+  py::class_<api::Expressions>(m, "Expressions")
+      .def_readonly("m_drift", &api::Expressions::m_drift)
+      .def_readonly("gain", &api::Expressions::gain)
+      .def_readonly("P_drift", &api::Expressions::P_drift)
+      .def_readonly("predicted_observation", &api::Expressions::predicted_observation)
+      .def_readonly("definitions", &api::Expressions::definitions)
+      .def_readonly("m_names", &api::Expressions::m_names)
+      .def_readonly("P_names", &api::Expressions::P_names)
+      .def_readonly("names", &api::Expressions::names);
+
+  py::class_<api::Filter>(m, "Filter")
+      .def_property_readonly("name", &api::Filter::name)
+      .def("text", &api::Filter::text, Released())
+      .def("latex", &api::Filter::latex, Released())
+      .def("json", &api::Filter::json, Released())
+      .def("expressions", &api::Filter::expressions, Released())
+      .def(
+          "eval",
+          [](const api::Filter& filter, double t, const api::Vector& m, const api::Matrix& P,
+             const std::map<std::string, double>& parameters, const api::Vector& m_delayed,
+             const api::Vector& x_star, const api::Vector& x_star_delayed, const api::Vector& phi) {
+            const api::Point point{t, m, P, parameters, m_delayed, x_star, x_star_delayed, phi};
+            return filter.eval(point);
+          },
+          Released());
+
+  py::class_<api::CodeFile>(m, "CodeFile")
+      .def_readonly("path", &api::CodeFile::path)
+      .def_readonly("contents", &api::CodeFile::contents);
+
+  py::class_<api::CodegenOptions>(m, "CodegenOptions")
+      .def(py::init<>())
+      .def_readwrite("filters", &api::CodegenOptions::filters)
+      .def_readwrite("language", &api::CodegenOptions::language)
+      .def_readwrite("scalar", &api::CodegenOptions::scalar)
+      .def_readwrite("name_space", &api::CodegenOptions::name_space)
+      .def_readwrite("eigen", &api::CodegenOptions::eigen)
+      .def_readwrite("dt", &api::CodegenOptions::dt);
+
+  py::class_<api::SimulationOptions>(m, "SimulationOptions")
+      .def(py::init<>())
+      .def_readwrite("runs", &api::SimulationOptions::runs)
+      .def_readwrite("T", &api::SimulationOptions::T)
+      .def_readwrite("dt", &api::SimulationOptions::dt)
+      .def_readwrite("filters", &api::SimulationOptions::filters)
+      .def_readwrite("seed", &api::SimulationOptions::seed)
+      .def_readwrite("reference", &api::SimulationOptions::reference)
+      .def_readwrite("scheme", &api::SimulationOptions::scheme)
+      .def_readwrite("x0", &api::SimulationOptions::x0)
+      .def_readwrite("record_points", &api::SimulationOptions::record_points)
+      .def_readwrite("shown_run", &api::SimulationOptions::shown_run)
+      .def_readwrite("bound", &api::SimulationOptions::bound)
+      .def_readwrite("risk_epsilon", &api::SimulationOptions::risk_epsilon)
+      .def_readwrite("report_times", &api::SimulationOptions::report_times)
+      .def_readwrite("windows", &api::SimulationOptions::windows)
+      .def_readwrite("parameters", &api::SimulationOptions::parameters)
+      .def_readwrite("threads", &api::SimulationOptions::threads)
+      .def_readwrite("cache_dir", &api::SimulationOptions::cache_dir)
+      .def_readwrite("compiler", &api::SimulationOptions::compiler);
+
+  py::class_<api::FilterSummary>(m, "FilterSummary")
+      .def_readonly("name", &api::FilterSummary::name)
+      .def_readonly("completed", &api::FilterSummary::completed)
+      .def_readonly("diverged", &api::FilterSummary::diverged)
+      .def_readonly("psd_losses", &api::FilterSummary::psd_losses)
+      .def_readonly("rms", &api::FilterSummary::rms)
+      .def_readonly("rms_se", &api::FilterSummary::rms_se)
+      .def_readonly("peak_median", &api::FilterSummary::peak_median)
+      .def_readonly("peak_q95", &api::FilterSummary::peak_q95)
+      .def_readonly("reference_distance", &api::FilterSummary::reference_distance)
+      .def_readonly("reference_distance_se", &api::FilterSummary::reference_distance_se);
+
+  py::class_<api::SimulationResult>(m, "SimulationResult")
+      .def_readonly("report", &api::SimulationResult::report)
+      .def_readonly("notes", &api::SimulationResult::notes)
+      .def_readonly("csv", &api::SimulationResult::csv)
+      .def_readonly("columns", &api::SimulationResult::columns)
+      .def_readonly("series", &api::SimulationResult::series)
+      .def_readonly("filters", &api::SimulationResult::filters)
+      .def_readonly("runs", &api::SimulationResult::runs)
+      .def_readonly("steps", &api::SimulationResult::steps);
+
+  py::class_<api::Model>(m, "Model")
+      .def_static("load", &api::Model::load, Released())
+      .def_static("from_yaml", &api::Model::from_yaml, Released())
+      .def_property_readonly("name", &api::Model::name)
+      .def_property_readonly("source", &api::Model::source)
+      .def_property_readonly("state_names", &api::Model::state_names)
+      .def_property_readonly("parameter_names", released_getter(&api::Model::parameter_names))
+      .def_property_readonly("kinds", released_getter(&api::Model::kinds))
+      .def_property_readonly("default_kinds", released_getter(&api::Model::default_kinds))
+      .def("derive", &api::Model::derive, Released())
+      .def("latex_document", &api::Model::latex_document, Released())
+      .def("codegen_files", py::overload_cast<const api::CodegenOptions&>(&api::Model::codegen, py::const_),
+           Released())
+      .def("codegen_to",
+           py::overload_cast<const std::string&, const api::CodegenOptions&>(&api::Model::codegen, py::const_),
+           Released())
+      .def("simulate", &api::Model::simulate, Released());
+}
