@@ -2,10 +2,12 @@
 // What the public API's handles hold (pfgen/pfgen.hpp), and the guard every call runs under.
 // Private to the API's sources: not installed.
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model.hpp"
@@ -72,6 +74,9 @@ template <typename T>
 std::shared_ptr<const T> locked_shared(T&& value) {
   return std::shared_ptr<const T>(new T(std::forward<T>(value)), [](const T* p) { destroy_locked(p); });
 }
+
+// Parameters' values as the command's --set texts, "name=value" (names checked by check_no_nul).
+std::vector<std::string> assignment_texts(const std::map<std::string, double>& parameters);
 
 // Refuses a string that holds a NUL character: no file name or option of the command can, and
 // the C library would read it only up to the NUL (a path "m.yaml\0x" would load m.yaml).

@@ -55,10 +55,7 @@ Evaluation Filter::eval(const Point& point) const {
     options.t = number_text(point.t);
     options.m = list_text(point.m);
     options.P = matrix_text(point.P);
-    for (const auto& [name, value] : point.parameters) {
-      check_no_nul("--set", name);
-      options.assignments.push_back(name + "=" + number_text(value));
-    }
+    options.assignments = assignment_texts(point.parameters);
     options.m_delayed = list_text(point.m_delayed);
     options.x_star = list_text(point.x_star);
     options.x_star_delayed = list_text(point.x_star_delayed);

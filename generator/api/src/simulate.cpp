@@ -42,7 +42,6 @@ cli::SimulateOptions command_options(const pfgen::Model& model, const Simulation
     check_no_nul(option, *text);
   if (options.scheme) check_no_nul("--scheme", *options.scheme);
   if (options.x0) check_no_nul("--x0", *options.x0);
-  for (const auto& [name, value] : options.parameters) check_no_nul("--set", name);
   cli::SimulateOptions out;
   out.model = &model;
   out.model_path = model.source;
@@ -51,7 +50,7 @@ cli::SimulateOptions command_options(const pfgen::Model& model, const Simulation
   out.threads = options.threads;
   out.cache_dir = options.cache_dir;
   out.compiler = options.compiler;
-  for (const auto& [name, value] : options.parameters) out.assignments.push_back(name + "=" + number_text(value));
+  out.assignments = assignment_texts(options.parameters);
   cli::SimulationOverrides& o = out.overrides;
   o.T = options.T;
   o.dt = options.dt;

@@ -50,6 +50,15 @@ void check_no_nul(const std::string& what, const std::string& text) {
                 " is followed by a NUL character, which no file name or option can hold");
 }
 
+std::vector<std::string> assignment_texts(const std::map<std::string, double>& parameters) {
+  std::vector<std::string> texts;
+  for (const auto& [name, value] : parameters) {
+    check_no_nul("--set", name);
+    texts.push_back(name + "=" + number_text(value));
+  }
+  return texts;
+}
+
 void check_number_option(const std::string& option, double value) {
   if (!std::isfinite(value) || (value != 0 && std::fabs(value) < DBL_MIN))
     throw cli::CliValueError(option + ": " + pfgen_support::quoted(number_text(value)) +
