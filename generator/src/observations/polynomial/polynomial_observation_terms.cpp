@@ -1,0 +1,92 @@
+#include "pfgen/observations/polynomial/polynomial_observation_terms.hpp"
+
+#include "pfgen/algebra/coefficient.hpp"
+#include "pfgen/derivation/gaussian_expectation.hpp"
+#include "pfgen/model/model.hpp"
+
+namespace pfgen {
+namespace {
+
+// R^-1 = (B B^T)^-1, each entry a normalised coefficient.
+ExMatrix inverse_noise_covariance(const ExMatrix& B) {
+  const ExMatrix R = multiply_by_transpose(B);
+  GiNaC::matrix matrix(static_cast<unsigned>(R.size()), static_cast<unsigned>(R.size()));
+  for (unsigned i = 0; i < matrix.rows(); ++i)
+    for (unsigned j = 0; j < matrix.cols(); ++j) matrix(i, j) = R[i][j];
+  const GiNaC::matrix inverse = matrix.inverse();
+  ExMatrix out(R.size(), ExVector(R.size()));
+  for (unsigned i = 0; i < inverse.rows(); ++i)
+    for (unsigned j = 0; j < inverse.cols(); ++j) out[i][j] = normalize_coefficient(inverse(i, j));
+  return out;
+}
+
+// sum_k P_ik M_kj for M a matrix of polynomials (M_kj = 0 skipped).
+Polynomial P_times(const FilterVariables& vars, const std::vector<std::vector<Polynomial>>& M, std::size_t i,
+                   std::size_t j) {
+  Polynomial out;
+  for (std::size_t k = 0; k < vars.n(); ++k)
+    if (!M[k][j].is_zero()) out += M[k][j].times_monomial(Monomial::variable(vars.P(i, k)));
+  return out;
+}
+
+}  // namespace
+
+PolynomialObservationTerms polynomial_observation_terms(const std::vector<Polynomial>& h, const ExMatrix& B,
+                                                        const FilterVariables& vars, bool at_mean) {
+  const std::size_t n = vars.n(), p = h.size();
+  const ExMatrix R_inverse = inverse_noise_covariance(B);
+  // State x_i and mean m_i share variable index i (FilterVariables): a polynomial in x read as
+  // it is is that polynomial at the mean (the extended filter's h(m), J(m)).
+  GaussianExpectation E(vars);
+  auto expectation = [&](const Polynomial& q) { return at_mean ? q : E.of(q); };
+
+  PolynomialObservationTerms out;
+  // EJ[k][r] = E[d h_r / d x_k]: E[J]^T, n x p.
+  std::vector<std::vector<Polynomial>> EJt(n, std::vector<Polynomial>(p));
+  for (std::size_t r = 0; r < p; ++r) {
+    out.predicted_observation.push_back(expectation(h[r]));
+    for (std::size_t k = 0; k < n; ++k) EJt[k][r] = expectation(h[r].derivative(static_cast<std::uint32_t>(k)));
+  }
+  // P E[J]^T (n x p), then the gain (P E[J]^T) R^-1.
+  std::vector<std::vector<Polynomial>> PEJt(n, std::vector<Polynomial>(p));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t r = 0; r < p; ++r) PEJt[i][r] = P_times(vars, EJt, i, r);
+  out.gain.assign(n, std::vector<Polynomial>(p));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t s = 0; s < p; ++s)
+      for (std::size_t r = 0; r < p; ++r)
+        if (!R_inverse[r][s].is_zero()) out.gain[i][s] += PEJt[i][r].scaled(R_inverse[r][s]);
+  // K E[J] P = (P E[J]^T) R^-1 (P E[J]^T)^T, upper triangle.
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      Polynomial correction;
+      for (std::size_t s = 0; s < p; ++s) correction += out.gain[i][s] * PEJt[j][s];
+      out.P_correction.push_back(std::move(correction));
+    }
+  // L_ij,r = sum_k (P E[H_k] P)_ij (R^-1)_kr; zero at the mean and for linear h.
+  out.P_gain.assign(n * (n + 1) / 2, std::vector<Polynomial>(p));
+  if (at_mean) return out;
+  for (std::size_t k = 0; k < p; ++k) {
+    if (h[k].degree() < 2) continue;
+    std::vector<std::vector<Polynomial>> EH(n, std::vector<Polynomial>(n));  // E[H_k]
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = 0; b < n; ++b)
+        EH[a][b] = E.of(h[k].derivative(static_cast<std::uint32_t>(a)).derivative(static_cast<std::uint32_t>(b)));
+    std::vector<std::vector<Polynomial>> EH_P(n, std::vector<Polynomial>(n));  // E[H_k] P
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t b = 0; b < n; ++b)
+          if (!EH[a][b].is_zero()) EH_P[a][j] += EH[a][b].times_monomial(Monomial::variable(vars.P(b, j)));
+    std::size_t upper = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j, ++upper) {
+        const Polynomial PHP = P_times(vars, EH_P, i, j);
+        if (PHP.is_zero()) continue;
+        for (std::size_t r = 0; r < p; ++r)
+          if (!R_inverse[k][r].is_zero()) out.P_gain[upper][r] += PHP.scaled(R_inverse[k][r]);
+      }
+  }
+  return out;
+}
+
+}  // namespace pfgen
