@@ -33,7 +33,8 @@ void add_rate_eval_json(const EvaluatedFilter& value, Json& out) {
 
 const ObservationCommand& observation_command(ObservationKind kind) {
   static const ObservationCommand* const parts[kObservationKindCount] = {
-      &continuous_observation_command(), &sampled_observation_command(), &delayed_observation_command()};
+      &continuous_observation_command(), &sampled_observation_command(), &delayed_observation_command(),
+      &polynomial_observation_command()};
   return observation_part(kind, parts);
 }
 

@@ -53,6 +53,7 @@ Json values_json(const std::vector<std::vector<double>>& values);
 const ObservationCommand& continuous_observation_command();
 const ObservationCommand& sampled_observation_command();
 const ObservationCommand& delayed_observation_command();
+const ObservationCommand& polynomial_observation_command();
 const ObservationCommand& observation_command(ObservationKind kind);
 
 }  // namespace pfgen::cli

@@ -166,7 +166,7 @@ class Filter:
             dm = m_drift dt + gain (dy - predicted_observation dt),   dP = P_drift dt
 
         (a sampled filter's m_drift and P_drift are its prediction between samples, and its gain
-        is empty). Returns a SympyFilter with m_drift (n x 1), gain (n x p), P_drift (n x n),
+        is empty; a polynomial observation's dP adds sum_r P_gain[r] (dy_r - predicted_observation_r dt)). Returns a SympyFilter with m_drift (n x 1), gain (n x p), P_drift (n x n),
         predicted_observation (p x 1), definitions (name -> expression, in order) and symbols
         (name -> Symbol: m1, P11, ..., the parameters, the time)."""
         try:
@@ -194,15 +194,19 @@ class Filter:
             predicted_observation=sympy.Matrix(len(e.predicted_observation), 1,
                                                [parse(x) for x in e.predicted_observation]),
             definitions={name: parse(value) for name, value in e.definitions},
-            symbols=symbols)
+            symbols=symbols,
+            P_gain=[sympy.Matrix(n, n, [parse(x) for row in L for x in row]) for L in e.P_gain])
 
 
 class SympyFilter:
     """Filter.to_sympy's result."""
 
-    def __init__(self, m_drift, gain, P_drift, predicted_observation, definitions, symbols):
+    def __init__(self, m_drift, gain, P_drift, predicted_observation, definitions, symbols, P_gain):
         self.m_drift, self.gain, self.P_drift = m_drift, gain, P_drift
         self.predicted_observation, self.definitions, self.symbols = predicted_observation, definitions, symbols
+        #: a polynomial observation's dP = P_drift dt + sum_r P_gain[r] (dy_r - predicted_observation_r dt);
+        #: empty for the other observations
+        self.P_gain = P_gain
 
     def __repr__(self):
         return f"SympyFilter(m_drift={self.m_drift}, gain={self.gain}, P_drift={self.P_drift})"

@@ -68,6 +68,7 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readonly("gain", &api::Expressions::gain)
       .def_readonly("P_drift", &api::Expressions::P_drift)
       .def_readonly("predicted_observation", &api::Expressions::predicted_observation)
+      .def_readonly("P_gain", &api::Expressions::P_gain)
       .def_readonly("definitions", &api::Expressions::definitions)
       .def_readonly("m_names", &api::Expressions::m_names)
       .def_readonly("P_names", &api::Expressions::P_names)

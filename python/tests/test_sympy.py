@@ -68,3 +68,16 @@ def test_a_parameter_named_like_a_python_keyword(tmp_path):
     lam, gamma, m = sympy.Symbol("lambda"), sympy.Symbol("gamma"), sympy.Symbol("m1")
     assert sympy.expand(eq.m_drift[0] - (-lam * m + gamma)) == 0
     assert eq.symbols["E"] in eq.P_drift[0, 0].free_symbols
+
+
+def test_the_cubic_sensor_as_the_design_equations():
+    """A polynomial observation: dm = -a m dt + 3P(m^2 + P)/rho^2 dnu,
+    dP = (-2aP + sigma^2 - 9P^2(m^2 + P)^2/rho^2) dt + 6mP^2/rho^2 dnu, dnu = dy - (m^3 + 3mP) dt."""
+    eq = pfgen.Model.load("examples/polynomial/cubic_sensor.yaml").derive("optimal").to_sympy()
+    m, P, a, sigma, rho = (eq.symbols[name] for name in ("m1", "P11", "a", "sigma", "rho"))
+    assert sympy.expand(eq.m_drift[0] + a * m) == 0
+    assert sympy.simplify(eq.gain[0, 0] - 3 * P * (m**2 + P) / rho**2) == 0
+    assert sympy.simplify(eq.P_drift[0, 0] - (-2 * a * P + sigma**2 - 9 * P**2 * (m**2 + P)**2 / rho**2)) == 0
+    assert sympy.expand(eq.predicted_observation[0] - (m**3 + 3 * m * P)) == 0
+    assert len(eq.P_gain) == 1 and sympy.simplify(eq.P_gain[0][0, 0] - 6 * m * P**2 / rho**2) == 0
+    assert pfgen.Model.load("examples/basin2006_quadratic.yaml").derive("optimal").to_sympy().P_gain == []

@@ -74,6 +74,7 @@ Evaluation Filter::eval(const Point& point) const {
     out.phi = value.phi;
     out.x_star = value.x_star;
     out.x_star_drift = value.x_star_drift;
+    out.P_gain = value.P_gain;
     return out;
   });
 }
@@ -110,6 +111,12 @@ Expressions Filter::expressions() const {
       out.P_names.push_back(name_row);
     }
     for (const Polynomial& y : eq.predicted_observation) out.predicted_observation.push_back(text(y));
+    for (std::size_t r = 0; r < eq.p && !eq.P_gain.empty(); ++r) {
+      std::vector<std::vector<std::string>> L(n, std::vector<std::string>(n));
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j) L[i][j] = text(eq.P_gain[eq.variables.upper_index(i, j)][r]);
+      out.P_gain.push_back(std::move(L));
+    }
     for (const GiNaC::ex& symbol : symbols) out.names.push_back(GiNaC::ex_to<GiNaC::symbol>(symbol).get_name());
     for (const Parameter& parameter : impl_->model->model.parameters) out.names.push_back(parameter.symbol.get_name());
     out.names.push_back(impl_->model->model.time.get_name());

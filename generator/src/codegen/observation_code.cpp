@@ -8,7 +8,8 @@ void ObservationCode::plugin_options(const Model&, std::optional<double>, Codege
 
 const ObservationCode& observation_code(ObservationKind kind) {
   static const ObservationCode* const parts[kObservationKindCount] = {
-      &continuous_observation_code(), &sampled_observation_code(), &delayed_observation_code()};
+      &continuous_observation_code(), &sampled_observation_code(), &delayed_observation_code(),
+      &polynomial_observation_code()};
   return observation_part(kind, parts);
 }
 

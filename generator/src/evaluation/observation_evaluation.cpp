@@ -18,7 +18,8 @@ void refuse_delayed_inputs(const Model& model, const FilterEquations& eq, const 
 
 const ObservationEvaluation& observation_evaluation(ObservationKind kind) {
   static const ObservationEvaluation* const parts[kObservationKindCount] = {
-      &continuous_observation_evaluation(), &sampled_observation_evaluation(), &delayed_observation_evaluation()};
+      &continuous_observation_evaluation(), &sampled_observation_evaluation(), &delayed_observation_evaluation(),
+      &polynomial_observation_evaluation()};
   return observation_part(kind, parts);
 }
 

@@ -9,22 +9,25 @@ const std::vector<FilterKindInfo>& filter_kinds() {
   using E = ExpectationRule;
   using D = DiffusionSource;
   const std::vector<ObservationKind> continuous = {ObservationKind::Continuous};
+  // The Gaussian-closure and extended kinds read the observation through its module: they are
+  // derived for polynomial observations too.
+  const std::vector<ObservationKind> rate = {ObservationKind::Continuous, ObservationKind::Polynomial};
   const std::vector<ObservationKind> sampled = {ObservationKind::Sampled};
   const std::vector<ObservationKind> delayed = {ObservationKind::Delayed};
   static const std::vector<FilterKindInfo> kinds = {
       {FilterKind::Optimal, "optimal",
        "Gaussian-closure optimal filter: $E[f]|E[f]$, $E[(x-m)f^T] + E[f(x-m)^T]|E[(x-m)f^{T}] + E[f(x-m)^{T}]$, "
        "$E[g g^T]|E[g\\,g^{T}]$ expanded exactly",
-       E::Gaussian, D::Model, continuous},
+       E::Gaussian, D::Model, rate},
       {FilterKind::Ekf, "ekf", "extended Kalman-Bucy filter (textbook): $f(m)|f(m)$, Jacobian of $f|f$ at $m|m$, "
        "$g(m) g(m)^T|g(m)\\,g(m)^{T}$",
-       E::AtMean, D::Model, continuous},
+       E::AtMean, D::Model, rate},
       {FilterKind::Additive, "additive",
        "Gaussian-closure filter with the model's additive (state-independent) diffusion in place of $g|g$",
-       E::Gaussian, D::Additive, continuous},
+       E::Gaussian, D::Additive, rate},
       {FilterKind::EkfAdditive, "ekf-additive",
        "extended Kalman-Bucy filter with the model's additive (state-independent) diffusion in place of $g|g$",
-       E::AtMean, D::Additive, continuous},
+       E::AtMean, D::Additive, rate},
       {FilterKind::CdOptimal, "cd-optimal",
        "continuous-discrete Gaussian-closure filter: the closed moment ODEs between samples, Kalman update at each",
        E::Gaussian, D::Model, sampled, Prediction::Ode},

@@ -9,6 +9,7 @@ const std::vector<ObservationKindInfo>& observation_kinds() {
       {ObservationKind::Continuous, "continuous", "dy = (A0 + A x) dt + B dW2"},
       {ObservationKind::Sampled, "sampled", "y_k = C0 + C x(t_k) + Uv v_k at t_k = k T"},
       {ObservationKind::Delayed, "delayed", "dy = (A0 + A x(t - h)) dt + B dW2"},
+      {ObservationKind::Polynomial, "polynomial", "dy = h(x, t) dt + B dW2"},
   };
   return kinds;
 }

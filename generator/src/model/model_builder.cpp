@@ -153,6 +153,12 @@ ModelBuilder& ModelBuilder::sampled_observation(const GiNaC::numeric& period, co
   return *this;
 }
 
+ModelBuilder& ModelBuilder::polynomial_observation(const ExVector& h, const ExMatrix& B) {
+  model_.observation = PolynomialObservation{exact_vector(h), exact_matrix(B)};
+  has_observation_ = true;
+  return *this;
+}
+
 ModelBuilder& ModelBuilder::initial(const InitialConditions& initial) {
   model_.initial = initial;
   return *this;

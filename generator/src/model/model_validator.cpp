@@ -290,8 +290,21 @@ void validate_sampled_observation(const Model& model) {
   require_positive_definite_noise(model, obs.Uv, field + ".Uv", "Uv");
 }
 
+void validate_polynomial_observation(const Model& model) {
+  const PolynomialObservation& obs = model.observation.polynomial();
+  const std::size_t p = obs.h.size();
+  if (p == 0) throw ModelError("observation.h", "at least one observation is required");
+  for (std::size_t i = 0; i < p; ++i) require_polynomial(model, obs.h[i], "observation.h", one_based(i), std::nullopt);
+  require_shape(obs.B, p, std::nullopt, "observation.B", "one per observation, as in h");
+  for (std::size_t i = 0; i < obs.B.size(); ++i)
+    for (std::size_t j = 0; j < obs.B[i].size(); ++j)
+      require_state_free(model, obs.B[i][j], "observation.B", one_based(i), one_based(j));
+  require_positive_definite_noise(model, obs.B, "observation.B", "B");
+}
+
 void validate_observation(const Model& model) {
   if (model.observation.is_sampled()) return validate_sampled_observation(model);
+  if (model.observation.is_polynomial()) return validate_polynomial_observation(model);
   validate_continuous_observation(model);
 }
 
@@ -444,6 +457,10 @@ void validate_user_filters(const Model& model) {
     throw ModelError("filters." + model.user_filters.front().name,
                      "a filter given by its equations is a continuous-observation filter (dm = ... + gain (dy - ...)); "
                      "this model's observation is sampled");
+  if (model.observation.is_polynomial() && !model.user_filters.empty())
+    throw ModelError("filters." + model.user_filters.front().name,
+                     "a filter given by its equations has no dy term in dP, which a polynomial observation's "
+                     "filters have; write the observation as A0 + A x, or drop filters:");
   for (const UserFilter& filter : model.user_filters) {
     const std::string field = "filters." + filter.name;
     if (!std::regex_match(filter.name, filter_name))

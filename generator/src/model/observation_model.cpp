@@ -11,6 +11,7 @@ ObservationKind ObservationModel::kind() const {
 
 std::size_t ObservationModel::p() const {
   if (const auto* s = std::get_if<SampledObservation>(&form_)) return s->C.size();
+  if (const auto* h = std::get_if<PolynomialObservation>(&form_)) return h->h.size();
   return rate().A.size();
 }
 
@@ -29,10 +30,15 @@ const DelayedObservation& ObservationModel::delayed() const {
   throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ", not delayed");
 }
 
+const PolynomialObservation& ObservationModel::polynomial() const {
+  if (const auto* h = std::get_if<PolynomialObservation>(&form_)) return *h;
+  throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ", not polynomial");
+}
+
 const ContinuousObservation& ObservationModel::rate() const {
   if (const auto* c = std::get_if<ContinuousObservation>(&form_)) return *c;
   if (const auto* d = std::get_if<DelayedObservation>(&form_)) return d->rate;
-  throw std::logic_error("the model's observation is sampled: it has no A0, A, B");
+  throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ": it has no A0, A, B");
 }
 
 GiNaC::numeric ObservationModel::delay() const {

@@ -214,6 +214,21 @@ class Loader {
       read_sampled_observation(builder, parser, sampled);
       return;
     }
+    // observation: {h: [...], B: [[...]]}: dy = h(x, t) dt + B dW2 with h polynomial in the states.
+    if (YAML::Node h_node = obs["h"]; h_node) {
+      for (const auto& entry : obs) {
+        std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
+        index_.record("observation." + key, entry.first);
+        if (key != "h" && key != "B")
+          throw ModelError("observation." + key, "a polynomial observation dy = h(x, t) dt + B dW2 has the fields h "
+                                                 "and B only (A0 + A x is h written as a linear polynomial)");
+      }
+      YAML::Node B_node = obs["B"];
+      if (!B_node || B_node.IsNull()) throw ModelError("observation.B", "missing required field");
+      builder.polynomial_observation(vector_field(h_node, "observation.h", parser),
+                                     matrix_field(B_node, "observation.B", parser));
+      return;
+    }
     for (const auto& entry : obs) {
       std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
       index_.record("observation." + key, entry.first);

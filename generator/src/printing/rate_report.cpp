@@ -68,6 +68,24 @@ std::string mean_square_header_text(const Model& model, const FilterEquations& e
   return out;
 }
 
+// A polynomial observation's dP_ij has a dy term: L_ij,r, named after P_ij ("L11_1", "L1_10_1"; in
+// LaTeX "L_{11,1}"). Whether entry u has any (empty P_gain: no entry has).
+bool has_P_gain(const FilterEquations& eq, std::size_t u) {
+  if (eq.P_gain.empty()) return false;
+  for (const Polynomial& L : eq.P_gain[u])
+    if (!L.is_zero()) return true;
+  return false;
+}
+
+std::string L_text_name(const FilterVariables& vars, std::size_t i, std::size_t j, std::size_t r) {
+  return "L" + vars.text_name(vars.P(i, j)).substr(1) + "_" + std::to_string(r + 1);
+}
+
+std::string L_latex_name(const FilterVariables& vars, std::size_t i, std::size_t j, std::size_t r) {
+  const std::string P = vars.latex_name(vars.P(i, j));  // "P_{11}"
+  return "L_{" + P.substr(3, P.size() - 4) + "," + std::to_string(r + 1) + "}";
+}
+
 // With a sink, `out` is written to it whenever it passes a megabyte.
 void drain(std::string& out, std::ostream* sink) {
   if (sink == nullptr || out.size() < (1u << 20)) return;
@@ -120,11 +138,28 @@ std::string RateReport::text(const Model& model, const FilterEquations& eq, std:
     }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) {
+      const std::size_t u = vars.upper_index(i, j);
       out += "d" + vars.text_name(vars.P(i, j)) + " = (";
-      append_parts(out, writer, P_parts(eq, vars.upper_index(i, j)));
-      out += ") dt\n";
+      append_parts(out, writer, P_parts(eq, u));
+      out += ") dt";
+      if (has_P_gain(eq, u))
+        for (std::size_t r = 0; r < eq.p; ++r) {
+          if (eq.P_gain[u][r].is_zero()) continue;
+          std::string predicted = writer.print(h[r]);
+          if (!is_single_term(h[r])) predicted = "(" + predicted + ")";
+          out += " + " + L_text_name(vars, i, j, r) + " (dy" + std::to_string(r + 1) + " - " + predicted + " dt)";
+        }
+      out += "\n";
       drain(out, sink);
     }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j)
+      if (has_P_gain(eq, vars.upper_index(i, j)))
+        for (std::size_t r = 0; r < eq.p; ++r)
+          if (!eq.P_gain[vars.upper_index(i, j)][r].is_zero()) {
+            out += L_text_name(vars, i, j, r) + " = " + writer.print(eq.P_gain[vars.upper_index(i, j)][r]) + "\n";
+            drain(out, sink);
+          }
   out += trailing_text(eq);
   return out;
 }
@@ -155,10 +190,30 @@ std::string RateReport::latex(const FilterEquations& eq) const {
   }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t r = 0; r < eq.p; ++r) lines.push_back(latex_align_lines(K(i, r), writer.print(eq.gain[i][r])));
+  auto innovation = [&](std::size_t r) {
+    return "\\left(dy_{" + std::to_string(r + 1) + "} - " +
+           (is_single_term(h[r]) ? writer.print(h[r]) : "\\left(" + writer.print(h[r]) + "\\right)") + "\\,dt\\right)";
+  };
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      const std::size_t u = vars.upper_index(i, j);
+      if (!has_P_gain(eq, u)) {
+        lines.push_back(latex_align_lines("\\frac{d" + vars.latex_name(vars.P(i, j)) + "}{dt}",
+                                          join_parts(writer, P_parts(eq, u))));
+        continue;
+      }
+      // With a dy term dP is not a rate: written as dm is.
+      std::string rhs = "\\left(" + join_parts(writer, P_parts(eq, u)) + "\\right)dt";
+      for (std::size_t r = 0; r < eq.p; ++r)
+        if (!eq.P_gain[u][r].is_zero()) rhs += " + " + L_latex_name(vars, i, j, r) + innovation(r);
+      lines.push_back(latex_align_lines("d" + vars.latex_name(vars.P(i, j)), rhs));
+    }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j)
-      lines.push_back(latex_align_lines("\\frac{d" + vars.latex_name(vars.P(i, j)) + "}{dt}",
-                                        join_parts(writer, P_parts(eq, vars.upper_index(i, j)))));
+      if (has_P_gain(eq, vars.upper_index(i, j)))
+        for (std::size_t r = 0; r < eq.p; ++r)
+          if (!eq.P_gain[vars.upper_index(i, j)][r].is_zero())
+            lines.push_back(latex_align_lines(L_latex_name(vars, i, j, r), writer.print(eq.P_gain[vars.upper_index(i, j)][r])));
   for (std::string& line : trailing_latex(eq)) lines.push_back(std::move(line));
   for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
   out += "\\end{align*}\n";
@@ -214,6 +269,19 @@ Json RateReport::json(const Model& model, const FilterEquations& eq) const {
   out.add("gain", gain);
   out.add("predicted_observation", predicted);
   out.add("P_drift", P_drift);
+  if (!eq.P_gain.empty()) {  // a polynomial observation's: per observation r, dP's coefficients of dy_r - E[h_r] dt
+    Json P_gain = Json::array();
+    for (std::size_t r = 0; r < eq.p; ++r) {
+      Json matrix = Json::array();
+      for (std::size_t i = 0; i < n; ++i) {
+        Json row = Json::array();
+        for (std::size_t j = 0; j < n; ++j) row.push(Json::string(writer.print(eq.P_gain[vars.upper_index(i, j)][r])));
+        matrix.push(row);
+      }
+      P_gain.push(matrix);
+    }
+    out.add("P_gain", P_gain);
+  }
   add_json(eq, out);
   if (is_risk_sensitive_report(eq)) add_risk_json(eq, out);
   return out;

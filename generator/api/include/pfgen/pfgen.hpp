@@ -69,6 +69,8 @@ struct Evaluation {
   Matrix P_dt2;                  // cd-euler only
   Matrix innovation_covariance;  // sampled observations only
   Vector predicted_observation, m_delayed, phi, x_star, x_star_drift;  // delayed observations only
+  // Polynomial observations: per observation r, dP's n x n coefficients of dy_r - E[h_r] dt.
+  std::vector<Matrix> P_gain;
 };
 
 // A filter's equations as expressions that Python (and SymPy's sympify) reads: `**` for powers,
@@ -79,6 +81,9 @@ struct Expressions {
   std::vector<std::vector<std::string>> gain;       // n x p (n x 0 for a sampled filter)
   std::vector<std::vector<std::string>> P_drift;    // n x n, symmetric
   std::vector<std::string> predicted_observation;   // p (empty for a sampled filter)
+  // A polynomial observation's dP = P_drift dt + sum_r P_gain[r] (dy_r - predicted_observation_r dt):
+  // per observation, n x n; empty for the other observations.
+  std::vector<std::vector<std::vector<std::string>>> P_gain;
   // A user filter's `define:` names or the ukf's Cholesky entries, in order: each value may read
   // the names before it, and the expressions above may read them all.
   std::vector<std::pair<std::string, std::string>> definitions;

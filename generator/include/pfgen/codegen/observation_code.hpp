@@ -51,6 +51,7 @@ class ObservationCode {
 const ObservationCode& continuous_observation_code();
 const ObservationCode& sampled_observation_code();
 const ObservationCode& delayed_observation_code();
+const ObservationCode& polynomial_observation_code();
 const ObservationCode& observation_code(ObservationKind kind);
 
 }  // namespace pfgen::codegen

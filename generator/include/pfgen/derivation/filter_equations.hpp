@@ -61,6 +61,10 @@ struct FilterEquations {
   // the exact covariance of x + f dt + g sqrt(dt) xi.
   std::vector<Polynomial> P_euler;
   SampledUpdate update;  // sampled observations only (update.r() == 0 otherwise)
+  // Polynomial observations only (empty otherwise): dP_ij gains sum_r P_gain[u][r] (dy_r -
+  // predicted_observation_r dt), u = upper_index(i, j): the covariance's own innovation term
+  // sum_k P E[H_k] P (R^-1)_kr (observations/polynomial/polynomial_observation_terms.hpp).
+  std::vector<std::vector<Polynomial>> P_gain;
   // Delayed observations only: the delay h (0 otherwise), and for the kinds with the Phi* gain the
   // drift f(xs, t) of the noise-free solution xs, n entries (empty otherwise).
   GiNaC::numeric delay = 0;

@@ -37,6 +37,7 @@ class ObservationDerivation {
 const ObservationDerivation& continuous_observation_derivation();
 const ObservationDerivation& sampled_observation_derivation();
 const ObservationDerivation& delayed_observation_derivation();
+const ObservationDerivation& polynomial_observation_derivation();
 const ObservationDerivation& observation_derivation(ObservationKind kind);
 
 }  // namespace pfgen

@@ -29,6 +29,7 @@ std::vector<std::pair<std::string, const std::vector<GiNaC::numeric>*>> delayed_
 const ObservationEvaluation& continuous_observation_evaluation();
 const ObservationEvaluation& sampled_observation_evaluation();
 const ObservationEvaluation& delayed_observation_evaluation();
+const ObservationEvaluation& polynomial_observation_evaluation();
 const ObservationEvaluation& observation_evaluation(ObservationKind kind);
 
 }  // namespace pfgen

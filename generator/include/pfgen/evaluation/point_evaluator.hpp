@@ -39,6 +39,9 @@ struct EvaluatedFilter {
   // Delayed only: A0 + A md, what the innovation compares dy with; the inputs used (md; and phi,
   // x* for the Phi* kinds) and x*'s drift f(x*, t).
   std::vector<double> predicted_observation, m_delayed, phi, x_star, x_star_drift;
+  // Polynomial observations only: per observation r, the n x n coefficients of dy_r - E[h_r] dt in dP
+  // (FilterEquations::P_gain); predicted_observation then holds E[h] (or h(m)).
+  std::vector<std::vector<std::vector<double>>> P_gain;
 };
 
 // A problem with the point itself (wrong sizes, asymmetric P, unknown parameter, a delayed input

@@ -13,6 +13,7 @@ enum class ObservationKind {
   Continuous,  // dy = (A0 + A x) dt + B dW2
   Sampled,     // y_k = C0 + C x(t_k) + Uv v_k at t_k = k T, v_k ~ N(0, I)
   Delayed,     // dy = (A0 + A x(t - h)) dt + B dW2, h >= 0 (h = 0 only through the C++ API)
+  Polynomial,  // dy = h(x, t) dt + B dW2, h polynomial in the states
 };
 
 struct ObservationKindInfo {
@@ -26,7 +27,7 @@ const std::vector<ObservationKindInfo>& observation_kinds();
 const ObservationKindInfo& observation_kind_info(ObservationKind kind);
 
 // The number of observation models: every table indexed by ObservationKind has this many rows.
-inline constexpr std::size_t kObservationKindCount = 3;
+inline constexpr std::size_t kObservationKindCount = 4;
 
 // A room's part of the observation model `kind`, from that room's table of the modules' parts, one
 // per kind in ObservationKind's order (a table of another length does not compile). Each room that

@@ -40,6 +40,8 @@ class ModelBuilder {
   // Samples y_k = C0 + C x(k T) + Uv v_k (SampledObservation); C0 may be zeros.
   ModelBuilder& sampled_observation(const GiNaC::numeric& period, const ExVector& C0, const ExMatrix& C,
                                     const ExMatrix& Uv, std::size_t substeps = 1);
+  // dy = h(x, t) dt + B dW2, each h_r a polynomial in the states (PolynomialObservation).
+  ModelBuilder& polynomial_observation(const ExVector& h, const ExMatrix& B);
   ModelBuilder& initial(const InitialConditions& initial);
 
   // The filter's own variables for user filters, once every state is declared: m1..mn,

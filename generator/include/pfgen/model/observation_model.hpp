@@ -4,7 +4,7 @@
 // them through its module (observations/<kind>/, found by kind()), which reads the alternative it
 // is for, instead of assuming one observation equation. A new kind is one more alternative of the
 // variant below: continuous, dy = (A0 + A x) dt + B dW2, or sampled, y_k = C0 + C x(t_k) + Uv v_k
-// at t_k = k T, or delayed, dy = (A0 + A x(t - h)) dt + B dW2.
+// at t_k = k T, or delayed, dy = (A0 + A x(t - h)) dt + B dW2, or polynomial, dy = h(x, t) dt + B dW2.
 #include <cstddef>
 #include <variant>
 
@@ -39,12 +39,21 @@ struct DelayedObservation {
   ContinuousObservation rate;  // A0, A, B of dy = (A0 + A x(t - h)) dt + B dW2
 };
 
+// A polynomial observation: each h_r a polynomial in the states (of any degree), with parameters
+// and functions of t in its coefficients; linear h is the continuous observation's model written
+// otherwise (its filters are the same, docs/theory.md).
+struct PolynomialObservation {
+  ExVector h;  // p entries
+  ExMatrix B;  // p x r, with B B^T positive definite
+};
+
 class ObservationModel {
  public:
   ObservationModel() = default;  // continuous with no rows: ModelBuilder requires a real one
   ObservationModel(ContinuousObservation continuous) : form_(std::move(continuous)) {}  // NOLINT: implicit by design
   ObservationModel(SampledObservation sampled) : form_(std::move(sampled)) {}  // NOLINT: implicit by design
   ObservationModel(DelayedObservation delayed) : form_(std::move(delayed)) {}  // NOLINT: implicit by design
+  ObservationModel(PolynomialObservation polynomial) : form_(std::move(polynomial)) {}  // NOLINT: implicit by design
 
   ObservationKind kind() const;
   std::size_t p() const;  // observations per time or per sample (rows of A or of C)
@@ -53,9 +62,11 @@ class ObservationModel {
   const ContinuousObservation& continuous() const;
   const SampledObservation& sampled() const;
   const DelayedObservation& delayed() const;
+  const PolynomialObservation& polynomial() const;
   // For the model room, below the modules, where its own rules differ by kind (DESIGN.md).
   bool is_sampled() const { return kind() == ObservationKind::Sampled; }
   bool is_delayed() const { return kind() == ObservationKind::Delayed; }
+  bool is_polynomial() const { return kind() == ObservationKind::Polynomial; }
   // A0, A and B of a continuous or delayed observation (the rate terms of dy); std::logic_error
   // for sampled ones. For rooms that handle the delay themselves (or need only the coefficients).
   const ContinuousObservation& rate() const;
@@ -63,7 +74,7 @@ class ObservationModel {
   GiNaC::numeric delay() const;
 
  private:
-  std::variant<ContinuousObservation, SampledObservation, DelayedObservation> form_;
+  std::variant<ContinuousObservation, SampledObservation, DelayedObservation, PolynomialObservation> form_;
 };
 
 }  // namespace pfgen

@@ -48,6 +48,7 @@ class ObservationReport {
 const ObservationReport& continuous_observation_report();
 const ObservationReport& sampled_observation_report();
 const ObservationReport& delayed_observation_report();
+const ObservationReport& polynomial_observation_report();
 const ObservationReport& observation_report(ObservationKind kind);
 
 }  // namespace pfgen
