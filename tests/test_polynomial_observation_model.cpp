@@ -67,7 +67,7 @@ TEST_CASE("polynomial observation: a linear h prints every filter exactly as A0 
 
 TEST_CASE("polynomial observation: the cubic sensor's filters as printed", "[observation][polynomial][unit]") {
   const Model model = cubic_sensor();
-  CHECK(available_filter_names(model) == std::vector<std::string>{"optimal", "ekf", "additive", "ekf-additive"});
+  CHECK(default_filter_names(model) == std::vector<std::string>{"optimal", "ekf", "additive", "ekf-additive"});
   const std::string optimal = equations_text(model, derive_filter(model, FilterKind::Optimal));
   CHECK_THAT(optimal, Catch::Contains("dm1 = (-a*m1) dt + K1_1 (dy1 - (m1^3 + 3*m1*P11) dt)\n"
                                       "K1_1 = 3*m1^2*P11/rho^2 + 3*P11^2/rho^2\n"
@@ -126,4 +126,28 @@ TEST_CASE("polynomial observation: the coefficient form refuses a nonlinear h, a
   CHECK_THROWS_WITH(extract_observation_coefficients(model),
                     Catch::EndsWith("cubic_sensor.yaml: error: field 'observation.h': the coefficient form's "
                                     "observation is linear, E + E1 x; h has degree 3"));
+}
+
+TEST_CASE("polynomial observation: the ukf sends h through its sigma points", "[observation][polynomial][unit]") {
+  // In one dimension the sigma points (c = 3) match the Gaussian's moments to order 5, so for the
+  // cubic sensor the ukf's E[h] = m^3 + 3 m L^2 and C = 3 m^2 L^2 + 3 L^4 are the optimal filter's
+  // with L^2 = P: at a point the two give the same gain and drifts; the ukf's dP has no dy term.
+  const Model model = cubic_sensor();
+  CHECK(available_filter_names(model) ==
+        std::vector<std::string>{"optimal", "ekf", "additive", "ekf-additive", "ukf"});
+  const FilterEquations ukf = derive_filter(model, FilterKind::Ukf);
+  CHECK(ukf.P_gain.empty());
+  const std::string text = equations_text(model, ukf);
+  CHECK_THAT(text, Catch::Contains("K1_1 = 3*L11^2*m1^2/rho^2 + 3*L11^4/rho^2"));
+  CHECK_THAT(text, Catch::Contains("- [C (B B^T)^-1 C^T, C = sum_i w_i (X_i-m) h(X_i)^T]"));
+  EvaluationPoint point;
+  point.m = {GiNaC::numeric(2, 5)};
+  point.P = {{GiNaC::numeric(3, 10)}};
+  const EvaluatedFilter sigma = evaluate_at(model, ukf, point);
+  const EvaluatedFilter gaussian = evaluate_at(model, derive_filter(model, FilterKind::Optimal), point);
+  CHECK(sigma.gain[0][0] == Approx(gaussian.gain[0][0]).epsilon(1e-14));
+  CHECK(sigma.m_drift[0] == Approx(gaussian.m_drift[0]).epsilon(1e-14));
+  CHECK(sigma.P_drift[0][0] == Approx(gaussian.P_drift[0][0]).epsilon(1e-14));
+  CHECK(sigma.predicted_observation[0] == Approx(gaussian.predicted_observation[0]).epsilon(1e-14));
+  CHECK(sigma.P_gain.empty());
 }

@@ -126,4 +126,28 @@ UnscentedTerms unscented_terms(const Model& model, const FilterVariables& vars) 
   return out;
 }
 
+SigmaPointMoments sigma_point_moments(const GiNaC::ex& h, const Model& model,
+                                      const std::vector<FilterDefinition>& cholesky) {
+  const std::size_t n = model.n();
+  const SigmaPointWeights weights = sigma_point_weights(n);
+  // L from its entries, column by column as unscented_terms defines them.
+  std::vector<std::vector<GiNaC::ex>> L(n, std::vector<GiNaC::ex>(n, 0));
+  std::size_t next = 0;
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = j; i < n; ++i) L[i][j] = cholesky.at(next++).name;
+  const GiNaC::symbol s("sqrt_c");
+  SigmaPointMoments out;
+  GiNaC::ex mean = weights.w0 * h;
+  std::vector<GiNaC::ex> cross(n, 0);
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::vector<GiNaC::ex> along = directional_expansion(h, model, L, j, s);
+    mean += weights.w * symmetric_sum(along, weights.c);
+    const GiNaC::ex odd = weights.w * antisymmetric_sum(along, weights.c);
+    for (std::size_t a = j; a < n; ++a) cross[a] += L[a][j] * odd;
+  }
+  out.mean = Polynomial::from_ex(mean, model.states);
+  for (const GiNaC::ex& c : cross) out.cross.push_back(Polynomial::from_ex(c, model.states));
+  return out;
+}
+
 }  // namespace pfgen

@@ -62,7 +62,7 @@ const std::vector<FilterKindInfo>& filter_kinds() {
        "unscented Kalman-Bucy filter (Sarkka 2007): $E[f]|E[f]$, $E[(x-m)f^T]|E[(x-m)f^{T}]$, $E[g g^T]|E[g\\,g^{T}]$ "
        "as weighted sums over the $2n+1|2n+1$ sigma points $m, m +- sqrt(c) L_j|m, m \\pm \\sqrt{c}\\,L_j$, $L|L$ the "
        "Cholesky factor of $P|P$; opt-in (not among the defaults)",
-       E::SigmaPoints, D::Model, continuous, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
+       E::SigmaPoints, D::Model, rate, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
        /*in_defaults=*/false},
   };
   return kinds;

@@ -37,7 +37,7 @@ std::string sigma_point_header_text(const FilterEquations& eq, const std::string
 }
 
 // The same in LaTeX, before the equations.
-std::string sigma_point_paragraph_latex(const FilterEquations& eq) {
+std::string sigma_point_paragraph_latex(const FilterEquations& eq, const std::string& correction) {
   const SigmaPointWeights w = sigma_point_weights(eq.n());
   const LatexPrinter printer;
   const std::string c = printer.print(w.c);
@@ -45,8 +45,8 @@ std::string sigma_point_paragraph_latex(const FilterEquations& eq) {
          c + "}\\,L_j$ ($j = 1, \\ldots, " + std::to_string(eq.n()) +
          "$; $L_j$ the $j$-th column of the Cholesky factor $L$ of $P$, $L L^T = P$, whose entries are defined "
          "below), weights $w_0 = " + printer.print(w.w0) + "$, $w_i = " + printer.print(w.w) +
-         "$; $dP/dt = \\sum_i w_i \\left((X_i - m) f(X_i)^T + f(X_i) (X_i - m)^T + g(X_i) g(X_i)^T\\right) - "
-         "P A^T (B B^T)^{-1} A P$.\n\n";
+         "$; $dP/dt = \\sum_i w_i \\left((X_i - m) f(X_i)^T + f(X_i) (X_i - m)^T + g(X_i) g(X_i)^T\\right) - " +
+         correction + "$.\n\n";
 }
 
 // The variables line (m = E[x], P its covariance), the observation's header lines and which terms
@@ -95,6 +95,7 @@ void drain(std::string& out, std::ostream* sink) {
 
 }  // namespace
 
+std::string RateReport::sigma_point_correction_latex(const FilterEquations&) const { return "P A^T (B B^T)^{-1} A P"; }
 std::string RateReport::header_text(const FilterEquations&) const { return {}; }
 std::string RateReport::trailing_text(const FilterEquations&) const { return {}; }
 std::string RateReport::paragraph_latex(const FilterEquations&) const { return {}; }
@@ -176,7 +177,7 @@ std::string RateReport::latex(const FilterEquations& eq) const {
   std::string out = exactness_latex(eq.exactness);
   out += paragraph_latex(eq);
   if (is_risk_sensitive_report(eq)) out += risk_paragraph_latex(eq);
-  if (eq.kind && uses_sigma_points(*eq.kind)) out += sigma_point_paragraph_latex(eq);
+  if (eq.kind && uses_sigma_points(*eq.kind)) out += sigma_point_paragraph_latex(eq, sigma_point_correction_latex(eq));
   out += "\\begin{align*}\n";
   // Each right-hand side is cut into lines that fit the page (latex_line_breaker).
   std::vector<std::string> lines = definitions_latex_lines(eq);

@@ -44,4 +44,14 @@ struct UnscentedTerms {
 // the time of the model already has one of those names.
 UnscentedTerms unscented_terms(const Model& model, const FilterVariables& vars);
 
+// For an observation module whose observation is a function h of the state: the sigma points'
+// sum_i w_i h(X_i) and sum_i w_i (X_i - m) h(X_i) (n entries), with L the Cholesky entries that
+// unscented_terms defined (`cholesky`, in its order). Polynomials in m, their coefficients holding L.
+struct SigmaPointMoments {
+  Polynomial mean;
+  std::vector<Polynomial> cross;
+};
+SigmaPointMoments sigma_point_moments(const GiNaC::ex& h, const Model& model,
+                                      const std::vector<FilterDefinition>& cholesky);
+
 }  // namespace pfgen

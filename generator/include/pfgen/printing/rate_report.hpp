@@ -20,6 +20,8 @@ class RateReport : public ObservationReport {
  protected:
   // The correction's words in the text header's dP terms ("P A^T (B B^T)^-1 A P").
   virtual std::string correction_words_text(const FilterEquations& eq) const = 0;
+  // The same in the unscented filter's LaTeX paragraph ("P A^T (B B^T)^{-1} A P" by default).
+  virtual std::string sigma_point_correction_latex(const FilterEquations& eq) const;
   // What the observation adds, nothing by default: text lines after the variables line and
   // equations after the dP ones (each line ending in "\n"); a LaTeX paragraph after the exactness
   // diagnostic and align* lines after the dP ones; JSON fields after P_drift.

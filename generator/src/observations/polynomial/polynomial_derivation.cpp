@@ -3,6 +3,7 @@
 // (polynomial_observation_terms), or for the extended kinds h(m) and J(m) without that term.
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_derivation.hpp"
+#include "pfgen/derivation/unscented.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/observations/continuous/continuous_exactness.hpp"
 #include "pfgen/observations/polynomial/polynomial_observation.hpp"
@@ -10,6 +11,20 @@
 
 namespace pfgen {
 namespace {
+
+// The ukf's observation terms (Sarkka 2007): sum_i w_i h(X_i), C = sum_i w_i (X_i - m) h(X_i)^T,
+// gain C R^-1 and correction C R^-1 C^T; its P has no dy term.
+PolynomialObservationTerms sigma_point_terms(const Model& model, const FilterEquations& eq) {
+  const PolynomialObservation& observation = model.observation.polynomial();
+  std::vector<Polynomial> predicted;
+  std::vector<std::vector<Polynomial>> cross(model.n(), std::vector<Polynomial>(observation.h.size()));
+  for (std::size_t r = 0; r < observation.h.size(); ++r) {
+    SigmaPointMoments moments = sigma_point_moments(observation.h[r], model, eq.definitions);
+    predicted.push_back(std::move(moments.mean));
+    for (std::size_t a = 0; a < model.n(); ++a) cross[a][r] = std::move(moments.cross[a]);
+  }
+  return observation_terms_from_moments(std::move(predicted), cross, observation.B);
+}
 
 class PolynomialDerivation final : public ObservationDerivation {
  public:
@@ -50,14 +65,20 @@ class PolynomialDerivation final : public ObservationDerivation {
   }
 
   void observation_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
-    PolynomialObservationTerms terms = polynomial_observation_terms(
-        observation_polynomials(model), model.observation.polynomial().B, eq.variables, is_extended_kalman(kind));
+    const PolynomialObservation& observation = model.observation.polynomial();
+    // The ukf sends a nonlinear h through its sigma points (a linear h's terms are the exact ones).
+    PolynomialObservationTerms terms =
+        uses_sigma_points(kind) && observation_degree(model) > 1
+            ? sigma_point_terms(model, eq)
+            : polynomial_observation_terms(observation_polynomials(model), observation.B, eq.variables,
+                                           is_extended_kalman(kind));
     eq.predicted_observation = std::move(terms.predicted_observation);
     eq.gain = std::move(terms.gain);
     eq.P_correction = std::move(terms.P_correction);
     // Only where dP has a dy term: a linear h's filters are the continuous observation's, field
     // for field, and the extended kinds have none.
-    if (!is_extended_kalman(kind) && observation_degree(model) > 1) eq.P_gain = std::move(terms.P_gain);
+    if (!is_extended_kalman(kind) && !uses_sigma_points(kind) && observation_degree(model) > 1)
+      eq.P_gain = std::move(terms.P_gain);
   }
 
   ObservationCoefficients coefficients(const Model& model) const override {

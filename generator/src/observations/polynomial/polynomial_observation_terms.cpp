@@ -31,6 +31,28 @@ Polynomial P_times(const FilterVariables& vars, const std::vector<std::vector<Po
 
 }  // namespace
 
+PolynomialObservationTerms observation_terms_from_moments(std::vector<Polynomial> predicted,
+                                                          const std::vector<std::vector<Polynomial>>& cross,
+                                                          const ExMatrix& B) {
+  const std::size_t n = cross.size(), p = predicted.size();
+  const ExMatrix R_inverse = inverse_noise_covariance(B);
+  PolynomialObservationTerms out;
+  out.predicted_observation = std::move(predicted);
+  out.gain.assign(n, std::vector<Polynomial>(p));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t s = 0; s < p; ++s)
+      for (std::size_t r = 0; r < p; ++r)
+        if (!R_inverse[r][s].is_zero()) out.gain[i][s] += cross[i][r].scaled(R_inverse[r][s]);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      Polynomial correction;
+      for (std::size_t s = 0; s < p; ++s) correction += out.gain[i][s] * cross[j][s];
+      out.P_correction.push_back(std::move(correction));
+    }
+  out.P_gain.assign(n * (n + 1) / 2, std::vector<Polynomial>(p));
+  return out;
+}
+
 PolynomialObservationTerms polynomial_observation_terms(const std::vector<Polynomial>& h, const ExMatrix& B,
                                                         const FilterVariables& vars, bool at_mean) {
   const std::size_t n = vars.n(), p = h.size();

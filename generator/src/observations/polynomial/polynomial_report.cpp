@@ -50,8 +50,14 @@ class PolynomialReport final : public RateReport {
   // A linear h's filter is printed as the continuous observation's, byte for byte.
   std::string correction_words_text(const FilterEquations& eq) const override {
     if (predicts_linearly(eq)) return "P A^T (B B^T)^-1 A P";
+    if (eq.kind && uses_sigma_points(*eq.kind)) return "C (B B^T)^-1 C^T, C = sum_i w_i (X_i-m) h(X_i)^T";
     return eq.kind && is_extended_kalman(*eq.kind) ? "P J_h(m)^T (B B^T)^-1 J_h(m) P"
                                                    : "P E[J_h]^T (B B^T)^-1 E[J_h] P";
+  }
+
+  std::string sigma_point_correction_latex(const FilterEquations& eq) const override {
+    if (predicts_linearly(eq)) return RateReport::sigma_point_correction_latex(eq);
+    return "C (B B^T)^{-1} C^T$ with $C = \\sum_i w_i (X_i - m) h(X_i)^T";
   }
 };
 

@@ -32,4 +32,10 @@ struct PolynomialObservationTerms {
 PolynomialObservationTerms polynomial_observation_terms(const std::vector<Polynomial>& h, const ExMatrix& B,
                                                         const FilterVariables& vars, bool at_mean);
 
+// The same from moments computed otherwise (the ukf's sigma points): the predicted observation and
+// the cross covariance C = Cov(x, h), n x p; gain C R^-1, correction C R^-1 C^T, no dy term in dP.
+PolynomialObservationTerms observation_terms_from_moments(std::vector<Polynomial> predicted,
+                                                          const std::vector<std::vector<Polynomial>>& cross,
+                                                          const ExMatrix& B);
+
 }  // namespace pfgen
