@@ -182,8 +182,11 @@ class Filter:
         local = {placeholders[name]: symbol for name, symbol in symbols.items()}
 
         def parse(text):
-            text = _re.sub(r"[A-Za-z_][A-Za-z0-9_]*", lambda w: placeholders.get(w.group(0), w.group(0)), text)
-            return sympy.sympify(text, locals=local)
+            # Names only: not the e of a number's exponent (1e-05), which follows a digit.
+            text = _re.sub(r"(?<![0-9.A-Za-z_])[A-Za-z_][A-Za-z0-9_]*",
+                           lambda w: placeholders.get(w.group(0), w.group(0)), text)
+            # The text output's decimals (0.1) read as the exact rationals they stand for.
+            return sympy.sympify(text, locals=local, rational=True)
 
         n = len(e.m_drift)
         p = len(e.gain[0]) if n and e.gain and e.gain[0] else 0

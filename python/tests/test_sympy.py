@@ -81,3 +81,12 @@ def test_the_cubic_sensor_as_the_design_equations():
     assert sympy.expand(eq.predicted_observation[0] - (m**3 + 3 * m * P)) == 0
     assert len(eq.P_gain) == 1 and sympy.simplify(eq.P_gain[0][0, 0] - 6 * m * P**2 / rho**2) == 0
     assert pfgen.Model.load("examples/basin2006_quadratic.yaml").derive("optimal").to_sympy().P_gain == []
+
+
+def test_a_parameter_named_e_beside_small_numbers(tmp_path):
+    path = tmp_path / "e.yaml"
+    path.write_text("name: small\nstates: [x]\nparameters: {e: 2}\ndrift: [\"-0.00001*e*x\"]\n"
+                    "diffusion: [[\"0.001\"]]\nobservation: {A: [[1]], B: [[1]]}\n")
+    eq = pfgen.Model.load(str(path)).derive("optimal").to_sympy()
+    e, m = sympy.Symbol("e"), sympy.Symbol("m1")
+    assert sympy.expand(eq.m_drift[0] + sympy.Rational(1, 100000) * e * m) == 0

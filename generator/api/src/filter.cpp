@@ -3,6 +3,8 @@
 
 #include "api_impl.hpp"
 #include "commands.hpp"
+#include "pfgen/notation/polynomial_writer.hpp"
+#include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/equation_report.hpp"
 #include "pfgen/printing/json_writer.hpp"
 #include "pfgen/printing/noise_report.hpp"
@@ -81,10 +83,12 @@ Evaluation Filter::eval(const Point& point) const {
 
 namespace {
 
-std::string python_text(const GiNaC::ex& e) {
-  std::ostringstream out;
-  out << GiNaC::python << e;
-  return out.str();
+// The text output's spelling (deterministic, unlike GiNaC's own printing, whose term order follows
+// memory addresses), with Python's power operator.
+std::string python_syntax(std::string text) {
+  std::string out;
+  for (char c : text) out += c == '^' ? std::string("**") : std::string(1, c);
+  return out;
 }
 
 }  // namespace
@@ -93,7 +97,9 @@ Expressions Filter::expressions() const {
   return guarded([&] {
     const FilterEquations& eq = impl_->equations;
     const std::vector<GiNaC::ex>& symbols = eq.variables.symbols();
-    auto text = [&](const Polynomial& p) { return python_text(p.to_ex(symbols)); };
+    const TextPrinter printer;
+    PolynomialWriter writer(printer, [&](std::uint32_t v) { return eq.variables.text_name(v); });
+    auto text = [&](const Polynomial& p) { return python_syntax(writer.print(p)); };
     const std::size_t n = eq.n();
     Expressions out;
     for (std::size_t i = 0; i < n; ++i) {
@@ -121,7 +127,7 @@ Expressions Filter::expressions() const {
     for (const Parameter& parameter : impl_->model->model.parameters) out.names.push_back(parameter.symbol.get_name());
     out.names.push_back(impl_->model->model.time.get_name());
     for (const FilterDefinition& definition : eq.definitions) {
-      out.definitions.emplace_back(definition.name.get_name(), python_text(definition.value));
+      out.definitions.emplace_back(definition.name.get_name(), python_syntax(printer.print(definition.value)));
       out.names.push_back(definition.name.get_name());
     }
     return out;

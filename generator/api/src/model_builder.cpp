@@ -89,6 +89,11 @@ ModelBuilder& ModelBuilder::sampled_observation(double period, const Exprs& C0, 
   return *this;
 }
 
+ModelBuilder& ModelBuilder::polynomial_observation(const Exprs& h, const ExprMatrix& B) {
+  guarded([&] { impl_->builder.polynomial_observation(h, B); });
+  return *this;
+}
+
 ModelBuilder& ModelBuilder::initial(const Vector& m0, const Matrix& P0, const Vector& x0) {
   guarded([&] {
     InitialConditions initial;

@@ -73,9 +73,10 @@ struct Evaluation {
   std::vector<Matrix> P_gain;
 };
 
-// A filter's equations as expressions that Python (and SymPy's sympify) reads: `**` for powers,
-// exact rationals written p/q. Variables as in the text output: m1..mn, P11, P12, ... (P21 is
-// P12), the time symbol and the parameters by their names; a delayed filter's md1, phi1, xs1.
+// A filter's equations as expressions that Python (and SymPy's sympify, with rational=True) reads:
+// the text output's spelling (numbers as its decimals, so read them as exact rationals) with `**`
+// for powers. Variables as in the text output: m1..mn, P11, P12, ... (P21 is P12), the time symbol
+// and the parameters by their names; a delayed filter's md1, phi1, xs1. Deterministic, as the text is.
 struct Expressions {
   std::vector<std::string> m_drift;                 // n
   std::vector<std::vector<std::string>> gain;       // n x p (n x 0 for a sampled filter)
@@ -238,6 +239,8 @@ class ModelBuilder {
   ModelBuilder& observation(const Exprs& A0, const ExprMatrix& A, const ExprMatrix& B);
   // dy = (A0 + A x(t - delay)) dt + B dW2
   ModelBuilder& delayed_observation(double delay, const Exprs& A0, const ExprMatrix& A, const ExprMatrix& B);
+  // dy = h(x, t) dt + B dW2, each h_r a polynomial in the states
+  ModelBuilder& polynomial_observation(const Exprs& h, const ExprMatrix& B);
   // y_k = C0 + C x(k period) + Uv v_k
   ModelBuilder& sampled_observation(double period, const Exprs& C0, const ExprMatrix& C, const ExprMatrix& Uv,
                                     std::size_t substeps = 1);
