@@ -19,6 +19,7 @@
 #include "observation_command.hpp"
 #include "output_paths.hpp"
 #include "progress_bar.hpp"
+#include "redirected_stderr.hpp"
 #include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/simulation_rules.hpp"
@@ -204,25 +205,12 @@ struct PreparedJob {
   double derive_seconds = 0;
 };
 
-// Nothing written to std::cerr while it lives (its errors are exceptions, reported by main).
-class SilentStderr {
- public:
-  explicit SilentStderr(bool silent) : saved_(silent ? std::cerr.rdbuf(nullptr) : nullptr), silent_(silent) {}
-  ~SilentStderr() {
-    if (silent_) std::cerr.rdbuf(saved_);  // clears the bad bit a write set meanwhile
-  }
-  SilentStderr(const SilentStderr&) = delete;
-  SilentStderr& operator=(const SilentStderr&) = delete;
-
- private:
-  std::streambuf* saved_;
-  bool silent_;
-};
-
 // `speaks`: the process that writes the outputs checks their paths (other machines of an MPI
 // job need not have its directories) and says the settings' notes, once for the job.
 PreparedJob prepare(const SimulateOptions& options, bool speaks, Clock::time_point start) {
-  const SilentStderr quiet(!speaks);
+  // Nothing on stderr from a process that does not speak (its errors are exceptions, reported by main).
+  std::optional<RedirectedStderr> quiet;
+  if (!speaks) quiet.emplace(nullptr);
   if (speaks) check_output_paths(options);
   Model model = options.model ? *options.model : load_model_file(options.model_path);
   // --set a=0.2: the job's value of a, compiled into the plugin as its default (so a new value

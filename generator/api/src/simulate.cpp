@@ -6,25 +6,12 @@
 
 #include "api_impl.hpp"
 #include "job_group.hpp"
+#include "redirected_stderr.hpp"
 #include "pfgen_runtime/results_csv.hpp"
 #include "simulate_command.hpp"
 
 namespace pfgen::api {
 namespace {
-
-// What the command says on stderr while the job runs (its notes), kept for the result instead.
-class CapturedStderr {
- public:
-  CapturedStderr() : saved_(std::cerr.rdbuf(text_.rdbuf())) {}
-  ~CapturedStderr() { std::cerr.rdbuf(saved_); }
-  CapturedStderr(const CapturedStderr&) = delete;
-  CapturedStderr& operator=(const CapturedStderr&) = delete;
-  std::string text() const { return text_.str(); }
-
- private:
-  std::ostringstream text_;
-  std::streambuf* saved_;
-};
 
 std::string joined(const std::vector<std::string>& parts) {
   std::string text;
@@ -110,7 +97,9 @@ FilterSummary summary_of(const std::string& name, const pfgen_runtime::WindowSta
 SimulationResult Model::simulate(const SimulationOptions& options) const {
   return guarded([&] {
     const cli::SimulateOptions command = command_options(impl_->model, options);
-    CapturedStderr notes;
+    // What the command says on stderr while the job runs (its notes), kept for the result instead.
+    std::ostringstream notes;
+    const cli::RedirectedStderr captured(notes.rdbuf());
     cli::LocalJob alone;
     const cli::SimulationOutcome outcome = cli::simulate(command, alone);
     const pfgen_runtime::MonteCarloResult& result = *outcome.result;
@@ -118,7 +107,7 @@ SimulationResult Model::simulate(const SimulationOptions& options) const {
 
     SimulationResult out;
     out.report = cli::simulation_report(command, outcome);
-    out.notes = notes.text();
+    out.notes = notes.str();
     out.csv = pfgen_runtime::format_results_csv(result, states);
     out.columns = pfgen_runtime::results_csv_columns(result, states);
     out.series = csv_columns(out.csv, out.columns.size());

@@ -119,16 +119,19 @@ std::string RateReport::text(const Model& model, const FilterEquations& eq, std:
              ? risk_header_text(model, eq)
              : mean_square_header_text(model, eq, header_text(eq), correction_words_text(eq));
   out += definitions_text(eq);
+  // Each innovation "(dyr - h dt)" printed once: every dm line, and a dP line with a dy term, reads it.
+  std::vector<std::string> innovation;
+  for (std::size_t r = 0; r < eq.p; ++r) {
+    const std::string predicted = writer.print(h[r]);
+    innovation.push_back(" (dy" + std::to_string(r + 1) + " - " +
+                         (is_single_term(h[r]) ? predicted : "(" + predicted + ")") + " dt)");
+  }
   for (std::size_t i = 0; i < n; ++i) {
     out += "dm" + std::to_string(i + 1) + " = (";
     writer.append(out, eq.m_drift[i]);
     out += ") dt";
-    for (std::size_t r = 0; r < eq.p; ++r) {
-      std::string predicted = writer.print(h[r]);
-      if (!is_single_term(h[r])) predicted = "(" + predicted + ")";
-      out += " + K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + " (dy" + std::to_string(r + 1) + " - " +
-              predicted + " dt)";
-    }
+    for (std::size_t r = 0; r < eq.p; ++r)
+      out += " + K" + std::to_string(i + 1) + "_" + std::to_string(r + 1) + innovation[r];
     out += "\n";
     drain(out, sink);
   }
@@ -144,12 +147,8 @@ std::string RateReport::text(const Model& model, const FilterEquations& eq, std:
       append_parts(out, writer, P_parts(eq, u));
       out += ") dt";
       if (has_P_gain(eq, u))
-        for (std::size_t r = 0; r < eq.p; ++r) {
-          if (eq.P_gain[u][r].is_zero()) continue;
-          std::string predicted = writer.print(h[r]);
-          if (!is_single_term(h[r])) predicted = "(" + predicted + ")";
-          out += " + " + L_text_name(vars, i, j, r) + " (dy" + std::to_string(r + 1) + " - " + predicted + " dt)";
-        }
+        for (std::size_t r = 0; r < eq.p; ++r)
+          if (!eq.P_gain[u][r].is_zero()) out += " + " + L_text_name(vars, i, j, r) + innovation[r];
       out += "\n";
       drain(out, sink);
     }
@@ -181,20 +180,20 @@ std::string RateReport::latex(const FilterEquations& eq) const {
   out += "\\begin{align*}\n";
   // Each right-hand side is cut into lines that fit the page (latex_line_breaker).
   std::vector<std::string> lines = definitions_latex_lines(eq);
+  // Each innovation printed once, for the dm lines and any dP line with a dy term.
+  std::vector<std::string> innovation;
+  for (std::size_t r = 0; r < eq.p; ++r) {
+    const std::string predicted = writer.print(h[r]);
+    innovation.push_back("\\left(dy_{" + std::to_string(r + 1) + "} - " +
+                         (is_single_term(h[r]) ? predicted : "\\left(" + predicted + "\\right)") + "\\,dt\\right)");
+  }
   for (std::size_t i = 0; i < n; ++i) {
     std::string rhs = "\\left(" + writer.print(eq.m_drift[i]) + "\\right)dt";
-    for (std::size_t r = 0; r < eq.p; ++r)
-      rhs += " + " + K(i, r) + "\\left(dy_{" + std::to_string(r + 1) + "} - " +
-             (is_single_term(h[r]) ? writer.print(h[r]) : "\\left(" + writer.print(h[r]) + "\\right)") +
-             "\\,dt\\right)";
+    for (std::size_t r = 0; r < eq.p; ++r) rhs += " + " + K(i, r) + innovation[r];
     lines.push_back(latex_align_lines("dm_{" + std::to_string(i + 1) + "}", rhs));
   }
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t r = 0; r < eq.p; ++r) lines.push_back(latex_align_lines(K(i, r), writer.print(eq.gain[i][r])));
-  auto innovation = [&](std::size_t r) {
-    return "\\left(dy_{" + std::to_string(r + 1) + "} - " +
-           (is_single_term(h[r]) ? writer.print(h[r]) : "\\left(" + writer.print(h[r]) + "\\right)") + "\\,dt\\right)";
-  };
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) {
       const std::size_t u = vars.upper_index(i, j);
@@ -206,7 +205,7 @@ std::string RateReport::latex(const FilterEquations& eq) const {
       // With a dy term dP is not a rate: written as dm is.
       std::string rhs = "\\left(" + join_parts(writer, P_parts(eq, u)) + "\\right)dt";
       for (std::size_t r = 0; r < eq.p; ++r)
-        if (!eq.P_gain[u][r].is_zero()) rhs += " + " + L_latex_name(vars, i, j, r) + innovation(r);
+        if (!eq.P_gain[u][r].is_zero()) rhs += " + " + L_latex_name(vars, i, j, r) + innovation[r];
       lines.push_back(latex_align_lines("d" + vars.latex_name(vars.P(i, j)), rhs));
     }
   for (std::size_t i = 0; i < n; ++i)

@@ -29,13 +29,12 @@ Polynomial P_times(const FilterVariables& vars, const std::vector<std::vector<Po
   return out;
 }
 
-}  // namespace
-
-PolynomialObservationTerms observation_terms_from_moments(std::vector<Polynomial> predicted,
-                                                          const std::vector<std::vector<Polynomial>>& cross,
-                                                          const ExMatrix& B) {
+// The gain C R^-1 and the correction C R^-1 C^T of a cross covariance C = Cov(x, h) (n x p),
+// however its moments were computed; P_gain all zero.
+PolynomialObservationTerms terms_from_cross(std::vector<Polynomial> predicted,
+                                            const std::vector<std::vector<Polynomial>>& cross,
+                                            const ExMatrix& R_inverse) {
   const std::size_t n = cross.size(), p = predicted.size();
-  const ExMatrix R_inverse = inverse_noise_covariance(B);
   PolynomialObservationTerms out;
   out.predicted_observation = std::move(predicted);
   out.gain.assign(n, std::vector<Polynomial>(p));
@@ -53,6 +52,14 @@ PolynomialObservationTerms observation_terms_from_moments(std::vector<Polynomial
   return out;
 }
 
+}  // namespace
+
+PolynomialObservationTerms observation_terms_from_moments(std::vector<Polynomial> predicted,
+                                                          const std::vector<std::vector<Polynomial>>& cross,
+                                                          const ExMatrix& B) {
+  return terms_from_cross(std::move(predicted), cross, inverse_noise_covariance(B));
+}
+
 PolynomialObservationTerms polynomial_observation_terms(const std::vector<Polynomial>& h, const ExMatrix& B,
                                                         const FilterVariables& vars, bool at_mean) {
   const std::size_t n = vars.n(), p = h.size();
@@ -62,31 +69,19 @@ PolynomialObservationTerms polynomial_observation_terms(const std::vector<Polyno
   GaussianExpectation E(vars);
   auto expectation = [&](const Polynomial& q) { return at_mean ? q : E.of(q); };
 
-  PolynomialObservationTerms out;
-  // EJ[k][r] = E[d h_r / d x_k]: E[J]^T, n x p.
+  // EJt[k][r] = E[d h_r / d x_k]: E[J]^T, n x p.
+  std::vector<Polynomial> predicted;
   std::vector<std::vector<Polynomial>> EJt(n, std::vector<Polynomial>(p));
   for (std::size_t r = 0; r < p; ++r) {
-    out.predicted_observation.push_back(expectation(h[r]));
+    predicted.push_back(expectation(h[r]));
     for (std::size_t k = 0; k < n; ++k) EJt[k][r] = expectation(h[r].derivative(static_cast<std::uint32_t>(k)));
   }
-  // P E[J]^T (n x p), then the gain (P E[J]^T) R^-1.
+  // Cov(x, h) = P E[J]^T (Stein), so the gain is P E[J]^T R^-1 and the correction K E[J] P.
   std::vector<std::vector<Polynomial>> PEJt(n, std::vector<Polynomial>(p));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t r = 0; r < p; ++r) PEJt[i][r] = P_times(vars, EJt, i, r);
-  out.gain.assign(n, std::vector<Polynomial>(p));
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t s = 0; s < p; ++s)
-      for (std::size_t r = 0; r < p; ++r)
-        if (!R_inverse[r][s].is_zero()) out.gain[i][s] += PEJt[i][r].scaled(R_inverse[r][s]);
-  // K E[J] P = (P E[J]^T) R^-1 (P E[J]^T)^T, upper triangle.
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j) {
-      Polynomial correction;
-      for (std::size_t s = 0; s < p; ++s) correction += out.gain[i][s] * PEJt[j][s];
-      out.P_correction.push_back(std::move(correction));
-    }
+  PolynomialObservationTerms out = terms_from_cross(std::move(predicted), PEJt, R_inverse);
   // L_ij,r = sum_k (P E[H_k] P)_ij (R^-1)_kr; zero at the mean and for linear h.
-  out.P_gain.assign(n * (n + 1) / 2, std::vector<Polynomial>(p));
   if (at_mean) return out;
   for (std::size_t k = 0; k < p; ++k) {
     if (h[k].degree() < 2) continue;
