@@ -97,7 +97,7 @@ TEST_CASE("polynomial observation: eval gives the closed form's numbers", "[obse
   CHECK(value.P_gain[0][0][0] == Approx(0.864).epsilon(1e-15));
 }
 
-TEST_CASE("polynomial observation: what the model file refuses, and code generation", "[observation][polynomial][unit]") {
+TEST_CASE("polynomial observation: what the model file refuses", "[observation][polynomial][unit]") {
   // Each at its line and column, with the field and the entry.
   CHECK(refusal("{h: [\"x^2\"]}") == "m.yaml:5:1: error: field 'observation.B': missing required field");
   CHECK(refusal("{h: [\"sin(x)\"], B: [[1]]}") ==
@@ -115,9 +115,6 @@ TEST_CASE("polynomial observation: what the model file refuses, and code generat
         "m.yaml:5:31: error: field 'observation.B', row 1: row is zero at the parameter defaults and t = 0, so "
         "observation 1 has no noise and B B^T is not positive definite");
   CHECK(refusal("{h: [\"x*y + x^2\"], B: [[2]]}") == "accepted");
-  const Model model = cubic_sensor();
-  CHECK_THROWS_WITH(codegen::generate_filter_code(model, derive_filter(model, FilterKind::Optimal), {}),
-                    Catch::Contains("code generation and simulation of a polynomial observation"));
 }
 
 TEST_CASE("polynomial observation: the coefficient form refuses a nonlinear h, at the model file",

@@ -421,6 +421,29 @@ TEST_CASE("plugin: a diffusion given only as G, and a plugin without filters", "
   check_initial_states(model, plugin);
 }
 
+TEST_CASE("plugin: a polynomial observation's truth observes h(x), with B from observation()", "[plugin][compiler]") {
+  const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("polynomial/range_squared.yaml"));
+  const SimulationPlugin plugin(built("range squared", model, {pfgen::derive_filter(model, pfgen::FilterKind::Optimal)})
+                                    .build.path);
+  REQUIRE(plugin.table().observation_rate != nullptr);
+  CHECK(plugin.observation_is_constant());
+  pfgen_runtime::LinearObservation observation = plugin.observation();
+  CHECK_FALSE(observation.is_linear());
+  Eigen::VectorXd x(2);
+  x << 1.25, -0.5;
+  CHECK(observation.rate(0.0, x)[0] == 1.25 * 1.25 + 0.25);
+  Eigen::VectorXd A0(1), dy(1), dW2(1);
+  Eigen::MatrixXd A(1, 2), B(1, 1);
+  observation.coefficients(0.0, A0, A, B);
+  CHECK(B(0, 0) == 0.5);  // r
+  CHECK(A0.isZero());
+  CHECK(A.isZero());
+  dW2 << 0.125;
+  observation.increment(0.0, 0.1, x, x, dW2, dy);
+  CHECK(dy[0] == Approx(1.8125 * 0.1 + 0.5 * 0.125).epsilon(1e-15));
+  CHECK(plugin.filters().size() == 1);
+}
+
 TEST_CASE("plugin: what the runtime gets outlives the SimulationPlugin and simulates", "[plugin][compiler]") {
   const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
   std::vector<pfgen_runtime::FilterModel> filters;

@@ -58,7 +58,7 @@ TEST_CASE("embedded templates are the files of templates/ and of the observation
   std::vector<fs::path> roots = {fs::path(pfgen_test::source_dir()) / "templates"};
   for (const auto& module : fs::directory_iterator(fs::path(pfgen_test::source_dir()) / "generator/src/observations"))
     if (fs::is_directory(module.path() / "templates")) roots.push_back(module.path() / "templates");
-  REQUIRE(roots.size() == 4);  // templates/, and the continuous, sampled and delayed modules'
+  REQUIRE(roots.size() == 5);  // templates/, and the continuous, sampled, delayed and polynomial modules'
   std::size_t files = 0;
   for (const fs::path& root : roots)
     for (const auto& entry : fs::recursive_directory_iterator(root)) {

@@ -26,7 +26,20 @@ LinearObservation::LinearObservation(std::size_t p, std::size_t n, std::size_t r
 
 void LinearObservation::set_delay(double h) {
   if (!(h >= 0) || !std::isfinite(h)) throw std::invalid_argument("observation: the delay h must be finite and >= 0");
+  if (h > 0 && rate_) throw std::invalid_argument("observation: a nonlinear rate with a delay is not supported");
   delay_ = h;
+}
+
+void LinearObservation::set_rate(Rate rate) {
+  if (!rate) throw std::invalid_argument("observation: the rate function is missing");
+  if (delay_ != 0) throw std::invalid_argument("observation: a nonlinear rate with a delay is not supported");
+  rate_ = std::move(rate);
+  start_.resize(static_cast<Eigen::Index>(p_));
+}
+
+void LinearObservation::nonlinear_rate(double t, const double* x, double* h) const {
+  if (!rate_) throw std::logic_error("observation: the rate is linear, A0 + A x");
+  rate_(t, x, h);
 }
 
 std::size_t LinearObservation::delay_steps(double dt) const {
@@ -66,6 +79,18 @@ void LinearObservation::increment(double t, double dt, const Eigen::Ref<const Ei
   // arithmetic.
   const Eigen::Index p = static_cast<Eigen::Index>(p_), n = static_cast<Eigen::Index>(n_),
                      r = static_cast<Eigen::Index>(r_);
+  if (rate_) {
+    // The same trapezoid, of h (a Ref to a const vector has unit stride: data() is x).
+    rate_(t + dt, x_end.data(), work_.data());
+    rate_(t, x_start.data(), start_.data());
+    evaluate(t);
+    for (Eigen::Index i = 0; i < p; ++i) {
+      double value = (work_[i] + start_[i]) * (0.5 * dt);
+      for (Eigen::Index j = 0; j < r; ++j) value += B_(i, j) * dW2[j];
+      dy[i] = value;
+    }
+    return;
+  }
   evaluate(t + dt);
   for (Eigen::Index i = 0; i < p; ++i) {
     double value = A0_[i];
@@ -90,6 +115,11 @@ void LinearObservation::coefficients(double t, Eigen::VectorXd& A0, Eigen::Matri
 }
 
 Eigen::VectorXd LinearObservation::rate(double t, const Eigen::Ref<const Eigen::VectorXd>& x) {
+  if (rate_) {
+    Eigen::VectorXd h(static_cast<Eigen::Index>(p_));
+    rate_(t, x.data(), h.data());
+    return h;
+  }
   evaluate(t);
   return A0_ + A_ * x;
 }

@@ -68,8 +68,11 @@ void ParticleReference::initialise(const ParticleReferenceOptions& options) {
   z_.resize(n);
 }
 
-// A0 + A x with the coefficients last fetched: plain loops, no temporaries (p and n are small).
-void ParticleReference::set_rate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> rate) const {
+// The rate at t: A0 + A x with the coefficients last fetched (plain loops, no temporaries: p and n
+// are small), or the observation's nonlinear h(t, x).
+void ParticleReference::set_rate(double t, const Eigen::Ref<const Eigen::VectorXd>& x,
+                                 Eigen::Ref<Eigen::VectorXd> rate) const {
+  if (!observation_->is_linear()) return observation_->nonlinear_rate(t, x.data(), rate.data());
   for (Eigen::Index a = 0; a < A_.rows(); ++a) {
     double value = A0_[a];
     for (Eigen::Index j = 0; j < A_.cols(); ++j) value += A_(a, j) * x[j];
@@ -181,7 +184,7 @@ ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::M
   observation_->coefficients(grid.t0, A0_, A_, B_);
   for (std::size_t i = 0; i < N_; ++i) {
     const auto column = static_cast<Eigen::Index>(i);
-    set_rate(particles_.col(column), rate_start_.col(column));
+    set_rate(grid.t0, particles_.col(column), rate_start_.col(column));
   }
   if (!weigh_and_resample(mean.col(0), stream, result.resamplings)) return stopped(result, grid.time(0));
   result.last = 0;
@@ -203,7 +206,7 @@ ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::M
       auto start = rate_start_.col(column);
       // start becomes the rate at t + dt, the next step's left end; h_ the trapezoid's average.
       h_ = 0.5 * start;
-      set_rate(particles_.col(column), start);
+      set_rate(grid.time(k + 1), particles_.col(column), start);
       h_ += 0.5 * start;
       R_inv_h_.noalias() = R_inv_ * h_;
       log_weight_[i] += h_.dot(R_inv_dy_ - 0.5 * grid.dt * R_inv_h_);

@@ -53,6 +53,8 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
   } else {
     require(t.delay_steps == 0, path, "delay_steps must be 0 without a delay");
   }
+  require(!t.observation_rate || (!t.observation_is_sampled && t.delay == 0), path,
+          "a nonlinear observation rate needs continuous observations without a delay");
   for (std::size_t k = 0; k < t.filter_count; ++k) {
     const pfgen_plugin_filter& f = t.filters[k];
     require(f.name && f.initial_state && f.step, path, "filter " + std::to_string(k) + " lacks a name or function");
@@ -137,6 +139,8 @@ LinearObservation SimulationPlugin::observation() const {
     return LinearObservation(A0, A, B);
   }();
   observation.set_delay(table_->delay);
+  if (table_->observation_rate)
+    observation.set_rate([library, rate = table_->observation_rate](double t, const double* x, double* h) { rate(t, x, h); });
   return observation;
 }
 

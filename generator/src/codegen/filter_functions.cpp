@@ -162,6 +162,8 @@ FunctionNames function_names(const Model& model) {
   // Taken last, so that the names above are spelled as before for every model.
   f.delayed = names.take("delayed");
   f.shared = names.take("shared");  // the local array of a function written in parts (split_body)
+  f.L = names.take("L");
+  f.c = names.take("c");
   f.temporary_prefix = names.temporary_prefix();
   return f;
 }

@@ -1,6 +1,7 @@
 #pragma once
-// Continuous linear observations dy = (A0(t) + A(t) x(t - h)) dt + B(t) dW2 on the truth's grid,
-// h = 0 unless set_delay() gives a delay (docs/theory.md §2.6).
+// Continuous observations dy = (A0(t) + A(t) x(t - h)) dt + B(t) dW2 on the truth's grid, h = 0
+// unless set_delay() gives a delay (docs/theory.md §2.6); or, after set_rate(), dy = h(t, x) dt +
+// B(t) dW2 with any rate h (a polynomial observation, docs/theory.md §2.9), A0 and A unused.
 #include <cstddef>
 #include <functional>
 
@@ -12,6 +13,8 @@ class LinearObservation {
  public:
   // Fills A0 (p), A (p x n) and B (p x r) at time t; the arguments arrive sized.
   using Coefficients = std::function<void(double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B)>;
+  // h(t, x) into h (p entries), x the n states; reentrant.
+  using Rate = std::function<void(double t, const double* x, double* h)>;
 
   // Constant coefficients.
   LinearObservation(Eigen::VectorXd A0, Eigen::MatrixXd A, Eigen::MatrixXd B);
@@ -26,6 +29,14 @@ class LinearObservation {
   // t + dt - h, and x(s) = x(0) for s < 0. std::invalid_argument unless h is finite and >= 0.
   void set_delay(double h);
   double delay() const { return delay_; }
+  // The rate h(t, x) in place of A0 + A x (the coefficients then give B only); std::invalid_argument
+  // for an empty function or with a delay.
+  void set_rate(Rate rate);
+  // Whether the rate is A0 + A x (no set_rate).
+  bool is_linear() const { return !rate_; }
+  // h(t, x) of set_rate into h (p entries); std::logic_error for a linear rate, whose A0 and A
+  // coefficients() gives.
+  void nonlinear_rate(double t, const double* x, double* h) const;
   // h in steps of the grid: D = round(h / dt); std::invalid_argument when h / dt is not a whole
   // number (relative tolerance 1e-9) or D > max_delay_steps (the truth would keep nothing
   // longer, but a filter's history of D grid values would not fit).
@@ -45,7 +56,7 @@ class LinearObservation {
   // nothing is allocated). Not thread-safe, like increment().
   void coefficients(double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B);
 
-  // h(t, x) = A0(t) + A(t) x, the observation rate.
+  // h(t, x) = A0(t) + A(t) x, or set_rate's h: the observation rate.
   Eigen::VectorXd rate(double t, const Eigen::Ref<const Eigen::VectorXd>& x);
 
  private:
@@ -54,7 +65,8 @@ class LinearObservation {
   Coefficients coefficients_;  // empty for constant coefficients
   Eigen::VectorXd A0_;
   Eigen::MatrixXd A_, B_;
-  Eigen::VectorXd work_;
+  Eigen::VectorXd work_, start_;
+  Rate rate_;  // empty: A0 + A x
   double delay_ = 0;
 };
 

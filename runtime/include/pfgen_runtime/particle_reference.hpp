@@ -7,10 +7,10 @@
 // - Prior: N particles drawn from N(m0, P0) (P0's symmetric square root, so a singular P0 is fine).
 // - Propagation: each particle by the truth's own scheme (a clone) over each grid step, with its
 //   own Wiener increments.
-// - Weights (continuous observation dy = (A0 + A x) dt + B dW, R = B B^T): per grid step the
-//   Girsanov log-likelihood increment
+// - Weights (continuous observation dy = h(t, x) dt + B dW, R = B B^T, h = A0 + A x or a
+//   nonlinear rate): per grid step the Girsanov log-likelihood increment
 //     log w_i += h_i^T R^-1 dy - 1/2 h_i^T R^-1 h_i dt,
-//   with h_i = 1/2 [(A0 + A x_i)(t) + (A0 + A x_i)(t + dt)], the trapezoid the truth's dy uses
+//   with h_i = 1/2 [h(t, x_i(t)) + h(t + dt, x_i(t + dt))], the trapezoid the truth's dy uses
 //   (LinearObservation::increment), and R at the step's left end as its noise term. Normalised
 //   with the largest log-weight subtracted.
 // - Sampled observations y_k = C0 + C x(t_k) + Uv v_k instead: the weights change only at the
@@ -99,7 +99,7 @@ class ParticleReference {
   void draw_prior(RandomStream& stream);
   void propagate(double t, double dt, RandomStream& stream, ParticleReferenceRun& result);
   bool step_particle(std::size_t i, double t, double dt);
-  void set_rate(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> rate) const;
+  void set_rate(double t, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> rate) const;
   // Weighted mean into `out` and, when the ESS is low, systematic resampling. False when every
   // weight is 0 (or not finite).
   bool weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, RandomStream& stream, std::uint64_t& resamplings);
@@ -112,7 +112,7 @@ class ParticleReference {
   Eigen::MatrixXd root_;  // P0^(1/2)
   double bound_;
   Eigen::MatrixXd particles_, spare_;        // n x N (spare_: the resampled set being built)
-  Eigen::MatrixXd rate_start_, rate_spare_;  // p x N: A0 + A x_i at the step's left end
+  Eigen::MatrixXd rate_start_, rate_spare_;  // p x N: h(t, x_i) at the step's left end
   std::vector<double> log_weight_, weight_;
   std::vector<char> alive_, alive_spare_;
   Eigen::VectorXd dW_, z_, A0_, R_inv_dy_, h_, R_inv_h_;

@@ -3,7 +3,8 @@
  *
  * A plugin is a shared object built by `pfgen simulate` from one model: its truth
  * dx = f(x,t) dt + g(x,t) dW1, its observation dy = (A0(t) + A(t) x(t - h)) dt + B(t) dW2 (h = 0
- * but in version 3 on; or samples y_k = C0 + C x(t_k) + Uv v_k, version 2 on), and any
+ * but in version 3 on; or samples y_k = C0 + C x(t_k) + Uv v_k, version 2 on; or, version 4 on,
+ * dy = h(x, t) dt + B(t) dW2 with a nonlinear rate h), and any
  * number of generated filters, all at the model's default parameter values. It exports one
  * function, PFGEN_PLUGIN_ENTRY_NAME, returning a table that lives as long as the plugin is loaded.
  *
@@ -23,7 +24,7 @@
 extern "C" {
 #endif
 
-#define PFGEN_PLUGIN_ABI_VERSION 3u
+#define PFGEN_PLUGIN_ABI_VERSION 4u
 #define PFGEN_PLUGIN_ENTRY_NAME "pfgen_plugin_entry"
 
 /* One filter over its packed state [m (n entries), upper triangle of P row by row], followed by
@@ -91,6 +92,10 @@ typedef struct pfgen_plugin {
   double delay;
   double delay_dt;
   size_t delay_steps;
+  /* A nonlinear observation rate (version 4 on): dy = h(x, t) dt + B(t) dW2, h = observation_rate
+   * (p entries), which replaces A0 + A x; observation still gives B (its A0 and A are zero).
+   * NULL for a linear rate, a delayed or a sampled observation. */
+  void (*observation_rate)(double t, const double* x, double* h);
 } pfgen_plugin;
 
 /* The exported entry point: const pfgen_plugin* pfgen_plugin_entry(void). */

@@ -66,7 +66,8 @@ class SimulationPlugin {
   bool is_sampled() const { return table_->observation_is_sampled != 0; }
   double period() const { return table_->period; }
   // dy = (A0 + A x(t - h)) dt + B dW2: constant coefficients when they do not depend on t, the
-  // delay h (0 but for delayed observations) set. PluginLoadError for a sampled model.
+  // delay h (0 but for delayed observations) set; or dy = h(x, t) dt + B dW2 with the plugin's
+  // nonlinear rate set (a polynomial observation). PluginLoadError for a sampled model.
   LinearObservation observation() const;
   double delay() const { return table_->delay; }
   // PluginLoadError unless every filter accepts the grid step dt: a delayed filter (fixed_dt)

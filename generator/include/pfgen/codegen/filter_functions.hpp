@@ -32,7 +32,8 @@ std::string ops_comment(const FunctionStats& stats);
 // The arguments of the generated functions and their temporaries, named clear of the model's
 // names (local_names.hpp). The time argument has the model's name.
 struct FunctionNames {
-  std::string time, state, delayed, params, out, K, h, shared, temporary_prefix;
+  // L and c: a polynomial observation's covariance gain and Ito-Stratonovich correction.
+  std::string time, state, delayed, params, out, K, h, shared, L, c, temporary_prefix;
 };
 FunctionNames function_names(const Model& model);
 

@@ -1,40 +1,61 @@
-// The polynomial observation in code generation: not generated. Its filters' dP has a dy term and
-// their gain depends on m, so the generated step needs the Ito-Stratonovich correction
-// (observations/polynomial/ito_stratonovich_correction.hpp) and the runtime needs h(x) for the
-// truth and the particle reference; until those are written, codegen and simulate refuse these
-// filters at once, with derive, latex and eval named as what handles them.
-#include "pfgen/codegen/observation_code.hpp"
+// The polynomial module's code generation: its filters' functions, language-neutral, and its part.
+// A linear h is the continuous observation: its filters are the continuous module's.
+#include "pfgen/observations/polynomial/polynomial_code.hpp"
+
+#include "pfgen/observations/polynomial/ito_stratonovich_correction.hpp"
+#include "pfgen/observations/polynomial/polynomial_observation.hpp"
 
 namespace pfgen::codegen {
-namespace {
 
-class PolynomialCode final : public ObservationCode {
- public:
-  void check_size(const Model& model, const FilterEquations& eq) const override { refuse(model, eq.name); }
-  GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions&) const override {
-    refuse(model, eq.name);
-  }
-  GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions&) const override {
-    refuse(model, eq.name);
-  }
-  void truth_observation(const Model& model, TruthNames&, TruthCode&) const override { refuse(model, ""); }
-  std::string plugin_wrappers(const Model& model, const std::vector<std::string>&) const override {
-    refuse(model, "");
-  }
-  std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>&,
-                                                  const std::vector<std::string>&, std::optional<double>) const override {
-    refuse(model, "");
-  }
+bool written_linear(const Model& model) { return observation_degree(model) <= 1; }
 
- private:
-  [[noreturn]] static void refuse(const Model& model, const std::string& filter) {
-    throw CodegenError((filter.empty() ? "model " : "filter '" + filter + "' of model ") + model.name +
-                       ": code generation and simulation of a polynomial observation dy = h(x, t) dt + B dW2 are not "
-                       "available in this version; derive, latex and eval handle its filters");
-  }
-};
+PolynomialFunctions polynomial_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                         const FunctionNames& names, const CFamilyEmitter& emitter) {
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n(), p = eq.p, count = vars.count();
+  // sigma, one row per filter variable: K's rows for m, L's (zero for the extended and sigma-point
+  // kinds, whose P has no dnu term) for P's upper triangle.
+  std::vector<std::vector<Polynomial>> noise(count, std::vector<Polynomial>(p));
+  std::vector<Polynomial> gain, covariance_gain;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t r = 0; r < p; ++r) {
+      noise[vars.m(i)][r] = eq.gain[i][r];
+      gain.push_back(eq.gain[i][r]);
+    }
+  for (std::size_t u = 0; u < count - n; ++u)
+    for (std::size_t r = 0; r < p; ++r) {
+      if (!eq.P_gain.empty()) noise[n + u][r] = eq.P_gain[u][r];
+      covariance_gain.push_back(noise[n + u][r]);
+    }
+  const std::vector<Polynomial> correction =
+      ito_stratonovich_correction(noise, model.observation.polynomial().B, vars);
 
-}  // namespace
+  PolynomialFunctions f;
+  f.derivatives = derivatives_code(model, eq, options, names, emitter);
+  f.gain = function_code("gain", gain, names.K, model, eq, options, names, emitter);
+  f.covariance_gain = function_code("covariance_gain", covariance_gain, names.L, model, eq, options, names, emitter);
+  f.observation =
+      function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
+  f.correction = function_code("stratonovich_correction", correction, names.c, model, eq, options, names, emitter);
+  return f;
+}
+
+void add_polynomial_function_values(std::map<std::string, std::string>& values, const PolynomialFunctions& functions,
+                                    const FunctionNames& names, bool split_parts) {
+  for (const auto& [key, code] : {std::pair<const char*, const FunctionCode*>{"derivatives", &functions.derivatives},
+                                  {"gain", &functions.gain},
+                                  {"covariance_gain", &functions.covariance_gain},
+                                  {"observation", &functions.observation},
+                                  {"correction", &functions.correction}}) {
+    values.emplace(std::string(key) + "_ops", ops_comment(code->stats));
+    values.emplace(std::string(key) + "_body", code->body.statements);
+    if (split_parts) values.emplace(std::string(key) + "_helpers", code->body.helpers);
+  }
+  values.emplace("K", names.K);
+  values.emplace("L", names.L);
+  values.emplace("h", names.h);
+  values.emplace("c", names.c);
+}
 
 const ObservationCode& polynomial_observation_code() {
   static const PolynomialCode part;

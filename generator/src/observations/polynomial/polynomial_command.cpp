@@ -1,7 +1,7 @@
 // The polynomial observation on the command line: eval's values (the rate filters' and the
-// predicted observation and dP's dy coefficients); simulate refuses it before any run (its plugin
-// cannot be generated: polynomial_code.cpp).
-#include "cli_options.hpp"
+// predicted observation and dP's dy coefficients); simulate's runs on the truth's increments
+// dy = h(x, t) dt + B dW2 (the plugin's observation rate), which every filter steps on, as the
+// continuous observation's.
 #include "observation_command.hpp"
 #include "pfgen/observations/polynomial/polynomial_observation.hpp"
 
@@ -20,9 +20,10 @@ class PolynomialCommand final : public ObservationCommand {
     out.add("P_gain", P_gain);
   }
 
-  pfgen_runtime::MonteCarloResult run(const pfgen_runtime::TruthScheme&, const pfgen_runtime::SimulationPlugin&,
-                                      const Eigen::VectorXd&, const pfgen_runtime::MonteCarloOptions&) const override {
-    throw CliValueError("simulate: a polynomial observation's filters are not simulated in this version");
+  pfgen_runtime::MonteCarloResult run(const pfgen_runtime::TruthScheme& scheme,
+                                      const pfgen_runtime::SimulationPlugin& plugin, const Eigen::VectorXd& x0,
+                                      const pfgen_runtime::MonteCarloOptions& options) const override {
+    return pfgen_runtime::run_monte_carlo(scheme, plugin.observation(), x0, plugin.filters(), options);
   }
 };
 

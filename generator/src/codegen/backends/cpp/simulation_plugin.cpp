@@ -41,6 +41,7 @@ std::map<std::string, std::string> plugin_table_defaults() {
       {"filter_count", "0"},
       {"filters", "nullptr"},
       {"observation", "nullptr"},
+      {"observation_rate", "nullptr"},
       {"observation_is_sampled", "0"},
       {"period", "0.0"},
       {"sampled_observation", "nullptr"},

@@ -8,20 +8,6 @@
 #include "pfgen/model/simulation_rules.hpp"
 
 namespace pfgen::codegen {
-namespace {
-
-// A function of (t, x) writing output k to target[k].
-std::string state_function(const Model& model, TruthNames& names, const std::string& function_name,
-                           const std::string& preferred_target, const std::vector<Polynomial>& outputs) {
-  const std::string target = names.take(preferred_target);
-  std::vector<std::string> destinations;
-  for (std::size_t k = 0; k < outputs.size(); ++k) destinations.push_back(target + "[" + std::to_string(k) + "]");
-  const std::string signature =
-      function_name + "(double " + names.time + ", const double* " + names.x + ", double* " + target + ")";
-  return truth_function(model, names, signature, true, outputs, destinations);
-}
-
-}  // namespace
 
 TruthCode generate_truth_code(const Model& model) {
   const Diffusion& d = model.diffusion;

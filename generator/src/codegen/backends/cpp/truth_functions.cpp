@@ -36,6 +36,16 @@ std::string truth_function(const Model& model, TruthNames& names, const std::str
   return "inline void " + signature + " {\n" + body + "}\n\n";
 }
 
+std::string state_function(const Model& model, TruthNames& names, const std::string& function_name,
+                           const std::string& preferred_target, const std::vector<Polynomial>& outputs) {
+  const std::string target = names.take(preferred_target);
+  std::vector<std::string> destinations;
+  for (std::size_t k = 0; k < outputs.size(); ++k) destinations.push_back(target + "[" + std::to_string(k) + "]");
+  const std::string signature =
+      function_name + "(double " + names.time + ", const double* " + names.x + ", double* " + target + ")";
+  return truth_function(model, names, signature, true, outputs, destinations);
+}
+
 std::string matrices_function(const Model& model, TruthNames& names, const std::string& function_name,
                               const std::vector<std::pair<std::string, ExMatrix>>& parts) {
   std::vector<Polynomial> outputs;

@@ -33,6 +33,11 @@ std::vector<Polynomial> in_states(const Model& model, const ExMatrix& rows);
 std::string truth_function(const Model& model, TruthNames& names, const std::string& signature, bool reads_x,
                            const std::vector<Polynomial>& outputs, const std::vector<std::string>& destinations);
 
+// A function of (t, x), `function_name`(t, x, target), writing output k to target[k]; the target
+// is named `preferred_target` unless the model or an earlier argument took it.
+std::string state_function(const Model& model, TruthNames& names, const std::string& function_name,
+                           const std::string& preferred_target, const std::vector<Polynomial>& outputs);
+
 // Matrices in one function of t, `function_name`(t, M1, M2, ...): entry k of each part, in turn,
 // to its own argument, named as the part unless the model took that name.
 std::string matrices_function(const Model& model, TruthNames& names, const std::string& function_name,

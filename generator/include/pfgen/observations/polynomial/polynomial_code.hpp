@@ -1,0 +1,46 @@
+#pragma once
+// The polynomial observation dy = h(x, t) dt + B dW2 in code generation: PolynomialCode, its
+// methods by file (polynomial_cpp_filter.cpp: the module's templates/cpp/polynomial_filter.hpp.tmpl
+// and its Eigen layer; polynomial_c_filter.cpp: templates/c/polynomial_filter.h.tmpl and .c.tmpl;
+// polynomial_plugin.cpp: the truth's observation rate and the plugin's table). A model whose h is
+// linear in the states is the continuous observation written A0 + A x: its code is the continuous
+// module's, byte for byte.
+#include <map>
+#include <string>
+
+#include "pfgen/codegen/filter_functions.hpp"
+#include "pfgen/codegen/observation_code.hpp"
+
+namespace pfgen::codegen {
+
+class PolynomialCode final : public ObservationCode {
+ public:
+  GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
+  GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
+  void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
+  std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names) const override;
+  std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
+                                                  const std::vector<std::string>& labels,
+                                                  std::optional<double> grid_step) const override;
+};
+
+// The functions of a filter for a nonlinear h (docs/theory.md §2.9), with s = [m, P's upper
+// triangle] and dnu = dy - yhat dt:
+//   ds = F dt + sigma dnu,  F = derivatives(),  sigma = [gain(); covariance_gain()],
+//   yhat = predicted_observation(),  c = stratonovich_correction(): the drift the step subtracts
+// so that Heun's scheme, which holds dy fixed across a step, converges to the Ito filter.
+struct PolynomialFunctions {
+  FunctionCode derivatives, gain, covariance_gain, observation, correction;
+};
+PolynomialFunctions polynomial_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                         const FunctionNames& names, const CFamilyEmitter& emitter);
+
+// The placeholders of the module's templates for these functions (`<key>_ops`, `<key>_body`, and
+// with `split_parts` `<key>_helpers`) and the output arrays' names K, L, h, c.
+void add_polynomial_function_values(std::map<std::string, std::string>& values, const PolynomialFunctions& functions,
+                                    const FunctionNames& names, bool split_parts);
+
+// Whether the model's h is linear in the states: then every part is the continuous module's.
+bool written_linear(const Model& model);
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,21 @@
+// A filter for a polynomial observation in C99 (its templates/c/polynomial_filter.h.tmpl and .c.tmpl).
+#include "pfgen/codegen/backends/c/c_filter_writer.hpp"
+#include "pfgen/observations/polynomial/polynomial_code.hpp"
+
+namespace pfgen::codegen {
+
+GeneratedFilter PolynomialCode::c_filter(const Model& model, const FilterEquations& eq,
+                                         const CodegenOptions& options) const {
+  if (written_linear(model)) return continuous_observation_code().c_filter(model, eq, options);
+  CFilterWriter w(model, eq, options);
+  const PolynomialFunctions f = polynomial_functions(model, eq, options, w.names, w.emitter);
+  w.result.functions = {f.derivatives.stats, f.gain.stats, f.covariance_gain.stats, f.observation.stats,
+                        f.correction.stats};
+  std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count());
+  add_polynomial_function_values(values, f, w.names, true);
+  values.emplace("initial_body", c_initial_body(initial_values(model, eq.variables), w.emitter));
+  w.write("polynomial_filter", values, {}, {});
+  return w.result;
+}
+
+}  // namespace pfgen::codegen
