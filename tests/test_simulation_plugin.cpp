@@ -444,6 +444,22 @@ TEST_CASE("plugin: a polynomial observation's truth observes h(x), with B from o
   CHECK(plugin.filters().size() == 1);
 }
 
+TEST_CASE("plugin: samples through a polynomial c are c(x) + Uv v", "[plugin][compiler]") {
+  const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("polynomial/range_squared_sampled.yaml"));
+  const SimulationPlugin plugin(
+      built("range squared sampled", model, {pfgen::derive_filter(model, pfgen::FilterKind::CdOptimal)}).build.path);
+  REQUIRE(plugin.is_sampled());
+  REQUIRE(plugin.table().observation_rate != nullptr);
+  pfgen_runtime::SampledMeasurement measurement = plugin.measurement();
+  CHECK_FALSE(measurement.is_linear());
+  const double x[2] = {1.25, -0.5}, v[1] = {0.5};
+  double clean[1], noisy[1];
+  measurement.sample(0.1, x, v, clean, noisy);
+  CHECK(clean[0] == 1.25 * 1.25 + 0.25);
+  CHECK(noisy[0] == Approx(1.8125 + 0.2 * 0.5).epsilon(1e-15));
+  CHECK(plugin.filters().size() == 1);
+}
+
 TEST_CASE("plugin: what the runtime gets outlives the SimulationPlugin and simulates", "[plugin][compiler]") {
   const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("basin2006_quadratic.yaml"));
   std::vector<pfgen_runtime::FilterModel> filters;

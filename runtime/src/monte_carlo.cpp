@@ -195,6 +195,8 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   result.n = plan.n;
   result.criterion = options.criterion;
   aggregate(plan, filters, runs, options, threads, result);
+  for (FilterStatistics& filter : result.filters)
+    if (filter.sampled) filter.sampled->nonlinear = measurement && !measurement->is_linear();
 
   timing.aggregation_seconds = seconds_since(aggregation_start);
   timing.wall_seconds = seconds_since(wall_start);

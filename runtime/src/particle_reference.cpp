@@ -42,6 +42,7 @@ ParticleReference::ParticleReference(const TruthScheme& scheme, const SampledMea
   C_.resize(p_ * n_);
   Uv_.resize(p_ * measurement.q());
   innovation_.resize(static_cast<Eigen::Index>(p_));
+  predicted_.resize(p_);
 }
 
 // The checks and buffers both observation kinds share.
@@ -247,11 +248,9 @@ ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::s
       for (std::size_t i = 0; i < N_; ++i) {
         if (!alive_[i]) continue;
         const double* x = particles_.col(static_cast<Eigen::Index>(i)).data();
-        for (Eigen::Index a = 0; a < p; ++a) {
-          double predicted = C0_[static_cast<std::size_t>(a)];
-          for (std::size_t j = 0; j < n_; ++j) predicted += C_[static_cast<std::size_t>(a) * n_ + j] * x[j];
-          innovation_[a] = y[a] - predicted;
-        }
+        measurement_->noise_free(grid.t0 + static_cast<double>(sample) * measurement_->period(), C0_.data(), C_.data(),
+                                 x, predicted_.data());
+        for (Eigen::Index a = 0; a < p; ++a) innovation_[a] = y[a] - predicted_[a];
         S.matrixL().solveInPlace(innovation_);  // L^-1 e: |L^-1 e|^2 = e^T S^-1 e
         log_weight_[i] += -0.5 * innovation_.squaredNorm();
         if (!std::isfinite(log_weight_[i])) alive_[i] = 0;

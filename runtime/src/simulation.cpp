@@ -108,12 +108,25 @@ std::size_t SampledMeasurement::steps_per_sample(const TimeGrid& grid) const {
   return static_cast<std::size_t>(*whole);
 }
 
+void SampledMeasurement::set_function(Function c) {
+  if (!c) throw std::invalid_argument("sampled measurement: the sample function is missing");
+  function_ = std::move(c);
+}
+
+void SampledMeasurement::noise_free(double t, const double* C0, const double* C, const double* x, double* clean) const {
+  if (function_) return function_(t, x, clean);
+  for (std::size_t i = 0; i < p_; ++i) {
+    double value = C0[i];
+    for (std::size_t j = 0; j < n_; ++j) value += C[i * n_ + j] * x[j];
+    clean[i] = value;
+  }
+}
+
 void SampledMeasurement::sample(double t, const double* x, const double* v, double* clean, double* noisy) {
   coefficients_(t, C0_.data(), C_.data(), Uv_.data());
+  noise_free(t, C0_.data(), C_.data(), x, clean);
   for (std::size_t i = 0; i < p_; ++i) {
-    double value = C0_[i];
-    for (std::size_t j = 0; j < n_; ++j) value += C_[i * n_ + j] * x[j];
-    clean[i] = value;
+    double value = clean[i];
     for (std::size_t j = 0; j < q_; ++j) value += Uv_[i * q_ + j] * v[j];
     noisy[i] = value;
   }

@@ -53,8 +53,7 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
   } else {
     require(t.delay_steps == 0, path, "delay_steps must be 0 without a delay");
   }
-  require(!t.observation_rate || (!t.observation_is_sampled && t.delay == 0), path,
-          "a nonlinear observation rate needs continuous observations without a delay");
+  require(!t.observation_rate || t.delay == 0, path, "a nonlinear observation function cannot have a delay");
   for (std::size_t k = 0; k < t.filter_count; ++k) {
     const pfgen_plugin_filter& f = t.filters[k];
     require(f.name && f.initial_state && f.step, path, "filter " + std::to_string(k) + " lacks a name or function");
@@ -112,10 +111,13 @@ SdeSystem SimulationPlugin::system() const {
 SampledMeasurement SimulationPlugin::measurement() const {
   if (!is_sampled()) throw PluginLoadError("model " + model_name() + " has continuous observations, not samples");
   const std::shared_ptr<void> library = library_;
-  return SampledMeasurement(table_->p, table_->n, table_->r, table_->period,
-                            [library, fill = table_->sampled_observation](double t, double* C0, double* C, double* Uv) {
-                              fill(t, C0, C, Uv);
-                            });
+  SampledMeasurement measurement(table_->p, table_->n, table_->r, table_->period,
+                                 [library, fill = table_->sampled_observation](double t, double* C0, double* C, double* Uv) {
+                                   fill(t, C0, C, Uv);
+                                 });
+  if (table_->observation_rate)
+    measurement.set_function([library, c = table_->observation_rate](double t, const double* x, double* out) { c(t, x, out); });
+  return measurement;
 }
 
 LinearObservation SimulationPlugin::observation() const {

@@ -83,10 +83,13 @@ std::string sampled_section(const MonteCarloResult& result) {
     if (m.update_failures > 0) failures << "  " << filter.name << ": " << m.update_failures << " runs\n";
   }
   if (rows.size() == 1) return "";
+  const bool nonlinear = std::any_of(result.filters.begin(), result.filters.end(),
+                                     [](const FilterStatistics& f) { return f.sampled && f.sampled->nonlinear; });
   std::string out =
-      "\nAt the samples t_k (Allahyani & Date's metrics; Yhat = C0 + C m(t_k|t_k); clean: Y = C0 + C x(t_k), noisy: Y = y_k; "
-      "mean over the runs that absorbed every sample ± standard error):\n" +
-      align(rows);
+      std::string(nonlinear ? "\nAt the samples t_k (Allahyani & Date's metrics; Yhat = c(m(t_k|t_k)), which for a nonlinear c is "
+                              "not the filter's E[c]; clean: Y = c(x(t_k)), noisy: Y = y_k; "
+                            : "\nAt the samples t_k (Allahyani & Date's metrics; Yhat = C0 + C m(t_k|t_k); clean: Y = C0 + C x(t_k), noisy: Y = y_k; ") +
+      "mean over the runs that absorbed every sample ± standard error):\n" + align(rows);
   // The same metrics paired run by run against the first filter: the standard error of a
   // difference, without the spread the runs share.
   std::vector<std::vector<std::string>> paired{{"filter", "output", "runs", "dAvRMSE clean", "dAvMRAE clean",

@@ -43,6 +43,7 @@ double codegen_terms(const FilterEquations& eq) {
   add(eq.P_correction);
   add(eq.P_euler);
   add(eq.x_star_drift);
+  for (const auto& row : eq.P_gain) add(row);  // a polynomial observation's dP dy term (empty otherwise)
   return terms;
 }
 

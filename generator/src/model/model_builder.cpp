@@ -2,6 +2,7 @@
 
 #include "pfgen/model/stratonovich.hpp"
 
+#include "pfgen/algebra/polynomial.hpp"
 
 #include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/model/model_error.hpp"
@@ -153,6 +154,16 @@ ModelBuilder& ModelBuilder::sampled_observation(const GiNaC::numeric& period, co
   return *this;
 }
 
+ModelBuilder& ModelBuilder::sampled_polynomial_observation(const GiNaC::numeric& period, const ExVector& c,
+                                                          const ExMatrix& Uv, std::size_t substeps) {
+  SampledObservation sampled{period, ExVector(c.size(), GiNaC::ex(0)),
+                             ExMatrix(c.size(), ExVector(model_.states.size(), GiNaC::ex(0))), exact_matrix(Uv), substeps};
+  sampled.c = exact_vector(c);
+  model_.observation = sampled;
+  has_observation_ = true;
+  return *this;
+}
+
 ModelBuilder& ModelBuilder::polynomial_observation(const ExVector& h, const ExMatrix& B) {
   model_.observation = PolynomialObservation{exact_vector(h), exact_matrix(B)};
   has_observation_ = true;
@@ -223,6 +234,29 @@ ModelBuilder& ModelBuilder::simulation(const SimulationSection& settings) {
   return *this;
 }
 
+namespace {
+
+// A sampled c of degree <= 1 is C0 + C x: written so, every room sees the linear observation.
+void write_linear_samples(Model& model) {
+  SampledObservation sampled = model.observation.sampled();
+  std::vector<Polynomial> c;
+  for (const GiNaC::ex& entry : sampled.c) {
+    c.push_back(Polynomial::from_ex(entry, model.states));
+    if (c.back().degree() > 1) return;
+  }
+  for (std::size_t a = 0; a < c.size(); ++a)
+    for (const auto& [monomial, coefficient] : c[a].terms()) {
+      if (monomial.is_one())
+        sampled.C0[a] = coefficient;
+      else
+        sampled.C[a][monomial.factors().front().first] = coefficient;
+    }
+  sampled.c.clear();
+  model.observation = sampled;
+}
+
+}  // namespace
+
 Model ModelBuilder::build() const {
   if (!has_drift_) throw ModelError("drift", "missing required field");
   if (!has_diffusion_)
@@ -230,6 +264,8 @@ Model ModelBuilder::build() const {
   if (!has_observation_) throw ModelError("observation", "missing required field");
   validate_model(model_);
   Model model = model_;
+  if (model.observation.is_sampled() && model.observation.sampled().is_polynomial())
+    write_linear_samples(model);
   if (model.noise == NoiseCalculus::Stratonovich) {
     // The model as written is valid (and has g: validate_model checked); the filters and the
     // truth use its Ito form, which is validated again: the kinds it offers follow its drift.

@@ -274,12 +274,13 @@ void validate_sampled_observation(const Model& model) {
   if (!(obs.period > 0)) throw ModelError(field + ".period", "must be positive, found " + to_text(obs.period));
   if (obs.substeps < 1) throw ModelError(field + ".substeps", "must be at least 1 (1 sub-step: predict over the whole period)");
   std::size_t r = obs.C.size();
+  for (std::size_t i = 0; i < obs.c.size(); ++i) require_polynomial(model, obs.c[i], field + ".c", one_based(i), std::nullopt);
   if (r == 0) throw ModelError(field + ".C", "at least one observation row is required");
   require_shape(obs.C, r, model.n(), field + ".C", "r x n with n = number of states");
   if (obs.C0.size() != r)
     throw ModelError(field + ".C0", "expected " + std::to_string(r) + " entries (one per row of C), found " +
                                         std::to_string(obs.C0.size()));
-  require_shape(obs.Uv, r, std::nullopt, field + ".Uv", "one per observation, as in C");
+  require_shape(obs.Uv, r, std::nullopt, field + ".Uv", obs.is_polynomial() ? "one per observation, as in c" : "one per observation, as in C");
   for (std::size_t i = 0; i < r; ++i) {
     require_state_free(model, obs.C0[i], field + ".C0", one_based(i), std::nullopt);
     for (std::size_t j = 0; j < obs.C[i].size(); ++j)

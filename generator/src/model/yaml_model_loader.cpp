@@ -30,7 +30,7 @@ const std::set<std::string> kTopLevelFields = {
     "drift",     "diffusion",   "diffusion_covariance", "additive_diffusion",
     "additive_diffusion_covariance", "noise", "observation", "initial", "risk", "filters", "simulation"};
 
-const char* const kSampledFields = "period, C, Uv, C0, substeps";
+const char* const kSampledFields = "period, C or c, Uv, C0, substeps";
 const char* const kUserFilterFields = "m_drift, P_drift, gain, define, description";
 const char* const kSimulationFields =
     "T, dt, runs, seed, filters, scheme, report_times, windows, record_points, bound, shown_run";
@@ -207,7 +207,7 @@ class Loader {
         std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
         if (key != "sampled") {
           index_.record("observation." + key, entry.first);
-          throw ModelError("observation." + key, "a sampled observation has only the field sampled: {period, C, Uv, C0, substeps}");
+          throw ModelError("observation." + key, "a sampled observation has only the field sampled: {period, C or c, Uv, C0, substeps}");
         }
         index_.record("observation.sampled", entry.first);
       }
@@ -270,10 +270,17 @@ class Loader {
     for (const auto& entry : sampled) {
       std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
       index_.record(field + "." + key, entry.first);
-      if (key != "period" && key != "C" && key != "Uv" && key != "C0" && key != "substeps")
+      if (key != "period" && key != "C" && key != "c" && key != "Uv" && key != "C0" && key != "substeps")
         throw ModelError(field + "." + key, std::string("unknown field (known: ") + kSampledFields + ")");
     }
-    for (const char* key : {"period", "C", "Uv"})
+    // y_k = c(x) + Uv v_k (c polynomial) or C0 + C x + Uv v_k: one of the two forms.
+    const bool polynomial = sampled["c"] && !sampled["c"].IsNull();
+    if (polynomial)
+      for (const char* key : {"C", "C0"})
+        if (sampled[key])
+          throw ModelError(field + "." + key, "samples given by c: y = c(x) + Uv v has no C0 or C (C0 + C x is c "
+                                              "written as a linear polynomial)");
+    for (const char* key : {"period", polynomial ? "c" : "C", "Uv"})
       if (!sampled[key] || sampled[key].IsNull()) throw ModelError(field + "." + key, "missing required field");
     // The period is a plain number, not an expression: the generated code and the simulator's
     // sample grid need its value, whatever the parameters are set to.
@@ -285,6 +292,12 @@ class Loader {
     std::size_t substeps = 1;
     if (YAML::Node s = sampled["substeps"]; s && !s.IsNull())
       substeps = static_cast<std::size_t>(whole_number(s, field + ".substeps", 1000000));
+    if (polynomial) {
+      const ExVector c = vector_field(sampled["c"], field + ".c", parser);
+      if (c.empty()) throw ModelError(field + ".c", "at least one observation is required");
+      builder.sampled_polynomial_observation(*period, c, matrix_field(sampled["Uv"], field + ".Uv", parser), substeps);
+      return;
+    }
     ExMatrix C = matrix_field(sampled["C"], field + ".C", parser);
     ExMatrix Uv = matrix_field(sampled["Uv"], field + ".Uv", parser);
     ExVector C0(C.size(), GiNaC::ex(0));

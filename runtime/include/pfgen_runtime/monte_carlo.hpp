@@ -138,6 +138,9 @@ struct EventSummary {
 // noise-free C0 + C x(t_k) (clean) and the sample y_k itself (noisy). Av* is the mean over runs,
 // *_se its standard error (sample standard deviation / sqrt(runs)); NaN when runs < 1 (se: < 2).
 struct SampledMetrics {
+  // Samples through a nonlinear c (SampledMeasurement::set_function): Yhat = c(m(t_k|t_k)) and the
+  // clean Y = c(x(t_k)) instead of C0 + C m and C0 + C x.
+  bool nonlinear = false;
   std::size_t runs = 0;
   std::size_t samples = 0;  // K
   std::vector<double> rmse_clean, rmse_clean_se, mrae_clean, mrae_clean_se;

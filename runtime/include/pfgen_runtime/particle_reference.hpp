@@ -13,8 +13,9 @@
 //   with h_i = 1/2 [h(t, x_i(t)) + h(t + dt, x_i(t + dt))], the trapezoid the truth's dy uses
 //   (LinearObservation::increment), and R at the step's left end as its noise term. Normalised
 //   with the largest log-weight subtracted.
-// - Sampled observations y_k = C0 + C x(t_k) + Uv v_k instead: the weights change only at the
-//   samples, by log w_i += -1/2 (y_k - C0 - C x_i)^T (Uv Uv^T)^-1 (y_k - C0 - C x_i).
+// - Sampled observations y_k = C0 + C x(t_k) + Uv v_k (or c(x(t_k)) + Uv v_k) instead: the weights
+//   change only at the samples, by log w_i += -1/2 (y_k - C0 - C x_i)^T (Uv Uv^T)^-1 (y_k - C0 - C x_i),
+//   c(x_i) in place of C0 + C x_i.
 // - Resampling: systematic (one uniform), when the effective sample size 1 / sum w^2 (w
 //   normalised) falls below kResampleFraction N.
 // - A particle whose state is non-finite or beyond the run's divergence bound, or whose step the
@@ -118,6 +119,7 @@ class ParticleReference {
   Eigen::VectorXd dW_, z_, A0_, R_inv_dy_, h_, R_inv_h_;
   Eigen::MatrixXd A_, B_, R_inv_;
   std::vector<double> C0_, C_, Uv_;  // a sample's coefficients, row-major
+  std::vector<double> predicted_;    // C0 + C x_i, or c(x_i)
   Eigen::VectorXd innovation_;
 };
 

@@ -4,7 +4,7 @@
  * A plugin is a shared object built by `pfgen simulate` from one model: its truth
  * dx = f(x,t) dt + g(x,t) dW1, its observation dy = (A0(t) + A(t) x(t - h)) dt + B(t) dW2 (h = 0
  * but in version 3 on; or samples y_k = C0 + C x(t_k) + Uv v_k, version 2 on; or, version 4 on,
- * dy = h(x, t) dt + B(t) dW2 with a nonlinear rate h), and any
+ * dy = h(x, t) dt + B(t) dW2 with a nonlinear rate h, or samples c(x(t_k)) + Uv v_k), and any
  * number of generated filters, all at the model's default parameter values. It exports one
  * function, PFGEN_PLUGIN_ENTRY_NAME, returning a table that lives as long as the plugin is loaded.
  *
@@ -92,9 +92,11 @@ typedef struct pfgen_plugin {
   double delay;
   double delay_dt;
   size_t delay_steps;
-  /* A nonlinear observation rate (version 4 on): dy = h(x, t) dt + B(t) dW2, h = observation_rate
-   * (p entries), which replaces A0 + A x; observation still gives B (its A0 and A are zero).
-   * NULL for a linear rate, a delayed or a sampled observation. */
+  /* A nonlinear observation function (version 4 on), p entries: for continuous observations the
+   * rate h of dy = h(x, t) dt + B(t) dW2, in place of A0 + A x (observation still gives B, its A0
+   * and A zero); for sampled ones the c of y_k = c(x(t_k)) + Uv v_k, in place of C0 + C x
+   * (sampled_observation still gives Uv, its C0 and C zero). NULL for a linear observation and
+   * with a delay. */
   void (*observation_rate)(double t, const double* x, double* h);
 } pfgen_plugin;
 

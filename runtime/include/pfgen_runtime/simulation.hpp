@@ -78,13 +78,23 @@ class SampledMeasurement {
   std::size_t steps_per_sample(const TimeGrid& grid) const;
   // Fills C0 (p), C (p x n) and Uv (p x q), row-major, at time t. Not thread-safe: copy per thread.
   void evaluate(double t, double* C0, double* C, double* Uv) const { coefficients_(t, C0, C, Uv); }
-  // The noise-free value C0 + C x and the sample C0 + C x + Uv v at t, into clean and noisy (p).
+  // Samples c(t, x) + Uv v through any function c (a polynomial c, docs/theory.md §2.5) in place
+  // of C0 + C x; the coefficients then give Uv only. std::invalid_argument for an empty function.
+  using Function = std::function<void(double t, const double* x, double* c)>;
+  void set_function(Function c);
+  bool is_linear() const { return !function_; }
+  // The noise-free value C0 + C x (or c(t, x)) and the sample, plus Uv v, at t, into clean and
+  // noisy (p).
   void sample(double t, const double* x, const double* v, double* clean, double* noisy);
+  // The noise-free value alone, with the coefficients evaluate() last gave for a linear one (so a
+  // caller weighing many states at one t fetches them once): C0 + C x from C0 and C, or c(t, x).
+  void noise_free(double t, const double* C0, const double* C, const double* x, double* clean) const;
 
  private:
   std::size_t p_, n_, q_;
   double period_;
   Coefficients coefficients_;
+  Function function_;  // empty: C0 + C x
   std::vector<double> C0_, C_, Uv_;
 };
 

@@ -74,7 +74,7 @@ std::vector<std::string> filter_file_paths(const std::string& model_name, const 
 inline constexpr double kMaxCodegenTerms = 1500000;
 
 // The terms of the polynomials code generation reads from `eq` (drifts, gain, predicted
-// observation, the P equations' parts, x*'s drift).
+// observation, the P equations' parts, x*'s drift, a polynomial observation's P_gain).
 double codegen_terms(const FilterEquations& eq);
 
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options);

@@ -42,6 +42,10 @@ class ModelBuilder {
                                     const ExMatrix& Uv, std::size_t substeps = 1);
   // dy = h(x, t) dt + B dW2, each h_r a polynomial in the states (PolynomialObservation).
   ModelBuilder& polynomial_observation(const ExVector& h, const ExMatrix& B);
+  // Samples y_k = c(x(t_k)) + Uv v_k, c polynomial in the states; a c of degree <= 1 is written
+  // C0 + C x by build(), so its filters are those of sampled_observation().
+  ModelBuilder& sampled_polynomial_observation(const GiNaC::numeric& period, const ExVector& c, const ExMatrix& Uv,
+                                               std::size_t substeps);
   ModelBuilder& initial(const InitialConditions& initial);
 
   // The filter's own variables for user filters, once every state is declared: m1..mn,

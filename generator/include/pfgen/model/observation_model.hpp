@@ -28,6 +28,11 @@ struct SampledObservation {
   ExMatrix C;                 // r x n
   ExMatrix Uv;                // r x q, with Uv Uv^T positive definite
   std::size_t substeps = 1;   // prediction sub-steps per period, >= 1
+  // Samples y_k = c(x(t_k)) + Uv v_k through r polynomials in the states of degree >= 2 (the model
+  // file's `c:`); C0 and C are then zero, r x n. Empty for y_k = C0 + C x(t_k) + Uv v_k, which a
+  // `c:` of degree <= 1 is written as when the model is built.
+  ExVector c;
+  bool is_polynomial() const { return !c.empty(); }
 };
 
 // Continuous observations of the state h time units ago (paper 004): the sensor reports late.

@@ -24,6 +24,7 @@ GeneratedFilter SampledCode::c_filter(const Model& model, const FilterEquations&
   CFilterWriter::add_function(values, "matrices", f.matrices);
   CFilterWriter::add_function(values, "observation", f.observation);
   values.insert({{"h", w.names.h}, {"substeps", std::to_string(eq.update.substeps)}});
+  add_sample_meanings(values, eq.update);
   // cd-euler's Cov(f) dt^2 function and the prediction sub-step, each a partial (its templates/c/partials/).
   std::string euler_function, euler_declaration;
   if (euler) {

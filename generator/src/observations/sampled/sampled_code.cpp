@@ -38,4 +38,20 @@ const ObservationCode& sampled_observation_code() {
   return part;
 }
 
+void add_sample_meanings(std::map<std::string, std::string>& values, const SampledUpdate& update) {
+  if (!update.polynomial_samples) {
+    values["matrices_meaning"] =
+        "out = [C (p x n, row-major), R = Uv Uv^T (upper triangle, row by row)]; they do not depend on\n// the filter state.";
+    values["sample_meaning"] = "C0 + C m";
+    values["innovation_meaning"] = "y - C0 - C m";
+    return;
+  }
+  values["matrices_meaning"] =
+      update.at_mean ? "out = [C = J_c(m) (p x n, row-major), R = Uv Uv^T (upper triangle, row by row)]: c linearised at m."
+                     : "out = [C = E[J_c] (p x n, row-major), R = Cov(c) - C P C^T + Uv Uv^T (upper triangle, row by\n"
+                       "// row)]: with them the Joseph form below is the moment-matching update P - K S K^T.";
+  values["sample_meaning"] = update.at_mean ? "c(m)" : "E[c]";
+  values["innovation_meaning"] = "y - h";
+}
+
 }  // namespace pfgen::codegen

@@ -71,6 +71,7 @@ GeneratedFilter SampledCode::cpp_filter(const Model& model, const FilterEquation
       {"solve_body", cholesky_gain_body(r, emitter, {"std::size_t", "n", "p", "Scalar(0)", "false", "true"})},
       {"predict_function", predict_function},
   });
+  add_sample_meanings(values, u);
   result.files.at(0).contents =
       fill_template("cpp/sampled_filter.hpp.tmpl", embedded_template("cpp/sampled_filter.hpp.tmpl"), values);
   add_eigen_layer(result, "cpp/sampled_filter_eigen.hpp.tmpl", model, eq, options, values);

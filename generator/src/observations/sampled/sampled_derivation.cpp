@@ -1,9 +1,12 @@
 // The sampled observation y_k = C0 + C x(t_k) + Uv v_k in the derivation: no observation term
 // between samples (the equations are the prediction), the Kalman update's polynomial parts at each
 // sample (sampled_update), and for cd-euler the dt^2 term of its Euler moment map.
+#include <algorithm>
+
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_derivation.hpp"
+#include "pfgen/model/model_error.hpp"
 #include "pfgen/observations/sampled/sampled_exactness.hpp"
 #include "pfgen/observations/sampled/sampled_update.hpp"
 
@@ -30,12 +33,24 @@ class SampledDerivation final : public ObservationDerivation {
   FilterVariables variables(std::size_t n) const override { return FilterVariables(n); }
 
   void frame(const Model& model, FilterEquations& eq) const override {
+    if (model.observation.sampled().is_polynomial()) {
+      eq.update = polynomial_sampled_update(model, eq.variables, false, eq.predicted_observation);
+      return;
+    }
     eq.predicted_observation = predicted_sample(model.observation.sampled(), eq.variables);
     eq.update = sampled_update(model.observation.sampled(), eq.variables);
   }
 
   std::size_t observed_states(const Model& model) const override {
-    return pfgen::observed_states(model.observation.sampled().C);
+    const SampledObservation& sampled = model.observation.sampled();
+    if (!sampled.is_polynomial()) return pfgen::observed_states(sampled.C);
+    std::vector<bool> read(model.n(), false);
+    for (const GiNaC::ex& entry : sampled.c) {
+      const Polynomial c = Polynomial::from_ex(entry, model.states);
+      for (const auto& [monomial, coefficient] : c.terms())
+        for (const auto& [variable, exponent] : monomial.factors()) read[variable] = true;
+    }
+    return static_cast<std::size_t>(std::count(read.begin(), read.end(), true));
   }
 
   ExactnessReport exactness(const Model& model, FilterKind kind) const override {
@@ -45,11 +60,19 @@ class SampledDerivation final : public ObservationDerivation {
   // Between samples there is no observation term; the update is eq.update (frame).
   void observation_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
     eq.P_correction.assign(eq.P_moment.size(), Polynomial());
+    // The extended kind's update of a polynomial c reads c(m) and J_c(m) (frame gave E[c]'s).
+    if (model.observation.sampled().is_polynomial() && is_extended_kalman(kind))
+      eq.update = polynomial_sampled_update(model, eq.variables, true, eq.predicted_observation);
     if (uses_euler_map(kind)) eq.P_euler = euler_square_term(model, eq.variables);
   }
 
   // A sampled observation has no rate: its sample equation's C0 and C stand in the coefficient form.
   ObservationCoefficients coefficients(const Model& model) const override {
+    if (model.observation.sampled().is_polynomial()) {
+      ModelError error("observation.sampled.c", "the coefficient form's observation is linear, E + E1 x; c is not");
+      error.set_file(model.source);
+      throw error;
+    }
     ObservationCoefficients out;
     out.E = model.observation.sampled().C0;
     out.E1 = model.observation.sampled().C;

@@ -12,7 +12,10 @@ ExactnessReport sampled_exactness(const Model& model, FilterKind kind) {
   ExactnessReport report;
   const std::string nonaffine = facts.nonaffine_drift();
   const std::string multiplicative = facts.state_dependent_noise();
-  const std::string failure = !nonaffine.empty() ? nonaffine : multiplicative;
+  // A polynomial c of degree >= 2: x given the samples is not Gaussian even for a linear system.
+  const std::string nonlinear_samples =
+      model.observation.sampled().is_polynomial() ? "the samples' c is not linear in the states" : "";
+  const std::string failure = !nonaffine.empty() ? nonaffine : !multiplicative.empty() ? multiplicative : nonlinear_samples;
   if (failure.empty()) {
     report.exact = true;
     report.condition = uses_euler_map(kind) ? "Kalman (Euler model)" : "Kalman";
@@ -26,7 +29,12 @@ ExactnessReport sampled_exactness(const Model& model, FilterKind kind) {
     return report;
   }
   report.condition = "none";
-  if (uses_euler_map(kind) && nonaffine.empty())
+  if (!nonlinear_samples.empty() && nonaffine.empty() && multiplicative.empty())
+    report.explanation = "approximation: the samples' $c|c$ is nonlinear, so the update is the Gaussian "
+                         "(moment-matching) one with " +
+                         std::string(is_extended_kalman(kind) ? "$c|c$ linearised at $m|m$" : "the exact moments of $c|c$") +
+                         ", not the optimal one";
+  else if (uses_euler_map(kind) && nonaffine.empty())
     report.explanation = "linear minimum-variance filter (Allahyani & Date): with affine $f|f$ the predicted $m|m$ "
                          "and $P|P$ are the exact moments of the Euler-discretised model, but $x|x$ is not Gaussian, "
                          "so the update is the best linear one, not the optimal one";

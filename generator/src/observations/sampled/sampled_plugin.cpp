@@ -42,6 +42,12 @@ void SampledCode::truth_observation(const Model& model, TruthNames& names, Truth
   code.r = sampled.Uv.empty() ? 0 : sampled.Uv.front().size();
   code.definitions +=
       matrices_function(model, names, "sampled_observation", {{"C0", ExMatrix{sampled.C0}}, {"C", sampled.C}, {"Uv", sampled.Uv}});
+  // A polynomial c: C0 and C above are zero, and the samples are c(x) + Uv v (ABI version 4).
+  if (sampled.is_polynomial()) {
+    std::vector<Polynomial> c;
+    for (const GiNaC::ex& entry : sampled.c) c.push_back(Polynomial::from_ex(entry, model.states));
+    code.definitions += state_function(model, names, "observation_rate", "c", c);
+  }
 }
 
 // The ABI's predict and update have no parameters argument: the model's defaults.
@@ -68,6 +74,8 @@ std::map<std::string, std::string> SampledCode::plugin_table(const Model& model,
       {"sampled_observation", "&pfgen_simulation::truth::sampled_observation"},
       {"sampled_filter_count", std::to_string(names.size())},
       {"sampled_filters", names.empty() ? "nullptr" : "sampled_filters.data()"},
+      {"observation_rate", model.observation.sampled().is_polynomial() ? "&pfgen_simulation::truth::observation_rate"
+                                                                        : "nullptr"},
   };
 }
 

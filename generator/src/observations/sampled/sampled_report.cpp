@@ -21,6 +21,19 @@ std::string substep_phrase(const SampledUpdate& u) {
   return std::to_string(u.substeps) + (u.substeps == 1 ? " sub-step" : " sub-steps");
 }
 
+// How a polynomial c's update reads C and R (the Joseph form's, equal to P - K S K^T).
+std::string moment_matching_text(const SampledUpdate& u) {
+  return u.at_mean ? "linearised at m: h = c(m), C = J_c(m), R = Uv Uv^T (Joseph form)"
+                   : "Gaussian moment matching: h = E[c], C = E[J_c], R = Cov(c) - C P C^T + Uv Uv^T (Joseph form, "
+                     "equal to P - K S K^T)";
+}
+
+std::string moment_matching_latex(const SampledUpdate& u) {
+  return u.at_mean ? "linearised at $m$: $h = c(m)$, $C = J_c(m)$, $R = U_v U_v^{T}$, Joseph form"
+                   : "Gaussian moment matching: $h = E[c]$, $C = E[J_c]$, $R = \mathrm{Cov}(c) - C P C^{T} + U_v U_v^{T}$, "
+                     "Joseph form, equal to $P - K S K^{T}$";
+}
+
 std::string sampled_equations_text(const Model& model, const FilterEquations& eq) {
   TextPrinter printer;
   const FilterVariables& vars = eq.variables;
@@ -40,7 +53,14 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   out += "; P = covariance of (";
   for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
   out += ")\n";
-  out += "observation: sampled every T = " + printer.print(u.period) + ", y_k = C0 + C x(t_k) + Uv v_k; " +
+  std::string samples = "C0 + C x(t_k) + Uv v_k";
+  if (u.polynomial_samples) {
+    samples = "c(x(t_k)) + Uv v_k, c = (";
+    for (std::size_t a = 0; a < model.observation.sampled().c.size(); ++a)
+      samples += (a ? ", " : "") + printer.print(model.observation.sampled().c[a]);
+    samples += ")";
+  }
+  out += "observation: sampled every T = " + printer.print(u.period) + ", y_k = " + samples + "; " +
          substep_phrase(u) + " of dt = T/" + std::to_string(u.substeps) + " between samples\n\n";
   if (eq.P_euler.empty()) {
     out += "prediction between samples (no observation term; dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion]):\n";
@@ -67,7 +87,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   }
   out += "\nupdate at each sample y = (";
   for (std::size_t a = 0; a < r; ++a) out += (a ? ", " : "") + std::string("y") + std::to_string(a + 1);
-  out += "), R = Uv Uv^T (Joseph form):\n";
+  out += u.polynomial_samples ? "), " + moment_matching_text(u) + ":\n" : "), R = Uv Uv^T (Joseph form):\n";
   for (std::size_t a = 0; a < r; ++a)
     out += "h" + std::to_string(a + 1) + " = " + writer.print(eq.predicted_observation[a]) + "\n";
   for (std::size_t i = 0; i < n; ++i)
@@ -127,7 +147,8 @@ std::string sampled_equations_latex(const FilterEquations& eq) {
                                  : latex_align_lines("\\frac{d" + P + "}{dt}", join_parts(writer, P_parts(eq, k))));
     }
   out += block(prediction);
-  out += "\\paragraph{Update at each sample} ($R = U_v U_v^{T}$, Joseph form):\n";
+  out += u.polynomial_samples ? "\\paragraph{Update at each sample} (" + moment_matching_latex(u) + "):\n"
+                              : "\\paragraph{Update at each sample} ($R = U_v U_v^{T}$, Joseph form):\n";
   std::vector<std::string> update;
   for (std::size_t a = 0; a < r; ++a)
     update.push_back(latex_align_lines("h_{" + std::to_string(a + 1) + "}", writer.print(eq.predicted_observation[a])));
@@ -203,6 +224,12 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   }
   update.add("C", C);
   update.add("R", full(u.R, r, S_index));
+  if (u.polynomial_samples) {
+    Json c = Json::array();
+    for (const GiNaC::ex& entry : model.observation.sampled().c) c.push(Json::string(printer.print(entry)));
+    update.add("c", c);
+    update.add("form", Json::string(moment_matching_text(u)));
+  }
 
   Json out = Json::object();
   out.add("model", Json::string(model.name));
@@ -235,6 +262,9 @@ class SampledReport final : public ObservationReport {
   std::string matrices_latex(const Model& model) const override {
     LatexPrinter printer;
     const SampledObservation& sampled = model.observation.sampled();
+    if (sampled.is_polynomial())
+      return matrix_lines(printer, "c", "c", column(sampled.c)) + " \\\\\n" +
+             matrix_lines(printer, "U_v", "U_v", sampled.Uv) + " \\\\\nT &= " + printer.print(sampled.period);
     const std::string observation_line = bmatrix(printer, column(sampled.C0)) + ", \\quad C = " +
                                          bmatrix(printer, sampled.C) + ", \\quad U_v = " + bmatrix(printer, sampled.Uv) +
                                          ", \\quad T = " + printer.print(sampled.period);

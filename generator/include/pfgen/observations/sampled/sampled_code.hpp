@@ -42,4 +42,9 @@ struct SampledFunctions {
 SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                    const FunctionNames& names, const CFamilyEmitter& emitter);
 
+// What the templates' comments say observation_matrices(), predicted_observation() and the
+// innovation are (matrices_meaning, sample_meaning, innovation_meaning): C0 + C m's, or a
+// polynomial c's moment-matching terms.
+void add_sample_meanings(std::map<std::string, std::string>& values, const SampledUpdate& update);
+
 }  // namespace pfgen::codegen

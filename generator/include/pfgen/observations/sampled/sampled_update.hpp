@@ -5,6 +5,15 @@
 //   P <- (I - K C) P (I - K C)^T + K R K^T   (Joseph form).
 // K is rational in P, not polynomial, so the derivation keeps its polynomial parts (P C^T and
 // S) and the consumers form K: `pfgen eval` exactly, generated code by an unrolled Cholesky solve.
+//
+// Samples y_k = c(x(t_k)) + Uv v_k through a polynomial c (docs/theory.md §2.5) get the Gaussian
+// (moment-matching) update with c's exact moments under x ~ N(m, P): predicted sample E[c],
+// Cov(x, c) = P E[J_c]^T (Stein), S = Cov(c) + R, K = Cov(x, c) S^-1, m <- m + K (y - E[c]),
+// P <- P - K S K^T. It is written in the linear update's form, with C = E[J_c] and R replaced by
+// R_c = S - C P C^T (the Schur complement of the joint covariance of x and c, positive
+// semi-definite): then S = C P C^T + R_c, P C^T = Cov(x, c), and the Joseph form
+// (I - K C) P (I - K C)^T + K R_c K^T equals P - K S K^T, so every consumer of the linear update
+// serves it unchanged. The extended kind (at_mean) reads c(m), J_c(m) and R_c = R.
 #include <cstddef>
 #include <vector>
 
@@ -19,8 +28,10 @@ struct SampledUpdate {
   std::size_t substeps = 1;                       // prediction sub-steps per period
   std::vector<std::vector<Polynomial>> PCt;       // n x r: P C^T, linear in P
   std::vector<Polynomial> S;                      // r(r+1)/2, upper triangle row by row: C P C^T + R
-  std::vector<std::vector<Polynomial>> C;         // r x n, constants in the filter variables
-  std::vector<Polynomial> R;                      // r(r+1)/2, upper triangle: Uv Uv^T
+  std::vector<std::vector<Polynomial>> C;         // r x n: C (constants), or E[J_c] (polynomials in m, P)
+  std::vector<Polynomial> R;                      // r(r+1)/2, upper triangle: Uv Uv^T, or R_c = S - C P C^T
+  // A polynomial c: C and R as above, read by the reports; `at_mean` for the extended kind's.
+  bool polynomial_samples = false, at_mean = false;
   std::size_t r() const { return C.size(); }
   // Index of S_ab (or R_ab), a and b in either order, in the packed upper triangle.
   std::size_t upper_index(std::size_t a, std::size_t b) const;
@@ -30,5 +41,10 @@ SampledUpdate sampled_update(const SampledObservation& observation, const Filter
 
 // C0 + C m, one polynomial per observation row, in the filter's variables.
 std::vector<Polynomial> predicted_sample(const SampledObservation& observation, const FilterVariables& vars);
+
+// For a polynomial c (SampledObservation::is_polynomial): the update above with E[c] (c(m)
+// `at_mean`, the extended kind) as the predicted sample, which it returns in `predicted`.
+SampledUpdate polynomial_sampled_update(const Model& model, const FilterVariables& vars, bool at_mean,
+                                        std::vector<Polynomial>& predicted);
 
 }  // namespace pfgen
