@@ -2,7 +2,7 @@
 // §2.5): a c of degree <= 1 is C0 + C x byte for byte; the update's moments against an Isserlis
 // expansion from their definitions (E[c], Cov(x, c), Cov(c)) and the Joseph form's C and R_c
 // against P - K S K^T; the extended kind's linearisation; what the model file refuses; the
-// generated update against the moment-matching update formed from the evaluator's values; and
+// generated update (C++ and C) against the moment-matching update formed from the evaluator's values; and
 // simulate end to end, the same for 1 and 2 threads, with the particle reference.
 #include <catch2/catch.hpp>
 
@@ -133,7 +133,7 @@ TEST_CASE("sampled polynomial c: what the model file refuses", "[observation][sa
   CHECK(refusal("{period: 1, c: [\"x*y\"], Uv: [[\"1\"]]}") == "accepted");
 }
 
-TEST_CASE("sampled polynomial c: the generated update is the moment-matching update of the evaluator's values",
+TEST_CASE("sampled polynomial c: the generated update (C++ and C) is the moment-matching update of the evaluator's values",
           "[codegen][sampled][polynomial][compiler]") {
   const Model model = load_model_file(example("polynomial/range_squared_sampled.yaml"));
   TempDir dir;
@@ -174,6 +174,32 @@ TEST_CASE("sampled polynomial c: the generated update is the moment-matching upd
                                 0.05 - K[0] * S * K[1], 0.3 - K[1] * S * K[1]};
     INFO(eq.name);
     for (int k = 0; k < 5; ++k) CHECK(updated[k] == Approx(expected[k]).epsilon(1e-12));
+
+    // The C backend's update: the same numbers.
+    options.language = codegen::Language::C;
+    for (const auto& file : codegen::generate_filter_code(model, eq, options).files)
+      write_file(dir.file(file.relative_path), file.contents);
+    const std::string prefix = "pfgen_models_range_squared_sampled_" + id + "_";
+    write_file(dir.file(id + "_c.c"), "#include <stdio.h>\n#include \"range_squared_sampled/" + id + ".h\"\nint main(void) {\n  " +
+                                          prefix + "params params;\n  double s[5] = {1.0, 0.5, 0.2, 0.05, 0.3};\n"
+                                          "  const double y[1] = {2.0};\n  " + prefix + "default_params(&params);\n  if (!" +
+                                          prefix + "update(s, 0.1, y, &params)) return 1;\n"
+                                          "  for (int k = 0; k < 5; ++k) printf(\"%.17g\\n\", s[k]);\n  return 0;\n}\n");
+    const ProcessResult built_c =
+        run_process("gcc -std=c99 -O2 -Wall -Wextra -Wpedantic -Werror -I " + shell_quote(dir.path()) + " " +
+                    shell_quote(dir.file(id + "_c.c")) + " " + shell_quote(dir.file("range_squared_sampled/" + id + ".c")) +
+                    " -lm -o " + shell_quote(dir.file(id + "_c")));
+    INFO(built_c.err.substr(0, 3000));
+    REQUIRE(built_c.exit_code == 0);
+    const ProcessResult ran_c = run_program({dir.file(id + "_c")});
+    REQUIRE(ran_c.exit_code == 0);
+    std::istringstream c_lines(ran_c.out);
+    for (int k = 0; k < 5; ++k) {
+      double v = 0;
+      c_lines >> v;
+      CHECK(v == Approx(expected[k]).epsilon(1e-12));
+    }
+    REQUIRE(c_lines);
   }
 }
 
