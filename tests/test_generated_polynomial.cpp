@@ -381,3 +381,50 @@ TEST_CASE("a linear h generates the A0 + A x model's code byte for byte", "[code
       }
     }
 }
+
+TEST_CASE("generated polynomial-observation filters: the Eigen layer compiles warning-free and agrees with the flat API",
+          "[codegen][polynomial][compiler]") {
+  const Model model = load_model_file(example("polynomial/range_squared.yaml"));
+  const FilterEquations eq = derive_filter(model, FilterKind::Optimal);
+  TempDir dir;
+  codegen::CodegenOptions options;
+  options.eigen_wrapper = true;  // template code, instantiated with double
+  for (const auto& file : codegen::generate_filter_code(model, eq, options).files) {
+    std::filesystem::create_directories(std::filesystem::path(dir.file(file.relative_path)).parent_path());
+    write_file(dir.file(file.relative_path), file.contents);
+  }
+  write_file(dir.file("main.cpp"), R"(#include <cmath>
+#include <cstdio>
+#include "range_squared/optimal_eigen.hpp"
+namespace F = pfgen_models::range_squared::optimal;
+int main() {
+  Eigen::Matrix<double, 2, 1> m(1.0, 0.5);
+  Eigen::Matrix<double, 2, 2> P;
+  P << 0.2, 0.05, 0.05, 0.3;
+  const F::Params<double> params{};
+  const double state[5] = {1.0, 0.5, 0.2, 0.05, 0.3};
+  double L[3], c[5], c_flat[5];
+  F::covariance_gain(0.0, state, params, L);
+  F::stratonovich_correction(0.0, state, params, c_flat);
+  const auto matrices = F::covariance_gain(0.0, m, P, params);
+  Eigen::Matrix<double, 2, 1> c_m;
+  Eigen::Matrix<double, 2, 2> c_P;
+  F::stratonovich_correction(0.0, m, P, params, c_m, c_P);
+  F::pack(c_m, c_P, c);
+  int bad = matrices[0](0, 0) != L[0] || matrices[0](0, 1) != L[1] || matrices[0](1, 0) != L[1] || matrices[0](1, 1) != L[2];
+  for (int k = 0; k < 5; ++k) bad |= c[k] != c_flat[k];
+  // L = 2 P^2 / r^2 with r = 0.5: (0.0425, 0.025, 0.0925) * 8.
+  bad |= std::fabs(L[0] - 0.34) > 1e-14 || std::fabs(L[1] - 0.2) > 1e-14 || std::fabs(L[2] - 0.74) > 1e-14;
+  std::printf("%d\n", bad);
+  return bad;
+}
+)");
+  const ProcessResult compiled =
+      run_process("g++ -std=c++17 -O2 -Wall -Wextra -Wshadow -Werror -I " + shell_quote(dir.path()) + " -isystem " + shell_quote(PFGEN_EIGEN_INCLUDE_DIR) + " " +
+                  shell_quote(dir.file("main.cpp")) + " -o " + shell_quote(dir.file("eigen")));
+  INFO(compiled.err.substr(0, 4000));
+  REQUIRE(compiled.exit_code == 0);
+  const ProcessResult ran = run_program({dir.file("eigen")});
+  INFO(ran.out);
+  CHECK(ran.exit_code == 0);
+}

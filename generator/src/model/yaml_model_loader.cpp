@@ -220,8 +220,11 @@ class Loader {
         std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
         index_.record("observation." + key, entry.first);
         if (key != "h" && key != "B")
-          throw ModelError("observation." + key, "a polynomial observation dy = h(x, t) dt + B dW2 has the fields h "
-                                                 "and B only (A0 + A x is h written as a linear polynomial)");
+          throw ModelError("observation." + key,
+                           std::string("a polynomial observation dy = h(x, t) dt + B dW2 has the fields h and B only") +
+                               (key == "A0" || key == "A" ? " (A0 + A x is h written as a linear polynomial)"
+                                                          : key == "delay" ? " (a delayed observation is A0 + A x(t - h))"
+                                                                           : ""));
       }
       YAML::Node B_node = obs["B"];
       if (!B_node || B_node.IsNull()) throw ModelError("observation.B", "missing required field");
