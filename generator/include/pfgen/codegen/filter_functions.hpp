@@ -8,8 +8,10 @@
 // filter's derivatives(), euler_square() (cd-euler), innovation_terms(), observation_matrices()
 // and predicted_observation()); the backends (codegen/backends/<language>/) put their bodies into
 // their templates.
+#include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pfgen/codegen/backends/c_family/c_family_emitter.hpp"
@@ -52,6 +54,12 @@ FunctionCode function_code(const std::string& function, const std::vector<Polyno
 // `out`; in the structured form where that needs fewer operations after sharing.
 FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                               const FunctionNames& names, const CFamilyEmitter& emitter);
+
+// The placeholders a template has for each of its functions, under its key: `<key>_ops` (the ops
+// comment), `<key>_body` and, with `split_parts`, `<key>_helpers` (C's parts of a split body, which
+// precede the function). Added to `values` without replacing any.
+void add_function_values(std::map<std::string, std::string>& values,
+                         const std::vector<std::pair<std::string, const FunctionCode*>>& functions, bool split_parts);
 
 // The filter state at t = 0: m0 and P0's upper triangle (zeros without an initial section); with
 // `x_star`, x*(0) = m0 after them (a delayed filter's noise-free solution).

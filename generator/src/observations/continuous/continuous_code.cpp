@@ -28,13 +28,9 @@ const ObservationCode& continuous_observation_code() {
 
 void add_rate_function_values(std::map<std::string, std::string>& values, const ContinuousFunctions& functions,
                               const FunctionNames& names, const FilterEquations& eq, bool split_parts) {
-  for (const auto& [key, code] : {std::pair<const char*, const FunctionCode*>{"derivatives", &functions.derivatives},
-                                  {"gain", &functions.gain},
-                                  {"observation", &functions.observation}}) {
-    values.emplace(std::string(key) + "_ops", ops_comment(code->stats));
-    values.emplace(std::string(key) + "_body", code->body.statements);
-    if (split_parts) values.emplace(std::string(key) + "_helpers", code->body.helpers);
-  }
+  add_function_values(
+      values, {{"derivatives", &functions.derivatives}, {"gain", &functions.gain}, {"observation", &functions.observation}},
+      split_parts);
   values.emplace("K", names.K);
   values.emplace("h", names.h);
   values.emplace("gain_meaning", gain_meaning(eq));

@@ -42,15 +42,13 @@ PolynomialFunctions polynomial_functions(const Model& model, const FilterEquatio
 
 void add_polynomial_function_values(std::map<std::string, std::string>& values, const PolynomialFunctions& functions,
                                     const FunctionNames& names, bool split_parts) {
-  for (const auto& [key, code] : {std::pair<const char*, const FunctionCode*>{"derivatives", &functions.derivatives},
-                                  {"gain", &functions.gain},
-                                  {"covariance_gain", &functions.covariance_gain},
-                                  {"observation", &functions.observation},
-                                  {"correction", &functions.correction}}) {
-    values.emplace(std::string(key) + "_ops", ops_comment(code->stats));
-    values.emplace(std::string(key) + "_body", code->body.statements);
-    if (split_parts) values.emplace(std::string(key) + "_helpers", code->body.helpers);
-  }
+  add_function_values(values,
+                      {{"derivatives", &functions.derivatives},
+                       {"gain", &functions.gain},
+                       {"covariance_gain", &functions.covariance_gain},
+                       {"observation", &functions.observation},
+                       {"correction", &functions.correction}},
+                      split_parts);
   values.emplace("K", names.K);
   values.emplace("L", names.L);
   values.emplace("h", names.h);
