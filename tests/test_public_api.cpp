@@ -33,6 +33,23 @@ TEST_CASE("public API: the cubic sensor built in code is the model file's", "[ap
   CHECK(file.derive("optimal").expressions().P_gain[0][0][0] == "6*m1*P11**2/rho**2");
 }
 
+TEST_CASE("public API: samples through a polynomial c built in code are the model file's", "[api][unit]") {
+  api::ModelBuilder builder("range_squared_sampled");
+  const GiNaC::symbol x1 = builder.state("x1"), x2 = builder.state("x2");
+  const GiNaC::symbol s = builder.parameter("s", 0.3);
+  builder.drift({0, 0}).diffusion({{s, 0}, {0, s}});
+  builder.sampled_polynomial_observation(0.1, {x1 * x1 + x2 * x2}, {{0.2}}, 10);
+  builder.initial({1, 0.5}, {{0.2, 0}, {0, 0.2}});
+  const api::Model built = builder.build();
+  const api::Model file = api::Model::load(pfgen_test::example("polynomial/range_squared_sampled.yaml"));
+  CHECK(built.kinds() == file.kinds());
+  for (const std::string& kind : file.kinds()) {
+    INFO(kind);
+    CHECK(built.derive(kind).text() == file.derive(kind).text());
+    CHECK(built.derive(kind).json() == file.derive(kind).json());
+  }
+}
+
 TEST_CASE("public API: one exception type, with the command's line", "[api][unit]") {
   const api::Model model = api::Model::load(pfgen_test::example("basin2006_quadratic.yaml"));
   try {

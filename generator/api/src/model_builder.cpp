@@ -89,6 +89,12 @@ ModelBuilder& ModelBuilder::sampled_observation(double period, const Exprs& C0, 
   return *this;
 }
 
+ModelBuilder& ModelBuilder::sampled_polynomial_observation(double period, const Exprs& c, const ExprMatrix& Uv,
+                                                          std::size_t substeps) {
+  guarded([&] { impl_->builder.sampled_polynomial_observation(exact(period), c, Uv, substeps); });
+  return *this;
+}
+
 ModelBuilder& ModelBuilder::polynomial_observation(const Exprs& h, const ExprMatrix& B) {
   guarded([&] { impl_->builder.polynomial_observation(h, B); });
   return *this;

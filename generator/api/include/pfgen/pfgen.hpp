@@ -244,6 +244,9 @@ class ModelBuilder {
   // y_k = C0 + C x(k period) + Uv v_k
   ModelBuilder& sampled_observation(double period, const Exprs& C0, const ExprMatrix& C, const ExprMatrix& Uv,
                                     std::size_t substeps = 1);
+  // y_k = c(x(k period)) + Uv v_k, each c_r a polynomial in the states (degree <= 1: as C0 + C x)
+  ModelBuilder& sampled_polynomial_observation(double period, const Exprs& c, const ExprMatrix& Uv,
+                                               std::size_t substeps = 1);
   // The filters' prior N(m0, P0) and the truth's x0 (empty: drawn from the prior in each run).
   ModelBuilder& initial(const Vector& m0, const Matrix& P0, const Vector& x0 = {});
   // dW read in Stratonovich's sense (the drift is converted to Ito's form).
