@@ -30,7 +30,7 @@ std::string moment_matching_text(const SampledUpdate& u) {
 
 std::string moment_matching_latex(const SampledUpdate& u) {
   return u.at_mean ? "linearised at $m$: $h = c(m)$, $C = J_c(m)$, $R = U_v U_v^{T}$, Joseph form"
-                   : "Gaussian moment matching: $h = E[c]$, $C = E[J_c]$, $R = \mathrm{Cov}(c) - C P C^{T} + U_v U_v^{T}$, "
+                   : "Gaussian moment matching: $h = E[c]$, $C = E[J_c]$, $R = \\mathrm{Cov}(c) - C P C^{T} + U_v U_v^{T}$, "
                      "Joseph form, equal to $P - K S K^{T}$";
 }
 
