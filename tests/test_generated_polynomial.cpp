@@ -27,21 +27,13 @@
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 #include "support/cli_helpers.hpp"
+#include "support/exact_rational.hpp"
 #include "support/test_paths.hpp"
 
 using namespace pfgen;
 using namespace pfgen_test;
 
 namespace {
-
-// A double as the exact rational it is (the evaluator then computes exactly).
-GiNaC::numeric exact(double v) {
-  if (v == 0) return 0;
-  int e = 0;
-  const double fraction = std::frexp(v, &e);
-  const auto mantissa = static_cast<long>(std::ldexp(fraction, 53));
-  return GiNaC::numeric(mantissa) * GiNaC::ex_to<GiNaC::numeric>(GiNaC::pow(GiNaC::numeric(2), e - 53));
-}
 
 // The generated functions' values at one packed state s = [m, P's upper triangle].
 struct Values {

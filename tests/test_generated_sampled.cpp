@@ -32,6 +32,7 @@
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 #include "support/cli_helpers.hpp"
+#include "support/exact_rational.hpp"
 #include "support/test_paths.hpp"
 
 using namespace pfgen;
@@ -59,15 +60,6 @@ FilterKind kind_of(const std::string& stem) {
   if (stem == "cd_optimal") return FilterKind::CdOptimal;
   if (stem == "cd_ekf") return FilterKind::CdEkf;
   return FilterKind::CdEuler;
-}
-
-// A double as the exact rational it is (the evaluator then computes exactly).
-GiNaC::numeric exact(double v) {
-  if (v == 0) return 0;
-  int e = 0;
-  const double fraction = std::frexp(v, &e);
-  const auto mantissa = static_cast<long>(std::ldexp(fraction, 53));
-  return GiNaC::numeric(mantissa) * GiNaC::ex_to<GiNaC::numeric>(GiNaC::pow(GiNaC::numeric(2), e - 53));
 }
 
 double random_rational(std::mt19937& rng, int range) {

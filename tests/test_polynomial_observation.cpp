@@ -11,19 +11,13 @@
 #include "pfgen/observations/continuous/observation_terms.hpp"
 #include "pfgen/observations/polynomial/polynomial_observation_terms.hpp"
 #include "support/isserlis_reference.hpp"
+#include "support/symbolic_mismatch.hpp"
 
 using namespace pfgen;
+using pfgen_test::mismatch;
 using pfgen_test::IsserlisReference;
 
 namespace {
-
-std::string mismatch(const GiNaC::ex& expected, const GiNaC::ex& derived) {
-  const GiNaC::ex difference = (expected - derived).expand();
-  if (difference.is_zero()) return {};
-  std::ostringstream out;
-  out << "expected " << expected << "\nderived  " << derived << "\ndifference " << difference;
-  return out.str();
-}
 
 std::vector<GiNaC::symbol> x_symbols(std::size_t n) {
   std::vector<GiNaC::symbol> x;

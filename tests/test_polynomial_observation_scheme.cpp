@@ -13,17 +13,12 @@
 #include "pfgen/observations/polynomial/ito_stratonovich_correction.hpp"
 #include "pfgen/observations/polynomial/polynomial_observation_terms.hpp"
 
+#include "support/symbolic_mismatch.hpp"
+
 using namespace pfgen;
+using pfgen_test::mismatch;
 
 namespace {
-
-std::string mismatch(const GiNaC::ex& expected, const GiNaC::ex& derived) {
-  const GiNaC::ex difference = (expected - derived).expand();
-  if (difference.is_zero()) return {};
-  std::ostringstream out;
-  out << "expected " << expected << "\nderived  " << derived;
-  return out.str();
-}
 
 // A polynomial with numeric coefficients, evaluated in double at the filter variables' values.
 class Compiled {

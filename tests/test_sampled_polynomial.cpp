@@ -17,20 +17,13 @@
 #include "pfgen/printing/equation_report.hpp"
 #include "support/cli_helpers.hpp"
 #include "support/isserlis_reference.hpp"
+#include "support/symbolic_mismatch.hpp"
 #include "support/test_paths.hpp"
 
 using namespace pfgen;
 using namespace pfgen_test;
 
 namespace {
-
-std::string mismatch(const GiNaC::ex& expected, const GiNaC::ex& derived) {
-  const GiNaC::ex difference = (expected - derived).expand();
-  if (difference.is_zero()) return {};
-  std::ostringstream out;
-  out << "expected " << expected << "\nderived  " << derived;
-  return out.str();
-}
 
 std::string model_text(const std::string& sampled) {
   return "name: m\nstates: [x, y]\nparameters: {a: 0.5}\ndrift: [\"-x\", \"x - y\"]\n"
@@ -115,6 +108,7 @@ TEST_CASE("sampled polynomial c: the update's moments equal an Isserlis expansio
     for (std::size_t b = a; b < 2; ++b) CHECK(mismatch(R[a][b], ekf.update.R[ekf.update.upper_index(a, b)].to_ex(s)) == "");
   }
   CHECK(eq.exactness.explanation.find("moment-matching") != std::string::npos);
+  CHECK(equations_latex(eq).find("$R = \\mathrm{Cov}(c) - C P C^{T} + U_v U_v^{T}$") != std::string::npos);
   CHECK(equations_text(model, eq).find("y_k = c(x(t_k)) + Uv v_k, c = (-2*x*y + a*y^2 + x^3, x^2*y^2 + y)") !=
         std::string::npos);
 }
@@ -214,7 +208,6 @@ TEST_CASE("simulate: samples through a polynomial c, with the particle reference
   INFO(one.err);
   REQUIRE(one.exit_code == 0);
   REQUIRE(two.exit_code == 0);
-  auto without_csv_line = [](const std::string& out) { return out.substr(0, out.rfind("csv: ")); };
   CHECK(without_csv_line(one.out) == without_csv_line(two.out));
   CHECK(read_file(dir.file("one.csv")) == read_file(dir.file("two.csv")));
   CHECK(one.out.find("\nreference      x1     8") != std::string::npos);

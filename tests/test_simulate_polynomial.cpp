@@ -22,7 +22,6 @@ TEST_CASE("simulate: the cubic sensor's filters and particle reference, identica
   INFO(one.err);
   REQUIRE(one.exit_code == 0);
   REQUIRE(two.exit_code == 0);
-  auto without_csv_line = [](const std::string& out) { return out.substr(0, out.rfind("csv: ")); };
   CHECK(without_csv_line(one.out) == without_csv_line(two.out));
   CHECK(read_file(dir.file("one.csv")) == read_file(dir.file("two.csv")));
   for (const char* row : {"\noptimal        x    12", "\nekf            x    12", "\nukf            x    12",

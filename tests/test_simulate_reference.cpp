@@ -62,7 +62,6 @@ TEST_CASE("simulate --reference: identical table and CSV for 1 and 2 threads, an
   REQUIRE(one.exit_code == 0);
   REQUIRE(two.exit_code == 0);
   INFO(one.out << one.err);
-  auto without_csv_line = [](std::string text) { return std::regex_replace(text, std::regex("csv: .*\n"), ""); };
   CHECK(without_csv_line(one.out) == without_csv_line(two.out));
   CHECK(read_file(dir.file("one.csv")) == read_file(dir.file("two.csv")));
   CHECK(one.out.find("Distance to the particle reference (N = 200 particles") != std::string::npos);

@@ -32,10 +32,12 @@
 #include "pfgen/toolchain/plugin_compiler.hpp"
 #include "pfgen_runtime/simulation_plugin.hpp"
 #include "support/random_polynomial_system.hpp"
+#include "support/exact_rational.hpp"
 #include "support/test_paths.hpp"
 
 namespace fs = std::filesystem;
 using pfgen_runtime::SimulationPlugin;
+using pfgen_test::exact;
 
 namespace {
 
@@ -102,14 +104,6 @@ const Built& built(const std::string& label, const pfgen::Model& model, const st
   b.build = pfgen::toolchain::build_plugin(b.source, workspace().options());
   WARN(label << ": compiled in " << b.build.compile_seconds << " s (" << b.source.size() << " bytes of source)");
   return done.emplace(label, std::move(b)).first->second;
-}
-
-// The exact rational of a double, so that GiNaC evaluates at the very point the plugin gets.
-GiNaC::numeric exact(double value) {
-  int exponent = 0;
-  const double mantissa = std::frexp(value, &exponent);
-  const auto integer = static_cast<long long>(std::ldexp(mantissa, 53));
-  return GiNaC::numeric(std::to_string(integer).c_str()) * GiNaC::numeric(2).power(exponent - 53);
 }
 
 // The model's expression e at (t, x) and the parameters' defaults, in GiNaC, rounded once.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -60,6 +61,11 @@ inline void write_file(const std::string& path, const std::string& contents) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << contents;
   if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+// simulate's stdout without its "csv: PATH" line, which names the run's own file.
+inline std::string without_csv_line(const std::string& text) {
+  return std::regex_replace(text, std::regex("csv: .*\n"), "");
 }
 
 inline std::size_t count_lines(const std::string& text) {

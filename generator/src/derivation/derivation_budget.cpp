@@ -170,4 +170,12 @@ std::size_t observed_states(const ExMatrix& observation_matrix) {
   return count;
 }
 
+std::size_t observed_states(const std::vector<Polynomial>& observation, std::size_t n) {
+  std::vector<bool> read(n, false);
+  for (const Polynomial& row : observation)
+    for (const auto& [monomial, coefficient] : row.terms())
+      for (const auto& [variable, exponent] : monomial.factors()) read[variable] = true;
+  return static_cast<std::size_t>(std::count(read.begin(), read.end(), true));
+}
+
 }  // namespace pfgen

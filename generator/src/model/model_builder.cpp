@@ -2,8 +2,6 @@
 
 #include "pfgen/model/stratonovich.hpp"
 
-#include "pfgen/algebra/polynomial.hpp"
-
 #include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/model_validator.hpp"
@@ -149,7 +147,7 @@ ModelBuilder& ModelBuilder::delayed_observation(const GiNaC::numeric& delay, con
 
 ModelBuilder& ModelBuilder::sampled_observation(const GiNaC::numeric& period, const ExVector& C0, const ExMatrix& C,
                                                 const ExMatrix& Uv, std::size_t substeps) {
-  model_.observation = SampledObservation{period, exact_vector(C0), exact_matrix(C), exact_matrix(Uv), substeps};
+  model_.observation = SampledObservation{period, exact_vector(C0), exact_matrix(C), exact_matrix(Uv), substeps, {}};
   has_observation_ = true;
   return *this;
 }
@@ -157,8 +155,8 @@ ModelBuilder& ModelBuilder::sampled_observation(const GiNaC::numeric& period, co
 ModelBuilder& ModelBuilder::sampled_polynomial_observation(const GiNaC::numeric& period, const ExVector& c,
                                                           const ExMatrix& Uv, std::size_t substeps) {
   SampledObservation sampled{period, ExVector(c.size(), GiNaC::ex(0)),
-                             ExMatrix(c.size(), ExVector(model_.states.size(), GiNaC::ex(0))), exact_matrix(Uv), substeps};
-  sampled.c = exact_vector(c);
+                             ExMatrix(c.size(), ExVector(model_.states.size(), GiNaC::ex(0))), exact_matrix(Uv), substeps,
+                             exact_vector(c)};
   model_.observation = sampled;
   has_observation_ = true;
   return *this;
@@ -239,18 +237,10 @@ namespace {
 // A sampled c of degree <= 1 is C0 + C x: written so, every room sees the linear observation.
 void write_linear_samples(Model& model) {
   SampledObservation sampled = model.observation.sampled();
-  std::vector<Polynomial> c;
-  for (const GiNaC::ex& entry : sampled.c) {
-    c.push_back(Polynomial::from_ex(entry, model.states));
-    if (c.back().degree() > 1) return;
-  }
-  for (std::size_t a = 0; a < c.size(); ++a)
-    for (const auto& [monomial, coefficient] : c[a].terms()) {
-      if (monomial.is_one())
-        sampled.C0[a] = coefficient;
-      else
-        sampled.C[a][monomial.factors().front().first] = coefficient;
-    }
+  std::optional<AffineRows> linear = affine_rows(sampled.c, model.states);
+  if (!linear) return;
+  sampled.C0 = std::move(linear->constant);
+  sampled.C = std::move(linear->linear);
   sampled.c.clear();
   model.observation = sampled;
 }

@@ -2,7 +2,26 @@
 
 #include <stdexcept>
 
+#include "pfgen/algebra/polynomial.hpp"
+
 namespace pfgen {
+
+std::optional<AffineRows> affine_rows(const ExVector& rows, const std::vector<GiNaC::symbol>& states) {
+  std::vector<Polynomial> polynomials;
+  for (const GiNaC::ex& row : rows) {
+    polynomials.push_back(Polynomial::from_ex(row, states));
+    if (polynomials.back().degree() > 1) return std::nullopt;
+  }
+  AffineRows out{ExVector(rows.size(), GiNaC::ex(0)), ExMatrix(rows.size(), ExVector(states.size(), GiNaC::ex(0)))};
+  for (std::size_t r = 0; r < polynomials.size(); ++r)
+    for (const auto& [monomial, coefficient] : polynomials[r].terms()) {
+      if (monomial.is_one())
+        out.constant[r] = coefficient;
+      else
+        out.linear[r][monomial.factors().front().first] = coefficient;
+    }
+  return out;
+}
 
 ObservationKind ObservationModel::kind() const {
   // One alternative per kind, in the order of ObservationKind.

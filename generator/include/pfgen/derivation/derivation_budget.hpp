@@ -37,6 +37,9 @@ struct DerivationInputs {
 // The states whose column of an observation matrix (A, or a sampled observation's C) is not zero:
 // an observation module's DerivationInputs::observed_states.
 std::size_t observed_states(const ExMatrix& observation_matrix);
+// The same for an observation through polynomials in the states 0..n-1 (a polynomial h or c): the
+// states any of them reads.
+std::size_t observed_states(const std::vector<Polynomial>& observation, std::size_t n);
 
 // Throws ModelError (file, field, row) when the derivation would go beyond either limit.
 void check_derivation_budget(const Model& model, const DerivationInputs& inputs);

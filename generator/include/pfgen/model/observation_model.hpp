@@ -6,12 +6,22 @@
 // variant below: continuous, dy = (A0 + A x) dt + B dW2, or sampled, y_k = C0 + C x(t_k) + Uv v_k
 // at t_k = k T, or delayed, dy = (A0 + A x(t - h)) dt + B dW2, or polynomial, dy = h(x, t) dt + B dW2.
 #include <cstddef>
+#include <optional>
 #include <variant>
+#include <vector>
 
 #include "pfgen/kinds/observation_kinds.hpp"
 #include "pfgen/model/expression_matrix.hpp"
 
 namespace pfgen {
+
+// Rows polynomial in the states (a polynomial observation's h, a sampled c) written C0 + C x:
+// the constant of each row and its coefficient of each state, or nothing when a row has degree > 1.
+struct AffineRows {
+  ExVector constant;  // one per row
+  ExMatrix linear;    // rows x states
+};
+std::optional<AffineRows> affine_rows(const ExVector& rows, const std::vector<GiNaC::symbol>& states);
 
 struct ContinuousObservation {
   ExVector A0;  // p entries, independent of the states

@@ -1,6 +1,7 @@
 // The polynomial observation dy = h(x, t) dt + B dW2 in the derivation: the innovation
 // dy - E[h] dt, the gain P E[J]^T R^-1, the correction and the covariance's own innovation term
 // (polynomial_observation_terms), or for the extended kinds h(m) and J(m) without that term.
+#include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_derivation.hpp"
 #include "pfgen/derivation/unscented.hpp"
@@ -37,11 +38,7 @@ class PolynomialDerivation final : public ObservationDerivation {
   }
 
   std::size_t observed_states(const Model& model) const override {
-    std::vector<bool> read(model.n(), false);
-    for (const Polynomial& h : observation_polynomials(model))
-      for (const auto& [monomial, coefficient] : h.terms())
-        for (const auto& [variable, exponent] : monomial.factors()) read[variable] = true;
-    return static_cast<std::size_t>(std::count(read.begin(), read.end(), true));
+    return pfgen::observed_states(observation_polynomials(model), model.n());
   }
 
   // A linear h is the continuous observation, with its exactness conditions; a nonlinear one has

@@ -23,23 +23,9 @@ bool predicts_linearly(const FilterEquations& eq) {
 }
 
 std::optional<ContinuousObservation> linear_form(const Model& model) {
-  if (observation_degree(model) > 1) return std::nullopt;
-  const std::size_t n = model.n();
-  ContinuousObservation out;
-  out.B = model.observation.polynomial().B;
-  for (const Polynomial& h : observation_polynomials(model)) {
-    GiNaC::ex constant = 0;
-    ExVector row(n, GiNaC::ex(0));
-    for (const auto& [monomial, coefficient] : h.terms()) {
-      if (monomial.is_one())
-        constant = coefficient;
-      else
-        row[monomial.factors().front().first] = coefficient;
-    }
-    out.A0.push_back(constant);
-    out.A.push_back(row);
-  }
-  return out;
+  std::optional<AffineRows> linear = affine_rows(model.observation.polynomial().h, model.states);
+  if (!linear) return std::nullopt;
+  return ContinuousObservation{std::move(linear->constant), std::move(linear->linear), model.observation.polynomial().B};
 }
 
 }  // namespace pfgen

@@ -1,8 +1,6 @@
 // The sampled observation y_k = C0 + C x(t_k) + Uv v_k in the derivation: no observation term
 // between samples (the equations are the prediction), the Kalman update's polynomial parts at each
 // sample (sampled_update), and for cd-euler the dt^2 term of its Euler moment map.
-#include <algorithm>
-
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_derivation.hpp"
@@ -43,14 +41,8 @@ class SampledDerivation final : public ObservationDerivation {
 
   std::size_t observed_states(const Model& model) const override {
     const SampledObservation& sampled = model.observation.sampled();
-    if (!sampled.is_polynomial()) return pfgen::observed_states(sampled.C);
-    std::vector<bool> read(model.n(), false);
-    for (const GiNaC::ex& entry : sampled.c) {
-      const Polynomial c = Polynomial::from_ex(entry, model.states);
-      for (const auto& [monomial, coefficient] : c.terms())
-        for (const auto& [variable, exponent] : monomial.factors()) read[variable] = true;
-    }
-    return static_cast<std::size_t>(std::count(read.begin(), read.end(), true));
+    return sampled.is_polynomial() ? pfgen::observed_states(sample_polynomials(model), model.n())
+                                   : pfgen::observed_states(sampled.C);
   }
 
   ExactnessReport exactness(const Model& model, FilterKind kind) const override {

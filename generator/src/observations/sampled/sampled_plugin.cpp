@@ -6,6 +6,7 @@
 #include "pfgen/codegen/backends/cpp/truth_codegen.hpp"
 #include "pfgen/codegen/backends/cpp/truth_functions.hpp"
 #include "pfgen/observations/sampled/sampled_code.hpp"
+#include "pfgen/observations/sampled/sampled_update.hpp"
 
 namespace pfgen::codegen {
 namespace {
@@ -43,11 +44,7 @@ void SampledCode::truth_observation(const Model& model, TruthNames& names, Truth
   code.definitions +=
       matrices_function(model, names, "sampled_observation", {{"C0", ExMatrix{sampled.C0}}, {"C", sampled.C}, {"Uv", sampled.Uv}});
   // A polynomial c: C0 and C above are zero, and the samples are c(x) + Uv v (ABI version 4).
-  if (sampled.is_polynomial()) {
-    std::vector<Polynomial> c;
-    for (const GiNaC::ex& entry : sampled.c) c.push_back(Polynomial::from_ex(entry, model.states));
-    code.definitions += state_function(model, names, "observation_rate", "c", c);
-  }
+  if (sampled.is_polynomial()) code.definitions += state_function(model, names, "observation_rate", "c", sample_polynomials(model));
 }
 
 // The ABI's predict and update have no parameters argument: the model's defaults.

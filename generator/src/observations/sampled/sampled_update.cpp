@@ -56,12 +56,17 @@ std::vector<Polynomial> predicted_sample(const SampledObservation& observation, 
 
 namespace pfgen {
 
+std::vector<Polynomial> sample_polynomials(const Model& model) {
+  std::vector<Polynomial> c;
+  for (const GiNaC::ex& entry : model.observation.sampled().c) c.push_back(Polynomial::from_ex(entry, model.states));
+  return c;
+}
+
 SampledUpdate polynomial_sampled_update(const Model& model, const FilterVariables& vars, bool at_mean,
                                         std::vector<Polynomial>& predicted) {
   const SampledObservation& observation = model.observation.sampled();
   const std::size_t n = vars.n(), r = observation.c.size();
-  std::vector<Polynomial> c;
-  for (const GiNaC::ex& entry : observation.c) c.push_back(Polynomial::from_ex(entry, model.states));
+  const std::vector<Polynomial> c = sample_polynomials(model);
   // State x_i and mean m_i share variable index i (FilterVariables): c read as it is is c(m).
   GaussianExpectation E(vars);
   auto expectation = [&](const Polynomial& q) { return at_mean ? q : E.of(q); };

@@ -42,6 +42,9 @@ SampledUpdate sampled_update(const SampledObservation& observation, const Filter
 // C0 + C m, one polynomial per observation row, in the filter's variables.
 std::vector<Polynomial> predicted_sample(const SampledObservation& observation, const FilterVariables& vars);
 
+// The samples' c as polynomials in the states (empty for C0 + C x).
+std::vector<Polynomial> sample_polynomials(const Model& model);
+
 // For a polynomial c (SampledObservation::is_polynomial): the update above with E[c] (c(m)
 // `at_mean`, the extended kind) as the predicted sample, which it returns in `predicted`.
 SampledUpdate polynomial_sampled_update(const Model& model, const FilterVariables& vars, bool at_mean,
