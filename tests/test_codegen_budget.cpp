@@ -1,7 +1,8 @@
-// Code generation's budget (codegen::kMaxCodegenTerms): a filter whose equations have more terms
-// than code generation can hold in memory is refused before any of it is built, in one message
-// naming the filter, its terms and the memory it would need; the dense cubic n = 20 optimal filter
-// (3.6 million terms) ran 92 s and ended in bad_alloc at 2.66 GB. Smaller filters are untouched.
+// Code generation's budget (codegen::kMaxCodegenTerms, CodegenOptions::max_equation_terms): a
+// filter whose equations have more terms than code generation can hold in memory is refused before
+// any of it is built, in one message naming the filter, its terms and the memory it would need.
+// The dense cubic n = 20 optimal filter (3.6 million terms, about 0.7 GB) is within the budget;
+// lowered below it, the budget refuses it. Smaller filters are untouched.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -21,15 +22,18 @@ TEST_CASE("codegen refuses a filter beyond its budget of equation terms, before 
           "[codegen][unit]") {
   const Model big = pfgen_test::dense_cubic_model(20);
   const FilterEquations optimal = derive_filter(big, FilterKind::Optimal);
-  CHECK(codegen::codegen_terms(optimal) > codegen::kMaxCodegenTerms);
+  CHECK(codegen::codegen_terms(optimal) == 3604699);
+  CHECK(codegen::codegen_terms(optimal) < codegen::kMaxCodegenTerms);
+  codegen::CodegenOptions lowered;
+  lowered.max_equation_terms = 1000000;
   try {
-    (void)codegen::generate_filter_code(big, optimal, codegen::CodegenOptions{});
-    FAIL("the 20-state dense cubic optimal filter was generated");
+    (void)codegen::generate_filter_code(big, optimal, lowered);
+    FAIL("the 20-state dense cubic optimal filter was generated beyond the budget");
   } catch (const codegen::CodegenError& e) {
     const std::string message = e.what();
     CHECK(message.find("filter 'optimal' of model dense_cubic_20 has 3604699 terms in its equations; code "
-                       "generation holds at most 1500000") == 0);
-    CHECK(message.find("would need about 4.0 GB") != std::string::npos);
+                       "generation holds at most 1000000") == 0);
+    CHECK(message.find("would need about 0.7 GB") != std::string::npos);
   }
   // Within the budget: the 4-state model generates as before.
   const Model small = pfgen_test::dense_cubic_model(4);

@@ -4,6 +4,9 @@
 // and without sharing.
 #include <catch2/catch.hpp>
 
+#include <string>
+#include <vector>
+
 #include "pfgen/codegen/expression_graph.hpp"
 
 using namespace pfgen::codegen;
@@ -14,8 +17,8 @@ TEST_CASE("expression graph: the same operation on the same operands is one node
   const std::size_t y = g.input("y", InputSource::element("state", 1));
   CHECK(g.input("x", InputSource::element("state", 0)) == x);
   CHECK(g.input("x") == x);  // a name is one input, whatever the source given later
-  CHECK(g.node(x).source.container == "state");
-  CHECK(g.node(x).source.index == 0);
+  CHECK(g.node(x).source().container == "state");
+  CHECK(g.node(x).source().index == 0);
   CHECK(x != y);
 
   const std::size_t third = g.constant(GiNaC::numeric(1, 3));
@@ -117,4 +120,35 @@ TEST_CASE("expression graph: operation counts with and without sharing", "[unit]
   CHECK(sum.divs == 2);
   CHECK(sum.calls == 2);
   CHECK(sum.total() == shared.total() + tree.total());
+}
+
+// The index is an open-addressing table that grows as nodes are added (expression_graph.cpp): every
+// node must still be found after many growths, and equal constants stay one node only when they
+// would be spelled alike (an exact 2 and a float 2.0 are two constants; a float prints with a point).
+TEST_CASE("expression graph: a large graph finds every node again, and constants keep their exactness",
+          "[unit][codegen]") {
+  ExpressionGraph g;
+  std::vector<std::size_t> inputs;
+  for (int k = 0; k < 300; ++k) inputs.push_back(g.input("x" + std::to_string(k), InputSource::element("state", k)));
+  std::vector<std::size_t> products, sums;
+  for (std::size_t a = 0; a < inputs.size(); ++a)
+    for (std::size_t b = a; b < inputs.size(); ++b) products.push_back(g.mul(inputs[a], inputs[b]));
+  for (std::size_t k = 1; k < products.size(); ++k) sums.push_back(g.sub(products[k], products[k - 1]));
+  const std::size_t size = g.size();
+  CHECK(size == 300 + 45150 + 45149);
+  std::size_t k = 0;
+  for (std::size_t a = 0; a < inputs.size(); ++a)
+    for (std::size_t b = a; b < inputs.size(); ++b) CHECK(g.mul(inputs[b], inputs[a]) == products[k++]);
+  for (std::size_t j = 1; j < products.size(); ++j) CHECK(g.sub(products[j], products[j - 1]) == sums[j - 1]);
+  CHECK(g.size() == size);
+  for (int j = 0; j < 300; ++j) CHECK(g.node(inputs[j]).name() == "x" + std::to_string(j));
+
+  const std::size_t exact_two = g.constant(GiNaC::numeric(2));
+  const std::size_t float_two = g.constant(GiNaC::numeric(2.0));
+  CHECK(exact_two != float_two);
+  CHECK(g.constant(GiNaC::numeric(4, 2)) == exact_two);
+  CHECK(g.constant(GiNaC::numeric(2.0)) == float_two);
+  CHECK(g.node(exact_two).value().is_rational());
+  CHECK_FALSE(g.node(float_two).value().is_rational());
+  CHECK(g.is_leaf(float_two));
 }

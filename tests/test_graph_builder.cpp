@@ -69,10 +69,10 @@ Polynomial to_polynomial(const ExpressionGraph& graph, std::size_t root, const F
     const auto& a = node.args;
     switch (node.kind) {
       case OpKind::Input:
-        value[id] = variables.count(node.name) ? var(variables.at(node.name))
-                                               : Polynomial::constant(symbols.at(node.name));
+        value[id] = variables.count(node.name()) ? var(variables.at(node.name()))
+                                               : Polynomial::constant(symbols.at(node.name()));
         break;
-      case OpKind::Constant: value[id] = Polynomial::constant(node.value); break;
+      case OpKind::Constant: value[id] = Polynomial::constant(node.value()); break;
       case OpKind::Add: value[id] = value[a[0]] + value[a[1]]; break;
       case OpKind::Sub: value[id] = value[a[0]] - value[a[1]]; break;
       case OpKind::Mul: value[id] = value[a[0]] * value[a[1]]; break;
@@ -130,27 +130,27 @@ TEST_CASE("graph builder: inputs are named as printed and read from their argume
   // Each input's source, as the C++ emitter spells it (the graph holds it unspelled).
   const pfgen::codegen::CppEmitter cpp(pfgen::codegen::ScalarMode::Double);
   std::vector<std::pair<std::string, std::string>> declared;
-  for (std::size_t id : order) declared.emplace_back(graph.node(id).name, cpp.input_source(graph.node(id)));
+  for (std::size_t id : order) declared.emplace_back(graph.node(id).name(), cpp.input_source(graph.node(id)));
   CHECK(declared == std::vector<std::pair<std::string, std::string>>{
                         {"m1", "s[0]"}, {"m2", "s[1]"}, {"P11", "s[2]"}, {"P12", "s[3]"}, {"P22", "s[4]"},
                         {"a", "q.a"}, {"b", "q.b"}});
-  CHECK(graph.node(order[3]).source.kind == pfgen::codegen::InputSource::Kind::Element);
-  CHECK(graph.node(order[3]).source.container == "s");
-  CHECK(graph.node(order[3]).source.index == 3);
-  CHECK(graph.node(order[5]).source.kind == pfgen::codegen::InputSource::Kind::Field);
-  CHECK(graph.node(order[5]).source.container == "q");
+  CHECK(graph.node(order[3]).source().kind == pfgen::codegen::InputSource::Kind::Element);
+  CHECK(graph.node(order[3]).source().container == "s");
+  CHECK(graph.node(order[3]).source().index == 3);
+  CHECK(graph.node(order[5]).source().kind == pfgen::codegen::InputSource::Kind::Field);
+  CHECK(graph.node(order[5]).source().container == "q");
   // The time is the function's argument itself.
   const std::size_t t = builder.expression(model().time);
   CHECK(graph.node(t).kind == OpKind::Input);
-  CHECK(graph.node(t).name == "t");
-  CHECK(graph.node(t).source.kind == pfgen::codegen::InputSource::Kind::Argument);
+  CHECK(graph.node(t).name() == "t");
+  CHECK(graph.node(t).source().kind == pfgen::codegen::InputSource::Kind::Argument);
   CHECK(builder.variable(vars.P(1, 0)) == order[3]);
 
   // From n = 10 on the indices are separated, as pfgen prints them.
   ExpressionGraph big;
   GraphBuilder ten(big, model(), FilterVariables(10), "state", "params");
-  CHECK(big.node(ten.variable(FilterVariables(10).P(0, 9))).name == "P1_10");
-  CHECK(big.node(ten.variable(FilterVariables(10).P(0, 9))).source.index == 19);
+  CHECK(big.node(ten.variable(FilterVariables(10).P(0, 9))).name() == "P1_10");
+  CHECK(big.node(ten.variable(FilterVariables(10).P(0, 9))).source().index == 19);
 }
 
 TEST_CASE("graph builder: which arguments the outputs read", "[unit][codegen]") {
@@ -208,13 +208,13 @@ TEST_CASE("graph builder: monomials share their common prefix; sums keep the can
   const std::size_t p = builder.polynomial(var(vars.m(1)).scaled(-1) + var(vars.m(0), 2).scaled(3));
   const Node& root = graph.node(p);
   REQUIRE(root.kind == OpKind::Sub);
-  CHECK(graph.node(root.args[1]).name == "m2");
+  CHECK(graph.node(root.args[1]).name() == "m2");
   CHECK(graph.node(root.args[0]).kind == OpKind::Mul);
   // A leading negative term is a negation; the zero polynomial a constant 0.
   CHECK(graph.node(builder.polynomial(var(vars.m(0)).scaled(-1))).kind == OpKind::Neg);
   const Node& zero = graph.node(builder.polynomial(Polynomial()));
   CHECK(zero.kind == OpKind::Constant);
-  CHECK(zero.value.is_zero());
+  CHECK(zero.value().is_zero());
 }
 
 TEST_CASE("graph builder: coefficients with functions of time become calls of <cmath>", "[unit][codegen]") {

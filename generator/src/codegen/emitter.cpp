@@ -5,7 +5,7 @@ namespace pfgen::codegen {
 std::string Emitter::expression(const Node& node, const std::vector<std::string>& a) const {
   switch (node.kind) {
     case OpKind::Input: return input(node);
-    case OpKind::Constant: return constant(node.value);
+    case OpKind::Constant: return constant(node.value());
     case OpKind::Add: return add(a.at(0), a.at(1));
     case OpKind::Sub: return sub(a.at(0), a.at(1));
     case OpKind::Mul: return mul(a.at(0), a.at(1));

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "pfgen/codegen/codegen_error.hpp"
+
 namespace pfgen::codegen {
 
 namespace {
@@ -27,13 +29,37 @@ std::optional<Function> function_named(const std::string& name) {
 
 namespace {
 
-// A node of `kind` on `args`; the fields of the other kinds (a name, a source, a function, a
-// value) keep their defaults.
-Node operation(OpKind kind, std::vector<std::size_t> args) {
+// A node of `kind` on `args`; the fields of the other kinds keep their defaults.
+Node operation(OpKind kind, Operands args) {
   Node node{};
   node.kind = kind;
-  node.args = std::move(args);
+  node.args = args;
   return node;
+}
+
+// 32 well-mixed bits of an operation's content (murmur3's finaliser over kind, function, operands).
+std::uint32_t content_hash(const Node& node) {
+  std::uint64_t h = static_cast<std::uint64_t>(node.kind) | static_cast<std::uint64_t>(node.function) << 8 |
+                    static_cast<std::uint64_t>(node.args.size()) << 16;
+  for (std::uint32_t arg : node.args) {
+    h = (h ^ arg) * 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+  }
+  h *= 0xc4ceb9fe1a85ec53ull;
+  h ^= h >> 33;
+  return static_cast<std::uint32_t>(h >> 32);
+}
+
+bool same_operation(const Node& a, const Node& b) {
+  return a.kind == b.kind && a.function == b.function && a.args == b.args;
+}
+
+const Leaf kNoLeaf;
+
+Leaf constant_leaf(const GiNaC::numeric& value) {
+  Leaf data;
+  data.value = value;
+  return data;
 }
 
 OpCounts own_cost(const Node& node) {
@@ -59,29 +85,91 @@ OpCounts& OpCounts::operator+=(const OpCounts& other) {
   return *this;
 }
 
-std::size_t ExpressionGraph::intern(Node node) {
-  std::ostringstream value;
-  if (node.kind == OpKind::Constant) value << node.value;
-  const std::string name = node.kind == OpKind::Call ? function_name(node.function) : node.name;
-  Key key{static_cast<int>(node.kind), name, value.str(), node.args};
-  auto it = index_.find(key);
-  if (it != index_.end()) return it->second;
-  nodes_.push_back(std::move(node));
-  index_.emplace(std::move(key), nodes_.size() - 1);
+namespace {
+template <class Ids>
+void fill_operands(const Ids& ids, std::uint32_t* out, std::uint32_t& size) {
+  if (ids.size() > Operands::kMax) throw CodegenError("an operation of more than two operands");
+  for (std::size_t id : ids) out[size++] = static_cast<std::uint32_t>(id);
+}
+}  // namespace
+
+Operands::Operands(std::initializer_list<std::size_t> ids) { fill_operands(ids, ids_, size_); }
+Operands::Operands(const std::vector<std::size_t>& ids) { fill_operands(ids, ids_, size_); }
+
+bool Operands::operator==(const Operands& other) const {
+  return size_ == other.size_ && std::equal(begin(), end(), other.begin());
+}
+
+const Leaf& Node::leaf_data() const { return leaf ? *leaf : kNoLeaf; }
+
+// A slot holds a node's number in its low 32 bits and its content hash in its high 32 bits, so a
+// probe compares nodes only when their hashes agree, and growing rehashes no node.
+void ExpressionGraph::grow_index() {
+  std::vector<std::uint64_t> old = std::move(index_);
+  index_.assign(old.empty() ? 1024 : 2 * old.size(), kEmptySlot);
+  const std::size_t mask = index_.size() - 1;
+  for (std::uint64_t entry : old) {
+    if (entry == kEmptySlot) continue;
+    std::size_t slot = (entry >> 32) & mask;
+    while (index_[slot] != kEmptySlot) slot = (slot + 1) & mask;
+    index_[slot] = entry;
+  }
+}
+
+std::size_t ExpressionGraph::intern(const Node& node) {
+  if (2 * (indexed_ + 1) > index_.size()) grow_index();
+  const std::size_t mask = index_.size() - 1;
+  const std::uint64_t hash = content_hash(node);
+  std::size_t slot = hash & mask;
+  for (; index_[slot] != kEmptySlot; slot = (slot + 1) & mask) {
+    const std::uint64_t entry = index_[slot];
+    if (entry >> 32 == hash && same_operation(nodes_[entry & 0xffffffffu], node)) return entry & 0xffffffffu;
+  }
+  if (nodes_.size() >= kMaxNodes) throw CodegenError("the expression graph outgrew 2^32 nodes");
+  nodes_.push_back(node);
+  index_[slot] = hash << 32 | (nodes_.size() - 1);
+  ++indexed_;
+  return nodes_.size() - 1;
+}
+
+std::size_t ExpressionGraph::leaf(OpKind kind, Leaf data) {
+  if (nodes_.size() >= kMaxNodes) throw CodegenError("the expression graph outgrew 2^32 nodes");
+  leaves_.push_back(std::move(data));
+  Node node{};
+  node.kind = kind;
+  node.leaf = &leaves_.back();
+  nodes_.push_back(node);
   return nodes_.size() - 1;
 }
 
 std::size_t ExpressionGraph::input(const std::string& name, InputSource source) {
-  Node node = operation(OpKind::Input, {});
-  node.name = name;
-  node.source = std::move(source);
-  return intern(std::move(node));
+  auto it = inputs_.find(name);
+  if (it != inputs_.end()) return it->second;
+  Leaf data;
+  data.name = name;
+  data.source = std::move(source);
+  const std::size_t id = leaf(OpKind::Input, std::move(data));
+  inputs_.emplace(name, id);
+  return id;
 }
 
+// Equal rationals print alike, so they are one constant; floats are one constant only if they
+// print alike, as the emitters would spell them apart otherwise (Scalar(2) and Scalar(2.0)).
 std::size_t ExpressionGraph::constant(const GiNaC::numeric& value) {
-  Node node = operation(OpKind::Constant, {});
-  node.value = value;
-  return intern(std::move(node));
+  if (value.is_rational()) {
+    auto it = rational_constants_.find(value);
+    if (it != rational_constants_.end()) return it->second;
+    const std::size_t id = leaf(OpKind::Constant, constant_leaf(value));
+    rational_constants_.emplace(value, id);
+    return id;
+  }
+  std::ostringstream text;
+  text << value;
+  auto it = float_constants_.find(text.str());
+  if (it != float_constants_.end()) return it->second;
+  const std::size_t id = leaf(OpKind::Constant, constant_leaf(value));
+  float_constants_.emplace(text.str(), id);
+  return id;
 }
 
 // Commutative operations list their operands in a fixed order, so a*b and b*a share a node.
@@ -98,7 +186,7 @@ std::size_t ExpressionGraph::zero_where_zero(std::size_t guard, std::size_t valu
 }
 std::size_t ExpressionGraph::neg(std::size_t a) { return intern(operation(OpKind::Neg, {a})); }
 std::size_t ExpressionGraph::call(Function function, const std::vector<std::size_t>& args) {
-  Node node = operation(OpKind::Call, args);
+  Node node = operation(OpKind::Call, Operands(args));
   node.function = function;
   return intern(std::move(node));
 }

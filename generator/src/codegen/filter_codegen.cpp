@@ -48,13 +48,13 @@ double codegen_terms(const FilterEquations& eq) {
 }
 
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
-  if (const double terms = codegen_terms(eq); terms > kMaxCodegenTerms) {
+  if (const double terms = codegen_terms(eq); terms > options.max_equation_terms) {
     char text[400];
     std::snprintf(text, sizeof text,
                   "filter '%s' of model %s has %.0f terms in its equations; code generation holds at most %.0f "
-                  "(about 1.1 kB each while it builds the code: this would need about %.1f GB); derive and eval "
+                  "(about 0.2 kB each while it builds the code: this would need about %.1f GB); derive and eval "
                   "handle it, and a model with fewer states or a lower degree generates",
-                  eq.name.c_str(), model.name.c_str(), terms, kMaxCodegenTerms, terms * 1.1e3 / 1e9);
+                  eq.name.c_str(), model.name.c_str(), terms, options.max_equation_terms, terms * 0.2e3 / 1e9);
     throw CodegenError(text);
   }
   observation_code(eq.observation).check_size(model, eq);

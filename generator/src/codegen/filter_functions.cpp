@@ -1,5 +1,8 @@
 #include "pfgen/codegen/filter_functions.hpp"
 
+#include <functional>
+#include <memory>
+
 #include "pfgen/codegen/correction_factor.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
@@ -47,20 +50,55 @@ FunctionSignature signature(const std::string& function, const FunctionNames& na
 
 }  // namespace
 
+namespace {
+
+// A function's graph, built and counted but not yet written: derivatives() builds two and writes
+// only the one it keeps, which for a large model is far the smaller (the expanded dense cubic
+// n = 20 P drift is millions of operations, its structured form a few hundred thousand).
+struct BuiltFunction {
+  std::string function;
+  ExpressionGraph graph;
+  InputLayout layout;
+  std::vector<std::size_t> roots;
+  std::vector<std::size_t> declaration_order;
+  FunctionStats stats;
+};
+
+// The graph of the outputs `add_outputs` builds (their roots in order), read through the filter's
+// definitions, which are computed first.
+std::unique_ptr<BuiltFunction> built_function(
+    const std::string& function, const Model& model, const FilterEquations& eq, const FunctionNames& names,
+    const std::function<void(GraphBuilder&, std::vector<std::size_t>&)>& add_outputs) {
+  auto built = std::make_unique<BuiltFunction>();
+  built->function = function;
+  built->layout = input_layout(eq.variables, names);
+  GraphBuilder builder = graph_builder(built->graph, model, built->layout, names);
+  builder.define(eq.definitions, eq.variables.symbols());
+  add_outputs(builder, built->roots);
+  built->declaration_order = builder.declaration_order();
+  built->stats =
+      FunctionStats{function, built->graph.tree_counts(built->roots), built->graph.shared_counts(built->roots)};
+  return built;
+}
+
+FunctionCode written(const BuiltFunction& built, const std::string& target, const FunctionNames& names,
+                     const CFamilyEmitter& emitter, bool shared) {
+  FunctionCode code;
+  code.stats = built.stats;
+  code.body = emitter.function_body(built.graph, built.roots, signature(built.function, names, built.layout, target),
+                                    built.declaration_order, shared);
+  return code;
+}
+
+}  // namespace
+
 FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
                            const std::string& target, const Model& model, const FilterEquations& eq,
                            const CodegenOptions& options, const FunctionNames& names, const CFamilyEmitter& emitter) {
-  ExpressionGraph graph;
-  const InputLayout layout = input_layout(eq.variables, names);
-  GraphBuilder builder = graph_builder(graph, model, layout, names);
-  builder.define(eq.definitions, eq.variables.symbols());
-  std::vector<std::size_t> roots;
-  for (const auto& p : outputs) roots.push_back(builder.polynomial(p));
-  FunctionCode code;
-  code.stats = FunctionStats{function, graph.tree_counts(roots), graph.shared_counts(roots)};
-  code.body = emitter.function_body(graph, roots, signature(function, names, layout, target),
-                                    builder.declaration_order(), options.eliminate_common_subexpressions);
-  return code;
+  const auto built = built_function(function, model, eq, names, [&](GraphBuilder& builder, std::vector<std::size_t>& roots) {
+    for (const Polynomial& p : outputs) roots.push_back(builder.polynomial(p));
+  });
+  return written(*built, target, names, emitter, options.eliminate_common_subexpressions);
 }
 
 // derivatives() may also be built from the derivation's structure: the P
@@ -76,13 +114,16 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
                               const FunctionNames& names, const CFamilyEmitter& emitter) {
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
-  std::vector<Polynomial> expanded = eq.m_drift;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j) expanded.push_back(eq.P_drift(i, j));
-  // A delayed filter with Phi* integrates x* beside m and P: its drift follows them in `out`.
-  expanded.insert(expanded.end(), eq.x_star_drift.begin(), eq.x_star_drift.end());
-  FunctionCode flat = function_code("derivatives", expanded, names.out, model, eq, options, names, emitter);
-  if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty()) return flat;
+  // P's drift (upper triangle) is summed one entry at a time, as the graph takes it.
+  auto flat = built_function("derivatives", model, eq, names, [&](GraphBuilder& builder, std::vector<std::size_t>& roots) {
+    for (const Polynomial& p : eq.m_drift) roots.push_back(builder.polynomial(p));
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j) roots.push_back(builder.polynomial(eq.P_drift(i, j)));
+    // A delayed filter with Phi* integrates x* beside m and P: its drift follows them in `out`.
+    for (const Polynomial& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
+  });
+  if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty())
+    return written(*flat, names.out, names, emitter, options.eliminate_common_subexpressions);
 
   ExpressionGraph graph;
   const InputLayout layout = input_layout(vars, names);
@@ -133,9 +174,11 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
     }
   for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
   OpCounts structured = graph.shared_counts(roots);
-  if (structured.total() >= flat.stats.cse.total()) return flat;
+  if (structured.total() >= flat->stats.cse.total()) return written(*flat, names.out, names, emitter, true);
+  const OpCounts naive = flat->stats.naive;
+  flat.reset();
   FunctionCode code;
-  code.stats = FunctionStats{"derivatives", flat.stats.naive, structured};
+  code.stats = FunctionStats{"derivatives", naive, structured};
   code.body = emitter.function_body(graph, roots, signature("derivatives", names, layout, names.out),
                                     builder.declaration_order(), true);
   return code;

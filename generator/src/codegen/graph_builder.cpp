@@ -117,7 +117,8 @@ std::size_t GraphBuilder::monomial(const Monomial& m) {
 std::size_t GraphBuilder::polynomial(const Polynomial& p) {
   std::size_t sum = 0;
   bool first = true;
-  for (const auto& [m, coefficient] : p.ordered_terms()) {
+  for (const auto* entry : p.ordered_view()) {
+    const auto& [m, coefficient] = *entry;
     bool negative = false;
     std::size_t term;
     if (GiNaC::is_exactly_a<GiNaC::numeric>(coefficient)) {

@@ -26,6 +26,14 @@ namespace pfgen::codegen {
 // The output languages are the kind registry's (kinds/output_languages.hpp); each has a backend.
 using Language = OutputLanguage;
 
+// Code generation holds a graph of every expanded equation beside the structured form it may
+// emit instead, about 0.2 kB per equation term with the derivation's own: the dense cubic models'
+// optimal filters take 77 MB at n = 12 (0.3 million terms), 260 MB at n = 16 (1.2 million) and
+// 690 MB at n = 20 (3.6 million), where derive alone needs 250 MB. A filter with more terms than
+// this (about 2 GB) is refused before any of it is built, naming the filter and its count
+// (CodegenError).
+inline constexpr double kMaxCodegenTerms = 10000000;
+
 struct CodegenOptions {
   Language language = Language::Cpp;
   ScalarMode scalar = ScalarMode::Template;     // C: Float or Double
@@ -40,6 +48,8 @@ struct CodegenOptions {
   // gigabytes for one function of tens of thousands of operations. Every example but ins16 is far
   // below. 0: never split (tests lower it to compare split and unsplit code on a small model).
   std::size_t max_function_ops = 500;
+  // The most terms a filter's equations may have (codegen_terms); tests lower it.
+  double max_equation_terms = kMaxCodegenTerms;
 };
 
 struct GeneratedFile {
@@ -65,13 +75,6 @@ struct GeneratedFilter {
 std::vector<std::string> filter_file_paths(const std::string& model_name, const std::string& filter_name,
                                            const CodegenOptions& options);
 
-// Code generation holds a graph of every expanded equation beside the structured form it may
-// emit instead, about 1.1 kB per equation term: the dense cubic models' optimal filters took
-// 150 MB at n = 10 (0.13 million terms), 670 MB at n = 14 (0.64 million), 1.6 GB at n = 16 (1.2
-// million) and ended in bad_alloc at n = 20 (3.6 million), where derive needs 250 MB. A filter with
-// more terms than this is refused before any of it is built, naming the filter and its count
-// (CodegenError).
-inline constexpr double kMaxCodegenTerms = 1500000;
 
 // The terms of the polynomials code generation reads from `eq` (drifts, gain, predicted
 // observation, the P equations' parts, x*'s drift, a polynomial observation's P_gain).

@@ -53,9 +53,8 @@ FunctionBody CEmitter::split_body(const ExpressionGraph& graph, const std::vecto
         operands.push_back(spell(arg));
       }
       arithmetic += "  " + declaration(spell(id), expression(graph.node(id), operands)) + "\n";
-      auto shared = plan.slot.find(id);
-      if (shared != plan.slot.end())
-        stores += "  " + shared_array_ + "[" + std::to_string(shared->second) + "] = " + spell(id) + ";\n";
+      if (plan.slot[id] != SplitPlan::kNone)
+        stores += "  " + shared_array_ + "[" + std::to_string(plan.slot[id]) + "] = " + spell(id) + ";\n";
     }
     for (std::size_t k = 0; k < outputs.size(); ++k)
       if (plan.writer(graph, outputs[k]) == p) {

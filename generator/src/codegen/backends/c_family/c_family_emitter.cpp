@@ -75,10 +75,10 @@ std::string CFamilyEmitter::zero_where_zero(const std::string& guard, const std:
 }
 
 std::string CFamilyEmitter::input_source(const Node& node) const {
-  switch (node.source.kind) {
-    case InputSource::Kind::Argument: return node.name;
-    case InputSource::Kind::Element: return node.source.container + "[" + std::to_string(node.source.index) + "]";
-    case InputSource::Kind::Field: return node.source.container + field_access() + node.name;
+  switch (node.source().kind) {
+    case InputSource::Kind::Argument: return node.name();
+    case InputSource::Kind::Element: return node.source().container + "[" + std::to_string(node.source().index) + "]";
+    case InputSource::Kind::Field: return node.source().container + field_access() + node.name();
   }
   return "?";
 }
@@ -96,8 +96,8 @@ std::string CFamilyEmitter::declarations_of(const ExpressionGraph& graph, const 
   std::string text;
   for (std::size_t id : order) {
     const Node& node = graph.node(id);
-    if (inputs.count(id) && node.source.kind != InputSource::Kind::Argument)
-      text += "  " + declaration(node.name, input_source(node)) + "\n";
+    if (inputs.count(id) && node.source().kind != InputSource::Kind::Argument)
+      text += "  " + declaration(node.name(), input_source(node)) + "\n";
   }
   return text;
 }
@@ -113,9 +113,9 @@ std::string CFamilyEmitter::unused_arguments_of(const ExpressionGraph& graph, co
   std::set<std::string> arrays;
   for (std::size_t id : inputs) {
     const Node& node = graph.node(id);
-    switch (node.source.kind) {
-      case InputSource::Kind::Argument: time = time || node.name == signature.time; break;
-      case InputSource::Kind::Element: arrays.insert(node.source.container); break;
+    switch (node.source().kind) {
+      case InputSource::Kind::Argument: time = time || node.name() == signature.time; break;
+      case InputSource::Kind::Element: arrays.insert(node.source().container); break;
       case InputSource::Kind::Field: params = true; break;
     }
   }
@@ -199,6 +199,9 @@ CFamilyEmitter::SplitPlan CFamilyEmitter::split_plan(const ExpressionGraph& grap
   SplitPlan plan;
   plan.operations = graph.needed_operations(outputs);
   plan.parts = (plan.operations.size() + max_ops_ - 1) / max_ops_;
+  plan.part.assign(graph.size(), SplitPlan::kNone);
+  plan.number.assign(graph.size(), SplitPlan::kNone);
+  plan.slot.assign(graph.size(), SplitPlan::kNone);
   for (std::size_t k = 0; k < plan.operations.size(); ++k) {
     plan.part[plan.operations[k]] = k / max_ops_;
     plan.number[plan.operations[k]] = k;
@@ -206,10 +209,13 @@ CFamilyEmitter::SplitPlan CFamilyEmitter::split_plan(const ExpressionGraph& grap
   plan.reads.resize(plan.parts);
   for (std::size_t id : plan.operations)
     for (std::size_t arg : graph.node(id).args)
-      if (!graph.is_leaf(arg) && plan.part.at(arg) != plan.part.at(id)) plan.reads[plan.part.at(id)].insert(arg);
+      if (!graph.is_leaf(arg) && plan.part[arg] != plan.part[id]) plan.reads[plan.part[id]].insert(arg);
+  // Slots in the order of the values' node numbers.
+  std::vector<bool> stored(graph.size(), false);
   for (const auto& part : plan.reads)
-    for (std::size_t id : part) plan.slot.emplace(id, 0);
-  for (auto& entry : plan.slot) entry.second = plan.slots++;
+    for (std::size_t id : part) stored[id] = true;
+  for (std::size_t id = 0; id < graph.size(); ++id)
+    if (stored[id]) plan.slot[id] = plan.slots++;
   return plan;
 }
 

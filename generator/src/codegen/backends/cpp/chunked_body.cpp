@@ -42,9 +42,8 @@ FunctionBody CppEmitter::split_body(const ExpressionGraph& graph, const std::vec
       std::vector<std::string> operands;
       for (std::size_t arg : graph.node(id).args) operands.push_back(spell(arg));
       body += "    " + declaration(spell(id), expression(graph.node(id), operands)) + "\n";
-      auto shared = plan.slot.find(id);
-      if (shared != plan.slot.end())
-        stores += "    " + shared_array_ + "[" + std::to_string(shared->second) + "] = " + spell(id) + ";\n";
+      if (plan.slot[id] != SplitPlan::kNone)
+        stores += "    " + shared_array_ + "[" + std::to_string(plan.slot[id]) + "] = " + spell(id) + ";\n";
     }
     body += stores;
     for (std::size_t k = 0; k < outputs.size(); ++k)

@@ -48,7 +48,7 @@ class CFamilyEmitter : public Emitter {
 
   // Emitter: one method per node kind.
   std::string constant(const GiNaC::numeric& value) const override { return literal(value); }
-  std::string input(const Node& node) const override { return node.name; }
+  std::string input(const Node& node) const override { return node.name(); }
   std::string add(const std::string& a, const std::string& b) const override { return a + " + " + b; }
   std::string sub(const std::string& a, const std::string& b) const override { return a + " - " + b; }
   std::string mul(const std::string& a, const std::string& b) const override { return a + " * " + b; }
@@ -119,7 +119,10 @@ class CFamilyEmitter : public Emitter {
   struct SplitPlan {
     std::vector<std::size_t> operations;
     std::size_t parts = 0;
-    std::map<std::size_t, std::size_t> part, number, slot;  // node -> its part, its temporary's number, its slot
+    // By node number (the graph's size each; kNone for a node not in the body, or never stored):
+    // its part, its temporary's number, its slot in the shared array.
+    static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+    std::vector<std::size_t> part, number, slot;
     std::vector<std::set<std::size_t>> reads;               // each part's values from earlier parts
     std::size_t slots = 0;
     // The part that writes an output: its computing part, or the last for an input or constant.
