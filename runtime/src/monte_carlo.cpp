@@ -171,7 +171,10 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
 
   if (options.share) {
     // Every process's runs, in run order, on the one that folds them; the others stop here.
-    const std::vector<std::vector<char>> blocks = options.share->gather(encode_share(runs, timing));
+    std::vector<char> mine = encode_share(runs, timing);
+    const Clock::time_point gather_start = Clock::now();
+    const std::vector<std::vector<char>> blocks = options.share->gather(std::move(mine));
+    const double gather_seconds = seconds_since(gather_start);
     if (blocks.empty()) {
       result.folded = false;
       timing.wall_seconds = seconds_since(wall_start);
@@ -184,6 +187,8 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
       throw std::runtime_error("monte carlo: the processes' shares hold " + std::to_string(runs.size()) +
                                " runs, not " + std::to_string(options.runs));
     timing = all;
+    timing.gather_seconds = gather_seconds;
+    for (const std::vector<char>& block : blocks) timing.gathered_bytes += block.size();
   }
 
   const Clock::time_point aggregation_start = Clock::now();

@@ -27,6 +27,42 @@ double quantile(std::vector<double> sample, double q) {
   return sample[below] + fraction * (sample[below + 1] - sample[below]);
 }
 
+void quantiles_in_place(std::vector<double>& sample, const std::vector<double>& qs, std::vector<double>& out) {
+  check_sample(sample, "quantile");
+  out.clear();
+  const std::size_t size = sample.size();
+  // No element before `placed` is larger than one after it, and sample[placed - 1] is order
+  // statistic placed - 1: ranks are asked for in ascending order, so one below `placed` is that one.
+  std::size_t placed = 0;
+  auto place = [&](std::size_t rank) {  // afterwards sample[rank] is the rank-th order statistic
+    if (rank < placed) return;
+    if (rank == placed) {
+      std::iter_swap(sample.begin() + static_cast<std::ptrdiff_t>(rank),
+                     std::min_element(sample.begin() + static_cast<std::ptrdiff_t>(rank), sample.end()));
+    } else {
+      std::nth_element(sample.begin() + static_cast<std::ptrdiff_t>(placed),
+                       sample.begin() + static_cast<std::ptrdiff_t>(rank), sample.end());
+    }
+    placed = rank + 1;
+  };
+  double previous = 0;
+  for (double q : qs) {
+    if (!(q >= 0 && q <= 1)) throw std::invalid_argument("quantile: q must be in [0, 1]");
+    if (q < previous) throw std::invalid_argument("quantiles: q must be in ascending order");
+    previous = q;
+    const double position = q * static_cast<double>(size - 1);
+    const auto below = static_cast<std::size_t>(std::floor(position));
+    place(below);
+    if (below + 1 >= size) {
+      out.push_back(sample[below]);
+      continue;
+    }
+    place(below + 1);
+    const double fraction = position - static_cast<double>(below);
+    out.push_back(sample[below] + fraction * (sample[below + 1] - sample[below]));
+  }
+}
+
 double kolmogorov_tail(double z) {
   if (z < 0.2) return 1.0;  // the series converges slowly here and the tail is 1 to 1e-15
   double sum = 0, sign = 1;

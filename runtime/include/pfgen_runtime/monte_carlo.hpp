@@ -260,6 +260,11 @@ struct MonteCarloTiming {
   double reference_seconds = 0, reference_cpu_seconds = 0;
   std::uint64_t reference_steps = 0;
   double aggregation_seconds = 0;  // folding the runs into statistics, after they finished
+  // Runs shared among processes (MonteCarloOptions::share), on the one that folds them: the
+  // seconds from handing its own runs to the gather to holding every process's, and the bytes of
+  // the encoded runs it then holds (its own included). Zero otherwise.
+  double gather_seconds = 0;
+  std::uint64_t gathered_bytes = 0;
 };
 
 struct MonteCarloResult {

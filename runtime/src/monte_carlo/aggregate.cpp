@@ -22,10 +22,11 @@ void summarize(std::vector<double>& values, SeriesStatistics& out, Eigen::Index 
   double sum = 0;
   for (double v : values) sum += v;  // in run order
   out.mean(row, i) = sum / static_cast<double>(values.size());
-  std::sort(values.begin(), values.end());  // quantile sorts its copy again, now cheaply
-  out.q05(row, i) = quantile(values, 0.05);
-  out.q50(row, i) = quantile(values, 0.50);
-  out.q95(row, i) = quantile(values, 0.95);
+  std::vector<double> q;
+  quantiles_in_place(values, {0.05, 0.50, 0.95}, q);  // reorders values, after the sum
+  out.q05(row, i) = q[0];
+  out.q50(row, i) = q[1];
+  out.q95(row, i) = q[2];
 }
 
 SeriesStatistics make_series_statistics(std::size_t records, std::size_t n) {
@@ -366,9 +367,11 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       double sum = 0;
       for (double v : values) sum += v;
       report.mean.push_back(values.empty() ? nan : sum / static_cast<double>(values.size()));
-      report.q05.push_back(values.empty() ? nan : quantile(values, 0.05));
-      report.q50.push_back(values.empty() ? nan : quantile(values, 0.5));
-      report.q95.push_back(values.empty() ? nan : quantile(values, 0.95));
+      std::vector<double> q = {nan, nan, nan};
+      if (!values.empty()) quantiles_in_place(values, {0.05, 0.5, 0.95}, q);
+      report.q05.push_back(q[0]);
+      report.q50.push_back(q[1]);
+      report.q95.push_back(q[2]);
     }
     result.truth_reports.push_back(std::move(report));
   }
@@ -436,8 +439,10 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       values.clear();
       for (const RunResult& run : runs)
         if (run.filters[f].last == steps) values.push_back(run.filters[f].peak[i]);
-      stats.peak_median.push_back(values.empty() ? nan : quantile(values, 0.5));
-      stats.peak_q95.push_back(values.empty() ? nan : quantile(values, 0.95));
+      std::vector<double> q = {nan, nan};
+      if (!values.empty()) quantiles_in_place(values, {0.5, 0.95}, q);
+      stats.peak_median.push_back(q[0]);
+      stats.peak_q95.push_back(q[1]);
     }
     for (std::size_t r = 0; r < runs.size(); ++r) {
       const FilterRunResult& filter = runs[r].filters[f];
@@ -485,47 +490,61 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
     series.reference_error_rms.resize(static_cast<Eigen::Index>(records), static_cast<Eigen::Index>(n));
   }
   // Across runs at each record time. Record times are independent (each writes its own rows), so
-  // they are shared among threads without changing a bit; the sorting for the quantiles is most
-  // of the statistics' time.
-  auto scratch = [&runs](unsigned) {
-    std::vector<double> values;
-    values.reserve(runs.size());
-    return values;
+  // blocks of them are shared among threads without changing a bit. A block's values are gathered
+  // run by run, each run's records of the block read in one sweep (not one run per value, which
+  // misses the cache once per value), into one column per (record, state) that holds the runs in
+  // run order, as the statistics read them.
+  constexpr std::size_t kBlock = 16;
+  const std::size_t blocks = (records + kBlock - 1) / kBlock;
+  auto scratch = [&runs, n](unsigned) {
+    std::vector<std::vector<double>> columns(kBlock * n);
+    for (auto& column : columns) column.reserve(runs.size());
+    return columns;
   };
-  parallel_for(records, threads, scratch, [&](std::size_t r, std::vector<double>& values) {
-    const auto index = static_cast<std::ptrdiff_t>(plan.records[r]);
-    const auto row = static_cast<Eigen::Index>(r);
-    for (std::size_t i = 0; i < n; ++i) {
-      values.clear();
+  parallel_for(blocks, threads, scratch, [&](std::size_t block, std::vector<std::vector<double>>& columns) {
+    const std::size_t r0 = block * kBlock, r1 = std::min(records, r0 + kBlock);
+    auto column = [&](std::size_t r, std::size_t i) -> std::vector<double>& { return columns[(r - r0) * n + i]; };
+    // columns(r, i) = value(run, r * n + i) of every run with alive(run, record index of r), in run order.
+    auto gather = [&](auto alive, auto value) {
+      for (auto& c : columns) c.clear();
       for (const RunResult& run : runs)
-        if (run.truth_last >= index) values.push_back(run.truth_record[r * n + i]);
-      series.truth_alive[r] = values.size();
-      summarize(values, series.truth_statistics, row, static_cast<Eigen::Index>(i));
+        for (std::size_t r = r0; r < r1; ++r)
+          if (alive(run, static_cast<std::ptrdiff_t>(plan.records[r])))
+            for (std::size_t i = 0; i < n; ++i) column(r, i).push_back(value(run, r * n + i));
+    };
+    gather([](const RunResult& run, std::ptrdiff_t index) { return run.truth_last >= index; },
+           [](const RunResult& run, std::size_t at) { return run.truth_record[at]; });
+    for (std::size_t r = r0; r < r1; ++r) {
+      series.truth_alive[r] = column(r, 0).size();
+      for (std::size_t i = 0; i < n; ++i)
+        summarize(column(r, i), series.truth_statistics, static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i));
     }
     for (std::size_t f = 0; f < filters.size(); ++f) {
       FilterSeries& filter = series.filters[f];
-      for (std::size_t i = 0; i < n; ++i) {
-        values.clear();
-        for (const RunResult& run : runs)
-          if (run.filters[f].last >= index) values.push_back(run.filters[f].error_record[r * n + i]);
-        filter.alive[r] = values.size();
-        summarize(values, filter.error, row, static_cast<Eigen::Index>(i));
+      gather([f](const RunResult& run, std::ptrdiff_t index) { return run.filters[f].last >= index; },
+             [f](const RunResult& run, std::size_t at) { return run.filters[f].error_record[at]; });
+      for (std::size_t r = r0; r < r1; ++r) {
+        filter.alive[r] = column(r, 0).size();
+        for (std::size_t i = 0; i < n; ++i)
+          summarize(column(r, i), filter.error, static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i));
       }
     }
     if (!options.reference) return;
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto column = static_cast<Eigen::Index>(i);
-      values.clear();
-      for (const RunResult& run : runs)
-        if (run.reference.last >= index) values.push_back(run.reference.error_record[r * n + i]);
-      series.reference_error_rms(row, column) = root_mean_square(values);
-      for (std::size_t f = 0; f < filters.size(); ++f) {
-        values.clear();
-        for (const RunResult& run : runs)
-          if (run.reference.last >= index && run.filters[f].last >= index)
-            values.push_back(run.filters[f].reference_record[r * n + i]);
-        series.filters[f].reference_distance_rms(row, column) = root_mean_square(values);
-      }
+    gather([](const RunResult& run, std::ptrdiff_t index) { return run.reference.last >= index; },
+           [](const RunResult& run, std::size_t at) { return run.reference.error_record[at]; });
+    for (std::size_t r = r0; r < r1; ++r)
+      for (std::size_t i = 0; i < n; ++i)
+        series.reference_error_rms(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i)) =
+            root_mean_square(column(r, i));
+    for (std::size_t f = 0; f < filters.size(); ++f) {
+      gather([f](const RunResult& run, std::ptrdiff_t index) {
+               return run.reference.last >= index && run.filters[f].last >= index;
+             },
+             [f](const RunResult& run, std::size_t at) { return run.filters[f].reference_record[at]; });
+      for (std::size_t r = r0; r < r1; ++r)
+        for (std::size_t i = 0; i < n; ++i)
+          series.filters[f].reference_distance_rms(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i)) =
+              root_mean_square(column(r, i));
     }
   });
 }
