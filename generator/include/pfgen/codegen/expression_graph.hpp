@@ -97,6 +97,13 @@ struct OpCounts {
 
 class ExpressionGraph {
  public:
+  // Move-only: a node points at its leaf data in this graph's own storage, which a move keeps.
+  ExpressionGraph() = default;
+  ExpressionGraph(const ExpressionGraph&) = delete;
+  ExpressionGraph& operator=(const ExpressionGraph&) = delete;
+  ExpressionGraph(ExpressionGraph&&) = default;
+  ExpressionGraph& operator=(ExpressionGraph&&) = default;
+
   // The same name always gives the same node: its source is that of its first creation.
   std::size_t input(const std::string& name, InputSource source = {});
   std::size_t constant(const GiNaC::numeric& value);
