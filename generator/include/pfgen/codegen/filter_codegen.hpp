@@ -28,8 +28,8 @@ using Language = OutputLanguage;
 
 // Code generation holds a graph of every expanded equation beside the structured form it may
 // emit instead, about 0.2 kB per equation term with the derivation's own: the dense cubic models'
-// optimal filters take 77 MB at n = 12 (0.3 million terms), 260 MB at n = 16 (1.2 million) and
-// 690 MB at n = 20 (3.6 million), where derive alone needs 250 MB. A filter with more terms than
+// optimal filters take 77 MB at n = 12 (0.3 million terms), 250 MB at n = 16 (1.2 million) and
+// 670 MB at n = 20 (3.6 million), where derive alone needs 250 MB. A filter with more terms than
 // this (about 2 GB) is refused before any of it is built, naming the filter and its count
 // (CodegenError).
 inline constexpr double kMaxCodegenTerms = 10000000;
