@@ -38,6 +38,12 @@ job+=(--runs "$runs")
 "$pfgen" "${job[@]}" -o "$work/r.csv" >"$work/single.txt"
 
 now() { date +%s.%N; }
+# The median of a[1..n], for the awk programs below.
+median_awk='function median(a, n,   i, j, t) {
+  for (i = 2; i <= n; ++i) for (j = i; j > 1 && a[j - 1] > a[j]; --j) { t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
+  return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2
+}'
+
 for i in $(seq 1 "$repeats"); do
   for ranks in 1 2; do
     start=$(now)
@@ -49,11 +55,7 @@ for i in $(seq 1 "$repeats"); do
        cmp -s "$work/r$ranks.csv" "$work/r.csv"; then :; else echo "bench_mpi: $ranks ranks: output DIFFERS" >&2; exit 1; fi
   done
 done
-awk -v runs="$runs" -v r="$repeats" '
-  function median(a, n,   i, j, t) {
-    for (i = 2; i <= n; ++i) for (j = i; j > 1 && a[j - 1] > a[j]; --j) { t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
-    return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2
-  }
+awk -v runs="$runs" -v r="$repeats" "$median_awk"'
   $1 == 1 { one[++n1] = $2 } $1 == 2 { two[++n2] = $2; ratio[n2] = one[n2] / $2 }
   END {
     printf "%d runs of the Alcorta-Garcia et al. 2011 satellite (4 filters, 1000 steps a run), --threads 1 per rank, median of %d:\n", runs, r
@@ -77,11 +79,7 @@ field() { sed -n "s|.*\"$2\": \([0-9.e+-]*\).*|\1|p" "$1"; }
 awk -v runs="$runs" -v r="$repeats" \
     -v wall1="$(field "$work/t1.json" wall_seconds)" -v agg1="$(field "$work/t1.json" aggregation_seconds)" \
     -v agg2="$(field "$work/t2.json" aggregation_seconds)" -v gather2="$(field "$work/t2.json" gather_seconds)" \
-    -v bytes2="$(field "$work/t2.json" gathered_bytes)" '
-  function median(a, n,   i, j, t) {
-    for (i = 2; i <= n; ++i) for (j = i; j > 1 && a[j - 1] > a[j]; --j) { t = a[j]; a[j] = a[j - 1]; a[j - 1] = t }
-    return n % 2 ? a[(n + 1) / 2] : (a[n / 2] + a[n / 2 + 1]) / 2
-  }
+    -v bytes2="$(field "$work/t2.json" gathered_bytes)" "$median_awk"'
   $1 == 1 { f1[++n1] = $2 } $1 == 2 { f2[++n2] = $2 }
   END {
     fixed1 = median(f1, n1); fixed2 = median(f2, n2)

@@ -17,14 +17,9 @@ void check_sample(const std::vector<double>& sample, const char* what) {
 }  // namespace
 
 double quantile(std::vector<double> sample, double q) {
-  check_sample(sample, "quantile");
-  if (!(q >= 0 && q <= 1)) throw std::invalid_argument("quantile: q must be in [0, 1]");
-  std::sort(sample.begin(), sample.end());
-  const double position = q * static_cast<double>(sample.size() - 1);
-  const auto below = static_cast<std::size_t>(std::floor(position));
-  if (below + 1 >= sample.size()) return sample.back();
-  const double fraction = position - static_cast<double>(below);
-  return sample[below] + fraction * (sample[below + 1] - sample[below]);
+  std::vector<double> out;
+  quantiles_in_place(sample, {q}, out);
+  return out[0];
 }
 
 void quantiles_in_place(std::vector<double>& sample, const std::vector<double>& qs, std::vector<double>& out) {

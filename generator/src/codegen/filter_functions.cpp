@@ -48,10 +48,6 @@ FunctionSignature signature(const std::string& function, const FunctionNames& na
   return {function, names.time, layout.array_arguments, names.params, target};
 }
 
-}  // namespace
-
-namespace {
-
 // A function's graph, built and counted but not yet written: derivatives() builds two and writes
 // only the one it keeps, which for a large model is far the smaller (the expanded dense cubic
 // n = 20 P drift is millions of operations, its structured form a few hundred thousand).
@@ -64,17 +60,21 @@ struct BuiltFunction {
   FunctionStats stats;
 };
 
-// The graph of the outputs `add_outputs` builds (their roots in order), read through the filter's
-// definitions, which are computed first.
-std::unique_ptr<BuiltFunction> built_function(
-    const std::string& function, const Model& model, const FilterEquations& eq, const FunctionNames& names,
-    const std::function<void(GraphBuilder&, std::vector<std::size_t>&)>& add_outputs) {
+// Builds the outputs of one function into a graph: their roots in order, in `roots`. The builder
+// reads the filter's variables and definitions; the graph takes operations the builder does not make.
+using OutputBuilder = std::function<void(GraphBuilder&, ExpressionGraph&, std::vector<std::size_t>& roots)>;
+
+// The graph of the outputs `add_outputs` builds, read through the filter's definitions, which are
+// computed first.
+std::unique_ptr<BuiltFunction> built_function(const std::string& function, const Model& model,
+                                              const FilterEquations& eq, const FunctionNames& names,
+                                              const OutputBuilder& add_outputs) {
   auto built = std::make_unique<BuiltFunction>();
   built->function = function;
   built->layout = input_layout(eq.variables, names);
   GraphBuilder builder = graph_builder(built->graph, model, built->layout, names);
   builder.define(eq.definitions, eq.variables.symbols());
-  add_outputs(builder, built->roots);
+  add_outputs(builder, built->graph, built->roots);
   built->declaration_order = builder.declaration_order();
   built->stats =
       FunctionStats{function, built->graph.tree_counts(built->roots), built->graph.shared_counts(built->roots)};
@@ -95,9 +95,10 @@ FunctionCode written(const BuiltFunction& built, const std::string& target, cons
 FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
                            const std::string& target, const Model& model, const FilterEquations& eq,
                            const CodegenOptions& options, const FunctionNames& names, const CFamilyEmitter& emitter) {
-  const auto built = built_function(function, model, eq, names, [&](GraphBuilder& builder, std::vector<std::size_t>& roots) {
-    for (const Polynomial& p : outputs) roots.push_back(builder.polynomial(p));
-  });
+  const auto built = built_function(function, model, eq, names,
+                                    [&](GraphBuilder& builder, ExpressionGraph&, std::vector<std::size_t>& roots) {
+                                      for (const Polynomial& p : outputs) roots.push_back(builder.polynomial(p));
+                                    });
   return written(*built, target, names, emitter, options.eliminate_common_subexpressions);
 }
 
@@ -115,73 +116,68 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
   // P's drift (upper triangle) is summed one entry at a time, as the graph takes it.
-  auto flat = built_function("derivatives", model, eq, names, [&](GraphBuilder& builder, std::vector<std::size_t>& roots) {
+  auto expanded = [&](GraphBuilder& builder, ExpressionGraph&, std::vector<std::size_t>& roots) {
     for (const Polynomial& p : eq.m_drift) roots.push_back(builder.polynomial(p));
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i; j < n; ++j) roots.push_back(builder.polynomial(eq.P_drift(i, j)));
     // A delayed filter with Phi* integrates x* beside m and P: its drift follows them in `out`.
     for (const Polynomial& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
-  });
+  };
+  auto flat = built_function("derivatives", model, eq, names, expanded);
   if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty())
     return written(*flat, names.out, names, emitter, options.eliminate_common_subexpressions);
 
-  ExpressionGraph graph;
-  const InputLayout layout = input_layout(vars, names);
-  GraphBuilder builder = graph_builder(graph, model, layout, names);
-  builder.define(eq.definitions, eq.variables.symbols());
-  std::vector<std::size_t> roots;
-  for (const auto& p : eq.m_drift) roots.push_back(builder.polynomial(p));
-  std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
-  for (std::size_t j = 0; j < n; ++j)
-    for (std::size_t k = 0; k < n; ++k)
-      if (!eq.jacobian_term[j][k].is_zero()) J[j][k] = builder.polynomial(eq.jacobian_term[j][k]);
-  // The correction's factors: K (n x p) and H = A P (p x n), each entry built once.
-  const auto H = correction_factor(eq);
-  std::vector<std::vector<std::size_t>> K_node, H_node;
-  if (H) {
-    K_node.assign(n, std::vector<std::size_t>(eq.p));
-    H_node.assign(eq.p, std::vector<std::size_t>(n));
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t r = 0; r < eq.p; ++r)
-        if (!eq.gain[i][r].is_zero()) K_node[i][r] = builder.polynomial(eq.gain[i][r]);
-    for (std::size_t r = 0; r < eq.p; ++r)
-      for (std::size_t j = 0; j < n; ++j)
-        if (!(*H)[r][j].is_zero()) H_node[r][j] = builder.polynomial((*H)[r][j]);
-  }
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i; j < n; ++j) {
-      const std::size_t u = vars.upper_index(i, j);
-      std::vector<std::size_t> terms;
-      for (std::size_t k = 0; k < n; ++k) {
-        if (!eq.jacobian_term[j][k].is_zero()) terms.push_back(graph.mul(builder.variable(vars.P(i, k)), J[j][k]));
-        if (!eq.jacobian_term[i][k].is_zero()) terms.push_back(graph.mul(J[i][k], builder.variable(vars.P(k, j))));
-      }
-      if (!eq.P_diffusion[u].is_zero()) terms.push_back(builder.polynomial(eq.P_diffusion[u]));
-      std::size_t sum = terms.empty() ? graph.constant(0) : terms[0];
-      for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
-      if (eq.P_correction[u].is_zero()) {
-      } else if (H) {
-        std::vector<std::size_t> products;
+  auto structured = [&](GraphBuilder& builder, ExpressionGraph& graph, std::vector<std::size_t>& roots) {
+    for (const auto& p : eq.m_drift) roots.push_back(builder.polynomial(p));
+    std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t k = 0; k < n; ++k)
+        if (!eq.jacobian_term[j][k].is_zero()) J[j][k] = builder.polynomial(eq.jacobian_term[j][k]);
+    // The correction's factors: K (n x p) and H = A P (p x n), each entry built once.
+    const auto H = correction_factor(eq);
+    std::vector<std::vector<std::size_t>> K_node, H_node;
+    if (H) {
+      K_node.assign(n, std::vector<std::size_t>(eq.p));
+      H_node.assign(eq.p, std::vector<std::size_t>(n));
+      for (std::size_t i = 0; i < n; ++i)
         for (std::size_t r = 0; r < eq.p; ++r)
-          if (!eq.gain[i][r].is_zero() && !(*H)[r][j].is_zero()) products.push_back(graph.mul(K_node[i][r], H_node[r][j]));
-        std::size_t correction = products[0];  // not empty: the correction is not zero
-        for (std::size_t k = 1; k < products.size(); ++k) correction = graph.add(correction, products[k]);
-        sum = graph.sub(sum, correction);
-      } else {
-        sum = graph.sub(sum, builder.polynomial(eq.P_correction[u]));
-      }
-      roots.push_back(sum);
+          if (!eq.gain[i][r].is_zero()) K_node[i][r] = builder.polynomial(eq.gain[i][r]);
+      for (std::size_t r = 0; r < eq.p; ++r)
+        for (std::size_t j = 0; j < n; ++j)
+          if (!(*H)[r][j].is_zero()) H_node[r][j] = builder.polynomial((*H)[r][j]);
     }
-  for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
-  OpCounts structured = graph.shared_counts(roots);
-  if (structured.total() >= flat->stats.cse.total()) return written(*flat, names.out, names, emitter, true);
-  const OpCounts naive = flat->stats.naive;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i; j < n; ++j) {
+        const std::size_t u = vars.upper_index(i, j);
+        std::vector<std::size_t> terms;
+        for (std::size_t k = 0; k < n; ++k) {
+          if (!eq.jacobian_term[j][k].is_zero()) terms.push_back(graph.mul(builder.variable(vars.P(i, k)), J[j][k]));
+          if (!eq.jacobian_term[i][k].is_zero()) terms.push_back(graph.mul(J[i][k], builder.variable(vars.P(k, j))));
+        }
+        if (!eq.P_diffusion[u].is_zero()) terms.push_back(builder.polynomial(eq.P_diffusion[u]));
+        std::size_t sum = terms.empty() ? graph.constant(0) : terms[0];
+        for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
+        if (eq.P_correction[u].is_zero()) {
+        } else if (H) {
+          std::vector<std::size_t> products;
+          for (std::size_t r = 0; r < eq.p; ++r)
+            if (!eq.gain[i][r].is_zero() && !(*H)[r][j].is_zero())
+              products.push_back(graph.mul(K_node[i][r], H_node[r][j]));
+          std::size_t correction = products[0];  // not empty: the correction is not zero
+          for (std::size_t k = 1; k < products.size(); ++k) correction = graph.add(correction, products[k]);
+          sum = graph.sub(sum, correction);
+        } else {
+          sum = graph.sub(sum, builder.polynomial(eq.P_correction[u]));
+        }
+        roots.push_back(sum);
+      }
+    for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
+  };
+  auto stein = built_function("derivatives", model, eq, names, structured);
+  if (stein->stats.cse.total() >= flat->stats.cse.total()) return written(*flat, names.out, names, emitter, true);
+  stein->stats.naive = flat->stats.naive;  // the count of the expanded equations, whichever form is written
   flat.reset();
-  FunctionCode code;
-  code.stats = FunctionStats{"derivatives", naive, structured};
-  code.body = emitter.function_body(graph, roots, signature("derivatives", names, layout, names.out),
-                                    builder.declaration_order(), true);
-  return code;
+  return written(*stein, names.out, names, emitter, true);
 }
 
 std::string counts_text(const OpCounts& c) {

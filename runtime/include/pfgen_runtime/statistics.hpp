@@ -8,8 +8,8 @@ namespace pfgen_runtime {
 // type 7, R's default). std::invalid_argument for an empty sample, q outside [0, 1] or a NaN.
 double quantile(std::vector<double> sample, double q);
 
-// Several quantiles of one sample, each exactly as quantile() gives it, for q in ascending order:
-// out[k] is the qs[k]-quantile. The sample is reordered in place: the order statistics needed are
+// Several quantiles of one sample, each as quantile() defines it (quantile() is the case of one),
+// for q in ascending order: out[k] is the qs[k]-quantile. The sample is reordered in place: the order statistics needed are
 // selected (std::nth_element) instead of sorting the whole sample, which the Monte Carlo statistics
 // do for every state at every record time. Same errors as quantile().
 void quantiles_in_place(std::vector<double>& sample, const std::vector<double>& qs, std::vector<double>& out);
