@@ -19,6 +19,7 @@
 #include "pfgen_runtime/schemes.hpp"
 #include "pfgen_runtime/summary_table.hpp"
 #include "support/scalar_linear_system.hpp"
+#include "support/shared_runs.hpp"
 
 using namespace pfgen_runtime;
 using pfgen_test::ScalarLinear;
@@ -230,20 +231,15 @@ TEST_CASE("particle reference: identical for 1, 2 and 3 threads and after travel
     CHECK(result.timing.reference_steps == first.timing.reference_steps);
   }
 
-  // Shared among "processes" (MonteCarloOptions::share): the reference's per-run results are
-  // encoded and decoded with the rest, and fold to the same table and CSV.
-  std::vector<std::vector<char>> blocks;
-  auto share = [&](std::size_t begin, std::size_t count, bool folds) {
+  // Shared among "processes" (MonteCarloOptions::share): the reference's per-run results and
+  // record series are exchanged and gathered with the rest, and fold to the same table and CSV.
+  const std::vector<MonteCarloResult> shared = pfgen_test::SharedRuns(2).run({4, 5}, [&](RunShare share) {
     MonteCarloOptions part = options;
     part.threads = 1;
-    part.share = RunShare{begin, count, [&blocks, folds](std::vector<char> mine) {
-                            blocks.push_back(std::move(mine));
-                            return folds ? blocks : std::vector<std::vector<char>>{};
-                          }};
+    part.share = std::move(share);
     return run_monte_carlo(scheme, observation, x0, filters, part);
-  };
-  (void)share(0, 4, false);
-  const MonteCarloResult folded = share(4, 5, true);
+  });
+  const MonteCarloResult& folded = shared[0];
   REQUIRE(folded.folded);
   CHECK(format_summary_table(folded, {"x"}) == table);
   CHECK(format_results_csv(folded, {"x"}) == csv);

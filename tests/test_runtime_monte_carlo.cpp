@@ -35,6 +35,7 @@
 #include "pfgen_runtime/schemes.hpp"
 #include "pfgen_runtime/simulation.hpp"
 #include "support/scalar_linear_system.hpp"
+#include "support/shared_runs.hpp"
 #include "pfgen_runtime/summary_table.hpp"
 
 using namespace pfgen_runtime;
@@ -231,8 +232,9 @@ TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "
   }
 }
 
-// What `mpirun pfgen simulate` does across ranks (MonteCarloOptions::share), here in one process:
-// three shares, one of them empty, encoded, gathered in run order and folded by the last.
+// What `mpirun pfgen simulate` does across ranks (MonteCarloOptions::share), here with threads of
+// one process: three shares, one of them empty, exchanging their record series and gathered in
+// run order by the first.
 TEST_CASE("monte carlo: runs shared among processes fold to the single process's result bit for bit", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   EulerMaruyama scheme(scalar_linear_system(scenario.model));
@@ -242,42 +244,75 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
   scenario.options.threads = 2;
   const MonteCarloResult whole = run_monte_carlo(scheme, observation, x0, scenario.filters, scenario.options);
 
-  // Runs [0, 9), [9, 9) and [9, 23): the shown run 4 is the first share's.
-  std::vector<std::vector<char>> blocks;
-  auto share = [&](std::size_t first, std::size_t count, bool folds) {
+  // Runs [0, 9), [9, 9) and [9, 23): the shown run 4 is the first share's. Also with a record
+  // series shorter than the processes (some fold no record time), and with one record per grid point.
+  for (std::size_t records : {scenario.options.record_points, std::size_t{2}, scenario.options.grid.steps}) {
     MonteCarloOptions options = scenario.options;
-    options.share = RunShare{first, count, [&blocks, folds](std::vector<char> mine) {
-                               blocks.push_back(std::move(mine));
-                               return folds ? blocks : std::vector<std::vector<char>>{};
-                             }};
-    return run_monte_carlo(scheme, observation, x0, scenario.filters, options);
-  };
-  const MonteCarloResult first = share(0, 9, false), empty = share(9, 0, false), last = share(9, 14, true);
-  CHECK_FALSE(first.folded);
-  CHECK_FALSE(empty.folded);
-  REQUIRE(last.folded);
-  CHECK(last.timing.threads == 2 + 1 + 2);  // every process's threads
-  CHECK(last.timing.truth_steps == whole.timing.truth_steps);
-  CHECK(bitwise_equal(flatten(last), flatten(whole)));
-  CHECK(format_summary_table(last, {"x"}) == format_summary_table(whole, {"x"}));
-  CHECK(format_results_csv(last, {"x"}) == format_results_csv(whole, {"x"}));
-  CHECK(format_criterion_csv(last) == format_criterion_csv(whole));
-  CHECK(format_stops_csv(last) == format_stops_csv(whole));
+    options.record_points = records;
+    const MonteCarloResult single = run_monte_carlo(scheme, observation, x0, scenario.filters, options);
+    const std::vector<MonteCarloResult> results = pfgen_test::SharedRuns(3).run({9, 0, 14}, [&](RunShare share) {
+      MonteCarloOptions part = options;
+      part.share = std::move(share);
+      return run_monte_carlo(scheme, observation, x0, scenario.filters, part);
+    });
+    INFO("record_points = " << records);
+    const MonteCarloResult& folded = results[0];
+    CHECK_FALSE(results[1].folded);
+    CHECK_FALSE(results[2].folded);
+    REQUIRE(folded.folded);
+    CHECK(folded.timing.threads == 2 + 1 + 2);  // every process's threads
+    CHECK(folded.timing.truth_steps == single.timing.truth_steps);
+    CHECK(folded.timing.exchanged_bytes > 0);
+    CHECK(folded.timing.gathered_bytes > 0);
+    CHECK(bitwise_equal(flatten(folded), flatten(single)));
+    CHECK(format_summary_table(folded, {"x"}) == format_summary_table(single, {"x"}));
+    CHECK(format_results_csv(folded, {"x"}) == format_results_csv(single, {"x"}));
+    CHECK(format_criterion_csv(folded) == format_criterion_csv(single));
+    CHECK(format_stops_csv(folded) == format_stops_csv(single));
+  }
+  CHECK(format_results_csv(whole, {"x"}) ==
+        format_results_csv(pfgen_test::SharedRuns(1).run({23}, [&](RunShare share) {
+          MonteCarloOptions part = scenario.options;
+          part.share = std::move(share);
+          return run_monte_carlo(scheme, observation, x0, scenario.filters, part);
+        })[0], {"x"}));
 
   // Shares that miss runs, or bytes cut short, are refused rather than folded.
+  const auto alone = [](std::size_t first, std::size_t count) {
+    RunShare share{first, count, 0, 1, [](std::vector<std::vector<char>> outgoing) { return outgoing; },
+                   [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine}; }};
+    return share;
+  };
   MonteCarloOptions gap = scenario.options;
-  gap.share = RunShare{0, 9, [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine}; }};
+  gap.share = alone(0, 9);
   CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, gap),
                     Catch::Contains("hold 9 runs, not 23"));
   MonteCarloOptions cut = scenario.options;
-  cut.share = RunShare{0, 23, [](std::vector<char> mine) {
-                         mine.pop_back();
-                         return std::vector<std::vector<char>>{mine};
-                       }};
+  cut.share = alone(0, 23);
+  cut.share->gather = [](std::vector<char> mine) {
+    mine.pop_back();
+    return std::vector<std::vector<char>>{mine};
+  };
   CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, cut), Catch::Contains("malformed"));
+  MonteCarloOptions cut_slice = scenario.options;
+  cut_slice.share = alone(0, 23);
+  cut_slice.share->exchange = [](std::vector<std::vector<char>> outgoing) {
+    outgoing[0].resize(outgoing[0].size() / 2);
+    return outgoing;
+  };
+  CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, cut_slice), Catch::Contains("malformed"));
+  MonteCarloOptions missing = scenario.options;
+  missing.share = alone(0, 23);
+  missing.share->gather = [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine, mine}; };
+  CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, missing),
+                    Catch::Contains("2 processes' shares arrived, not 1"));
   MonteCarloOptions outside = scenario.options;
-  outside.share = RunShare{20, 4, [](std::vector<char>) { return std::vector<std::vector<char>>{}; }};
+  outside.share = alone(20, 4);
   CHECK_THROWS_AS(run_monte_carlo(scheme, observation, x0, scenario.filters, outside), std::invalid_argument);
+  MonteCarloOptions no_place = scenario.options;
+  no_place.share = alone(0, 23);
+  no_place.share->process = 1;
+  CHECK_THROWS_AS(run_monte_carlo(scheme, observation, x0, scenario.filters, no_place), std::invalid_argument);
 }
 
 TEST_CASE("monte carlo: each run equals simulate_truth + run_filter bit for bit", "[montecarlo][runtime][unit]") {

@@ -25,8 +25,10 @@ namespace pfgen::cli {
 
 namespace {
 
-// Messages of one gather: a block's size, then its bytes in pieces that fit MPI's int counts.
-constexpr int kSizeTag = 1, kBytesTag = 2;
+// Messages of one gather or exchange: a block's size, then its bytes in pieces that fit MPI's int
+// counts (the pieces of one block arrive in order: MPI does not reorder messages between two ranks
+// with one tag).
+constexpr int kSizeTag = 1, kBytesTag = 2, kExchangeTag = 3;
 constexpr std::size_t kPiece = std::size_t{1} << 30;
 
 // Waits for a non-blocking collective by testing it between growing sleeps: a rank that finished
@@ -35,6 +37,15 @@ constexpr std::size_t kPiece = std::size_t{1} << 30;
 void wait_sleeping(MPI_Request& request) {
   auto pause = std::chrono::microseconds(50);
   for (int done = 0; MPI_Test(&request, &done, MPI_STATUS_IGNORE), !done;) {
+    std::this_thread::sleep_for(pause);
+    pause = std::min<std::chrono::microseconds>(pause * 2, std::chrono::milliseconds(10));
+  }
+}
+
+// wait_sleeping for several requests at once.
+void wait_all_sleeping(std::vector<MPI_Request>& requests) {
+  auto pause = std::chrono::microseconds(50);
+  for (int done = 0; MPI_Testall(static_cast<int>(requests.size()), requests.data(), &done, MPI_STATUSES_IGNORE), !done;) {
     std::this_thread::sleep_for(pause);
     pause = std::min<std::chrono::microseconds>(pause * 2, std::chrono::milliseconds(10));
   }
@@ -115,13 +126,54 @@ void MpiJob::check_same_job(const std::string& job, const std::string& problem) 
 }
 
 std::optional<pfgen_runtime::RunShare> MpiJob::share(std::size_t runs) {
+  if (size_ == 1) return std::nullopt;  // one rank makes and folds every run, as one process does
   const auto ranks = static_cast<std::size_t>(size_), rank = static_cast<std::size_t>(rank_);
   // Blocks of runs / K runs, the first runs % K of them one run longer.
   pfgen_runtime::RunShare share;
   share.first = runs / ranks * rank + std::min(rank, runs % ranks);
   share.count = runs / ranks + (rank < runs % ranks ? 1 : 0);
+  share.process = rank;
+  share.processes = ranks;
+  share.exchange = [this](std::vector<std::vector<char>> outgoing) { return exchange(std::move(outgoing)); };
   share.gather = [this](std::vector<char> mine) { return gather(std::move(mine)); };
   return share;
+}
+
+std::vector<std::vector<char>> MpiJob::exchange(std::vector<std::vector<char>> outgoing) {
+  // As in gather: every rank made its runs, or none goes on.
+  agreed_ = true;
+  if (lowest_failing(true) != size_) throw FailedElsewhere();
+  if (outgoing.size() != static_cast<std::size_t>(size_))
+    throw std::logic_error("mpi: an exchange needs one block for every rank");
+  std::vector<std::uint64_t> sizes(outgoing.size()), incoming_sizes(outgoing.size());
+  for (std::size_t rank = 0; rank < outgoing.size(); ++rank) sizes[rank] = outgoing[rank].size();
+  MPI_Request request;
+  MPI_Ialltoall(sizes.data(), 1, MPI_UINT64_T, incoming_sizes.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD, &request);
+  wait_sleeping(request);
+  std::vector<std::vector<char>> incoming(outgoing.size());
+  std::vector<MPI_Request> requests;
+  const auto pieces = [&](std::vector<char>& block, int rank, auto post) {
+    for (std::size_t at = 0; at < block.size(); at += kPiece)
+      post(block.data() + at, static_cast<int>(std::min(kPiece, block.size() - at)), rank, &requests.emplace_back());
+  };
+  for (int rank = 0; rank < size_; ++rank) {
+    const auto r = static_cast<std::size_t>(rank);
+    if (rank == rank_) {
+      incoming[r] = std::move(outgoing[r]);
+      continue;
+    }
+    incoming[r].resize(static_cast<std::size_t>(incoming_sizes[r]));
+    pieces(incoming[r], rank, [](char* data, int count, int source, MPI_Request* out) {
+      MPI_Irecv(data, count, MPI_BYTE, source, kExchangeTag, MPI_COMM_WORLD, out);
+    });
+    pieces(outgoing[r], rank, [](char* data, int count, int target, MPI_Request* out) {
+      MPI_Isend(data, count, MPI_BYTE, target, kExchangeTag, MPI_COMM_WORLD, out);
+    });
+  }
+  wait_all_sleeping(requests);
+  // What follows (folding, then the gather) can fail on one rank alone: the gather agrees again.
+  agreed_ = false;
+  return incoming;
 }
 
 std::vector<std::vector<char>> MpiJob::gather(std::vector<char> mine) {

@@ -2,8 +2,10 @@
 // `mpirun -n K pfgen simulate ...` (built with -DPFGEN_WITH_MPI=ON; this file is compiled only
 // then): the K ranks make one job. Every rank reads the model and derives alike; one rank per
 // machine compiles the plugin into that machine's cache before the others load it; rank r makes
-// the contiguous block of runs [r R / K, (r + 1) R / K), and rank 0 gathers the blocks, which in
-// rank order are the runs in run order, and folds and writes them exactly as one process would.
+// the contiguous block of runs [r R / K, (r + 1) R / K). The ranks then exchange their runs' record
+// series, each folding a range of record times, and rank 0 gathers the blocks of runs and folded
+// rows, which in rank order are in run order, and folds the rest and writes the result exactly as
+// one process would.
 // Only rank 0 writes stdout, files and stderr's messages. A step that fails on any rank stops
 // every rank, the first failing rank reporting its error (no rank waits for one that gave up).
 #include <optional>
@@ -35,6 +37,7 @@ class MpiJob final : public JobGroup {
  private:
   // The lowest rank whose step failed (`ok` false here), or the number of ranks when none did.
   int lowest_failing(bool ok) const;
+  std::vector<std::vector<char>> exchange(std::vector<std::vector<char>> outgoing);
   std::vector<std::vector<char>> gather(std::vector<char> mine);
 
   int rank_ = 0, size_ = 1;

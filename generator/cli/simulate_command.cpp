@@ -177,10 +177,12 @@ std::string timing_json(const pfgen_runtime::MonteCarloResult& result, const too
       << ", \"compile_seconds\": " << build.compile_seconds << ", \"wall_seconds\": " << result.timing.wall_seconds
       << ", \"truth_seconds\": " << result.timing.truth_seconds << ", \"filter_seconds\": " << filter_seconds;
   if (result.reference) out << ", \"reference_seconds\": " << result.timing.reference_seconds;
-  out << ", \"aggregation_seconds\": " << result.timing.aggregation_seconds;
+  out << ", \"aggregation_seconds\": " << result.timing.aggregation_seconds
+      << ", \"series_seconds\": " << result.timing.series_seconds;
   if (result.timing.gathered_bytes != 0)
-    out << ", \"gather_seconds\": " << result.timing.gather_seconds << ", \"gathered_bytes\": "
-        << result.timing.gathered_bytes;
+    out << ", \"exchange_seconds\": " << result.timing.exchange_seconds << ", \"exchanged_bytes\": "
+        << result.timing.exchanged_bytes << ", \"gather_seconds\": " << result.timing.gather_seconds
+        << ", \"gathered_bytes\": " << result.timing.gathered_bytes;
   out << ", \"total_seconds\": " << total_seconds << "}\n";
   return out.str();
 }

@@ -19,6 +19,7 @@
 #include "monte_carlo/plan.hpp"
 #include "monte_carlo/run_codec.hpp"
 #include "monte_carlo/run_result.hpp"
+#include "monte_carlo/series_codec.hpp"
 #include "monte_carlo/worker.hpp"
 #include "pfgen_runtime/statistics.hpp"
 
@@ -47,8 +48,11 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
   if (options.record_points == 0) throw std::invalid_argument("monte carlo: record_points must be at least 1");
   if (options.shown_run >= options.runs) throw std::invalid_argument("monte carlo: the shown run is not among the runs");
   if (options.share && (options.share->first > options.runs || options.share->count > options.runs - options.share->first ||
+                        options.share->process >= options.share->processes || !options.share->exchange ||
                         !options.share->gather))
-    throw std::invalid_argument("monte carlo: a process's share must be runs among the job's, with a gather");
+    throw std::invalid_argument(
+        "monte carlo: a process's share must be runs among the job's, of a process among the job's, with an exchange "
+        "and a gather");
   std::set<std::string> names;
   for (const FilterModel& filter : filters) {
     if (filter.name.empty() || !names.insert(filter.name).second)
@@ -80,6 +84,16 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
 MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observation,
                      const SampledMeasurement* measurement, const Eigen::VectorXd& x0,
                      const std::vector<FilterModel>& filters, const MonteCarloOptions& options);
+
+// What the processes of a shared job sent must be a block from each of them and every run once.
+void check_share_count(std::size_t blocks, std::size_t runs, const RunShare& share, std::size_t expected) {
+  if (blocks != share.processes)
+    throw std::runtime_error("monte carlo: " + std::to_string(blocks) + " processes' shares arrived, not " +
+                             std::to_string(share.processes));
+  if (runs != expected)
+    throw std::runtime_error("monte carlo: the processes' shares hold " + std::to_string(runs) + " runs, not " +
+                             std::to_string(expected));
+}
 
 }  // namespace
 
@@ -169,29 +183,70 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     }
   }
 
-  if (options.share) {
-    // Every process's runs, in run order, on the one that folds them; the others stop here.
-    std::vector<char> mine = encode_share(runs, timing);
+  const bool reference = options.reference.has_value();
+  start_series(plan, filters.size(), reference, result.series);
+  double series_seconds = 0;  // folding the series (this process's range of them)
+  if (!options.share) {
+    const Clock::time_point fold_start = Clock::now();
+    fold_series(plan, filters.size(), runs, RecordRange{0, plan.records.size()}, reference, threads, result.series);
+    series_seconds = seconds_since(fold_start);
+  } else {
+    const RunShare& share = *options.share;
+    // Every process folds the series at its range of record times, from every process's runs:
+    // each sends each its runs' values there, and receives, in process order (which is run
+    // order), every run's values at its own range.
+    const auto range = [&](std::size_t process) { return series_range(plan.records.size(), process, share.processes); };
+    std::vector<std::vector<char>> slices;
+    for (std::size_t process = 0; process < share.processes; ++process)
+      slices.push_back(encode_series_slice(runs, range(process), plan.n));
+    const Clock::time_point exchange_start = Clock::now();
+    const std::vector<std::vector<char>> received = share.exchange(std::move(slices));
+    timing.exchange_seconds = seconds_since(exchange_start);
+    std::vector<RunResult> slice;
+    for (const std::vector<char>& block : received) {
+      timing.exchanged_bytes += block.size();
+      decode_series_slice(block, filters.size(), range(share.process), plan.n, slice);
+    }
+    check_share_count(received.size(), slice.size(), share, options.runs);
+    const Clock::time_point fold_start = Clock::now();
+    fold_series(plan, filters.size(), slice, range(share.process), reference, threads, result.series);
+    series_seconds = seconds_since(fold_start);
+    slice = {};
+    // Folded: of the record vectors only the shown run's paths are still read.
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      RunResult& run = runs[k];
+      for (FilterRunResult& filter : run.filters) filter.error_record = {};
+      run.reference.error_record = {};
+      if (first + k == options.shown_run) continue;
+      run.truth_record = {};
+      for (FilterRunResult& filter : run.filters) filter.reference_record = {};
+    }
+    // Every process's runs, in run order, and the rows each folded, on the one that writes the
+    // result; the others stop here.
+    std::vector<char> mine = encode_share(runs, timing, encode_series_rows(result.series, range(share.process)));
     const Clock::time_point gather_start = Clock::now();
-    const std::vector<std::vector<char>> blocks = options.share->gather(std::move(mine));
-    const double gather_seconds = seconds_since(gather_start);
+    const std::vector<std::vector<char>> blocks = share.gather(std::move(mine));
+    timing.gather_seconds = seconds_since(gather_start);
     if (blocks.empty()) {
+      result.series = MonteCarloSeries{};
       result.folded = false;
+      timing.series_seconds = timing.aggregation_seconds = series_seconds;
       timing.wall_seconds = seconds_since(wall_start);
       return result;
     }
     runs.clear();
     MonteCarloTiming all = no_timing();  // every process's threads and times
-    for (const std::vector<char>& block : blocks) decode_share(block, filters.size(), runs, all);
-    if (runs.size() != options.runs)
-      throw std::runtime_error("monte carlo: the processes' shares hold " + std::to_string(runs.size()) +
-                               " runs, not " + std::to_string(options.runs));
+    for (std::size_t process = 0; process < blocks.size() && process < share.processes; ++process)
+      decode_series_rows(decode_share(blocks[process], filters.size(), runs, all), range(process), result.series);
+    check_share_count(blocks.size(), runs.size(), share, options.runs);
+    all.exchange_seconds = timing.exchange_seconds;
+    all.exchanged_bytes = timing.exchanged_bytes;
+    all.gather_seconds = timing.gather_seconds;
+    for (const std::vector<char>& block : blocks) all.gathered_bytes += block.size();
     timing = all;
-    timing.gather_seconds = gather_seconds;
-    for (const std::vector<char>& block : blocks) timing.gathered_bytes += block.size();
   }
 
-  const Clock::time_point aggregation_start = Clock::now();
+  const Clock::time_point summaries_start = Clock::now();
   result.grid = options.grid;
   result.runs = options.runs;
   result.seed = options.seed;
@@ -199,11 +254,11 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   result.x0_from_prior = options.initial_prior.has_value();
   result.n = plan.n;
   result.criterion = options.criterion;
-  aggregate(plan, filters, runs, options, threads, result);
+  aggregate(plan, filters, runs, options, result);
   for (FilterStatistics& filter : result.filters)
     if (filter.sampled) filter.sampled->nonlinear = measurement && !measurement->is_linear();
-
-  timing.aggregation_seconds = seconds_since(aggregation_start);
+  timing.series_seconds = series_seconds;
+  timing.aggregation_seconds = series_seconds + seconds_since(summaries_start);
   timing.wall_seconds = seconds_since(wall_start);
   return result;
 }

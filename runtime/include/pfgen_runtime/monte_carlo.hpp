@@ -34,13 +34,19 @@
 namespace pfgen_runtime {
 
 // The runs of one job shared among processes (the MPI ranks of `pfgen simulate`, whose MPI code
-// lives in the program, not here): this process makes runs [first, first + count) only, and
-// hands their results, encoded as bytes, to `gather`. On the process that folds the statistics,
-// gather returns every process's bytes, its own included, in the order of their runs, which
-// together must be runs 0 .. runs - 1; elsewhere it returns nothing. The folding reads the
-// decoded runs exactly as it reads a single process's, so the result is bitwise the same.
+// lives in the program, not here): this process, number `process` of `processes`, makes runs
+// [first, first + count) only. Every process then calls the same two collectives, in this order:
+// - exchange: each process hands one block per process (outgoing[j] for process j) and gets back,
+//   in process order, the blocks every process addressed to it. Each process folds the series at
+//   its own range of record times from them, so that the largest part of folding is shared.
+// - gather: each process hands one block (its runs' results and its folded rows); process 0 gets
+//   every process's, in process order, and the others get nothing.
+// The processes' runs, in process order, must be runs 0 .. runs - 1. Every value is folded in run
+// order exactly as one process folds it, so the result is bitwise the same.
 struct RunShare {
   std::size_t first = 0, count = 0;
+  std::size_t process = 0, processes = 1;
+  std::function<std::vector<std::vector<char>>(std::vector<std::vector<char>> outgoing)> exchange;
   std::function<std::vector<std::vector<char>>(std::vector<char> mine)> gather;
 };
 
@@ -259,12 +265,14 @@ struct MonteCarloTiming {
   // The particle reference: its time and the particles' scheme steps, over all runs.
   double reference_seconds = 0, reference_cpu_seconds = 0;
   std::uint64_t reference_steps = 0;
-  double aggregation_seconds = 0;  // folding the runs into statistics, after they finished
-  // Runs shared among processes (MonteCarloOptions::share), on the one that folds them: the
-  // seconds from handing its own runs to the gather to holding every process's, and the bytes of
-  // the encoded runs it then holds (its own included). Zero otherwise.
-  double gather_seconds = 0;
-  std::uint64_t gathered_bytes = 0;
+  // Folding the runs into statistics, after they finished; of it, folding the record series
+  // (with shared runs: this process's range of record times).
+  double aggregation_seconds = 0, series_seconds = 0;
+  // Runs shared among processes (MonteCarloOptions::share), on the one that writes the result:
+  // the seconds from handing its blocks to the exchange (the gather) to holding every process's,
+  // and the bytes it then holds (its own included). Zero otherwise.
+  double exchange_seconds = 0, gather_seconds = 0;
+  std::uint64_t exchanged_bytes = 0, gathered_bytes = 0;
 };
 
 struct MonteCarloResult {

@@ -342,7 +342,7 @@ void report_pairs(const std::vector<RunResult>& runs, std::size_t f, std::size_t
 }  // namespace
 
 void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const std::vector<RunResult>& runs,
-               const MonteCarloOptions& options, unsigned threads, MonteCarloResult& result) {
+               const MonteCarloOptions& options, MonteCarloResult& result) {
   const std::size_t n = plan.n, records = plan.records.size();
   const auto steps = static_cast<std::ptrdiff_t>(plan.grid.steps);
   std::vector<double> values;
@@ -471,46 +471,55 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
   series.shown_run = options.shown_run;
   const RunResult& shown = runs[options.shown_run];
   series.truth = records_matrix(shown.truth_record, records, n);
-  series.truth_statistics = make_series_statistics(records, n);
-  series.truth_alive.assign(records, 0);
   for (std::size_t f = 0; f < filters.size(); ++f) {
-    FilterSeries filter;
+    FilterSeries& filter = series.filters[f];
     filter.m = records_matrix(shown.filters[f].m_record, records, n);
     filter.P_diagonal = records_matrix(shown.filters[f].P_record, records, n);
+    if (options.reference) filter.reference_distance = records_matrix(shown.filters[f].reference_record, records, n);
+  }
+  if (options.reference) series.reference_m = records_matrix(shown.reference.m_record, records, n);
+}
+
+void start_series(const Plan& plan, std::size_t filters, bool reference, MonteCarloSeries& series) {
+  const std::size_t n = plan.n, records = plan.records.size();
+  const auto rows = static_cast<Eigen::Index>(records), cols = static_cast<Eigen::Index>(n);
+  series.truth_statistics = make_series_statistics(records, n);
+  series.truth_alive.assign(records, 0);
+  series.filters.assign(filters, FilterSeries{});
+  for (FilterSeries& filter : series.filters) {
     filter.error = make_series_statistics(records, n);
     filter.alive.assign(records, 0);
-    if (options.reference) {
-      filter.reference_distance = records_matrix(shown.filters[f].reference_record, records, n);
-      filter.reference_distance_rms.resize(static_cast<Eigen::Index>(records), static_cast<Eigen::Index>(n));
-    }
-    series.filters.push_back(std::move(filter));
+    if (reference) filter.reference_distance_rms.resize(rows, cols);
   }
-  if (options.reference) {
-    series.reference_m = records_matrix(shown.reference.m_record, records, n);
-    series.reference_error_rms.resize(static_cast<Eigen::Index>(records), static_cast<Eigen::Index>(n));
-  }
+  if (reference) series.reference_error_rms.resize(rows, cols);
+}
+
+void fold_series(const Plan& plan, std::size_t filters, const std::vector<RunResult>& runs, RecordRange range,
+                 bool reference, unsigned threads, MonteCarloSeries& series) {
+  const std::size_t n = plan.n;
   // Across runs at each record time. Record times are independent (each writes its own rows), so
   // blocks of them are shared among threads without changing a bit. A block's values are gathered
   // run by run, each run's records of the block read in one sweep (not one run per value, which
   // misses the cache once per value), into one column per (record, state) that holds the runs in
   // run order, as the statistics read them.
   constexpr std::size_t kBlock = 16;
-  const std::size_t blocks = (records + kBlock - 1) / kBlock;
+  const std::size_t blocks = (range.size() + kBlock - 1) / kBlock;
   auto scratch = [&runs, n](unsigned) {
     std::vector<std::vector<double>> columns(kBlock * n);
     for (auto& column : columns) column.reserve(runs.size());
     return columns;
   };
   parallel_for(blocks, threads, scratch, [&](std::size_t block, std::vector<std::vector<double>>& columns) {
-    const std::size_t r0 = block * kBlock, r1 = std::min(records, r0 + kBlock);
+    const std::size_t r0 = range.first + block * kBlock, r1 = std::min(range.last, r0 + kBlock);
     auto column = [&](std::size_t r, std::size_t i) -> std::vector<double>& { return columns[(r - r0) * n + i]; };
-    // columns(r, i) = value(run, r * n + i) of every run with alive(run, record index of r), in run order.
+    // columns(r, i) = value(run, r * n + i) of every run with alive(run, record index of r), in
+    // run order; a run's record vectors start at the range's first record.
     auto gather = [&](auto alive, auto value) {
       for (auto& c : columns) c.clear();
       for (const RunResult& run : runs)
         for (std::size_t r = r0; r < r1; ++r)
           if (alive(run, static_cast<std::ptrdiff_t>(plan.records[r])))
-            for (std::size_t i = 0; i < n; ++i) column(r, i).push_back(value(run, r * n + i));
+            for (std::size_t i = 0; i < n; ++i) column(r, i).push_back(value(run, (r - range.first) * n + i));
     };
     gather([](const RunResult& run, std::ptrdiff_t index) { return run.truth_last >= index; },
            [](const RunResult& run, std::size_t at) { return run.truth_record[at]; });
@@ -519,7 +528,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       for (std::size_t i = 0; i < n; ++i)
         summarize(column(r, i), series.truth_statistics, static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i));
     }
-    for (std::size_t f = 0; f < filters.size(); ++f) {
+    for (std::size_t f = 0; f < filters; ++f) {
       FilterSeries& filter = series.filters[f];
       gather([f](const RunResult& run, std::ptrdiff_t index) { return run.filters[f].last >= index; },
              [f](const RunResult& run, std::size_t at) { return run.filters[f].error_record[at]; });
@@ -529,14 +538,14 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
           summarize(column(r, i), filter.error, static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i));
       }
     }
-    if (!options.reference) return;
+    if (!reference) return;
     gather([](const RunResult& run, std::ptrdiff_t index) { return run.reference.last >= index; },
            [](const RunResult& run, std::size_t at) { return run.reference.error_record[at]; });
     for (std::size_t r = r0; r < r1; ++r)
       for (std::size_t i = 0; i < n; ++i)
         series.reference_error_rms(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i)) =
             root_mean_square(column(r, i));
-    for (std::size_t f = 0; f < filters.size(); ++f) {
+    for (std::size_t f = 0; f < filters; ++f) {
       gather([f](const RunResult& run, std::ptrdiff_t index) {
                return run.reference.last >= index && run.filters[f].last >= index;
              },

@@ -1,7 +1,7 @@
 #pragma once
 // Folds the per-run results into a MonteCarloResult's statistics and series. It reads the runs
 // in run order only after all have finished, so every sum and every sample for the quantiles is
-// the same whichever thread made which run.
+// the same whichever thread (or process) made which run.
 #include <vector>
 
 #include "pfgen_runtime/monte_carlo.hpp"
@@ -10,10 +10,20 @@
 
 namespace pfgen_runtime::monte_carlo_detail {
 
-// Fills result.truth_divergences, truth_reports, filters and series; the rest of `result` is the
-// caller's. The series' record times are shared among up to `threads` threads, without changing
+// The series' statistics across runs, at the record times, in three steps (the runs of a job
+// shared among processes are folded a range of record times on each process, series_codec.hpp):
+// start_series sizes their matrices (records x n); fold_series fills the rows `range` from
+// `runs`, every run in run order, whose record vectors start at the range's first record (all of
+// them: range.first == 0), the record times shared among up to `threads` threads without changing
 // a bit.
+void start_series(const Plan& plan, std::size_t filters, bool reference, MonteCarloSeries& series);
+void fold_series(const Plan& plan, std::size_t filters, const std::vector<RunResult>& runs, RecordRange range,
+                 bool reference, unsigned threads, MonteCarloSeries& series);
+
+// Fills result.truth_divergences, truth_reports, filters, and the series' times and the shown
+// run's paths (of a series that start_series sized); the rest of `result` is the caller's. Only
+// the shown run's record vectors are read.
 void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const std::vector<RunResult>& runs,
-               const MonteCarloOptions& options, unsigned threads, MonteCarloResult& result);
+               const MonteCarloOptions& options, MonteCarloResult& result);
 
 }  // namespace pfgen_runtime::monte_carlo_detail

@@ -51,4 +51,10 @@ Plan make_plan(std::size_t n, std::size_t p, const MonteCarloOptions& options) {
   return plan;
 }
 
+RecordRange series_range(std::size_t records, std::size_t process, std::size_t processes) {
+  // floor(records k / processes), without forming the product records k.
+  const auto bound = [&](std::size_t k) { return records / processes * k + records % processes * k / processes; };
+  return {bound(process), bound(process + 1)};
+}
+
 }  // namespace pfgen_runtime::monte_carlo_detail

@@ -27,6 +27,16 @@ struct Plan {
   std::vector<std::pair<std::size_t, std::size_t>> opens;      // (first index, window), by index
 };
 
+// Record times [first, last) (indices into Plan::records).
+struct RecordRange {
+  std::size_t first = 0, last = 0;
+  std::size_t size() const { return last - first; }
+};
+
+// The record times whose statistics process `process` of `processes` folds when runs are shared
+// among processes: contiguous ranges of near-equal size, in process order, covering all records.
+RecordRange series_range(std::size_t records, std::size_t process, std::size_t processes);
+
 // The plan for n states and p observations. Report times and window ends are snapped to the
 // nearest grid index; std::invalid_argument for a time outside [t0, T] (half a step of slack)
 // or a window shorter than a grid step.

@@ -1,11 +1,10 @@
 #include "run_codec.hpp"
 
 #include <cstdint>
-#include <cstring>
-#include <stdexcept>
-#include <string>
 #include <type_traits>
 #include <utility>
+
+#include "byte_codec.hpp"
 
 namespace pfgen_runtime::monte_carlo_detail {
 
@@ -18,52 +17,7 @@ static_assert(sizeof(RunResult) == 200, "RunResult changed: encode the new field
 static_assert(sizeof(FilterRunResult) == 280, "FilterRunResult changed: encode the new field in run_codec.cpp");
 #endif
 
-constexpr char kMagic[8] = {'p', 'f', 'g', 'e', 'n', 'r', 'u', '1'};
-
-class Writer {
- public:
-  template <class T>
-  void put(const T& value) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    const char* bytes = reinterpret_cast<const char*>(&value);
-    out.insert(out.end(), bytes, bytes + sizeof(T));
-  }
-  template <class T>
-  void put(const std::vector<T>& values) {
-    put(static_cast<std::uint64_t>(values.size()));
-    for (const T& value : values) put(value);
-  }
-  std::vector<char> out;
-};
-
-class Reader {
- public:
-  explicit Reader(const std::vector<char>& bytes) : bytes_(bytes) {}
-  template <class T>
-  void get(T& value) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    need(sizeof(T));
-    std::memcpy(&value, bytes_.data() + at_, sizeof(T));
-    at_ += sizeof(T);
-  }
-  template <class T>
-  void get(std::vector<T>& values) {
-    std::uint64_t size = 0;
-    get(size);
-    if (size > (bytes_.size() - at_) / sizeof(T)) fail();  // before allocating a corrupt size
-    values.resize(static_cast<std::size_t>(size));
-    for (T& value : values) get(value);
-  }
-  bool done() const { return at_ == bytes_.size(); }
-  [[noreturn]] static void fail() { throw std::runtime_error("monte carlo: a process's share of the runs is malformed"); }
-
- private:
-  void need(std::size_t size) const {
-    if (bytes_.size() - at_ < size) fail();
-  }
-  const std::vector<char>& bytes_;
-  std::size_t at_ = 0;
-};
+constexpr char kMagic[8] = {'p', 'f', 'g', 'e', 'n', 'r', 'u', '2'};
 
 // One function per type for both directions, so that what is written is what is read: Run is
 // const when encoding.
@@ -117,7 +71,7 @@ struct Encode {
   void put_or_get(const T& value) {
     writer.put(value);
   }
-  Writer writer;
+  ByteWriter writer;
 };
 
 struct Decode {
@@ -125,12 +79,13 @@ struct Decode {
   void put_or_get(T& value) {
     reader.get(value);
   }
-  Reader reader;
+  ByteReader reader;
 };
 
 }  // namespace
 
-std::vector<char> encode_share(const std::vector<RunResult>& runs, const MonteCarloTiming& timing) {
+std::vector<char> encode_share(const std::vector<RunResult>& runs, const MonteCarloTiming& timing,
+                               const std::vector<char>& series_rows) {
   Encode io;
   for (char c : kMagic) io.put_or_get(c);
   io.put_or_get(timing.threads);
@@ -146,16 +101,17 @@ std::vector<char> encode_share(const std::vector<RunResult>& runs, const MonteCa
   io.put_or_get(timing.reference_steps);
   io.put_or_get(static_cast<std::uint64_t>(runs.size()));
   for (const RunResult& run : runs) run_fields(io, run);
+  io.put_or_get(series_rows);
   return std::move(io.writer.out);
 }
 
-void decode_share(const std::vector<char>& bytes, std::size_t filters, std::vector<RunResult>& runs,
-                  MonteCarloTiming& timing) {
-  Decode io{Reader(bytes)};
+std::vector<char> decode_share(const std::vector<char>& bytes, std::size_t filters, std::vector<RunResult>& runs,
+                               MonteCarloTiming& timing) {
+  Decode io{ByteReader(bytes)};
   for (char expected : kMagic) {
     char c = 0;
     io.put_or_get(c);
-    if (c != expected) Reader::fail();
+    if (c != expected) ByteReader::fail();
   }
   MonteCarloTiming block;
   io.put_or_get(block.threads);
@@ -171,16 +127,18 @@ void decode_share(const std::vector<char>& bytes, std::size_t filters, std::vect
   io.put_or_get(block.reference_steps);
   if (block.filter_seconds.size() != filters || block.filter_cpu_seconds.size() != filters ||
       block.filter_steps.size() != filters || (block.filter_samples.size() != filters && !block.filter_samples.empty()))
-    Reader::fail();
+    ByteReader::fail();
   std::uint64_t count = 0;
   io.put_or_get(count);
   for (std::uint64_t k = 0; k < count; ++k) {
     RunResult run;
     run_fields(io, run);
-    if (run.filters.size() != filters) Reader::fail();
+    if (run.filters.size() != filters) ByteReader::fail();
     runs.push_back(std::move(run));
   }
-  if (!io.reader.done()) Reader::fail();
+  std::vector<char> series_rows;
+  io.put_or_get(series_rows);
+  if (!io.reader.done()) ByteReader::fail();
 
   timing.threads += block.threads;
   timing.truth_seconds += block.truth_seconds;
@@ -196,6 +154,7 @@ void decode_share(const std::vector<char>& bytes, std::size_t filters, std::vect
     if (!block.filter_samples.empty() && f < timing.filter_samples.size())
       timing.filter_samples[f] += block.filter_samples[f];
   }
+  return series_rows;
 }
 
 }  // namespace pfgen_runtime::monte_carlo_detail

@@ -1,0 +1,68 @@
+#pragma once
+// Numbers and vectors of numbers as their bytes, for what processes of one job send each other
+// (run_codec, series_codec). A vector travels as its length and then its elements. The reader
+// refuses bytes that end early or lengths that exceed what is left, before allocating them.
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
+#include <vector>
+
+namespace pfgen_runtime::monte_carlo_detail {
+
+class ByteWriter {
+ public:
+  template <class T>
+  void put(const T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const char* bytes = reinterpret_cast<const char*>(&value);
+    out.insert(out.end(), bytes, bytes + sizeof(T));
+  }
+  template <class T>
+  void put(const std::vector<T>& values) {
+    put_range(values.data(), values.size());
+  }
+  // values[0 .. count) as a vector of `count` elements.
+  template <class T>
+  void put_range(const T* values, std::size_t count) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    put(static_cast<std::uint64_t>(count));
+    const char* bytes = reinterpret_cast<const char*>(values);
+    out.insert(out.end(), bytes, bytes + count * sizeof(T));
+  }
+  std::vector<char> out;
+};
+
+class ByteReader {
+ public:
+  explicit ByteReader(const std::vector<char>& bytes) : bytes_(bytes) {}
+  template <class T>
+  void get(T& value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    need(sizeof(T));
+    std::memcpy(&value, bytes_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+  }
+  template <class T>
+  void get(std::vector<T>& values) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::uint64_t size = 0;
+    get(size);
+    if (size > (bytes_.size() - at_) / sizeof(T)) fail();  // before allocating a corrupt size
+    values.resize(static_cast<std::size_t>(size));
+    if (size > 0) std::memcpy(values.data(), bytes_.data() + at_, values.size() * sizeof(T));
+    at_ += values.size() * sizeof(T);
+  }
+  bool done() const { return at_ == bytes_.size(); }
+  [[noreturn]] static void fail() { throw std::runtime_error("monte carlo: a process's share of the runs is malformed"); }
+
+ private:
+  void need(std::size_t size) const {
+    if (bytes_.size() - at_ < size) fail();
+  }
+  const std::vector<char>& bytes_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace pfgen_runtime::monte_carlo_detail

@@ -1,0 +1,150 @@
+#include "series_codec.hpp"
+
+#include <cstdint>
+#include <stdexcept>
+#include <utility>
+
+#include "byte_codec.hpp"
+
+namespace pfgen_runtime::monte_carlo_detail {
+
+namespace {
+
+constexpr char kSliceMagic[8] = {'p', 'f', 'g', 'e', 'n', 's', 'l', '1'};
+constexpr char kRowsMagic[8] = {'p', 'f', 'g', 'e', 'n', 's', 'r', '1'};
+
+void put_magic(ByteWriter& writer, const char (&magic)[8]) {
+  for (char c : magic) writer.put(c);
+}
+
+void check_magic(ByteReader& reader, const char (&magic)[8]) {
+  for (char expected : magic) {
+    char c = 0;
+    reader.get(c);
+    if (c != expected) ByteReader::fail();
+  }
+}
+
+// Rows `range` of a record vector (records x n, row-major), or nothing when the run has none.
+void put_rows(ByteWriter& writer, const std::vector<double>& values, RecordRange range, std::size_t n) {
+  if (values.empty()) {
+    writer.put_range(values.data(), 0);
+    return;
+  }
+  if (values.size() < range.last * n) throw std::logic_error("monte carlo: a run's record series is shorter than its plan");
+  writer.put_range(values.data() + range.first * n, range.size() * n);
+}
+
+void get_rows(ByteReader& reader, std::vector<double>& values, RecordRange range, std::size_t n) {
+  reader.get(values);
+  if (!values.empty() && values.size() != range.size() * n) ByteReader::fail();
+}
+
+// Every matrix of the series' statistics across runs, in one order for both directions.
+template <class Series, class Visit>
+void statistics_matrices(Series& series, Visit visit) {
+  const auto statistics = [&visit](auto& s) {
+    visit(s.mean);
+    visit(s.q05);
+    visit(s.q50);
+    visit(s.q95);
+  };
+  statistics(series.truth_statistics);
+  for (auto& filter : series.filters) {
+    statistics(filter.error);
+    visit(filter.reference_distance_rms);
+  }
+  visit(series.reference_error_rms);
+}
+
+template <class Series, class Visit>
+void alive_counts(Series& series, Visit visit) {
+  visit(series.truth_alive);
+  for (auto& filter : series.filters) visit(filter.alive);
+}
+
+}  // namespace
+
+std::vector<char> encode_series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n) {
+  ByteWriter writer;
+  put_magic(writer, kSliceMagic);
+  writer.put(static_cast<std::uint64_t>(runs.size()));
+  for (const RunResult& run : runs) {
+    writer.put(run.truth_last);
+    writer.put(static_cast<std::uint64_t>(run.filters.size()));
+    for (const FilterRunResult& filter : run.filters) writer.put(filter.last);
+    writer.put(run.reference.last);
+    put_rows(writer, run.truth_record, range, n);
+    for (const FilterRunResult& filter : run.filters) {
+      put_rows(writer, filter.error_record, range, n);
+      put_rows(writer, filter.reference_record, range, n);
+    }
+    put_rows(writer, run.reference.error_record, range, n);
+  }
+  return std::move(writer.out);
+}
+
+void decode_series_slice(const std::vector<char>& bytes, std::size_t filters, RecordRange range, std::size_t n,
+                         std::vector<RunResult>& runs) {
+  ByteReader reader(bytes);
+  check_magic(reader, kSliceMagic);
+  std::uint64_t count = 0;
+  reader.get(count);
+  for (std::uint64_t k = 0; k < count; ++k) {
+    RunResult& run = runs.emplace_back();
+    reader.get(run.truth_last);
+    std::uint64_t run_filters = 0;
+    reader.get(run_filters);
+    if (run_filters != filters) ByteReader::fail();
+    run.filters.resize(filters);
+    for (FilterRunResult& filter : run.filters) reader.get(filter.last);
+    reader.get(run.reference.last);
+    get_rows(reader, run.truth_record, range, n);
+    for (FilterRunResult& filter : run.filters) {
+      get_rows(reader, filter.error_record, range, n);
+      get_rows(reader, filter.reference_record, range, n);
+    }
+    get_rows(reader, run.reference.error_record, range, n);
+  }
+  if (!reader.done()) ByteReader::fail();
+}
+
+std::vector<char> encode_series_rows(const MonteCarloSeries& series, RecordRange range) {
+  ByteWriter writer;
+  put_magic(writer, kRowsMagic);
+  writer.put(static_cast<std::uint64_t>(series.filters.size()));
+  statistics_matrices(series, [&](const Eigen::MatrixXd& matrix) {
+    if (matrix.size() == 0) return;  // the reference's, without a reference
+    for (std::size_t r = range.first; r < range.last; ++r)
+      for (Eigen::Index i = 0; i < matrix.cols(); ++i) writer.put(matrix(static_cast<Eigen::Index>(r), i));
+  });
+  alive_counts(series, [&](const std::vector<std::size_t>& alive) {
+    for (std::size_t r = range.first; r < range.last; ++r) writer.put(static_cast<std::uint64_t>(alive[r]));
+  });
+  return std::move(writer.out);
+}
+
+void decode_series_rows(const std::vector<char>& bytes, RecordRange range, MonteCarloSeries& series) {
+  ByteReader reader(bytes);
+  check_magic(reader, kRowsMagic);
+  std::uint64_t filters = 0;
+  reader.get(filters);
+  if (filters != series.filters.size()) ByteReader::fail();
+  statistics_matrices(series, [&](Eigen::MatrixXd& matrix) {
+    if (matrix.size() == 0) return;
+    if (static_cast<std::size_t>(matrix.rows()) < range.last) ByteReader::fail();
+    for (std::size_t r = range.first; r < range.last; ++r)
+      for (Eigen::Index i = 0; i < matrix.cols(); ++i) reader.get(matrix(static_cast<Eigen::Index>(r), i));
+  });
+  alive_counts(series, [&](std::vector<std::size_t>& alive) {
+    if (alive.size() < range.last) ByteReader::fail();
+    for (std::size_t r = range.first; r < range.last; ++r) {
+      std::uint64_t count = 0;
+      reader.get(count);
+      alive[r] = static_cast<std::size_t>(count);
+    }
+  });
+  if (!reader.done()) ByteReader::fail();
+}
+
+}  // namespace pfgen_runtime::monte_carlo_detail

@@ -1,0 +1,35 @@
+#pragma once
+// The record series of a job whose runs are shared among processes (MonteCarloOptions::share).
+// Folding them is most of the statistics' work, so it is shared too: each process folds the
+// record times of its series_range. A run's values at those times travel to the process that
+// folds them (slices, in one exchange among all processes), and the rows it folded travel to the
+// process that writes the result (rows, with its share of the runs). The values of a record time
+// reach its process in run order, so its statistics are bit for bit one process's.
+#include <cstddef>
+#include <vector>
+
+#include "pfgen_runtime/monte_carlo.hpp"
+#include "plan.hpp"
+#include "run_result.hpp"
+
+namespace pfgen_runtime::monte_carlo_detail {
+
+// Of each run, in run order, at the record times `range`: how far the truth, every filter and the
+// reference got, and their values that the series fold (truth_record, every filter's error_record
+// and reference_record, the reference's error_record).
+std::vector<char> encode_series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n);
+
+// Appends the block's runs to `runs`, with only what encode_series_slice sends; their record
+// vectors hold the range's rows alone (record r at (r - range.first) * n). std::runtime_error for
+// bytes that are not such a block.
+void decode_series_slice(const std::vector<char>& bytes, std::size_t filters, RecordRange range, std::size_t n,
+                         std::vector<RunResult>& runs);
+
+// The rows `range` of the series' statistics across runs (what fold_series fills).
+std::vector<char> encode_series_rows(const MonteCarloSeries& series, RecordRange range);
+
+// Writes such rows into `series`, whose matrices have the sizes start_series gave them.
+// std::runtime_error for bytes that are not such rows.
+void decode_series_rows(const std::vector<char>& bytes, RecordRange range, MonteCarloSeries& series);
+
+}  // namespace pfgen_runtime::monte_carlo_detail

@@ -1,0 +1,97 @@
+#pragma once
+// The processes of one job whose runs are shared among them (MonteCarloOptions::share, what
+// `mpirun pfgen simulate` makes of its ranks), here as threads of this process: process k makes
+// the runs [first_k, first_k + counts[k]) and meets the others in the exchange and the gather as
+// ranks do. A process that fails releases the others (they throw), so a test fails, not hangs.
+#include <condition_variable>
+#include <cstddef>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "pfgen_runtime/monte_carlo.hpp"
+
+namespace pfgen_test {
+
+class SharedRuns {
+ public:
+  explicit SharedRuns(std::size_t processes) : processes_(processes), outboxes_(processes), gathered_(processes) {}
+
+  // Runs job(share) on one thread per process, shares of `counts` runs in process order; the
+  // results in process order. Rethrows the first failure.
+  std::vector<pfgen_runtime::MonteCarloResult> run(
+      const std::vector<std::size_t>& counts,
+      const std::function<pfgen_runtime::MonteCarloResult(pfgen_runtime::RunShare)>& job) {
+    std::vector<pfgen_runtime::MonteCarloResult> results(processes_);
+    std::vector<std::exception_ptr> errors(processes_);
+    std::vector<std::thread> threads;
+    std::size_t first = 0;
+    for (std::size_t k = 0; k < processes_; ++k) {
+      pfgen_runtime::RunShare share;
+      share.first = first;
+      share.count = counts[k];
+      share.process = k;
+      share.processes = processes_;
+      share.exchange = [this, k](std::vector<std::vector<char>> outgoing) { return exchange(k, std::move(outgoing)); };
+      share.gather = [this, k](std::vector<char> mine) { return gather(k, std::move(mine)); };
+      first += counts[k];
+      threads.emplace_back([&, k, share] {
+        try {
+          results[k] = job(share);
+        } catch (...) {
+          errors[k] = std::current_exception();
+          std::lock_guard<std::mutex> lock(mutex_);
+          broken_ = true;
+          arrived_.notify_all();
+        }
+      });
+    }
+    for (std::thread& thread : threads) thread.join();
+    for (const std::exception_ptr& error : errors)
+      if (error) std::rethrow_exception(error);
+    return results;
+  }
+
+ private:
+  std::vector<std::vector<char>> exchange(std::size_t k, std::vector<std::vector<char>> outgoing) {
+    outboxes_[k] = std::move(outgoing);
+    meet();
+    std::vector<std::vector<char>> incoming;
+    for (std::size_t from = 0; from < processes_; ++from) incoming.push_back(outboxes_[from].at(k));
+    meet();  // every process has read its blocks before any outbox is used again
+    return incoming;
+  }
+
+  std::vector<std::vector<char>> gather(std::size_t k, std::vector<char> mine) {
+    gathered_[k] = std::move(mine);
+    meet();
+    return k == 0 ? gathered_ : std::vector<std::vector<char>>{};
+  }
+
+  // A barrier of all processes; throws when one of them has failed instead of arriving.
+  void meet() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const std::size_t generation = generation_;
+    if (++waiting_ == processes_) {
+      waiting_ = 0;
+      ++generation_;
+      arrived_.notify_all();
+      return;
+    }
+    arrived_.wait(lock, [&] { return generation_ != generation || broken_; });
+    if (generation_ == generation) throw std::runtime_error("another process of the job failed");
+  }
+
+  const std::size_t processes_;
+  std::vector<std::vector<std::vector<char>>> outboxes_;
+  std::vector<std::vector<char>> gathered_;
+  std::mutex mutex_;
+  std::condition_variable arrived_;
+  std::size_t waiting_ = 0, generation_ = 0;
+  bool broken_ = false;
+};
+
+}  // namespace pfgen_test
