@@ -203,6 +203,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     const std::vector<std::vector<char>> received = share.exchange(std::move(slices));
     timing.exchange_seconds = seconds_since(exchange_start);
     std::vector<RunResult> slice;
+    slice.reserve(options.runs);
     for (const std::vector<char>& block : received) {
       timing.exchanged_bytes += block.size();
       decode_series_slice(block, filters.size(), range(share.process), plan.n, slice);

@@ -67,6 +67,19 @@ void alive_counts(Series& series, Visit visit) {
 
 std::vector<char> encode_series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n) {
   ByteWriter writer;
+  // The exact size first: the slices of a large job are tens of megabytes, which growing by
+  // doubling would copy again and again.
+  const auto rows_bytes = [&](const std::vector<double>& values) {
+    return sizeof(std::uint64_t) + (values.empty() ? 0 : range.size() * n * sizeof(double));
+  };
+  std::size_t size = sizeof(kSliceMagic) + sizeof(std::uint64_t);
+  for (const RunResult& run : runs) {
+    size += sizeof(run.truth_last) + sizeof(std::uint64_t) + run.filters.size() * sizeof(std::ptrdiff_t) +
+            sizeof(run.reference.last) + rows_bytes(run.truth_record) + rows_bytes(run.reference.error_record);
+    for (const FilterRunResult& filter : run.filters)
+      size += rows_bytes(filter.error_record) + rows_bytes(filter.reference_record);
+  }
+  writer.out.reserve(size);
   put_magic(writer, kSliceMagic);
   writer.put(static_cast<std::uint64_t>(runs.size()));
   for (const RunResult& run : runs) {
