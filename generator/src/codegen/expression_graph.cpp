@@ -172,19 +172,37 @@ std::size_t ExpressionGraph::constant(const GiNaC::numeric& value) {
   return id;
 }
 
+bool ExpressionGraph::is_exact_one(std::size_t id) const {
+  const Node& node = nodes_[id];
+  return node.kind == OpKind::Constant && node.value().is_rational() && node.value() == 1;
+}
+
 // Commutative operations list their operands in a fixed order, so a*b and b*a share a node.
+// Signs are folded where that is exact in floating point and costs no operation: a + (-b) is
+// a - b, a - (-b) is a + b, -(-a) is a (negation is exact, and rounding is symmetric about zero).
 std::size_t ExpressionGraph::add(std::size_t a, std::size_t b) {
+  if (nodes_[b].kind == OpKind::Neg && nodes_[a].kind != OpKind::Neg) return sub(a, nodes_[b].args[0]);
+  if (nodes_[a].kind == OpKind::Neg && nodes_[b].kind != OpKind::Neg) return sub(b, nodes_[a].args[0]);
   return intern(operation(OpKind::Add, {std::min(a, b), std::max(a, b)}));
 }
-std::size_t ExpressionGraph::sub(std::size_t a, std::size_t b) { return intern(operation(OpKind::Sub, {a, b})); }
+std::size_t ExpressionGraph::sub(std::size_t a, std::size_t b) {
+  if (nodes_[b].kind == OpKind::Neg) return add(a, nodes_[b].args[0]);
+  return intern(operation(OpKind::Sub, {a, b}));
+}
+// A product with an exact 1 is the other factor (x * 1 is x exactly).
 std::size_t ExpressionGraph::mul(std::size_t a, std::size_t b) {
+  if (is_exact_one(a)) return b;
+  if (is_exact_one(b)) return a;
   return intern(operation(OpKind::Mul, {std::min(a, b), std::max(a, b)}));
 }
 std::size_t ExpressionGraph::div(std::size_t a, std::size_t b) { return intern(operation(OpKind::Div, {a, b})); }
 std::size_t ExpressionGraph::zero_where_zero(std::size_t guard, std::size_t value) {
   return intern(operation(OpKind::ZeroWhereZero, {guard, value}));
 }
-std::size_t ExpressionGraph::neg(std::size_t a) { return intern(operation(OpKind::Neg, {a})); }
+std::size_t ExpressionGraph::neg(std::size_t a) {
+  if (nodes_[a].kind == OpKind::Neg) return nodes_[a].args[0];
+  return intern(operation(OpKind::Neg, {a}));
+}
 std::size_t ExpressionGraph::call(Function function, const std::vector<std::size_t>& args) {
   Node node = operation(OpKind::Call, Operands(args));
   node.function = function;

@@ -149,14 +149,22 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i; j < n; ++j) {
         const std::size_t u = vars.upper_index(i, j);
+        // On the diagonal the two products are one, (P E[J]^T)_ii = (E[J] P)_ii: their sum is
+        // doubled once instead of adding each product twice.
         std::vector<std::size_t> terms;
         for (std::size_t k = 0; k < n; ++k) {
           if (!eq.jacobian_term[j][k].is_zero()) terms.push_back(graph.mul(builder.variable(vars.P(i, k)), J[j][k]));
-          if (!eq.jacobian_term[i][k].is_zero()) terms.push_back(graph.mul(J[i][k], builder.variable(vars.P(k, j))));
+          if (i != j && !eq.jacobian_term[i][k].is_zero())
+            terms.push_back(graph.mul(J[i][k], builder.variable(vars.P(k, j))));
         }
-        if (!eq.P_diffusion[u].is_zero()) terms.push_back(builder.polynomial(eq.P_diffusion[u]));
-        std::size_t sum = terms.empty() ? graph.constant(0) : terms[0];
-        for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
+        std::size_t sum = graph.constant(0);
+        if (!terms.empty()) {
+          sum = terms[0];
+          for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
+          if (i == j) sum = graph.add(sum, sum);
+        }
+        if (!eq.P_diffusion[u].is_zero())
+          sum = terms.empty() ? builder.polynomial(eq.P_diffusion[u]) : graph.add(sum, builder.polynomial(eq.P_diffusion[u]));
         if (eq.P_correction[u].is_zero()) {
         } else if (H) {
           std::vector<std::size_t> products;

@@ -116,7 +116,7 @@ std::size_t GraphBuilder::monomial(const Monomial& m) {
 
 std::size_t GraphBuilder::polynomial(const Polynomial& p) {
   std::size_t sum = 0;
-  bool first = true;
+  bool first = true, negated = false;  // negated: the terms so far sum to -sum
   for (const auto* entry : p.ordered_view()) {
     const auto& [m, coefficient] = *entry;
     bool negative = false;
@@ -127,16 +127,30 @@ std::size_t GraphBuilder::polynomial(const Polynomial& p) {
       if (negative) c = -c;
       term = m.is_one() ? graph_.constant(c) : (c == 1 ? monomial(m) : graph_.mul(graph_.constant(c), monomial(m)));
     } else {
-      term = m.is_one() ? expression(coefficient) : graph_.mul(expression(coefficient), monomial(m));
+      // A product with a negative number (-mu, -2 a b) is subtracted as its positive (mu, 2 a b):
+      // the same value exactly, without the operation that negates the coefficient.
+      GiNaC::ex positive = coefficient;
+      if (GiNaC::is_exactly_a<GiNaC::mul>(coefficient) && coefficient.op(coefficient.nops() - 1).info(GiNaC::info_flags::negative)) {
+        negative = true;
+        positive = -coefficient;
+      }
+      term = m.is_one() ? expression(positive) : graph_.mul(expression(positive), monomial(m));
     }
     if (first) {
-      sum = negative ? graph_.neg(term) : term;
+      sum = term;
+      negated = negative;
       first = false;
+    } else if (negated) {
+      // -s - t is -(s + t) exactly, and -s + t is t - s: the leading negative terms are summed as
+      // they are and subtracted from the first positive one, which saves their negation.
+      sum = negative ? graph_.add(sum, term) : graph_.sub(term, sum);
+      negated = negative;
     } else {
       sum = negative ? graph_.sub(sum, term) : graph_.add(sum, term);
     }
   }
-  return first ? graph_.constant(0) : sum;
+  if (first) return graph_.constant(0);
+  return negated ? graph_.neg(sum) : sum;
 }
 
 // A product's factors in the order of their printed text, its sums with pfgen's sign
@@ -168,8 +182,10 @@ std::size_t GraphBuilder::product(const GiNaC::ex& e) {
     // printer makes that text canonical too, however GiNaC holds the power).
     factors.push_back(Factor{printer.print(GiNaC::pow(sum->sum, sum->exponent)), sum->sum, sum->exponent});
   }
-  // The number as GiNaC would hold it: a factor unless it is 1.
-  if (number != 1) factors.push_back(Factor{printer.print(number), number, 0});
+  // The number as GiNaC would hold it: a factor unless it is 1; -1 negates the product instead of
+  // multiplying it (the same value exactly), which a sum then takes as a subtraction.
+  const bool negated = number == -1;
+  if (number != 1 && !negated) factors.push_back(Factor{printer.print(number), number, 0});
   std::stable_sort(factors.begin(), factors.end(), [](const Factor& a, const Factor& b) { return a.key < b.key; });
   auto node = [&](const Factor& f) {
     if (f.exponent == 0) return expression(f.value);
@@ -178,7 +194,7 @@ std::size_t GraphBuilder::product(const GiNaC::ex& e) {
   };
   std::size_t out = node(factors[0]);
   for (std::size_t k = 1; k < factors.size(); ++k) out = graph_.mul(out, node(factors[k]));
-  return out;
+  return negated ? graph_.neg(out) : out;
 }
 
 std::size_t GraphBuilder::expression(const GiNaC::ex& e) {

@@ -133,6 +133,7 @@ class ExpressionGraph {
   std::size_t intern(const Node& node);
   std::size_t leaf(OpKind kind, Leaf data);
   void grow_index();
+  bool is_exact_one(std::size_t id) const;
 
   std::vector<Node> nodes_;
   std::deque<Leaf> leaves_;  // a deque: nodes point into it, and it never moves what it holds
