@@ -60,6 +60,25 @@ TEST_CASE("expression graph: nodes are numbered in creation order, operands firs
   CHECK_FALSE(g.is_leaf(square));
 }
 
+// The rules the graph applies as it is built are exact in IEEE arithmetic (negation is exact and
+// rounding symmetric about zero; x * 1 is x), so the generated code's values do not depend on them;
+// each saves an operation or costs none.
+TEST_CASE("expression graph: signs fold into sums and a product with exact 1 is its other factor", "[unit][codegen]") {
+  ExpressionGraph g;
+  const std::size_t a = g.input("a"), b = g.input("b");
+  const std::size_t one = g.constant(GiNaC::numeric(1));
+  CHECK(g.mul(a, one) == a);
+  CHECK(g.mul(one, b) == b);
+  CHECK(g.mul(a, g.constant(GiNaC::numeric(1.0))) != a);  // a float 1.0 is the model's number, kept as written
+  CHECK(g.add(a, g.neg(b)) == g.sub(a, b));
+  CHECK(g.add(g.neg(a), b) == g.sub(b, a));
+  CHECK(g.sub(a, g.neg(b)) == g.add(a, b));
+  CHECK(g.neg(g.neg(a)) == a);
+  const std::size_t both = g.add(g.neg(a), g.neg(b));  // no cheaper form without a negation
+  CHECK(g.node(both).kind == OpKind::Add);
+  CHECK(g.shared_counts({g.add(a, g.neg(b))}).total() == 1);
+}
+
 TEST_CASE("expression graph: what outputs need, in topological order without leaves", "[unit][codegen]") {
   ExpressionGraph g;
   const std::size_t x = g.input("x", InputSource::element("state", 0));
@@ -67,7 +86,7 @@ TEST_CASE("expression graph: what outputs need, in topological order without lea
   const std::size_t z = g.input("z", InputSource::element("state", 2));
   const std::size_t xy = g.mul(x, y);
   const std::size_t unused = g.mul(y, z);
-  const std::size_t out = g.add(xy, g.neg(x));
+  const std::size_t out = g.add(xy, g.mul(x, x));
 
   CHECK(g.needed_operations({out}) == std::vector<std::size_t>{xy, xy + 2, out});
   CHECK(g.needed_operations({xy}) == std::vector<std::size_t>{xy});

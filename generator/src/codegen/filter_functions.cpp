@@ -2,10 +2,12 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "pfgen/codegen/correction_factor.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
+#include "pfgen/codegen/moment_form.hpp"
 #include "pfgen/codegen/local_names.hpp"
 
 namespace pfgen::codegen {
@@ -127,12 +129,20 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
   if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty())
     return written(*flat, names.out, names, emitter, options.eliminate_common_subexpressions);
 
-  auto structured = [&](GraphBuilder& builder, ExpressionGraph& graph, std::vector<std::size_t>& roots) {
-    for (const auto& p : eq.m_drift) roots.push_back(builder.polynomial(p));
+  // The structured form with E[f], E[J] and E[g g^T] as the derivation's expanded polynomials, or
+  // (`moments`, when they are Gaussian expectations) as sums over shared moments.
+  const ExpectationSources* sources = eq.expectation_sources ? &*eq.expectation_sources : nullptr;
+  auto structured = [&](bool moments) {
+    return [&, moments](GraphBuilder& builder, ExpressionGraph& graph, std::vector<std::size_t>& roots) {
+    std::optional<MomentForm> form;
+    if (moments) form.emplace(builder, vars);
+    for (std::size_t j = 0; j < n; ++j)
+      roots.push_back(moments ? form->expectation(sources->drift[j]) : builder.polynomial(eq.m_drift[j]));
     std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
     for (std::size_t j = 0; j < n; ++j)
       for (std::size_t k = 0; k < n; ++k)
-        if (!eq.jacobian_term[j][k].is_zero()) J[j][k] = builder.polynomial(eq.jacobian_term[j][k]);
+        if (!eq.jacobian_term[j][k].is_zero())
+          J[j][k] = moments ? form->expectation(sources->jacobian[j][k]) : builder.polynomial(eq.jacobian_term[j][k]);
     // The correction's factors: K (n x p) and H = A P (p x n), each entry built once.
     const auto H = correction_factor(eq);
     std::vector<std::vector<std::size_t>> K_node, H_node;
@@ -163,8 +173,11 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
           for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
           if (i == j) sum = graph.add(sum, sum);
         }
-        if (!eq.P_diffusion[u].is_zero())
-          sum = terms.empty() ? builder.polynomial(eq.P_diffusion[u]) : graph.add(sum, builder.polynomial(eq.P_diffusion[u]));
+        if (!eq.P_diffusion[u].is_zero()) {
+          const std::size_t diffusion =
+              moments ? form->expectation(sources->diffusion_upper[u]) : builder.polynomial(eq.P_diffusion[u]);
+          sum = terms.empty() ? diffusion : graph.add(sum, diffusion);
+        }
         if (eq.P_correction[u].is_zero()) {
         } else if (H) {
           std::vector<std::size_t> products;
@@ -180,12 +193,18 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
         roots.push_back(sum);
       }
     for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
+    };
   };
-  auto stein = built_function("derivatives", model, eq, names, structured);
-  if (stein->stats.cse.total() >= flat->stats.cse.total()) return written(*flat, names.out, names, emitter, true);
-  stein->stats.naive = flat->stats.naive;  // the count of the expanded equations, whichever form is written
-  flat.reset();
-  return written(*stein, names.out, names, emitter, true);
+  // The form with the fewest operations after sharing, the earlier on a tie.
+  std::unique_ptr<BuiltFunction> kept = std::move(flat);
+  const OpCounts naive = kept->stats.naive;  // the count of the expanded equations, whichever form is written
+  for (bool moments : {false, true}) {
+    if (moments && !(sources && sources->drift.size() == n)) continue;
+    auto candidate = built_function("derivatives", model, eq, names, structured(moments));
+    if (candidate->stats.cse.total() < kept->stats.cse.total()) kept = std::move(candidate);
+  }
+  kept->stats.naive = naive;
+  return written(*kept, names.out, names, emitter, true);
 }
 
 std::string counts_text(const OpCounts& c) {

@@ -114,43 +114,68 @@ std::size_t GraphBuilder::monomial(const Monomial& m) {
   return first ? graph_.constant(1) : product;
 }
 
-std::size_t GraphBuilder::polynomial(const Polynomial& p) {
-  std::size_t sum = 0;
-  bool first = true, negated = false;  // negated: the terms so far sum to -sum
-  for (const auto* entry : p.ordered_view()) {
-    const auto& [m, coefficient] = *entry;
-    bool negative = false;
-    std::size_t term;
-    if (GiNaC::is_exactly_a<GiNaC::numeric>(coefficient)) {
-      GiNaC::numeric c = GiNaC::ex_to<GiNaC::numeric>(coefficient);
-      negative = c.is_negative();
-      if (negative) c = -c;
-      term = m.is_one() ? graph_.constant(c) : (c == 1 ? monomial(m) : graph_.mul(graph_.constant(c), monomial(m)));
+// Terms added one at a time into a sum, each with its sign: a negative term is subtracted.
+// -s - t is -(s + t) exactly, and -s + t is t - s: the leading negative terms are summed as they
+// are and subtracted from the first positive one, which saves their negation.
+class GraphBuilder::SignedSum {
+ public:
+  explicit SignedSum(ExpressionGraph& graph) : graph_(graph) {}
+  void add(std::size_t term, bool negative) {
+    if (empty_) {
+      sum_ = term;
+      negated_ = negative;
+      empty_ = false;
+    } else if (negated_) {
+      sum_ = negative ? graph_.add(sum_, term) : graph_.sub(term, sum_);
+      negated_ = negative;
     } else {
-      // A product with a negative number (-mu, -2 a b) is subtracted as its positive (mu, 2 a b):
-      // the same value exactly, without the operation that negates the coefficient.
-      GiNaC::ex positive = coefficient;
-      if (GiNaC::is_exactly_a<GiNaC::mul>(coefficient) && coefficient.op(coefficient.nops() - 1).info(GiNaC::info_flags::negative)) {
-        negative = true;
-        positive = -coefficient;
-      }
-      term = m.is_one() ? expression(positive) : graph_.mul(expression(positive), monomial(m));
-    }
-    if (first) {
-      sum = term;
-      negated = negative;
-      first = false;
-    } else if (negated) {
-      // -s - t is -(s + t) exactly, and -s + t is t - s: the leading negative terms are summed as
-      // they are and subtracted from the first positive one, which saves their negation.
-      sum = negative ? graph_.add(sum, term) : graph_.sub(term, sum);
-      negated = negative;
-    } else {
-      sum = negative ? graph_.sub(sum, term) : graph_.add(sum, term);
+      sum_ = negative ? graph_.sub(sum_, term) : graph_.add(sum_, term);
     }
   }
-  if (first) return graph_.constant(0);
-  return negated ? graph_.neg(sum) : sum;
+  std::size_t result() const {
+    if (empty_) return graph_.constant(0);
+    return negated_ ? graph_.neg(sum_) : sum_;
+  }
+
+ private:
+  ExpressionGraph& graph_;
+  std::size_t sum_ = 0;
+  bool empty_ = true, negated_ = false;  // negated: the terms so far sum to -sum_
+};
+
+template <class Factor>
+std::pair<std::size_t, bool> GraphBuilder::scaled(const GiNaC::ex& coefficient, bool unit, Factor factor) {
+  if (GiNaC::is_exactly_a<GiNaC::numeric>(coefficient)) {
+    GiNaC::numeric c = GiNaC::ex_to<GiNaC::numeric>(coefficient);
+    const bool negative = c.is_negative();
+    if (negative) c = -c;
+    return {unit ? graph_.constant(c) : (c == 1 ? factor() : graph_.mul(graph_.constant(c), factor())), negative};
+  }
+  // A product with a negative number (-mu, -2 a b) is subtracted as its positive (mu, 2 a b): the
+  // same value exactly, without the operation that negates the coefficient.
+  const bool negative = GiNaC::is_exactly_a<GiNaC::mul>(coefficient) &&
+                        coefficient.op(coefficient.nops() - 1).info(GiNaC::info_flags::negative);
+  const GiNaC::ex positive = negative ? -coefficient : coefficient;
+  return {unit ? expression(positive) : graph_.mul(expression(positive), factor()), negative};
+}
+
+std::size_t GraphBuilder::polynomial(const Polynomial& p) {
+  SignedSum sum(graph_);
+  for (const auto* entry : p.ordered_view()) {
+    const auto& [m, coefficient] = *entry;
+    const auto [term, negative] = scaled(coefficient, m.is_one(), [&] { return monomial(m); });
+    sum.add(term, negative);
+  }
+  return sum.result();
+}
+
+std::size_t GraphBuilder::combination(const std::vector<std::pair<GiNaC::ex, std::size_t>>& terms) {
+  SignedSum sum(graph_);
+  for (const auto& [coefficient, node] : terms) {
+    const auto [term, negative] = scaled(coefficient, node == kOne, [node = node] { return node; });
+    sum.add(term, negative);
+  }
+  return sum.result();
 }
 
 // A product's factors in the order of their printed text, its sums with pfgen's sign

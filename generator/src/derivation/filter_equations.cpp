@@ -34,6 +34,7 @@ struct MomentTerms {
   std::vector<Polynomial> drift;
   PolyMatrix jacobian;
   std::vector<Polynomial> diffusion_upper;
+  std::optional<ExpectationSources> sources;  // when the three are Gaussian expectations
 };
 
 // A diffusion covariance's upper triangle, G_ij for i <= j row by row, as polynomials in the states.
@@ -70,10 +71,11 @@ MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariab
 
   // State x_i and mean m_i share variable index i (FilterVariables), so the
   // extended filter's f(m), J(m), G(m) are the x-polynomials read as they are.
-  if (is_extended_kalman(kind)) return MomentTerms{f, J, G_upper};
+  if (is_extended_kalman(kind)) return MomentTerms{f, J, G_upper, std::nullopt};
 
   GaussianExpectation E(vars);
   MomentTerms out;
+  out.sources = ExpectationSources{f, J, G_upper};
   for (const auto& fi : f) out.drift.push_back(E.of(fi));
   out.jacobian.assign(n, std::vector<Polynomial>(n));
   for (std::size_t i = 0; i < n; ++i)
@@ -153,6 +155,7 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
   if (uses_sigma_points(kind)) return unscented_filter(model, std::move(eq));
 
   MomentTerms terms = moment_terms(model, kind, vars);
+  eq.expectation_sources = std::move(terms.sources);
   eq.m_drift = std::move(terms.drift);
   eq.P_diffusion = std::move(terms.diffusion_upper);
 

@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pfgen/algebra/polynomial.hpp"
@@ -49,6 +50,10 @@ class GraphBuilder {
   void define(const std::vector<FilterDefinition>& definitions, const std::vector<GiNaC::ex>& variable_symbols);
 
   std::size_t polynomial(const Polynomial& p);
+  // sum_k c_k x_k for terms (c_k, node of x_k), x_k = kOne for the number 1: the coefficients
+  // and signs taken as polynomial() takes a polynomial's.
+  static constexpr std::size_t kOne = static_cast<std::size_t>(-1);
+  std::size_t combination(const std::vector<std::pair<GiNaC::ex, std::size_t>>& terms);
   std::size_t variable(std::uint32_t variable) { return variable_power(variable, 1); }
   std::size_t expression(const GiNaC::ex& e);
 
@@ -62,6 +67,11 @@ class GraphBuilder {
   std::size_t integer_power(std::size_t base, long exponent);
   std::size_t monomial(const Monomial& m);
   std::size_t product(const GiNaC::ex& e);  // a GiNaC mul, its sums' signs made canonical
+  class SignedSum;
+  // coefficient * factor() (just the coefficient when `unit`), its coefficient made positive, and
+  // whether it was negative: factor() is called only when needed, so nodes are made in one order.
+  template <class Factor>
+  std::pair<std::size_t, bool> scaled(const GiNaC::ex& coefficient, bool unit, Factor factor);
 
   ExpressionGraph& graph_;
   std::vector<std::size_t> variable_inputs_;

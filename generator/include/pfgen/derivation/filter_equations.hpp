@@ -36,6 +36,15 @@
 
 namespace pfgen {
 
+// The state polynomials whose Gaussian expectations a Gaussian-closure kind's equations are:
+// m_drift = E[drift], jacobian_term = E[jacobian], P_diffusion = E[diffusion_upper]. Over the
+// states: variable i is x_i, which has m_i's index in FilterVariables.
+struct ExpectationSources {
+  std::vector<Polynomial> drift;                    // f, n
+  std::vector<std::vector<Polynomial>> jacobian;    // d_k f_j, n x n
+  std::vector<Polynomial> diffusion_upper;          // G = g g^T (or the additive G), upper triangle
+};
+
 struct FilterEquations {
   std::string name;          // the kind's name ("ekf-additive") or the user filter's
   std::string description;   // one line of rich text (notation/rich_text.hpp): the kind's description or the user filter's
@@ -53,6 +62,10 @@ struct FilterEquations {
   // Kept so that code generation can compute P_moment from it, sharing its entries.
   // Empty for a user filter.
   std::vector<std::vector<Polynomial>> jacobian_term;  // n x n
+  // Set by the kinds whose m_drift, jacobian_term and P_diffusion are Gaussian expectations (not
+  // the EKF kinds): what they are expectations of, so that code generation can write each as a
+  // sum over shared moments E[x^a] (codegen/moment_form.hpp).
+  std::optional<ExpectationSources> expectation_sources;
   std::vector<Polynomial> P_moment;             // n(n+1)/2, upper triangle
   std::vector<Polynomial> P_diffusion;          // n(n+1)/2
   std::vector<Polynomial> P_correction;         // n(n+1)/2, subtracted
