@@ -238,12 +238,12 @@ class GaussHermiteFilter {
     const std::size_t p = model.p();
     std::vector<double> A(p * n_), R(p * p, 0.0);
     for (std::size_t r = 0; r < p; ++r)
-      for (std::size_t i = 0; i < n_; ++i) A[r * n_ + i] = to_double(model.observation.A[r][i], "A");
-    const std::size_t cols = model.observation.B.front().size();
+      for (std::size_t i = 0; i < n_; ++i) A[r * n_ + i] = to_double(model.observation.rate().A[r][i], "A");
+    const std::size_t cols = model.observation.rate().B.front().size();
     for (std::size_t r = 0; r < p; ++r)
       for (std::size_t s = 0; s < p; ++s)
         for (std::size_t c = 0; c < cols; ++c)
-          R[r * p + s] += to_double(model.observation.B[r][c], "B") * to_double(model.observation.B[s][c], "B");
+          R[r * p + s] += to_double(model.observation.rate().B[r][c], "B") * to_double(model.observation.rate().B[s][c], "B");
     std::vector<double> Rinv_A = solve(R, A, p, n_);  // (B B^T)^-1 A, p x n
     observation_.assign(n_ * n_, 0.0);                  // A^T (B B^T)^-1 A
     for (std::size_t i = 0; i < n_; ++i)
