@@ -12,6 +12,8 @@
 
 #include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
+#include "pfgen/codegen/moment_form.hpp"
+#include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 
 using namespace pfgen;
@@ -246,5 +248,37 @@ TEST_CASE("graph builder: reading the graph back gives the polynomial it was bui
     const Polynomial back = to_polynomial(graph, root, vars);
     INFO("run " << run << ": " << p.to_ex(vars.symbols()) << " came back as " << back.to_ex(vars.symbols()));
     CHECK(back == p);
+  }
+}
+
+// The moment form (codegen/moment_form) writes E[q] as sum_a c_a E[x^a] over moments built once:
+// read back, each expectation is the polynomial GaussianExpectation derives, with several
+// expectations sharing one graph (and its moments) as derivatives() shares them.
+TEST_CASE("moment form: expectations over shared moments read back as the derived expectations", "[unit][codegen]") {
+  std::mt19937 rng(20261127);
+  auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  const FilterVariables vars(2);
+  const GiNaC::ex a = parameter("a"), t = model().time;
+  for (int run = 0; run < 50; ++run) {
+    ExpressionGraph graph;
+    GraphBuilder builder(graph, model(), vars);
+    MomentForm form(builder, vars);
+    GaussianExpectation expectation(vars);
+    for (int k = 0; k < 4; ++k) {
+      Polynomial q;  // over the states x1, x2 (variables 0 and 1)
+      for (int term = pick(1, 6); term > 0; --term) {
+        Monomial m;
+        for (std::uint32_t v = 0; v < 2; ++v)
+          if (pick(0, 2) > 0) m = m * Monomial::variable(v, static_cast<std::uint32_t>(pick(1, 3)));
+        GiNaC::ex c = GiNaC::numeric(pick(1, 9) * (pick(0, 1) ? 1 : -1), pick(1, 4));
+        if (pick(0, 3) == 0) c *= a;
+        if (pick(0, 5) == 0) c *= GiNaC::sin(t);
+        q.add_term(m, c);
+      }
+      const std::size_t root = form.expectation(q);
+      const Polynomial back = to_polynomial(graph, root, vars), derived = expectation.of(q);
+      INFO("run " << run << ": E[" << q.to_ex(vars.symbols()) << "] came back as " << back.to_ex(vars.symbols()));
+      CHECK(back == derived);
+    }
   }
 }

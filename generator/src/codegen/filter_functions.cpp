@@ -92,6 +92,76 @@ FunctionCode written(const BuiltFunction& built, const std::string& target, cons
   return code;
 }
 
+// derivatives() in the derivation's structure (see derivatives_code): E[f], E[J] and E[g g^T] as
+// the derivation's expanded polynomials, or (`moments`, for the Gaussian-closure kinds) as sums
+// over shared moments; P's moment terms as P E[J]^T + E[J] P; the correction as K (A P) where
+// correction_factor() finds it equal.
+void build_structured(const FilterEquations& eq, bool moments, GraphBuilder& builder, ExpressionGraph& graph,
+                      std::vector<std::size_t>& roots) {
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n();
+  const ExpectationSources* sources = moments ? &*eq.expectation_sources : nullptr;
+  std::optional<MomentForm> form;
+  if (moments) form.emplace(builder, vars);
+  for (std::size_t j = 0; j < n; ++j)
+    roots.push_back(moments ? form->expectation(sources->drift[j]) : builder.polynomial(eq.m_drift[j]));
+  std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t k = 0; k < n; ++k)
+      if (!eq.jacobian_term[j][k].is_zero())
+        J[j][k] = moments ? form->expectation(sources->jacobian[j][k]) : builder.polynomial(eq.jacobian_term[j][k]);
+  // The correction's factors: K (n x p) and H = A P (p x n), each entry built once.
+  const auto H = correction_factor(eq);
+  std::vector<std::vector<std::size_t>> K_node, H_node;
+  if (H) {
+    K_node.assign(n, std::vector<std::size_t>(eq.p));
+    H_node.assign(eq.p, std::vector<std::size_t>(n));
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t r = 0; r < eq.p; ++r)
+        if (!eq.gain[i][r].is_zero()) K_node[i][r] = builder.polynomial(eq.gain[i][r]);
+    for (std::size_t r = 0; r < eq.p; ++r)
+      for (std::size_t j = 0; j < n; ++j)
+        if (!(*H)[r][j].is_zero()) H_node[r][j] = builder.polynomial((*H)[r][j]);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      const std::size_t u = vars.upper_index(i, j);
+      // On the diagonal the two products are one, (P E[J]^T)_ii = (E[J] P)_ii: their sum is
+      // doubled once instead of adding each product twice.
+      std::vector<std::size_t> terms;
+      for (std::size_t k = 0; k < n; ++k) {
+        if (!eq.jacobian_term[j][k].is_zero()) terms.push_back(graph.mul(builder.variable(vars.P(i, k)), J[j][k]));
+        if (i != j && !eq.jacobian_term[i][k].is_zero())
+          terms.push_back(graph.mul(J[i][k], builder.variable(vars.P(k, j))));
+      }
+      std::size_t sum = graph.constant(0);
+      if (!terms.empty()) {
+        sum = terms[0];
+        for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
+        if (i == j) sum = graph.add(sum, sum);
+      }
+      if (!eq.P_diffusion[u].is_zero()) {
+        const std::size_t diffusion =
+            moments ? form->expectation(sources->diffusion_upper[u]) : builder.polynomial(eq.P_diffusion[u]);
+        sum = terms.empty() ? diffusion : graph.add(sum, diffusion);
+      }
+      if (eq.P_correction[u].is_zero()) {
+      } else if (H) {
+        std::vector<std::size_t> products;
+        for (std::size_t r = 0; r < eq.p; ++r)
+          if (!eq.gain[i][r].is_zero() && !(*H)[r][j].is_zero())
+            products.push_back(graph.mul(K_node[i][r], H_node[r][j]));
+        std::size_t correction = products[0];  // not empty: the correction is not zero
+        for (std::size_t k = 1; k < products.size(); ++k) correction = graph.add(correction, products[k]);
+        sum = graph.sub(sum, correction);
+      } else {
+        sum = graph.sub(sum, builder.polynomial(eq.P_correction[u]));
+      }
+      roots.push_back(sum);
+    }
+  for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
+}
+
 }  // namespace
 
 FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
@@ -112,10 +182,10 @@ FunctionCode function_code(const std::string& function, const std::vector<Polyno
 // fewer operations after sharing. A user filter has no Jacobian term (its P
 // drift is given whole), so it always takes the expanded form. The structured
 // form also writes the correction P A^T R^-1 A P as K (A P), K the gain, where
-// correction_factor() has checked that this is the same polynomial.
+// correction_factor() has checked that this is the same polynomial. For the Gaussian-closure
+// kinds a third form writes E[f], E[J] and E[g g^T] over shared moments (moment_form.hpp).
 FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                               const FunctionNames& names, const CFamilyEmitter& emitter) {
-  const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
   // P's drift (upper triangle) is summed one entry at a time, as the graph takes it.
   auto expanded = [&](GraphBuilder& builder, ExpressionGraph&, std::vector<std::size_t>& roots) {
@@ -129,77 +199,16 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
   if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty())
     return written(*flat, names.out, names, emitter, options.eliminate_common_subexpressions);
 
-  // The structured form with E[f], E[J] and E[g g^T] as the derivation's expanded polynomials, or
-  // (`moments`, when they are Gaussian expectations) as sums over shared moments.
-  const ExpectationSources* sources = eq.expectation_sources ? &*eq.expectation_sources : nullptr;
   auto structured = [&](bool moments) {
-    return [&, moments](GraphBuilder& builder, ExpressionGraph& graph, std::vector<std::size_t>& roots) {
-    std::optional<MomentForm> form;
-    if (moments) form.emplace(builder, vars);
-    for (std::size_t j = 0; j < n; ++j)
-      roots.push_back(moments ? form->expectation(sources->drift[j]) : builder.polynomial(eq.m_drift[j]));
-    std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
-    for (std::size_t j = 0; j < n; ++j)
-      for (std::size_t k = 0; k < n; ++k)
-        if (!eq.jacobian_term[j][k].is_zero())
-          J[j][k] = moments ? form->expectation(sources->jacobian[j][k]) : builder.polynomial(eq.jacobian_term[j][k]);
-    // The correction's factors: K (n x p) and H = A P (p x n), each entry built once.
-    const auto H = correction_factor(eq);
-    std::vector<std::vector<std::size_t>> K_node, H_node;
-    if (H) {
-      K_node.assign(n, std::vector<std::size_t>(eq.p));
-      H_node.assign(eq.p, std::vector<std::size_t>(n));
-      for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t r = 0; r < eq.p; ++r)
-          if (!eq.gain[i][r].is_zero()) K_node[i][r] = builder.polynomial(eq.gain[i][r]);
-      for (std::size_t r = 0; r < eq.p; ++r)
-        for (std::size_t j = 0; j < n; ++j)
-          if (!(*H)[r][j].is_zero()) H_node[r][j] = builder.polynomial((*H)[r][j]);
-    }
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i; j < n; ++j) {
-        const std::size_t u = vars.upper_index(i, j);
-        // On the diagonal the two products are one, (P E[J]^T)_ii = (E[J] P)_ii: their sum is
-        // doubled once instead of adding each product twice.
-        std::vector<std::size_t> terms;
-        for (std::size_t k = 0; k < n; ++k) {
-          if (!eq.jacobian_term[j][k].is_zero()) terms.push_back(graph.mul(builder.variable(vars.P(i, k)), J[j][k]));
-          if (i != j && !eq.jacobian_term[i][k].is_zero())
-            terms.push_back(graph.mul(J[i][k], builder.variable(vars.P(k, j))));
-        }
-        std::size_t sum = graph.constant(0);
-        if (!terms.empty()) {
-          sum = terms[0];
-          for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
-          if (i == j) sum = graph.add(sum, sum);
-        }
-        if (!eq.P_diffusion[u].is_zero()) {
-          const std::size_t diffusion =
-              moments ? form->expectation(sources->diffusion_upper[u]) : builder.polynomial(eq.P_diffusion[u]);
-          sum = terms.empty() ? diffusion : graph.add(sum, diffusion);
-        }
-        if (eq.P_correction[u].is_zero()) {
-        } else if (H) {
-          std::vector<std::size_t> products;
-          for (std::size_t r = 0; r < eq.p; ++r)
-            if (!eq.gain[i][r].is_zero() && !(*H)[r][j].is_zero())
-              products.push_back(graph.mul(K_node[i][r], H_node[r][j]));
-          std::size_t correction = products[0];  // not empty: the correction is not zero
-          for (std::size_t k = 1; k < products.size(); ++k) correction = graph.add(correction, products[k]);
-          sum = graph.sub(sum, correction);
-        } else {
-          sum = graph.sub(sum, builder.polynomial(eq.P_correction[u]));
-        }
-        roots.push_back(sum);
-      }
-    for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
+    return [&eq, moments](GraphBuilder& builder, ExpressionGraph& graph, std::vector<std::size_t>& roots) {
+      build_structured(eq, moments, builder, graph, roots);
     };
   };
   // The form with the fewest operations after sharing, the earlier on a tie.
   std::unique_ptr<BuiltFunction> kept = std::move(flat);
   const OpCounts naive = kept->stats.naive;  // the count of the expanded equations, whichever form is written
   for (bool moments : {false, true}) {
-    if (moments && !(sources && sources->drift.size() == n)) continue;
+    if (moments && !(eq.expectation_sources && eq.expectation_sources->drift.size() == n)) continue;
     auto candidate = built_function("derivatives", model, eq, names, structured(moments));
     if (candidate->stats.cse.total() < kept->stats.cse.total()) kept = std::move(candidate);
   }
