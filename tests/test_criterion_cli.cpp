@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "support/cli_helpers.hpp"
+#include "support/same_for_threads.hpp"
 
 using namespace pfgen_test;
 
@@ -25,19 +26,11 @@ std::vector<std::string> simulate_args(const std::string& model, const TempDir& 
 TEST_CASE("simulate --risk-epsilon: J per filter, identical for 1 and 2 threads, and its CSV",
           "[criterion][simulate][compiler]") {
   TempDir dir;
-  auto run = [&](const std::string& threads, const std::string& csv) {
-    return run_pfgen(simulate_args(example("basin2006_quadratic.yaml"), dir,
-                                   {"--runs", "6", "--T", "1", "--dt", "1e-3", "--filters", "optimal,ekf",
-                                    "--risk-epsilon", "0.5", "--threads", threads, "--criterion-csv",
-                                    dir.file(csv), "-q"}));
-  };
-  const auto one = run("1", "one.csv"), two = run("2", "two.csv");
-  INFO(one.err);
-  REQUIRE(one.exit_code == 0);
-  REQUIRE(two.exit_code == 0);
-  auto without_csv_line = [](std::string text) { return std::regex_replace(text, std::regex("criterion csv: .*\n"), ""); };
-  CHECK(without_csv_line(one.out) == without_csv_line(two.out));
-  CHECK(read_file(dir.file("one.csv")) == read_file(dir.file("two.csv")));
+  const ProcessResult one = same_for_1_and_2_threads(
+      dir,
+      simulate_args(example("basin2006_quadratic.yaml"), dir,
+                    {"--runs", "6", "--T", "1", "--dt", "1e-3", "--filters", "optimal,ekf", "--risk-epsilon", "0.5", "-q"}),
+      "--criterion-csv");
   CHECK(one.out.find("Exponential criterion J = eps log E[exp(int_0^T L dt / eps)], eps = 0.5, L = (x - m)^T M (x - "
                      "m), M = identity") != std::string::npos);
   // One row per filter: name, runs, J (a number), ...
@@ -56,7 +49,8 @@ TEST_CASE("simulate --risk-epsilon: J per filter, identical for 1 and 2 threads,
   CHECK(plain.out.find("Exponential criterion") == std::string::npos);
   const std::size_t start = one.out.find("\nExponential criterion J"), end = one.out.find("\nTruth diverged");
   REQUIRE(start != std::string::npos);
-  CHECK(without_csv_line(one.out.substr(0, start) + one.out.substr(end)) == plain.out);
+  CHECK(std::regex_replace(one.out.substr(0, start) + one.out.substr(end), std::regex("criterion csv: .*\n"), "") ==
+        plain.out);
 }
 
 TEST_CASE("simulate: bad criterion options are one-line errors naming the option, before the build",

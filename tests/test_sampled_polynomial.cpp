@@ -16,6 +16,7 @@
 #include "pfgen/model/yaml_model_loader.hpp"
 #include "pfgen/printing/equation_report.hpp"
 #include "support/cli_helpers.hpp"
+#include "support/same_for_threads.hpp"
 #include "support/isserlis_reference.hpp"
 #include "support/symbolic_mismatch.hpp"
 #include "support/test_paths.hpp"
@@ -200,16 +201,9 @@ TEST_CASE("sampled polynomial c: the generated update (C++ and C) is the moment-
 TEST_CASE("simulate: samples through a polynomial c, with the particle reference, the same for 1 and 2 threads",
           "[simulate][sampled][polynomial][compiler]") {
   TempDir dir;
-  auto run = [&](const std::string& threads, const std::string& csv) {
-    return run_pfgen({"simulate", example("polynomial/range_squared_sampled.yaml"), "--cache-dir", dir.file("cache"),
-                      "--runs", "8", "--T", "1", "--threads", threads, "--reference", "particles:200", "-o", dir.file(csv)});
-  };
-  const ProcessResult one = run("1", "one.csv"), two = run("2", "two.csv");
-  INFO(one.err);
-  REQUIRE(one.exit_code == 0);
-  REQUIRE(two.exit_code == 0);
-  CHECK(without_csv_line(one.out) == without_csv_line(two.out));
-  CHECK(read_file(dir.file("one.csv")) == read_file(dir.file("two.csv")));
+  const ProcessResult one =
+      same_for_1_and_2_threads(dir, {"simulate", example("polynomial/range_squared_sampled.yaml"), "--cache-dir",
+                                     dir.file("cache"), "--runs", "8", "--T", "1", "--reference", "particles:200"});
   CHECK(one.out.find("\nreference      x1     8") != std::string::npos);
   CHECK(one.out.find("Truth diverged: no run") != std::string::npos);
 }

@@ -7,23 +7,17 @@
 #include <vector>
 
 #include "support/cli_helpers.hpp"
+#include "support/same_for_threads.hpp"
 
 using namespace pfgen_test;
 
 TEST_CASE("simulate: the cubic sensor's filters and particle reference, identical for 1 and 2 threads",
           "[simulate][polynomial][compiler]") {
   TempDir dir;
-  auto run = [&](const std::string& threads, const std::string& csv) {
-    return run_pfgen({"simulate", example("polynomial/cubic_sensor.yaml"), "--cache-dir", dir.file("cache"), "--runs",
-                      "12", "--T", "1", "--dt", "1e-2", "--threads", threads, "--reference", "particles:200", "-o",
-                      dir.file(csv)});
-  };
-  const ProcessResult one = run("1", "one.csv"), two = run("2", "two.csv");
-  INFO(one.err);
-  REQUIRE(one.exit_code == 0);
-  REQUIRE(two.exit_code == 0);
-  CHECK(without_csv_line(one.out) == without_csv_line(two.out));
-  CHECK(read_file(dir.file("one.csv")) == read_file(dir.file("two.csv")));
+  const ProcessResult one =
+      same_for_1_and_2_threads(dir, {"simulate", example("polynomial/cubic_sensor.yaml"), "--cache-dir",
+                                     dir.file("cache"), "--runs", "12", "--T", "1", "--dt", "1e-2", "--reference",
+                                     "particles:200"});
   for (const char* row : {"\noptimal        x    12", "\nekf            x    12", "\nukf            x    12",
                           "\nreference      x    12"})
     CHECK(one.out.find(row) != std::string::npos);
