@@ -315,6 +315,50 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
   CHECK_THROWS_AS(run_monte_carlo(scheme, observation, x0, scenario.filters, no_place), std::invalid_argument);
 }
 
+// What one process receives from the others is decoded defensively: bytes changed or cut anywhere
+// in an exchanged slice or a gathered share are folded (a changed number is a number) or refused
+// with a runtime_error, never read out of bounds or allocated by a corrupt length.
+TEST_CASE("monte carlo: corrupted shares are folded or refused, never read out of bounds", "[montecarlo][runtime][unit]") {
+  Scenario scenario;
+  EulerMaruyama scheme(scalar_linear_system(scenario.model));
+  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
+  scenario.options.runs = 5;
+  scenario.options.shown_run = 1;
+  std::mt19937 rng(2026);
+  std::size_t refused = 0, folded = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const bool in_exchange = trial % 2 == 0, cut = trial % 3 == 0;
+    const auto corrupt = [&](std::vector<char>& bytes) {
+      if (bytes.empty()) return;
+      const std::size_t at = std::uniform_int_distribution<std::size_t>(0, bytes.size() - 1)(rng);
+      if (cut)
+        bytes.resize(at);
+      else
+        bytes[at] = static_cast<char>(bytes[at] ^ (1 << std::uniform_int_distribution<int>(0, 7)(rng)));
+    };
+    MonteCarloOptions options = scenario.options;
+    options.share = RunShare{0, 5, 0, 1,
+                             [&](std::vector<std::vector<char>> outgoing) {
+                               if (in_exchange) corrupt(outgoing[0]);
+                               return outgoing;
+                             },
+                             [&](std::vector<char> mine) {
+                               if (!in_exchange) corrupt(mine);
+                               return std::vector<std::vector<char>>{mine};
+                             }};
+    try {
+      (void)run_monte_carlo(scheme, observation, x0, scenario.filters, options);
+      ++folded;
+    } catch (const std::runtime_error& error) {
+      CHECK(std::string(error.what()).find("monte carlo: ") == 0);
+      ++refused;
+    }
+  }
+  CHECK(refused > 0);
+  CHECK(folded > 0);
+}
+
 TEST_CASE("monte carlo: each run equals simulate_truth + run_filter bit for bit", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   ScalarLinear& model = scenario.model;

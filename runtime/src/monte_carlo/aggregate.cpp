@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -35,7 +37,13 @@ SeriesStatistics make_series_statistics(std::size_t records, std::size_t n) {
           Eigen::MatrixXd(rows, cols)};
 }
 
+// The shown run's record vector as records x n; a vector of another length can only come from a
+// process's share that was not what it claims (the runs made here always have the plan's length).
 Eigen::MatrixXd records_matrix(const std::vector<double>& values, std::size_t records, std::size_t n) {
+  if (values.size() != records * n)
+    throw std::runtime_error("monte carlo: a process's share of the runs is malformed (the shown run has " +
+                             std::to_string(values.size()) + " recorded values, not " + std::to_string(records * n) +
+                             ")");
   Eigen::MatrixXd matrix(static_cast<Eigen::Index>(records), static_cast<Eigen::Index>(n));
   for (std::size_t r = 0; r < records; ++r)
     for (std::size_t i = 0; i < n; ++i)

@@ -55,7 +55,10 @@ void run_fields(IO& io, Run& r) {
   io.put_or_get(r.truth_report);
   std::uint64_t filters = r.filters.size();
   io.put_or_get(filters);
-  if constexpr (!std::is_const_v<Run>) r.filters.resize(static_cast<std::size_t>(filters));
+  if constexpr (!std::is_const_v<Run>) {
+    if (filters != io.filters) ByteReader::fail();  // before allocating a corrupt count
+    r.filters.resize(static_cast<std::size_t>(filters));
+  }
   for (auto& f : r.filters) filter_fields(io, f);
   io.put_or_get(r.reference.last);
   io.put_or_get(r.reference.stopped);
@@ -80,6 +83,7 @@ struct Decode {
     reader.get(value);
   }
   ByteReader reader;
+  std::uint64_t filters = 0;  // every run's, as the folding process expects
 };
 
 }  // namespace
@@ -107,7 +111,7 @@ std::vector<char> encode_share(const std::vector<RunResult>& runs, const MonteCa
 
 std::vector<char> decode_share(const std::vector<char>& bytes, std::size_t filters, std::vector<RunResult>& runs,
                                MonteCarloTiming& timing) {
-  Decode io{ByteReader(bytes)};
+  Decode io{ByteReader(bytes), filters};
   for (char expected : kMagic) {
     char c = 0;
     io.put_or_get(c);

@@ -35,9 +35,11 @@ void put_rows(ByteWriter& writer, const std::vector<double>& values, RecordRange
   writer.put_range(values.data() + range.first * n, range.size() * n);
 }
 
-void get_rows(ByteReader& reader, std::vector<double>& values, RecordRange range, std::size_t n) {
+// A run's rows of the range, or none; none only where the fold never reads them (`read`: the run
+// reached a record time, so fold_series reads the vector there).
+void get_rows(ByteReader& reader, std::vector<double>& values, RecordRange range, std::size_t n, bool read) {
   reader.get(values);
-  if (!values.empty() && values.size() != range.size() * n) ByteReader::fail();
+  if (values.empty() ? read && range.size() > 0 : values.size() != range.size() * n) ByteReader::fail();
 }
 
 // Every matrix of the series' statistics across runs, in one order for both directions.
@@ -112,12 +114,12 @@ void decode_series_slice(const std::vector<char>& bytes, std::size_t filters, Re
     run.filters.resize(filters);
     for (FilterRunResult& filter : run.filters) reader.get(filter.last);
     reader.get(run.reference.last);
-    get_rows(reader, run.truth_record, range, n);
+    get_rows(reader, run.truth_record, range, n, run.truth_last >= 0);
     for (FilterRunResult& filter : run.filters) {
-      get_rows(reader, filter.error_record, range, n);
-      get_rows(reader, filter.reference_record, range, n);
+      get_rows(reader, filter.error_record, range, n, filter.last >= 0);
+      get_rows(reader, filter.reference_record, range, n, filter.last >= 0 && run.reference.last >= 0);
     }
-    get_rows(reader, run.reference.error_record, range, n);
+    get_rows(reader, run.reference.error_record, range, n, run.reference.last >= 0);
   }
   if (!reader.done()) ByteReader::fail();
 }
