@@ -31,6 +31,10 @@ class ByteWriter {
     const char* bytes = reinterpret_cast<const char*>(values);
     out.insert(out.end(), bytes, bytes + count * sizeof(T));
   }
+  // A block's 8-byte tag, which names its layout and version.
+  void put_magic(const char (&magic)[8]) {
+    for (char c : magic) put(c);
+  }
   std::vector<char> out;
 };
 
@@ -53,6 +57,14 @@ class ByteReader {
     values.resize(static_cast<std::size_t>(size));
     if (size > 0) std::memcpy(values.data(), bytes_.data() + at_, values.size() * sizeof(T));
     at_ += values.size() * sizeof(T);
+  }
+  // Reads the block's tag; fail() unless it is `magic`.
+  void check_magic(const char (&magic)[8]) {
+    for (char expected : magic) {
+      char c = 0;
+      get(c);
+      if (c != expected) fail();
+    }
   }
   bool done() const { return at_ == bytes_.size(); }
   [[noreturn]] static void fail() { throw std::runtime_error("monte carlo: a process's share of the runs is malformed"); }

@@ -91,7 +91,7 @@ struct Decode {
 std::vector<char> encode_share(const std::vector<RunResult>& runs, const MonteCarloTiming& timing,
                                const std::vector<char>& series_rows) {
   Encode io;
-  for (char c : kMagic) io.put_or_get(c);
+  io.writer.put_magic(kMagic);
   io.put_or_get(timing.threads);
   io.put_or_get(timing.truth_seconds);
   io.put_or_get(timing.truth_cpu_seconds);
@@ -112,11 +112,7 @@ std::vector<char> encode_share(const std::vector<RunResult>& runs, const MonteCa
 std::vector<char> decode_share(const std::vector<char>& bytes, std::size_t filters, std::vector<RunResult>& runs,
                                MonteCarloTiming& timing) {
   Decode io{ByteReader(bytes), filters};
-  for (char expected : kMagic) {
-    char c = 0;
-    io.put_or_get(c);
-    if (c != expected) ByteReader::fail();
-  }
+  io.reader.check_magic(kMagic);
   MonteCarloTiming block;
   io.put_or_get(block.threads);
   io.put_or_get(block.truth_seconds);
@@ -136,8 +132,7 @@ std::vector<char> decode_share(const std::vector<char>& bytes, std::size_t filte
   io.put_or_get(count);
   for (std::uint64_t k = 0; k < count; ++k) {
     RunResult run;
-    run_fields(io, run);
-    if (run.filters.size() != filters) ByteReader::fail();
+    run_fields(io, run);  // refuses a run of another number of filters
     runs.push_back(std::move(run));
   }
   std::vector<char> series_rows;

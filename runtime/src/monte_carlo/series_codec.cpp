@@ -13,18 +13,6 @@ namespace {
 constexpr char kSliceMagic[8] = {'p', 'f', 'g', 'e', 'n', 's', 'l', '1'};
 constexpr char kRowsMagic[8] = {'p', 'f', 'g', 'e', 'n', 's', 'r', '1'};
 
-void put_magic(ByteWriter& writer, const char (&magic)[8]) {
-  for (char c : magic) writer.put(c);
-}
-
-void check_magic(ByteReader& reader, const char (&magic)[8]) {
-  for (char expected : magic) {
-    char c = 0;
-    reader.get(c);
-    if (c != expected) ByteReader::fail();
-  }
-}
-
 // Rows `range` of a record vector (records x n, row-major), or nothing when the run has none.
 void put_rows(ByteWriter& writer, const std::vector<double>& values, RecordRange range, std::size_t n) {
   if (values.empty()) {
@@ -82,7 +70,7 @@ std::vector<char> encode_series_slice(const std::vector<RunResult>& runs, Record
       size += rows_bytes(filter.error_record) + rows_bytes(filter.reference_record);
   }
   writer.out.reserve(size);
-  put_magic(writer, kSliceMagic);
+  writer.put_magic(kSliceMagic);
   writer.put(static_cast<std::uint64_t>(runs.size()));
   for (const RunResult& run : runs) {
     writer.put(run.truth_last);
@@ -102,7 +90,7 @@ std::vector<char> encode_series_slice(const std::vector<RunResult>& runs, Record
 void decode_series_slice(const std::vector<char>& bytes, std::size_t filters, RecordRange range, std::size_t n,
                          std::vector<RunResult>& runs) {
   ByteReader reader(bytes);
-  check_magic(reader, kSliceMagic);
+  reader.check_magic(kSliceMagic);
   std::uint64_t count = 0;
   reader.get(count);
   for (std::uint64_t k = 0; k < count; ++k) {
@@ -126,7 +114,7 @@ void decode_series_slice(const std::vector<char>& bytes, std::size_t filters, Re
 
 std::vector<char> encode_series_rows(const MonteCarloSeries& series, RecordRange range) {
   ByteWriter writer;
-  put_magic(writer, kRowsMagic);
+  writer.put_magic(kRowsMagic);
   writer.put(static_cast<std::uint64_t>(series.filters.size()));
   statistics_matrices(series, [&](const Eigen::MatrixXd& matrix) {
     if (matrix.size() == 0) return;  // the reference's, without a reference
@@ -141,7 +129,7 @@ std::vector<char> encode_series_rows(const MonteCarloSeries& series, RecordRange
 
 void decode_series_rows(const std::vector<char>& bytes, RecordRange range, MonteCarloSeries& series) {
   ByteReader reader(bytes);
-  check_magic(reader, kRowsMagic);
+  reader.check_magic(kRowsMagic);
   std::uint64_t filters = 0;
   reader.get(filters);
   if (filters != series.filters.size()) ByteReader::fail();
