@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -134,7 +135,40 @@ std::vector<double> random_vector(std::mt19937& rng, std::size_t size, double lo
 }
 
 // f, g, dg/dx (GiNaC and central differences), G when only G is given.
+// Each batched function of the table gives, lane by lane, the bits of its one-state function
+// (or is absent exactly when that is), for batches of 1, 5 and 32 random states.
+void check_batches(const SimulationPlugin& plugin) {
+  const pfgen_plugin& table = plugin.table();
+  CHECK((table.diffusion_batch != nullptr) == (table.diffusion != nullptr));
+  CHECK((table.observation_rate_batch != nullptr) == (table.observation_rate != nullptr));
+  REQUIRE(table.drift_batch != nullptr);
+  using One = void (*)(double, const double*, double*);
+  using Many = void (*)(double, std::size_t, const double*, double*);
+  const std::size_t n = table.n;
+  auto check = [&](const char* what, One one, Many many, std::size_t outputs) {
+    std::mt19937 rng(99);
+    for (const std::size_t count : {1, 5, 32}) {
+      const double t = random_vector(rng, 1, 0, 3)[0];
+      const std::vector<double> x = random_vector(rng, n * count, -3, 3);
+      std::vector<double> batch(outputs * count, 0.0), lane(n), value(outputs);
+      many(t, count, x.data(), batch.data());
+      for (std::size_t k = 0; k < count; ++k) {
+        for (std::size_t i = 0; i < n; ++i) lane[i] = x[i * count + k];
+        one(t, lane.data(), value.data());
+        for (std::size_t e = 0; e < outputs; ++e) {
+          INFO(what << ": lane " << k << " of " << count << ", entry " << e);
+          CHECK(std::memcmp(&batch[e * count + k], &value[e], sizeof(double)) == 0);
+        }
+      }
+    }
+  };
+  check("drift", table.drift, table.drift_batch, n);
+  if (table.diffusion) check("diffusion", table.diffusion, table.diffusion_batch, n * table.q);
+  if (table.observation_rate) check("observation rate", table.observation_rate, table.observation_rate_batch, table.p);
+}
+
 void check_truth(const pfgen::Model& model, const SimulationPlugin& plugin) {
+  check_batches(plugin);
   const std::size_t n = model.n();
   const pfgen_runtime::SdeSystem system = plugin.system();
   REQUIRE(system.n == n);
@@ -420,6 +454,7 @@ TEST_CASE("plugin: a polynomial observation's truth observes h(x), with B from o
   const SimulationPlugin plugin(built("range squared", model, {pfgen::derive_filter(model, pfgen::FilterKind::Optimal)})
                                     .build.path);
   REQUIRE(plugin.table().observation_rate != nullptr);
+  check_batches(plugin);
   CHECK(plugin.observation_is_constant());
   pfgen_runtime::LinearObservation observation = plugin.observation();
   CHECK_FALSE(observation.is_linear());
@@ -444,6 +479,7 @@ TEST_CASE("plugin: samples through a polynomial c are c(x) + Uv v", "[plugin][co
       built("range squared sampled", model, {pfgen::derive_filter(model, pfgen::FilterKind::CdOptimal)}).build.path);
   REQUIRE(plugin.is_sampled());
   REQUIRE(plugin.table().observation_rate != nullptr);
+  check_batches(plugin);
   pfgen_runtime::SampledMeasurement measurement = plugin.measurement();
   CHECK_FALSE(measurement.is_linear());
   const double x[2] = {1.25, -0.5}, v[1] = {0.5};

@@ -30,16 +30,29 @@ void LinearObservation::set_delay(double h) {
   delay_ = h;
 }
 
-void LinearObservation::set_rate(Rate rate) {
+void LinearObservation::set_rate(Rate rate, BatchRate batch) {
   if (!rate) throw std::invalid_argument("observation: the rate function is missing");
   if (delay_ != 0) throw std::invalid_argument("observation: a nonlinear rate with a delay is not supported");
   rate_ = std::move(rate);
+  batch_rate_ = std::move(batch);
   start_.resize(static_cast<Eigen::Index>(p_));
+  lane_x_.resize(static_cast<Eigen::Index>(n_));
+  lane_h_.resize(static_cast<Eigen::Index>(p_));
 }
 
 void LinearObservation::nonlinear_rate(double t, const double* x, double* h) const {
   if (!rate_) throw std::logic_error("observation: the rate is linear, A0 + A x");
   rate_(t, x, h);
+}
+
+void LinearObservation::nonlinear_rate_batch(double t, std::size_t count, const double* x, double* h) {
+  if (!rate_) throw std::logic_error("observation: the rate is linear, A0 + A x");
+  if (batch_rate_) return batch_rate_(t, count, x, h);
+  for (std::size_t k = 0; k < count; ++k) {
+    for (std::size_t i = 0; i < n_; ++i) lane_x_[static_cast<Eigen::Index>(i)] = x[i * count + k];
+    rate_(t, lane_x_.data(), lane_h_.data());
+    for (std::size_t a = 0; a < p_; ++a) h[a * count + k] = lane_h_[static_cast<Eigen::Index>(a)];
+  }
 }
 
 std::size_t LinearObservation::delay_steps(double dt) const {

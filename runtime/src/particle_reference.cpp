@@ -20,9 +20,10 @@ ParticleReference::ParticleReference(const TruthScheme& scheme, const LinearObse
   if (observation.delay() != 0) throw std::invalid_argument("particle reference: delayed observations are not supported");
   if (observation.n() != n_) throw std::invalid_argument("particle reference: the observation must have the truth's n states");
   initialise(options);
-  const auto n = static_cast<Eigen::Index>(n_), p = static_cast<Eigen::Index>(p_), N = static_cast<Eigen::Index>(N_);
-  rate_start_.resize(p, N);
-  rate_spare_.resize(p, N);
+  const auto n = static_cast<Eigen::Index>(n_), p = static_cast<Eigen::Index>(p_);
+  rate_start_.assign(blocks_ * p_ * kParticleBlock, 0.0);
+  rate_spare_.assign(rate_start_.size(), 0.0);
+  rate_end_.assign(p_ * kParticleBlock, 0.0);
   A0_.resize(p);
   A_.resize(p, n);
   B_.resize(p, static_cast<Eigen::Index>(observation.r()));
@@ -58,41 +59,66 @@ void ParticleReference::initialise(const ParticleReferenceOptions& options) {
     throw std::invalid_argument("particle reference: m0 and P0 must have the truth's n states");
   if (!m0_.allFinite()) throw std::invalid_argument("particle reference: m0 must be finite");
   root_ = covariance_square_root(options.P0, "particle reference: P0");
-  const auto n = static_cast<Eigen::Index>(n_), N = static_cast<Eigen::Index>(N_);
-  particles_.resize(n, N);
-  spare_.resize(n, N);
-  log_weight_.resize(N_);
-  weight_.resize(N_);
-  alive_.resize(N_);
-  alive_spare_.resize(N_);
-  dW_.resize(static_cast<Eigen::Index>(q_));
-  z_.resize(n);
+  blocks_ = (N_ + kParticleBlock - 1) / kParticleBlock;
+  const std::size_t lanes = blocks_ * kParticleBlock;
+  particles_.assign(lanes * n_, 0.0);
+  spare_.assign(particles_.size(), 0.0);
+  log_weight_.assign(lanes, 0.0);
+  weight_.assign(N_, 0.0);
+  alive_.assign(lanes, 0);  // the lanes beyond N stay dead
+  alive_spare_.assign(lanes, 0);
+  dW_.assign(q_ * kParticleBlock, 0.0);
+  noise_.assign(q_ * kParticleBlock, 0.0);
+  x_.resize(static_cast<Eigen::Index>(n_));
+  z_.resize(static_cast<Eigen::Index>(n_));
 }
 
-// The rate at t: A0 + A x with the coefficients last fetched (plain loops, no temporaries: p and n
-// are small), or the observation's nonlinear h(t, x).
-void ParticleReference::set_rate(double t, const Eigen::Ref<const Eigen::VectorXd>& x,
-                                 Eigen::Ref<Eigen::VectorXd> rate) const {
-  if (!observation_->is_linear()) return observation_->nonlinear_rate(t, x.data(), rate.data());
-  for (Eigen::Index a = 0; a < A_.rows(); ++a) {
-    double value = A0_[a];
-    for (Eigen::Index j = 0; j < A_.cols(); ++j) value += A_(a, j) * x[j];
-    rate[a] = value;
+// A0 + A x of every lane with the coefficients last fetched (plain loops, summed as the one-state
+// rate was: p and n are small), or the observation's nonlinear h(t, x) in one batched call. Dead
+// lanes are computed too, and never read.
+void ParticleReference::block_rate(double t, std::size_t b, double* rate) {
+  const double* x = block(particles_, n_, b);
+  if (!observation_->is_linear()) return observation_->nonlinear_rate_batch(t, kParticleBlock, x, rate);
+  for (std::size_t a = 0; a < p_; ++a) {
+    double* out = rate + a * kParticleBlock;
+    for (std::size_t k = 0; k < kParticleBlock; ++k) out[k] = A0_[static_cast<Eigen::Index>(a)];
+    for (std::size_t j = 0; j < n_; ++j) {
+      const double coefficient = A_(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(j));
+      const double* xj = x + j * kParticleBlock;
+      for (std::size_t k = 0; k < kParticleBlock; ++k) out[k] += coefficient * xj[k];
+    }
   }
 }
 
-// One grid step of particle i; false when it left the finite, bounded states (then it is dead).
-bool ParticleReference::step_particle(std::size_t i, double t, double dt) {
-  auto x = particles_.col(static_cast<Eigen::Index>(i));
-  try {
-    scheme_->step(t, x, dt, dW_);
-  } catch (const CovarianceIndefinite&) {
-    return false;  // the truth stops there too
+// log w_i += h_i^T R^-1 dy - 1/2 dt h_i^T R^-1 h_i with h_i the trapezoid 1/2 (start + end), for
+// the living lanes of block b, whose end rates are in rate_end_ and then become their start. The
+// arithmetic is the Eigen expressions' h.dot(R^-1 dy - 0.5 dt R^-1 h), in their order; for p = 1
+// written out, without Eigen's overhead on 1-vectors.
+void ParticleReference::weigh_block(std::size_t b, double dt) {
+  double* __restrict start = block(rate_start_, p_, b);
+  const double* __restrict end = rate_end_.data();
+  char* __restrict alive = alive_.data() + b * kParticleBlock;
+  double* __restrict log_weight = log_weight_.data() + b * kParticleBlock;
+  if (p_ == 1) {  // one pass over the lanes, branch-free, that compilers vectorise
+    const double R = R_inv_(0, 0), R_dy = R_inv_dy_[0], half_dt = 0.5 * dt;
+    for (std::size_t k = 0; k < kParticleBlock; ++k) {
+      const double h = 0.5 * start[k] + 0.5 * end[k];
+      const double updated = log_weight[k] + h * (R_dy - half_dt * (R * h));
+      log_weight[k] = alive[k] ? updated : log_weight[k];
+      alive[k] = static_cast<char>(alive[k] & (updated - updated == 0.0));  // a non-finite weight ends it
+      start[k] = end[k];  // a dead lane's rate is never read
+    }
+    return;
   }
-  if (scheme_->last_step_incomplete()) return false;
-  for (Eigen::Index k = 0; k < x.size(); ++k)
-    if (!(std::abs(x[k]) <= bound_)) return false;
-  return true;
+  for (std::size_t k = 0; k < kParticleBlock; ++k) {
+    if (!alive[k]) continue;
+    for (std::size_t a = 0; a < p_; ++a)
+      h_[static_cast<Eigen::Index>(a)] = 0.5 * start[a * kParticleBlock + k] + 0.5 * end[a * kParticleBlock + k];
+    R_inv_h_.noalias() = R_inv_ * h_;
+    log_weight[k] += h_.dot(R_inv_dy_ - 0.5 * dt * R_inv_h_);
+    for (std::size_t a = 0; a < p_; ++a) start[a * kParticleBlock + k] = end[a * kParticleBlock + k];
+    if (!std::isfinite(log_weight[k])) alive[k] = 0;
+  }
 }
 
 bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, RandomStream& stream,
@@ -109,8 +135,11 @@ bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, Rand
     squares += w * w;
   }
   out.setZero();
-  for (std::size_t i = 0; i < N_; ++i)
-    if (weight_[i] > 0) out += (weight_[i] / sum) * particles_.col(static_cast<Eigen::Index>(i));
+  for (std::size_t i = 0; i < N_; ++i) {
+    if (!(weight_[i] > 0)) continue;
+    const double share = weight_[i] / sum;
+    for (std::size_t e = 0; e < n_; ++e) out[static_cast<Eigen::Index>(e)] += share * particles_[at(n_, i, e)];
+  }
   // ESS = (sum w)^2 / sum w^2 for unnormalised w.
   if (sum * sum >= kResampleFraction * static_cast<double>(N_) * squares) return true;
 
@@ -124,9 +153,9 @@ bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, Rand
     const double point = (static_cast<double>(j) + U) * step;
     while (cumulative <= point && i + 1 < N_) cumulative += weight_[++i];
     while (weight_[i] == 0 && i + 1 < N_) cumulative += weight_[++i];  // round-off at the end: never a dead one
-    const auto from = static_cast<Eigen::Index>(i), to = static_cast<Eigen::Index>(j);
-    spare_.col(to) = particles_.col(from);
-    if (observation_) rate_spare_.col(to) = rate_start_.col(from);
+    for (std::size_t e = 0; e < n_; ++e) spare_[at(n_, j, e)] = particles_[at(n_, i, e)];
+    if (observation_)
+      for (std::size_t a = 0; a < p_; ++a) rate_spare_[at(p_, j, a)] = rate_start_[at(p_, i, a)];
     alive_spare_[j] = alive_[i];
   }
   particles_.swap(spare_);
@@ -140,22 +169,43 @@ bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, Rand
 void ParticleReference::draw_prior(RandomStream& stream) {
   for (std::size_t i = 0; i < N_; ++i) {
     for (Eigen::Index k = 0; k < z_.size(); ++k) z_[k] = stream.normal();
-    auto x = particles_.col(static_cast<Eigen::Index>(i));
-    x = m0_ + root_ * z_;
-    alive_[i] = x.allFinite() && x.cwiseAbs().maxCoeff() <= bound_;
+    x_ = m0_ + root_ * z_;
+    for (std::size_t e = 0; e < n_; ++e) particles_[at(n_, i, e)] = x_[static_cast<Eigen::Index>(e)];
+    alive_[i] = x_.allFinite() && x_.cwiseAbs().maxCoeff() <= bound_;
     log_weight_[i] = 0;
   }
 }
 
-// Every living particle over [t, t + dt]; the increments are drawn for the dead too, so that the
-// others' noise does not move when one dies.
-void ParticleReference::propagate(double t, double dt, RandomStream& stream, ParticleReferenceRun& result) {
-  for (std::size_t i = 0; i < N_; ++i) {
-    stream.wiener_increment(dt, dW_);
-    if (alive_[i]) {
-      alive_[i] = step_particle(i, t, dt);
-      ++result.particle_steps;
+// Block by block: the block's increments (drawn for the dead too, in particle order, so that the
+// others' noise does not move when one dies), one batched step of its living lanes, the bound, and
+// with continuous observations the step's weights.
+void ParticleReference::propagate(double t, double dt, double t_end, RandomStream& stream,
+                                  ParticleReferenceRun& result, bool weigh) {
+  const double scale = std::sqrt(dt);  // dW ~ N(0, dt I), as RandomStream::wiener_increment
+  for (std::size_t b = 0; b < blocks_; ++b) {
+    const std::size_t lanes = std::min(kParticleBlock, N_ - b * kParticleBlock);
+    // (Local __restrict pointers: a char store may alias anything, and would otherwise keep every
+    // load in its place.)
+    const double* __restrict noise = noise_.data();
+    double* __restrict dW = dW_.data();
+    stream.normals(noise_.data(), lanes * q_);
+    for (std::size_t k = 0; k < lanes; ++k)
+      for (std::size_t j = 0; j < q_; ++j) dW[j * kParticleBlock + k] = scale * noise[k * q_ + j];
+    char* __restrict alive = alive_.data() + b * kParticleBlock;
+    std::uint64_t stepped = 0;
+    for (std::size_t k = 0; k < kParticleBlock; ++k) stepped += static_cast<std::uint64_t>(alive[k]);
+    result.particle_steps += stepped;
+    double* x = block(particles_, n_, b);
+    scheme_->step_batch(t, kParticleBlock, x, dt, dW, alive);
+    // A particle that left the finite, bounded states is dead (NaN fails <=).
+    for (std::size_t e = 0; e < n_; ++e) {
+      const double* __restrict xe = x + e * kParticleBlock;
+      for (std::size_t k = 0; k < kParticleBlock; ++k)
+        alive[k] = static_cast<char>(alive[k] & (std::abs(xe[k]) <= bound_));
     }
+    if (!weigh) continue;
+    block_rate(t_end, b, rate_end_.data());
+    weigh_block(b, dt);
   }
 }
 
@@ -183,38 +233,23 @@ ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::M
 
   // Every particle's rate at t0.
   observation_->coefficients(grid.t0, A0_, A_, B_);
-  for (std::size_t i = 0; i < N_; ++i) {
-    const auto column = static_cast<Eigen::Index>(i);
-    set_rate(grid.t0, particles_.col(column), rate_start_.col(column));
-  }
+  for (std::size_t b = 0; b < blocks_; ++b) block_rate(grid.t0, b, block(rate_start_, p_, b));
   if (!weigh_and_resample(mean.col(0), stream, result.resamplings)) return stopped(result, grid.time(0));
   result.last = 0;
 
   for (std::size_t k = 0; static_cast<std::ptrdiff_t>(k) < truth_last; ++k) {
-    const double t = grid.time(k);
+    const double t = grid.time(k), t_end = grid.time(k + 1);
     // R = B B^T at the step's left end, as the truth's noise term.
     observation_->coefficients(t, A0_, A_, B_);
     const Eigen::LLT<Eigen::MatrixXd> R(B_ * B_.transpose());
-    if (R.info() != Eigen::Success) return stopped(result, grid.time(k));
+    if (R.info() != Eigen::Success) return stopped(result, t);
     R_inv_ = R.solve(Eigen::MatrixXd::Identity(p, p));
     R_inv_dy_.noalias() = R_inv_ * dy.col(static_cast<Eigen::Index>(k));
-
-    propagate(t, grid.dt, stream, result);
-    observation_->coefficients(grid.time(k + 1), A0_, A_, B_);
-    for (std::size_t i = 0; i < N_; ++i) {
-      if (!alive_[i]) continue;
-      const auto column = static_cast<Eigen::Index>(i);
-      auto start = rate_start_.col(column);
-      // start becomes the rate at t + dt, the next step's left end; h_ the trapezoid's average.
-      h_ = 0.5 * start;
-      set_rate(grid.time(k + 1), particles_.col(column), start);
-      h_ += 0.5 * start;
-      R_inv_h_.noalias() = R_inv_ * h_;
-      log_weight_[i] += h_.dot(R_inv_dy_ - 0.5 * grid.dt * R_inv_h_);
-      if (!std::isfinite(log_weight_[i])) alive_[i] = 0;
-    }
+    // The rates at the step's right end take A0 and A there.
+    observation_->coefficients(t_end, A0_, A_, B_);
+    propagate(t, grid.dt, t_end, stream, result, true);
     if (!weigh_and_resample(mean.col(static_cast<Eigen::Index>(k + 1)), stream, result.resamplings))
-      return stopped(result, grid.time(k + 1));
+      return stopped(result, t_end);
     result.last = static_cast<std::ptrdiff_t>(k + 1);
   }
   return result;
@@ -233,7 +268,7 @@ ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::s
   result.last = 0;
 
   for (std::size_t k = 0; static_cast<std::ptrdiff_t>(k) < truth_last; ++k) {
-    propagate(grid.time(k), grid.dt, stream, result);
+    propagate(grid.time(k), grid.dt, grid.time(k + 1), stream, result, false);
     const std::size_t sample = (k + 1) / steps_per_sample;
     if ((k + 1) % steps_per_sample == 0 && sample >= 1 && sample <= count) {
       // y_s ~ N(C0 + C x, Uv Uv^T) at t_s = t0 + s T, the time draw_samples used.
@@ -247,9 +282,9 @@ ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::s
       const auto y = samples.col(static_cast<Eigen::Index>(sample - 1));
       for (std::size_t i = 0; i < N_; ++i) {
         if (!alive_[i]) continue;
-        const double* x = particles_.col(static_cast<Eigen::Index>(i)).data();
+        for (std::size_t e = 0; e < n_; ++e) x_[static_cast<Eigen::Index>(e)] = particles_[at(n_, i, e)];
         measurement_->noise_free(grid.t0 + static_cast<double>(sample) * measurement_->period(), C0_.data(), C_.data(),
-                                 x, predicted_.data());
+                                 x_.data(), predicted_.data());
         for (Eigen::Index a = 0; a < p; ++a) innovation_[a] = y[a] - predicted_[a];
         S.matrixL().solveInPlace(innovation_);  // L^-1 e: |L^-1 e|^2 = e^T S^-1 e
         log_weight_[i] += -0.5 * innovation_.squaredNorm();

@@ -28,13 +28,70 @@ void euler_increment(const Eigen::VectorXd& f, double h, const G& g, const W& dW
   }
 }
 
+// The length of a row of g, its q entries `stride` apart, summed in order: the one-state and the
+// batched size tests of AdaptiveEuler compute it alike, so they decide alike.
+double row_norm(const double* first, std::size_t stride, std::size_t q) {
+  double sum = 0;
+  for (std::size_t j = 0; j < q; ++j) sum += first[j * stride] * first[j * stride];
+  return std::sqrt(sum);
+}
+
 }  // namespace
 
 TruthScheme::TruthScheme(SdeSystem system)
     : system_(std::move(system)), f_(Eigen::VectorXd::Zero(system_.n)), g_(system_.n, system_.q),
-      increment_(system_.n) {
+      increment_(system_.n), lane_x_(system_.n), lane_dW_(system_.q) {
   system_.validate();
   g_.setZero();
+}
+
+void TruthScheme::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live) {
+  for (std::size_t k = 0; k < count; ++k)
+    if (live[k] && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
+}
+
+bool TruthScheme::step_lane(double t, std::size_t count, std::size_t k, double* x, double dt, const double* dW) {
+  const std::size_t n = system_.n, q = system_.q;
+  for (std::size_t i = 0; i < n; ++i) lane_x_[static_cast<Eigen::Index>(i)] = x[i * count + k];
+  for (std::size_t j = 0; j < q; ++j) lane_dW_[static_cast<Eigen::Index>(j)] = dW[j * count + k];
+  bool finished = true;
+  try {
+    step(t, lane_x_, dt, lane_dW_);
+    finished = !last_step_incomplete();
+  } catch (const CovarianceIndefinite&) {
+    finished = false;
+  }
+  for (std::size_t i = 0; i < n; ++i) x[i * count + k] = lane_x_[static_cast<Eigen::Index>(i)];
+  return finished;
+}
+
+bool TruthScheme::has_batch() const {
+  return system_.drift_batch && (system_.q == 0 || system_.diffusion_batch);
+}
+
+void TruthScheme::euler_lanes(std::size_t count, double* x, double dt, const double* dW, const char* take) {
+  const std::size_t n = system_.n, q = system_.q;
+  lane_increment_.resize(count);
+  double* __restrict value = lane_increment_.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* __restrict fi = batch_f_.data() + i * count;
+    for (std::size_t k = 0; k < count; ++k) value[k] = fi[k] * dt;
+    for (std::size_t j = 0; j < q; ++j) {
+      const double* __restrict gij = batch_g_.data() + (i * q + j) * count;
+      const double* __restrict dWj = dW + j * count;
+      for (std::size_t k = 0; k < count; ++k) value[k] += gij[k] * dWj[k];
+    }
+    double* __restrict xi = x + i * count;
+    for (std::size_t k = 0; k < count; ++k) xi[k] = take[k] ? xi[k] + value[k] : xi[k];
+  }
+}
+
+void TruthScheme::evaluate_batch(double t, std::size_t count, const double* x) {
+  batch_f_.resize(system_.n * count);
+  system_.drift_batch(t, count, x, batch_f_.data());
+  if (system_.q == 0) return;
+  batch_g_.resize(system_.n * system_.q * count);
+  system_.diffusion_batch(t, count, x, batch_g_.data());
 }
 
 void TruthScheme::evaluate_drift(double t, const Eigen::Ref<const Eigen::VectorXd>& x) {
@@ -55,6 +112,12 @@ void EulerMaruyama::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
   evaluate_diffusion(t, x);
   euler_increment(f_, dt, g_, dW, increment_);
   x += increment_;
+}
+
+void EulerMaruyama::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live) {
+  if (!has_batch()) return TruthScheme::step_batch(t, count, x, dt, dW, live);
+  evaluate_batch(t, count, x);
+  euler_lanes(count, x, dt, dW, live);
 }
 
 std::unique_ptr<TruthScheme> EulerMaruyama::clone() const { return std::make_unique<EulerMaruyama>(system_); }
@@ -189,7 +252,7 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
     const double root_h = std::sqrt(interval.h);
     bool small = true;  // NaN compares false, so a non-finite state is stepped and the guard sees it
     for (std::size_t i = 0; i < n && small; ++i) {
-      const double spread = q > 0 ? g_.row(static_cast<Eigen::Index>(i)).norm() * root_h : 0.0;
+      const double spread = q > 0 ? row_norm(g_.data() + i * q, 1, q) * root_h : 0.0;
       if (std::abs(f_[i]) * interval.h + spread > options_.tolerance * (std::abs(x[i]) + options_.scale))
         small = false;
     }
@@ -221,6 +284,50 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
     stack_.push_back({interval.t + half, half, interval.depth + 1, right_offset});
     stack_.push_back({interval.t, half, interval.depth + 1, left_offset});
   }
+}
+
+void AdaptiveEuler::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live) {
+  if (!has_batch() || options_.max_substeps == 0) return TruthScheme::step_batch(t, count, x, dt, dW, live);
+  evaluate_batch(t, count, x);
+  const std::size_t n = system_.n, q = system_.q;
+  const double* f = batch_f_.data();
+  const double* g = batch_g_.data();
+  const double root_h = std::sqrt(dt), tolerance = options_.tolerance, scale = options_.scale;
+  // step()'s first interval is the whole grid step: its size test for every lane, in passes over
+  // contiguous lanes (the row norms summed as row_norm sums them).
+  // (Local __restrict pointers: a char store may alias anything, and would otherwise keep every
+  // load in its place.)
+  whole_.assign(count, 1);
+  spread_.resize(count);
+  char* __restrict whole = whole_.data();
+  double* __restrict squares = spread_.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    std::fill(spread_.begin(), spread_.end(), 0.0);
+    for (std::size_t j = 0; j < q; ++j) {
+      const double* __restrict gij = g + (i * q + j) * count;
+      for (std::size_t k = 0; k < count; ++k) squares[k] += gij[k] * gij[k];
+    }
+    const double* __restrict fi = f + i * count;
+    const double* __restrict xi = x + i * count;
+    for (std::size_t k = 0; k < count; ++k) {
+      const double spread = q > 0 ? std::sqrt(squares[k]) * root_h : 0.0;
+      whole[k] = static_cast<char>(whole[k] & !(std::abs(fi[k]) * dt + spread > tolerance * (std::abs(xi[k]) + scale)));
+    }
+  }
+  // The lanes that pass take that Euler substep at once; the others go through step(), bisecting,
+  // in lane order.
+  take_.resize(count);
+  char* __restrict take = take_.data();
+  std::uint64_t taken = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    take[k] = static_cast<char>(live[k] & whole[k]);
+    taken += static_cast<std::uint64_t>(take[k]);
+  }
+  euler_lanes(count, x, dt, dW, take);
+  substeps_ += taken;
+  incomplete_ = false;
+  for (std::size_t k = 0; k < count; ++k)
+    if (live[k] && !whole_[k] && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
 }
 
 std::unique_ptr<TruthScheme> AdaptiveEuler::clone() const {

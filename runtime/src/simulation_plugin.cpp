@@ -54,6 +54,9 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
     require(t.delay_steps == 0, path, "delay_steps must be 0 without a delay");
   }
   require(!t.observation_rate || t.delay == 0, path, "a nonlinear observation function cannot have a delay");
+  require(t.drift_batch && (t.diffusion_batch != nullptr) == (t.diffusion != nullptr) &&
+              (t.observation_rate_batch != nullptr) == (t.observation_rate != nullptr),
+          path, "a batched function is missing, or present without its one-state function");
   for (std::size_t k = 0; k < t.filter_count; ++k) {
     const pfgen_plugin_filter& f = t.filters[k];
     require(f.name && f.initial_state && f.step, path, "filter " + std::to_string(k) + " lacks a name or function");
@@ -102,6 +105,12 @@ SdeSystem SimulationPlugin::system() const {
     system.diffusion_jacobian = [library, dg = table_->diffusion_jacobian](double t, const double* x, double* out) {
       dg(t, x, out);
     };
+  system.drift_batch = [library, f = table_->drift_batch](double t, std::size_t count, const double* x, double* out) {
+    f(t, count, x, out);
+  };
+  if (table_->diffusion_batch)
+    system.diffusion_batch = [library, g = table_->diffusion_batch](double t, std::size_t count, const double* x,
+                                                                    double* out) { g(t, count, x, out); };
   if (!table_->diffusion_is_zero && table_->diffusion_is_covariance)
     system.diffusion = diffusion_from_covariance(
         table_->n, [library, G = table_->diffusion_covariance](double t, const double* x, double* out) { G(t, x, out); });
@@ -142,7 +151,9 @@ LinearObservation SimulationPlugin::observation() const {
   }();
   observation.set_delay(table_->delay);
   if (table_->observation_rate)
-    observation.set_rate([library, rate = table_->observation_rate](double t, const double* x, double* h) { rate(t, x, h); });
+    observation.set_rate([library, rate = table_->observation_rate](double t, const double* x, double* h) { rate(t, x, h); },
+                         [library, rate = table_->observation_rate_batch](double t, std::size_t count, const double* x,
+                                                                          double* h) { rate(t, count, x, h); });
   return observation;
 }
 

@@ -15,6 +15,9 @@ class LinearObservation {
   using Coefficients = std::function<void(double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B)>;
   // h(t, x) into h (p entries), x the n states; reentrant.
   using Rate = std::function<void(double t, const double* x, double* h)>;
+  // h(t, x) of `count` states at once, entry-major (x[i * count + k], h[a * count + k]); lane k
+  // equal to Rate on state k, bit for bit.
+  using BatchRate = std::function<void(double t, std::size_t count, const double* x, double* h)>;
 
   // Constant coefficients.
   LinearObservation(Eigen::VectorXd A0, Eigen::MatrixXd A, Eigen::MatrixXd B);
@@ -31,12 +34,16 @@ class LinearObservation {
   double delay() const { return delay_; }
   // The rate h(t, x) in place of A0 + A x (the coefficients then give B only); std::invalid_argument
   // for an empty function or with a delay.
-  void set_rate(Rate rate);
+  // `batch`, when given, is the same rate over many states (nonlinear_rate_batch).
+  void set_rate(Rate rate, BatchRate batch = {});
   // Whether the rate is A0 + A x (no set_rate).
   bool is_linear() const { return !rate_; }
   // h(t, x) of set_rate into h (p entries); std::logic_error for a linear rate, whose A0 and A
   // coefficients() gives.
   void nonlinear_rate(double t, const double* x, double* h) const;
+  // The same for `count` states stored entry-major (x[i * count + k] into h[a * count + k]): by the
+  // batched rate, or state by state without one. Not thread-safe, like increment().
+  void nonlinear_rate_batch(double t, std::size_t count, const double* x, double* h);
   // h in steps of the grid: D = round(h / dt); std::invalid_argument when h / dt is not a whole
   // number (relative tolerance 1e-9) or D > max_delay_steps (the truth would keep nothing
   // longer, but a filter's history of D grid values would not fit).
@@ -67,6 +74,8 @@ class LinearObservation {
   Eigen::MatrixXd A_, B_;
   Eigen::VectorXd work_, start_;
   Rate rate_;  // empty: A0 + A x
+  BatchRate batch_rate_;  // optional
+  Eigen::VectorXd lane_x_, lane_h_;  // nonlinear_rate_batch's lanes, without a batched rate
   double delay_ = 0;
 };
 

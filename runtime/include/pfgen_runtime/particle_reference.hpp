@@ -22,6 +22,11 @@
 //   scheme could not finish, gets weight 0 and is no longer stepped; when every particle has, the
 //   reference stops for the run.
 //
+// Layout: the particles are stepped in blocks of kParticleBlock, each block's states entry-major
+// (structure of arrays), so that the truth scheme steps a block in one batched call
+// (TruthScheme::step_batch) and the weights run over contiguous lanes. A lane computes exactly
+// what a particle stepped alone would: the blocks change the speed, never a bit of the result.
+//
 // Random numbers: RandomStream(seed, run, substream::particle_reference), consumed in order (n
 // normals per particle for the prior, then per grid step q normals per particle in particle
 // order, dead ones included, and one uniform per resampling); an adaptive scheme's bridge draws
@@ -48,6 +53,9 @@ namespace pfgen_runtime {
 inline constexpr double kResampleFraction = 0.5;
 // The largest N `pfgen simulate` accepts (N particles of n doubles each per thread).
 inline constexpr std::size_t kMaxParticles = 1000000;
+// Particles per block: enough lanes for any SIMD width and to spread a call over, few enough that
+// a block's f and g stay in the L1 cache.
+inline constexpr std::size_t kParticleBlock = 32;
 
 struct ParticleReferenceOptions {
   std::size_t particles = 1000;  // N, 1 .. kMaxParticles
@@ -98,25 +106,41 @@ class ParticleReference {
   // `result` marked as stopped at t (every weight 0, or a covariance that is not positive definite).
   static ParticleReferenceRun stopped(ParticleReferenceRun result, double t);
   void draw_prior(RandomStream& stream);
-  void propagate(double t, double dt, RandomStream& stream, ParticleReferenceRun& result);
-  bool step_particle(std::size_t i, double t, double dt);
-  void set_rate(double t, const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> rate) const;
+  // Every living particle over [t, t + dt], block by block; with continuous observations
+  // (`weigh`) each block's weights then take the step's likelihood (R_inv_, R_inv_dy_, and A0_
+  // and A_ at t_end = the grid's t + dt, already set).
+  void propagate(double t, double dt, double t_end, RandomStream& stream, ParticleReferenceRun& result, bool weigh);
+  // Block b's observation rate at t into `rate` (p x kParticleBlock, entry-major).
+  void block_rate(double t, std::size_t b, double* rate);
+  // Block b's log-weights for the grid step just taken: the trapezoid of its start and end rates.
+  void weigh_block(std::size_t b, double dt);
   // Weighted mean into `out` and, when the ESS is low, systematic resampling. False when every
   // weight is 0 (or not finite).
   bool weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, RandomStream& stream, std::uint64_t& resamplings);
+  // Particle i's entry e in a blocked array of `rows` entries per particle.
+  static std::size_t at(std::size_t rows, std::size_t i, std::size_t e) {
+    return (i / kParticleBlock) * rows * kParticleBlock + e * kParticleBlock + i % kParticleBlock;
+  }
+  double* block(std::vector<double>& values, std::size_t rows, std::size_t b) {
+    return values.data() + b * rows * kParticleBlock;
+  }
 
   std::unique_ptr<TruthScheme> scheme_;
   std::optional<LinearObservation> observation_;    // continuous observations
   std::optional<SampledMeasurement> measurement_;  // or sampled ones
   std::size_t N_, n_, q_, p_;
+  std::size_t blocks_;  // ceil(N / kParticleBlock); the last block's lanes beyond N are dead
   Eigen::VectorXd m0_;
   Eigen::MatrixXd root_;  // P0^(1/2)
   double bound_;
-  Eigen::MatrixXd particles_, spare_;        // n x N (spare_: the resampled set being built)
-  Eigen::MatrixXd rate_start_, rate_spare_;  // p x N: h(t, x_i) at the step's left end
+  std::vector<double> particles_, spare_;        // n per particle, blocked (spare_: the resampled set)
+  std::vector<double> rate_start_, rate_spare_;  // p per particle: h(t, x_i) at the step's left end
+  std::vector<double> rate_end_;                 // one block's h(t + dt, x_i)
+  std::vector<double> dW_;                       // one block's increments, q per particle
+  std::vector<double> noise_;                    // their standard normals, in drawing order
   std::vector<double> log_weight_, weight_;
-  std::vector<char> alive_, alive_spare_;
-  Eigen::VectorXd dW_, z_, A0_, R_inv_dy_, h_, R_inv_h_;
+  std::vector<char> alive_, alive_spare_;        // blocks_ * kParticleBlock lanes
+  Eigen::VectorXd x_, z_, A0_, R_inv_dy_, h_, R_inv_h_;
   Eigen::MatrixXd A_, B_, R_inv_;
   std::vector<double> C0_, C_, Uv_;  // a sample's coefficients, row-major
   std::vector<double> predicted_;    // C0 + C x_i, or c(x_i)

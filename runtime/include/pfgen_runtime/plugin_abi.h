@@ -24,7 +24,7 @@
 extern "C" {
 #endif
 
-#define PFGEN_PLUGIN_ABI_VERSION 4u
+#define PFGEN_PLUGIN_ABI_VERSION 5u
 #define PFGEN_PLUGIN_ENTRY_NAME "pfgen_plugin_entry"
 
 /* One filter over its packed state [m (n entries), upper triangle of P row by row], followed by
@@ -98,6 +98,14 @@ typedef struct pfgen_plugin {
    * (sampled_observation still gives Uv, its C0 and C zero). NULL for a linear observation and
    * with a delay. */
   void (*observation_rate)(double t, const double* x, double* h);
+  /* Batched forms (version 5 on) of drift, diffusion and observation_rate, each NULL exactly when
+   * its one-state form is: `count` states at one t, entry-major (structure of arrays), so that
+   * x[i * count + k] is entry i of state k and likewise out[e * count + k] entry e of its result
+   * (g's entry e = i * q + j). Lane k's result is bit for bit the one-state function's on state
+   * k: many particles cost one call, and the lanes' arithmetic can share SIMD registers. */
+  void (*drift_batch)(double t, size_t count, const double* x, double* f);
+  void (*diffusion_batch)(double t, size_t count, const double* x, double* g);
+  void (*observation_rate_batch)(double t, size_t count, const double* x, double* h);
 } pfgen_plugin;
 
 /* The exported entry point: const pfgen_plugin* pfgen_plugin_entry(void). */

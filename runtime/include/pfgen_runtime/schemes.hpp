@@ -41,6 +41,14 @@ class TruthScheme {
   // x(t) -> x(t + dt) in place; dW has q entries, the increment of W over [t, t + dt].
   virtual void step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) = 0;
   virtual std::unique_ptr<TruthScheme> clone() const = 0;
+  // Steps `count` states at once over [t, t + dt]. x is entry-major (x[i * count + k] is entry i
+  // of state k), and so is dW (dW[j * count + k]). Lanes with live[k] == 0 are left alone; a lane
+  // whose step cannot be finished (last_step_incomplete, or CovarianceIndefinite from its
+  // diffusion) gets live[k] = 0, its x then unspecified. Each lane's result is bit for bit
+  // step()'s on that state, and the scheme's own draws (AdaptiveEuler's bridge) are taken in lane
+  // order, as a loop over step() takes them. This default is that loop; EulerMaruyama and
+  // AdaptiveEuler evaluate f and g of all lanes in one call where the system has batched forms.
+  virtual void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live);
   // True when the last step() stopped short of t + dt because it would have needed more work than
   // the scheme allows (AdaptiveEuler's substep budget); x is then not x(t + dt) and the run stops.
   virtual bool last_step_incomplete() const { return false; }
@@ -61,10 +69,24 @@ class TruthScheme {
  protected:
   void evaluate_drift(double t, const Eigen::Ref<const Eigen::VectorXd>& x);      // -> f_
   void evaluate_diffusion(double t, const Eigen::Ref<const Eigen::VectorXd>& x);  // -> g_
+  // Whether the system has the batched forms step_batch needs (a drift, and a diffusion if q > 0).
+  bool has_batch() const;
+  // f and g of `count` entry-major states into batch_f_ (n x count) and batch_g_ (n q x count).
+  void evaluate_batch(double t, std::size_t count, const double* x);
+  // x + f dt + g dW with evaluate_batch's f and g, for the lanes with take[k] (euler_increment's
+  // sums in its order, so step()'s values), in passes over contiguous lanes that compilers
+  // vectorise.
+  void euler_lanes(std::size_t count, double* x, double dt, const double* dW, const char* take);
+  // Lane k of step_batch through step(): gathered, stepped, scattered; false when it could not
+  // finish.
+  bool step_lane(double t, std::size_t count, std::size_t k, double* x, double dt, const double* dW);
   SdeSystem system_;
   Eigen::VectorXd f_;  // n
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> g_;  // n x q
   Eigen::VectorXd increment_;  // n
+  Eigen::VectorXd lane_x_, lane_dW_;     // step_lane's state and increment
+  std::vector<double> batch_f_, batch_g_;  // evaluate_batch's values
+  std::vector<double> lane_increment_;     // euler_lanes' sums
   double escape_bound_ = std::numeric_limits<double>::infinity();
 };
 
@@ -75,6 +97,7 @@ class EulerMaruyama : public TruthScheme {
   std::string name() const override { return "euler-maruyama"; }
   double strong_order() const override { return 0.5; }
   void step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) override;
+  void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live) override;
   std::unique_ptr<TruthScheme> clone() const override;
 };
 
@@ -156,6 +179,9 @@ class AdaptiveEuler : public TruthScheme {
   std::string name() const override { return "adaptive-euler"; }
   double strong_order() const override { return 0.5; }
   void step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) override;
+  // The lanes whose whole grid step passes the size test take it at once, from one batched
+  // evaluation of f and g; the others go through step() in lane order, bridge draws and all.
+  void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live) override;
   std::unique_ptr<TruthScheme> clone() const override;
   void start_run(std::uint64_t seed, std::uint64_t run) override;
 
@@ -179,6 +205,8 @@ class AdaptiveEuler : public TruthScheme {
   std::uint64_t substeps_ = 0;
   std::uint64_t depth_hits_ = 0;
   bool incomplete_ = false;
+  std::vector<char> whole_, take_;  // step_batch: lanes whose grid step passes the size test; and live
+  std::vector<double> spread_;      // step_batch: a row's squared norm per lane
 };
 
 // Classical fourth-order Runge-Kutta on the drift, for deterministic truths dx = f(t, x) dt

@@ -17,11 +17,20 @@ struct SdeSystem {
   // dg[(i * q + j) * n + l] = d g_ij / d x_l (n x q x n); needed by Milstein only.
   using DiffusionJacobian = std::function<void(double t, const double* x, double* dg)>;
 
+  // A function of `count` states at one t, entry-major (structure of arrays): x[i * count + k] is
+  // entry i of state k, out[e * count + k] entry e of its value (g's entry e = i * q + j). Lane k
+  // must equal the one-state function on state k, bit for bit.
+  using Batch = std::function<void(double t, std::size_t count, const double* x, double* out)>;
+
   std::size_t n = 0;  // states
   std::size_t q = 0;  // Wiener processes (0: a deterministic truth)
   Drift drift;
   Diffusion diffusion;                   // may be empty when q == 0
   DiffusionJacobian diffusion_jacobian;  // optional
+  // Optional batched forms of drift and diffusion (a plugin's); schemes that step many states at
+  // once (TruthScheme::step_batch) use them, and step one state at a time without them.
+  Batch drift_batch;
+  Batch diffusion_batch;
 
   // Throws std::invalid_argument when n == 0, the drift is missing, or q > 0 without a diffusion.
   void validate() const;

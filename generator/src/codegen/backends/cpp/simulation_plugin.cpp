@@ -116,6 +116,16 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
   };
   values.merge(plugin_table_defaults());
   for (auto& [field, value] : observation.plugin_table(model, names, labels, grid_step)) values[field] = value;
+  // The batched forms (the template's batch::lanes over the one-state function), present exactly
+  // where the one-state functions are.
+  const auto batch = [&](const std::string& function, std::size_t outputs) -> std::string {
+    if (function == "nullptr") return function;
+    return "&pfgen_simulation::batch::lanes<" + function + ", " + std::to_string(truth.n) + ", " +
+           std::to_string(outputs) + ">";
+  };
+  values["drift_batch"] = batch("&pfgen_simulation::truth::drift", truth.n);
+  values["diffusion_batch"] = batch(values.at("diffusion"), truth.n * truth.q);
+  values["observation_rate_batch"] = batch(values.at("observation_rate"), truth.p);
   return fill_template("cpp/simulation_plugin.cpp.tmpl", embedded_template("cpp/simulation_plugin.cpp.tmpl"),
                        values);
 }
