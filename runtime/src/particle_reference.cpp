@@ -123,22 +123,30 @@ void ParticleReference::weigh_block(std::size_t b, double dt) {
 
 bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, RandomStream& stream,
                                            std::uint64_t& resamplings) {
+  // (Local __restrict pointers: a char load may alias anything, and would otherwise keep every
+  // access in its place.)
+  const char* __restrict alive = alive_.data();
+  const double* __restrict log_weight = log_weight_.data();
+  double* __restrict weight = weight_.data();
   double largest = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < N_; ++i)
-    if (alive_[i]) largest = std::max(largest, log_weight_[i]);
+  for (std::size_t i = 0; i < N_; ++i) {
+    const double candidate = alive[i] ? log_weight[i] : -std::numeric_limits<double>::infinity();
+    largest = candidate > largest ? candidate : largest;  // log-weights of the living are finite
+  }
   if (!std::isfinite(largest)) return false;
   double sum = 0, squares = 0;
   for (std::size_t i = 0; i < N_; ++i) {
-    const double w = alive_[i] ? std::exp(log_weight_[i] - largest) : 0.0;
-    weight_[i] = w;
+    const double w = alive[i] ? std::exp(log_weight[i] - largest) : 0.0;
+    weight[i] = w;
     sum += w;
     squares += w * w;
   }
   out.setZero();
-  for (std::size_t i = 0; i < N_; ++i) {
-    if (!(weight_[i] > 0)) continue;
-    const double share = weight_[i] / sum;
-    for (std::size_t e = 0; e < n_; ++e) out[static_cast<Eigen::Index>(e)] += share * particles_[at(n_, i, e)];
+  for (std::size_t e = 0; e < n_; ++e) {  // each entry's sum in particle order, as before
+    double mean = 0;
+    for (std::size_t i = 0; i < N_; ++i)
+      if (weight[i] > 0) mean += (weight[i] / sum) * particles_[at(n_, i, e)];
+    out[static_cast<Eigen::Index>(e)] = mean;
   }
   // ESS = (sum w)^2 / sum w^2 for unnormalised w.
   if (sum * sum >= kResampleFraction * static_cast<double>(N_) * squares) return true;

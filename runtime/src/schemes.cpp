@@ -218,6 +218,18 @@ AdaptiveEuler::AdaptiveEuler(SdeSystem system, Options options)
     throw std::invalid_argument("adaptive Euler: need tolerance > 0, scale > 0 and 0 <= max_depth <= 62");
 }
 
+// The size test of a substep of length h from x, with f_ and g_ at x. NaN compares false, so a
+// non-finite state is stepped and the guard sees it.
+bool AdaptiveEuler::small_enough(const Eigen::Ref<const Eigen::VectorXd>& x, double h) const {
+  const std::size_t n = system_.n, q = system_.q;
+  const double root_h = std::sqrt(h);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double spread = q > 0 ? row_norm(g_.data() + i * q, 1, q) * root_h : 0.0;
+    if (std::abs(f_[i]) * h + spread > options_.tolerance * (std::abs(x[i]) + options_.scale)) return false;
+  }
+  return true;
+}
+
 void AdaptiveEuler::start_run(std::uint64_t seed, std::uint64_t run) {
   bridge_stream_ = RandomStream(seed, run, substream::truth_refinement);
 }
@@ -225,13 +237,25 @@ void AdaptiveEuler::start_run(std::uint64_t seed, std::uint64_t run) {
 void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) {
   check_dimensions(system_, x.size(), dW.size());
   const std::size_t n = system_.n, q = system_.q;
+  incomplete_ = false;
+  // The common case first: the whole grid step passes the size test and is one Euler substep, as
+  // the loop below would take it, without its stack of pending intervals.
+  if (options_.max_substeps > 0) {
+    evaluate_drift(t, x);
+    evaluate_diffusion(t, x);
+    if (small_enough(x, dt)) {
+      euler_increment(f_, dt, g_, dW, increment_);
+      x += increment_;
+      ++substeps_;
+      return;
+    }
+  }
   // Pending intervals, the leftmost on top; bridge_ holds their increments in the same order.
   stack_.clear();
   bridge_.clear();
   stack_.push_back({t, dt, 0, 0});
   bridge_.insert(bridge_.end(), dW.data(), dW.data() + q);
   Eigen::VectorXd& increment_dW = increment_dW_;
-  incomplete_ = false;
   const std::uint64_t budget_end = substeps_ + options_.max_substeps;
   while (!stack_.empty()) {
     if (substeps_ >= budget_end) {
@@ -249,13 +273,7 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
     // increments came out large would shrink the sampled quadratic variation below the elapsed
     // time and bias the Ito correction (for paper 000's state, towards blow-up). With a
     // previsible test the substep ends are stopping times and sum dW^2 is unbiased.
-    const double root_h = std::sqrt(interval.h);
-    bool small = true;  // NaN compares false, so a non-finite state is stepped and the guard sees it
-    for (std::size_t i = 0; i < n && small; ++i) {
-      const double spread = q > 0 ? row_norm(g_.data() + i * q, 1, q) * root_h : 0.0;
-      if (std::abs(f_[i]) * interval.h + spread > options_.tolerance * (std::abs(x[i]) + options_.scale))
-        small = false;
-    }
+    const bool small = small_enough(x, interval.h);
     if (small || interval.depth >= options_.max_depth) {
       euler_increment(f_, interval.h, g_, increment_dW, increment_);
       if (!small) {

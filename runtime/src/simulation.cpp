@@ -48,7 +48,10 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
   scheme.set_escape_bound(guard.bound());
   RandomStream truth_noise(seed, run, substream::truth_noise);
   RandomStream observation_noise(seed, run, substream::observation_noise);
-  Eigen::VectorXd x = x0, dW(scheme.system().q), dW2(observation.r());
+  WienerIncrements truth_increments(truth_noise, scheme.system().q, grid.dt);
+  WienerIncrements observation_increments(observation_noise, observation.r(), grid.dt);
+  Eigen::VectorXd x = x0;
+  using Increment = Eigen::Map<const Eigen::VectorXd>;
   // The delay in grid steps: dy over step k reads the path at k - D and k + 1 - D (both stored
   // when D >= 1), clamped at 0 for the pre-history x(s) = x(0), s < 0.
   const std::size_t D = observation.delay_steps(grid.dt);
@@ -58,8 +61,8 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
   path.col(0) = x;
   for (std::size_t k = 0; k < grid.steps; ++k) {
     const double t = grid.time(k);
-    truth_noise.wiener_increment(grid.dt, dW);
-    observation_noise.wiener_increment(grid.dt, dW2);
+    const Increment dW(truth_increments.next(), static_cast<Eigen::Index>(truth_increments.size()));
+    const Increment dW2(observation_increments.next(), static_cast<Eigen::Index>(observation_increments.size()));
     try {
       scheme.step(t, x, grid.dt, dW);
     } catch (const CovarianceIndefinite& e) {

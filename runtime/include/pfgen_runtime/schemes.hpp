@@ -191,6 +191,7 @@ class AdaptiveEuler : public TruthScheme {
   bool last_step_incomplete() const override { return incomplete_; }
 
  private:
+  bool small_enough(const Eigen::Ref<const Eigen::VectorXd>& x, double h) const;
   struct Pending {
     double t;
     double h;
