@@ -95,6 +95,7 @@ void ParticleReference::block_rate(double t, std::size_t b, double* rate) {
 // arithmetic is the Eigen expressions' h.dot(R^-1 dy - 0.5 dt R^-1 h), in their order; for p = 1
 // written out, without Eigen's overhead on 1-vectors.
 void ParticleReference::weigh_block(std::size_t b, double dt) {
+  weights_current_ = false;
   double* __restrict start = block(rate_start_, p_, b);
   const double* __restrict end = rate_end_.data();
   char* __restrict alive = alive_.data() + b * kParticleBlock;
@@ -128,19 +129,27 @@ bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, Rand
   const char* __restrict alive = alive_.data();
   const double* __restrict log_weight = log_weight_.data();
   double* __restrict weight = weight_.data();
-  double largest = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < N_; ++i) {
-    const double candidate = alive[i] ? log_weight[i] : -std::numeric_limits<double>::infinity();
-    largest = candidate > largest ? candidate : largest;  // log-weights of the living are finite
+  // Between samples (sampled observations) neither the log-weights nor the living change: the
+  // weights are those of the last call, bit for bit, and their exp is not taken again.
+  if (!weights_current_) {
+    double largest = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < N_; ++i) {
+      const double candidate = alive[i] ? log_weight[i] : -std::numeric_limits<double>::infinity();
+      largest = candidate > largest ? candidate : largest;  // log-weights of the living are finite
+    }
+    if (!std::isfinite(largest)) return false;
+    double sum = 0, squares = 0;
+    for (std::size_t i = 0; i < N_; ++i) {
+      const double w = alive[i] ? std::exp(log_weight[i] - largest) : 0.0;
+      weight[i] = w;
+      sum += w;
+      squares += w * w;
+    }
+    weight_sum_ = sum;
+    weight_squares_ = squares;
+    weights_current_ = true;
   }
-  if (!std::isfinite(largest)) return false;
-  double sum = 0, squares = 0;
-  for (std::size_t i = 0; i < N_; ++i) {
-    const double w = alive[i] ? std::exp(log_weight[i] - largest) : 0.0;
-    weight[i] = w;
-    sum += w;
-    squares += w * w;
-  }
+  const double sum = weight_sum_, squares = weight_squares_;
   out.setZero();
   for (std::size_t e = 0; e < n_; ++e) {  // each entry's sum in particle order, as before
     double mean = 0;
@@ -170,6 +179,7 @@ bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, Rand
   if (observation_) rate_start_.swap(rate_spare_);
   alive_.swap(alive_spare_);
   std::fill(log_weight_.begin(), log_weight_.end(), 0.0);
+  weights_current_ = false;
   return true;
 }
 
@@ -182,6 +192,7 @@ void ParticleReference::draw_prior(RandomStream& stream) {
     alive_[i] = x_.allFinite() && x_.cwiseAbs().maxCoeff() <= bound_;
     log_weight_[i] = 0;
   }
+  weights_current_ = false;
 }
 
 // Block by block: the block's increments (drawn for the dead too, in particle order, so that the
@@ -211,6 +222,9 @@ void ParticleReference::propagate(double t, double dt, double t_end, RandomStrea
       for (std::size_t k = 0; k < kParticleBlock; ++k)
         alive[k] = static_cast<char>(alive[k] & (std::abs(xe[k]) <= bound_));
     }
+    std::uint64_t surviving = 0;
+    for (std::size_t k = 0; k < kParticleBlock; ++k) surviving += static_cast<std::uint64_t>(alive[k]);
+    if (surviving != stepped) weights_current_ = false;  // a particle died: its weight is now 0
     if (!weigh) continue;
     block_rate(t_end, b, rate_end_.data());
     weigh_block(b, dt);
@@ -288,6 +302,7 @@ ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::s
       const Eigen::LLT<Eigen::MatrixXd> S(Uv * Uv.transpose());
       if (S.info() != Eigen::Success) return stopped(result, grid.time(k + 1));
       const auto y = samples.col(static_cast<Eigen::Index>(sample - 1));
+      weights_current_ = false;
       for (std::size_t i = 0; i < N_; ++i) {
         if (!alive_[i]) continue;
         for (std::size_t e = 0; e < n_; ++e) x_[static_cast<Eigen::Index>(e)] = particles_[at(n_, i, e)];

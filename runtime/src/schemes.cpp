@@ -315,22 +315,24 @@ void AdaptiveEuler::step_batch(double t, std::size_t count, double* x, double dt
   // contiguous lanes (the row norms summed as row_norm sums them).
   // (Local __restrict pointers: a char store may alias anything, and would otherwise keep every
   // load in its place.)
-  whole_.assign(count, 1);
+  // The entries failing the test are counted per lane in 64-bit integers, the compare's own width,
+  // so that the loops stay packed.
+  exceeding_.assign(count, 0);
   spread_.resize(count);
-  char* __restrict whole = whole_.data();
-  double* __restrict squares = spread_.data();
+  std::int64_t* __restrict exceeding = exceeding_.data();
+  double* __restrict spread = spread_.data();
   for (std::size_t i = 0; i < n; ++i) {
     std::fill(spread_.begin(), spread_.end(), 0.0);
     for (std::size_t j = 0; j < q; ++j) {
       const double* __restrict gij = g + (i * q + j) * count;
-      for (std::size_t k = 0; k < count; ++k) squares[k] += gij[k] * gij[k];
+      for (std::size_t k = 0; k < count; ++k) spread[k] += gij[k] * gij[k];
     }
+    if (q > 0)
+      for (std::size_t k = 0; k < count; ++k) spread[k] = std::sqrt(spread[k]) * root_h;
     const double* __restrict fi = f + i * count;
     const double* __restrict xi = x + i * count;
-    for (std::size_t k = 0; k < count; ++k) {
-      const double spread = q > 0 ? std::sqrt(squares[k]) * root_h : 0.0;
-      whole[k] = static_cast<char>(whole[k] & !(std::abs(fi[k]) * dt + spread > tolerance * (std::abs(xi[k]) + scale)));
-    }
+    for (std::size_t k = 0; k < count; ++k)
+      exceeding[k] += std::abs(fi[k]) * dt + spread[k] > tolerance * (std::abs(xi[k]) + scale) ? 1 : 0;
   }
   // The lanes that pass take that Euler substep at once; the others go through step(), bisecting,
   // in lane order.
@@ -338,14 +340,14 @@ void AdaptiveEuler::step_batch(double t, std::size_t count, double* x, double dt
   char* __restrict take = take_.data();
   std::uint64_t taken = 0;
   for (std::size_t k = 0; k < count; ++k) {
-    take[k] = static_cast<char>(live[k] & whole[k]);
+    take[k] = static_cast<char>(live[k] && exceeding[k] == 0);
     taken += static_cast<std::uint64_t>(take[k]);
   }
   euler_lanes(count, x, dt, dW, take);
   substeps_ += taken;
   incomplete_ = false;
   for (std::size_t k = 0; k < count; ++k)
-    if (live[k] && !whole_[k] && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
+    if (live[k] && exceeding[k] != 0 && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
 }
 
 std::unique_ptr<TruthScheme> AdaptiveEuler::clone() const {

@@ -139,6 +139,10 @@ class ParticleReference {
   std::vector<double> dW_;                       // one block's increments, q per particle
   std::vector<double> noise_;                    // their standard normals, in drawing order
   std::vector<double> log_weight_, weight_;
+  // weight_ (and its sum and sum of squares) is that of the present log-weights and living
+  // particles; false after anything changes them.
+  bool weights_current_ = false;
+  double weight_sum_ = 0, weight_squares_ = 0;
   std::vector<char> alive_, alive_spare_;        // blocks_ * kParticleBlock lanes
   Eigen::VectorXd x_, z_, A0_, R_inv_dy_, h_, R_inv_h_;
   Eigen::MatrixXd A_, B_, R_inv_;

@@ -206,8 +206,9 @@ class AdaptiveEuler : public TruthScheme {
   std::uint64_t substeps_ = 0;
   std::uint64_t depth_hits_ = 0;
   bool incomplete_ = false;
-  std::vector<char> whole_, take_;  // step_batch: lanes whose grid step passes the size test; and live
-  std::vector<double> spread_;      // step_batch: a row's squared norm per lane
+  std::vector<std::int64_t> exceeding_;  // step_batch: per lane, the entries failing the size test
+  std::vector<char> take_;               // step_batch: the live lanes that pass it
+  std::vector<double> spread_;           // step_batch: a row's norm times sqrt(dt), per lane
 };
 
 // Classical fourth-order Runge-Kutta on the drift, for deterministic truths dx = f(t, x) dt
