@@ -221,3 +221,21 @@ TEST_CASE("batch stepping: the particle reference is the same whether its scheme
     }
   }
 }
+
+TEST_CASE("batch stepping: WienerIncrements gives, step by step, the increments wiener_increment draws",
+          "[runtime][batch][random][unit]") {
+  for (const std::size_t size : {0, 1, 2, 3}) {
+    RandomStream ahead_stream(6, 7, substream::truth_noise), step_stream(6, 7, substream::truth_noise);
+    WienerIncrements ahead(ahead_stream, size, 0.003);
+    Eigen::VectorXd dW(static_cast<Eigen::Index>(size));
+    for (int step = 0; step < 700; ++step) {  // across chunk boundaries (256 steps a chunk)
+      const double* drawn = ahead.next();
+      step_stream.wiener_increment(0.003, dW);
+      for (std::size_t j = 0; j < size; ++j) {
+        INFO("size " << size << ", step " << step << ", entry " << j);
+        REQUIRE(same_bits(drawn[j], dW[static_cast<Eigen::Index>(j)]));
+      }
+    }
+    CHECK(ahead.size() == size);
+  }
+}
