@@ -68,12 +68,12 @@ SdeSystem coupled(bool batched) {
 struct Lanes {
   std::size_t count;
   std::vector<double> x;   // entry-major
-  std::vector<char> live;
+  std::vector<LaneFlag> live;
 };
 
 Lanes some_lanes(std::size_t count, std::mt19937& rng) {
   std::uniform_real_distribution<double> near(-1.5, 1.5), far(20.0, 60.0);
-  Lanes lanes{count, std::vector<double>(2 * count), std::vector<char>(count, 1)};
+  Lanes lanes{count, std::vector<double>(2 * count), std::vector<LaneFlag>(count, 1)};
   for (std::size_t k = 0; k < count; ++k) {
     const bool out = k % 5 == 2;
     lanes.x[k] = out ? far(rng) : near(rng);
@@ -150,7 +150,7 @@ TEST_CASE("batch stepping: adaptive Euler's batched step bisects the lanes far o
   std::mt19937 rng(4);
   Lanes lanes = some_lanes(32, rng);
   std::size_t live = 0;
-  for (char alive : lanes.live) live += alive ? 1 : 0;
+  for (LaneFlag alive : lanes.live) live += alive ? 1 : 0;
   AdaptiveEuler roomy(coupled(true));
   roomy.start_run(1, 2);
   RandomStream noise(1, 2, substream::truth_noise);

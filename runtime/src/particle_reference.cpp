@@ -65,8 +65,8 @@ void ParticleReference::initialise(const ParticleReferenceOptions& options) {
   spare_.assign(particles_.size(), 0.0);
   log_weight_.assign(lanes, 0.0);
   weight_.assign(N_, 0.0);
-  alive_.assign(lanes, 0);  // the lanes beyond N stay dead
-  alive_spare_.assign(lanes, 0);
+  alive_.assign(lanes, 0.0);  // the lanes beyond N stay dead
+  alive_spare_.assign(lanes, 0.0);
   dW_.assign(q_ * kParticleBlock, 0.0);
   noise_.assign(q_ * kParticleBlock, 0.0);
   x_.resize(static_cast<Eigen::Index>(n_));
@@ -98,15 +98,15 @@ void ParticleReference::weigh_block(std::size_t b, double dt) {
   weights_current_ = false;
   double* __restrict start = block(rate_start_, p_, b);
   const double* __restrict end = rate_end_.data();
-  char* __restrict alive = alive_.data() + b * kParticleBlock;
+  LaneFlag* __restrict alive = alive_.data() + b * kParticleBlock;
   double* __restrict log_weight = log_weight_.data() + b * kParticleBlock;
   if (p_ == 1) {  // one pass over the lanes, branch-free, that compilers vectorise
     const double R = R_inv_(0, 0), R_dy = R_inv_dy_[0], half_dt = 0.5 * dt;
     for (std::size_t k = 0; k < kParticleBlock; ++k) {
       const double h = 0.5 * start[k] + 0.5 * end[k];
       const double updated = log_weight[k] + h * (R_dy - half_dt * (R * h));
-      log_weight[k] = alive[k] ? updated : log_weight[k];
-      alive[k] = static_cast<char>(alive[k] & (updated - updated == 0.0));  // a non-finite weight ends it
+      log_weight[k] = alive[k] != 0 ? updated : log_weight[k];
+      alive[k] = updated - updated == 0.0 ? alive[k] : 0.0;  // a non-finite weight ends it
       start[k] = end[k];  // a dead lane's rate is never read
     }
     return;
@@ -124,9 +124,7 @@ void ParticleReference::weigh_block(std::size_t b, double dt) {
 
 bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, RandomStream& stream,
                                            std::uint64_t& resamplings) {
-  // (Local __restrict pointers: a char load may alias anything, and would otherwise keep every
-  // access in its place.)
-  const char* __restrict alive = alive_.data();
+  const LaneFlag* __restrict alive = alive_.data();
   const double* __restrict log_weight = log_weight_.data();
   double* __restrict weight = weight_.data();
   // Between samples (sampled observations) neither the log-weights nor the living change: the
@@ -134,13 +132,13 @@ bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, Rand
   if (!weights_current_) {
     double largest = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < N_; ++i) {
-      const double candidate = alive[i] ? log_weight[i] : -std::numeric_limits<double>::infinity();
+      const double candidate = alive[i] != 0 ? log_weight[i] : -std::numeric_limits<double>::infinity();
       largest = candidate > largest ? candidate : largest;  // log-weights of the living are finite
     }
     if (!std::isfinite(largest)) return false;
     double sum = 0, squares = 0;
     for (std::size_t i = 0; i < N_; ++i) {
-      const double w = alive[i] ? std::exp(log_weight[i] - largest) : 0.0;
+      const double w = alive[i] != 0 ? std::exp(log_weight[i] - largest) : 0.0;
       weight[i] = w;
       sum += w;
       squares += w * w;
@@ -189,7 +187,7 @@ void ParticleReference::draw_prior(RandomStream& stream) {
     for (Eigen::Index k = 0; k < z_.size(); ++k) z_[k] = stream.normal();
     x_ = m0_ + root_ * z_;
     for (std::size_t e = 0; e < n_; ++e) particles_[at(n_, i, e)] = x_[static_cast<Eigen::Index>(e)];
-    alive_[i] = x_.allFinite() && x_.cwiseAbs().maxCoeff() <= bound_;
+    alive_[i] = x_.allFinite() && x_.cwiseAbs().maxCoeff() <= bound_ ? 1.0 : 0.0;
     log_weight_[i] = 0;
   }
   weights_current_ = false;
@@ -203,16 +201,14 @@ void ParticleReference::propagate(double t, double dt, double t_end, RandomStrea
   const double scale = std::sqrt(dt);  // dW ~ N(0, dt I), as RandomStream::wiener_increment
   for (std::size_t b = 0; b < blocks_; ++b) {
     const std::size_t lanes = std::min(kParticleBlock, N_ - b * kParticleBlock);
-    // (Local __restrict pointers: a char store may alias anything, and would otherwise keep every
-    // load in its place.)
     const double* __restrict noise = noise_.data();
     double* __restrict dW = dW_.data();
     stream.normals(noise_.data(), lanes * q_);
     for (std::size_t k = 0; k < lanes; ++k)
       for (std::size_t j = 0; j < q_; ++j) dW[j * kParticleBlock + k] = scale * noise[k * q_ + j];
-    char* __restrict alive = alive_.data() + b * kParticleBlock;
+    LaneFlag* __restrict alive = alive_.data() + b * kParticleBlock;
     std::uint64_t stepped = 0;
-    for (std::size_t k = 0; k < kParticleBlock; ++k) stepped += static_cast<std::uint64_t>(alive[k]);
+    for (std::size_t k = 0; k < kParticleBlock; ++k) stepped += alive[k] != 0 ? 1 : 0;
     result.particle_steps += stepped;
     double* x = block(particles_, n_, b);
     scheme_->step_batch(t, kParticleBlock, x, dt, dW, alive);
@@ -220,10 +216,10 @@ void ParticleReference::propagate(double t, double dt, double t_end, RandomStrea
     for (std::size_t e = 0; e < n_; ++e) {
       const double* __restrict xe = x + e * kParticleBlock;
       for (std::size_t k = 0; k < kParticleBlock; ++k)
-        alive[k] = static_cast<char>(alive[k] & (std::abs(xe[k]) <= bound_));
+        alive[k] = std::abs(xe[k]) <= bound_ ? alive[k] : 0.0;
     }
     std::uint64_t surviving = 0;
-    for (std::size_t k = 0; k < kParticleBlock; ++k) surviving += static_cast<std::uint64_t>(alive[k]);
+    for (std::size_t k = 0; k < kParticleBlock; ++k) surviving += alive[k] != 0 ? 1 : 0;
     if (surviving != stepped) weights_current_ = false;  // a particle died: its weight is now 0
     if (!weigh) continue;
     block_rate(t_end, b, rate_end_.data());

@@ -45,9 +45,9 @@ TruthScheme::TruthScheme(SdeSystem system)
   g_.setZero();
 }
 
-void TruthScheme::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live) {
+void TruthScheme::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) {
   for (std::size_t k = 0; k < count; ++k)
-    if (live[k] && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
+    if (live[k] != 0 && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
 }
 
 bool TruthScheme::step_lane(double t, std::size_t count, std::size_t k, double* x, double dt, const double* dW) {
@@ -69,9 +69,10 @@ bool TruthScheme::has_batch() const {
   return system_.drift_batch && (system_.q == 0 || system_.diffusion_batch);
 }
 
-void TruthScheme::euler_lanes(std::size_t count, double* x, double dt, const double* dW, const char* take) {
+void TruthScheme::euler_lanes(std::size_t count, double* x, double dt, const double* dW, const LaneFlag* take) {
   const std::size_t n = system_.n, q = system_.q;
   lane_increment_.resize(count);
+  lane_before_.resize(count);
   double* __restrict value = lane_increment_.data();
   for (std::size_t i = 0; i < n; ++i) {
     const double* __restrict fi = batch_f_.data() + i * count;
@@ -81,8 +82,16 @@ void TruthScheme::euler_lanes(std::size_t count, double* x, double dt, const dou
       const double* __restrict dWj = dW + j * count;
       for (std::size_t k = 0; k < count; ++k) value[k] += gij[k] * dWj[k];
     }
+    // Every lane's x + increment, then chosen or not. x is copied aside first and the select reads
+    // only the copy: with both values loaded, and x not read where it is written, the select
+    // packs (the compiler would make it a store under a condition otherwise, which does not).
     double* __restrict xi = x + i * count;
-    for (std::size_t k = 0; k < count; ++k) xi[k] = take[k] ? xi[k] + value[k] : xi[k];
+    double* __restrict before = lane_before_.data();
+    for (std::size_t k = 0; k < count; ++k) before[k] = xi[k];
+    for (std::size_t k = 0; k < count; ++k) {
+      const double old = before[k], updated = old + value[k];
+      xi[k] = take[k] != 0 ? updated : old;
+    }
   }
 }
 
@@ -114,7 +123,7 @@ void EulerMaruyama::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
   x += increment_;
 }
 
-void EulerMaruyama::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live) {
+void EulerMaruyama::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) {
   if (!has_batch()) return TruthScheme::step_batch(t, count, x, dt, dW, live);
   evaluate_batch(t, count, x);
   euler_lanes(count, x, dt, dW, live);
@@ -304,7 +313,7 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
   }
 }
 
-void AdaptiveEuler::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live) {
+void AdaptiveEuler::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) {
   if (!has_batch() || options_.max_substeps == 0) return TruthScheme::step_batch(t, count, x, dt, dW, live);
   evaluate_batch(t, count, x);
   const std::size_t n = system_.n, q = system_.q;
@@ -313,13 +322,11 @@ void AdaptiveEuler::step_batch(double t, std::size_t count, double* x, double dt
   const double root_h = std::sqrt(dt), tolerance = options_.tolerance, scale = options_.scale;
   // step()'s first interval is the whole grid step: its size test for every lane, in passes over
   // contiguous lanes (the row norms summed as row_norm sums them).
-  // (Local __restrict pointers: a char store may alias anything, and would otherwise keep every
-  // load in its place.)
-  // The entries failing the test are counted per lane in 64-bit integers, the compare's own width,
-  // so that the loops stay packed.
-  exceeding_.assign(count, 0);
+  // The entries failing the test are counted per lane in doubles, the compare's own width, so that
+  // the loops stay packed.
+  exceeding_.assign(count, 0.0);
   spread_.resize(count);
-  std::int64_t* __restrict exceeding = exceeding_.data();
+  double* __restrict exceeding = exceeding_.data();
   double* __restrict spread = spread_.data();
   for (std::size_t i = 0; i < n; ++i) {
     std::fill(spread_.begin(), spread_.end(), 0.0);
@@ -332,22 +339,22 @@ void AdaptiveEuler::step_batch(double t, std::size_t count, double* x, double dt
     const double* __restrict fi = f + i * count;
     const double* __restrict xi = x + i * count;
     for (std::size_t k = 0; k < count; ++k)
-      exceeding[k] += std::abs(fi[k]) * dt + spread[k] > tolerance * (std::abs(xi[k]) + scale) ? 1 : 0;
+      exceeding[k] += std::abs(fi[k]) * dt + spread[k] > tolerance * (std::abs(xi[k]) + scale) ? 1.0 : 0.0;
   }
   // The lanes that pass take that Euler substep at once; the others go through step(), bisecting,
   // in lane order.
   take_.resize(count);
-  char* __restrict take = take_.data();
-  std::uint64_t taken = 0;
+  LaneFlag* __restrict take = take_.data();
+  double taken = 0;  // a count, exact in a double
   for (std::size_t k = 0; k < count; ++k) {
-    take[k] = static_cast<char>(live[k] && exceeding[k] == 0);
-    taken += static_cast<std::uint64_t>(take[k]);
+    take[k] = (live[k] != 0) & (exceeding[k] == 0) ? 1.0 : 0.0;
+    taken += take[k];
   }
   euler_lanes(count, x, dt, dW, take);
-  substeps_ += taken;
+  substeps_ += static_cast<std::uint64_t>(taken);
   incomplete_ = false;
   for (std::size_t k = 0; k < count; ++k)
-    if (live[k] && exceeding[k] != 0 && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
+    if (live[k] != 0 && exceeding[k] != 0 && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
 }
 
 std::unique_ptr<TruthScheme> AdaptiveEuler::clone() const {

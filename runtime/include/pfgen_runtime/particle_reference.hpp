@@ -143,7 +143,7 @@ class ParticleReference {
   // particles; false after anything changes them.
   bool weights_current_ = false;
   double weight_sum_ = 0, weight_squares_ = 0;
-  std::vector<char> alive_, alive_spare_;        // blocks_ * kParticleBlock lanes
+  std::vector<LaneFlag> alive_, alive_spare_;    // blocks_ * kParticleBlock lanes
   Eigen::VectorXd x_, z_, A0_, R_inv_dy_, h_, R_inv_h_;
   Eigen::MatrixXd A_, B_, R_inv_;
   std::vector<double> C0_, C_, Uv_;  // a sample's coefficients, row-major

@@ -31,6 +31,11 @@
 
 namespace pfgen_runtime {
 
+// A lane's flag in batched stepping (live, or taking a step): 1.0 or 0.0, a double like the values
+// it selects between, so that the loops over lanes vectorise: a char flag beside doubles keeps
+// them scalar, and SSE2 cannot compare 64-bit integers.
+using LaneFlag = double;
+
 class TruthScheme {
  public:
   explicit TruthScheme(SdeSystem system);
@@ -48,7 +53,7 @@ class TruthScheme {
   // step()'s on that state, and the scheme's own draws (AdaptiveEuler's bridge) are taken in lane
   // order, as a loop over step() takes them. This default is that loop; EulerMaruyama and
   // AdaptiveEuler evaluate f and g of all lanes in one call where the system has batched forms.
-  virtual void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live);
+  virtual void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live);
   // True when the last step() stopped short of t + dt because it would have needed more work than
   // the scheme allows (AdaptiveEuler's substep budget); x is then not x(t + dt) and the run stops.
   virtual bool last_step_incomplete() const { return false; }
@@ -76,7 +81,7 @@ class TruthScheme {
   // x + f dt + g dW with evaluate_batch's f and g, for the lanes with take[k] (euler_increment's
   // sums in its order, so step()'s values), in passes over contiguous lanes that compilers
   // vectorise.
-  void euler_lanes(std::size_t count, double* x, double dt, const double* dW, const char* take);
+  void euler_lanes(std::size_t count, double* x, double dt, const double* dW, const LaneFlag* take);
   // Lane k of step_batch through step(): gathered, stepped, scattered; false when it could not
   // finish.
   bool step_lane(double t, std::size_t count, std::size_t k, double* x, double dt, const double* dW);
@@ -86,7 +91,7 @@ class TruthScheme {
   Eigen::VectorXd increment_;  // n
   Eigen::VectorXd lane_x_, lane_dW_;     // step_lane's state and increment
   std::vector<double> batch_f_, batch_g_;  // evaluate_batch's values
-  std::vector<double> lane_increment_;     // euler_lanes' sums
+  std::vector<double> lane_increment_, lane_before_;  // euler_lanes' sums, and x before them
   double escape_bound_ = std::numeric_limits<double>::infinity();
 };
 
@@ -97,7 +102,7 @@ class EulerMaruyama : public TruthScheme {
   std::string name() const override { return "euler-maruyama"; }
   double strong_order() const override { return 0.5; }
   void step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) override;
-  void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live) override;
+  void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) override;
   std::unique_ptr<TruthScheme> clone() const override;
 };
 
@@ -181,7 +186,7 @@ class AdaptiveEuler : public TruthScheme {
   void step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) override;
   // The lanes whose whole grid step passes the size test take it at once, from one batched
   // evaluation of f and g; the others go through step() in lane order, bridge draws and all.
-  void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, char* live) override;
+  void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) override;
   std::unique_ptr<TruthScheme> clone() const override;
   void start_run(std::uint64_t seed, std::uint64_t run) override;
 
@@ -206,8 +211,8 @@ class AdaptiveEuler : public TruthScheme {
   std::uint64_t substeps_ = 0;
   std::uint64_t depth_hits_ = 0;
   bool incomplete_ = false;
-  std::vector<std::int64_t> exceeding_;  // step_batch: per lane, the entries failing the size test
-  std::vector<char> take_;               // step_batch: the live lanes that pass it
+  std::vector<double> exceeding_;        // step_batch: per lane, the entries failing the size test
+  std::vector<LaneFlag> take_;           // step_batch: the live lanes that pass it
   std::vector<double> spread_;           // step_batch: a row's norm times sqrt(dt), per lane
 };
 
