@@ -634,4 +634,23 @@ TEST_CASE("plugin: the cache", "[plugin][compiler]") {
                                                         Catch::Contains("reads version " +
                                                                         std::to_string(PFGEN_PLUGIN_ABI_VERSION)));
   }
+
+  SECTION("the loader rejects a table whose drift has no batched form") {
+    // Consistent in every other field: a deterministic scalar truth dx = -x dt observed as dy = x dt + dW.
+    const std::string unbatched = pfgen::codegen::plugin_abi_header() +
+                                  "static void drift(double, const double* x, double* f) { f[0] = -x[0]; }\n"
+                                  "static void observation(double, double* A0, double* A, double* B) "
+                                  "{ A0[0] = 0; A[0] = 1; B[0] = 1; }\n"
+                                  "static pfgen_plugin table{};\n"
+                                  "extern \"C\" __attribute__((visibility(\"default\"))) const pfgen_plugin* "
+                                  "pfgen_plugin_entry(void) {\n"
+                                  "  table.abi_version = PFGEN_PLUGIN_ABI_VERSION; table.model_name = \"m\";\n"
+                                  "  table.pfgen_version = \"v\"; table.n = 1; table.p = 1; table.r = 1;\n"
+                                  "  table.diffusion_is_zero = 1; table.observation_is_constant = 1;\n"
+                                  "  table.drift = &drift; table.observation = &observation; return &table;\n"
+                                  "}\n";
+    const auto build = pfgen::toolchain::build_plugin(unbatched, w.options());
+    CHECK_THROWS_WITH(SimulationPlugin(build.path),
+                      Catch::Contains("is inconsistent") && Catch::Contains("a batched function is missing"));
+  }
 }
