@@ -42,6 +42,26 @@ void wait_sleeping(MPI_Request& request) {
   }
 }
 
+// A block's bytes as non-blocking messages of at most kPiece bytes each (MPI counts are ints), to
+// or from `rank`, their requests appended to `requests`: the one way both collectives move bytes.
+template <class Post>
+void post_pieces(std::vector<char>& block, int rank, int tag, std::vector<MPI_Request>& requests, Post post) {
+  for (std::size_t at = 0; at < block.size(); at += kPiece)
+    post(block.data() + at, static_cast<int>(std::min(kPiece, block.size() - at)), rank, tag, &requests.emplace_back());
+}
+
+void send_pieces(std::vector<char>& block, int target, int tag, std::vector<MPI_Request>& requests) {
+  post_pieces(block, target, tag, requests, [](char* data, int count, int to, int with_tag, MPI_Request* request) {
+    MPI_Isend(data, count, MPI_BYTE, to, with_tag, MPI_COMM_WORLD, request);
+  });
+}
+
+void receive_pieces(std::vector<char>& block, int source, int tag, std::vector<MPI_Request>& requests) {
+  post_pieces(block, source, tag, requests, [](char* data, int count, int from, int with_tag, MPI_Request* request) {
+    MPI_Irecv(data, count, MPI_BYTE, from, with_tag, MPI_COMM_WORLD, request);
+  });
+}
+
 }  // namespace
 
 bool launched_by_mpi() {
@@ -143,10 +163,6 @@ std::vector<std::vector<char>> MpiJob::exchange(std::vector<std::vector<char>> o
   wait_sleeping(request);
   std::vector<std::vector<char>> incoming(outgoing.size());
   std::vector<MPI_Request> requests;
-  const auto pieces = [&](std::vector<char>& block, int rank, auto post) {
-    for (std::size_t at = 0; at < block.size(); at += kPiece)
-      post(block.data() + at, static_cast<int>(std::min(kPiece, block.size() - at)), rank, &requests.emplace_back());
-  };
   for (int rank = 0; rank < size_; ++rank) {
     const auto r = static_cast<std::size_t>(rank);
     if (rank == rank_) {
@@ -154,12 +170,8 @@ std::vector<std::vector<char>> MpiJob::exchange(std::vector<std::vector<char>> o
       continue;
     }
     incoming[r].resize(static_cast<std::size_t>(incoming_sizes[r]));
-    pieces(incoming[r], rank, [](char* data, int count, int source, MPI_Request* out) {
-      MPI_Irecv(data, count, MPI_BYTE, source, kExchangeTag, MPI_COMM_WORLD, out);
-    });
-    pieces(outgoing[r], rank, [](char* data, int count, int target, MPI_Request* out) {
-      MPI_Isend(data, count, MPI_BYTE, target, kExchangeTag, MPI_COMM_WORLD, out);
-    });
+    receive_pieces(incoming[r], rank, kExchangeTag, requests);
+    send_pieces(outgoing[r], rank, kExchangeTag, requests);
   }
   // Every rank is here (the sizes' all-to-all was waited on with sleeps): the bytes flow at full
   // speed only while MPI is polled, so they are waited on without sleeping.
@@ -174,24 +186,24 @@ std::vector<std::vector<char>> MpiJob::gather(std::vector<char> mine) {
   // agreement: agree here first, so that no rank waits for bytes that will never come.
   agreed_ = true;
   if (lowest_failing(true) != size_) throw FailedElsewhere();
+  std::vector<MPI_Request> requests;
   if (rank_ != 0) {
     const std::uint64_t size = mine.size();
     MPI_Send(&size, 1, MPI_UINT64_T, 0, kSizeTag, MPI_COMM_WORLD);
-    for (std::size_t at = 0; at < mine.size(); at += kPiece)
-      MPI_Send(mine.data() + at, static_cast<int>(std::min(kPiece, mine.size() - at)), MPI_BYTE, 0, kBytesTag,
-               MPI_COMM_WORLD);
+    send_pieces(mine, 0, kBytesTag, requests);
+    MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
     return {};
   }
-  std::vector<std::vector<char>> blocks;
-  blocks.push_back(std::move(mine));
+  std::vector<std::vector<char>> blocks(static_cast<std::size_t>(size_));  // sized: receives are posted into them
+  blocks[0] = std::move(mine);
   for (int source = 1; source < size_; ++source) {
     std::uint64_t size = 0;
     MPI_Recv(&size, 1, MPI_UINT64_T, source, kSizeTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    std::vector<char>& block = blocks.emplace_back(static_cast<std::size_t>(size));
-    for (std::size_t at = 0; at < block.size(); at += kPiece)
-      MPI_Recv(block.data() + at, static_cast<int>(std::min(kPiece, block.size() - at)), MPI_BYTE, source,
-               kBytesTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    std::vector<char>& block = blocks[static_cast<std::size_t>(source)];
+    block.resize(static_cast<std::size_t>(size));
+    receive_pieces(block, source, kBytesTag, requests);
   }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
   return blocks;
 }
 
