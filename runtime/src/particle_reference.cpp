@@ -65,6 +65,7 @@ void ParticleReference::initialise(const ParticleReferenceOptions& options) {
   spare_.assign(particles_.size(), 0.0);
   log_weight_.assign(lanes, 0.0);
   weight_.assign(N_, 0.0);
+  share_.assign(N_, 0.0);
   alive_.assign(lanes, 0.0);  // the lanes beyond N stay dead
   alive_spare_.assign(lanes, 0.0);
   dW_.assign(q_ * kParticleBlock, 0.0);
@@ -145,14 +146,22 @@ bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, Rand
     }
     weight_sum_ = sum;
     weight_squares_ = squares;
+    // Each particle's share w / sum, once (a packed division) for all the entries of the mean.
+    double* __restrict share = share_.data();
+    for (std::size_t i = 0; i < N_; ++i) share[i] = weight[i] / sum;
     weights_current_ = true;
   }
   const double sum = weight_sum_, squares = weight_squares_;
+  const double* __restrict share = share_.data();
   out.setZero();
   for (std::size_t e = 0; e < n_; ++e) {  // each entry's sum in particle order, as before
+    // A particle of weight 0 adds +0, which leaves the sum as it was: it starts at +0 and so is
+    // never -0. Adding it rather than branching keeps the loop free of branches.
     double mean = 0;
-    for (std::size_t i = 0; i < N_; ++i)
-      if (weight[i] > 0) mean += (weight[i] / sum) * particles_[at(n_, i, e)];
+    for (std::size_t i = 0; i < N_; ++i) {
+      const double term = share[i] * particles_[at(n_, i, e)];
+      mean += weight[i] > 0 ? term : 0.0;
+    }
     out[static_cast<Eigen::Index>(e)] = mean;
   }
   // ESS = (sum w)^2 / sum w^2 for unnormalised w.

@@ -138,7 +138,7 @@ class ParticleReference {
   std::vector<double> rate_end_;                 // one block's h(t + dt, x_i)
   std::vector<double> dW_;                       // one block's increments, q per particle
   std::vector<double> noise_;                    // their standard normals, in drawing order
-  std::vector<double> log_weight_, weight_;
+  std::vector<double> log_weight_, weight_, share_;  // share_: weight / their sum
   // weight_ (and its sum and sum of squares) is that of the present log-weights and living
   // particles; false after anything changes them.
   bool weights_current_ = false;
