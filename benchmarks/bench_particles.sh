@@ -8,8 +8,8 @@
 #
 #   benchmarks/bench_particles.sh PFGEN_A PFGEN_B [REPEATS] [N] [T]
 #   (defaults: 5 repetitions, N = 1000, T = 3; models: the scalar examples Basin, Perez & Skliar
-#   2006 (continuous, adaptive Euler) and Allahyani & Date's example 1 (sampled), and the double
-#   well (two states, one noise))
+#   2006 (continuous, adaptive Euler) and Allahyani & Date's example 1 (sampled, two noises), and
+#   the double well (two states, one noise))
 set -euo pipefail
 [ $# -ge 2 ] || { sed -n '2,13p' "$0" >&2; exit 2; }
 a="$1" b="$2"
