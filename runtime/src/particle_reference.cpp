@@ -13,6 +13,17 @@
 
 namespace pfgen_runtime {
 
+namespace {
+
+// The living lanes of a block.
+std::uint64_t living(const LaneFlag* alive) {
+  std::uint64_t count = 0;
+  for (std::size_t k = 0; k < kParticleBlock; ++k) count += alive[k] != 0 ? 1 : 0;
+  return count;
+}
+
+}  // namespace
+
 ParticleReference::ParticleReference(const TruthScheme& scheme, const LinearObservation& observation,
                                      const ParticleReferenceOptions& options, double bound)
     : scheme_(scheme.clone()), observation_(observation), N_(options.particles), n_(scheme.system().n),
@@ -216,8 +227,7 @@ void ParticleReference::propagate(double t, double dt, double t_end, RandomStrea
     for (std::size_t k = 0; k < lanes; ++k)
       for (std::size_t j = 0; j < q_; ++j) dW[j * kParticleBlock + k] = scale * noise[k * q_ + j];
     LaneFlag* __restrict alive = alive_.data() + b * kParticleBlock;
-    std::uint64_t stepped = 0;
-    for (std::size_t k = 0; k < kParticleBlock; ++k) stepped += alive[k] != 0 ? 1 : 0;
+    const std::uint64_t stepped = living(alive);
     result.particle_steps += stepped;
     double* x = block(particles_, n_, b);
     scheme_->step_batch(t, kParticleBlock, x, dt, dW, alive);
@@ -227,9 +237,7 @@ void ParticleReference::propagate(double t, double dt, double t_end, RandomStrea
       for (std::size_t k = 0; k < kParticleBlock; ++k)
         alive[k] = std::abs(xe[k]) <= bound_ ? alive[k] : 0.0;
     }
-    std::uint64_t surviving = 0;
-    for (std::size_t k = 0; k < kParticleBlock; ++k) surviving += alive[k] != 0 ? 1 : 0;
-    if (surviving != stepped) weights_current_ = false;  // a particle died: its weight is now 0
+    if (living(alive) != stepped) weights_current_ = false;  // a particle died: its weight is now 0
     if (!weigh) continue;
     block_rate(t_end, b, rate_end_.data());
     weigh_block(b, dt);

@@ -247,6 +247,9 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
   check_dimensions(system_, x.size(), dW.size());
   const std::size_t n = system_.n, q = system_.q;
   incomplete_ = false;
+  // f_ and g_ are at the start (t, x) of the interval on top of the stack: evaluated there and x not
+  // moved since. The functions are pure, so they are not evaluated there again.
+  bool evaluated = false;
   // The common case first: the whole grid step passes the size test and is one Euler substep, as
   // the loop below would take it, without its stack of pending intervals.
   if (options_.max_substeps > 0) {
@@ -258,6 +261,7 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
       ++substeps_;
       return;
     }
+    evaluated = true;
   }
   // Pending intervals, the leftmost on top; bridge_ holds their increments in the same order.
   stack_.clear();
@@ -276,8 +280,11 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
     for (std::size_t j = 0; j < q; ++j) increment_dW[j] = bridge_[interval.offset + j];
     bridge_.resize(bridge_.size() - q);
 
-    evaluate_drift(interval.t, x);
-    evaluate_diffusion(interval.t, x);
+    if (!evaluated) {
+      evaluate_drift(interval.t, x);
+      evaluate_diffusion(interval.t, x);
+    }
+    evaluated = false;
     // The size test uses x and h only, never the increment itself: refining the intervals whose
     // increments came out large would shrink the sampled quadratic variation below the elapsed
     // time and bias the Ito correction (for paper 000's state, towards blow-up). With a
@@ -310,6 +317,7 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
     }
     stack_.push_back({interval.t + half, half, interval.depth + 1, right_offset});
     stack_.push_back({interval.t, half, interval.depth + 1, left_offset});
+    evaluated = true;  // the left half, now on top, starts where its interval did
   }
 }
 
