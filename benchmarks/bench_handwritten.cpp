@@ -15,8 +15,8 @@
 // its loop here. The two alternate within each repetition (which goes first alternates too); the
 // table gives medians over repetitions of ns per step and of the per-repetition ratio.
 //
-// Op counts per step: the generated one from `pfgen codegen --stats` (derivatives, gain and
-// predicted_observation, CSE totals) plus step()'s own loops; the hand-written one by formula from
+// Op counts per step: the generated one from `pfgen codegen --stats` (rates(), the one function
+// step() calls per increment, CSE count) plus step()'s own loops; the hand-written one by formula from
 // the matrix products it writes (handwritten_ops below), since Eigen computes every entry of them.
 //
 // Usage: bench_handwritten [--repeats 11] [--min-time-ms 100] [--no-float]
@@ -64,11 +64,11 @@ double handwritten_ops(double n, double p) {
   return 2 * increment + (n + n * n) + 3 * (n + n * n);  // predicted state, then the average
 }
 
-// Operations of one generated Heun step: the three functions' CSE count per increment plus
-// detail::increment's loops (rates dt: state_size; K (dy - h dt): 4 n p), and step()'s predicted
-// state (state_size) and average (3 state_size).
+// Operations of one generated Heun step: rates()'s CSE count per increment plus
+// detail::increment's loops (rates dt: state_size; the innovation dy - h dt: 2 p; K times it: 2 n p),
+// and step()'s predicted state (state_size) and average (3 state_size).
 double generated_ops(double function_ops, double n, double p, double state_size) {
-  return 2 * (function_ops + state_size + 4 * n * p) + 4 * state_size;
+  return 2 * (function_ops + state_size + 2 * p + 2 * n * p) + 4 * state_size;
 }
 
 // ns per step of run_once (kSteps steps), run for at least min_time_ms.

@@ -86,6 +86,48 @@ inline void predicted_observation(Scalar t, const Scalar* state, const Params<Sc
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step() calls it.
+// Ops: 22 (7 add, 15 mul, 0 div, 0 call) without CSE, 20 (9 add, 11 mul, 0 div, 0 call) with CSE.
+template <class Scalar>
+inline void rates(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* out) {
+  (void)t;
+  (void)params;
+  const Scalar m1 = state[0];
+  const Scalar m2 = state[1];
+  const Scalar P11 = state[2];
+  const Scalar P12 = state[3];
+  const Scalar P22 = state[4];
+  const Scalar tmp0 = m1 * m1;
+  const Scalar tmp1 = tmp0 * Scalar(0.1);
+  const Scalar tmp2 = m2 * Scalar(0.1);
+  const Scalar tmp3 = tmp1 + tmp2;
+  const Scalar tmp4 = m1 * Scalar(0.2);
+  const Scalar tmp5 = P11 * tmp4;
+  const Scalar tmp6 = P12 * Scalar(0.1);
+  const Scalar tmp7 = tmp5 + tmp6;
+  const Scalar tmp8 = tmp7 + tmp7;
+  const Scalar tmp9 = P11 * P11;
+  const Scalar tmp10 = tmp8 - tmp9;
+  const Scalar tmp11 = P12 * tmp4;
+  const Scalar tmp12 = P22 * Scalar(0.1);
+  const Scalar tmp13 = tmp6 + tmp11;
+  const Scalar tmp14 = tmp12 + tmp13;
+  const Scalar tmp15 = P11 * P12;
+  const Scalar tmp16 = tmp14 - tmp15;
+  const Scalar tmp17 = tmp12 + tmp12;
+  const Scalar tmp18 = P12 * P12;
+  const Scalar tmp19 = tmp17 - tmp18;
+  out[0] = tmp3;
+  out[1] = tmp2;
+  out[2] = tmp10;
+  out[3] = tmp16;
+  out[4] = tmp19;
+  out[5] = P11;
+  out[6] = P12;
+  out[7] = m1;
+}
+
 // The filter state at t = 0 from the model's initial m0 and P0 (zeros if it gives none).
 template <class Scalar>
 inline void initial_state(Scalar* state) {
@@ -103,15 +145,15 @@ namespace detail {
 template <class Scalar>
 inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy, const Params<Scalar>& params,
                       Scalar* delta) {
-  std::array<Scalar, state_size> rates{};
-  std::array<Scalar, n * p> K{};
-  std::array<Scalar, p> h{};
-  derivatives(t, state, params, rates.data());
-  gain(t, state, params, K.data());
-  predicted_observation(t, state, params, h.data());
-  for (std::size_t i = 0; i < state_size; ++i) delta[i] = rates[i] * dt;
+  std::array<Scalar, state_size + n * p + p> all{};
+  rates(t, state, params, all.data());
+  const Scalar* K = all.data() + state_size;
+  const Scalar* h = K + n * p;
+  std::array<Scalar, p> innovation{};
+  for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (std::size_t i = 0; i < state_size; ++i) delta[i] = all[i] * dt;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * (dy[r] - h[r] * dt);
+    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * innovation[r];
 }
 
 }  // namespace detail

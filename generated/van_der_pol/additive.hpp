@@ -116,6 +116,71 @@ inline void predicted_observation(Scalar t, const Scalar* state, const Params<Sc
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step() calls it.
+// Ops: 73 (20 add, 48 mul, 5 div, 0 call) without CSE, 41 (18 add, 22 mul, 1 div, 0 call) with CSE.
+template <class Scalar>
+inline void rates(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* out) {
+  (void)t;
+  const Scalar m1 = state[0];
+  const Scalar m2 = state[1];
+  const Scalar P11 = state[2];
+  const Scalar P12 = state[3];
+  const Scalar P22 = state[4];
+  const Scalar mu = params.mu;
+  const Scalar s = params.s;
+  const Scalar r = params.r;
+  const Scalar tmp0 = m1 * m1;
+  const Scalar tmp1 = m2 * tmp0;
+  const Scalar tmp2 = m1 * P12;
+  const Scalar tmp3 = tmp2 * Scalar(2);
+  const Scalar tmp4 = tmp1 + tmp3;
+  const Scalar tmp5 = m2 * P11;
+  const Scalar tmp6 = tmp4 + tmp5;
+  const Scalar tmp7 = mu * tmp6;
+  const Scalar tmp8 = m1 + tmp7;
+  const Scalar tmp9 = mu * m2;
+  const Scalar tmp10 = tmp9 - tmp8;
+  const Scalar tmp11 = m1 * m2;
+  const Scalar tmp12 = P12 + tmp11;
+  const Scalar tmp13 = mu * Scalar(2);
+  const Scalar tmp14 = tmp12 * tmp13;
+  const Scalar tmp15 = Scalar(1) + tmp14;
+  const Scalar tmp16 = -tmp15;
+  const Scalar tmp17 = P11 + tmp0;
+  const Scalar tmp18 = mu * tmp17;
+  const Scalar tmp19 = mu - tmp18;
+  const Scalar tmp20 = r * r;
+  const Scalar tmp21 = Scalar(1) / tmp20;
+  const Scalar tmp22 = P11 * tmp21;
+  const Scalar tmp23 = P12 * tmp21;
+  const Scalar tmp24 = P12 + P12;
+  const Scalar tmp25 = P11 * tmp22;
+  const Scalar tmp26 = tmp24 - tmp25;
+  const Scalar tmp27 = P11 * tmp16;
+  const Scalar tmp28 = P12 * tmp19;
+  const Scalar tmp29 = tmp27 + tmp28;
+  const Scalar tmp30 = P22 + tmp29;
+  const Scalar tmp31 = P12 * tmp22;
+  const Scalar tmp32 = tmp30 - tmp31;
+  const Scalar tmp33 = P12 * tmp16;
+  const Scalar tmp34 = P22 * tmp19;
+  const Scalar tmp35 = tmp33 + tmp34;
+  const Scalar tmp36 = tmp35 + tmp35;
+  const Scalar tmp37 = s * s;
+  const Scalar tmp38 = tmp36 + tmp37;
+  const Scalar tmp39 = P12 * tmp23;
+  const Scalar tmp40 = tmp38 - tmp39;
+  out[0] = m2;
+  out[1] = tmp10;
+  out[2] = tmp26;
+  out[3] = tmp32;
+  out[4] = tmp40;
+  out[5] = tmp22;
+  out[6] = tmp23;
+  out[7] = m1;
+}
+
 // The filter state at t = 0 from the model's initial m0 and P0 (zeros if it gives none).
 template <class Scalar>
 inline void initial_state(Scalar* state) {
@@ -133,15 +198,15 @@ namespace detail {
 template <class Scalar>
 inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy, const Params<Scalar>& params,
                       Scalar* delta) {
-  std::array<Scalar, state_size> rates{};
-  std::array<Scalar, n * p> K{};
-  std::array<Scalar, p> h{};
-  derivatives(t, state, params, rates.data());
-  gain(t, state, params, K.data());
-  predicted_observation(t, state, params, h.data());
-  for (std::size_t i = 0; i < state_size; ++i) delta[i] = rates[i] * dt;
+  std::array<Scalar, state_size + n * p + p> all{};
+  rates(t, state, params, all.data());
+  const Scalar* K = all.data() + state_size;
+  const Scalar* h = K + n * p;
+  std::array<Scalar, p> innovation{};
+  for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (std::size_t i = 0; i < state_size; ++i) delta[i] = all[i] * dt;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * (dy[r] - h[r] * dt);
+    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * innovation[r];
 }
 
 }  // namespace detail

@@ -166,6 +166,8 @@ int run_codegen(const CodegenCliOptions& options) {
         entry.add("function", Json::string(f.function));
         entry.add("naive", counts(f.naive));
         entry.add("cse", counts(f.cse));
+        // rates() computes what derivatives(), gain() and predicted_observation() do: not in the totals.
+        if (!f.in_totals) entry.add("in_totals", Json::boolean(false));
         functions.push(entry);
       }
       Json out = Json::object();

@@ -91,6 +91,49 @@ inline void predicted_observation(Scalar t, const Scalar* state, const Params<Sc
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step() calls it.
+// Ops: 29 (6 add, 18 mul, 5 div, 0 call) without CSE, 21 (6 add, 14 mul, 1 div, 0 call) with CSE.
+inline void rates(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* out) {
+  (void)t;
+  const Scalar m1 = state[0];
+  const Scalar m2 = state[1];
+  const Scalar P11 = state[2];
+  const Scalar P12 = state[3];
+  const Scalar P22 = state[4];
+  const Scalar q = params.q;
+  const Scalar r = params.r;
+  const Scalar tmp0 = m2 * 0.2;
+  const Scalar tmp1 = -tmp0;
+  const Scalar tmp2 = P11 * P11;
+  const Scalar tmp3 = r * r;
+  const Scalar tmp4 = 1.0 / tmp3;
+  const Scalar tmp5 = tmp2 * tmp4;
+  const Scalar tmp6 = P12 * 2.0;
+  const Scalar tmp7 = tmp6 - tmp5;
+  const Scalar tmp8 = P11 * P12;
+  const Scalar tmp9 = tmp4 * tmp8;
+  const Scalar tmp10 = P12 * 0.2;
+  const Scalar tmp11 = tmp9 + tmp10;
+  const Scalar tmp12 = P22 - tmp11;
+  const Scalar tmp13 = P12 * P12;
+  const Scalar tmp14 = tmp4 * tmp13;
+  const Scalar tmp15 = P22 * 0.4;
+  const Scalar tmp16 = tmp14 + tmp15;
+  const Scalar tmp17 = q * q;
+  const Scalar tmp18 = tmp17 - tmp16;
+  const Scalar tmp19 = P11 * tmp4;
+  const Scalar tmp20 = P12 * tmp4;
+  out[0] = m2;
+  out[1] = tmp1;
+  out[2] = tmp7;
+  out[3] = tmp12;
+  out[4] = tmp18;
+  out[5] = tmp19;
+  out[6] = tmp20;
+  out[7] = m1;
+}
+
 // The filter state at t = 0 from the model's initial m0 and P0 (zeros if it gives none).
 inline void initial_state(Scalar* state) {
   state[0] = 0.0;
@@ -106,15 +149,15 @@ namespace detail {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy, const Params<Scalar>& params,
                       Scalar* delta) {
-  std::array<Scalar, state_size> rates{};
-  std::array<Scalar, n * p> K{};
-  std::array<Scalar, p> h{};
-  derivatives(t, state, params, rates.data());
-  gain(t, state, params, K.data());
-  predicted_observation(t, state, params, h.data());
-  for (std::size_t i = 0; i < state_size; ++i) delta[i] = rates[i] * dt;
+  std::array<Scalar, state_size + n * p + p> all{};
+  rates(t, state, params, all.data());
+  const Scalar* K = all.data() + state_size;
+  const Scalar* h = K + n * p;
+  std::array<Scalar, p> innovation{};
+  for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (std::size_t i = 0; i < state_size; ++i) delta[i] = all[i] * dt;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * (dy[r] - h[r] * dt);
+    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * innovation[r];
 }
 
 }  // namespace detail

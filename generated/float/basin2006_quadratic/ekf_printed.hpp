@@ -64,6 +64,26 @@ inline void predicted_observation(Scalar t, const Scalar* state, const Params<Sc
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step() calls it.
+// Ops: 6 (2 add, 4 mul, 0 div, 0 call) without CSE, 6 (2 add, 4 mul, 0 div, 0 call) with CSE.
+inline void rates(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* out) {
+  (void)t;
+  (void)params;
+  const Scalar m1 = state[0];
+  const Scalar P11 = state[1];
+  const Scalar tmp0 = m1 * m1;
+  const Scalar tmp1 = tmp0 * 0.1f;
+  const Scalar tmp2 = P11 * P11;
+  const Scalar tmp3 = P11 * 0.4f;
+  const Scalar tmp4 = tmp3 - tmp2;
+  const Scalar tmp5 = tmp4 + 0.01f;
+  out[0] = tmp1;
+  out[1] = tmp5;
+  out[2] = P11;
+  out[3] = m1;
+}
+
 // The filter state at t = 0 from the model's initial m0 and P0 (zeros if it gives none).
 inline void initial_state(Scalar* state) {
   state[0] = 0.1f;
@@ -76,15 +96,15 @@ namespace detail {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy, const Params<Scalar>& params,
                       Scalar* delta) {
-  std::array<Scalar, state_size> rates{};
-  std::array<Scalar, n * p> K{};
-  std::array<Scalar, p> h{};
-  derivatives(t, state, params, rates.data());
-  gain(t, state, params, K.data());
-  predicted_observation(t, state, params, h.data());
-  for (std::size_t i = 0; i < state_size; ++i) delta[i] = rates[i] * dt;
+  std::array<Scalar, state_size + n * p + p> all{};
+  rates(t, state, params, all.data());
+  const Scalar* K = all.data() + state_size;
+  const Scalar* h = K + n * p;
+  std::array<Scalar, p> innovation{};
+  for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (std::size_t i = 0; i < state_size; ++i) delta[i] = all[i] * dt;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * (dy[r] - h[r] * dt);
+    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * innovation[r];
 }
 
 }  // namespace detail

@@ -86,6 +86,48 @@ inline void predicted_observation(Scalar t, const Scalar* state, const Params<Sc
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step() calls it.
+// Ops: 24 (8 add, 16 mul, 0 div, 0 call) without CSE, 21 (10 add, 11 mul, 0 div, 0 call) with CSE.
+inline void rates(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* out) {
+  (void)t;
+  (void)params;
+  const Scalar m1 = state[0];
+  const Scalar m2 = state[1];
+  const Scalar P11 = state[2];
+  const Scalar P12 = state[3];
+  const Scalar P22 = state[4];
+  const Scalar tmp0 = m1 * m1;
+  const Scalar tmp1 = P11 + tmp0;
+  const Scalar tmp2 = tmp1 * 0.1f;
+  const Scalar tmp3 = m2 * 0.1f;
+  const Scalar tmp4 = tmp2 + tmp3;
+  const Scalar tmp5 = m1 * 0.2f;
+  const Scalar tmp6 = P11 * tmp5;
+  const Scalar tmp7 = P12 * 0.1f;
+  const Scalar tmp8 = tmp6 + tmp7;
+  const Scalar tmp9 = tmp8 + tmp8;
+  const Scalar tmp10 = P11 * P11;
+  const Scalar tmp11 = tmp9 - tmp10;
+  const Scalar tmp12 = P12 * tmp5;
+  const Scalar tmp13 = P22 * 0.1f;
+  const Scalar tmp14 = tmp7 + tmp12;
+  const Scalar tmp15 = tmp13 + tmp14;
+  const Scalar tmp16 = P11 * P12;
+  const Scalar tmp17 = tmp15 - tmp16;
+  const Scalar tmp18 = tmp13 + tmp13;
+  const Scalar tmp19 = P12 * P12;
+  const Scalar tmp20 = tmp18 - tmp19;
+  out[0] = tmp4;
+  out[1] = tmp3;
+  out[2] = tmp11;
+  out[3] = tmp17;
+  out[4] = tmp20;
+  out[5] = P11;
+  out[6] = P12;
+  out[7] = m1;
+}
+
 // The filter state at t = 0 from the model's initial m0 and P0 (zeros if it gives none).
 inline void initial_state(Scalar* state) {
   state[0] = 0.1f;
@@ -101,15 +143,15 @@ namespace detail {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy, const Params<Scalar>& params,
                       Scalar* delta) {
-  std::array<Scalar, state_size> rates{};
-  std::array<Scalar, n * p> K{};
-  std::array<Scalar, p> h{};
-  derivatives(t, state, params, rates.data());
-  gain(t, state, params, K.data());
-  predicted_observation(t, state, params, h.data());
-  for (std::size_t i = 0; i < state_size; ++i) delta[i] = rates[i] * dt;
+  std::array<Scalar, state_size + n * p + p> all{};
+  rates(t, state, params, all.data());
+  const Scalar* K = all.data() + state_size;
+  const Scalar* h = K + n * p;
+  std::array<Scalar, p> innovation{};
+  for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (std::size_t i = 0; i < state_size; ++i) delta[i] = all[i] * dt;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * (dy[r] - h[r] * dt);
+    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * innovation[r];
 }
 
 }  // namespace detail

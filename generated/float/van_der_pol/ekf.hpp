@@ -109,6 +109,64 @@ inline void predicted_observation(Scalar t, const Scalar* state, const Params<Sc
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step() calls it.
+// Ops: 58 (13 add, 40 mul, 5 div, 0 call) without CSE, 35 (14 add, 20 mul, 1 div, 0 call) with CSE.
+inline void rates(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* out) {
+  (void)t;
+  const Scalar m1 = state[0];
+  const Scalar m2 = state[1];
+  const Scalar P11 = state[2];
+  const Scalar P12 = state[3];
+  const Scalar P22 = state[4];
+  const Scalar mu = params.mu;
+  const Scalar s = params.s;
+  const Scalar r = params.r;
+  const Scalar tmp0 = m1 * m1;
+  const Scalar tmp1 = m2 * tmp0;
+  const Scalar tmp2 = mu * tmp1;
+  const Scalar tmp3 = m1 + tmp2;
+  const Scalar tmp4 = mu * m2;
+  const Scalar tmp5 = tmp4 - tmp3;
+  const Scalar tmp6 = m1 * m2;
+  const Scalar tmp7 = mu * 2.0f;
+  const Scalar tmp8 = tmp6 * tmp7;
+  const Scalar tmp9 = 1.0f + tmp8;
+  const Scalar tmp10 = -tmp9;
+  const Scalar tmp11 = mu * tmp0;
+  const Scalar tmp12 = mu - tmp11;
+  const Scalar tmp13 = r * r;
+  const Scalar tmp14 = 1.0f / tmp13;
+  const Scalar tmp15 = P11 * tmp14;
+  const Scalar tmp16 = P12 * tmp14;
+  const Scalar tmp17 = P12 + P12;
+  const Scalar tmp18 = P11 * tmp15;
+  const Scalar tmp19 = tmp17 - tmp18;
+  const Scalar tmp20 = P11 * tmp10;
+  const Scalar tmp21 = P12 * tmp12;
+  const Scalar tmp22 = tmp20 + tmp21;
+  const Scalar tmp23 = P22 + tmp22;
+  const Scalar tmp24 = P12 * tmp15;
+  const Scalar tmp25 = tmp23 - tmp24;
+  const Scalar tmp26 = P12 * tmp10;
+  const Scalar tmp27 = P22 * tmp12;
+  const Scalar tmp28 = tmp26 + tmp27;
+  const Scalar tmp29 = tmp28 + tmp28;
+  const Scalar tmp30 = s * s;
+  const Scalar tmp31 = tmp0 * tmp30;
+  const Scalar tmp32 = tmp29 + tmp31;
+  const Scalar tmp33 = P12 * tmp16;
+  const Scalar tmp34 = tmp32 - tmp33;
+  out[0] = m2;
+  out[1] = tmp5;
+  out[2] = tmp19;
+  out[3] = tmp25;
+  out[4] = tmp34;
+  out[5] = tmp15;
+  out[6] = tmp16;
+  out[7] = m1;
+}
+
 // The filter state at t = 0 from the model's initial m0 and P0 (zeros if it gives none).
 inline void initial_state(Scalar* state) {
   state[0] = 0.0f;
@@ -124,15 +182,15 @@ namespace detail {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy, const Params<Scalar>& params,
                       Scalar* delta) {
-  std::array<Scalar, state_size> rates{};
-  std::array<Scalar, n * p> K{};
-  std::array<Scalar, p> h{};
-  derivatives(t, state, params, rates.data());
-  gain(t, state, params, K.data());
-  predicted_observation(t, state, params, h.data());
-  for (std::size_t i = 0; i < state_size; ++i) delta[i] = rates[i] * dt;
+  std::array<Scalar, state_size + n * p + p> all{};
+  rates(t, state, params, all.data());
+  const Scalar* K = all.data() + state_size;
+  const Scalar* h = K + n * p;
+  std::array<Scalar, p> innovation{};
+  for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (std::size_t i = 0; i < state_size; ++i) delta[i] = all[i] * dt;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * (dy[r] - h[r] * dt);
+    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * innovation[r];
 }
 
 }  // namespace detail

@@ -19,13 +19,15 @@ std::vector<std::string> filter_file_paths(const std::string& model_name, const 
 
 OpCounts GeneratedFilter::naive_total() const {
   OpCounts total;
-  for (const auto& f : functions) total += f.naive;
+  for (const auto& f : functions)
+    if (f.in_totals) total += f.naive;
   return total;
 }
 
 OpCounts GeneratedFilter::cse_total() const {
   OpCounts total;
-  for (const auto& f : functions) total += f.cse;
+  for (const auto& f : functions)
+    if (f.in_totals) total += f.cse;
   return total;
 }
 

@@ -8,6 +8,7 @@
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/codegen/moment_form.hpp"
+#include "pfgen/codegen/p_drift_loops.hpp"
 #include "pfgen/codegen/local_names.hpp"
 
 namespace pfgen::codegen {
@@ -60,11 +61,15 @@ struct BuiltFunction {
   std::vector<std::size_t> roots;
   std::vector<std::size_t> declaration_order;
   FunctionStats stats;
+  // derivatives() in loops: the roots fill the work array, and the loops write the outputs.
+  std::optional<PDriftLoops> loops;
 };
 
 // Builds the outputs of one function into a graph: their roots in order, in `roots`. The builder
 // reads the filter's variables and definitions; the graph takes operations the builder does not make.
 using OutputBuilder = std::function<void(GraphBuilder&, ExpressionGraph&, std::vector<std::size_t>& roots)>;
+// The same for derivatives() in loops, which also says what the loops compute.
+using LoopBuilder = std::function<PDriftLoops(GraphBuilder&, ExpressionGraph&, std::vector<std::size_t>& roots)>;
 
 // The graph of the outputs `add_outputs` builds, read through the filter's definitions, which are
 // computed first.
@@ -83,12 +88,39 @@ std::unique_ptr<BuiltFunction> built_function(const std::string& function, const
   return built;
 }
 
+std::unique_ptr<BuiltFunction> built_loops(const Model& model, const FilterEquations& eq, const FunctionNames& names,
+                                           const LoopBuilder& add_outputs) {
+  PDriftLoops loops;
+  auto built = built_function("derivatives", model, eq, names,
+                              [&](GraphBuilder& builder, ExpressionGraph& graph, std::vector<std::size_t>& roots) {
+                                loops = add_outputs(builder, graph, roots);
+                              });
+  built->stats.cse += loops.counts();
+  built->loops = loops;
+  return built;
+}
+
+PDriftLoopNames loop_names(const FunctionNames& names) {
+  return {names.work, names.state, names.out, names.full_P, names.JP, names.gain_T, names.H,
+          names.sum, names.i, names.j, names.u};
+}
+
 FunctionCode written(const BuiltFunction& built, const std::string& target, const FunctionNames& names,
                      const CFamilyEmitter& emitter, bool shared) {
   FunctionCode code;
   code.stats = built.stats;
-  code.body = emitter.function_body(built.graph, built.roots, signature(built.function, names, built.layout, target),
+  if (!built.loops) {
+    code.body = emitter.function_body(built.graph, built.roots, signature(built.function, names, built.layout, target),
+                                      built.declaration_order, shared);
+    return code;
+  }
+  // The graph fills the work array; the loops write `target`.
+  code.body = emitter.function_body(built.graph, built.roots,
+                                    signature(built.function, names, built.layout, names.work),
                                     built.declaration_order, shared);
+  code.body.statements = "  " + emitter.scalar_type() + " " + names.work + "[" +
+                         std::to_string(built.loops->work_size) + "];\n" + code.body.statements +
+                         emitter.p_drift_loops(*built.loops, loop_names(names));
   return code;
 }
 
@@ -162,6 +194,100 @@ void build_structured(const FilterEquations& eq, bool moments, GraphBuilder& bui
   for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
 }
 
+
+// derivatives() with P's drift in loops (p_drift_loops.hpp): the graph computes into the work array
+// m's drift, E[J] (every entry, 0 where it is zero), the correction's blocks that the loops do not
+// multiply out, and the rest of P's drift per upper entry; the loops do the products. `moments`:
+// E[f], E[J] and E[g g^T] over shared moments, as in build_structured.
+PDriftLoops build_loops(const FilterEquations& eq, bool moments, GraphBuilder& builder, ExpressionGraph& graph,
+                        std::vector<std::size_t>& roots) {
+  using Kind = PDriftLoops::WeightEntry::Kind;
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n();
+  const ExpectationSources* sources = moments ? &*eq.expectation_sources : nullptr;
+  std::optional<MomentForm> form;
+  if (moments) form.emplace(builder, vars);
+  // A number is written as it is (a negative one too): an entry of a block costs no operation.
+  auto entry = [&](const GiNaC::ex& e) {
+    return GiNaC::is_exactly_a<GiNaC::numeric>(e) ? graph.constant(GiNaC::ex_to<GiNaC::numeric>(e))
+                                                   : builder.expression(e);
+  };
+  auto constant_term = [](const Polynomial& q) { return q.terms().size() == 1 && q.terms().begin()->first.is_one(); };
+  auto polynomial_entry = [&](const Polynomial& q, const Polynomial* source) {
+    if (q.is_zero()) return graph.constant(0);
+    if (constant_term(q)) return entry(q.terms().begin()->second);
+    return source ? form->expectation(*source) : builder.polynomial(q);
+  };
+  auto dense = [](const std::vector<std::vector<GiNaC::ex>>& block) {
+    for (const auto& row : block)
+      for (const GiNaC::ex& e : row)
+        if (e.is_zero()) return false;
+    return true;
+  };
+
+  PDriftLoops loops;
+  loops.n = n;
+  for (std::size_t j = 0; j < n; ++j)
+    roots.push_back(moments ? form->expectation(sources->drift[j]) : builder.polynomial(eq.m_drift[j]));
+  loops.jacobian_offset = roots.size();
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t k = 0; k < n; ++k)
+      roots.push_back(polynomial_entry(eq.jacobian_term[j][k], moments ? &sources->jacobian[j][k] : nullptr));
+
+  // The correction K (A P): H = A P and K^T = M H in the loops where A (and M) allow, else from the graph.
+  const auto H = correction_factor(eq);
+  loops.factored = H.has_value();
+  if (loops.factored) {
+    loops.p = eq.p;
+    const auto A = observation_matrix(eq);
+    const auto Gt = gain_factor(eq);
+    const auto M = A && Gt ? gain_weight(*Gt, *A) : std::nullopt;
+    loops.H_in_loops = A && dense(*A);
+    if (loops.H_in_loops) {
+      loops.observation_offset = roots.size();
+      for (const auto& row : *A)
+        for (const GiNaC::ex& e : row) roots.push_back(entry(e));
+    } else {
+      loops.H_offset = roots.size();
+      for (const auto& row : *H)
+        for (const Polynomial& q : row) roots.push_back(polynomial_entry(q, nullptr));
+    }
+    loops.weighted = M.has_value();
+    if (loops.weighted) {
+      loops.weight.assign(eq.p, std::vector<PDriftLoops::WeightEntry>(eq.p));
+      for (std::size_t r = 0; r < eq.p; ++r)
+        for (std::size_t s = 0; s < eq.p; ++s) {
+          const GiNaC::ex& m = (*M)[r][s];
+          if (m.is_zero()) continue;
+          if (m == 1) {
+            loops.weight[r][s].kind = Kind::One;
+            continue;
+          }
+          loops.weight[r][s] = {Kind::Value, roots.size()};
+          roots.push_back(entry(m));
+        }
+    } else {
+      loops.gain_offset = roots.size();
+      for (std::size_t r = 0; r < eq.p; ++r)
+        for (std::size_t i = 0; i < n; ++i) roots.push_back(polynomial_entry(eq.gain[i][r], nullptr));
+    }
+  }
+  loops.rest_offset = roots.size();
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i; j < n; ++j) {
+      const std::size_t u = vars.upper_index(i, j);
+      Polynomial rest = eq.P_diffusion[u];
+      const Polynomial* source = moments ? &sources->diffusion_upper[u] : nullptr;
+      if (!loops.factored && !eq.P_correction[u].is_zero()) {
+        rest -= eq.P_correction[u];
+        source = nullptr;
+      }
+      loops.rest = loops.rest || !rest.is_zero();
+      roots.push_back(polynomial_entry(rest, source));
+    }
+  return loops;
+}
+
 }  // namespace
 
 FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
@@ -184,36 +310,129 @@ FunctionCode function_code(const std::string& function, const std::vector<Polyno
 // form also writes the correction P A^T R^-1 A P as K (A P), K the gain, where
 // correction_factor() has checked that this is the same polynomial. For the Gaussian-closure
 // kinds a third form writes E[f], E[J] and E[g g^T] over shared moments (moment_form.hpp).
-FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                              const FunctionNames& names, const CFamilyEmitter& emitter) {
-  const std::size_t n = eq.n();
-  // P's drift (upper triangle) is summed one entry at a time, as the graph takes it.
-  auto expanded = [&](GraphBuilder& builder, ExpressionGraph&, std::vector<std::size_t>& roots) {
-    for (const Polynomial& p : eq.m_drift) roots.push_back(builder.polynomial(p));
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i; j < n; ++j) roots.push_back(builder.polynomial(eq.P_drift(i, j)));
-    // A delayed filter with Phi* integrates x* beside m and P: its drift follows them in `out`.
-    for (const Polynomial& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
-  };
-  auto flat = built_function("derivatives", model, eq, names, expanded);
-  if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty())
-    return written(*flat, names.out, names, emitter, options.eliminate_common_subexpressions);
+namespace {
 
-  auto structured = [&](bool moments) {
-    return [&eq, moments](GraphBuilder& builder, ExpressionGraph& graph, std::vector<std::size_t>& roots) {
-      build_structured(eq, moments, builder, graph, roots);
-    };
-  };
+// Whether every entry of E[J] (or its EKF stand-in) is nonzero.
+bool dense_jacobian(const FilterEquations& eq) {
+  for (const auto& row : eq.jacobian_term)
+    for (const Polynomial& entry : row)
+      if (entry.is_zero()) return false;
+  return !eq.jacobian_term.empty();
+}
+
+// The outputs rates() writes after derivatives' own: the gain (n x p, row-major), then the
+// predicted observation.
+struct ExtraOutputs {
+  const FilterEquations* eq = nullptr;  // null: none
+  void append(GraphBuilder& builder, std::vector<std::size_t>& roots, bool gain) const {
+    if (!eq) return;
+    if (gain)
+      for (const auto& row : eq->gain)
+        for (const Polynomial& q : row) roots.push_back(builder.polynomial(q));
+    for (const Polynomial& q : eq->predicted_observation) roots.push_back(builder.polynomial(q));
+  }
+};
+
+std::unique_ptr<BuiltFunction> built_form(DerivativesForm form, const std::string& function, const Model& model,
+                                          const FilterEquations& eq, const FunctionNames& names,
+                                          const ExtraOutputs& extras) {
+  const std::size_t n = eq.n();
+  switch (form) {
+    case DerivativesForm::Expanded:
+      // P's drift (upper triangle) is summed one entry at a time, as the graph takes it.
+      return built_function(function, model, eq, names,
+                            [&](GraphBuilder& builder, ExpressionGraph&, std::vector<std::size_t>& roots) {
+                              for (const Polynomial& p : eq.m_drift) roots.push_back(builder.polynomial(p));
+                              for (std::size_t i = 0; i < n; ++i)
+                                for (std::size_t j = i; j < n; ++j) roots.push_back(builder.polynomial(eq.P_drift(i, j)));
+                              // A delayed filter with Phi* integrates x* beside m and P: its drift
+                              // follows them in `out`.
+                              for (const Polynomial& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
+                              extras.append(builder, roots, true);
+                            });
+    case DerivativesForm::Structured:
+    case DerivativesForm::Moments:
+      return built_function(function, model, eq, names,
+                            [&](GraphBuilder& builder, ExpressionGraph& graph, std::vector<std::size_t>& roots) {
+                              build_structured(eq, form == DerivativesForm::Moments, builder, graph, roots);
+                              extras.append(builder, roots, true);
+                            });
+    case DerivativesForm::Loops:
+    case DerivativesForm::MomentLoops: {
+      auto built = built_loops(model, eq, names, [&](GraphBuilder& builder, ExpressionGraph& graph,
+                                                     std::vector<std::size_t>& roots) {
+        PDriftLoops loops = build_loops(eq, form == DerivativesForm::MomentLoops, builder, graph, roots);
+        // rates(): the gain comes from K^T where the correction is factored, else from the graph;
+        // what the graph computes follows the rest in the work array and is copied into place.
+        loops.tail_offset = roots.size();
+        if (extras.eq) {
+          loops.gain_out = loops.factored;
+          extras.append(builder, roots, !loops.factored);
+          loops.tail = roots.size() - loops.tail_offset;
+        }
+        loops.work_size = roots.size();
+        return loops;
+      });
+      built->function = function;
+      built->stats.function = function;
+      return built;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                              const FunctionNames& names, const CFamilyEmitter& emitter, DerivativesForm* chosen) {
+  const std::size_t n = eq.n();
+  auto flat = built_form(DerivativesForm::Expanded, "derivatives", model, eq, names, {});
+  DerivativesForm form = DerivativesForm::Expanded;
+  if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty()) {
+    if (chosen) *chosen = form;
+    return written(*flat, names.out, names, emitter, options.eliminate_common_subexpressions);
+  }
   // The form with the fewest operations after sharing, the earlier on a tie.
   std::unique_ptr<BuiltFunction> kept = std::move(flat);
   const OpCounts naive = kept->stats.naive;  // the count of the expanded equations, whichever form is written
-  for (bool moments : {false, true}) {
-    if (moments && !(eq.expectation_sources && eq.expectation_sources->drift.size() == n)) continue;
-    auto candidate = built_function("derivatives", model, eq, names, structured(moments));
-    if (candidate->stats.cse.total() < kept->stats.cse.total()) kept = std::move(candidate);
+  for (DerivativesForm candidate_form : {DerivativesForm::Structured, DerivativesForm::Moments}) {
+    if (candidate_form == DerivativesForm::Moments &&
+        !(eq.expectation_sources && eq.expectation_sources->drift.size() == n))
+      continue;
+    auto candidate = built_form(candidate_form, "derivatives", model, eq, names, {});
+    if (candidate->stats.cse.total() < kept->stats.cse.total()) {
+      kept = std::move(candidate);
+      form = candidate_form;
+    }
+  }
+  // P's drift in loops over dense blocks (p_drift_loops.hpp), over the same expectations as the
+  // kept form: where E[J] is dense, or where the loops need no more operations. For a dense E[J]
+  // the loops do the straight-line form's products, and code that is loops is what compilers
+  // vectorise and what fits an instruction cache; the straight-line form may still count fewer
+  // operations where coefficients happen to be equal (graph sharing multiplies P_ik by 0.3 once
+  // for every entry of E[J] that is 0.3), which depends on the model's numbers, not its structure.
+  // A delayed filter's x* drift follows P's in `out`, which the loops do not write.
+  if (n >= kMinLoopDimension && eq.x_star_drift.empty()) {
+    const DerivativesForm loop_form =
+        form == DerivativesForm::Moments ? DerivativesForm::MomentLoops : DerivativesForm::Loops;
+    auto candidate = built_form(loop_form, "derivatives", model, eq, names, {});
+    if (dense_jacobian(eq) || candidate->stats.cse.total() <= kept->stats.cse.total()) {
+      kept = std::move(candidate);
+      form = loop_form;
+    }
   }
   kept->stats.naive = naive;
+  if (chosen) *chosen = form;
   return written(*kept, names.out, names, emitter, true);
+}
+
+FunctionCode rates_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                        const FunctionNames& names, const CFamilyEmitter& emitter, DerivativesForm form,
+                        const OpCounts& naive) {
+  auto built = built_form(form, "rates", model, eq, names, ExtraOutputs{&eq});
+  built->stats.naive = naive;
+  built->stats.in_totals = false;
+  return written(*built, names.out, names, emitter, options.eliminate_common_subexpressions);
 }
 
 std::string counts_text(const OpCounts& c) {
@@ -248,6 +467,16 @@ FunctionNames function_names(const Model& model) {
   f.shared = names.take("shared");  // the local array of a function written in parts (split_body)
   f.L = names.take("L");
   f.c = names.take("c");
+  // The loops of P's drift (p_drift_loops.hpp), taken after the others for the same reason.
+  f.work = names.take("w");
+  f.full_P = names.take("P_full");
+  f.JP = names.take("JP");
+  f.gain_T = names.take("K_T");
+  f.H = names.take("H");
+  f.sum = names.take("S");
+  f.i = names.take("i");
+  f.j = names.take("j");
+  f.u = names.take("u");
   f.temporary_prefix = names.temporary_prefix();
   return f;
 }

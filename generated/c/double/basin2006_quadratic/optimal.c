@@ -51,6 +51,35 @@ void pfgen_models_basin2006_quadratic_optimal_predicted_observation(double t, co
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step calls it.
+// Ops: 18 (4 add, 14 mul, 0 div, 0 call) without CSE, 15 (4 add, 11 mul, 0 div, 0 call) with CSE.
+static void pfgen_models_basin2006_quadratic_optimal_rates(double t, const double* state, const pfgen_models_basin2006_quadratic_optimal_params* params, double* out) {
+  (void)t;
+  (void)params;
+  const double m1 = state[0];
+  const double P11 = state[1];
+  const double tmp0 = m1 * m1;
+  const double tmp1 = tmp0 * 0.1;
+  const double tmp2 = P11 * 0.1;
+  const double tmp3 = tmp1 + tmp2;
+  const double tmp4 = tmp0 * tmp0;
+  const double tmp5 = tmp4 * 0.01;
+  const double tmp6 = P11 * tmp0;
+  const double tmp7 = tmp6 * 0.06;
+  const double tmp8 = tmp5 + tmp7;
+  const double tmp9 = m1 * P11;
+  const double tmp10 = tmp9 * 0.4;
+  const double tmp11 = tmp8 + tmp10;
+  const double tmp12 = P11 * P11;
+  const double tmp13 = tmp12 * 0.97;
+  const double tmp14 = tmp11 - tmp13;
+  out[0] = tmp3;
+  out[1] = tmp14;
+  out[2] = P11;
+  out[3] = m1;
+}
+
 void pfgen_models_basin2006_quadratic_optimal_initial_state(double* state) {
   state[0] = 0.1;
   state[1] = 1.0;
@@ -60,15 +89,15 @@ void pfgen_models_basin2006_quadratic_optimal_initial_state(double* state) {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 static void pfgen_models_basin2006_quadratic_optimal_increment(double t, const double* state, double dt, const double* dy,
                       const pfgen_models_basin2006_quadratic_optimal_params* params, double* delta) {
-  double rates[pfgen_models_basin2006_quadratic_optimal_state_size];
-  double K[pfgen_models_basin2006_quadratic_optimal_n * pfgen_models_basin2006_quadratic_optimal_p];
-  double h[pfgen_models_basin2006_quadratic_optimal_p];
-  pfgen_models_basin2006_quadratic_optimal_derivatives(t, state, params, rates);
-  pfgen_models_basin2006_quadratic_optimal_gain(t, state, params, K);
-  pfgen_models_basin2006_quadratic_optimal_predicted_observation(t, state, params, h);
-  for (size_t i = 0; i < pfgen_models_basin2006_quadratic_optimal_state_size; ++i) delta[i] = rates[i] * dt;
+  double all[pfgen_models_basin2006_quadratic_optimal_state_size + pfgen_models_basin2006_quadratic_optimal_n * pfgen_models_basin2006_quadratic_optimal_p + pfgen_models_basin2006_quadratic_optimal_p];
+  const double* K = all + pfgen_models_basin2006_quadratic_optimal_state_size;
+  const double* h = K + pfgen_models_basin2006_quadratic_optimal_n * pfgen_models_basin2006_quadratic_optimal_p;
+  pfgen_models_basin2006_quadratic_optimal_rates(t, state, params, all);
+  double innovation[pfgen_models_basin2006_quadratic_optimal_p];
+  for (size_t r = 0; r < pfgen_models_basin2006_quadratic_optimal_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t i = 0; i < pfgen_models_basin2006_quadratic_optimal_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_basin2006_quadratic_optimal_n; ++i)
-    for (size_t r = 0; r < pfgen_models_basin2006_quadratic_optimal_p; ++r) delta[i] += K[i * pfgen_models_basin2006_quadratic_optimal_p + r] * (dy[r] - h[r] * dt);
+    for (size_t r = 0; r < pfgen_models_basin2006_quadratic_optimal_p; ++r) delta[i] += K[i * pfgen_models_basin2006_quadratic_optimal_p + r] * innovation[r];
 }
 
 void pfgen_models_basin2006_quadratic_optimal_step(double* state, double t, double dt, const double* dy, const pfgen_models_basin2006_quadratic_optimal_params* params) {

@@ -69,6 +69,49 @@ void pfgen_models_leqg_tracking_ekf_predicted_observation(double t, const double
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step calls it.
+// Ops: 29 (6 add, 18 mul, 5 div, 0 call) without CSE, 21 (6 add, 14 mul, 1 div, 0 call) with CSE.
+static void pfgen_models_leqg_tracking_ekf_rates(double t, const double* state, const pfgen_models_leqg_tracking_ekf_params* params, double* out) {
+  (void)t;
+  const double m1 = state[0];
+  const double m2 = state[1];
+  const double P11 = state[2];
+  const double P12 = state[3];
+  const double P22 = state[4];
+  const double q = params->q;
+  const double r = params->r;
+  const double tmp0 = m2 * 0.2;
+  const double tmp1 = -tmp0;
+  const double tmp2 = P11 * P11;
+  const double tmp3 = r * r;
+  const double tmp4 = 1.0 / tmp3;
+  const double tmp5 = tmp2 * tmp4;
+  const double tmp6 = P12 * 2.0;
+  const double tmp7 = tmp6 - tmp5;
+  const double tmp8 = P11 * P12;
+  const double tmp9 = tmp4 * tmp8;
+  const double tmp10 = P12 * 0.2;
+  const double tmp11 = tmp9 + tmp10;
+  const double tmp12 = P22 - tmp11;
+  const double tmp13 = P12 * P12;
+  const double tmp14 = tmp4 * tmp13;
+  const double tmp15 = P22 * 0.4;
+  const double tmp16 = tmp14 + tmp15;
+  const double tmp17 = q * q;
+  const double tmp18 = tmp17 - tmp16;
+  const double tmp19 = P11 * tmp4;
+  const double tmp20 = P12 * tmp4;
+  out[0] = m2;
+  out[1] = tmp1;
+  out[2] = tmp7;
+  out[3] = tmp12;
+  out[4] = tmp18;
+  out[5] = tmp19;
+  out[6] = tmp20;
+  out[7] = m1;
+}
+
 void pfgen_models_leqg_tracking_ekf_initial_state(double* state) {
   state[0] = 0.0;
   state[1] = 0.0;
@@ -81,15 +124,15 @@ void pfgen_models_leqg_tracking_ekf_initial_state(double* state) {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 static void pfgen_models_leqg_tracking_ekf_increment(double t, const double* state, double dt, const double* dy,
                       const pfgen_models_leqg_tracking_ekf_params* params, double* delta) {
-  double rates[pfgen_models_leqg_tracking_ekf_state_size];
-  double K[pfgen_models_leqg_tracking_ekf_n * pfgen_models_leqg_tracking_ekf_p];
-  double h[pfgen_models_leqg_tracking_ekf_p];
-  pfgen_models_leqg_tracking_ekf_derivatives(t, state, params, rates);
-  pfgen_models_leqg_tracking_ekf_gain(t, state, params, K);
-  pfgen_models_leqg_tracking_ekf_predicted_observation(t, state, params, h);
-  for (size_t i = 0; i < pfgen_models_leqg_tracking_ekf_state_size; ++i) delta[i] = rates[i] * dt;
+  double all[pfgen_models_leqg_tracking_ekf_state_size + pfgen_models_leqg_tracking_ekf_n * pfgen_models_leqg_tracking_ekf_p + pfgen_models_leqg_tracking_ekf_p];
+  const double* K = all + pfgen_models_leqg_tracking_ekf_state_size;
+  const double* h = K + pfgen_models_leqg_tracking_ekf_n * pfgen_models_leqg_tracking_ekf_p;
+  pfgen_models_leqg_tracking_ekf_rates(t, state, params, all);
+  double innovation[pfgen_models_leqg_tracking_ekf_p];
+  for (size_t r = 0; r < pfgen_models_leqg_tracking_ekf_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t i = 0; i < pfgen_models_leqg_tracking_ekf_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_leqg_tracking_ekf_n; ++i)
-    for (size_t r = 0; r < pfgen_models_leqg_tracking_ekf_p; ++r) delta[i] += K[i * pfgen_models_leqg_tracking_ekf_p + r] * (dy[r] - h[r] * dt);
+    for (size_t r = 0; r < pfgen_models_leqg_tracking_ekf_p; ++r) delta[i] += K[i * pfgen_models_leqg_tracking_ekf_p + r] * innovation[r];
 }
 
 void pfgen_models_leqg_tracking_ekf_step(double* state, double t, double dt, const double* dy, const pfgen_models_leqg_tracking_ekf_params* params) {

@@ -81,6 +81,61 @@ void pfgen_models_leqg_tracking_risk_sensitive_predicted_observation(double t, c
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step calls it.
+// Ops: 53 (12 add, 30 mul, 11 div, 0 call) without CSE, 32 (10 add, 20 mul, 2 div, 0 call) with CSE.
+static void pfgen_models_leqg_tracking_risk_sensitive_rates(double t, const double* state, const pfgen_models_leqg_tracking_risk_sensitive_params* params, double* out) {
+  (void)t;
+  const double m1 = state[0];
+  const double m2 = state[1];
+  const double P11 = state[2];
+  const double P12 = state[3];
+  const double P22 = state[4];
+  const double eps = params->eps;
+  const double q = params->q;
+  const double r = params->r;
+  const double tmp0 = m2 * 0.2;
+  const double tmp1 = -tmp0;
+  const double tmp2 = P11 * P11;
+  const double tmp3 = r * r;
+  const double tmp4 = 1.0 / tmp3;
+  const double tmp5 = 1.0 / eps;
+  const double tmp6 = tmp5 * 2.0;
+  const double tmp7 = tmp6 - tmp4;
+  const double tmp8 = tmp2 * tmp7;
+  const double tmp9 = P12 * P12;
+  const double tmp10 = tmp6 * tmp9;
+  const double tmp11 = tmp8 + tmp10;
+  const double tmp12 = P12 * 2.0;
+  const double tmp13 = tmp11 + tmp12;
+  const double tmp14 = P11 * P12;
+  const double tmp15 = tmp7 * tmp14;
+  const double tmp16 = P12 * P22;
+  const double tmp17 = tmp6 * tmp16;
+  const double tmp18 = tmp15 + tmp17;
+  const double tmp19 = P12 * 0.2;
+  const double tmp20 = tmp18 - tmp19;
+  const double tmp21 = P22 + tmp20;
+  const double tmp22 = tmp7 * tmp9;
+  const double tmp23 = P22 * P22;
+  const double tmp24 = tmp6 * tmp23;
+  const double tmp25 = tmp22 + tmp24;
+  const double tmp26 = P22 * 0.4;
+  const double tmp27 = tmp25 - tmp26;
+  const double tmp28 = q * q;
+  const double tmp29 = tmp27 + tmp28;
+  const double tmp30 = P11 * tmp4;
+  const double tmp31 = P12 * tmp4;
+  out[0] = m2;
+  out[1] = tmp1;
+  out[2] = tmp13;
+  out[3] = tmp21;
+  out[4] = tmp29;
+  out[5] = tmp30;
+  out[6] = tmp31;
+  out[7] = m1;
+}
+
 void pfgen_models_leqg_tracking_risk_sensitive_initial_state(double* state) {
   state[0] = 0.0;
   state[1] = 0.0;
@@ -93,15 +148,15 @@ void pfgen_models_leqg_tracking_risk_sensitive_initial_state(double* state) {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 static void pfgen_models_leqg_tracking_risk_sensitive_increment(double t, const double* state, double dt, const double* dy,
                       const pfgen_models_leqg_tracking_risk_sensitive_params* params, double* delta) {
-  double rates[pfgen_models_leqg_tracking_risk_sensitive_state_size];
-  double K[pfgen_models_leqg_tracking_risk_sensitive_n * pfgen_models_leqg_tracking_risk_sensitive_p];
-  double h[pfgen_models_leqg_tracking_risk_sensitive_p];
-  pfgen_models_leqg_tracking_risk_sensitive_derivatives(t, state, params, rates);
-  pfgen_models_leqg_tracking_risk_sensitive_gain(t, state, params, K);
-  pfgen_models_leqg_tracking_risk_sensitive_predicted_observation(t, state, params, h);
-  for (size_t i = 0; i < pfgen_models_leqg_tracking_risk_sensitive_state_size; ++i) delta[i] = rates[i] * dt;
+  double all[pfgen_models_leqg_tracking_risk_sensitive_state_size + pfgen_models_leqg_tracking_risk_sensitive_n * pfgen_models_leqg_tracking_risk_sensitive_p + pfgen_models_leqg_tracking_risk_sensitive_p];
+  const double* K = all + pfgen_models_leqg_tracking_risk_sensitive_state_size;
+  const double* h = K + pfgen_models_leqg_tracking_risk_sensitive_n * pfgen_models_leqg_tracking_risk_sensitive_p;
+  pfgen_models_leqg_tracking_risk_sensitive_rates(t, state, params, all);
+  double innovation[pfgen_models_leqg_tracking_risk_sensitive_p];
+  for (size_t r = 0; r < pfgen_models_leqg_tracking_risk_sensitive_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t i = 0; i < pfgen_models_leqg_tracking_risk_sensitive_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_leqg_tracking_risk_sensitive_n; ++i)
-    for (size_t r = 0; r < pfgen_models_leqg_tracking_risk_sensitive_p; ++r) delta[i] += K[i * pfgen_models_leqg_tracking_risk_sensitive_p + r] * (dy[r] - h[r] * dt);
+    for (size_t r = 0; r < pfgen_models_leqg_tracking_risk_sensitive_p; ++r) delta[i] += K[i * pfgen_models_leqg_tracking_risk_sensitive_p + r] * innovation[r];
 }
 
 void pfgen_models_leqg_tracking_risk_sensitive_step(double* state, double t, double dt, const double* dy, const pfgen_models_leqg_tracking_risk_sensitive_params* params) {

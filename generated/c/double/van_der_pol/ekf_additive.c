@@ -86,6 +86,63 @@ void pfgen_models_van_der_pol_ekf_additive_predicted_observation(double t, const
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step calls it.
+// Ops: 56 (13 add, 38 mul, 5 div, 0 call) without CSE, 34 (14 add, 19 mul, 1 div, 0 call) with CSE.
+static void pfgen_models_van_der_pol_ekf_additive_rates(double t, const double* state, const pfgen_models_van_der_pol_ekf_additive_params* params, double* out) {
+  (void)t;
+  const double m1 = state[0];
+  const double m2 = state[1];
+  const double P11 = state[2];
+  const double P12 = state[3];
+  const double P22 = state[4];
+  const double mu = params->mu;
+  const double s = params->s;
+  const double r = params->r;
+  const double tmp0 = m1 * m1;
+  const double tmp1 = m2 * tmp0;
+  const double tmp2 = mu * tmp1;
+  const double tmp3 = m1 + tmp2;
+  const double tmp4 = mu * m2;
+  const double tmp5 = tmp4 - tmp3;
+  const double tmp6 = m1 * m2;
+  const double tmp7 = mu * 2.0;
+  const double tmp8 = tmp6 * tmp7;
+  const double tmp9 = 1.0 + tmp8;
+  const double tmp10 = -tmp9;
+  const double tmp11 = mu * tmp0;
+  const double tmp12 = mu - tmp11;
+  const double tmp13 = r * r;
+  const double tmp14 = 1.0 / tmp13;
+  const double tmp15 = P11 * tmp14;
+  const double tmp16 = P12 * tmp14;
+  const double tmp17 = P12 + P12;
+  const double tmp18 = P11 * tmp15;
+  const double tmp19 = tmp17 - tmp18;
+  const double tmp20 = P11 * tmp10;
+  const double tmp21 = P12 * tmp12;
+  const double tmp22 = tmp20 + tmp21;
+  const double tmp23 = P22 + tmp22;
+  const double tmp24 = P12 * tmp15;
+  const double tmp25 = tmp23 - tmp24;
+  const double tmp26 = P12 * tmp10;
+  const double tmp27 = P22 * tmp12;
+  const double tmp28 = tmp26 + tmp27;
+  const double tmp29 = tmp28 + tmp28;
+  const double tmp30 = s * s;
+  const double tmp31 = tmp29 + tmp30;
+  const double tmp32 = P12 * tmp16;
+  const double tmp33 = tmp31 - tmp32;
+  out[0] = m2;
+  out[1] = tmp5;
+  out[2] = tmp19;
+  out[3] = tmp25;
+  out[4] = tmp33;
+  out[5] = tmp15;
+  out[6] = tmp16;
+  out[7] = m1;
+}
+
 void pfgen_models_van_der_pol_ekf_additive_initial_state(double* state) {
   state[0] = 0.0;
   state[1] = 0.0;
@@ -98,15 +155,15 @@ void pfgen_models_van_der_pol_ekf_additive_initial_state(double* state) {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 static void pfgen_models_van_der_pol_ekf_additive_increment(double t, const double* state, double dt, const double* dy,
                       const pfgen_models_van_der_pol_ekf_additive_params* params, double* delta) {
-  double rates[pfgen_models_van_der_pol_ekf_additive_state_size];
-  double K[pfgen_models_van_der_pol_ekf_additive_n * pfgen_models_van_der_pol_ekf_additive_p];
-  double h[pfgen_models_van_der_pol_ekf_additive_p];
-  pfgen_models_van_der_pol_ekf_additive_derivatives(t, state, params, rates);
-  pfgen_models_van_der_pol_ekf_additive_gain(t, state, params, K);
-  pfgen_models_van_der_pol_ekf_additive_predicted_observation(t, state, params, h);
-  for (size_t i = 0; i < pfgen_models_van_der_pol_ekf_additive_state_size; ++i) delta[i] = rates[i] * dt;
+  double all[pfgen_models_van_der_pol_ekf_additive_state_size + pfgen_models_van_der_pol_ekf_additive_n * pfgen_models_van_der_pol_ekf_additive_p + pfgen_models_van_der_pol_ekf_additive_p];
+  const double* K = all + pfgen_models_van_der_pol_ekf_additive_state_size;
+  const double* h = K + pfgen_models_van_der_pol_ekf_additive_n * pfgen_models_van_der_pol_ekf_additive_p;
+  pfgen_models_van_der_pol_ekf_additive_rates(t, state, params, all);
+  double innovation[pfgen_models_van_der_pol_ekf_additive_p];
+  for (size_t r = 0; r < pfgen_models_van_der_pol_ekf_additive_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t i = 0; i < pfgen_models_van_der_pol_ekf_additive_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_van_der_pol_ekf_additive_n; ++i)
-    for (size_t r = 0; r < pfgen_models_van_der_pol_ekf_additive_p; ++r) delta[i] += K[i * pfgen_models_van_der_pol_ekf_additive_p + r] * (dy[r] - h[r] * dt);
+    for (size_t r = 0; r < pfgen_models_van_der_pol_ekf_additive_p; ++r) delta[i] += K[i * pfgen_models_van_der_pol_ekf_additive_p + r] * innovation[r];
 }
 
 void pfgen_models_van_der_pol_ekf_additive_step(double* state, double t, double dt, const double* dy, const pfgen_models_van_der_pol_ekf_additive_params* params) {

@@ -94,6 +94,71 @@ void pfgen_models_van_der_pol_optimal_predicted_observation(double t, const doub
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step calls it.
+// Ops: 78 (21 add, 52 mul, 5 div, 0 call) without CSE, 42 (18 add, 23 mul, 1 div, 0 call) with CSE.
+static void pfgen_models_van_der_pol_optimal_rates(double t, const double* state, const pfgen_models_van_der_pol_optimal_params* params, double* out) {
+  (void)t;
+  const double m1 = state[0];
+  const double m2 = state[1];
+  const double P11 = state[2];
+  const double P12 = state[3];
+  const double P22 = state[4];
+  const double mu = params->mu;
+  const double s = params->s;
+  const double r = params->r;
+  const double tmp0 = m1 * m1;
+  const double tmp1 = m2 * tmp0;
+  const double tmp2 = m1 * P12;
+  const double tmp3 = tmp2 * 2.0;
+  const double tmp4 = tmp1 + tmp3;
+  const double tmp5 = m2 * P11;
+  const double tmp6 = tmp4 + tmp5;
+  const double tmp7 = mu * tmp6;
+  const double tmp8 = m1 + tmp7;
+  const double tmp9 = mu * m2;
+  const double tmp10 = tmp9 - tmp8;
+  const double tmp11 = m1 * m2;
+  const double tmp12 = P12 + tmp11;
+  const double tmp13 = mu * 2.0;
+  const double tmp14 = tmp12 * tmp13;
+  const double tmp15 = 1.0 + tmp14;
+  const double tmp16 = -tmp15;
+  const double tmp17 = P11 + tmp0;
+  const double tmp18 = mu * tmp17;
+  const double tmp19 = mu - tmp18;
+  const double tmp20 = r * r;
+  const double tmp21 = 1.0 / tmp20;
+  const double tmp22 = P11 * tmp21;
+  const double tmp23 = P12 * tmp21;
+  const double tmp24 = P12 + P12;
+  const double tmp25 = P11 * tmp22;
+  const double tmp26 = tmp24 - tmp25;
+  const double tmp27 = P11 * tmp16;
+  const double tmp28 = P12 * tmp19;
+  const double tmp29 = tmp27 + tmp28;
+  const double tmp30 = P22 + tmp29;
+  const double tmp31 = P12 * tmp22;
+  const double tmp32 = tmp30 - tmp31;
+  const double tmp33 = P12 * tmp16;
+  const double tmp34 = P22 * tmp19;
+  const double tmp35 = tmp33 + tmp34;
+  const double tmp36 = tmp35 + tmp35;
+  const double tmp37 = s * s;
+  const double tmp38 = tmp17 * tmp37;
+  const double tmp39 = tmp36 + tmp38;
+  const double tmp40 = P12 * tmp23;
+  const double tmp41 = tmp39 - tmp40;
+  out[0] = m2;
+  out[1] = tmp10;
+  out[2] = tmp26;
+  out[3] = tmp32;
+  out[4] = tmp41;
+  out[5] = tmp22;
+  out[6] = tmp23;
+  out[7] = m1;
+}
+
 void pfgen_models_van_der_pol_optimal_initial_state(double* state) {
   state[0] = 0.0;
   state[1] = 0.0;
@@ -106,15 +171,15 @@ void pfgen_models_van_der_pol_optimal_initial_state(double* state) {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 static void pfgen_models_van_der_pol_optimal_increment(double t, const double* state, double dt, const double* dy,
                       const pfgen_models_van_der_pol_optimal_params* params, double* delta) {
-  double rates[pfgen_models_van_der_pol_optimal_state_size];
-  double K[pfgen_models_van_der_pol_optimal_n * pfgen_models_van_der_pol_optimal_p];
-  double h[pfgen_models_van_der_pol_optimal_p];
-  pfgen_models_van_der_pol_optimal_derivatives(t, state, params, rates);
-  pfgen_models_van_der_pol_optimal_gain(t, state, params, K);
-  pfgen_models_van_der_pol_optimal_predicted_observation(t, state, params, h);
-  for (size_t i = 0; i < pfgen_models_van_der_pol_optimal_state_size; ++i) delta[i] = rates[i] * dt;
+  double all[pfgen_models_van_der_pol_optimal_state_size + pfgen_models_van_der_pol_optimal_n * pfgen_models_van_der_pol_optimal_p + pfgen_models_van_der_pol_optimal_p];
+  const double* K = all + pfgen_models_van_der_pol_optimal_state_size;
+  const double* h = K + pfgen_models_van_der_pol_optimal_n * pfgen_models_van_der_pol_optimal_p;
+  pfgen_models_van_der_pol_optimal_rates(t, state, params, all);
+  double innovation[pfgen_models_van_der_pol_optimal_p];
+  for (size_t r = 0; r < pfgen_models_van_der_pol_optimal_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t i = 0; i < pfgen_models_van_der_pol_optimal_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_van_der_pol_optimal_n; ++i)
-    for (size_t r = 0; r < pfgen_models_van_der_pol_optimal_p; ++r) delta[i] += K[i * pfgen_models_van_der_pol_optimal_p + r] * (dy[r] - h[r] * dt);
+    for (size_t r = 0; r < pfgen_models_van_der_pol_optimal_p; ++r) delta[i] += K[i * pfgen_models_van_der_pol_optimal_p + r] * innovation[r];
 }
 
 void pfgen_models_van_der_pol_optimal_step(double* state, double t, double dt, const double* dy, const pfgen_models_van_der_pol_optimal_params* params) {

@@ -69,6 +69,49 @@ void pfgen_models_leqg_tracking_ekf_predicted_observation(float t, const float* 
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step calls it.
+// Ops: 29 (6 add, 18 mul, 5 div, 0 call) without CSE, 21 (6 add, 14 mul, 1 div, 0 call) with CSE.
+static void pfgen_models_leqg_tracking_ekf_rates(float t, const float* state, const pfgen_models_leqg_tracking_ekf_params* params, float* out) {
+  (void)t;
+  const float m1 = state[0];
+  const float m2 = state[1];
+  const float P11 = state[2];
+  const float P12 = state[3];
+  const float P22 = state[4];
+  const float q = params->q;
+  const float r = params->r;
+  const float tmp0 = m2 * 0.2f;
+  const float tmp1 = -tmp0;
+  const float tmp2 = P11 * P11;
+  const float tmp3 = r * r;
+  const float tmp4 = 1.0f / tmp3;
+  const float tmp5 = tmp2 * tmp4;
+  const float tmp6 = P12 * 2.0f;
+  const float tmp7 = tmp6 - tmp5;
+  const float tmp8 = P11 * P12;
+  const float tmp9 = tmp4 * tmp8;
+  const float tmp10 = P12 * 0.2f;
+  const float tmp11 = tmp9 + tmp10;
+  const float tmp12 = P22 - tmp11;
+  const float tmp13 = P12 * P12;
+  const float tmp14 = tmp4 * tmp13;
+  const float tmp15 = P22 * 0.4f;
+  const float tmp16 = tmp14 + tmp15;
+  const float tmp17 = q * q;
+  const float tmp18 = tmp17 - tmp16;
+  const float tmp19 = P11 * tmp4;
+  const float tmp20 = P12 * tmp4;
+  out[0] = m2;
+  out[1] = tmp1;
+  out[2] = tmp7;
+  out[3] = tmp12;
+  out[4] = tmp18;
+  out[5] = tmp19;
+  out[6] = tmp20;
+  out[7] = m1;
+}
+
 void pfgen_models_leqg_tracking_ekf_initial_state(float* state) {
   state[0] = 0.0f;
   state[1] = 0.0f;
@@ -81,15 +124,15 @@ void pfgen_models_leqg_tracking_ekf_initial_state(float* state) {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 static void pfgen_models_leqg_tracking_ekf_increment(float t, const float* state, float dt, const float* dy,
                       const pfgen_models_leqg_tracking_ekf_params* params, float* delta) {
-  float rates[pfgen_models_leqg_tracking_ekf_state_size];
-  float K[pfgen_models_leqg_tracking_ekf_n * pfgen_models_leqg_tracking_ekf_p];
-  float h[pfgen_models_leqg_tracking_ekf_p];
-  pfgen_models_leqg_tracking_ekf_derivatives(t, state, params, rates);
-  pfgen_models_leqg_tracking_ekf_gain(t, state, params, K);
-  pfgen_models_leqg_tracking_ekf_predicted_observation(t, state, params, h);
-  for (size_t i = 0; i < pfgen_models_leqg_tracking_ekf_state_size; ++i) delta[i] = rates[i] * dt;
+  float all[pfgen_models_leqg_tracking_ekf_state_size + pfgen_models_leqg_tracking_ekf_n * pfgen_models_leqg_tracking_ekf_p + pfgen_models_leqg_tracking_ekf_p];
+  const float* K = all + pfgen_models_leqg_tracking_ekf_state_size;
+  const float* h = K + pfgen_models_leqg_tracking_ekf_n * pfgen_models_leqg_tracking_ekf_p;
+  pfgen_models_leqg_tracking_ekf_rates(t, state, params, all);
+  float innovation[pfgen_models_leqg_tracking_ekf_p];
+  for (size_t r = 0; r < pfgen_models_leqg_tracking_ekf_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t i = 0; i < pfgen_models_leqg_tracking_ekf_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_leqg_tracking_ekf_n; ++i)
-    for (size_t r = 0; r < pfgen_models_leqg_tracking_ekf_p; ++r) delta[i] += K[i * pfgen_models_leqg_tracking_ekf_p + r] * (dy[r] - h[r] * dt);
+    for (size_t r = 0; r < pfgen_models_leqg_tracking_ekf_p; ++r) delta[i] += K[i * pfgen_models_leqg_tracking_ekf_p + r] * innovation[r];
 }
 
 void pfgen_models_leqg_tracking_ekf_step(float* state, float t, float dt, const float* dy, const pfgen_models_leqg_tracking_ekf_params* params) {

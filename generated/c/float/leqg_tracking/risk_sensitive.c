@@ -81,6 +81,61 @@ void pfgen_models_leqg_tracking_risk_sensitive_predicted_observation(float t, co
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step calls it.
+// Ops: 53 (12 add, 30 mul, 11 div, 0 call) without CSE, 32 (10 add, 20 mul, 2 div, 0 call) with CSE.
+static void pfgen_models_leqg_tracking_risk_sensitive_rates(float t, const float* state, const pfgen_models_leqg_tracking_risk_sensitive_params* params, float* out) {
+  (void)t;
+  const float m1 = state[0];
+  const float m2 = state[1];
+  const float P11 = state[2];
+  const float P12 = state[3];
+  const float P22 = state[4];
+  const float eps = params->eps;
+  const float q = params->q;
+  const float r = params->r;
+  const float tmp0 = m2 * 0.2f;
+  const float tmp1 = -tmp0;
+  const float tmp2 = P11 * P11;
+  const float tmp3 = r * r;
+  const float tmp4 = 1.0f / tmp3;
+  const float tmp5 = 1.0f / eps;
+  const float tmp6 = tmp5 * 2.0f;
+  const float tmp7 = tmp6 - tmp4;
+  const float tmp8 = tmp2 * tmp7;
+  const float tmp9 = P12 * P12;
+  const float tmp10 = tmp6 * tmp9;
+  const float tmp11 = tmp8 + tmp10;
+  const float tmp12 = P12 * 2.0f;
+  const float tmp13 = tmp11 + tmp12;
+  const float tmp14 = P11 * P12;
+  const float tmp15 = tmp7 * tmp14;
+  const float tmp16 = P12 * P22;
+  const float tmp17 = tmp6 * tmp16;
+  const float tmp18 = tmp15 + tmp17;
+  const float tmp19 = P12 * 0.2f;
+  const float tmp20 = tmp18 - tmp19;
+  const float tmp21 = P22 + tmp20;
+  const float tmp22 = tmp7 * tmp9;
+  const float tmp23 = P22 * P22;
+  const float tmp24 = tmp6 * tmp23;
+  const float tmp25 = tmp22 + tmp24;
+  const float tmp26 = P22 * 0.4f;
+  const float tmp27 = tmp25 - tmp26;
+  const float tmp28 = q * q;
+  const float tmp29 = tmp27 + tmp28;
+  const float tmp30 = P11 * tmp4;
+  const float tmp31 = P12 * tmp4;
+  out[0] = m2;
+  out[1] = tmp1;
+  out[2] = tmp13;
+  out[3] = tmp21;
+  out[4] = tmp29;
+  out[5] = tmp30;
+  out[6] = tmp31;
+  out[7] = m1;
+}
+
 void pfgen_models_leqg_tracking_risk_sensitive_initial_state(float* state) {
   state[0] = 0.0f;
   state[1] = 0.0f;
@@ -93,15 +148,15 @@ void pfgen_models_leqg_tracking_risk_sensitive_initial_state(float* state) {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 static void pfgen_models_leqg_tracking_risk_sensitive_increment(float t, const float* state, float dt, const float* dy,
                       const pfgen_models_leqg_tracking_risk_sensitive_params* params, float* delta) {
-  float rates[pfgen_models_leqg_tracking_risk_sensitive_state_size];
-  float K[pfgen_models_leqg_tracking_risk_sensitive_n * pfgen_models_leqg_tracking_risk_sensitive_p];
-  float h[pfgen_models_leqg_tracking_risk_sensitive_p];
-  pfgen_models_leqg_tracking_risk_sensitive_derivatives(t, state, params, rates);
-  pfgen_models_leqg_tracking_risk_sensitive_gain(t, state, params, K);
-  pfgen_models_leqg_tracking_risk_sensitive_predicted_observation(t, state, params, h);
-  for (size_t i = 0; i < pfgen_models_leqg_tracking_risk_sensitive_state_size; ++i) delta[i] = rates[i] * dt;
+  float all[pfgen_models_leqg_tracking_risk_sensitive_state_size + pfgen_models_leqg_tracking_risk_sensitive_n * pfgen_models_leqg_tracking_risk_sensitive_p + pfgen_models_leqg_tracking_risk_sensitive_p];
+  const float* K = all + pfgen_models_leqg_tracking_risk_sensitive_state_size;
+  const float* h = K + pfgen_models_leqg_tracking_risk_sensitive_n * pfgen_models_leqg_tracking_risk_sensitive_p;
+  pfgen_models_leqg_tracking_risk_sensitive_rates(t, state, params, all);
+  float innovation[pfgen_models_leqg_tracking_risk_sensitive_p];
+  for (size_t r = 0; r < pfgen_models_leqg_tracking_risk_sensitive_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t i = 0; i < pfgen_models_leqg_tracking_risk_sensitive_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_leqg_tracking_risk_sensitive_n; ++i)
-    for (size_t r = 0; r < pfgen_models_leqg_tracking_risk_sensitive_p; ++r) delta[i] += K[i * pfgen_models_leqg_tracking_risk_sensitive_p + r] * (dy[r] - h[r] * dt);
+    for (size_t r = 0; r < pfgen_models_leqg_tracking_risk_sensitive_p; ++r) delta[i] += K[i * pfgen_models_leqg_tracking_risk_sensitive_p + r] * innovation[r];
 }
 
 void pfgen_models_leqg_tracking_risk_sensitive_step(float* state, float t, float dt, const float* dy, const pfgen_models_leqg_tracking_risk_sensitive_params* params) {

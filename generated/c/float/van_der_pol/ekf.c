@@ -87,6 +87,64 @@ void pfgen_models_van_der_pol_ekf_predicted_observation(float t, const float* st
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step calls it.
+// Ops: 58 (13 add, 40 mul, 5 div, 0 call) without CSE, 35 (14 add, 20 mul, 1 div, 0 call) with CSE.
+static void pfgen_models_van_der_pol_ekf_rates(float t, const float* state, const pfgen_models_van_der_pol_ekf_params* params, float* out) {
+  (void)t;
+  const float m1 = state[0];
+  const float m2 = state[1];
+  const float P11 = state[2];
+  const float P12 = state[3];
+  const float P22 = state[4];
+  const float mu = params->mu;
+  const float s = params->s;
+  const float r = params->r;
+  const float tmp0 = m1 * m1;
+  const float tmp1 = m2 * tmp0;
+  const float tmp2 = mu * tmp1;
+  const float tmp3 = m1 + tmp2;
+  const float tmp4 = mu * m2;
+  const float tmp5 = tmp4 - tmp3;
+  const float tmp6 = m1 * m2;
+  const float tmp7 = mu * 2.0f;
+  const float tmp8 = tmp6 * tmp7;
+  const float tmp9 = 1.0f + tmp8;
+  const float tmp10 = -tmp9;
+  const float tmp11 = mu * tmp0;
+  const float tmp12 = mu - tmp11;
+  const float tmp13 = r * r;
+  const float tmp14 = 1.0f / tmp13;
+  const float tmp15 = P11 * tmp14;
+  const float tmp16 = P12 * tmp14;
+  const float tmp17 = P12 + P12;
+  const float tmp18 = P11 * tmp15;
+  const float tmp19 = tmp17 - tmp18;
+  const float tmp20 = P11 * tmp10;
+  const float tmp21 = P12 * tmp12;
+  const float tmp22 = tmp20 + tmp21;
+  const float tmp23 = P22 + tmp22;
+  const float tmp24 = P12 * tmp15;
+  const float tmp25 = tmp23 - tmp24;
+  const float tmp26 = P12 * tmp10;
+  const float tmp27 = P22 * tmp12;
+  const float tmp28 = tmp26 + tmp27;
+  const float tmp29 = tmp28 + tmp28;
+  const float tmp30 = s * s;
+  const float tmp31 = tmp0 * tmp30;
+  const float tmp32 = tmp29 + tmp31;
+  const float tmp33 = P12 * tmp16;
+  const float tmp34 = tmp32 - tmp33;
+  out[0] = m2;
+  out[1] = tmp5;
+  out[2] = tmp19;
+  out[3] = tmp25;
+  out[4] = tmp34;
+  out[5] = tmp15;
+  out[6] = tmp16;
+  out[7] = m1;
+}
+
 void pfgen_models_van_der_pol_ekf_initial_state(float* state) {
   state[0] = 0.0f;
   state[1] = 0.0f;
@@ -99,15 +157,15 @@ void pfgen_models_van_der_pol_ekf_initial_state(float* state) {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 static void pfgen_models_van_der_pol_ekf_increment(float t, const float* state, float dt, const float* dy,
                       const pfgen_models_van_der_pol_ekf_params* params, float* delta) {
-  float rates[pfgen_models_van_der_pol_ekf_state_size];
-  float K[pfgen_models_van_der_pol_ekf_n * pfgen_models_van_der_pol_ekf_p];
-  float h[pfgen_models_van_der_pol_ekf_p];
-  pfgen_models_van_der_pol_ekf_derivatives(t, state, params, rates);
-  pfgen_models_van_der_pol_ekf_gain(t, state, params, K);
-  pfgen_models_van_der_pol_ekf_predicted_observation(t, state, params, h);
-  for (size_t i = 0; i < pfgen_models_van_der_pol_ekf_state_size; ++i) delta[i] = rates[i] * dt;
+  float all[pfgen_models_van_der_pol_ekf_state_size + pfgen_models_van_der_pol_ekf_n * pfgen_models_van_der_pol_ekf_p + pfgen_models_van_der_pol_ekf_p];
+  const float* K = all + pfgen_models_van_der_pol_ekf_state_size;
+  const float* h = K + pfgen_models_van_der_pol_ekf_n * pfgen_models_van_der_pol_ekf_p;
+  pfgen_models_van_der_pol_ekf_rates(t, state, params, all);
+  float innovation[pfgen_models_van_der_pol_ekf_p];
+  for (size_t r = 0; r < pfgen_models_van_der_pol_ekf_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t i = 0; i < pfgen_models_van_der_pol_ekf_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_van_der_pol_ekf_n; ++i)
-    for (size_t r = 0; r < pfgen_models_van_der_pol_ekf_p; ++r) delta[i] += K[i * pfgen_models_van_der_pol_ekf_p + r] * (dy[r] - h[r] * dt);
+    for (size_t r = 0; r < pfgen_models_van_der_pol_ekf_p; ++r) delta[i] += K[i * pfgen_models_van_der_pol_ekf_p + r] * innovation[r];
 }
 
 void pfgen_models_van_der_pol_ekf_step(float* state, float t, float dt, const float* dy, const pfgen_models_van_der_pol_ekf_params* params) {

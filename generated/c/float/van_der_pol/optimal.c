@@ -94,6 +94,71 @@ void pfgen_models_van_der_pol_optimal_predicted_observation(float t, const float
   h[0] = m1;
 }
 
+// out = [derivatives' out, K (n x p, row-major), h (p)]: the three functions above in one body,
+// what they have in common (K, and the correction built from it) computed once; step calls it.
+// Ops: 78 (21 add, 52 mul, 5 div, 0 call) without CSE, 42 (18 add, 23 mul, 1 div, 0 call) with CSE.
+static void pfgen_models_van_der_pol_optimal_rates(float t, const float* state, const pfgen_models_van_der_pol_optimal_params* params, float* out) {
+  (void)t;
+  const float m1 = state[0];
+  const float m2 = state[1];
+  const float P11 = state[2];
+  const float P12 = state[3];
+  const float P22 = state[4];
+  const float mu = params->mu;
+  const float s = params->s;
+  const float r = params->r;
+  const float tmp0 = m1 * m1;
+  const float tmp1 = m2 * tmp0;
+  const float tmp2 = m1 * P12;
+  const float tmp3 = tmp2 * 2.0f;
+  const float tmp4 = tmp1 + tmp3;
+  const float tmp5 = m2 * P11;
+  const float tmp6 = tmp4 + tmp5;
+  const float tmp7 = mu * tmp6;
+  const float tmp8 = m1 + tmp7;
+  const float tmp9 = mu * m2;
+  const float tmp10 = tmp9 - tmp8;
+  const float tmp11 = m1 * m2;
+  const float tmp12 = P12 + tmp11;
+  const float tmp13 = mu * 2.0f;
+  const float tmp14 = tmp12 * tmp13;
+  const float tmp15 = 1.0f + tmp14;
+  const float tmp16 = -tmp15;
+  const float tmp17 = P11 + tmp0;
+  const float tmp18 = mu * tmp17;
+  const float tmp19 = mu - tmp18;
+  const float tmp20 = r * r;
+  const float tmp21 = 1.0f / tmp20;
+  const float tmp22 = P11 * tmp21;
+  const float tmp23 = P12 * tmp21;
+  const float tmp24 = P12 + P12;
+  const float tmp25 = P11 * tmp22;
+  const float tmp26 = tmp24 - tmp25;
+  const float tmp27 = P11 * tmp16;
+  const float tmp28 = P12 * tmp19;
+  const float tmp29 = tmp27 + tmp28;
+  const float tmp30 = P22 + tmp29;
+  const float tmp31 = P12 * tmp22;
+  const float tmp32 = tmp30 - tmp31;
+  const float tmp33 = P12 * tmp16;
+  const float tmp34 = P22 * tmp19;
+  const float tmp35 = tmp33 + tmp34;
+  const float tmp36 = tmp35 + tmp35;
+  const float tmp37 = s * s;
+  const float tmp38 = tmp17 * tmp37;
+  const float tmp39 = tmp36 + tmp38;
+  const float tmp40 = P12 * tmp23;
+  const float tmp41 = tmp39 - tmp40;
+  out[0] = m2;
+  out[1] = tmp10;
+  out[2] = tmp26;
+  out[3] = tmp32;
+  out[4] = tmp41;
+  out[5] = tmp22;
+  out[6] = tmp23;
+  out[7] = m1;
+}
+
 void pfgen_models_van_der_pol_optimal_initial_state(float* state) {
   state[0] = 0.0f;
   state[1] = 0.0f;
@@ -106,15 +171,15 @@ void pfgen_models_van_der_pol_optimal_initial_state(float* state) {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 static void pfgen_models_van_der_pol_optimal_increment(float t, const float* state, float dt, const float* dy,
                       const pfgen_models_van_der_pol_optimal_params* params, float* delta) {
-  float rates[pfgen_models_van_der_pol_optimal_state_size];
-  float K[pfgen_models_van_der_pol_optimal_n * pfgen_models_van_der_pol_optimal_p];
-  float h[pfgen_models_van_der_pol_optimal_p];
-  pfgen_models_van_der_pol_optimal_derivatives(t, state, params, rates);
-  pfgen_models_van_der_pol_optimal_gain(t, state, params, K);
-  pfgen_models_van_der_pol_optimal_predicted_observation(t, state, params, h);
-  for (size_t i = 0; i < pfgen_models_van_der_pol_optimal_state_size; ++i) delta[i] = rates[i] * dt;
+  float all[pfgen_models_van_der_pol_optimal_state_size + pfgen_models_van_der_pol_optimal_n * pfgen_models_van_der_pol_optimal_p + pfgen_models_van_der_pol_optimal_p];
+  const float* K = all + pfgen_models_van_der_pol_optimal_state_size;
+  const float* h = K + pfgen_models_van_der_pol_optimal_n * pfgen_models_van_der_pol_optimal_p;
+  pfgen_models_van_der_pol_optimal_rates(t, state, params, all);
+  float innovation[pfgen_models_van_der_pol_optimal_p];
+  for (size_t r = 0; r < pfgen_models_van_der_pol_optimal_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t i = 0; i < pfgen_models_van_der_pol_optimal_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_van_der_pol_optimal_n; ++i)
-    for (size_t r = 0; r < pfgen_models_van_der_pol_optimal_p; ++r) delta[i] += K[i * pfgen_models_van_der_pol_optimal_p + r] * (dy[r] - h[r] * dt);
+    for (size_t r = 0; r < pfgen_models_van_der_pol_optimal_p; ++r) delta[i] += K[i * pfgen_models_van_der_pol_optimal_p + r] * innovation[r];
 }
 
 void pfgen_models_van_der_pol_optimal_step(float* state, float t, float dt, const float* dy, const pfgen_models_van_der_pol_optimal_params* params) {

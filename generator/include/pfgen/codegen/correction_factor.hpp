@@ -18,6 +18,16 @@
 
 namespace pfgen::codegen {
 
+// A (p × n) of a predicted observation A0 + A m, when every entry is affine in m.
+std::optional<std::vector<std::vector<GiNaC::ex>>> observation_matrix(const FilterEquations& eq);
+// G^T (p × n) with gain_ir = Σ_k P_ik G_kr for every i (G = Aᵀ R⁻¹ for the mean-square kinds), when
+// the gain is exactly that product.
+std::optional<std::vector<std::vector<GiNaC::ex>>> gain_factor(const FilterEquations& eq);
+// M (p × p) with G^T = M A exactly (M = R⁻¹ for the mean-square kinds), so that K^T = M (A P):
+// p² n operations from H = A P instead of p n² from P. Nothing when A's rank is below p or no
+// such M exists.
+std::optional<std::vector<std::vector<GiNaC::ex>>> gain_weight(const std::vector<std::vector<GiNaC::ex>>& Gt,
+                                                               const std::vector<std::vector<GiNaC::ex>>& A);
 // H = A P (p × n), H[r][j] = Σ_k A_rk P_kj, when P_correction == gain · H entry by entry.
 std::optional<std::vector<std::vector<Polynomial>>> correction_factor(const FilterEquations& eq);
 

@@ -25,6 +25,9 @@ struct FunctionStats {
   std::string function;  // derivatives, gain, predicted_observation
   OpCounts naive;        // every output evaluated as its own expression tree
   OpCounts cse;          // after common-subexpression elimination
+  // false for a function that computes what others of the filter do (rates()): the file's totals
+  // count each quantity once.
+  bool in_totals = true;
 };
 
 // "N (a add, m mul, d div, c call)" and "Ops: ... without CSE, ... with CSE."
@@ -36,6 +39,8 @@ std::string ops_comment(const FunctionStats& stats);
 struct FunctionNames {
   // L and c: a polynomial observation's covariance gain and Ito-Stratonovich correction.
   std::string time, state, delayed, params, out, K, h, shared, L, c, temporary_prefix;
+  // The loops of P's drift (p_drift_loops.hpp): the work array, local blocks and loop indices.
+  std::string work, full_P, JP, gain_T, H, sum, i, j, u;
 };
 FunctionNames function_names(const Model& model);
 
@@ -50,10 +55,24 @@ struct FunctionCode {
 FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
                            const std::string& target, const Model& model, const FilterEquations& eq,
                            const CodegenOptions& options, const FunctionNames& names, const CFamilyEmitter& emitter);
+// The forms derivatives() may be written in: the expanded polynomials; the derivation's structure
+// (P E[J]^T + E[J] P, each E[J] entry once; the correction as K (A P)), its expectations as the
+// derivation's polynomials or over shared Gaussian moments (moment_form.hpp); and either of those
+// with P's drift in loops over dense blocks (p_drift_loops.hpp).
+enum class DerivativesForm { Expanded, Structured, Moments, Loops, MomentLoops };
+
 // derivatives(): m's drift, P's drift (upper triangle) and x*'s drift when the filter has one, to
-// `out`; in the structured form where that needs fewer operations after sharing.
+// `out`; in the form that needs the fewest operations after sharing (the earlier on a tie, the
+// loops where they need no more), which `chosen` receives.
 FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                              const FunctionNames& names, const CFamilyEmitter& emitter);
+                              const FunctionNames& names, const CFamilyEmitter& emitter,
+                              DerivativesForm* chosen = nullptr);
+// rates(): derivatives' outputs, then the gain (n x p, row-major) and the predicted observation,
+// to `out`, in one body in `form` (derivatives' choice): what derivatives() and gain() have in
+// common (K, and with it P's correction) is computed once. `naive`: the three functions' naive count.
+FunctionCode rates_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                        const FunctionNames& names, const CFamilyEmitter& emitter, DerivativesForm form,
+                        const OpCounts& naive);
 
 // The placeholders a template has for each of its functions, under its key: `<key>_ops` (the ops
 // comment), `<key>_body` and, with `split_parts`, `<key>_helpers` (C's parts of a split body, which

@@ -7,8 +7,8 @@ namespace pfgen::codegen {
 GeneratedFilter ContinuousCode::c_filter(const Model& model, const FilterEquations& eq,
                                          const CodegenOptions& options) const {
   CFilterWriter w(model, eq, options);
-  const ContinuousFunctions f = continuous_functions(model, eq, options, w.names, w.emitter);
-  w.result.functions = {f.derivatives.stats, f.gain.stats, f.observation.stats};
+  const ContinuousFunctions f = continuous_functions(model, eq, options, w.names, w.emitter, true);
+  w.result.functions = {f.derivatives.stats, f.gain.stats, f.observation.stats, f.rates->stats};
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count());
   add_rate_function_values(values, f, w.names, eq, true);
   values.emplace("initial_body", c_initial_body(initial_values(model, eq.variables), w.emitter));

@@ -4,14 +4,21 @@
 namespace pfgen::codegen {
 
 ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                         const FunctionNames& names, const CFamilyEmitter& emitter) {
+                                         const FunctionNames& names, const CFamilyEmitter& emitter, bool with_rates) {
   std::vector<Polynomial> gain_outputs;
   for (const auto& row : eq.gain) gain_outputs.insert(gain_outputs.end(), row.begin(), row.end());
   ContinuousFunctions f;
-  f.derivatives = derivatives_code(model, eq, options, names, emitter);
+  DerivativesForm form = DerivativesForm::Expanded;
+  f.derivatives = derivatives_code(model, eq, options, names, emitter, &form);
   f.gain = function_code("gain", gain_outputs, names.K, model, eq, options, names, emitter);
   f.observation =
       function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
+  if (with_rates) {
+    OpCounts naive = f.derivatives.stats.naive;
+    naive += f.gain.stats.naive;
+    naive += f.observation.stats.naive;
+    f.rates = rates_code(model, eq, options, names, emitter, form, naive);
+  }
   return f;
 }
 
@@ -31,6 +38,7 @@ void add_rate_function_values(std::map<std::string, std::string>& values, const 
   add_function_values(
       values, {{"derivatives", &functions.derivatives}, {"gain", &functions.gain}, {"observation", &functions.observation}},
       split_parts);
+  if (functions.rates) add_function_values(values, {{"rates", &*functions.rates}}, split_parts);
   values.emplace("K", names.K);
   values.emplace("h", names.h);
   values.emplace("gain_meaning", gain_meaning(eq));

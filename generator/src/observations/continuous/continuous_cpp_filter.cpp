@@ -13,10 +13,11 @@ GeneratedFilter ContinuousCode::cpp_filter(const Model& model, const FilterEquat
   const FunctionNames names = function_names(model);
   CppEmitter emitter(options.scalar, names.temporary_prefix);
   emitter.split_above(options.max_function_ops, names.shared);
-  const ContinuousFunctions functions = continuous_functions(model, eq, options, names, emitter);
+  const ContinuousFunctions functions = continuous_functions(model, eq, options, names, emitter, true);
 
   GeneratedFilter result = cpp_filter_result(model, eq, options);
-  result.functions = {functions.derivatives.stats, functions.gain.stats, functions.observation.stats};
+  result.functions = {functions.derivatives.stats, functions.gain.stats, functions.observation.stats,
+                      functions.rates->stats};
 
   std::map<std::string, std::string> values = cpp_template_values(model, filter_identifier(eq.name), options, eq.n(),
                                                                   eq.p, vars.count(), names, emitter);

@@ -28,18 +28,21 @@ class ContinuousCode final : public ObservationCode {
 };
 
 // The three functions of a filter whose observation is a rate (continuous or delayed):
-// derivatives(), gain() and predicted_observation().
+// derivatives(), gain() and predicted_observation(); `with_rates` (the continuous filter's step),
+// also rates(), the three in one body (rates_code).
 struct ContinuousFunctions {
   FunctionCode derivatives, gain, observation;
+  std::optional<FunctionCode> rates;
 };
 ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                         const FunctionNames& names, const CFamilyEmitter& emitter);
+                                         const FunctionNames& names, const CFamilyEmitter& emitter,
+                                         bool with_rates = false);
 
 // What gain() computes, for the templates' comment.
 std::string gain_meaning(const FilterEquations& eq);
 
 // The placeholders every rate filter's templates (filter and delayed_filter, C++ and C) have for
-// these functions: `derivatives`, `gain` and `observation` each with `_ops` and `_body` (and with
+// these functions: `derivatives`, `gain` and `observation` (and `rates` when computed) each with `_ops` and `_body` (and with
 // `split_parts`, `_helpers`: C's parts of a split body, which precede the function), the output
 // arrays' names `K` and `h`, and `gain_meaning`. Added to `values` without replacing any.
 void add_rate_function_values(std::map<std::string, std::string>& values, const ContinuousFunctions& functions,

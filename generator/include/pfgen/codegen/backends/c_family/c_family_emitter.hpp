@@ -13,6 +13,7 @@
 
 #include "pfgen/codegen/emitter.hpp"
 #include "pfgen/codegen/expression_graph.hpp"
+#include "pfgen/codegen/p_drift_loops.hpp"
 #include "pfgen/codegen/scalar_mode.hpp"
 
 namespace pfgen::codegen {
@@ -89,6 +90,10 @@ class CFamilyEmitter : public Emitter {
   FunctionBody function_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                              const FunctionSignature& signature, const std::vector<std::size_t>& order,
                              bool shared) const;
+
+  // The loops of `loops` (p_drift_loops.hpp): P's drift into names.out from the work array the
+  // graph filled and the state's P, and m's drift copied from the work array. Indented by two.
+  std::string p_drift_loops(const PDriftLoops& loops, const PDriftLoopNames& names) const;
 
   // From now on function_body() splits a body of more than `max_ops` operations into parts of at
   // most `max_ops`; `shared_array` names the local array through which the parts pass the values
