@@ -113,11 +113,11 @@ namespace detail {
 //   [m_drift - K h; P_drift] dt + [K; 0] dy.
 inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy, const Params<Scalar>& params,
                       Scalar* delta) {
-  std::array<Scalar, state_size + n * p + p> all{};
+  std::array<Scalar, state_size + n * p + p> all;  // every entry written by rates()
   rates(t, state, params, all.data());
   const Scalar* K = all.data() + state_size;
   const Scalar* h = K + n * p;
-  std::array<Scalar, p> innovation{};
+  std::array<Scalar, p> innovation;
   for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - h[r] * dt;
   for (std::size_t i = 0; i < state_size; ++i) delta[i] = all[i] * dt;
   for (std::size_t i = 0; i < n; ++i)
@@ -131,7 +131,7 @@ inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy
 // deterministic part. The gain depends on P only and P has no dy term, so the
 // Ito and Stratonovich readings coincide and averaging the two gains is consistent.
 inline void step(Scalar* state, Scalar t, Scalar dt, const Scalar* dy, const Params<Scalar>& params) {
-  std::array<Scalar, state_size> first{}, predicted{}, second{};
+  std::array<Scalar, state_size> first, predicted, second;  // written before they are read
   detail::increment(t, state, dt, dy, params, first.data());
   for (std::size_t i = 0; i < state_size; ++i) predicted[i] = state[i] + first[i];
   detail::increment(t + dt, predicted.data(), dt, dy, params, second.data());
