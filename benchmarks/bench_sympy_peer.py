@@ -195,19 +195,51 @@ def c_function(name, inputs, outputs, parameters):
 NUMBER = r"(?:\d+\.\d*|\.\d+|\d+)(?:[eE][+-]?\d+)?[fF]?"
 
 
+LOOP = re.compile(r"^\s*for \(int (\w+) = (\w+)(?:, \w+ = 0)?; \1 < (\d+); [^)]*\)\s*(.*)$")
+
+
+def statement_ops(line):
+    """Operators in one C statement's right-hand side: + - * / (a unary minus too) and calls; a
+    literal's own sign is not one, nor is an array index's arithmetic."""
+    rhs = line.split("=", 1)[1]
+    rhs = re.sub(r"\w+\[[^\]]*\]", "v", rhs)  # array elements, whatever their index
+    rhs = re.sub(r"\w+->\w+", "v", rhs)  # a parameter record's field
+    rhs = re.sub(r"\(\s*-\s*" + NUMBER + r"\s*\)", "c", rhs)  # a negative literal in parentheses
+    rhs = re.sub(r"(?<![\w.])" + NUMBER, "c", rhs)
+    return len(re.findall(r"[-+*/]", rhs)) + len(re.findall(r"\b(?:pow|sqrt|exp|log|sin|cos|tan)\s*\(", rhs))
+
+
 def count_ops(body):
-    """Operators in C statements: + - * / (a unary minus too) and calls; a literal's own sign is not one."""
+    """Operators in C statements (statement_ops), each statement inside pfgen's loops counted once per
+    iteration: `for (int i = 0; i < R; ++i)` runs R times, and an inner `for (int j = i; j < N; ...)`
+    under `for (int i = 0; i < N; ...)` N (N + 1) / 2 times in all."""
     total = 0
+    outer = None  # (variable, trips) of a loop header whose body is the next line
     for line in body.splitlines():
-        if "=" not in line or line.strip().startswith("//"):
+        if line.strip().startswith("//"):
             continue
-        rhs = line.split("=", 1)[1]
-        rhs = re.sub(r"\w+\[\d+\]", "v", rhs)  # array elements
-        rhs = re.sub(r"\w+->\w+", "v", rhs)  # a parameter record's field
-        rhs = re.sub(r"\(\s*-\s*" + NUMBER + r"\s*\)", "c", rhs)  # a negative literal in parentheses
-        rhs = re.sub(r"(?<![\w.])" + NUMBER, "c", rhs)
-        total += len(re.findall(r"[-+*/]", rhs))
-        total += len(re.findall(r"\b(?:pow|sqrt|exp|log|sin|cos|tan)\s*\(", rhs))
+        loop = LOOP.match(line)
+        trips = 1
+        if loop:
+            variable, start, bound, statement = loop.groups()
+            bound = int(bound)
+            if outer and start == outer[0]:
+                trips = bound * (bound + 1) // 2 if outer[1] == bound else None
+                if trips is None:
+                    raise ValueError("unexpected loop nest: " + line)
+            elif start.isdigit():
+                trips = (bound - int(start)) * (outer[1] if outer else 1)
+            else:
+                raise ValueError("unexpected loop: " + line)
+            if not statement.strip() or statement.strip() == "{":
+                outer = (variable, bound)
+                continue
+            line = statement
+        outer = None if not loop else outer
+        if "=" not in line:
+            continue
+        total += trips * statement_ops(line)
+        outer = None
     return total
 
 
@@ -225,7 +257,7 @@ def function_body(c_text, name):
     own = body[: end + 1]
     parts = "".join(
         c_text[c_text.index("{", m.start()):c_text.index("\n}\n", m.start()) + 2]
-        for m in re.finditer(r"static void (\w+_part\d+)\(", c_text))
+        for m in re.finditer(r"static void (" + re.escape(name) + r"_part\d+)\(", c_text))
     return own + parts
 
 
