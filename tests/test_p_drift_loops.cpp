@@ -4,8 +4,9 @@
 // to 1e-12 relative to the largest entry of each output. The loops compute the same equations
 // through other arithmetic (dense products of E[J], A and M = R^-1 with the full P), so an index,
 // offset or block that is off shows here. Models: the dense linear benchmark systems n = 5 (the
-// block summed in full) and n = 9 (its upper triangle), and a dense cubic system with parameters in
-// A and R (its M and A are computed, not literal, and its E[J] reads P). Each is compiled as C++
+// block summed in full) and n = 9 (its upper triangle), a dense cubic system with parameters in A
+// and R (its M and A are computed, not literal, and its E[J] reads P), and one whose parameters are
+// named as the loops' arrays and indices. Each is compiled as C++
 // (g++ and clang++, -Wall -Wextra -Werror) and as C99 (gcc -std=c99 -Wpedantic -Werror); C's
 // rates() is static, so its step is compared with C++'s.
 #include <catch2/catch.hpp>
@@ -41,6 +42,21 @@ diffusion: [["0.3", "0"], ["0", "0.2*x1"], ["0.1", "0"], ["0", "0.1"]]
 observation:
   A: [["c", "1", "0", "0"], ["0", "0", "1", "c"]]
   B: [["r", "0"], ["0", "2*r"]]
+)";
+
+// The loops' own names (work array, blocks, indices) taken by the model: they are chosen around them.
+const char* const kLoopNamesTaken = R"(name: loop_names
+states: [x1, x2, x3, x4]
+parameters: {w: 0.5, i: -1, j: 0.3, u: 0.2, S: 0.1, H: 1, JP: 0.4, P_full: 0.25, K_T: 0.5}
+drift:
+  - "i*x1 + w*x2 + j*x3 - u*x4"
+  - "S*x1 + i*x2 + JP*x3 + P_full*x4"
+  - "u*x1 + S*x2 + i*x3 + w*x4"
+  - "K_T*x1 - j*x2 + u*x3 + i*x4 - 0.1*x4^3"
+diffusion: [["0.3"], ["0.2"], ["0.1"], ["0.1"]]
+observation:
+  A: [["H", "0.5", "0", "1"], ["0", "1", "H", "0.2"]]
+  B: [["w", "0"], ["0", "2*w"]]
 )";
 
 // A random point with rational coordinates k/1000 and P = L L^T + I/10 (positive definite).
@@ -148,7 +164,11 @@ void check_model(const Model& model, bool full_combine) {
   const std::string header = code(model, eq, codegen::Language::Cpp, 0);
   // The loops are what is written, in the expected variant, and step() calls rates().
   REQUIRE(header.find("P's drift from dense blocks") != std::string::npos);
-  CHECK((header.find("S[" + std::to_string(n * n) + "];") != std::string::npos) == full_combine);
+  // n x n local blocks in derivatives() and rates(): P in full and E[J] P, and the full sum below n = 8.
+  std::size_t blocks = 0;
+  const std::string block = "[" + std::to_string(n * n) + "];\n";
+  for (std::size_t at = header.find(block); at != std::string::npos; at = header.find(block, at + 1)) ++blocks;
+  CHECK(blocks == (full_combine ? 6u : 4u));
   CHECK(header.find("  rates(t, state, params, all.data());") != std::string::npos);
 
   std::mt19937 rng(2026);
@@ -232,5 +252,8 @@ TEST_CASE("P's drift in loops and rates() agree with the exact equations in C++ 
   }
   SECTION("dense cubic with parameters in A and R") {
     check_model(load_model_text(kDenseCubicWithParameters, "dense_param_4.yaml"), true);
+  }
+  SECTION("a model whose parameters have the loops' names") {
+    check_model(load_model_text(kLoopNamesTaken, "loop_names.yaml"), true);
   }
 }
