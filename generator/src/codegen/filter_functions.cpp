@@ -194,7 +194,6 @@ void build_structured(const FilterEquations& eq, bool moments, GraphBuilder& bui
   for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
 }
 
-
 // derivatives() with P's drift in loops (p_drift_loops.hpp): the graph computes into the work array
 // m's drift, E[J] (every entry, 0 where it is zero), the correction's blocks that the loops do not
 // multiply out, and the rest of P's drift per upper entry; the loops do the products. `moments`:

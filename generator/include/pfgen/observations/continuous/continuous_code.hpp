@@ -42,9 +42,10 @@ ContinuousFunctions continuous_functions(const Model& model, const FilterEquatio
 std::string gain_meaning(const FilterEquations& eq);
 
 // The placeholders every rate filter's templates (filter and delayed_filter, C++ and C) have for
-// these functions: `derivatives`, `gain` and `observation` (and `rates` when computed) each with `_ops` and `_body` (and with
-// `split_parts`, `_helpers`: C's parts of a split body, which precede the function), the output
-// arrays' names `K` and `h`, and `gain_meaning`. Added to `values` without replacing any.
+// these functions: `derivatives`, `gain`, `observation` (and `rates` when computed), each with
+// `_ops` and `_body` (and with `split_parts`, `_helpers`: C's parts of a split body, which precede
+// the function), the output arrays' names `K` and `h`, and `gain_meaning`. Added to `values`
+// without replacing any.
 void add_rate_function_values(std::map<std::string, std::string>& values, const ContinuousFunctions& functions,
                               const FunctionNames& names, const FilterEquations& eq, bool split_parts);
 
