@@ -1,5 +1,6 @@
-// P's drift in loops over dense blocks (codegen/p_drift_loops.hpp) and rates(), the one function a
-// continuous filter's step calls (derivatives, gain and predicted observation in one body), against
+// P's drift in loops over dense blocks (codegen/p_drift_loops.hpp; rates() from n = 4, derivatives()
+// from n = 6) and rates(), the one function a continuous filter's step calls (derivatives, gain and
+// predicted observation in one body), against
 // pfgen's exact evaluation of the equations (what `pfgen eval` prints): at 20 random points each,
 // to 1e-12 relative to the largest entry of each output. The loops compute the same equations
 // through other arithmetic (dense products of E[J], A and M = R^-1 with the full P), so an index,
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "pfgen/codegen/filter_codegen.hpp"
+#include "pfgen/codegen/p_drift_loops.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
@@ -164,11 +166,12 @@ void check_model(const Model& model, bool full_combine) {
   const std::string header = code(model, eq, codegen::Language::Cpp, 0);
   // The loops are what is written, in the expected variant, and step() calls rates().
   REQUIRE(header.find("P's drift from dense blocks") != std::string::npos);
-  // n x n local blocks in derivatives() and rates(): P in full and E[J] P, and the full sum below n = 8.
+  // n x n local blocks: P in full and E[J] P, and the full sum below n = 8, in rates() and, from
+  // n = kMinLoopDimensionAlone on, in derivatives() too.
   std::size_t blocks = 0;
   const std::string block = "[" + std::to_string(n * n) + "];\n";
   for (std::size_t at = header.find(block); at != std::string::npos; at = header.find(block, at + 1)) ++blocks;
-  CHECK(blocks == (full_combine ? 6u : 4u));
+  CHECK(blocks == (full_combine ? 3u : 2u) * (n >= codegen::kMinLoopDimensionAlone ? 2u : 1u));
   CHECK(header.find("  rates(t, state, params, all.data());") != std::string::npos);
 
   std::mt19937 rng(2026);

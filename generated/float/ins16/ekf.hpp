@@ -9130,9 +9130,8 @@ inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy
   std::array<Scalar, state_size + n * p + p> all;  // every entry written by rates()
   rates(t, state, params, all.data());
   const Scalar* K = all.data() + state_size;
-  const Scalar* h = K + n * p;
-  std::array<Scalar, p> innovation;
-  for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  Scalar* innovation = all.data() + state_size + n * p;  // h, replaced by dy - h dt
+  for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - innovation[r] * dt;
   for (std::size_t i = 0; i < state_size; ++i) delta[i] = all[i] * dt;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * innovation[r];

@@ -383,12 +383,12 @@ std::unique_ptr<BuiltFunction> built_form(DerivativesForm form, const std::strin
 }  // namespace
 
 FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                              const FunctionNames& names, const CFamilyEmitter& emitter, DerivativesForm* chosen) {
+                              const FunctionNames& names, const CFamilyEmitter& emitter, DerivativesForm* rates_form) {
   const std::size_t n = eq.n();
   auto flat = built_form(DerivativesForm::Expanded, "derivatives", model, eq, names, {});
   DerivativesForm form = DerivativesForm::Expanded;
   if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty()) {
-    if (chosen) *chosen = form;
+    if (rates_form) *rates_form = form;
     return written(*flat, names.out, names, emitter, options.eliminate_common_subexpressions);
   }
   // The form with the fewest operations after sharing, the earlier on a tie.
@@ -404,24 +404,25 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
       form = candidate_form;
     }
   }
+  if (rates_form) *rates_form = form;
   // P's drift in loops over dense blocks (p_drift_loops.hpp), over the same expectations as the
   // kept form: where E[J] is dense, or where the loops need no more operations. For a dense E[J]
   // the loops do the straight-line form's products, and code that is loops is what compilers
   // vectorise and what fits an instruction cache; the straight-line form may still count fewer
   // operations where coefficients happen to be equal (graph sharing multiplies P_ik by 0.3 once
   // for every entry of E[J] that is 0.3), which depends on the model's numbers, not its structure.
+  // rates() takes them from kMinLoopDimension on, derivatives() alone from kMinLoopDimensionAlone.
   // A delayed filter's x* drift follows P's in `out`, which the loops do not write.
   if (n >= kMinLoopDimension && eq.x_star_drift.empty()) {
     const DerivativesForm loop_form =
         form == DerivativesForm::Moments ? DerivativesForm::MomentLoops : DerivativesForm::Loops;
     auto candidate = built_form(loop_form, "derivatives", model, eq, names, {});
     if (dense_jacobian(eq) || candidate->stats.cse.total() <= kept->stats.cse.total()) {
-      kept = std::move(candidate);
-      form = loop_form;
+      if (rates_form) *rates_form = loop_form;
+      if (n >= kMinLoopDimensionAlone) kept = std::move(candidate);
     }
   }
   kept->stats.naive = naive;
-  if (chosen) *chosen = form;
   return written(*kept, names.out, names, emitter, true);
 }
 

@@ -10370,10 +10370,9 @@ static void pfgen_models_ins16_ekf_increment(double t, const double* state, doub
                       const pfgen_models_ins16_ekf_params* params, double* delta) {
   double all[pfgen_models_ins16_ekf_state_size + pfgen_models_ins16_ekf_n * pfgen_models_ins16_ekf_p + pfgen_models_ins16_ekf_p];
   const double* K = all + pfgen_models_ins16_ekf_state_size;
-  const double* h = K + pfgen_models_ins16_ekf_n * pfgen_models_ins16_ekf_p;
+  double* innovation = all + pfgen_models_ins16_ekf_state_size + pfgen_models_ins16_ekf_n * pfgen_models_ins16_ekf_p;  /* h, replaced by dy - h dt */
   pfgen_models_ins16_ekf_rates(t, state, params, all);
-  double innovation[pfgen_models_ins16_ekf_p];
-  for (size_t r = 0; r < pfgen_models_ins16_ekf_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t r = 0; r < pfgen_models_ins16_ekf_p; ++r) innovation[r] = dy[r] - innovation[r] * dt;
   for (size_t i = 0; i < pfgen_models_ins16_ekf_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_ins16_ekf_n; ++i)
     for (size_t r = 0; r < pfgen_models_ins16_ekf_p; ++r) delta[i] += K[i * pfgen_models_ins16_ekf_p + r] * innovation[r];

@@ -150,10 +150,9 @@ static void pfgen_models_leqg_tracking_risk_sensitive_increment(float t, const f
                       const pfgen_models_leqg_tracking_risk_sensitive_params* params, float* delta) {
   float all[pfgen_models_leqg_tracking_risk_sensitive_state_size + pfgen_models_leqg_tracking_risk_sensitive_n * pfgen_models_leqg_tracking_risk_sensitive_p + pfgen_models_leqg_tracking_risk_sensitive_p];
   const float* K = all + pfgen_models_leqg_tracking_risk_sensitive_state_size;
-  const float* h = K + pfgen_models_leqg_tracking_risk_sensitive_n * pfgen_models_leqg_tracking_risk_sensitive_p;
+  float* innovation = all + pfgen_models_leqg_tracking_risk_sensitive_state_size + pfgen_models_leqg_tracking_risk_sensitive_n * pfgen_models_leqg_tracking_risk_sensitive_p;  /* h, replaced by dy - h dt */
   pfgen_models_leqg_tracking_risk_sensitive_rates(t, state, params, all);
-  float innovation[pfgen_models_leqg_tracking_risk_sensitive_p];
-  for (size_t r = 0; r < pfgen_models_leqg_tracking_risk_sensitive_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t r = 0; r < pfgen_models_leqg_tracking_risk_sensitive_p; ++r) innovation[r] = dy[r] - innovation[r] * dt;
   for (size_t i = 0; i < pfgen_models_leqg_tracking_risk_sensitive_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_leqg_tracking_risk_sensitive_n; ++i)
     for (size_t r = 0; r < pfgen_models_leqg_tracking_risk_sensitive_p; ++r) delta[i] += K[i * pfgen_models_leqg_tracking_risk_sensitive_p + r] * innovation[r];

@@ -171,10 +171,9 @@ static void pfgen_models_van_der_pol_additive_increment(float t, const float* st
                       const pfgen_models_van_der_pol_additive_params* params, float* delta) {
   float all[pfgen_models_van_der_pol_additive_state_size + pfgen_models_van_der_pol_additive_n * pfgen_models_van_der_pol_additive_p + pfgen_models_van_der_pol_additive_p];
   const float* K = all + pfgen_models_van_der_pol_additive_state_size;
-  const float* h = K + pfgen_models_van_der_pol_additive_n * pfgen_models_van_der_pol_additive_p;
+  float* innovation = all + pfgen_models_van_der_pol_additive_state_size + pfgen_models_van_der_pol_additive_n * pfgen_models_van_der_pol_additive_p;  /* h, replaced by dy - h dt */
   pfgen_models_van_der_pol_additive_rates(t, state, params, all);
-  float innovation[pfgen_models_van_der_pol_additive_p];
-  for (size_t r = 0; r < pfgen_models_van_der_pol_additive_p; ++r) innovation[r] = dy[r] - h[r] * dt;
+  for (size_t r = 0; r < pfgen_models_van_der_pol_additive_p; ++r) innovation[r] = dy[r] - innovation[r] * dt;
   for (size_t i = 0; i < pfgen_models_van_der_pol_additive_state_size; ++i) delta[i] = all[i] * dt;
   for (size_t i = 0; i < pfgen_models_van_der_pol_additive_n; ++i)
     for (size_t r = 0; r < pfgen_models_van_der_pol_additive_p; ++r) delta[i] += K[i * pfgen_models_van_der_pol_additive_p + r] * innovation[r];

@@ -62,14 +62,16 @@ FunctionCode function_code(const std::string& function, const std::vector<Polyno
 enum class DerivativesForm { Expanded, Structured, Moments, Loops, MomentLoops };
 
 // derivatives(): m's drift, P's drift (upper triangle) and x*'s drift when the filter has one, to
-// `out`; in the form that needs the fewest operations after sharing (the earlier on a tie, the
-// loops where they need no more), which `chosen` receives.
+// `out`; in the form that needs the fewest operations after sharing (the earlier on a tie), or in
+// loops where E[J] is dense or they need no more (from n = kMinLoopDimensionAlone). `rates_form`
+// receives the form rates() takes: the same, but in loops from n = kMinLoopDimension, where they
+// pay with the gain shared.
 FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                               const FunctionNames& names, const CFamilyEmitter& emitter,
-                              DerivativesForm* chosen = nullptr);
+                              DerivativesForm* rates_form = nullptr);
 // rates(): derivatives' outputs, then the gain (n x p, row-major) and the predicted observation,
-// to `out`, in one body in `form` (derivatives' choice): what derivatives() and gain() have in
-// common (K, and with it P's correction) is computed once. `naive`: the three functions' naive count.
+// to `out`, in one body in `form` (derivatives_code's rates_form): what derivatives() and gain()
+// have in common (K, and with it P's correction) is computed once. `naive`: the three functions' naive count.
 FunctionCode rates_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                         const FunctionNames& names, const CFamilyEmitter& emitter, DerivativesForm form,
                         const OpCounts& naive);

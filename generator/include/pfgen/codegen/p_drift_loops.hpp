@@ -24,9 +24,13 @@
 
 namespace pfgen::codegen {
 
-// The smallest n the loops are written for: below it a block is a handful of scalars, which
-// straight-line code holds in registers and loops gain nothing on.
+// The smallest n the loops are written for in rates() (which shares K with them): below it a block
+// is a handful of scalars, which straight-line code holds in registers and loops gain nothing on.
 inline constexpr std::size_t kMinLoopDimension = 4;
+// The smallest n derivatives() alone is written in loops for: without the gain to share, the loops
+// made it slower at n = 4 and 5 (1.16-1.38x on the dense linear and cubic models, g++ -O2) and
+// faster from n = 6 on (docs/benchmarks.md, "Generated code against hand-written code").
+inline constexpr std::size_t kMinLoopDimensionAlone = 6;
 // Below this n, E[J] P + P E[J]^T - K (A P) is summed over the full n x n block before its upper
 // triangle is taken: rows of fewer than 8 entries are a vector or two, and the triangle's shorter
 // rows kept a compiler from vectorising them (g++ -O3, n = 4: the whole step 1.6x faster in full;

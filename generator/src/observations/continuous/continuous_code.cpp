@@ -8,8 +8,8 @@ ContinuousFunctions continuous_functions(const Model& model, const FilterEquatio
   std::vector<Polynomial> gain_outputs;
   for (const auto& row : eq.gain) gain_outputs.insert(gain_outputs.end(), row.begin(), row.end());
   ContinuousFunctions f;
-  DerivativesForm form = DerivativesForm::Expanded;
-  f.derivatives = derivatives_code(model, eq, options, names, emitter, &form);
+  DerivativesForm rates_form = DerivativesForm::Expanded;
+  f.derivatives = derivatives_code(model, eq, options, names, emitter, &rates_form);
   f.gain = function_code("gain", gain_outputs, names.K, model, eq, options, names, emitter);
   f.observation =
       function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
@@ -17,7 +17,7 @@ ContinuousFunctions continuous_functions(const Model& model, const FilterEquatio
     OpCounts naive = f.derivatives.stats.naive;
     naive += f.gain.stats.naive;
     naive += f.observation.stats.naive;
-    f.rates = rates_code(model, eq, options, names, emitter, form, naive);
+    f.rates = rates_code(model, eq, options, names, emitter, rates_form, naive);
   }
   return f;
 }
