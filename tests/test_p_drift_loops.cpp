@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <random>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -169,8 +170,9 @@ void check_model(const Model& model, bool full_combine) {
   // n x n local blocks: P in full and E[J] P, and the full sum below n = 8, in rates() and, from
   // n = kMinLoopDimensionAlone on, in derivatives() too.
   std::size_t blocks = 0;
-  const std::string block = "[" + std::to_string(n * n) + "];\n";
-  for (std::size_t at = header.find(block); at != std::string::npos; at = header.find(block, at + 1)) ++blocks;
+  const std::regex block("^  Scalar \\w+\\[" + std::to_string(n * n) + "\\];$");
+  std::istringstream header_lines(header);
+  for (std::string line; std::getline(header_lines, line);) blocks += std::regex_match(line, block);
   CHECK(blocks == (full_combine ? 3u : 2u) * (n >= codegen::kMinLoopDimensionAlone ? 2u : 1u));
   CHECK(header.find("  rates(t, state, params, all.data());") != std::string::npos);
 
