@@ -62,6 +62,25 @@ observation:
   B: [["w", "0"], ["0", "2*w"]]
 )";
 
+// n = 8 (the upper triangle), one observation of a sparse A (so H comes from the graph and M is
+// 1 x 1), no diffusion (so nothing is added after the products).
+const char* const kSparseObservationNoDiffusion = R"(name: one_sensor_8
+states: [x1, x2, x3, x4, x5, x6, x7, x8]
+drift:
+  - "-x1 + 0.1*x2 + 0.2*x3 - 0.1*x4 + 0.3*x5 - 0.2*x6 + 0.1*x7 + 0.05*x8"
+  - "0.2*x1 - x2 + 0.1*x3 + 0.3*x4 - 0.1*x5 + 0.2*x6 - 0.3*x7 + 0.1*x8"
+  - "-0.1*x1 + 0.2*x2 - x3 + 0.1*x4 + 0.2*x5 + 0.1*x6 - 0.2*x7 + 0.3*x8"
+  - "0.3*x1 - 0.1*x2 + 0.2*x3 - x4 + 0.1*x5 - 0.3*x6 + 0.2*x7 - 0.1*x8"
+  - "0.1*x1 + 0.3*x2 - 0.2*x3 + 0.1*x4 - x5 + 0.2*x6 + 0.1*x7 - 0.2*x8"
+  - "-0.2*x1 + 0.1*x2 + 0.3*x3 - 0.2*x4 + 0.1*x5 - x6 + 0.3*x7 + 0.1*x8"
+  - "0.1*x1 - 0.2*x2 + 0.1*x3 + 0.2*x4 - 0.3*x5 + 0.1*x6 - x7 + 0.2*x8"
+  - "0.2*x1 + 0.1*x2 - 0.1*x3 + 0.3*x4 + 0.2*x5 - 0.1*x6 + 0.1*x7 - x8 - 0.05*x8^3"
+diffusion: [["0"], ["0"], ["0"], ["0"], ["0"], ["0"], ["0"], ["0"]]
+observation:
+  A: [["0", "0", "1", "0", "0", "0", "0", "0"]]
+  B: [["0.4"]]
+)";
+
 // A random point with rational coordinates k/1000 and P = L L^T + I/10 (positive definite).
 EvaluationPoint random_point(std::size_t n, std::mt19937& rng) {
   std::uniform_int_distribution<int> k(-1000, 1000);
@@ -257,6 +276,9 @@ TEST_CASE("P's drift in loops and rates() agree with the exact equations in C++ 
   }
   SECTION("dense cubic with parameters in A and R") {
     check_model(load_model_text(kDenseCubicWithParameters, "dense_param_4.yaml"), true);
+  }
+  SECTION("one observation of a sparse A, no diffusion, n = 8") {
+    check_model(load_model_text(kSparseObservationNoDiffusion, "one_sensor_8.yaml"), false);
   }
   SECTION("a model whose parameters have the loops' names") {
     check_model(load_model_text(kLoopNamesTaken, "loop_names.yaml"), true);
