@@ -20,10 +20,11 @@ std::optional<std::vector<std::vector<GiNaC::ex>>> gain_factor(const FilterEquat
   const std::size_t n = eq.n();
   const FilterVariables& vars = eq.variables;
   if (eq.is_user_filter() || eq.p == 0 || eq.gain.size() != n || n == 0) return std::nullopt;
+  for (const auto& row : eq.gain)
+    if (row.size() != eq.p) return std::nullopt;
   // G^T read off row 0 (gain_0r = sum_k G_kr P_0k), then checked against every row.
   std::vector<std::vector<GiNaC::ex>> Gt(eq.p, std::vector<GiNaC::ex>(n, 0));
   for (std::size_t r = 0; r < eq.p; ++r) {
-    if (eq.gain[0].size() != eq.p) return std::nullopt;
     for (const auto& [monomial, coefficient] : eq.gain[0][r].terms()) {
       const auto& factors = monomial.factors();
       if (factors.size() != 1 || factors[0].second != 1 || vars.is_mean(factors[0].first) ||
@@ -35,7 +36,6 @@ std::optional<std::vector<std::vector<GiNaC::ex>>> gain_factor(const FilterEquat
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (eq.gain[i].size() != eq.p) return std::nullopt;
     for (std::size_t r = 0; r < eq.p; ++r) {
       Polynomial product;
       for (std::size_t k = 0; k < n; ++k)

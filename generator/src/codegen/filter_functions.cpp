@@ -124,24 +124,46 @@ FunctionCode written(const BuiltFunction& built, const std::string& target, cons
   return code;
 }
 
+// E[f], E[J] and E[g g^T], as the structured forms read them: the derivation's expanded polynomials,
+// or (`moments`, for the Gaussian-closure kinds) sums over shared moments (moment_form.hpp). Each
+// call builds its node; asking twice shares it, as the graph shares everything.
+class Expectations {
+ public:
+  Expectations(const FilterEquations& eq, bool moments, GraphBuilder& builder)
+      : eq_(eq), builder_(builder), sources_(moments ? &*eq.expectation_sources : nullptr) {
+    if (moments) form_.emplace(builder, eq.variables);
+  }
+  std::size_t drift(std::size_t j) {
+    return form_ ? form_->expectation(sources_->drift[j]) : builder_.polynomial(eq_.m_drift[j]);
+  }
+  std::size_t jacobian(std::size_t j, std::size_t k) {
+    return form_ ? form_->expectation(sources_->jacobian[j][k]) : builder_.polynomial(eq_.jacobian_term[j][k]);
+  }
+  // E[g g^T] at upper entry u.
+  std::size_t diffusion(std::size_t u) {
+    return form_ ? form_->expectation(sources_->diffusion_upper[u]) : builder_.polynomial(eq_.P_diffusion[u]);
+  }
+
+ private:
+  const FilterEquations& eq_;
+  GraphBuilder& builder_;
+  const ExpectationSources* sources_;
+  std::optional<MomentForm> form_;
+};
+
 // derivatives() in the derivation's structure (see derivatives_code): E[f], E[J] and E[g g^T] as
-// the derivation's expanded polynomials, or (`moments`, for the Gaussian-closure kinds) as sums
-// over shared moments; P's moment terms as P E[J]^T + E[J] P; the correction as K (A P) where
+// Expectations gives them; P's moment terms as P E[J]^T + E[J] P; the correction as K (A P) where
 // correction_factor() finds it equal.
 void build_structured(const FilterEquations& eq, bool moments, GraphBuilder& builder, ExpressionGraph& graph,
                       std::vector<std::size_t>& roots) {
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
-  const ExpectationSources* sources = moments ? &*eq.expectation_sources : nullptr;
-  std::optional<MomentForm> form;
-  if (moments) form.emplace(builder, vars);
-  for (std::size_t j = 0; j < n; ++j)
-    roots.push_back(moments ? form->expectation(sources->drift[j]) : builder.polynomial(eq.m_drift[j]));
+  Expectations expectations(eq, moments, builder);
+  for (std::size_t j = 0; j < n; ++j) roots.push_back(expectations.drift(j));
   std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t k = 0; k < n; ++k)
-      if (!eq.jacobian_term[j][k].is_zero())
-        J[j][k] = moments ? form->expectation(sources->jacobian[j][k]) : builder.polynomial(eq.jacobian_term[j][k]);
+      if (!eq.jacobian_term[j][k].is_zero()) J[j][k] = expectations.jacobian(j, k);
   // The correction's factors: K (n x p) and H = A P (p x n), each entry built once.
   const auto H = correction_factor(eq);
   std::vector<std::vector<std::size_t>> K_node, H_node;
@@ -173,8 +195,7 @@ void build_structured(const FilterEquations& eq, bool moments, GraphBuilder& bui
         if (i == j) sum = graph.add(sum, sum);
       }
       if (!eq.P_diffusion[u].is_zero()) {
-        const std::size_t diffusion =
-            moments ? form->expectation(sources->diffusion_upper[u]) : builder.polynomial(eq.P_diffusion[u]);
+        const std::size_t diffusion = expectations.diffusion(u);
         sum = terms.empty() ? diffusion : graph.add(sum, diffusion);
       }
       if (eq.P_correction[u].is_zero()) {
@@ -203,20 +224,19 @@ PDriftLoops build_loops(const FilterEquations& eq, bool moments, GraphBuilder& b
   using Kind = PDriftLoops::WeightEntry::Kind;
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
-  const ExpectationSources* sources = moments ? &*eq.expectation_sources : nullptr;
-  std::optional<MomentForm> form;
-  if (moments) form.emplace(builder, vars);
+  Expectations expectations(eq, moments, builder);
   // A number is written as it is (a negative one too): an entry of a block costs no operation.
   auto entry = [&](const GiNaC::ex& e) {
     return GiNaC::is_exactly_a<GiNaC::numeric>(e) ? graph.constant(GiNaC::ex_to<GiNaC::numeric>(e))
                                                    : builder.expression(e);
   };
-  auto constant_term = [](const Polynomial& q) { return q.terms().size() == 1 && q.terms().begin()->first.is_one(); };
-  auto polynomial_entry = [&](const Polynomial& q, const Polynomial* source) {
+  // A block's entry q: 0, a number, or built (by `build`, the polynomial itself by default).
+  auto polynomial_entry = [&](const Polynomial& q, auto build) {
     if (q.is_zero()) return graph.constant(0);
-    if (constant_term(q)) return entry(q.terms().begin()->second);
-    return source ? form->expectation(*source) : builder.polynomial(q);
+    if (q.terms().size() == 1 && q.terms().begin()->first.is_one()) return entry(q.terms().begin()->second);
+    return build();
   };
+  auto polynomial = [&](const Polynomial& q) { return polynomial_entry(q, [&] { return builder.polynomial(q); }); };
   auto dense = [](const std::vector<std::vector<GiNaC::ex>>& block) {
     for (const auto& row : block)
       for (const GiNaC::ex& e : row)
@@ -226,12 +246,11 @@ PDriftLoops build_loops(const FilterEquations& eq, bool moments, GraphBuilder& b
 
   PDriftLoops loops;
   loops.n = n;
-  for (std::size_t j = 0; j < n; ++j)
-    roots.push_back(moments ? form->expectation(sources->drift[j]) : builder.polynomial(eq.m_drift[j]));
+  for (std::size_t j = 0; j < n; ++j) roots.push_back(expectations.drift(j));
   loops.jacobian_offset = roots.size();
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t k = 0; k < n; ++k)
-      roots.push_back(polynomial_entry(eq.jacobian_term[j][k], moments ? &sources->jacobian[j][k] : nullptr));
+      roots.push_back(polynomial_entry(eq.jacobian_term[j][k], [&] { return expectations.jacobian(j, k); }));
 
   // The correction K (A P): H = A P and K^T = M H in the loops where A (and M) allow, else from the graph.
   const auto H = correction_factor(eq);
@@ -249,7 +268,7 @@ PDriftLoops build_loops(const FilterEquations& eq, bool moments, GraphBuilder& b
     } else {
       loops.H_offset = roots.size();
       for (const auto& row : *H)
-        for (const Polynomial& q : row) roots.push_back(polynomial_entry(q, nullptr));
+        for (const Polynomial& q : row) roots.push_back(polynomial(q));
     }
     loops.weighted = M.has_value();
     if (loops.weighted) {
@@ -268,21 +287,19 @@ PDriftLoops build_loops(const FilterEquations& eq, bool moments, GraphBuilder& b
     } else {
       loops.gain_offset = roots.size();
       for (std::size_t r = 0; r < eq.p; ++r)
-        for (std::size_t i = 0; i < n; ++i) roots.push_back(polynomial_entry(eq.gain[i][r], nullptr));
+        for (std::size_t i = 0; i < n; ++i) roots.push_back(polynomial(eq.gain[i][r]));
     }
   }
   loops.rest_offset = roots.size();
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) {
       const std::size_t u = vars.upper_index(i, j);
-      Polynomial rest = eq.P_diffusion[u];
-      const Polynomial* source = moments ? &sources->diffusion_upper[u] : nullptr;
-      if (!loops.factored && !eq.P_correction[u].is_zero()) {
-        rest -= eq.P_correction[u];
-        source = nullptr;
-      }
+      // E[g g^T], less the correction where the loops do not compute it.
+      const bool corrected = !loops.factored && !eq.P_correction[u].is_zero();
+      const Polynomial rest = corrected ? eq.P_diffusion[u] - eq.P_correction[u] : eq.P_diffusion[u];
       loops.rest = loops.rest || !rest.is_zero();
-      roots.push_back(polynomial_entry(rest, source));
+      roots.push_back(corrected ? polynomial(rest)
+                                : polynomial_entry(rest, [&] { return expectations.diffusion(u); }));
     }
   return loops;
 }
