@@ -214,32 +214,30 @@ def count_ops(body):
     iteration: `for (int i = 0; i < R; ++i)` runs R times, and an inner `for (int j = i; j < N; ...)`
     under `for (int i = 0; i < N; ...)` N (N + 1) / 2 times in all."""
     total = 0
-    outer = None  # (variable, trips) of a loop header whose body is the next line
+    outer = None  # (variable, bound) of a loop header whose body is the next line
     for line in body.splitlines():
         if line.strip().startswith("//"):
             continue
-        loop = LOOP.match(line)
         trips = 1
+        loop = LOOP.match(line)
         if loop:
             variable, start, bound, statement = loop.groups()
             bound = int(bound)
-            if outer and start == outer[0]:
-                trips = bound * (bound + 1) // 2 if outer[1] == bound else None
-                if trips is None:
+            if outer and start == outer[0]:  # for (j = i; j < N; ...) under for (i = 0; i < N; ...)
+                if outer[1] != bound:
                     raise ValueError("unexpected loop nest: " + line)
+                trips = bound * (bound + 1) // 2
             elif start.isdigit():
                 trips = (bound - int(start)) * (outer[1] if outer else 1)
             else:
                 raise ValueError("unexpected loop: " + line)
-            if not statement.strip() or statement.strip() == "{":
+            if not statement.strip():
                 outer = (variable, bound)
                 continue
             line = statement
-        outer = None if not loop else outer
-        if "=" not in line:
-            continue
-        total += trips * statement_ops(line)
         outer = None
+        if "=" in line:
+            total += trips * statement_ops(line)
     return total
 
 
