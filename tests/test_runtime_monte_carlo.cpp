@@ -232,6 +232,112 @@ TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "
   }
 }
 
+// A filter's lanes form as a loop over its one-state step: the engine's lanes machinery (packed
+// checks and sums, the refinement and guards of a lane alone) is then what the test exercises.
+FilterModel in_lanes(FilterModel filter, std::size_t width) {
+  filter.lanes = width;
+  filter.step_lanes = [step = filter.step, width, size = filter.state_size(), p = filter.p](
+                          double* states, double t, double dt, const double* dy) {
+    std::vector<double> state(size), increment(p);
+    for (std::size_t k = 0; k < width; ++k) {
+      for (std::size_t i = 0; i < size; ++i) state[i] = states[i * width + k];
+      for (std::size_t r = 0; r < p; ++r) increment[r] = dy[r * width + k];
+      step(state.data(), t, dt, increment.data());
+      for (std::size_t i = 0; i < size; ++i) states[i * width + k] = state[i];
+    }
+  };
+  return filter;
+}
+
+// The Kalman-Bucy filter from a P0 so large that its first grid steps change P by far more than
+// the stepper allows: they are refined.
+FilterModel stiff_start(const ScalarLinear& model) {
+  FilterModel filter = kalman_bucy(model, "stiff-start");
+  filter.initial_state = [model](double* state) {
+    state[0] = model.m0;
+    state[1] = 1e4;
+  };
+  return filter;
+}
+
+TEST_CASE("monte carlo: results are bitwise identical for any batch, filters stepped in lanes or alone",
+          "[montecarlo][runtime][unit]") {
+  Scenario scenario;
+  // The system with batched forms too, so that the truths' lanes take grid steps at once.
+  SdeSystem system = scalar_linear_system(scenario.model);
+  system.drift_batch = [f = system.drift](double t, std::size_t count, const double* x, double* out) {
+    for (std::size_t k = 0; k < count; ++k) f(t, x + k, out + k);
+  };
+  system.diffusion_batch = [g = system.diffusion](double t, std::size_t count, const double* x, double* out) {
+    for (std::size_t k = 0; k < count; ++k) g(t, x + k, out + k);
+  };
+  // Adaptive Euler bisects where |x| is large against its tolerance: lanes leave the batched
+  // step for their own scheme's, with their own bridge draws.
+  AdaptiveEuler::Options tight;
+  tight.tolerance = 0.02;
+  const EulerMaruyama euler(system);
+  const AdaptiveEuler adaptive(system, tight);
+  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
+  std::vector<FilterModel> filters;
+  for (const FilterModel& filter : scenario.filters) filters.push_back(in_lanes(filter, 4));
+  filters.push_back(in_lanes(stiff_start(scenario.model), 4));
+  filters.push_back(in_lanes(kalman_bucy(scenario.model, "other-width"), 2));  // one run at a time
+  filters.push_back(kalman_bucy(scenario.model, "no-lanes"));
+
+  struct Variant {
+    const char* name;
+    const TruthScheme* scheme;
+    bool criterion, stop_on_psd_loss;
+  };
+  for (const Variant& variant : {Variant{"euler", &euler, false, false}, Variant{"adaptive", &adaptive, true, false},
+                                 Variant{"stop on PSD loss", &euler, true, true}}) {
+    MonteCarloOptions options = scenario.options;
+    options.runs = 29;
+    if (variant.criterion) options.criterion = CriterionOptions{};
+    options.filter_guards.stop_on_psd_loss = variant.stop_on_psd_loss;
+    std::vector<double> reference;
+    std::string reference_table, reference_csv;
+    std::vector<std::uint64_t> reference_refined;
+    std::vector<double> reference_integrals;
+    for (const auto& [batch, threads] : std::vector<std::pair<std::size_t, unsigned>>{
+             {1, 1}, {2, 1}, {3, 2}, {4, 1}, {7, 2}, {8, 1}, {16, 2}, {64, 1}}) {
+      options.batch = batch;
+      options.threads = threads;
+      const MonteCarloResult result = run_monte_carlo(*variant.scheme, observation, x0, filters, options);
+      const std::vector<double> numbers = flatten(result);
+      std::vector<std::uint64_t> refined;  // and the criterion's integrals, bit for bit
+      std::vector<double> integrals;
+      for (const FilterStatistics& f : result.filters) {
+        refined.insert(refined.end(), {f.refined_steps, f.refined_runs, f.too_stiff_runs, f.undefined_runs});
+        if (f.criterion) integrals.insert(integrals.end(), f.criterion->integrals.begin(), f.criterion->integrals.end());
+      }
+      const std::string table = format_summary_table(result, {"x"});
+      const std::string csv = format_results_csv(result, {"x"});
+      if (batch == 1) {
+        reference = numbers;
+        reference_table = table;
+        reference_csv = csv;
+        reference_refined = refined;
+        reference_integrals = integrals;
+        CHECK(integrals.empty() != variant.criterion);
+        // The scenario covers what it should: stopped truths, diverged, PSD-losing and refined filters.
+        CHECK(result.truth_divergences.count() > 0);
+        CHECK(result.filters[1].divergences.count() > 0);
+        CHECK(result.filters[2].psd_losses.count() > 0);
+        CHECK(result.filters[3].refined_steps > 0);
+        continue;
+      }
+      INFO(variant.name << ": batch = " << batch << ", threads = " << threads);
+      CHECK(bitwise_equal(numbers, reference));
+      CHECK(table == reference_table);
+      CHECK(csv == reference_csv);
+      CHECK(refined == reference_refined);
+      CHECK(bitwise_equal(integrals, reference_integrals));
+    }
+  }
+}
+
 // What `mpirun pfgen simulate` does across ranks (MonteCarloOptions::share), here with threads of
 // one process: three shares, one of them empty, exchanging their record series and gathered in
 // run order by the first.

@@ -112,6 +112,51 @@ TEST_CASE("simulate: identical output for any thread count, and the second run u
   CHECK(one.out.find("ekf-printed") != std::string::npos);  // the model's own filter ran too
 }
 
+TEST_CASE("simulate: identical output for any --batch, runs stepped side by side or one at a time", "[simulate][compiler]") {
+  // One model per path: truths and filters in lanes (one state, adaptive truth); two states (the
+  // PSD test lane by lane); a polynomial observation (its rate over lanes) with a ukf (no lanes:
+  // its code takes square roots); sampled filters (truths in lanes, filters alone); delayed ones
+  // (all alone); the particle reference; the criterion of a risk-sensitive filter.
+  struct Job {
+    std::string model;
+    std::vector<std::string> options;
+  };
+  const std::vector<Job> jobs = {
+      {"basin2006_quadratic.yaml", {"--T", "2", "--dt", "1e-3"}},
+      {"van_der_pol.yaml", {"--T", "2", "--dt", "1e-3"}},
+      {"polynomial/cubic_sensor.yaml", {"--T", "1", "--dt", "1e-3"}},
+      {"paper003/example1_gamma0.yaml", {"--T", "2"}},
+      {"delay_linear.yaml", {"--T", "1"}},
+      {"reference/double_well.yaml", {"--T", "1", "--dt", "1e-3", "--reference", "particles:40"}},
+      {"leqg_tracking.yaml", {"--T", "1"}},
+  };
+  TempDir dir;
+  auto without_csv_line = [](std::string text) { return std::regex_replace(text, std::regex("csv: .*\n"), ""); };
+  for (const Job& job : jobs) {
+    INFO(job.model);
+    std::string reference_out, reference_csv;
+    for (const std::vector<std::string>& variant : std::vector<std::vector<std::string>>{
+             {"--batch", "1", "--threads", "1"}, {"--threads", "1"}, {"--batch", "3", "--threads", "2"}}) {
+      std::vector<std::string> args = simulate_args(job.model, dir, {"--runs", "11", "--seed", "5", "-q"});
+      args.insert(args.end(), job.options.begin(), job.options.end());
+      args.insert(args.end(), variant.begin(), variant.end());
+      args.insert(args.end(), {"-o", dir.file("batch.csv")});
+      const auto result = run_pfgen(args);
+      INFO(result.err);
+      REQUIRE(result.exit_code == 0);
+      const std::string csv = read_file(dir.file("batch.csv"));
+      if (reference_out.empty()) {
+        reference_out = without_csv_line(result.out);
+        reference_csv = csv;
+        continue;
+      }
+      INFO(variant[0] << " " << variant[1]);
+      CHECK(without_csv_line(result.out) == reference_out);
+      CHECK(csv == reference_csv);
+    }
+  }
+}
+
 TEST_CASE("simulate --plot draws an SVG with gnuplot, next to its CSV", "[simulate][gnuplot][compiler]") {
   TempDir dir;
   const auto result = run_pfgen(simulate_args(
@@ -139,10 +184,12 @@ TEST_CASE("simulate: bad settings are one-line errors naming the option or field
       {{"--filters", "optimal,kalman"}, "unknown filter 'kalman'"},
       {{"--scheme", "heun"}, "--scheme: unknown scheme 'heun'"},
       {{"--runs", "0"}, "--runs: at least 1 run is required"},
+      {{"--batch", "0"}, "--batch: Value 0 not in range 1 to 1024"},
+      {{"--batch", "2x"}, "--batch: Value 2x not in range 1 to 1024"},
       {{"--shown-run", "300"}, "--shown-run: run 300 is not among the 200 runs (numbered from 0)"},
       {{"--plot", dir.file("e.pdf")}, "--plot: '" + dir.file("e.pdf") + "' must end in .png or .svg"},
       {{"-o", dir.file("missing/r.csv")}, "does not exist"},
-      {{"--dt", "1e-8", "--threads", "2"}, "--dt: the job needs about 27.4 GiB"},
+      {{"--dt", "1e-8", "--threads", "2"}, "--dt: the job needs about 27.5 GiB"},
       // Threads and recorded points bounded by the machine, named by their option.
       {{"--threads", "100000", "--runs", "100000"}, "--threads: 100000 threads on a machine with"},
       {{"--dt", "1e-6", "--record-points", "10000000", "-o", dir.file("r.csv")},

@@ -353,6 +353,28 @@ void check_filters(const pfgen::Model& model, const std::vector<pfgen::FilterEqu
         check_close(stepped, reference, 1e-14, "step against generated/");
       }
     }
+    // step_lanes: each lane bit for bit step() on its own state and increment (the generated step
+    // on the plugin's lane type). A filter whose code calls a function (the ukf's square roots, a
+    // sin(t) of the model) has none.
+    if (!filter.step_lanes) continue;
+    const std::size_t width = filter.lanes, size = filter.state_size(), p = model.p();
+    CHECK(width >= 2);
+    const double t = random_vector(rng, 1, 0, 2)[0], dt = 0.01;
+    std::vector<double> states(size * width), increments(p * width);
+    std::vector<std::vector<double>> alone(width);
+    for (std::size_t lane = 0; lane < width; ++lane) {
+      alone[lane] = random_state(rng, model.n());
+      const std::vector<double> dy = random_vector(rng, p, -0.1, 0.1);
+      for (std::size_t i = 0; i < size; ++i) states[i * width + lane] = alone[lane][i];
+      for (std::size_t r = 0; r < p; ++r) increments[r * width + lane] = dy[r];
+      filter.step(alone[lane].data(), t, dt, dy.data());
+    }
+    filter.step_lanes(states.data(), t, dt, increments.data());
+    for (std::size_t lane = 0; lane < width; ++lane)
+      for (std::size_t i = 0; i < size; ++i) {
+        INFO("step_lanes: lane " << lane << ", entry " << i);
+        CHECK(std::memcmp(&states[i * width + lane], &alone[lane][i], sizeof(double)) == 0);
+      }
   }
 }
 
@@ -389,6 +411,12 @@ TEST_CASE("plugin: paper 000's model compiles, loads and agrees with the model a
   check_truth(model, plugin);
   check_observation(model, plugin);
   check_initial_states(model, plugin);
+  for (const pfgen_runtime::FilterModel& filter : plugin.filters()) {
+    INFO(filter.name);
+    // Arithmetic alone, each steps runs side by side; but the ukf, which takes square roots.
+    CHECK(static_cast<bool>(filter.step_lanes) == (filter.name != "ukf"));
+    CHECK(filter.lanes == (filter.name != "ukf" ? 8u : 0u));
+  }
   namespace gen = pfgen_models::basin2006_quadratic;
   check_filters(model, filters, plugin,
                 {{"optimal", header_step(&gen::optimal::step<double>)},

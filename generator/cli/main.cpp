@@ -182,6 +182,10 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--threads", simulate.threads, "Worker threads, 0 = every core; results do not depend on it")
       ->check(whole_number)
       ->capture_default_str();
+  simulate_cmd->add_option("--batch", simulate.batch,
+                           "Runs each thread steps side by side, >= 1; results do not depend on it")
+      ->check(CLI::Range(std::size_t(1), std::size_t(1024)))
+      ->capture_default_str();
   simulate_cmd->add_option("--scheme", so.scheme,
                            scheme_help);
   simulate_cmd->add_option("--report-times", so.report_times, "Times for the error columns, e.g. 5,6,6.5");

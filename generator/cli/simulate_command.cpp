@@ -145,7 +145,9 @@ void check_memory(const Model& model, const SimulationSettings& s, unsigned thre
   const double statistics = static_cast<double>(s.runs) * records * recorded * static_cast<double>(model.n()) *
                             sizeof(double);
   // Only min(threads, runs) threads are started (run_monte_carlo): --threads 1000000 --runs 2 is fine.
-  const double paths = per_thread * static_cast<double>(std::min<std::size_t>(threads, s.runs));
+  // A thread's batch of runs (MonteCarloOptions::batch) adds at most kBatchBytes.
+  const double paths = (per_thread + static_cast<double>(pfgen_runtime::kBatchBytes)) *
+                       static_cast<double>(std::min<std::size_t>(threads, s.runs));
   const double bytes = paths + statistics, limit = memory_limit_bytes();
   if (bytes > limit) {
     // Named by the larger part: the recorded series (--record-points, with the CSV or plot), or the
@@ -413,6 +415,7 @@ SimulationOutcome simulate(const SimulateOptions& options, JobGroup& group) {
     mc.runs = settings.runs;
     mc.seed = settings.seed;
     mc.threads = thread_count(options.threads, settings.runs);
+    mc.batch = options.batch;
     mc.record_points = effective_record_points(options, settings);
     mc.shown_run = settings.shown_run;
     mc.report_times = settings.report_times;

@@ -18,6 +18,7 @@ struct SimulateOptions {
   std::string model_path;
   SimulationOverrides overrides;
   unsigned threads = 0;       // 0: every core (results do not depend on it)
+  std::size_t batch = 8;      // runs a thread carries side by side (results do not depend on it)
   std::string csv_path;       // -o
   std::string plot_path;      // --plot FILE.png|svg
   double plot_ylim = 0;       // --plot-ylim Y: y range [-Y, Y]; 0 autoscales

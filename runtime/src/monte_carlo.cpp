@@ -45,6 +45,7 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
     throw std::invalid_argument("monte carlo: the time grid needs dt > 0 and at least one step");
   if (options.runs == 0) throw std::invalid_argument("monte carlo: runs must be at least 1");
   if (options.threads == 0) throw std::invalid_argument("monte carlo: threads must be at least 1");
+  if (options.batch == 0) throw std::invalid_argument("monte carlo: batch must be at least 1");
   if (options.record_points == 0) throw std::invalid_argument("monte carlo: record_points must be at least 1");
   if (options.shown_run >= options.runs) throw std::invalid_argument("monte carlo: the shown run is not among the runs");
   if (options.share && (options.share->first > options.runs || options.share->count > options.runs - options.share->first ||
@@ -130,6 +131,15 @@ MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const SampledMeasure
 
 namespace {
 
+// The most runs a worker carries at once: each keeps its truth path and increments (and, in the
+// lanes, a second copy of both), which stay within kBatchBytes together; long runs go fewer at a
+// time, down to one.
+std::size_t batch_limit(const Plan& plan) {
+  const double per_run = 2.0 * static_cast<double>(plan.grid.steps + 1) * static_cast<double>(plan.n + plan.p) *
+                         sizeof(double);
+  return static_cast<std::size_t>(std::max(1.0, std::floor(static_cast<double>(kBatchBytes) / per_run)));
+}
+
 MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observation,
                      const SampledMeasurement* measurement, const Eigen::VectorXd& x0,
                      const std::vector<FilterModel>& filters, const MonteCarloOptions& options) {
@@ -141,17 +151,25 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   const std::size_t first = options.share ? options.share->first : 0;
   const std::size_t count = options.share ? options.share->count : options.runs;
   std::vector<RunResult> runs(count);
-  const unsigned threads = static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(options.threads, count)));
+  // The runs in batches of consecutive runs, a batch to a worker at a time; smaller batches where
+  // there would not be one for every thread.
+  const std::size_t per_thread = (count + options.threads - 1) / options.threads;
+  const std::size_t batch = std::max<std::size_t>(1, std::min({options.batch, per_thread, batch_limit(plan)}));
+  const std::size_t batches = count == 0 ? 0 : (count + batch - 1) / batch;
+  const unsigned threads = static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(options.threads, batches)));
   std::vector<std::unique_ptr<Worker>> workers(threads);
   std::atomic<std::size_t> finished{0};
   auto make_worker = [&](unsigned thread) {
-    workers[thread] = std::make_unique<Worker>(scheme, observation, measurement, filters, x0, plan, options);
+    workers[thread] = std::make_unique<Worker>(scheme, observation, measurement, filters, x0, plan, options, batch);
     return workers[thread].get();
   };
-  parallel_for(count, threads, make_worker, [&](std::size_t k, Worker* worker) {
-    worker->run(first + k, runs[k]);
-    const std::size_t done = finished.fetch_add(1) + 1;
-    if (options.on_run_finished) options.on_run_finished(done, count);
+  parallel_for(batches, threads, make_worker, [&](std::size_t b, Worker* worker) {
+    const std::size_t k = b * batch, size = std::min(batch, count - k);
+    worker->run(first + k, size, runs.data() + k);
+    for (std::size_t r = 0; r < size; ++r) {
+      const std::size_t done = finished.fetch_add(1) + 1;
+      if (options.on_run_finished) options.on_run_finished(done, count);
+    }
   });
 
   // Zero timing with one entry per filter (and per sampled filter).

@@ -120,6 +120,47 @@ void LinearObservation::increment(double t, double dt, const Eigen::Ref<const Ei
   }
 }
 
+void LinearObservation::increment_lanes(double t, double dt, std::size_t count, const double* x_start,
+                                        const double* x_end, const double* dW2, double* dy) {
+  // increment()'s sums, term by term in its order, each over the lanes.
+  lane_end_.resize(p_ * count);
+  lane_start_.resize(p_ * count);
+  double* end = lane_end_.data();
+  double* start = lane_start_.data();
+  const double half = 0.5 * dt;
+  if (rate_) {
+    nonlinear_rate_batch(t + dt, count, x_end, end);
+    nonlinear_rate_batch(t, count, x_start, start);
+    evaluate(t);
+    for (std::size_t i = 0; i < p_; ++i)
+      for (std::size_t k = 0; k < count; ++k) end[i * count + k] = (end[i * count + k] + start[i * count + k]) * half;
+  } else {
+    evaluate(t + dt);
+    for (std::size_t i = 0; i < p_; ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      for (std::size_t k = 0; k < count; ++k) end[i * count + k] = A0_[row];
+      for (std::size_t j = 0; j < n_; ++j)
+        for (std::size_t k = 0; k < count; ++k)
+          end[i * count + k] += A_(row, static_cast<Eigen::Index>(j)) * x_end[j * count + k];
+    }
+    evaluate(t);
+    for (std::size_t i = 0; i < p_; ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      for (std::size_t k = 0; k < count; ++k) end[i * count + k] += A0_[row];
+      for (std::size_t j = 0; j < n_; ++j)
+        for (std::size_t k = 0; k < count; ++k)
+          end[i * count + k] += A_(row, static_cast<Eigen::Index>(j)) * x_start[j * count + k];
+      for (std::size_t k = 0; k < count; ++k) end[i * count + k] *= half;
+    }
+  }
+  for (std::size_t i = 0; i < p_; ++i) {
+    for (std::size_t k = 0; k < count; ++k) dy[i * count + k] = end[i * count + k];
+    for (std::size_t j = 0; j < r_; ++j)
+      for (std::size_t k = 0; k < count; ++k)
+        dy[i * count + k] += B_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) * dW2[j * count + k];
+  }
+}
+
 void LinearObservation::coefficients(double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
   evaluate(t);
   A0 = A0_;

@@ -46,8 +46,14 @@ TruthScheme::TruthScheme(SdeSystem system)
 }
 
 void TruthScheme::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) {
+  batch_take_.assign(live, live + count);
+  step_lanes_at_once(t, count, x, dt, dW, batch_take_.data());
   for (std::size_t k = 0; k < count; ++k)
-    if (live[k] != 0 && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
+    if (live[k] != 0 && batch_take_[k] == 0 && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
+}
+
+void TruthScheme::step_lanes_at_once(double, std::size_t count, double*, double, const double*, LaneFlag* take) {
+  std::fill(take, take + count, 0.0);
 }
 
 bool TruthScheme::step_lane(double t, std::size_t count, std::size_t k, double* x, double dt, const double* dW) {
@@ -123,10 +129,11 @@ void EulerMaruyama::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
   x += increment_;
 }
 
-void EulerMaruyama::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) {
-  if (!has_batch()) return TruthScheme::step_batch(t, count, x, dt, dW, live);
+void EulerMaruyama::step_lanes_at_once(double t, std::size_t count, double* x, double dt, const double* dW,
+                                       LaneFlag* take) {
+  if (!has_batch()) return TruthScheme::step_lanes_at_once(t, count, x, dt, dW, take);
   evaluate_batch(t, count, x);
-  euler_lanes(count, x, dt, dW, live);
+  euler_lanes(count, x, dt, dW, take);
 }
 
 std::unique_ptr<TruthScheme> EulerMaruyama::clone() const { return std::make_unique<EulerMaruyama>(system_); }
@@ -321,8 +328,9 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
   }
 }
 
-void AdaptiveEuler::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) {
-  if (!has_batch() || options_.max_substeps == 0) return TruthScheme::step_batch(t, count, x, dt, dW, live);
+void AdaptiveEuler::step_lanes_at_once(double t, std::size_t count, double* x, double dt, const double* dW,
+                                       LaneFlag* live) {
+  if (!has_batch() || options_.max_substeps == 0) return TruthScheme::step_lanes_at_once(t, count, x, dt, dW, live);
   evaluate_batch(t, count, x);
   const std::size_t n = system_.n, q = system_.q;
   const double* f = batch_f_.data();
@@ -349,20 +357,17 @@ void AdaptiveEuler::step_batch(double t, std::size_t count, double* x, double dt
     for (std::size_t k = 0; k < count; ++k)
       exceeding[k] += std::abs(fi[k]) * dt + spread[k] > tolerance * (std::abs(xi[k]) + scale) ? 1.0 : 0.0;
   }
-  // The lanes that pass take that Euler substep at once; the others go through step(), bisecting,
-  // in lane order.
-  take_.resize(count);
-  LaneFlag* __restrict take = take_.data();
+  // The lanes that pass take that Euler substep at once; the others are left for step(), which
+  // bisects.
+  LaneFlag* __restrict take = live;
   double taken = 0;  // a count, exact in a double
   for (std::size_t k = 0; k < count; ++k) {
-    take[k] = (live[k] != 0) & (exceeding[k] == 0) ? 1.0 : 0.0;
+    take[k] = (take[k] != 0) & (exceeding[k] == 0) ? 1.0 : 0.0;
     taken += take[k];
   }
   euler_lanes(count, x, dt, dW, take);
   substeps_ += static_cast<std::uint64_t>(taken);
   incomplete_ = false;
-  for (std::size_t k = 0; k < count; ++k)
-    if (live[k] != 0 && exceeding[k] != 0 && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
 }
 
 std::unique_ptr<TruthScheme> AdaptiveEuler::clone() const {

@@ -64,6 +64,9 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
             "filter " + std::string(f.name) + " has other dimensions than the model");
     require(std::isfinite(f.fixed_dt) && f.fixed_dt >= 0 && (f.extra_state_size == 0 || f.fixed_dt > 0), path,
             "filter " + std::string(f.name) + " has extra state without a fixed grid step, or a bad one");
+    require((f.step_lanes != nullptr) == (f.lanes > 0) && (f.step_lanes == nullptr || f.extra_state_size == 0) &&
+                f.lanes <= 64,
+            path, "filter " + std::string(f.name) + " has step_lanes without 1 to 64 lanes, or with extra state");
   }
 }
 
@@ -198,6 +201,12 @@ std::vector<FilterModel> SimulationPlugin::filters() const {
     };
     model.extra_state = f.extra_state_size;
     model.fixed_dt = f.fixed_dt;
+    if (f.step_lanes) {
+      model.lanes = f.lanes;
+      model.step_lanes = [library, step = f.step_lanes](double* state, double t, double dt, const double* dy) {
+        step(state, t, dt, dy);
+      };
+    }
     out.push_back(std::move(model));
   }
   for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {

@@ -61,6 +61,56 @@ class FilterStepper {
   }
   std::uint64_t refined_steps() const { return refined_; }  // grid steps that needed sub-steps
 
+  // For steps taken elsewhere (several runs side by side): whether advance() would keep the step
+  // from `before` to `after` as it is.
+  bool keeps(const double* before, const double* after) const {
+    return !control_.adaptive || control_.max_depth == 0 || acceptable(before, after);
+  }
+  // keeps() for `width` states side by side, entry-major (before[e * width + k]): keep[k] = 0
+  // where lane k's step would not be kept; the others are left as they are. The same tests as
+  // acceptable(), in passes over the lanes that compilers vectorise.
+  void keeps_lanes(const double* before, const double* after, std::size_t width, LaneFlag* keep) const {
+    if (!control_.adaptive || control_.max_depth == 0) return;
+    const std::size_t w = width;
+    for (std::size_t i = 0; i < n_; ++i)
+      for (std::size_t k = 0; k < w; ++k) keep[k] = finite(after[i * w + k]) ? keep[k] : 0.0;
+    // Below, & rather than &&: both sides are cheap and free of side effects, and a branch per
+    // lane would keep the loops scalar.
+    const double* P0 = before + n_ * w;
+    const double* P1 = after + n_ * w;
+    const double tolerance = control_.tolerance, floor = control_.floor;
+    for (std::size_t i = 0, e = 0; i < n_; ++i)
+      for (std::size_t j = i; j < n_; ++j, ++e) {
+        const double* p0 = P0 + e * w;
+        const double* p1 = P1 + e * w;
+        if (i == j) {
+          for (std::size_t k = 0; k < w; ++k) {
+            const double change = std::abs(p1[k] - p0[k]);
+            keep[k] = finite(p1[k]) & !(change > tolerance * (std::abs(p0[k]) + floor)) ? keep[k] : 0.0;
+          }
+          continue;
+        }
+        const double* d_i = P0 + packed_diagonal(n_, i) * w;
+        const double* d_j = P0 + packed_diagonal(n_, j) * w;
+        for (std::size_t k = 0; k < w; ++k) {
+          const double excess = std::abs(p1[k] - p0[k]) / tolerance - floor;
+          keep[k] = finite(p1[k]) & !((excess > 0) & (excess * excess > std::abs(d_i[k] * d_j[k]))) ? keep[k] : 0.0;
+        }
+      }
+  }
+  // What advance() does after its first step was not kept: `state` holds the grid step's start
+  // again, and the step is taken in halves. Same return value as advance().
+  template <class Step>
+  std::uint64_t refine(const Step& step, double* state, double t, double dt, const double* dy) {
+    double* saved = saved_.data();
+    for (std::size_t i = 0; i < size_; ++i) saved[i] = state[i];
+    ++refined_;
+    calls_ = 1;
+    exhausted_ = false;
+    const std::uint64_t kept = split(step, state, t, dt, dy, 0);
+    return exhausted_ ? 0 : kept;
+  }
+
   // After advance() gave up (0): whether the filter's equations are finite at the grid step's
   // start, a finite state. A step of length 0 with dy = 0 leaves a state unchanged exactly when
   // its rates are finite; where they are not (a definition that cannot be computed there: 0/0,
@@ -98,6 +148,7 @@ class FilterStepper {
     if (depth >= control_.max_depth || acceptable(saved, state)) return 1;
     return split(step, state, t, dt, dy, depth);
   }
+  static bool finite(double x) { return x - x == 0; }  // false for inf and NaN; a compare that packs
   // Every entry finite, and no P_ij changed by more than tolerance (sqrt|P_ii P_jj| + floor).
   bool acceptable(const double* before, const double* after) const {
     for (std::size_t i = 0; i < n_; ++i)

@@ -15,6 +15,8 @@
 
 #include <Eigen/Core>
 
+#include "pfgen_runtime/lane_flag.hpp"
+
 namespace pfgen_runtime {
 
 // too_stiff: a grid step of the filter would need more sub-steps than FilterStepControl allows.
@@ -45,6 +47,12 @@ class DivergenceGuard {
   }
   std::optional<DivergenceEvent> check(double t, const Eigen::Ref<const Eigen::VectorXd>& values) const {
     return check(t, values.data(), static_cast<std::size_t>(values.size()));
+  }
+  // check() of `width` value lists side by side (entry-major: values[i * width + k]): pass[k] = 0
+  // where list k would have an event; the others are left as they are.
+  void pass_lanes(const double* values, std::size_t count, std::size_t width, LaneFlag* pass) const {
+    for (std::size_t i = 0; i < count; ++i)
+      for (std::size_t k = 0; k < width; ++k) pass[k] = std::abs(values[i * width + k]) <= bound_ ? pass[k] : 0.0;
   }
 
  private:
@@ -100,6 +108,15 @@ class CovarianceGuard {
              P >= -(absolute_tolerance_ + relative_tolerance_ * std::abs(P));
     }
     return passes_filter_state_general(state, n);
+  }
+  // passes_filter_state for n = 1 over `width` states side by side, P (their one entry) at
+  // P[k]: pass[k] = 0 where it fails; the others are left as they are.
+  void pass_lanes_1(const double* P, std::size_t width, LaneFlag* pass) const {
+    for (std::size_t k = 0; k < width; ++k)
+      pass[k] = (std::abs(P[k]) <= std::numeric_limits<double>::max()) &
+                        (P[k] >= -(absolute_tolerance_ + relative_tolerance_ * std::abs(P[k])))
+                    ? pass[k]
+                    : 0.0;
   }
 
  private:

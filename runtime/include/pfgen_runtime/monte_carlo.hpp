@@ -59,11 +59,19 @@ struct InitialPrior {
   Eigen::MatrixXd covariance;
 };
 
+// The memory a worker's batch of runs may keep (MonteCarloOptions::batch).
+inline constexpr std::size_t kBatchBytes = std::size_t(64) << 20;
+
 struct MonteCarloOptions {
   TimeGrid grid;
   std::size_t runs = 100;
   std::uint64_t seed = 1;
   unsigned threads = 1;              // >= 1; more threads than runs are not started
+  // Runs a thread carries side by side (>= 1): their truths are stepped together, and so are the
+  // filters with a lanes form (FilterModel::step_lanes). Fewer when the runs' paths would take
+  // more than kBatchBytes, or when there would not be a batch for every thread. Every result is
+  // the same for any batch, as for any thread count.
+  std::size_t batch = 8;
   std::size_t record_points = 1000;  // series at every max(1, steps / record_points)-th grid point, plus the last
   std::size_t shown_run = 0;         // the run whose truth, estimates and P diagonals go into the series
   std::vector<double> report_times;  // snapped to the nearest grid time; must lie in [t0, T]

@@ -4,6 +4,7 @@
 // B(t) dW2 with any rate h (a polynomial observation, docs/theory.md §2.9), A0 and A unused.
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -59,6 +60,10 @@ class LinearObservation {
                  const Eigen::Ref<const Eigen::VectorXd>& x_end, const Eigen::Ref<const Eigen::VectorXd>& dW2,
                  Eigen::Ref<Eigen::VectorXd> dy);
 
+  // increment() without a delay for `count` states side by side, entry-major (x[i * count + k],
+  // dW2[j * count + k], dy[a * count + k]): lane k bit for bit increment()'s on state k.
+  void increment_lanes(double t, double dt, std::size_t count, const double* x_start, const double* x_end,
+                       const double* dW2, double* dy);
   // A0, A and B at time t into the caller's arrays, which must already be p, p x n and p x r (then
   // nothing is allocated). Not thread-safe, like increment().
   void coefficients(double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B);
@@ -76,6 +81,7 @@ class LinearObservation {
   Rate rate_;  // empty: A0 + A x
   BatchRate batch_rate_;  // optional
   Eigen::VectorXd lane_x_, lane_h_;  // nonlinear_rate_batch's lanes, without a batched rate
+  std::vector<double> lane_end_, lane_start_;  // increment_lanes' rates at both ends
   double delay_ = 0;
 };
 

@@ -24,7 +24,7 @@
 extern "C" {
 #endif
 
-#define PFGEN_PLUGIN_ABI_VERSION 5u
+#define PFGEN_PLUGIN_ABI_VERSION 6u
 #define PFGEN_PLUGIN_ENTRY_NAME "pfgen_plugin_entry"
 
 /* One filter over its packed state [m (n entries), upper triangle of P row by row], followed by
@@ -40,6 +40,12 @@ typedef struct pfgen_plugin_filter {
   void (*step)(double* state, double t, double dt, const double* dy);   /* over [t, t+dt], dy: p */
   size_t extra_state_size; /* entries after m and P (version 3 on) */
   double fixed_dt;         /* 0, or the only grid step the filter accepts (version 3 on) */
+  /* Version 6 on: `lanes` filter states stepped at once over the same [t, t+dt], entry-major
+   * (state[e * lanes + k] is entry e of state k, dy[r * lanes + k] entry r of its increment), so
+   * that independent runs share SIMD registers and hide each other's latency. Lane k's result is
+   * bit for bit step()'s on state k. NULL, and lanes 0, for a filter with extra state. */
+  void (*step_lanes)(double* state, double t, double dt, const double* dy);
+  size_t lanes;
 } pfgen_plugin_filter;
 
 /* One filter for sampled observations (y_k = C0 + C x(t_k) + Uv v_k every `period`) over the

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "pfgen_runtime/lane_flag.hpp"
 #include "pfgen_runtime/random.hpp"
 
 #include <limits>
@@ -31,10 +32,6 @@
 
 namespace pfgen_runtime {
 
-// A lane's flag in batched stepping (live, or taking a step): 1.0 or 0.0, a double like the values
-// it selects between, so that the loops over lanes vectorise: a char flag beside doubles keeps
-// them scalar, and SSE2 cannot compare 64-bit integers.
-using LaneFlag = double;
 
 class TruthScheme {
  public:
@@ -51,9 +48,15 @@ class TruthScheme {
   // whose step cannot be finished (last_step_incomplete, or CovarianceIndefinite from its
   // diffusion) gets live[k] = 0, its x then unspecified. Each lane's result is bit for bit
   // step()'s on that state, and the scheme's own draws (AdaptiveEuler's bridge) are taken in lane
-  // order, as a loop over step() takes them. This default is that loop; EulerMaruyama and
-  // AdaptiveEuler evaluate f and g of all lanes in one call where the system has batched forms.
-  virtual void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live);
+  // order, as a loop over step() takes them: step_lanes_at_once, then step() for the lanes it left.
+  void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live);
+  // The part of step_batch a scheme does for all lanes at once. take[k] is 1 for the lanes to step
+  // (the live ones) on entry; the scheme steps those it can from one batched evaluation and sets
+  // take[k] = 0 for the others, leaving them as they were for step() (whose own draws they need).
+  // This default takes none; EulerMaruyama takes every lane and AdaptiveEuler those whose whole
+  // grid step passes its size test, where the system has batched forms. Each lane taken is bit for
+  // bit step()'s.
+  virtual void step_lanes_at_once(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* take);
   // True when the last step() stopped short of t + dt because it would have needed more work than
   // the scheme allows (AdaptiveEuler's substep budget); x is then not x(t + dt) and the run stops.
   virtual bool last_step_incomplete() const { return false; }
@@ -92,6 +95,7 @@ class TruthScheme {
   Eigen::VectorXd lane_x_, lane_dW_;     // step_lane's state and increment
   std::vector<double> batch_f_, batch_g_;  // evaluate_batch's values
   std::vector<double> lane_increment_, lane_before_;  // euler_lanes' sums, and x before them
+  std::vector<LaneFlag> batch_take_;                  // step_batch's lanes taken at once
   double escape_bound_ = std::numeric_limits<double>::infinity();
 };
 
@@ -102,7 +106,7 @@ class EulerMaruyama : public TruthScheme {
   std::string name() const override { return "euler-maruyama"; }
   double strong_order() const override { return 0.5; }
   void step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) override;
-  void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) override;
+  void step_lanes_at_once(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* take) override;
   std::unique_ptr<TruthScheme> clone() const override;
 };
 
@@ -185,8 +189,8 @@ class AdaptiveEuler : public TruthScheme {
   double strong_order() const override { return 0.5; }
   void step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, const Eigen::Ref<const Eigen::VectorXd>& dW) override;
   // The lanes whose whole grid step passes the size test take it at once, from one batched
-  // evaluation of f and g; the others go through step() in lane order, bridge draws and all.
-  void step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) override;
+  // evaluation of f and g; the others go through step(), bridge draws and all.
+  void step_lanes_at_once(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* take) override;
   std::unique_ptr<TruthScheme> clone() const override;
   void start_run(std::uint64_t seed, std::uint64_t run) override;
 
@@ -212,7 +216,6 @@ class AdaptiveEuler : public TruthScheme {
   std::uint64_t depth_hits_ = 0;
   bool incomplete_ = false;
   std::vector<double> exceeding_;        // step_batch: per lane, the entries failing the size test
-  std::vector<LaneFlag> take_;           // step_batch: the live lanes that pass it
   std::vector<double> spread_;           // step_batch: a row's norm times sqrt(dt), per lane
 };
 

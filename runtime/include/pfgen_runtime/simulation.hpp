@@ -126,6 +126,11 @@ struct FilterModel {
   std::function<bool(double* state, double t, const double* y)> update;
   std::size_t extra_state = 0;  // entries after m and P; guards and records never read them
   double fixed_dt = 0;          // 0: any grid step (refined where unstable); else the only one
+  // Optional: `lanes` states stepped at once, entry-major (state[e * lanes + k], dy[r * lanes + k]),
+  // each lane bit for bit what `step` makes of it; the Monte Carlo engine then steps that many runs
+  // of a continuous filter side by side. Empty, and lanes 0, when the filter has none.
+  std::function<void(double* state, double t, double dt, const double* dy)> step_lanes;
+  std::size_t lanes = 0;
   // m, P and the extra state: what initial_state and step read and write.
   std::size_t state_size() const { return filter_state_size(n) + extra_state; }
   bool sampled() const { return substeps > 0; }

@@ -1,10 +1,11 @@
 #pragma once
 // One thread's share of the Monte Carlo runs. A Worker owns its own clone of the scheme and
 // copies of the observation and filters (they hold work arrays, so threads cannot share them)
-// and buffers for one run's truth, reused run after run: nothing is allocated per step, and no
-// run's path outlives the run. Per run it simulates the truth into the buffers, then steps each
-// filter over them in turn, accumulating the run's error statistics as it goes and keeping values
-// only at the plan's points.
+// and buffers for a batch of runs' truths, reused batch after batch: nothing is allocated per
+// step, and no run's path outlives its batch. Per batch it simulates each run's truth into its
+// buffers, then steps each filter over them, the runs side by side where the filter has a lanes
+// form, accumulating each run's error statistics as it goes and keeping values only at the plan's
+// points.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -15,22 +16,50 @@
 #include <Eigen/Core>
 
 #include "pfgen_runtime/monte_carlo.hpp"
+#include "pfgen_runtime/random.hpp"
+#include "pfgen_runtime/schemes.hpp"
 #include "plan.hpp"
 #include "run_result.hpp"
 
 namespace pfgen_runtime::monte_carlo_detail {
+
+// One run's buffers in a worker that carries several runs side by side.
+struct RunBuffers {
+  Eigen::VectorXd x0;             // the truth's initial state: fixed, or the run's draw
+  Eigen::MatrixXd path;           // n x (steps + 1): x at the grid times
+  Eigen::MatrixXd dy;             // p x steps
+  Eigen::MatrixXd clean, noisy;   // p x samples: C0 + C x(t_k) and y_k (sampled observations)
+  std::size_t samples = 0;        // samples of the run
+  Eigen::MatrixXd reference_mean; // n x (steps + 1): the particle reference's mean
+  std::ptrdiff_t reference_last = -1;
+};
+
+// A filter pass's running sums for one run.
+struct PassSums {
+  std::vector<double> sums;           // (1 + windows) x n: e^2 over the horizon and each window
+  std::vector<double> error;          // n: e at the current grid point
+  std::vector<double> distance_sums;  // n: (m - m_ref)^2 (with the particle reference)
+  double previous_L = 0;              // the criterion's L = e^T M e at the previous grid point
+};
+
+// Whether the engine steps this filter in lanes: a continuous filter of any grid step, with a
+// step_lanes of 2, 4, 8 or 16 lanes.
+bool steps_in_lanes(const FilterModel& filter);
 
 class Worker {
  public:
   // Keeps references to plan and options: both must outlive the worker.
   // measurement: the samples of a model with sampled observations (then `observation` is only
   // the truth loop's placeholder and every filter is sampled); nullptr for continuous ones.
+  // batch: the most runs one call of run() carries side by side (>= 1).
   Worker(const TruthScheme& scheme, const LinearObservation& observation, const SampledMeasurement* measurement,
          const std::vector<FilterModel>& filters, const Eigen::VectorXd& x0, const Plan& plan,
-         const MonteCarloOptions& options);
+         const MonteCarloOptions& options, std::size_t batch);
 
-  // Run number `run` (its random streams depend on the number alone) into `out`.
-  void run(std::size_t run, RunResult& out);
+  // Runs first .. first + count - 1 (count <= batch; each run's random streams depend on its
+  // number alone) into out[0 .. count - 1]. A filter with step_lanes steps them side by side;
+  // every run's result is bit for bit what it would be alone.
+  void run(std::size_t first, std::size_t count, RunResult* out);
 
   // Summed over this worker's runs (MonteCarloTiming sums them over workers).
   double truth_seconds = 0, truth_cpu_seconds = 0;
@@ -42,43 +71,79 @@ class Worker {
   std::uint64_t reference_steps = 0;  // particle steps
 
  private:
-  void simulate_truth(std::size_t run, RunResult& out);
-  void run_reference(std::size_t run, bool shown, RunResult& out);
-  void step_filter(std::size_t f, bool shown, const RunResult& run, FilterRunResult& out);
-  void step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth_last, FilterRunResult& out,
-                           const std::function<bool(double)>& guard, bool shown, std::uint64_t& steps);
-  void visit(std::size_t j, const double* state, bool shown, FilterRunResult& out);
-  void accumulate_criterion(std::size_t j, FilterRunResult& out);
-  void finish_reference_distance(FilterRunResult& out);
+  void simulate_truth(std::size_t run, RunBuffers& lane, RunResult& out);
+  // truth_lanes.cpp: the truths of runs first .. first + count - 1 side by side (simulate_truth's
+  // loop, each lane bit for bit), for observations without a delay.
+  void simulate_truths_lanes(std::size_t first, std::size_t count, RunResult* out);
+  // What simulate_truth does after the loop: the counts, the samples, the records.
+  void finish_truth(std::size_t run, RunBuffers& lane, RunResult& out, const std::optional<DivergenceEvent>& divergence);
+  void run_reference(std::size_t run, bool shown, RunBuffers& lane, RunResult& out);
+  // A filter pass's results sized and filled with NaN; false when the run has no truth to compare with.
+  bool start_pass(bool shown, const RunResult& run, FilterRunResult& out, PassSums& pass) const;
+  // False when the state at t diverged (out says so) or lost its PSD and must stop.
+  bool guard(double t, const double* state, FilterRunResult& out) const;
+  void finish_pass(FilterRunResult& out, const PassSums& pass, const RunBuffers& lane) const;
+  void step_filter(std::size_t f, bool shown, const RunResult& run, RunBuffers& lane, FilterRunResult& out);
+  // worker_lanes.cpp: runs first .. first + count - 1 (count <= width_, their buffers the first
+  // count of lanes_) side by side. interleave_truths copies their truths into lane_truth_ once for
+  // all filters; step_filter_lanes steps filter f over them (dispatching to a fixed width W).
+  void interleave_truths(std::size_t lane, std::size_t count, const RunResult* runs);
+  void step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs);
+  template <std::size_t W>
+  void step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs);
+  void step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth_last, RunBuffers& lane,
+                           FilterRunResult& out, PassSums& pass, bool shown, std::uint64_t& steps);
+  // The plan at grid point j: enter() opens its windows and finds its events, visit() takes one
+  // run's state there, leave() closes its windows. Every run of a pass visits j between the two.
+  void enter(std::size_t j);
+  void visit(std::size_t j, const double* state, bool shown, const RunBuffers& lane, FilterRunResult& out,
+             PassSums& pass) const;
+  void leave();
+  // What follows the error sums in visit() (step_filter_lanes sums the errors in packed passes).
+  void visit_rest(std::size_t j, const double* state, bool shown, const RunBuffers& lane, FilterRunResult& out,
+                  PassSums& pass) const;
+  void accumulate_criterion(std::size_t j, FilterRunResult& out, PassSums& pass) const;
+  void reset_plan();
 
   std::unique_ptr<TruthScheme> scheme_;
+  // One run's truth in simulate_truths_lanes: its scheme (for the steps taken one by one, with the
+  // run's own bridge draws) and its noise streams.
+  struct TruthLane {
+    std::unique_ptr<TruthScheme> scheme;
+    RandomStream truth_noise{0, 0}, observation_noise{0, 0};
+    std::optional<WienerIncrements> dW, dW2;
+  };
+  std::vector<std::unique_ptr<TruthLane>> truth_lanes_;  // batch entries (pointers: dW refers to its stream)
+  std::vector<double> truth_x_, truth_start_, truth_dW_, truth_dW2_, truth_dy_;  // entry-major
+  std::vector<LaneFlag> truth_live_, truth_take_;
+  Eigen::VectorXd truth_lane_x_, truth_lane_dW_;
   LinearObservation observation_;
   std::vector<FilterModel> filters_;
-  Eigen::VectorXd x0_;          // the truth's initial state: fixed, or the current run's draw
+  Eigen::VectorXd x0_;          // the truth's initial state, unless drawn per run
   Eigen::MatrixXd prior_root_;  // MonteCarloOptions::initial_prior's covariance square root
   const Plan& plan_;
   const MonteCarloOptions& options_;
-  Eigen::MatrixXd path_;  // n x (steps + 1): x at the grid times of the current run
-  Eigen::MatrixXd dy_;    // p x steps
+  std::vector<RunBuffers> lanes_;  // batch entries, reused run after run
+  std::vector<PassSums> passes_;   // likewise
   std::optional<SampledMeasurement> measurement_;
   std::size_t steps_per_sample_ = 0;
-  Eigen::MatrixXd clean_, noisy_;  // p x samples: C0 + C x(t_k) and y_k of the current run
-  std::size_t samples_ = 0;        // samples of the current run
   std::vector<double> zeros_, estimate_;
-  std::vector<double> state_, error_, sums_;
+  std::vector<double> state_;
   FilterStepper stepper_;
-  std::vector<std::size_t> active_;  // windows open at the current grid point
-  std::size_t next_open_ = 0, next_event_ = 0;
-  // The criterion's L = e^T M e at the previous grid point (the trapezoid's left end).
+  // The plan's cursor of a pass: windows open at the current grid point, its events.
+  std::vector<std::size_t> active_;
+  std::size_t next_open_ = 0, next_event_ = 0, events_begin_ = 0;
   bool criterion_ = false, weighted_ = false;
   Eigen::MatrixXd weight_;
-  double previous_L_ = 0;
-  // The particle reference: its mean on the current run's grid (n x (steps + 1)) up to
-  // reference_last_, and a filter pass's sums of (m - m_ref)^2 (n).
   std::unique_ptr<ParticleReference> reference_;
-  Eigen::MatrixXd reference_mean_;
-  std::ptrdiff_t reference_last_ = -1;
-  std::vector<double> distance_sums_;
+  // The lanes (worker_lanes.cpp): their width (0: none), which filters step in them, and the
+  // group's truths interleaved, entry-major per grid point: x(t_j) entry i of lane k at
+  // (j n + i) W + k, dy of step j at (j p + r) W + k (zero past a run's end).
+  std::size_t width_ = 0;
+  std::vector<bool> in_lanes_;
+  std::vector<double> lane_path_, lane_dy_;
+  std::vector<double> lane_before_;  // one lane's saved state
+  std::size_t group_ = 0;            // lanes_ index of the current group's first run
 };
 
 }  // namespace pfgen_runtime::monte_carlo_detail

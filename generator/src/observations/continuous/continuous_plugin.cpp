@@ -1,5 +1,7 @@
 // The continuous observation in a simulation plugin: the truth's observation(t, A0, A, B), each
 // filter's step(state, t, dt, dy) behind the ABI's signature, and the table of pfgen_plugin_filter.
+#include <algorithm>
+
 #include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
 
@@ -16,7 +18,7 @@ void rate_truth_observation(const Model& model, const ContinuousObservation& obs
 
 std::string rate_filter_table(const Model& model, const std::vector<std::string>& names,
                               const std::vector<std::string>& labels,
-                              const std::function<std::string(const std::string& item, const std::string& ns)>& state_fields) {
+                              const StateFields& state_fields) {
   if (names.empty()) return "";
   const std::string count = std::to_string(names.size());
   std::string out = "  static const std::array<pfgen_plugin_filter, " + count + "> filters = [] {\n" +
@@ -28,7 +30,7 @@ std::string rate_filter_table(const Model& model, const std::vector<std::string>
     out += item + "name = " + plugin_c_string(labels[k]) + ";\n";
     out += item + "n = " + ns + "::n;\n";
     out += item + "p = " + ns + "::p;\n";
-    out += state_fields(item, ns);
+    out += state_fields(item, ns, names[k]);
     out += item + "initial_state = &pfgen_simulation::entry::" + names[k] + "_initial_state;\n";
     out += item + "step = &pfgen_simulation::entry::" + names[k] + "_step;\n";
   }
@@ -39,24 +41,48 @@ void ContinuousCode::truth_observation(const Model& model, TruthNames& names, Tr
   rate_truth_observation(model, model.observation.continuous(), names, code);
 }
 
+// The filters are written with a template Scalar, so that step_lanes can instantiate them on
+// batch::Lanes; step<double> is the same text as the double form.
+void ContinuousCode::plugin_options(const Model&, std::optional<double>, CodegenOptions& options) const {
+  options.scalar = ScalarMode::Template;
+}
+
 // The ABI's step and initial_state have no parameters argument: the model's defaults.
-std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names) const {
+std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
+                                      const std::vector<bool>& arithmetic) const {
   std::string out;
-  for (const auto& name : names) {
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string& name = names[k];
     const std::string alias = "  namespace F = " + plugin_filter_namespace(model, name) + ";\n";
     out += "void " + name + "_initial_state(double* state) {\n" + alias + "  F::initial_state(state);\n}\n";
     out += "void " + name + "_step(double* state, double t, double dt, const double* dy) {\n" + alias +
-           "  F::step(state, t, dt, dy, F::Params<double>{});\n}\n\n";
+           "  F::step(state, t, dt, dy, F::Params<double>{});\n}\n";
+    if (!arithmetic[k]) {
+      out += "\n";
+      continue;
+    }
+    // The same step over batch::kLanes runs: the generated step<Scalar> on batch::Lanes.
+    out += "void " + name + "_step_lanes(double* state, double t, double dt, const double* dy) {\n" + alias +
+           "  using L = ::pfgen_simulation::batch::Lanes;\n"
+           "  ::pfgen_simulation::batch::step_lanes<void (*)(L*, L, L, const L*), F::state_size, F::p>(\n"
+           "      [](L* state, L t, L dt, const L* dy) { F::step(state, t, dt, dy, F::Params<L>{}); }, state, t, dt, dy);\n"
+           "}\n\n";
   }
   return out;
 }
 
 std::map<std::string, std::string> ContinuousCode::plugin_table(const Model& model, const std::vector<std::string>& names,
                                                                 const std::vector<std::string>& labels,
-                                                                std::optional<double>) const {
-  auto state_size = [](const std::string& item, const std::string& ns) { return item + "state_size = " + ns + "::state_size;\n"; };
+                                                                std::optional<double>, const std::vector<bool>& arithmetic) const {
+  auto state_fields = [&](const std::string& item, const std::string& ns, const std::string& name) {
+    const std::string size = item + "state_size = " + ns + "::state_size;\n";
+    const auto k = static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+    if (!arithmetic[k]) return size;  // step_lanes NULL, lanes 0
+    return size + item + "step_lanes = &pfgen_simulation::entry::" + name + "_step_lanes;\n" + item +
+           "lanes = pfgen_simulation::batch::kLanes;\n";
+  };
   return {
-      {"filter_table", rate_filter_table(model, names, labels, state_size)},
+      {"filter_table", rate_filter_table(model, names, labels, state_fields)},
       {"filter_count", std::to_string(names.size())},
       {"filters", names.empty() ? "nullptr" : "filters.data()"},
       {"observation", "&pfgen_simulation::truth::observation"},

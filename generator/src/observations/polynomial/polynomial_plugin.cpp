@@ -24,15 +24,20 @@ void PolynomialCode::truth_observation(const Model& model, TruthNames& names, Tr
   code.definitions += state_function(model, names, "observation_rate", "h", observation_polynomials(model));
 }
 
-std::string PolynomialCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names) const {
-  return continuous_observation_code().plugin_wrappers(model, names);
+void PolynomialCode::plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const {
+  continuous_observation_code().plugin_options(model, grid_step, options);
+}
+
+std::string PolynomialCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
+                                      const std::vector<bool>& arithmetic) const {
+  return continuous_observation_code().plugin_wrappers(model, names, arithmetic);
 }
 
 std::map<std::string, std::string> PolynomialCode::plugin_table(const Model& model, const std::vector<std::string>& names,
                                                                 const std::vector<std::string>& labels,
-                                                                std::optional<double> grid_step) const {
+                                                                std::optional<double> grid_step, const std::vector<bool>& arithmetic) const {
   std::map<std::string, std::string> table =
-      continuous_observation_code().plugin_table(model, names, labels, grid_step);
+      continuous_observation_code().plugin_table(model, names, labels, grid_step, arithmetic);
   if (!written_linear(model)) table["observation_rate"] = "&pfgen_simulation::truth::observation_rate";
   return table;
 }

@@ -21,10 +21,12 @@ class ContinuousCode final : public ObservationCode {
   GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
   GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
   void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
-  std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names) const override;
+  void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
+  std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
+                                      const std::vector<bool>& arithmetic) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                   const std::vector<std::string>& labels,
-                                                  std::optional<double> grid_step) const override;
+                                                  std::optional<double> grid_step, const std::vector<bool>& arithmetic) const override;
 };
 
 // The three functions of a filter whose observation is a rate (continuous or delayed):
@@ -55,10 +57,11 @@ void rate_truth_observation(const Model& model, const ContinuousObservation& obs
                             TruthCode& code);
 
 // The plugin's table of pfgen_plugin_filter entries (names: C++ identifiers, filter_identifier;
-// labels: the filters' own names, for the runtime), `state_fields` writing each entry's size
-// fields from its item prefix ("    list[0].") and its filter's namespace alias ("F0").
+// labels: the filters' own names, for the runtime), `state_fields` writing each entry's fields
+// beyond name, sizes and the two functions, from its item prefix ("    list[0]."), its filter's
+// namespace alias ("F0") and its identifier.
+using StateFields = std::function<std::string(const std::string& item, const std::string& ns, const std::string& name)>;
 std::string rate_filter_table(const Model& model, const std::vector<std::string>& names,
-                              const std::vector<std::string>& labels,
-                              const std::function<std::string(const std::string& item, const std::string& ns)>& state_fields);
+                              const std::vector<std::string>& labels, const StateFields& state_fields);
 
 }  // namespace pfgen::codegen

@@ -1,5 +1,7 @@
 #include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 
+#include <algorithm>
+
 #include <map>
 #include <set>
 
@@ -80,6 +82,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
   observation.plugin_options(model, grid_step, options);
 
   std::vector<std::string> names, labels;
+  std::vector<bool> arithmetic;  // per filter: its code is +, -, *, / alone
   std::set<std::string> seen;
   std::string filter_sources;
   for (const auto& eq : filters) {
@@ -89,6 +92,8 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
     labels.push_back(eq.name);
     GeneratedFilter generated = generate_filter_code(model, eq, options);
     filter_sources += without_pragma_once(std::move(generated.files.at(0).contents)) + "\n";
+    arithmetic.push_back(std::all_of(generated.functions.begin(), generated.functions.end(),
+                                     [](const FunctionStats& f) { return f.cse.calls == 0; }));
   }
 
   const TruthCode truth = generate_truth_code(model);
@@ -99,7 +104,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
       {"abi_header", plugin_abi_header()},
       {"filter_sources", filter_sources},
       {"truth_definitions", truth.definitions},
-      {"filter_wrappers", observation.plugin_wrappers(model, names)},
+      {"filter_wrappers", observation.plugin_wrappers(model, names, arithmetic)},
       {"model_name", plugin_c_string(model.name)},
       {"pfgen_version", plugin_c_string(PFGEN_VERSION)},
       {"n", std::to_string(truth.n)},
@@ -115,7 +120,8 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
       {"diffusion_covariance", truth_pointer(truth.diffusion_is_covariance, "diffusion_covariance")},
   };
   values.merge(plugin_table_defaults());
-  for (auto& [field, value] : observation.plugin_table(model, names, labels, grid_step)) values[field] = value;
+  for (auto& [field, value] : observation.plugin_table(model, names, labels, grid_step, arithmetic))
+    values[field] = value;
   // The batched forms (the template's batch::lanes over the one-state function), present exactly
   // where the one-state functions are.
   const auto batch = [&](const std::string& function, std::size_t outputs) -> std::string {

@@ -1,0 +1,122 @@
+// The truths of a batch of runs side by side (Worker::simulate_truths_lanes): simulate_truth_into's
+// loop with the runs as lanes. Each run keeps its own noise streams and its own scheme; the scheme
+// steps at once the lanes it can (TruthScheme::step_lanes_at_once: one batched evaluation of f and
+// g), and the run's own scheme steps the others alone, with its own bridge draws. The guard, the
+// observation's increment and the stores follow for every lane. Each lane's arithmetic and draws
+// are simulate_truth_into's, so every run's truth is bit for bit what it is alone.
+#include <algorithm>
+
+#include "pfgen_runtime/gaussian_draw.hpp"
+#include "pfgen_runtime/sde_system.hpp"
+#include "worker.hpp"
+
+namespace pfgen_runtime::monte_carlo_detail {
+
+void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResult* out) {
+  const TimeGrid& grid = plan_.grid;
+  const DivergenceGuard& guard = options_.truth_guard;
+  const std::size_t n = plan_.n, q = scheme_->system().q, r = observation_.r(), p = observation_.p();
+  const std::size_t W = count;
+  while (truth_lanes_.size() < count) {
+    truth_lanes_.push_back(std::make_unique<TruthLane>());
+    truth_lanes_.back()->scheme = scheme_->clone();
+  }
+  truth_x_.resize(n * W);
+  truth_start_.resize(n * W);
+  truth_dW_.resize(q * W);
+  truth_dW2_.resize(r * W);
+  truth_dy_.resize(p * W);
+  truth_live_.assign(W, 0.0);
+  truth_take_.resize(W);
+  truth_lane_x_.resize(static_cast<Eigen::Index>(n));
+  truth_lane_dW_.resize(static_cast<Eigen::Index>(q));
+  double* x = truth_x_.data();
+  LaneFlag* live = truth_live_.data();
+  std::vector<std::optional<DivergenceEvent>> divergence(count);
+  std::size_t living = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t run = first + k;
+    RunBuffers& lane = lanes_[k];
+    TruthLane& truth = *truth_lanes_[k];
+    if (options_.initial_prior) {  // the run's own draw, from its own stream
+      RandomStream initial(options_.seed, run, substream::initial_state);
+      lane.x0 = draw_gaussian(options_.initial_prior->mean, prior_root_, initial);
+    }
+    truth.scheme->start_run(options_.seed, run);
+    truth.scheme->set_escape_bound(guard.bound());
+    truth.truth_noise = RandomStream(options_.seed, run, substream::truth_noise);
+    truth.observation_noise = RandomStream(options_.seed, run, substream::observation_noise);
+    truth.dW.emplace(truth.truth_noise, q, grid.dt);
+    truth.dW2.emplace(truth.observation_noise, r, grid.dt);
+    divergence[k] = guard.check(grid.t0, lane.x0);
+    if (divergence[k]) {
+      out[k].truth_last = -1;
+      continue;
+    }
+    lane.path.col(0) = lane.x0;
+    for (std::size_t i = 0; i < n; ++i) x[i * W + k] = lane.x0[static_cast<Eigen::Index>(i)];
+    live[k] = 1.0;
+    ++living;
+  }
+  for (std::size_t step = 0; living > 0 && step < grid.steps; ++step) {
+    const double t = grid.time(step);
+    for (std::size_t k = 0; k < count; ++k) {
+      if (live[k] == 0) continue;
+      TruthLane& truth = *truth_lanes_[k];
+      const double* dW = truth.dW->next();
+      const double* dW2 = truth.dW2->next();
+      for (std::size_t j = 0; j < q; ++j) truth_dW_[j * W + k] = dW[j];
+      for (std::size_t j = 0; j < r; ++j) truth_dW2_[j * W + k] = dW2[j];
+    }
+    std::copy(truth_x_.begin(), truth_x_.end(), truth_start_.begin());
+    LaneFlag* take = truth_take_.data();
+    std::copy(live, live + W, take);
+    scheme_->step_lanes_at_once(t, W, x, grid.dt, truth_dW_.data(), take);
+    const double next = grid.time(step + 1);
+    for (std::size_t k = 0; k < count; ++k) {
+      if (live[k] == 0) continue;
+      auto stop = [&](DivergenceEvent event) {
+        divergence[k] = event;
+        out[k].truth_last = static_cast<std::ptrdiff_t>(step);
+        live[k] = 0.0;
+        --living;
+      };
+      if (take[k] == 0) {  // this lane's step by its own scheme, as simulate_truth_into takes it
+        TruthScheme& scheme = *truth_lanes_[k]->scheme;
+        for (std::size_t i = 0; i < n; ++i) truth_lane_x_[static_cast<Eigen::Index>(i)] = x[i * W + k];
+        for (std::size_t j = 0; j < q; ++j) truth_lane_dW_[static_cast<Eigen::Index>(j)] = truth_dW_[j * W + k];
+        try {
+          scheme.step(t, truth_lane_x_, grid.dt, truth_lane_dW_);
+        } catch (const CovarianceIndefinite& e) {
+          stop(DivergenceEvent{e.t, 0, e.eigenvalue, DivergenceKind::covariance_indefinite});
+          continue;
+        }
+        if (scheme.last_step_incomplete()) {
+          stop(DivergenceEvent{t, 0, 0.0, DivergenceKind::too_stiff});
+          continue;
+        }
+        for (std::size_t i = 0; i < n; ++i) x[i * W + k] = truth_lane_x_[static_cast<Eigen::Index>(i)];
+      }
+      bool bounded = true;  // DivergenceGuard::check's test, which reports the lane alone
+      for (std::size_t i = 0; i < n; ++i) bounded &= std::abs(x[i * W + k]) <= guard.bound();
+      if (!bounded) {
+        for (std::size_t i = 0; i < n; ++i) truth_lane_x_[static_cast<Eigen::Index>(i)] = x[i * W + k];
+        stop(*guard.check(next, truth_lane_x_));
+      }
+    }
+    observation_.increment_lanes(t, grid.dt, W, truth_start_.data(), x, truth_dW2_.data(), truth_dy_.data());
+    for (std::size_t k = 0; k < count; ++k) {
+      if (live[k] == 0) continue;
+      RunBuffers& lane = lanes_[k];
+      const auto column = static_cast<Eigen::Index>(step);
+      for (std::size_t a = 0; a < p; ++a) lane.dy(static_cast<Eigen::Index>(a), column) = truth_dy_[a * W + k];
+      for (std::size_t i = 0; i < n; ++i) lane.path(static_cast<Eigen::Index>(i), column + 1) = x[i * W + k];
+    }
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    if (live[k] != 0) out[k].truth_last = static_cast<std::ptrdiff_t>(grid.steps);
+    finish_truth(first + k, lanes_[k], out[k], divergence[k]);
+  }
+}
+
+}  // namespace pfgen_runtime::monte_carlo_detail

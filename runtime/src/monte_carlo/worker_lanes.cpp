@@ -1,0 +1,243 @@
+// A continuous filter stepped over several runs side by side (Worker::step_filter_lanes): one call
+// of the filter's step_lanes advances W runs over a grid step, and what step_filter does around
+// its step (the stepper's check, the guards, the error sums) runs over the W lanes in packed passes
+// of compile-time width. Only a lane that fails a check goes through step_filter's own sequence,
+// alone. Each lane's arithmetic is step_filter's, in its order, so every run's results are bit for
+// bit what it gives alone.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "worker.hpp"
+
+namespace pfgen_runtime::monte_carlo_detail {
+
+bool steps_in_lanes(const FilterModel& filter) {
+  const std::size_t w = filter.lanes;
+  return filter.step_lanes && !filter.sampled() && !filter.fixed_step() && (w == 2 || w == 4 || w == 8 || w == 16);
+}
+
+void Worker::interleave_truths(std::size_t lane, std::size_t count, const RunResult* runs) {
+  const std::size_t W = width_, n = plan_.n, p = plan_.p, steps = plan_.grid.steps;
+  group_ = lane;
+  lane_path_.resize((steps + 1) * n * W);
+  lane_dy_.resize(steps * p * W);
+  // Grid point by grid point, so that the writes are contiguous; a lane's values past its run's
+  // end (and unused lanes') are 0.
+  std::array<const double*, 16> x{}, dy{};
+  std::array<std::size_t, 16> points{};  // grid points with a state
+  for (std::size_t k = 0; k < count; ++k) {
+    x[k] = lanes_[lane + k].path.data();
+    dy[k] = lanes_[lane + k].dy.data();
+    points[k] = static_cast<std::size_t>(std::max<std::ptrdiff_t>(runs[k].truth_last + 1, 0));
+  }
+  double* path = lane_path_.data();
+  for (std::size_t j = 0; j <= steps; ++j)
+    for (std::size_t i = 0; i < n; ++i, path += W)
+      for (std::size_t k = 0; k < W; ++k) path[k] = j < points[k] ? x[k][j * n + i] : 0.0;
+  double* increments = lane_dy_.data();
+  for (std::size_t j = 0; j < steps; ++j)
+    for (std::size_t r = 0; r < p; ++r, increments += W)
+      for (std::size_t k = 0; k < W; ++k) increments[k] = j + 1 < points[k] ? dy[k][j * p + r] : 0.0;
+}
+
+void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs) {
+  switch (width_) {
+    case 2: return step_filter_lanes<2>(f, first, count, runs);
+    case 4: return step_filter_lanes<4>(f, first, count, runs);
+    case 8: return step_filter_lanes<8>(f, first, count, runs);
+    default: return step_filter_lanes<16>(f, first, count, runs);  // steps_in_lanes allows no other
+  }
+}
+
+namespace {
+
+using Flags = std::array<LaneFlag, 16>;  // W <= 16 entries used
+
+// FilterStepper::keeps and the divergence guards over W lanes: pass[k] = 0 where lane k fails.
+template <std::size_t W>
+void packed_checks(const FilterStepper& stepper, const FilterGuardOptions& guards, std::size_t n, const double* saved,
+                   const double* state, LaneFlag* pass) {
+  stepper.keeps_lanes(saved, state, W, pass);
+  guards.estimate_guard.pass_lanes(state, n, W, pass);
+  guards.covariance_guard.pass_lanes(state + n * W, packed_size(n), W, pass);
+}
+
+}  // namespace
+
+template <std::size_t W>
+void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs) {
+  const FilterModel& filter = filters_[f];
+  const FilterGuardOptions& guards = options_.filter_guards;
+  const TimeGrid& grid = plan_.grid;
+  const std::size_t size = filter.state_size(), n = plan_.n, p = plan_.p, windows = plan_.windows.size();
+  RunBuffers* lanes = lanes_.data() + group_;
+  std::array<FilterRunResult*, W> outs{};
+  for (std::size_t k = 0; k < count; ++k) outs[k] = &runs[k].filters[f];
+  std::vector<double> states(size * W), saved(size * W), square(n * W), peak(n * W, 0.0),
+      sums((1 + windows) * n * W, 0.0);
+  double* state = state_.data();
+  double* before = lane_before_.data();
+  // live: the lane's run goes on; visited: the lane's state at the grid point is kept and counted.
+  // A lane's out.last is written when it stops, not at every grid point.
+  Flags live{}, visited{}, pass{};
+  std::array<std::ptrdiff_t, W> end{};  // the lane's truth_last
+  std::array<std::uint64_t, W> refined{};
+  std::size_t living = 0;
+  std::uint64_t steps = 0;
+  reset_plan();
+
+  // Grid point j's visit for the lanes with visited[k]: the errors and their sums in packed passes
+  // (a lane not visited adds 0, leaving its sums as they are), then each visited lane's criterion,
+  // reference distance and events where there are any.
+  auto visit_lanes = [&](std::size_t j) {
+    enter(j);
+    const double* x = lane_path_.data() + j * n * W;
+    for (std::size_t i = 0; i < n; ++i) {
+      double* __restrict sq = square.data() + i * W;
+      double* __restrict sum = sums.data() + i * W;
+      double* __restrict top = peak.data() + i * W;
+      const double* __restrict xi = x + i * W;
+      const double* __restrict m = states.data() + i * W;
+      for (std::size_t k = 0; k < W; ++k) {
+        const double e = xi[k] - m[k];
+        sq[k] = visited[k] != 0 ? e * e : 0.0;
+        sum[k] += sq[k];
+        top[k] = std::max(top[k], visited[k] != 0 ? std::abs(e) : 0.0);
+      }
+      for (std::size_t w : active_) {
+        double* __restrict window = sums.data() + ((1 + w) * n + i) * W;
+        for (std::size_t k = 0; k < W; ++k) window[k] += sq[k];
+      }
+    }
+    if (criterion_ || reference_ || events_begin_ != next_event_) {
+      for (std::size_t k = 0; k < count; ++k) {
+        if (visited[k] == 0) continue;
+        for (std::size_t i = 0; i < n + packed_size(n); ++i) state[i] = states[i * W + k];
+        PassSums& pass_sums = passes_[k];
+        for (std::size_t i = 0; i < n; ++i) pass_sums.error[i] = x[i * W + k] - state[i];
+        for (std::size_t e = 0; e < pass_sums.sums.size(); ++e) pass_sums.sums[e] = sums[e * W + k];
+        visit_rest(j, state, first + k == options_.shown_run, lanes[k], *outs[k], pass_sums);
+      }
+    }
+    leave();
+  };
+
+  for (std::size_t k = 0; k < count; ++k) {
+    FilterRunResult& out = *outs[k];
+    end[k] = runs[k].truth_last;
+    if (!start_pass(first + k == options_.shown_run, runs[k], out, passes_[k])) continue;
+    filter.initial_state(state);
+    const bool going = guard(grid.t0, state, out);
+    if (out.diverged) continue;
+    for (std::size_t i = 0; i < size; ++i) states[i * W + k] = state[i];
+    visited[k] = 1.0;
+    out.last = 0;
+    live[k] = going && end[k] > 0 ? 1.0 : 0.0;
+    living += live[k] != 0;
+  }
+  for (std::size_t k = count; k < W; ++k)  // unused lanes: a copy of lane 0, never visited
+    for (std::size_t i = 0; i < size; ++i) states[i * W + k] = states[i * W];
+  visit_lanes(0);
+  // The n = 1 PSD test packs (CovarianceGuard::pass_lanes_1); for n > 1 each lane is tested alone.
+  const bool psd_packed = n == 1;
+  std::ptrdiff_t first_end = 0;  // no live lane's truth ends before this grid point
+  for (std::size_t step = 0; living > 0; ++step) {
+    const double t = grid.time(step), next = grid.time(step + 1);
+    std::copy(states.begin(), states.end(), saved.begin());
+    filter.step_lanes(states.data(), t, grid.dt, lane_dy_.data() + step * p * W);
+    pass = live;
+    packed_checks<W>(stepper_, guards, n, saved.data(), states.data(), pass.data());
+    Flags psd;
+    psd.fill(1.0);
+    if (guards.check_psd && psd_packed) guards.psd.pass_lanes_1(states.data() + W, W, psd.data());
+    double failed = 0;  // live lanes that failed a check
+    for (std::size_t k = 0; k < W; ++k) failed += live[k] - pass[k] * psd[k];
+    const bool all = failed == 0 && !(guards.check_psd && !psd_packed);
+    if (all) {
+      steps += living;
+      visited = live;
+    } else {
+      for (std::size_t k = 0; k < W; ++k) visited[k] = 0.0;
+      for (std::size_t k = 0; k < count; ++k) {
+        if (live[k] == 0) continue;
+        FilterRunResult& out = *outs[k];
+        for (std::size_t i = 0; i < size; ++i) state[i] = states[i * W + k];
+        bool going = true;
+        if (pass[k] != 0) {  // kept and bounded: only the PSD check is left
+          ++steps;
+          if (guards.check_psd && !out.psd_lost && (psd_packed ? psd[k] == 0 : !guards.psd.passes_filter_state(state, n))) {
+            out.psd_lost = true;
+            out.psd_t = next;
+            going = !guards.stop_on_psd_loss;
+          }
+        } else {  // step_filter's sequence on the lane alone
+          for (std::size_t i = 0; i < size; ++i) before[i] = saved[i * W + k];
+          if (!stepper_.keeps(before, state)) {
+            std::copy(before, before + size, state);
+            ++refined[k];
+            const double* dy = lanes[k].dy.data() + step * p;
+            if (stepper_.refine(filter.step, state, t, grid.dt, dy) == 0) {
+              out.diverged = true;  // mid-step: the state is not stored
+              (stepper_.equations_finite_at_start(filter.step, t) ? out.too_stiff : out.undefined) = true;
+              out.divergence_t = t;
+              out.last = static_cast<std::ptrdiff_t>(step);
+              live[k] = 0.0;
+              --living;
+              continue;
+            }
+            for (std::size_t i = 0; i < size; ++i) states[i * W + k] = state[i];
+          }
+          ++steps;
+          going = guard(next, state, out);
+          if (out.diverged) {  // a diverged state is not stored
+            out.last = static_cast<std::ptrdiff_t>(step);
+            live[k] = 0.0;
+            --living;
+            continue;
+          }
+        }
+        visited[k] = 1.0;
+        if (!going) {
+          out.last = static_cast<std::ptrdiff_t>(step + 1);
+          live[k] = 0.0;
+          --living;
+        }
+      }
+    }
+    visit_lanes(step + 1);
+    // Runs whose truth ends here stop.
+    if (static_cast<std::ptrdiff_t>(step + 1) >= first_end) {
+      first_end = PTRDIFF_MAX;
+      for (std::size_t k = 0; k < count; ++k) {
+        if (live[k] == 0) continue;
+        if (static_cast<std::ptrdiff_t>(step + 1) < end[k]) {
+          first_end = std::min(first_end, end[k]);
+          continue;
+        }
+        outs[k]->last = static_cast<std::ptrdiff_t>(step + 1);
+        live[k] = 0.0;
+        --living;
+      }
+    }
+  }
+  filter_steps[f] += steps;
+  for (std::size_t k = 0; k < count; ++k) {
+    FilterRunResult& out = *outs[k];
+    out.refined_steps = refined[k];
+    if (end[k] < 0) continue;
+    PassSums& pass_sums = passes_[k];
+    for (std::size_t e = 0; e < pass_sums.sums.size(); ++e) pass_sums.sums[e] = sums[e * W + k];
+    if (out.last >= 0)
+      for (std::size_t i = 0; i < n; ++i) out.peak[i] = peak[i * W + k];
+    finish_pass(out, pass_sums, lanes[k]);
+  }
+}
+
+template void Worker::step_filter_lanes<2>(std::size_t, std::size_t, std::size_t, RunResult*);
+template void Worker::step_filter_lanes<4>(std::size_t, std::size_t, std::size_t, RunResult*);
+template void Worker::step_filter_lanes<8>(std::size_t, std::size_t, std::size_t, RunResult*);
+template void Worker::step_filter_lanes<16>(std::size_t, std::size_t, std::size_t, RunResult*);
+
+}  // namespace pfgen_runtime::monte_carlo_detail
