@@ -5,6 +5,7 @@
 // observation's increment and the stores follow for every lane. Each lane's arithmetic and draws
 // are simulate_truth_into's, so every run's truth is bit for bit what it is alone.
 #include <algorithm>
+#include <cmath>
 
 #include "pfgen_runtime/gaussian_draw.hpp"
 #include "pfgen_runtime/sde_system.hpp"
@@ -28,11 +29,23 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
   truth_dy_.resize(p * W);
   truth_live_.assign(W, 0.0);
   truth_take_.resize(W);
+  truth_bounded_.resize(W);
   truth_lane_x_.resize(static_cast<Eigen::Index>(n));
   truth_lane_dW_.resize(static_cast<Eigen::Index>(q));
   double* x = truth_x_.data();
   LaneFlag* live = truth_live_.data();
   std::vector<std::optional<DivergenceEvent>> divergence(count);
+  // The filters' lanes read the truths interleaved: written here as they are made (width_ 0: no
+  // filter steps in lanes).
+  const std::size_t width = width_;
+  std::vector<double*> path_of(count), dy_of(count);  // lane k's first entry in its group's block
+  if (width > 0) {
+    reserve_lane_truths(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      path_of[k] = lane_path_.data() + k / width * group_path_size() + k % width;
+      dy_of[k] = lane_dy_.data() + k / width * group_dy_size() + k % width;
+    }
+  }
   std::size_t living = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t run = first + k;
@@ -55,6 +68,8 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
     }
     lane.path.col(0) = lane.x0;
     for (std::size_t i = 0; i < n; ++i) x[i * W + k] = lane.x0[static_cast<Eigen::Index>(i)];
+    if (width > 0)
+      for (std::size_t i = 0; i < n; ++i) path_of[k][i * width] = lane.x0[static_cast<Eigen::Index>(i)];
     live[k] = 1.0;
     ++living;
   }
@@ -73,6 +88,11 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
     std::copy(live, live + W, take);
     scheme_->step_lanes_at_once(t, W, x, grid.dt, truth_dW_.data(), take);
     const double next = grid.time(step + 1);
+    // DivergenceGuard::check's test of every lane, packed; a lane stepped alone below is tested
+    // again after its step.
+    LaneFlag* bounded = truth_bounded_.data();
+    std::fill(bounded, bounded + W, 1.0);
+    guard.pass_lanes(x, n, W, bounded);
     for (std::size_t k = 0; k < count; ++k) {
       if (live[k] == 0) continue;
       auto stop = [&](DivergenceEvent event) {
@@ -96,10 +116,11 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
           continue;
         }
         for (std::size_t i = 0; i < n; ++i) x[i * W + k] = truth_lane_x_[static_cast<Eigen::Index>(i)];
+        bool within = true;  // pass_lanes' test, of this lane alone
+        for (std::size_t i = 0; i < n; ++i) within &= std::abs(x[i * W + k]) <= guard.bound();
+        bounded[k] = within ? 1.0 : 0.0;
       }
-      bool bounded = true;  // DivergenceGuard::check's test, which reports the lane alone
-      for (std::size_t i = 0; i < n; ++i) bounded &= std::abs(x[i * W + k]) <= guard.bound();
-      if (!bounded) {
+      if (bounded[k] == 0) {  // DivergenceGuard::check, which reports it
         for (std::size_t i = 0; i < n; ++i) truth_lane_x_[static_cast<Eigen::Index>(i)] = x[i * W + k];
         stop(*guard.check(next, truth_lane_x_));
       }
@@ -111,6 +132,9 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
       const auto column = static_cast<Eigen::Index>(step);
       for (std::size_t a = 0; a < p; ++a) lane.dy(static_cast<Eigen::Index>(a), column) = truth_dy_[a * W + k];
       for (std::size_t i = 0; i < n; ++i) lane.path(static_cast<Eigen::Index>(i), column + 1) = x[i * W + k];
+      if (width == 0) continue;
+      for (std::size_t a = 0; a < p; ++a) dy_of[k][(step * p + a) * width] = truth_dy_[a * W + k];
+      for (std::size_t i = 0; i < n; ++i) path_of[k][((step + 1) * n + i) * width] = x[i * W + k];
     }
   }
   for (std::size_t k = 0; k < count; ++k) {

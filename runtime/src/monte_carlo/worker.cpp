@@ -70,7 +70,8 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
 void Worker::run(std::size_t first, std::size_t count, RunResult* out) {
   Clock::time_point start = Clock::now();
   double cpu_start = thread_cpu_seconds();
-  if (count >= 2 && observation_.delay() == 0) {
+  truths_interleaved_ = count >= 2 && observation_.delay() == 0;
+  if (truths_interleaved_) {
     simulate_truths_lanes(first, count, out);
   } else {
     for (std::size_t k = 0; k < count; ++k) simulate_truth(first + k, lanes_[k], out[k]);
@@ -91,7 +92,8 @@ void Worker::run(std::size_t first, std::size_t count, RunResult* out) {
   const bool grouped = width_ >= 2 && count >= 2;
   for (std::size_t g = 0; g < count; g += grouped ? width_ : count) {
     const std::size_t size = grouped ? std::min(width_, count - g) : count;
-    if (grouped) interleave_truths(g, size, out + g);
+    group_ = g;
+    if (grouped && !truths_interleaved_) interleave_truths(g, size, out + g);
     for (std::size_t f = 0; f < filters_.size(); ++f) {
       start = Clock::now();
       cpu_start = thread_cpu_seconds();

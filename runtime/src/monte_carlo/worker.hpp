@@ -84,9 +84,13 @@ class Worker {
   bool guard(double t, const double* state, FilterRunResult& out) const;
   void finish_pass(FilterRunResult& out, const PassSums& pass, const RunBuffers& lane) const;
   void step_filter(std::size_t f, bool shown, const RunResult& run, RunBuffers& lane, FilterRunResult& out);
-  // worker_lanes.cpp: runs first .. first + count - 1 (count <= width_, their buffers the first
-  // count of lanes_) side by side. interleave_truths copies their truths into lane_truth_ once for
-  // all filters; step_filter_lanes steps filter f over them (dispatching to a fixed width W).
+  // worker_lanes.cpp: runs first .. first + count - 1 (count <= width_, their buffers lanes_[group_]
+  // on) side by side. Their truths interleaved (lane_path_, lane_dy_, one block per group of width_
+  // runs) are written by simulate_truths_lanes, or by interleave_truths from the runs' buffers;
+  // step_filter_lanes steps filter f over them (dispatching to a fixed width W).
+  void reserve_lane_truths(std::size_t count);  // for the first `count` entries of lanes_
+  std::size_t group_path_size() const;
+  std::size_t group_dy_size() const;
   void interleave_truths(std::size_t lane, std::size_t count, const RunResult* runs);
   void step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs);
   template <std::size_t W>
@@ -115,7 +119,7 @@ class Worker {
   };
   std::vector<std::unique_ptr<TruthLane>> truth_lanes_;  // batch entries (pointers: dW refers to its stream)
   std::vector<double> truth_x_, truth_start_, truth_dW_, truth_dW2_, truth_dy_;  // entry-major
-  std::vector<LaneFlag> truth_live_, truth_take_;
+  std::vector<LaneFlag> truth_live_, truth_take_, truth_bounded_;
   Eigen::VectorXd truth_lane_x_, truth_lane_dW_;
   LinearObservation observation_;
   std::vector<FilterModel> filters_;
@@ -144,6 +148,7 @@ class Worker {
   std::vector<double> lane_path_, lane_dy_;
   std::vector<double> lane_before_;  // one lane's saved state
   std::size_t group_ = 0;            // lanes_ index of the current group's first run
+  bool truths_interleaved_ = false;  // the batch's truths came from simulate_truths_lanes
 };
 
 }  // namespace pfgen_runtime::monte_carlo_detail

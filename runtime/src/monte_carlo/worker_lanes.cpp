@@ -18,13 +18,21 @@ bool steps_in_lanes(const FilterModel& filter) {
   return filter.step_lanes && !filter.sampled() && !filter.fixed_step() && (w == 2 || w == 4 || w == 8 || w == 16);
 }
 
+std::size_t Worker::group_path_size() const { return (plan_.grid.steps + 1) * plan_.n * width_; }
+std::size_t Worker::group_dy_size() const { return plan_.grid.steps * plan_.p * width_; }
+
+void Worker::reserve_lane_truths(std::size_t count) {
+  const std::size_t groups = (count + width_ - 1) / width_;
+  // Grown, never cleared: a lane's entries past its run's end, and an unused lane's, keep earlier
+  // runs' finite values (or 0), which the filters' lanes step and never read.
+  if (lane_path_.size() < groups * group_path_size()) lane_path_.resize(groups * group_path_size(), 0.0);
+  if (lane_dy_.size() < groups * group_dy_size()) lane_dy_.resize(groups * group_dy_size(), 0.0);
+}
+
 void Worker::interleave_truths(std::size_t lane, std::size_t count, const RunResult* runs) {
   const std::size_t W = width_, n = plan_.n, p = plan_.p, steps = plan_.grid.steps;
-  group_ = lane;
-  lane_path_.resize((steps + 1) * n * W);
-  lane_dy_.resize(steps * p * W);
-  // Grid point by grid point, so that the writes are contiguous; a lane's values past its run's
-  // end (and unused lanes') are 0.
+  reserve_lane_truths(lane + count);
+  // Grid point by grid point, so that the writes are contiguous.
   std::array<const double*, 16> x{}, dy{};
   std::array<std::size_t, 16> points{};  // grid points with a state
   for (std::size_t k = 0; k < count; ++k) {
@@ -32,14 +40,16 @@ void Worker::interleave_truths(std::size_t lane, std::size_t count, const RunRes
     dy[k] = lanes_[lane + k].dy.data();
     points[k] = static_cast<std::size_t>(std::max<std::ptrdiff_t>(runs[k].truth_last + 1, 0));
   }
-  double* path = lane_path_.data();
+  double* path = lane_path_.data() + lane / W * group_path_size();
   for (std::size_t j = 0; j <= steps; ++j)
     for (std::size_t i = 0; i < n; ++i, path += W)
-      for (std::size_t k = 0; k < W; ++k) path[k] = j < points[k] ? x[k][j * n + i] : 0.0;
-  double* increments = lane_dy_.data();
+      for (std::size_t k = 0; k < count; ++k)
+        if (j < points[k]) path[k] = x[k][j * n + i];
+  double* increments = lane_dy_.data() + lane / W * group_dy_size();
   for (std::size_t j = 0; j < steps; ++j)
     for (std::size_t r = 0; r < p; ++r, increments += W)
-      for (std::size_t k = 0; k < W; ++k) increments[k] = j + 1 < points[k] ? dy[k][j * p + r] : 0.0;
+      for (std::size_t k = 0; k < count; ++k)
+        if (j + 1 < points[k]) increments[k] = dy[k][j * p + r];
 }
 
 void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs) {
@@ -73,6 +83,8 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   const TimeGrid& grid = plan_.grid;
   const std::size_t size = filter.state_size(), n = plan_.n, p = plan_.p, windows = plan_.windows.size();
   RunBuffers* lanes = lanes_.data() + group_;
+  const double* lane_path = lane_path_.data() + group_ / W * group_path_size();
+  const double* lane_dy = lane_dy_.data() + group_ / W * group_dy_size();
   std::array<FilterRunResult*, W> outs{};
   for (std::size_t k = 0; k < count; ++k) outs[k] = &runs[k].filters[f];
   std::vector<double> states(size * W), saved(size * W), square(n * W), peak(n * W, 0.0),
@@ -93,7 +105,7 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   // reference distance and events where there are any.
   auto visit_lanes = [&](std::size_t j) {
     enter(j);
-    const double* x = lane_path_.data() + j * n * W;
+    const double* x = lane_path + j * n * W;
     for (std::size_t i = 0; i < n; ++i) {
       double* __restrict sq = square.data() + i * W;
       double* __restrict sum = sums.data() + i * W;
@@ -146,7 +158,7 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   for (std::size_t step = 0; living > 0; ++step) {
     const double t = grid.time(step), next = grid.time(step + 1);
     std::copy(states.begin(), states.end(), saved.begin());
-    filter.step_lanes(states.data(), t, grid.dt, lane_dy_.data() + step * p * W);
+    filter.step_lanes(states.data(), t, grid.dt, lane_dy + step * p * W);
     pass = live;
     packed_checks<W>(stepper_, guards, n, saved.data(), states.data(), pass.data());
     Flags psd;
