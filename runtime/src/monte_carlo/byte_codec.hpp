@@ -48,6 +48,14 @@ class ByteReader {
     std::memcpy(&value, bytes_.data() + at_, sizeof(T));
     at_ += sizeof(T);
   }
+  // A flag is one byte, 0 or 1: any other byte is a corrupt share, not a bool to load (which would
+  // be undefined behaviour).
+  void get(bool& value) {
+    unsigned char byte = 0;
+    get(byte);
+    if (byte > 1) fail();
+    value = byte == 1;
+  }
   template <class T>
   void get(std::vector<T>& values) {
     static_assert(std::is_trivially_copyable_v<T>);
