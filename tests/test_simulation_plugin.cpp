@@ -682,3 +682,26 @@ TEST_CASE("plugin: the cache", "[plugin][compiler]") {
                       Catch::Contains("is inconsistent") && Catch::Contains("a batched function is missing"));
   }
 }
+
+TEST_CASE("plugin: a filter steps runs in lanes when its code is arithmetic alone and small", "[plugin][unit]") {
+  using pfgen::codegen::FunctionStats;
+  using pfgen::codegen::GeneratedFilter;
+  using pfgen::codegen::kMaxLaneOps;
+  auto function = [](std::size_t adds, std::size_t calls, bool in_totals = true) {
+    FunctionStats stats;
+    stats.cse.adds = adds;
+    stats.cse.calls = calls;
+    stats.in_totals = in_totals;
+    return stats;
+  };
+  GeneratedFilter filter;
+  filter.functions = {function(kMaxLaneOps - 100, 0), function(100, 0)};
+  CHECK(pfgen::codegen::steps_in_lanes(filter));
+  // rates() repeats what the others compute: not counted.
+  filter.functions.push_back(function(kMaxLaneOps, 0, false));
+  CHECK(pfgen::codegen::steps_in_lanes(filter));
+  filter.functions.push_back(function(1, 0));
+  CHECK_FALSE(pfgen::codegen::steps_in_lanes(filter));  // one operation too many
+  filter.functions = {function(3, 1)};
+  CHECK_FALSE(pfgen::codegen::steps_in_lanes(filter));  // a sqrt is not defined on the lanes
+}

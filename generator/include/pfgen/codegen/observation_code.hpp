@@ -37,17 +37,17 @@ class ObservationCode {
   // The options the plugin's filters are generated with, from the simulation's grid step (a
   // delayed observation's filters step on that grid; CodegenError without one); unchanged by default.
   virtual void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const;
-  // The functions behind the ABI's signatures for the filters of these identifiers. arithmetic[k]:
-  // filter k's generated code is arithmetic alone (no function calls), so that it can also be
-  // instantiated on the plugin's lane type (batch::Lanes) to step several runs at once.
+  // The functions behind the ABI's signatures for the filters of these identifiers. in_lanes[k]:
+  // filter k is also instantiated on the plugin's lane type (batch::Lanes), to step several runs at
+  // once (its code is arithmetic alone and small: kMaxLaneOps, simulation_plugin.hpp).
   virtual std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                      const std::vector<bool>& arithmetic) const = 0;
+                                      const std::vector<bool>& in_lanes) const = 0;
   // The ABI table's observation fields this observation has (the others keep
   // plugin_table_defaults()): the filters' table and its count, the observation functions, the
   // period or the delay.
   virtual std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                           const std::vector<std::string>& labels,
-                                                          std::optional<double> grid_step, const std::vector<bool>& arithmetic) const = 0;
+                                                          std::optional<double> grid_step, const std::vector<bool>& in_lanes) const = 0;
 };
 
 // The modules' parts (observations/<kind>/<kind>_code.cpp), and the model's, by kind.

@@ -49,7 +49,7 @@ void ContinuousCode::plugin_options(const Model&, std::optional<double>, Codegen
 
 // The ABI's step and initial_state have no parameters argument: the model's defaults.
 std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                      const std::vector<bool>& arithmetic) const {
+                                      const std::vector<bool>& in_lanes) const {
   std::string out;
   for (std::size_t k = 0; k < names.size(); ++k) {
     const std::string& name = names[k];
@@ -57,7 +57,7 @@ std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vecto
     out += "void " + name + "_initial_state(double* state) {\n" + alias + "  F::initial_state(state);\n}\n";
     out += "void " + name + "_step(double* state, double t, double dt, const double* dy) {\n" + alias +
            "  F::step(state, t, dt, dy, F::Params<double>{});\n}\n";
-    if (!arithmetic[k]) {
+    if (!in_lanes[k]) {
       out += "\n";
       continue;
     }
@@ -73,11 +73,11 @@ std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vecto
 
 std::map<std::string, std::string> ContinuousCode::plugin_table(const Model& model, const std::vector<std::string>& names,
                                                                 const std::vector<std::string>& labels,
-                                                                std::optional<double>, const std::vector<bool>& arithmetic) const {
+                                                                std::optional<double>, const std::vector<bool>& in_lanes) const {
   auto state_fields = [&](const std::string& item, const std::string& ns, const std::string& name) {
     const std::string size = item + "state_size = " + ns + "::state_size;\n";
     const auto k = static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
-    if (!arithmetic[k]) return size;  // step_lanes NULL, lanes 0
+    if (!in_lanes[k]) return size;  // step_lanes NULL, lanes 0
     return size + item + "step_lanes = &pfgen_simulation::entry::" + name + "_step_lanes;\n" + item +
            "lanes = pfgen_simulation::batch::kLanes;\n";
   };

@@ -72,6 +72,15 @@ std::string plugin_filter_namespace(const Model& model, const std::string& ident
 
 const std::string& plugin_abi_header() { return embedded_template("pfgen_runtime/plugin_abi.h"); }
 
+bool steps_in_lanes(const GeneratedFilter& filter) {
+  std::size_t operations = 0;
+  for (const FunctionStats& function : filter.functions) {
+    if (function.cse.calls > 0) return false;  // sqrt, sin, ...: not defined on batch::Lanes
+    if (function.in_totals) operations += function.cse.total();
+  }
+  return operations <= kMaxLaneOps;
+}
+
 std::string generate_simulation_plugin(const Model& model, const std::vector<FilterEquations>& filters,
                                        std::optional<double> grid_step) {
   CodegenOptions options;
@@ -82,7 +91,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
   observation.plugin_options(model, grid_step, options);
 
   std::vector<std::string> names, labels;
-  std::vector<bool> arithmetic;  // per filter: its code is +, -, *, / alone
+  std::vector<bool> in_lanes;  // per filter: it steps runs side by side (step_lanes)
   std::set<std::string> seen;
   std::string filter_sources;
   for (const auto& eq : filters) {
@@ -92,8 +101,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
     labels.push_back(eq.name);
     GeneratedFilter generated = generate_filter_code(model, eq, options);
     filter_sources += without_pragma_once(std::move(generated.files.at(0).contents)) + "\n";
-    arithmetic.push_back(std::all_of(generated.functions.begin(), generated.functions.end(),
-                                     [](const FunctionStats& f) { return f.cse.calls == 0; }));
+    in_lanes.push_back(steps_in_lanes(generated));
   }
 
   const TruthCode truth = generate_truth_code(model);
@@ -104,7 +112,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
       {"abi_header", plugin_abi_header()},
       {"filter_sources", filter_sources},
       {"truth_definitions", truth.definitions},
-      {"filter_wrappers", observation.plugin_wrappers(model, names, arithmetic)},
+      {"filter_wrappers", observation.plugin_wrappers(model, names, in_lanes)},
       {"model_name", plugin_c_string(model.name)},
       {"pfgen_version", plugin_c_string(PFGEN_VERSION)},
       {"n", std::to_string(truth.n)},
@@ -120,7 +128,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
       {"diffusion_covariance", truth_pointer(truth.diffusion_is_covariance, "diffusion_covariance")},
   };
   values.merge(plugin_table_defaults());
-  for (auto& [field, value] : observation.plugin_table(model, names, labels, grid_step, arithmetic))
+  for (auto& [field, value] : observation.plugin_table(model, names, labels, grid_step, in_lanes))
     values[field] = value;
   // The batched forms (the template's batch::lanes over the one-state function), present exactly
   // where the one-state functions are.

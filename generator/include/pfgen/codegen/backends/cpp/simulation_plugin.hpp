@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model.hpp"
 
@@ -21,6 +22,15 @@ namespace pfgen::codegen {
 // Other models ignore it, so their plugin source does not depend on dt.
 std::string generate_simulation_plugin(const Model& model, const std::vector<FilterEquations>& filters,
                                        std::optional<double> grid_step = std::nullopt);
+
+// Whether a filter also steps runs side by side in the plugin (the ABI's step_lanes: its step
+// instantiated on the template's batch::Lanes): its code calls no function (batch::Lanes has
+// arithmetic only) and has at most kMaxLaneOps operations after CSE. The lanes pay where the
+// bookkeeping around a small step costs as much as the step; a large step is compute-bound
+// already, and its instantiation on 8 lanes costs the compiler several times the double one (the
+// 16-state INS's filters of 3 500 operations: 83 s against 11 s).
+inline constexpr std::size_t kMaxLaneOps = 500;
+bool steps_in_lanes(const GeneratedFilter& filter);
 
 // The text of pfgen_runtime/plugin_abi.h, compiled into pfgen at build time.
 const std::string& plugin_abi_header();
