@@ -306,7 +306,7 @@ class Simulation:
 
 def simulate(model, runs=None, T=None, dt=None, filters=None, seed=None, threads=0, reference=None, *,
              scheme=None, x0=None, record_points=None, shown_run=None, bound=None, risk_epsilon=None,
-             report_times=None, windows=None, parameters=None, cache_dir=None, compiler=None):
+             report_times=None, windows=None, parameters=None, cache_dir=None, compiler=None, batch=8):
     """``pfgen simulate``: the model's filters (or ``filters``) against simulated truths in Monte
     Carlo, with the particle reference of ``reference`` particles. Unset settings come from the
     model's simulation: section, then pfgen's defaults. The GIL is released while it runs."""
@@ -317,6 +317,7 @@ def simulate(model, runs=None, T=None, dt=None, filters=None, seed=None, threads
     options.filters = _names(filters, "--filters")
     options.seed = _whole(seed, "--seed")
     options.threads = _whole(threads, "--threads", 2**32 - 1)
+    options.batch = _whole(batch, "--batch", 2**64 - 1)
     options.reference = _whole(reference, "--reference")
     options.scheme = None if scheme is None else str(scheme)
     options.x0 = None if x0 is None else str(x0)

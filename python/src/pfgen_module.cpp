@@ -121,6 +121,7 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readwrite("windows", &api::SimulationOptions::windows)
       .def_readwrite("parameters", &api::SimulationOptions::parameters)
       .def_readwrite("threads", &api::SimulationOptions::threads)
+      .def_readwrite("batch", &api::SimulationOptions::batch)
       .def_readwrite("cache_dir", &api::SimulationOptions::cache_dir)
       .def_readwrite("compiler", &api::SimulationOptions::compiler);
 

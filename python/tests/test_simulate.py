@@ -7,6 +7,8 @@ import time
 
 import numpy as np
 
+import pytest
+
 import pfgen
 
 QUADRATIC = "examples/basin2006_quadratic.yaml"
@@ -47,6 +49,16 @@ def test_thread_count_does_not_change_the_result():
     two = model.simulate(runs=4, T=0.5, filters=["optimal", "ekf"], threads=2)
     assert one.csv == two.csv and one.report == two.report
     assert "model: basin2006_quadratic (examples/basin2006_quadratic.yaml)" in one.report
+
+
+def test_batch_does_not_change_the_result():
+    model = pfgen.Model.load(QUADRATIC)
+    alone = pfgen.simulate(model, runs=9, T=0.5, filters=["optimal", "ekf"], threads=1, batch=1)
+    side_by_side = pfgen.simulate(model, runs=9, T=0.5, filters=["optimal", "ekf"], threads=1)
+    assert alone.csv == side_by_side.csv and alone.report == side_by_side.report
+    for bad in (0, 1025, -1, 2.5):
+        with pytest.raises(pfgen.Error, match="--batch"):
+            pfgen.simulate(model, runs=2, T=0.1, batch=bad)
 
 
 def test_notes_are_kept(pfgen_command):

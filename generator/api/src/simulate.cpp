@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "api_impl.hpp"
+#include "cli_options.hpp"
 #include "job_group.hpp"
 #include "redirected_stderr.hpp"
 #include "pfgen_runtime/results_csv.hpp"
@@ -34,7 +35,10 @@ cli::SimulateOptions command_options(const pfgen::Model& model, const Simulation
   out.model_path = model.source;
   out.quiet = true;
   out.keep_series = true;
+  if (options.batch < 1 || options.batch > 1024)
+    throw cli::CliValueError("--batch: Value " + std::to_string(options.batch) + " not in range 1 to 1024");
   out.threads = options.threads;
+  out.batch = options.batch;
   out.cache_dir = options.cache_dir;
   out.compiler = options.compiler;
   out.assignments = assignment_texts(options.parameters);

@@ -149,6 +149,7 @@ struct SimulationOptions {
   std::vector<std::pair<double, double>> windows;
   std::map<std::string, double> parameters;
   unsigned threads = 0;
+  std::size_t batch = 8;  // runs a thread steps side by side, 1 to 1024 (`--batch`); results do not depend on it
   std::string cache_dir, compiler;
 };
 
