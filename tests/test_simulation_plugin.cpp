@@ -681,6 +681,38 @@ TEST_CASE("plugin: the cache", "[plugin][compiler]") {
     CHECK_THROWS_WITH(SimulationPlugin(build.path),
                       Catch::Contains("is inconsistent") && Catch::Contains("a batched function is missing"));
   }
+  SECTION("the loader rejects a filter whose step_lanes and lanes disagree") {
+    // The same truth, batched, with one filter; `lanes` set by the case.
+    auto source = [](const std::string& lanes_fields) {
+      return pfgen::codegen::plugin_abi_header() +
+             "static void drift(double, const double* x, double* f) { f[0] = -x[0]; }\n"
+             "static void drift_batch(double, size_t count, const double* x, double* f) "
+             "{ for (size_t k = 0; k < count; ++k) f[k] = -x[k]; }\n"
+             "static void observation(double, double* A0, double* A, double* B) { A0[0] = 0; A[0] = 1; B[0] = 1; }\n"
+             "static void init(double* s) { s[0] = 0; s[1] = 1; }\n"
+             "static void step(double*, double, double, const double*) {}\n"
+             "static pfgen_plugin table{};\nstatic pfgen_plugin_filter filter{};\n"
+             "extern \"C\" __attribute__((visibility(\"default\"))) const pfgen_plugin* pfgen_plugin_entry(void) {\n"
+             "  filter.name = \"f\"; filter.n = 1; filter.p = 1; filter.state_size = 2;\n"
+             "  filter.initial_state = &init; filter.step = &step;\n" +
+             lanes_fields +
+             "  table.abi_version = PFGEN_PLUGIN_ABI_VERSION; table.model_name = \"m\";\n"
+             "  table.pfgen_version = \"v\"; table.n = 1; table.p = 1; table.r = 1;\n"
+             "  table.diffusion_is_zero = 1; table.observation_is_constant = 1; table.drift = &drift;\n"
+             "  table.drift_batch = &drift_batch; table.observation = &observation;\n"
+             "  table.filter_count = 1; table.filters = &filter; return &table;\n}\n";
+    };
+    for (const std::string& fields : {std::string("  filter.step_lanes = &step; filter.lanes = 0;\n"),
+                                      std::string("  filter.step_lanes = nullptr; filter.lanes = 8;\n"),
+                                      std::string("  filter.step_lanes = &step; filter.lanes = 65;\n")}) {
+      INFO(fields);
+      const auto build = pfgen::toolchain::build_plugin(source(fields), w.options());
+      CHECK_THROWS_WITH(SimulationPlugin(build.path),
+                        Catch::Contains("is inconsistent") && Catch::Contains("filter f has step_lanes without 1 to 64 lanes"));
+    }
+    const auto fine = pfgen::toolchain::build_plugin(source("  filter.step_lanes = &step; filter.lanes = 8;\n"), w.options());
+    CHECK(SimulationPlugin(fine.path).filters().at(0).lanes == 8);
+  }
 }
 
 TEST_CASE("plugin: a filter steps runs in lanes when its code is arithmetic alone and small", "[plugin][unit]") {
