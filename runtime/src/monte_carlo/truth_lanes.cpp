@@ -66,7 +66,7 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
       out[k].truth_last = -1;
       continue;
     }
-    lane.path.col(0) = lane.x0;
+    if (!lanes_only_) lane.path.col(0) = lane.x0;
     for (std::size_t i = 0; i < n; ++i) x[i * W + k] = lane.x0[static_cast<Eigen::Index>(i)];
     if (width > 0)
       for (std::size_t i = 0; i < n; ++i) path_of[k][i * width] = lane.x0[static_cast<Eigen::Index>(i)];
@@ -128,10 +128,12 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
     observation_.increment_lanes(t, grid.dt, W, truth_start_.data(), x, truth_dW2_.data(), truth_dy_.data());
     for (std::size_t k = 0; k < count; ++k) {
       if (live[k] == 0) continue;
-      RunBuffers& lane = lanes_[k];
-      const auto column = static_cast<Eigen::Index>(step);
-      for (std::size_t a = 0; a < p; ++a) lane.dy(static_cast<Eigen::Index>(a), column) = truth_dy_[a * W + k];
-      for (std::size_t i = 0; i < n; ++i) lane.path(static_cast<Eigen::Index>(i), column + 1) = x[i * W + k];
+      if (!lanes_only_) {
+        RunBuffers& lane = lanes_[k];
+        const auto column = static_cast<Eigen::Index>(step);
+        for (std::size_t a = 0; a < p; ++a) lane.dy(static_cast<Eigen::Index>(a), column) = truth_dy_[a * W + k];
+        for (std::size_t i = 0; i < n; ++i) lane.path(static_cast<Eigen::Index>(i), column + 1) = x[i * W + k];
+      }
       if (width == 0) continue;
       for (std::size_t a = 0; a < p; ++a) dy_of[k][(step * p + a) * width] = truth_dy_[a * W + k];
       for (std::size_t i = 0; i < n; ++i) path_of[k][((step + 1) * n + i) * width] = x[i * W + k];
@@ -139,7 +141,7 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
   }
   for (std::size_t k = 0; k < count; ++k) {
     if (live[k] != 0) out[k].truth_last = static_cast<std::ptrdiff_t>(grid.steps);
-    finish_truth(first + k, lanes_[k], out[k], divergence[k]);
+    finish_truth(first + k, k, out[k], divergence[k]);
   }
 }
 

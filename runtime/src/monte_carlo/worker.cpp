@@ -46,6 +46,7 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
   for (const FilterModel& filter : filters_) largest = std::max(largest, filter.state_size());
   state_.resize(largest);
   lane_before_.resize(largest);
+  lane_increment_.resize(plan.p);
   active_.reserve(plan.windows.size());
   if (options.criterion) {
     criterion_ = true;
@@ -59,6 +60,8 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
   for (const FilterModel& filter : filters_)
     if (steps_in_lanes(filter) && width_ == 0) width_ = filter.lanes;
   for (const FilterModel& filter : filters_) in_lanes_.push_back(steps_in_lanes(filter) && filter.lanes == width_);
+  lanes_only_ = width_ >= 2 && !measurement && !options.reference &&
+                std::all_of(in_lanes_.begin(), in_lanes_.end(), [](bool in) { return in; });
   if (options.reference) {
     const double bound = options.truth_guard.bound();
     reference_ = measurement ? std::make_unique<ParticleReference>(scheme, *measurement, *options.reference, bound)
@@ -118,11 +121,18 @@ void Worker::simulate_truth(std::size_t run, RunBuffers& lane, RunResult& out) {
   }
   out.truth_last = simulate_truth_into(*scheme_, observation_, lane.x0, plan_.grid, options_.seed, run,
                                        options_.truth_guard, lane.path, lane.dy, divergence);
-  finish_truth(run, lane, out, divergence);
+  finish_truth(run, static_cast<std::size_t>(&lane - lanes_.data()), out, divergence);
 }
 
-void Worker::finish_truth(std::size_t run, RunBuffers& lane, RunResult& out,
+double Worker::truth_at(std::size_t k, std::size_t j, std::size_t i) const {
+  if (truths_interleaved_ && lanes_only_)
+    return lane_path_[k / width_ * group_path_size() + (j * plan_.n + i) * width_ + k % width_];
+  return lanes_[k].path(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+}
+
+void Worker::finish_truth(std::size_t run, std::size_t k, RunResult& out,
                           const std::optional<DivergenceEvent>& divergence) {
+  RunBuffers& lane = lanes_[k];
   if (divergence) {
     out.truth_diverged = true;
     out.truth_divergence_t = divergence->t;
@@ -138,11 +148,11 @@ void Worker::finish_truth(std::size_t run, RunBuffers& lane, RunResult& out,
   out.truth_record.assign(plan_.records.size() * n, nan);
   for (std::size_t r = 0; r < plan_.records.size(); ++r)
     if (static_cast<std::ptrdiff_t>(plan_.records[r]) <= out.truth_last)
-      for (std::size_t i = 0; i < n; ++i) out.truth_record[r * n + i] = lane.path(i, plan_.records[r]);
+      for (std::size_t i = 0; i < n; ++i) out.truth_record[r * n + i] = truth_at(k, plan_.records[r], i);
   out.truth_report.assign(plan_.reports.size() * n, nan);
   for (std::size_t q = 0; q < plan_.reports.size(); ++q)
     if (static_cast<std::ptrdiff_t>(plan_.reports[q]) <= out.truth_last)
-      for (std::size_t i = 0; i < n; ++i) out.truth_report[q * n + i] = lane.path(i, plan_.reports[q]);
+      for (std::size_t i = 0; i < n; ++i) out.truth_report[q * n + i] = truth_at(k, plan_.reports[q], i);
 }
 
 // The particle reference on the run's increments (or samples), and its own error x - m_ref.

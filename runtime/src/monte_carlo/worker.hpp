@@ -75,8 +75,12 @@ class Worker {
   // truth_lanes.cpp: the truths of runs first .. first + count - 1 side by side (simulate_truth's
   // loop, each lane bit for bit), for observations without a delay.
   void simulate_truths_lanes(std::size_t first, std::size_t count, RunResult* out);
-  // What simulate_truth does after the loop: the counts, the samples, the records.
-  void finish_truth(std::size_t run, RunBuffers& lane, RunResult& out, const std::optional<DivergenceEvent>& divergence);
+  // What simulate_truth does after the loop: the counts, the samples, the records. k: the run's
+  // place in the batch.
+  void finish_truth(std::size_t run, std::size_t k, RunResult& out, const std::optional<DivergenceEvent>& divergence);
+  // Entry i of run k's truth at grid point j: from its buffers, or from the lanes' interleaved copy
+  // where the buffers are not written (lanes_only_).
+  double truth_at(std::size_t k, std::size_t j, std::size_t i) const;
   void run_reference(std::size_t run, bool shown, RunBuffers& lane, RunResult& out);
   // A filter pass's results sized and filled with NaN; false when the run has no truth to compare with.
   bool start_pass(bool shown, const RunResult& run, FilterRunResult& out, PassSums& pass) const;
@@ -147,8 +151,13 @@ class Worker {
   std::vector<bool> in_lanes_;
   std::vector<double> lane_path_, lane_dy_;
   std::vector<double> lane_before_;  // one lane's saved state
+  std::vector<double> lane_increment_;  // one lane's dy
   std::size_t group_ = 0;            // lanes_ index of the current group's first run
   bool truths_interleaved_ = false;  // the batch's truths came from simulate_truths_lanes
+  // Every filter steps in lanes, and nothing else reads a run's whole path or increments (no
+  // particle reference, no samples): simulate_truths_lanes then writes only the interleaved copy,
+  // which halves what a batch writes and keeps more of it in cache.
+  bool lanes_only_ = false;
 };
 
 }  // namespace pfgen_runtime::monte_carlo_detail

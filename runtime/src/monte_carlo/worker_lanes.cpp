@@ -189,7 +189,9 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
           if (!stepper_.keeps(before, state)) {
             std::copy(before, before + size, state);
             ++refined[k];
-            const double* dy = lanes[k].dy.data() + step * p;
+            // The lane's increment from the interleaved copy (the run's own buffer may be unwritten).
+            for (std::size_t r = 0; r < p; ++r) lane_increment_[r] = lane_dy[(step * p + r) * W + k];
+            const double* dy = lane_increment_.data();
             if (stepper_.refine(filter.step, state, t, grid.dt, dy) == 0) {
               out.diverged = true;  // mid-step: the state is not stored
               (stepper_.equations_finite_at_start(filter.step, t) ? out.too_stiff : out.undefined) = true;
