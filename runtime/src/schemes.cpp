@@ -329,8 +329,8 @@ void AdaptiveEuler::step(double t, Eigen::Ref<Eigen::VectorXd> x, double dt, con
 }
 
 void AdaptiveEuler::step_lanes_at_once(double t, std::size_t count, double* x, double dt, const double* dW,
-                                       LaneFlag* live) {
-  if (!has_batch() || options_.max_substeps == 0) return TruthScheme::step_lanes_at_once(t, count, x, dt, dW, live);
+                                       LaneFlag* take) {
+  if (!has_batch() || options_.max_substeps == 0) return TruthScheme::step_lanes_at_once(t, count, x, dt, dW, take);
   evaluate_batch(t, count, x);
   const std::size_t n = system_.n, q = system_.q;
   const double* f = batch_f_.data();
@@ -359,11 +359,11 @@ void AdaptiveEuler::step_lanes_at_once(double t, std::size_t count, double* x, d
   }
   // The lanes that pass take that Euler substep at once; the others are left for step(), which
   // bisects.
-  LaneFlag* __restrict take = live;
+  LaneFlag* __restrict taking = take;
   double taken = 0;  // a count, exact in a double
   for (std::size_t k = 0; k < count; ++k) {
-    take[k] = (take[k] != 0) & (exceeding[k] == 0) ? 1.0 : 0.0;
-    taken += take[k];
+    taking[k] = (taking[k] != 0) & (exceeding[k] == 0) ? 1.0 : 0.0;
+    taken += taking[k];
   }
   euler_lanes(count, x, dt, dW, take);
   substeps_ += static_cast<std::uint64_t>(taken);

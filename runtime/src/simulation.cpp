@@ -40,6 +40,17 @@ TruthRun simulate_truth(TruthScheme& scheme, LinearObservation& observation, con
   return result;
 }
 
+std::optional<DivergenceEvent> take_truth_step(TruthScheme& scheme, double t, Eigen::Ref<Eigen::VectorXd> x, double dt,
+                                               const Eigen::Ref<const Eigen::VectorXd>& dW) {
+  try {
+    scheme.step(t, x, dt, dW);
+  } catch (const CovarianceIndefinite& e) {
+    return DivergenceEvent{e.t, 0, e.eigenvalue, DivergenceKind::covariance_indefinite};
+  }
+  if (scheme.last_step_incomplete()) return DivergenceEvent{t, 0, 0.0, DivergenceKind::too_stiff};
+  return std::nullopt;
+}
+
 std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& observation, const Eigen::VectorXd& x0,
                                    const TimeGrid& grid, std::uint64_t seed, std::uint64_t run,
                                    const DivergenceGuard& guard, Eigen::MatrixXd& path,
@@ -63,14 +74,8 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
     const double t = grid.time(k);
     const Increment dW(truth_increments.next(), static_cast<Eigen::Index>(truth_increments.size()));
     const Increment dW2(observation_increments.next(), static_cast<Eigen::Index>(observation_increments.size()));
-    try {
-      scheme.step(t, x, grid.dt, dW);
-    } catch (const CovarianceIndefinite& e) {
-      divergence = DivergenceEvent{e.t, 0, e.eigenvalue, DivergenceKind::covariance_indefinite};
-      return static_cast<std::ptrdiff_t>(k);
-    }
-    if (scheme.last_step_incomplete()) {
-      divergence = DivergenceEvent{t, 0, 0.0, DivergenceKind::too_stiff};
+    if (auto event = take_truth_step(scheme, t, x, grid.dt, dW)) {
+      divergence = event;
       return static_cast<std::ptrdiff_t>(k);
     }
     if (auto event = guard.check(grid.time(k + 1), x)) {

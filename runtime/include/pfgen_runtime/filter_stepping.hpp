@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "pfgen_runtime/guards.hpp"
+#include "pfgen_runtime/lane_flag.hpp"
 
 
 namespace pfgen_runtime {
@@ -67,36 +68,9 @@ class FilterStepper {
     return !control_.adaptive || control_.max_depth == 0 || acceptable(before, after);
   }
   // keeps() for `width` states side by side, entry-major (before[e * width + k]): keep[k] = 0
-  // where lane k's step would not be kept; the others are left as they are. The same tests as
-  // acceptable(), in passes over the lanes that compilers vectorise.
+  // where lane k's step would not be kept; the others are left as they are.
   void keeps_lanes(const double* before, const double* after, std::size_t width, LaneFlag* keep) const {
-    if (!control_.adaptive || control_.max_depth == 0) return;
-    const std::size_t w = width;
-    for (std::size_t i = 0; i < n_; ++i)
-      for (std::size_t k = 0; k < w; ++k) keep[k] = finite(after[i * w + k]) ? keep[k] : 0.0;
-    // Below, & rather than &&: both sides are cheap and free of side effects, and a branch per
-    // lane would keep the loops scalar.
-    const double* P0 = before + n_ * w;
-    const double* P1 = after + n_ * w;
-    const double tolerance = control_.tolerance, floor = control_.floor;
-    for (std::size_t i = 0, e = 0; i < n_; ++i)
-      for (std::size_t j = i; j < n_; ++j, ++e) {
-        const double* p0 = P0 + e * w;
-        const double* p1 = P1 + e * w;
-        if (i == j) {
-          for (std::size_t k = 0; k < w; ++k) {
-            const double change = std::abs(p1[k] - p0[k]);
-            keep[k] = finite(p1[k]) & !(change > tolerance * (std::abs(p0[k]) + floor)) ? keep[k] : 0.0;
-          }
-          continue;
-        }
-        const double* d_i = P0 + packed_diagonal(n_, i) * w;
-        const double* d_j = P0 + packed_diagonal(n_, j) * w;
-        for (std::size_t k = 0; k < w; ++k) {
-          const double excess = std::abs(p1[k] - p0[k]) / tolerance - floor;
-          keep[k] = finite(p1[k]) & !((excess > 0) & (excess * excess > std::abs(d_i[k] * d_j[k]))) ? keep[k] : 0.0;
-        }
-      }
+    if (control_.adaptive && control_.max_depth > 0) reject_lanes(before, after, width, keep);
   }
   // What advance() does after its first step was not kept: `state` holds the grid step's start
   // again, and the step is taken in halves. Same return value as advance().
@@ -151,25 +125,40 @@ class FilterStepper {
   static bool finite(double x) { return x - x == 0; }  // false for inf and NaN; a compare that packs
   // Every entry finite, and no P_ij changed by more than tolerance (sqrt|P_ii P_jj| + floor).
   bool acceptable(const double* before, const double* after) const {
+    LaneFlag keep = 1.0;
+    reject_lanes(before, after, 1, &keep);
+    return keep != 0;
+  }
+  // acceptable()'s tests for `width` states side by side, entry-major: keep[k] = 0 where lane k
+  // fails one. One pass over the lanes per entry, which compilers vectorise; & rather than &&,
+  // since both sides are cheap and free of side effects and a branch per lane would keep the loops
+  // scalar.
+  void reject_lanes(const double* before, const double* after, std::size_t width, LaneFlag* keep) const {
+    const std::size_t w = width;
     for (std::size_t i = 0; i < n_; ++i)
-      if (!std::isfinite(after[i])) return false;
-    const double* P0 = before + n_;
-    const double* P1 = after + n_;
+      for (std::size_t k = 0; k < w; ++k) keep[k] = finite(after[i * w + k]) ? keep[k] : 0.0;
+    const double* P0 = before + n_ * w;
+    const double* P1 = after + n_ * w;
     const double tolerance = control_.tolerance, floor = control_.floor;
-    for (std::size_t i = 0, k = 0; i < n_; ++i)
-      for (std::size_t j = i; j < n_; ++j, ++k) {
-        if (!std::isfinite(P1[k])) return false;
-        const double change = std::abs(P1[k] - P0[k]);
+    for (std::size_t i = 0, e = 0; i < n_; ++i)
+      for (std::size_t j = i; j < n_; ++j, ++e) {
+        const double* p0 = P0 + e * w;
+        const double* p1 = P1 + e * w;
         if (i == j) {  // scale |P_ii| + floor
-          if (change > tolerance * (std::abs(P0[k]) + floor)) return false;
+          for (std::size_t k = 0; k < w; ++k) {
+            const double change = std::abs(p1[k] - p0[k]);
+            keep[k] = finite(p1[k]) & !(change > tolerance * (std::abs(p0[k]) + floor)) ? keep[k] : 0.0;
+          }
           continue;
         }
         // change <= tolerance (sqrt|P_ii P_jj| + floor), without a square root on every step.
-        const double excess = change / tolerance - floor;
-        if (excess > 0 && excess * excess > std::abs(P0[packed_diagonal(n_, i)] * P0[packed_diagonal(n_, j)]))
-          return false;
+        const double* d_i = P0 + packed_diagonal(n_, i) * w;
+        const double* d_j = P0 + packed_diagonal(n_, j) * w;
+        for (std::size_t k = 0; k < w; ++k) {
+          const double excess = std::abs(p1[k] - p0[k]) / tolerance - floor;
+          keep[k] = finite(p1[k]) & !((excess > 0) & (excess * excess > std::abs(d_i[k] * d_j[k]))) ? keep[k] : 0.0;
+        }
       }
-    return true;
   }
 
   std::size_t n_, p_, size_;

@@ -103,9 +103,9 @@ class CovarianceGuard {
   // certificate) does it fall back to the eigenvalues of check_filter_state.
   bool passes_filter_state(const double* state, std::size_t n) const {
     if (n == 1) {  // check_filter_state's own closed form, inline
-      const double P = state[1];
-      return std::abs(P) <= std::numeric_limits<double>::max() &&
-             P >= -(absolute_tolerance_ + relative_tolerance_ * std::abs(P));
+      LaneFlag pass = 1.0;
+      pass_lanes_1(state + 1, 1, &pass);
+      return pass != 0;
     }
     return passes_filter_state_general(state, n);
   }

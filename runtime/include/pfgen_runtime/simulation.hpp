@@ -51,6 +51,12 @@ TruthRun simulate_truth(TruthScheme& scheme, LinearObservation& observation, con
                         const TimeGrid& grid, std::uint64_t seed, std::uint64_t run,
                         const DivergenceGuard& guard = DivergenceGuard());
 
+// One grid step of a truth by `scheme` over [t, t + dt], as simulate_truth takes it: the event
+// that stops the run there, with x mid-step, when the diffusion covariance lost definiteness
+// (CovarianceIndefinite) or the scheme ran out of sub-steps (too_stiff); nothing otherwise.
+std::optional<DivergenceEvent> take_truth_step(TruthScheme& scheme, double t, Eigen::Ref<Eigen::VectorXd> x, double dt,
+                                               const Eigen::Ref<const Eigen::VectorXd>& dW);
+
 // simulate_truth's loop into storage the caller keeps across runs (the Monte Carlo engine reuses
 // one per thread, so a run allocates no path): path is n x (steps + 1), dy p x steps, both sized
 // by the caller. Returns the last grid index whose state is stored in path (-1 when the guard

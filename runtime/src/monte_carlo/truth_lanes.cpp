@@ -5,10 +5,8 @@
 // observation's increment and the stores follow for every lane. Each lane's arithmetic and draws
 // are simulate_truth_into's, so every run's truth is bit for bit what it is alone.
 #include <algorithm>
-#include <cmath>
 
-#include "pfgen_runtime/gaussian_draw.hpp"
-#include "pfgen_runtime/sde_system.hpp"
+#include "pfgen_runtime/simulation.hpp"
 #include "worker.hpp"
 
 namespace pfgen_runtime::monte_carlo_detail {
@@ -51,10 +49,7 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
     const std::size_t run = first + k;
     RunBuffers& lane = lanes_[k];
     TruthLane& truth = *truth_lanes_[k];
-    if (options_.initial_prior) {  // the run's own draw, from its own stream
-      RandomStream initial(options_.seed, run, substream::initial_state);
-      lane.x0 = draw_gaussian(options_.initial_prior->mean, prior_root_, initial);
-    }
+    draw_initial_state(run, lane);
     truth.scheme->start_run(options_.seed, run);
     truth.scheme->set_escape_bound(guard.bound());
     truth.truth_noise = RandomStream(options_.seed, run, substream::truth_noise);
@@ -88,42 +83,32 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
     std::copy(live, live + W, take);
     scheme_->step_lanes_at_once(t, W, x, grid.dt, truth_dW_.data(), take);
     const double next = grid.time(step + 1);
-    // DivergenceGuard::check's test of every lane, packed; a lane stepped alone below is tested
-    // again after its step.
+    // DivergenceGuard::check's test of every lane, packed; a lane stepped alone below is checked
+    // after its step.
     LaneFlag* bounded = truth_bounded_.data();
     std::fill(bounded, bounded + W, 1.0);
     guard.pass_lanes(x, n, W, bounded);
     for (std::size_t k = 0; k < count; ++k) {
-      if (live[k] == 0) continue;
-      auto stop = [&](DivergenceEvent event) {
-        divergence[k] = event;
-        out[k].truth_last = static_cast<std::ptrdiff_t>(step);
-        live[k] = 0.0;
-        --living;
-      };
-      if (take[k] == 0) {  // this lane's step by its own scheme, as simulate_truth_into takes it
-        TruthScheme& scheme = *truth_lanes_[k]->scheme;
-        for (std::size_t i = 0; i < n; ++i) truth_lane_x_[static_cast<Eigen::Index>(i)] = x[i * W + k];
+      if (live[k] == 0 || (take[k] != 0 && bounded[k] != 0)) continue;
+      // The lane's state alone: stepped by its run's own scheme where the batch left it, as
+      // simulate_truth_into steps it, then checked by the guard, which reports the event.
+      for (std::size_t i = 0; i < n; ++i) truth_lane_x_[static_cast<Eigen::Index>(i)] = x[i * W + k];
+      std::optional<DivergenceEvent> event;
+      if (take[k] == 0) {
         for (std::size_t j = 0; j < q; ++j) truth_lane_dW_[static_cast<Eigen::Index>(j)] = truth_dW_[j * W + k];
-        try {
-          scheme.step(t, truth_lane_x_, grid.dt, truth_lane_dW_);
-        } catch (const CovarianceIndefinite& e) {
-          stop(DivergenceEvent{e.t, 0, e.eigenvalue, DivergenceKind::covariance_indefinite});
-          continue;
+        event = take_truth_step(*truth_lanes_[k]->scheme, t, truth_lane_x_, grid.dt, truth_lane_dW_);
+        if (!event) {
+          for (std::size_t i = 0; i < n; ++i) x[i * W + k] = truth_lane_x_[static_cast<Eigen::Index>(i)];
+          event = guard.check(next, truth_lane_x_);
         }
-        if (scheme.last_step_incomplete()) {
-          stop(DivergenceEvent{t, 0, 0.0, DivergenceKind::too_stiff});
-          continue;
-        }
-        for (std::size_t i = 0; i < n; ++i) x[i * W + k] = truth_lane_x_[static_cast<Eigen::Index>(i)];
-        bool within = true;  // pass_lanes' test, of this lane alone
-        for (std::size_t i = 0; i < n; ++i) within &= std::abs(x[i * W + k]) <= guard.bound();
-        bounded[k] = within ? 1.0 : 0.0;
+      } else {
+        event = guard.check(next, truth_lane_x_);
       }
-      if (bounded[k] == 0) {  // DivergenceGuard::check, which reports it
-        for (std::size_t i = 0; i < n; ++i) truth_lane_x_[static_cast<Eigen::Index>(i)] = x[i * W + k];
-        stop(*guard.check(next, truth_lane_x_));
-      }
+      if (!event) continue;
+      divergence[k] = event;
+      out[k].truth_last = static_cast<std::ptrdiff_t>(step);
+      live[k] = 0.0;
+      --living;
     }
     observation_.increment_lanes(t, grid.dt, W, truth_start_.data(), x, truth_dW2_.data(), truth_dy_.data());
     for (std::size_t k = 0; k < count; ++k) {

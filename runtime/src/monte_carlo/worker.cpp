@@ -1,7 +1,6 @@
 #include "worker.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 
 #include "clock.hpp"
@@ -12,7 +11,7 @@ namespace pfgen_runtime::monte_carlo_detail {
 Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, const SampledMeasurement* measurement,
                const std::vector<FilterModel>& filters, const Eigen::VectorXd& x0, const Plan& plan,
                const MonteCarloOptions& options, std::size_t batch)
-    : scheme_(scheme.clone()), observation_(observation), filters_(filters), x0_(x0), plan_(plan), options_(options),
+    : scheme_(scheme.clone()), observation_(observation), filters_(filters), plan_(plan), options_(options),
       lanes_(std::max<std::size_t>(batch, 1)), passes_(lanes_.size()),
       stepper_(plan.n, plan.p, options.filter_guards.stepping) {
   filter_seconds.assign(filters.size(), 0.0);
@@ -56,7 +55,7 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
   if (options.initial_prior)
     prior_root_ = covariance_square_root(options.initial_prior->covariance, "monte carlo: the initial prior's covariance");
   // The lanes' width: that of the first continuous filter with a lanes form of a width the engine
-  // steps (lanes.hpp); filters of another width go one run at a time.
+  // steps (steps_in_lanes); filters of another width go one run at a time.
   for (const FilterModel& filter : filters_)
     if (steps_in_lanes(filter) && width_ == 0) width_ = filter.lanes;
   for (const FilterModel& filter : filters_) in_lanes_.push_back(steps_in_lanes(filter) && filter.lanes == width_);
@@ -77,7 +76,7 @@ void Worker::run(std::size_t first, std::size_t count, RunResult* out) {
   if (truths_interleaved_) {
     simulate_truths_lanes(first, count, out);
   } else {
-    for (std::size_t k = 0; k < count; ++k) simulate_truth(first + k, lanes_[k], out[k]);
+    for (std::size_t k = 0; k < count; ++k) simulate_truth(first + k, k, out[k]);
   }
   truth_seconds += seconds_since(start);
   truth_cpu_seconds += thread_cpu_seconds() - cpu_start;
@@ -91,12 +90,12 @@ void Worker::run(std::size_t first, std::size_t count, RunResult* out) {
   }
   for (std::size_t k = 0; k < count; ++k) out[k].filters.resize(filters_.size());
   // The filters with a lanes form of width_ take the runs in groups of width_ (the last one
-  // partly filled); the others, and a batch of one run, one run at a time.
-  const bool grouped = width_ >= 2 && count >= 2;
+  // partly filled), on the truths' interleaved copy; the others, and the runs of a batch whose
+  // truths went one at a time, one run at a time.
+  const bool grouped = width_ >= 2 && truths_interleaved_;
   for (std::size_t g = 0; g < count; g += grouped ? width_ : count) {
     const std::size_t size = grouped ? std::min(width_, count - g) : count;
     group_ = g;
-    if (grouped && !truths_interleaved_) interleave_truths(g, size, out + g);
     for (std::size_t f = 0; f < filters_.size(); ++f) {
       start = Clock::now();
       cpu_start = thread_cpu_seconds();
@@ -112,16 +111,20 @@ void Worker::run(std::size_t first, std::size_t count, RunResult* out) {
   }
 }
 
+void Worker::draw_initial_state(std::size_t run, RunBuffers& lane) const {
+  if (!options_.initial_prior) return;  // lane.x0 keeps the fixed x0
+  RandomStream initial(options_.seed, run, substream::initial_state);
+  lane.x0 = draw_gaussian(options_.initial_prior->mean, prior_root_, initial);
+}
+
 // simulate_truth's loop (simulation.cpp) into the thread's buffers, so the same bits.
-void Worker::simulate_truth(std::size_t run, RunBuffers& lane, RunResult& out) {
+void Worker::simulate_truth(std::size_t run, std::size_t k, RunResult& out) {
+  RunBuffers& lane = lanes_[k];
   std::optional<DivergenceEvent> divergence;
-  if (options_.initial_prior) {  // the run's own draw, from its own stream
-    RandomStream initial(options_.seed, run, substream::initial_state);
-    lane.x0 = draw_gaussian(options_.initial_prior->mean, prior_root_, initial);
-  }
+  draw_initial_state(run, lane);
   out.truth_last = simulate_truth_into(*scheme_, observation_, lane.x0, plan_.grid, options_.seed, run,
                                        options_.truth_guard, lane.path, lane.dy, divergence);
-  finish_truth(run, static_cast<std::size_t>(&lane - lanes_.data()), out, divergence);
+  finish_truth(run, k, out, divergence);
 }
 
 double Worker::truth_at(std::size_t k, std::size_t j, std::size_t i) const {

@@ -71,7 +71,10 @@ class Worker {
   std::uint64_t reference_steps = 0;  // particle steps
 
  private:
-  void simulate_truth(std::size_t run, RunBuffers& lane, RunResult& out);
+  // Run `run`'s truth x0 into lane.x0 where it is drawn per run (MonteCarloOptions::initial_prior).
+  void draw_initial_state(std::size_t run, RunBuffers& lane) const;
+  // Run `run`, the batch's k-th, alone (simulate_truth_into) into lanes_[k].
+  void simulate_truth(std::size_t run, std::size_t k, RunResult& out);
   // truth_lanes.cpp: the truths of runs first .. first + count - 1 side by side (simulate_truth's
   // loop, each lane bit for bit), for observations without a delay.
   void simulate_truths_lanes(std::size_t first, std::size_t count, RunResult* out);
@@ -89,13 +92,12 @@ class Worker {
   void finish_pass(FilterRunResult& out, const PassSums& pass, const RunBuffers& lane) const;
   void step_filter(std::size_t f, bool shown, const RunResult& run, RunBuffers& lane, FilterRunResult& out);
   // worker_lanes.cpp: runs first .. first + count - 1 (count <= width_, their buffers lanes_[group_]
-  // on) side by side. Their truths interleaved (lane_path_, lane_dy_, one block per group of width_
-  // runs) are written by simulate_truths_lanes, or by interleave_truths from the runs' buffers;
-  // step_filter_lanes steps filter f over them (dispatching to a fixed width W).
+  // on) side by side, on their truths interleaved (lane_path_, lane_dy_, one block per group of
+  // width_ runs, written by simulate_truths_lanes); step_filter_lanes steps filter f over them
+  // (dispatching to a fixed width W).
   void reserve_lane_truths(std::size_t count);  // for the first `count` entries of lanes_
   std::size_t group_path_size() const;
   std::size_t group_dy_size() const;
-  void interleave_truths(std::size_t lane, std::size_t count, const RunResult* runs);
   void step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs);
   template <std::size_t W>
   void step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs);
@@ -127,7 +129,6 @@ class Worker {
   Eigen::VectorXd truth_lane_x_, truth_lane_dW_;
   LinearObservation observation_;
   std::vector<FilterModel> filters_;
-  Eigen::VectorXd x0_;          // the truth's initial state, unless drawn per run
   Eigen::MatrixXd prior_root_;  // MonteCarloOptions::initial_prior's covariance square root
   const Plan& plan_;
   const MonteCarloOptions& options_;
@@ -146,7 +147,7 @@ class Worker {
   std::unique_ptr<ParticleReference> reference_;
   // The lanes (worker_lanes.cpp): their width (0: none), which filters step in them, and the
   // group's truths interleaved, entry-major per grid point: x(t_j) entry i of lane k at
-  // (j n + i) W + k, dy of step j at (j p + r) W + k (zero past a run's end).
+  // (j n + i) W + k, dy of step j at (j p + r) W + k (past a run's end, whatever was there).
   std::size_t width_ = 0;
   std::vector<bool> in_lanes_;
   std::vector<double> lane_path_, lane_dy_;

@@ -29,29 +29,6 @@ void Worker::reserve_lane_truths(std::size_t count) {
   if (lane_dy_.size() < groups * group_dy_size()) lane_dy_.resize(groups * group_dy_size(), 0.0);
 }
 
-void Worker::interleave_truths(std::size_t lane, std::size_t count, const RunResult* runs) {
-  const std::size_t W = width_, n = plan_.n, p = plan_.p, steps = plan_.grid.steps;
-  reserve_lane_truths(lane + count);
-  // Grid point by grid point, so that the writes are contiguous.
-  std::array<const double*, 16> x{}, dy{};
-  std::array<std::size_t, 16> points{};  // grid points with a state
-  for (std::size_t k = 0; k < count; ++k) {
-    x[k] = lanes_[lane + k].path.data();
-    dy[k] = lanes_[lane + k].dy.data();
-    points[k] = static_cast<std::size_t>(std::max<std::ptrdiff_t>(runs[k].truth_last + 1, 0));
-  }
-  double* path = lane_path_.data() + lane / W * group_path_size();
-  for (std::size_t j = 0; j <= steps; ++j)
-    for (std::size_t i = 0; i < n; ++i, path += W)
-      for (std::size_t k = 0; k < count; ++k)
-        if (j < points[k]) path[k] = x[k][j * n + i];
-  double* increments = lane_dy_.data() + lane / W * group_dy_size();
-  for (std::size_t j = 0; j < steps; ++j)
-    for (std::size_t r = 0; r < p; ++r, increments += W)
-      for (std::size_t k = 0; k < count; ++k)
-        if (j + 1 < points[k]) increments[k] = dy[k][j * p + r];
-}
-
 void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs) {
   switch (width_) {
     case 2: return step_filter_lanes<2>(f, first, count, runs);
@@ -98,6 +75,12 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   std::array<std::uint64_t, W> refined{};
   std::size_t living = 0;
   std::uint64_t steps = 0;
+  // Lane k's run stops; `last` is its last grid point with a stored state.
+  auto stop = [&](std::size_t k, std::size_t last) {
+    outs[k]->last = static_cast<std::ptrdiff_t>(last);
+    live[k] = 0.0;
+    --living;
+  };
   reset_plan();
 
   // Grid point j's visit for the lanes with visited[k]: the errors and their sums in packed passes
@@ -196,9 +179,7 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
               out.diverged = true;  // mid-step: the state is not stored
               (stepper_.equations_finite_at_start(filter.step, t) ? out.too_stiff : out.undefined) = true;
               out.divergence_t = t;
-              out.last = static_cast<std::ptrdiff_t>(step);
-              live[k] = 0.0;
-              --living;
+              stop(k, step);
               continue;
             }
             for (std::size_t i = 0; i < size; ++i) states[i * W + k] = state[i];
@@ -206,18 +187,12 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
           ++steps;
           going = guard(next, state, out);
           if (out.diverged) {  // a diverged state is not stored
-            out.last = static_cast<std::ptrdiff_t>(step);
-            live[k] = 0.0;
-            --living;
+            stop(k, step);
             continue;
           }
         }
         visited[k] = 1.0;
-        if (!going) {
-          out.last = static_cast<std::ptrdiff_t>(step + 1);
-          live[k] = 0.0;
-          --living;
-        }
+        if (!going) stop(k, step + 1);
       }
     }
     visit_lanes(step + 1);
@@ -230,9 +205,7 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
           first_end = std::min(first_end, end[k]);
           continue;
         }
-        outs[k]->last = static_cast<std::ptrdiff_t>(step + 1);
-        live[k] = 0.0;
-        --living;
+        stop(k, step + 1);
       }
     }
   }
