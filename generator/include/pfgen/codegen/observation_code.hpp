@@ -47,7 +47,8 @@ class ObservationCode {
   // period or the delay.
   virtual std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                           const std::vector<std::string>& labels,
-                                                          std::optional<double> grid_step, const std::vector<bool>& in_lanes) const = 0;
+                                                          std::optional<double> grid_step,
+                                                          const std::vector<bool>& in_lanes) const = 0;
 };
 
 // The modules' parts (observations/<kind>/<kind>_code.cpp), and the model's, by kind.

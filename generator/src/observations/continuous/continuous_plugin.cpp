@@ -1,7 +1,5 @@
 // The continuous observation in a simulation plugin: the truth's observation(t, A0, A, B), each
 // filter's step(state, t, dt, dy) behind the ABI's signature, and the table of pfgen_plugin_filter.
-#include <algorithm>
-
 #include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
 
@@ -30,7 +28,7 @@ std::string rate_filter_table(const Model& model, const std::vector<std::string>
     out += item + "name = " + plugin_c_string(labels[k]) + ";\n";
     out += item + "n = " + ns + "::n;\n";
     out += item + "p = " + ns + "::p;\n";
-    out += state_fields(item, ns, names[k]);
+    out += state_fields(item, ns, k);
     out += item + "initial_state = &pfgen_simulation::entry::" + names[k] + "_initial_state;\n";
     out += item + "step = &pfgen_simulation::entry::" + names[k] + "_step;\n";
   }
@@ -49,7 +47,7 @@ void ContinuousCode::plugin_options(const Model&, std::optional<double>, Codegen
 
 // The ABI's step and initial_state have no parameters argument: the model's defaults.
 std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                      const std::vector<bool>& in_lanes) const {
+                                            const std::vector<bool>& in_lanes) const {
   std::string out;
   for (std::size_t k = 0; k < names.size(); ++k) {
     const std::string& name = names[k];
@@ -73,12 +71,12 @@ std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vecto
 
 std::map<std::string, std::string> ContinuousCode::plugin_table(const Model& model, const std::vector<std::string>& names,
                                                                 const std::vector<std::string>& labels,
-                                                                std::optional<double>, const std::vector<bool>& in_lanes) const {
-  auto state_fields = [&](const std::string& item, const std::string& ns, const std::string& name) {
+                                                                std::optional<double>,
+                                                                const std::vector<bool>& in_lanes) const {
+  auto state_fields = [&](const std::string& item, const std::string& ns, std::size_t k) {
     const std::string size = item + "state_size = " + ns + "::state_size;\n";
-    const auto k = static_cast<std::size_t>(std::find(names.begin(), names.end(), name) - names.begin());
     if (!in_lanes[k]) return size;  // step_lanes NULL, lanes 0
-    return size + item + "step_lanes = &pfgen_simulation::entry::" + name + "_step_lanes;\n" + item +
+    return size + item + "step_lanes = &pfgen_simulation::entry::" + names[k] + "_step_lanes;\n" + item +
            "lanes = pfgen_simulation::batch::kLanes;\n";
   };
   return {

@@ -49,7 +49,7 @@ void SampledCode::truth_observation(const Model& model, TruthNames& names, Truth
 
 // The ABI's predict and update have no parameters argument: the model's defaults.
 std::string SampledCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                      const std::vector<bool>&) const {
+                                        const std::vector<bool>&) const {
   std::string out;
   for (const auto& name : names) {
     const std::string alias = "  namespace F = " + plugin_filter_namespace(model, name) + ";\n";
@@ -64,7 +64,8 @@ std::string SampledCode::plugin_wrappers(const Model& model, const std::vector<s
 
 std::map<std::string, std::string> SampledCode::plugin_table(const Model& model, const std::vector<std::string>& names,
                                                              const std::vector<std::string>& labels,
-                                                             std::optional<double>, const std::vector<bool>&) const {
+                                                             std::optional<double>,
+                                                             const std::vector<bool>&) const {
   return {
       {"filter_table", sampled_filter_table(model, names, labels)},
       {"observation_is_sampled", "1"},

@@ -23,10 +23,11 @@ class ContinuousCode final : public ObservationCode {
   void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                      const std::vector<bool>& in_lanes) const override;
+                              const std::vector<bool>& in_lanes) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                   const std::vector<std::string>& labels,
-                                                  std::optional<double> grid_step, const std::vector<bool>& in_lanes) const override;
+                                                  std::optional<double> grid_step,
+                                                  const std::vector<bool>& in_lanes) const override;
 };
 
 // The three functions of a filter whose observation is a rate (continuous or delayed):
@@ -59,8 +60,8 @@ void rate_truth_observation(const Model& model, const ContinuousObservation& obs
 // The plugin's table of pfgen_plugin_filter entries (names: C++ identifiers, filter_identifier;
 // labels: the filters' own names, for the runtime), `state_fields` writing each entry's fields
 // beyond name, sizes and the two functions, from its item prefix ("    list[0]."), its filter's
-// namespace alias ("F0") and its identifier.
-using StateFields = std::function<std::string(const std::string& item, const std::string& ns, const std::string& name)>;
+// namespace alias ("F0") and its index k in `names`.
+using StateFields = std::function<std::string(const std::string& item, const std::string& ns, std::size_t k)>;
 std::string rate_filter_table(const Model& model, const std::vector<std::string>& names,
                               const std::vector<std::string>& labels, const StateFields& state_fields);
 

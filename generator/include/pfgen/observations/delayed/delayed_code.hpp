@@ -22,10 +22,11 @@ class DelayedCode final : public ObservationCode {
   void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                      const std::vector<bool>& in_lanes) const override;
+                              const std::vector<bool>& in_lanes) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                   const std::vector<std::string>& labels,
-                                                  std::optional<double> grid_step, const std::vector<bool>& in_lanes) const override;
+                                                  std::optional<double> grid_step,
+                                                  const std::vector<bool>& in_lanes) const override;
 };
 
 // The filter's delay in steps of options.grid_step: CodegenError when there is no grid step or the

@@ -20,10 +20,11 @@ class PolynomialCode final : public ObservationCode {
   void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                      const std::vector<bool>& in_lanes) const override;
+                              const std::vector<bool>& in_lanes) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                   const std::vector<std::string>& labels,
-                                                  std::optional<double> grid_step, const std::vector<bool>& in_lanes) const override;
+                                                  std::optional<double> grid_step,
+                                                  const std::vector<bool>& in_lanes) const override;
 };
 
 // The functions of a filter for a nonlinear h (docs/theory.md §2.9), with s = [m, P's upper

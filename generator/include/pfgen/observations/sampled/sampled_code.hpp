@@ -25,10 +25,11 @@ class SampledCode final : public ObservationCode {
   GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
   void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                      const std::vector<bool>& in_lanes) const override;
+                              const std::vector<bool>& in_lanes) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                   const std::vector<std::string>& labels,
-                                                  std::optional<double> grid_step, const std::vector<bool>& in_lanes) const override;
+                                                  std::optional<double> grid_step,
+                                                  const std::vector<bool>& in_lanes) const override;
 };
 
 // The functions of a filter for sampled observations: the prediction's derivatives() (and
