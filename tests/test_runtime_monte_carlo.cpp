@@ -145,6 +145,33 @@ bool bitwise_equal(const std::vector<double>& a, const std::vector<double>& b) {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
+// What one run of the engine shows, for comparing two runs bit for bit: every number of the
+// result (flatten), the table and the CSV, the refinement and stop counts, the criterion's
+// integrals.
+struct Outputs {
+  std::vector<double> numbers;
+  std::string table, csv;
+  std::vector<std::uint64_t> counts;
+  std::vector<double> integrals;
+};
+
+Outputs outputs_of(const MonteCarloResult& result) {
+  Outputs out{flatten(result), format_summary_table(result, {"x"}), format_results_csv(result, {"x"}), {}, {}};
+  for (const FilterStatistics& f : result.filters) {
+    out.counts.insert(out.counts.end(), {f.refined_steps, f.refined_runs, f.too_stiff_runs, f.undefined_runs});
+    if (f.criterion) out.integrals.insert(out.integrals.end(), f.criterion->integrals.begin(), f.criterion->integrals.end());
+  }
+  return out;
+}
+
+void check_same_outputs(const Outputs& a, const Outputs& b) {
+  CHECK(bitwise_equal(a.numbers, b.numbers));
+  CHECK(a.table == b.table);
+  CHECK(a.csv == b.csv);
+  CHECK(a.counts == b.counts);
+  CHECK(bitwise_equal(a.integrals, b.integrals));
+}
+
 std::string lowercase(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return text;
@@ -205,19 +232,14 @@ TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "
   const LinearObservation observation = scalar_observation(scenario.model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
 
-  std::vector<double> reference;
-  std::string reference_table, reference_csv;
+  Outputs reference;
   for (unsigned threads : {1u, 2u, 3u}) {
     scenario.options.threads = threads;
     const MonteCarloResult result = run_monte_carlo(scheme, observation, x0, scenario.filters, scenario.options);
     CHECK(result.timing.threads == threads);
-    const std::vector<double> numbers = flatten(result);
-    const std::string table = format_summary_table(result, {"x"});
-    const std::string csv = format_results_csv(result, {"x"});
+    const Outputs outputs = outputs_of(result);
     if (threads == 1) {
-      reference = numbers;
-      reference_table = table;
-      reference_csv = csv;
+      reference = outputs;
       // The scenario covers what it should: some truths stopped, every wrong filter diverged.
       CHECK(result.truth_divergences.count() > 0);
       CHECK(result.truth_divergences.count() < result.runs);
@@ -226,9 +248,7 @@ TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "
       continue;
     }
     INFO("threads = " << threads);
-    CHECK(bitwise_equal(numbers, reference));
-    CHECK(table == reference_table);
-    CHECK(csv == reference_csv);
+    check_same_outputs(outputs, reference);
   }
 }
 
@@ -304,31 +324,16 @@ TEST_CASE("monte carlo: results are bitwise identical for any batch, filters ste
     options.runs = 29;
     if (variant.criterion) options.criterion = CriterionOptions{};
     options.filter_guards.stop_on_psd_loss = variant.stop_on_psd_loss;
-    std::vector<double> reference;
-    std::string reference_table, reference_csv;
-    std::vector<std::uint64_t> reference_refined;
-    std::vector<double> reference_integrals;
+    Outputs reference;
     for (const auto& [batch, threads] : std::vector<std::pair<std::size_t, unsigned>>{
              {1, 1}, {2, 1}, {3, 2}, {4, 1}, {7, 2}, {8, 1}, {16, 2}, {64, 1}}) {
       options.batch = batch;
       options.threads = threads;
       const MonteCarloResult result = run_monte_carlo(*variant.scheme, observation, x0, filters, options);
-      const std::vector<double> numbers = flatten(result);
-      std::vector<std::uint64_t> refined;  // and the criterion's integrals, bit for bit
-      std::vector<double> integrals;
-      for (const FilterStatistics& f : result.filters) {
-        refined.insert(refined.end(), {f.refined_steps, f.refined_runs, f.too_stiff_runs, f.undefined_runs});
-        if (f.criterion) integrals.insert(integrals.end(), f.criterion->integrals.begin(), f.criterion->integrals.end());
-      }
-      const std::string table = format_summary_table(result, {"x"});
-      const std::string csv = format_results_csv(result, {"x"});
+      const Outputs outputs = outputs_of(result);
       if (batch == 1) {
-        reference = numbers;
-        reference_table = table;
-        reference_csv = csv;
-        reference_refined = refined;
-        reference_integrals = integrals;
-        CHECK(integrals.empty() != variant.criterion);
+        reference = outputs;
+        CHECK(outputs.integrals.empty() != variant.criterion);
         // The scenario covers what it should: stopped truths, diverged, PSD-losing and refined filters.
         CHECK(result.truth_divergences.count() > 0);
         CHECK(result.filters[1].divergences.count() > 0);
@@ -337,11 +342,7 @@ TEST_CASE("monte carlo: results are bitwise identical for any batch, filters ste
         continue;
       }
       INFO(variant.name << ": batch = " << batch << ", threads = " << threads);
-      CHECK(bitwise_equal(numbers, reference));
-      CHECK(table == reference_table);
-      CHECK(csv == reference_csv);
-      CHECK(refined == reference_refined);
-      CHECK(bitwise_equal(integrals, reference_integrals));
+      check_same_outputs(outputs, reference);
     }
   }
 }
