@@ -16,11 +16,7 @@ namespace pfgen_runtime {
 namespace {
 
 // The living lanes of a block.
-std::uint64_t living(const LaneFlag* alive) {
-  std::uint64_t count = 0;
-  for (std::size_t k = 0; k < kParticleBlock; ++k) count += alive[k] != 0 ? 1 : 0;
-  return count;
-}
+std::uint64_t living(const LaneFlag* alive) { return lanes_set(alive, kParticleBlock); }
 
 }  // namespace
 
@@ -142,11 +138,22 @@ bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, Rand
   // Between samples (sampled observations) neither the log-weights nor the living change: the
   // weights are those of the last call, bit for bit, and their exp is not taken again.
   if (!weights_current_) {
-    double largest = -std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < N_; ++i) {
-      const double candidate = alive[i] != 0 ? log_weight[i] : -std::numeric_limits<double>::infinity();
-      largest = candidate > largest ? candidate : largest;  // log-weights of the living are finite
+    // The largest log-weight of the living (finite), in four running maxima and then theirs: a
+    // maximum is the same in any order, but for the sign of a zero, which exp(w - largest) does not
+    // see, and four chains of compares overlap where one waits on each.
+    constexpr double none = -std::numeric_limits<double>::infinity();
+    double top[4] = {none, none, none, none};
+    std::size_t i = 0;
+    for (; i + 4 <= N_; i += 4)
+      for (std::size_t k = 0; k < 4; ++k) {
+        const double candidate = alive[i + k] != 0 ? log_weight[i + k] : none;
+        top[k] = candidate > top[k] ? candidate : top[k];
+      }
+    for (; i < N_; ++i) {
+      const double candidate = alive[i] != 0 ? log_weight[i] : none;
+      top[0] = candidate > top[0] ? candidate : top[0];
     }
+    const double largest = std::max(std::max(top[0], top[1]), std::max(top[2], top[3]));
     if (!std::isfinite(largest)) return false;
     double sum = 0, squares = 0;
     for (std::size_t i = 0; i < N_; ++i) {

@@ -48,6 +48,8 @@ TruthScheme::TruthScheme(SdeSystem system)
 void TruthScheme::step_batch(double t, std::size_t count, double* x, double dt, const double* dW, LaneFlag* live) {
   batch_take_.assign(live, live + count);
   step_lanes_at_once(t, count, x, dt, dW, batch_take_.data());
+  // Most often every living lane was taken (a taken lane is a living one): then none is left.
+  if (lanes_set(batch_take_.data(), count) == lanes_set(live, count)) return;
   for (std::size_t k = 0; k < count; ++k)
     if (live[k] != 0 && batch_take_[k] == 0 && !step_lane(t, count, k, x, dt, dW)) live[k] = 0;
 }
@@ -360,13 +362,9 @@ void AdaptiveEuler::step_lanes_at_once(double t, std::size_t count, double* x, d
   // The lanes that pass take that Euler substep at once; the others are left for step(), which
   // bisects.
   LaneFlag* __restrict taking = take;
-  double taken = 0;  // a count, exact in a double
-  for (std::size_t k = 0; k < count; ++k) {
-    taking[k] = (taking[k] != 0) & (exceeding[k] == 0) ? 1.0 : 0.0;
-    taken += taking[k];
-  }
+  for (std::size_t k = 0; k < count; ++k) taking[k] = (taking[k] != 0) & (exceeding[k] == 0) ? 1.0 : 0.0;
   euler_lanes(count, x, dt, dW, take);
-  substeps_ += static_cast<std::uint64_t>(taken);
+  substeps_ += lanes_set(take, count);
   incomplete_ = false;
 }
 

@@ -88,7 +88,11 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
     LaneFlag* bounded = truth_bounded_.data();
     std::fill(bounded, bounded + W, 1.0);
     guard.pass_lanes(x, n, W, bounded);
-    for (std::size_t k = 0; k < count; ++k) {
+    // Most often every living lane was stepped at once and is bounded: then none is left for the
+    // loop below. (bounded becomes take and bounded; the loop reads it only where take is set.)
+    for (std::size_t k = 0; k < W; ++k) bounded[k] *= take[k];
+    const bool all_done = lanes_set(bounded, W) == living;
+    for (std::size_t k = 0; !all_done && k < count; ++k) {
       if (live[k] == 0 || (take[k] != 0 && bounded[k] != 0)) continue;
       // The lane's state alone: stepped by its run's own scheme where the batch left it, as
       // simulate_truth_into steps it, then checked by the guard, which reports the event.

@@ -92,8 +92,12 @@ class CFamilyEmitter : public Emitter {
                              bool shared) const;
 
   // The loops of `loops` (p_drift_loops.hpp): P's drift into names.out from the work array the
-  // graph filled and the state's P, and m's drift copied from the work array. Indented by two.
+  // graph filled and the full P (full_P's), and m's drift copied from the work array. Indented by
+  // two.
   std::string p_drift_loops(const PDriftLoops& loops, const PDriftLoopNames& names) const;
+  // names.full_P, the n x n P, unpacked from the state's triangle; it opens the function, before
+  // the graph's statements, so that its stores are done when the loops read its rows.
+  std::string full_P(const PDriftLoops& loops, const PDriftLoopNames& names) const;
 
   // From now on function_body() splits a body of more than `max_ops` operations into parts of at
   // most `max_ops`; `shared_array` names the local array through which the parts pass the values
