@@ -4,6 +4,8 @@
 // literal bounds: the column loop walks rows of row-major blocks, which compilers vectorise, and
 // every entry is stored once. (The same sum accumulated with `+=` over an inner loop was about
 // twice as slow at n = 16 under g++ -O3: the row was stored and reloaded for every term.)
+#include <algorithm>
+
 #include "pfgen/codegen/backends/c_family/c_family_emitter.hpp"
 
 namespace pfgen::codegen {
@@ -85,7 +87,16 @@ std::string CFamilyEmitter::p_drift_loops(const PDriftLoops& loops, const PDrift
     text += "  " + T + " " + names.sum + "[" + std::to_string(n * n) + "];\n";
     text += "  " + loop(i, 0, n) + "\n    " + loop(j, 0, n) + " " + names.sum + "[" + i + " * " + N + " + " + j +
             "] = " + sum + ";\n";
-    text += upper_loops + at(names.out, n, u) + " = " + names.sum + "[" + i + " * " + N + " + " + j + "]" + rest + ";\n";
+    // The upper triangle taken out entry by entry, not in loops: GCC packs the loops' rows of
+    // unequal length through stack copies whose wider reloads wait for store forwarding (n = 4:
+    // 15 % of rates() on one permute after such a reload with -march=native; written out, the
+    // step went from 1.21x to 0.97x hand-written there, 1.20x to 1.15x with -O3 in float).
+    for (std::size_t row = 0, entry = 0; row < n; ++row)
+      for (std::size_t column = row; column < n; ++column, ++entry) {
+        const std::string index = std::to_string(row * n + column);
+        text += "  " + names.out + "[" + std::to_string(n + entry) + "] = " + names.sum + "[" + index + "]" +
+                (loops.rest ? " + " + w + "[" + std::to_string(loops.rest_offset + entry) + "]" : "") + ";\n";
+      }
   } else {
     text += upper_loops + at(names.out, n, u) + " = " + sum + rest + ";\n";
   }
@@ -105,15 +116,30 @@ std::string CFamilyEmitter::p_drift_loops(const PDriftLoops& loops, const PDrift
 // load of several scalar stores still in the store buffer cannot be forwarded from them: it waits
 // until they reach the cache. Written before the graph's statements, the stores are there by then.
 // On the dense linear n = 4 benchmark this took the Heun step from 1.30x to 1.20x hand-written
-// Eigen with -O3 -march=native in double, and from 2.12x to 1.96x with -O2 in float.
+// Eigen with -O3 -march=native in double, and from 2.12x to 1.96x with -O2 in float. Below
+// kFullCombineBelow the unpacking is written out statement by statement rather than in loops, so
+// the compiler sees whole rows (P_00..P_03 are the state's consecutive entries) and stores them
+// as vectors: at n = 4, -O2, 1.20x to 1.10x in double and 1.85x to 1.65x in float, and 0.97x to
+// 0.87x (double) and 0.90x to 0.73x (float) with -march=native; -O3 in double 0.85x to 0.88x.
 std::string CFamilyEmitter::full_P(const PDriftLoops& loops, const PDriftLoopNames& names) const {
-  const std::string N = std::to_string(loops.n);
+  const std::size_t n = loops.n;
+  const std::string N = std::to_string(n);
   const std::string &i = names.i, &j = names.j, &u = names.u, &Pf = names.full_P;
-  std::string text = "  " + scalar_type_ + " " + Pf + "[" + std::to_string(loops.n * loops.n) + "];\n";
+  std::string text = "  " + scalar_type_ + " " + Pf + "[" + std::to_string(n * n) + "];\n";
+  if (loops.full_combine()) {
+    for (std::size_t row = 0; row < n; ++row)
+      for (std::size_t column = 0; column < n; ++column) {
+        const std::size_t low = std::min(row, column), high = std::max(row, column);
+        const std::size_t packed = low * (2 * n - low + 1) / 2 + (high - low);  // upper triangle, row by row
+        text += "  " + Pf + "[" + std::to_string(row * n + column) + "] = " + names.state + "[" +
+                std::to_string(n + packed) + "];\n";
+      }
+    return text;
+  }
   text += "  for (int " + i + " = 0, " + u + " = 0; " + i + " < " + N + "; ++" + i + ")\n";
   text += "    for (int " + j + " = " + i + "; " + j + " < " + N + "; ++" + j + ", ++" + u + ") " + Pf + "[" + i + " * " +
           N + " + " + j + "] = " + Pf + "[" + j + " * " + N + " + " + i + "] = " + names.state + "[" +
-          std::to_string(loops.n) + " + " + u + "];\n";
+          std::to_string(n) + " + " + u + "];\n";
   return text;
 }
 
