@@ -88,12 +88,13 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
     LaneFlag* bounded = truth_bounded_.data();
     std::fill(bounded, bounded + W, 1.0);
     guard.pass_lanes(x, n, W, bounded);
-    // Most often every living lane was stepped at once and is bounded: then none is left for the
-    // loop below. (bounded becomes take and bounded; the loop reads it only where take is set.)
+    // done: the lane was stepped at once and is bounded. Most often every living lane is done, and
+    // the loop below has nothing to do.
     for (std::size_t k = 0; k < W; ++k) bounded[k] *= take[k];
-    const bool all_done = lanes_set(bounded, W) == living;
+    const LaneFlag* done = bounded;
+    const bool all_done = lanes_set(done, W) == living;
     for (std::size_t k = 0; !all_done && k < count; ++k) {
-      if (live[k] == 0 || (take[k] != 0 && bounded[k] != 0)) continue;
+      if (live[k] == 0 || done[k] != 0) continue;
       // The lane's state alone: stepped by its run's own scheme where the batch left it, as
       // simulate_truth_into steps it, then checked by the guard, which reports the event.
       for (std::size_t i = 0; i < n; ++i) truth_lane_x_[static_cast<Eigen::Index>(i)] = x[i * W + k];

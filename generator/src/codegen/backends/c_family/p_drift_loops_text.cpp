@@ -4,7 +4,7 @@
 // literal bounds: the column loop walks rows of row-major blocks, which compilers vectorise, and
 // every entry is stored once. (The same sum accumulated with `+=` over an inner loop was about
 // twice as slow at n = 16 under g++ -O3: the row was stored and reloaded for every term.)
-#include <algorithm>
+#include <vector>
 
 #include "pfgen/codegen/backends/c_family/c_family_emitter.hpp"
 
@@ -127,13 +127,13 @@ std::string CFamilyEmitter::full_P(const PDriftLoops& loops, const PDriftLoopNam
   const std::string &i = names.i, &j = names.j, &u = names.u, &Pf = names.full_P;
   std::string text = "  " + scalar_type_ + " " + Pf + "[" + std::to_string(n * n) + "];\n";
   if (loops.full_combine()) {
-    for (std::size_t row = 0; row < n; ++row)
-      for (std::size_t column = 0; column < n; ++column) {
-        const std::size_t low = std::min(row, column), high = std::max(row, column);
-        const std::size_t packed = low * (2 * n - low + 1) / 2 + (high - low);  // upper triangle, row by row
-        text += "  " + Pf + "[" + std::to_string(row * n + column) + "] = " + names.state + "[" +
-                std::to_string(n + packed) + "];\n";
-      }
+    // Each entry's place in the state's triangle, counted as the loops below count u.
+    std::vector<std::size_t> packed(n * n);
+    for (std::size_t row = 0, entry = 0; row < n; ++row)
+      for (std::size_t column = row; column < n; ++column, ++entry)
+        packed[row * n + column] = packed[column * n + row] = entry;
+    for (std::size_t e = 0; e < n * n; ++e)
+      text += "  " + Pf + "[" + std::to_string(e) + "] = " + names.state + "[" + std::to_string(n + packed[e]) + "];\n";
     return text;
   }
   text += "  for (int " + i + " = 0, " + u + " = 0; " + i + " < " + N + "; ++" + i + ")\n";
