@@ -50,12 +50,12 @@ observation:
 // The loops' own names (work array, blocks, indices) taken by the model: they are chosen around them.
 const char* const kLoopNamesTaken = R"(name: loop_names
 states: [x1, x2, x3, x4]
-parameters: {w: 0.5, i: -1, j: 0.3, u: 0.2, S: 0.1, H: 1, JP: 0.4, P_full: 0.25, K_T: 0.5}
+parameters: {w: 0.5, i: -1, j: 0.3, u: 0.2, S: 0.1, H: 1, JP: 0.4, P_full: 0.25, K_T: 0.5, JP_T: 0.2}
 drift:
   - "i*x1 + w*x2 + j*x3 - u*x4"
   - "S*x1 + i*x2 + JP*x3 + P_full*x4"
   - "u*x1 + S*x2 + i*x3 + w*x4"
-  - "K_T*x1 - j*x2 + u*x3 + i*x4 - 0.1*x4^3"
+  - "K_T*x1 - j*x2 + u*x3 + JP_T*x4 - 0.1*x4^3"
 diffusion: [["0.3"], ["0.2"], ["0.1"], ["0.1"]]
 observation:
   A: [["H", "0.5", "0", "1"], ["0", "1", "H", "0.2"]]
@@ -186,13 +186,13 @@ void check_model(const Model& model, bool full_combine) {
   const std::string header = code(model, eq, codegen::Language::Cpp, 0);
   // The loops are what is written, in the expected variant, and step() calls rates().
   REQUIRE(header.find("P's drift from dense blocks") != std::string::npos);
-  // n x n local blocks: P in full and E[J] P, and the full sum below n = 8, in rates() and, from
-  // n = kMinLoopDimensionAlone on, in derivatives() too.
+  // n x n local blocks: P in full and E[J] P, and below n = 8 E[J] P transposed and the full sum,
+  // in rates() and, from n = kMinLoopDimensionAlone on, in derivatives() too.
   std::size_t blocks = 0;
   const std::regex block("^  Scalar \\w+\\[" + std::to_string(n * n) + "\\];$");
   std::istringstream header_lines(header);
   for (std::string line; std::getline(header_lines, line);) blocks += std::regex_match(line, block);
-  CHECK(blocks == (full_combine ? 3u : 2u) * (n >= codegen::kMinLoopDimensionAlone ? 2u : 1u));
+  CHECK(blocks == (full_combine ? 4u : 2u) * (n >= codegen::kMinLoopDimensionAlone ? 2u : 1u));
   CHECK(header.find("  rates(t, state, params, all.data());") != std::string::npos);
 
   std::mt19937 rng(2026);

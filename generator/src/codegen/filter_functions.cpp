@@ -102,7 +102,7 @@ std::unique_ptr<BuiltFunction> built_loops(const Model& model, const FilterEquat
 
 PDriftLoopNames loop_names(const FunctionNames& names) {
   return {names.work, names.state, names.out, names.full_P, names.JP, names.gain_T, names.H,
-          names.sum, names.i, names.j, names.u};
+          names.sum, names.i, names.j, names.u, names.JP_T};
 }
 
 FunctionCode written(const BuiltFunction& built, const std::string& target, const FunctionNames& names,
@@ -494,6 +494,7 @@ FunctionNames function_names(const Model& model) {
   f.i = names.take("i");
   f.j = names.take("j");
   f.u = names.take("u");
+  f.JP_T = names.take("JP_T");  // after the others, for the same reason
   f.temporary_prefix = names.temporary_prefix();
   return f;
 }

@@ -40,7 +40,7 @@ struct FunctionNames {
   // L and c: a polynomial observation's covariance gain and Ito-Stratonovich correction.
   std::string time, state, delayed, params, out, K, h, shared, L, c, temporary_prefix;
   // The loops of P's drift (p_drift_loops.hpp): the work array, local blocks and loop indices.
-  std::string work, full_P, JP, gain_T, H, sum, i, j, u;
+  std::string work, full_P, JP, gain_T, H, sum, i, j, u, JP_T;
 };
 FunctionNames function_names(const Model& model);
 

@@ -81,6 +81,7 @@ struct PDriftLoopNames {
   std::string full_P, JP, gain, H;  // local arrays: P in full, E[J] P, K^T, A P
   std::string sum;                  // local array: the full block summed (full_combine)
   std::string i, j, u;              // loop indices: row, column, upper entry
+  std::string JP_T;                 // local array: E[J] P transposed (full_combine)
 };
 
 }  // namespace pfgen::codegen
