@@ -11,8 +11,8 @@
 # reading and deriving, loading the plugin, MPI's finalisation), and from `--timing` of one 1-rank
 # and one 2-rank job of RUNS runs: the work per run (1 rank: wall minus aggregation, over the
 # runs), the series folding per run (shared among the ranks) and the rest of the folding (rank 0
-# alone), the bytes per run of the exchange (each rank receives every run's values at its own
-# record times) and of the gather into rank 0. The projection for K ranks of one thread each over
+# alone), the bytes per run of the exchange (each rank receives the other ranks' runs' values at
+# its own record times: a quarter of every run's values with 2 ranks) and of the gather into rank 0. The projection for K ranks of one thread each over
 # many machines is
 #   T(K) = fixed + R (w + s) / K + R x (K - 1) / (K^2 BW) + R b / BW + R a,
 # R runs, w work, s series folding, x exchanged and b gathered bytes, a rank 0's folding per run,
@@ -103,7 +103,7 @@ awk -v runs="$runs" -v r="$repeats" \
   END {
     fixed1 = median(f1, n1); fixed2 = median(f2, n2)
     w = (wall1 - agg1) / runs; s = series1 / runs; a = (agg1 - series1) / runs
-    x = 2 * xbytes2 / runs; b = bytes2 / runs; bw = 1.25e9
+    x = 4 * xbytes2 / runs; b = bytes2 / runs; bw = 1.25e9
     printf "projection inputs (medians of %d; per run of this job):\n", r
     printf "  fixed cost of a job: %.3f s with 1 rank, %.3f s with 2 (whole mpirun command, 2 runs; with --mca pml ob1: %.3f s and %.3f s)\n", fixed1, fixed2, median(o1, m1), median(o2, m2)
     printf "  work per run: %.3f ms (1 rank); folding per run: %.3f ms of series, shared among the ranks, and %.4f ms on rank 0 alone\n", w * 1e3, s * 1e3, a * 1e3

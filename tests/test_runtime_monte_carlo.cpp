@@ -365,26 +365,36 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
     MonteCarloOptions options = scenario.options;
     options.record_points = records;
     const MonteCarloResult single = run_monte_carlo(scheme, observation, x0, scenario.filters, options);
-    const std::vector<MonteCarloResult> results = pfgen_test::SharedRuns(3).run({9, 0, 14}, [&](RunShare share) {
+    const auto job = [&](RunShare share) {
       MonteCarloOptions part = options;
       part.share = std::move(share);
       return run_monte_carlo(scheme, observation, x0, scenario.filters, part);
-    });
-    INFO("record_points = " << records);
-    const MonteCarloResult& folded = results[0];
-    CHECK_FALSE(results[1].folded);
-    CHECK_FALSE(results[2].folded);
-    REQUIRE(folded.folded);
-    CHECK(folded.timing.threads == 2 + 1 + 2);  // every process's threads
-    CHECK(folded.timing.truth_steps == single.timing.truth_steps);
-    CHECK(folded.timing.exchanged_bytes > 0);
-    CHECK(folded.timing.gathered_bytes > 0);
-    CHECK(bitwise_equal(flatten(folded), flatten(single)));
-    CHECK(format_summary_table(folded, {"x"}) == format_summary_table(single, {"x"}));
-    CHECK(format_results_csv(folded, {"x"}) == format_results_csv(single, {"x"}));
-    CHECK(format_criterion_csv(folded) == format_criterion_csv(single));
-    CHECK(format_stops_csv(folded) == format_stops_csv(single));
+    };
+    // In blocks, and dealt in chunks: of 4 (the 23 runs end in a short chunk, process 2's), and of
+    // 10 (process 2 gets none).
+    for (const std::size_t chunk : {std::size_t{0}, std::size_t{4}, std::size_t{10}}) {
+      const std::vector<MonteCarloResult> results =
+          chunk == 0 ? pfgen_test::SharedRuns(3).run({9, 0, 14}, job) : pfgen_test::SharedRuns(3).deal(23, chunk, job);
+      INFO("record_points = " << records << ", chunk = " << chunk);
+      const MonteCarloResult& folded = results[0];
+      CHECK_FALSE(results[1].folded);
+      CHECK_FALSE(results[2].folded);
+      REQUIRE(folded.folded);
+      CHECK(folded.timing.threads == (chunk == 0 ? 2u + 1 + 2 : 2u + 2 + 2));  // every process's threads
+      CHECK(folded.timing.truth_steps == single.timing.truth_steps);
+      CHECK(folded.timing.exchanged_bytes > 0);
+      CHECK(folded.timing.gathered_bytes > 0);
+      CHECK(bitwise_equal(flatten(folded), flatten(single)));
+      CHECK(format_summary_table(folded, {"x"}) == format_summary_table(single, {"x"}));
+      CHECK(format_results_csv(folded, {"x"}) == format_results_csv(single, {"x"}));
+      CHECK(format_criterion_csv(folded) == format_criterion_csv(single));
+      CHECK(format_stops_csv(folded) == format_stops_csv(single));
+    }
   }
+  CHECK(pfgen_runtime::dealt_runs(23, 4, 0, 3) == 8);  // chunks 0 and 3
+  CHECK(pfgen_runtime::dealt_runs(23, 4, 2, 3) == 7);  // chunks 2 and 5 (3 runs)
+  CHECK(pfgen_runtime::dealt_runs(23, 10, 2, 3) == 3);
+  CHECK(pfgen_runtime::dealt_runs(5, 10, 1, 3) == 0);
   CHECK(format_results_csv(whole, {"x"}) ==
         format_results_csv(pfgen_test::SharedRuns(1).run({23}, [&](RunShare share) {
           MonteCarloOptions part = scenario.options;
@@ -409,13 +419,27 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
     return std::vector<std::vector<char>>{mine};
   };
   CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, cut), Catch::Contains("malformed"));
-  MonteCarloOptions cut_slice = scenario.options;
-  cut_slice.share = alone(0, 23);
-  cut_slice.share->exchange = [](std::vector<std::vector<char>> outgoing) {
-    outgoing[0].resize(outgoing[0].size() / 2);
-    return outgoing;
-  };
-  CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, cut_slice), Catch::Contains("malformed"));
+  {  // a slice cut short on its way from process 1 to process 0 (a process's own does not travel)
+    pfgen_test::SharedRuns processes(2);
+    processes.tamper_exchange = [](std::size_t from, std::size_t to, std::vector<char>& block) {
+      if (from == 1 && to == 0) block.resize(block.size() / 2);
+    };
+    CHECK_THROWS_WITH(processes.deal(23, 4,
+                                     [&](RunShare share) {
+                                       MonteCarloOptions part = scenario.options;
+                                       part.share = std::move(share);
+                                       return run_monte_carlo(scheme, observation, x0, scenario.filters, part);
+                                     }),
+                      Catch::Contains("malformed"));
+  }
+  MonteCarloOptions dealt_wrong = scenario.options;  // dealt in chunks of 4, one process makes all 23
+  dealt_wrong.share = alone(0, 22);
+  dealt_wrong.share->chunk = 4;
+  CHECK_THROWS_AS(run_monte_carlo(scheme, observation, x0, scenario.filters, dealt_wrong), std::invalid_argument);
+  dealt_wrong.share->count = 23;
+  dealt_wrong.share->gather = [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine, mine}; };
+  CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, dealt_wrong),
+                    Catch::Contains("2 processes' shares arrived, not 1"));
   MonteCarloOptions missing = scenario.options;
   missing.share = alone(0, 23);
   missing.share->gather = [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine, mine}; };
@@ -452,18 +476,27 @@ TEST_CASE("monte carlo: corrupted shares are folded or refused, never read out o
       else
         bytes[at] = static_cast<char>(bytes[at] ^ (1 << std::uniform_int_distribution<int>(0, 7)(rng)));
     };
-    MonteCarloOptions options = scenario.options;
-    options.share = RunShare{0, 5, 0, 1,
-                             [&](std::vector<std::vector<char>> outgoing) {
-                               if (in_exchange) corrupt(outgoing[0]);
-                               return outgoing;
-                             },
-                             [&](std::vector<char> mine) {
-                               if (!in_exchange) corrupt(mine);
-                               return std::vector<std::vector<char>>{mine};
-                             }};
+    // Two processes (a process's own slice does not travel): process 1's block to process 0 is
+    // corrupted, in the exchange or in the gather.
+    pfgen_test::SharedRuns processes(2);
+    if (in_exchange)
+      processes.tamper_exchange = [&](std::size_t from, std::size_t to, std::vector<char>& block) {
+        if (from == 1 && to == 0) corrupt(block);
+      };
+    else
+      processes.tamper_gather = [&](std::size_t from, std::vector<char>& block) {
+        if (from == 1) corrupt(block);
+      };
+    const auto job = [&](RunShare share) {
+      MonteCarloOptions options = scenario.options;
+      options.share = std::move(share);
+      return run_monte_carlo(scheme, observation, x0, scenario.filters, options);
+    };
     try {
-      (void)run_monte_carlo(scheme, observation, x0, scenario.filters, options);
+      if (trial % 4 < 2)
+        (void)processes.run({3, 2}, job);
+      else
+        (void)processes.deal(5, 2, job);
       ++folded;
     } catch (const std::runtime_error& error) {
       CHECK(std::string(error.what()).find("monte carlo: ") == 0);

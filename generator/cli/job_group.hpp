@@ -38,8 +38,9 @@ class JobGroup {
   // step that fails on every process (with `problem` on the one that speaks) unless `job`, a
   // text that names the job, is the same on all of them.
   virtual void check_same_job(const std::string& job, const std::string& problem) = 0;
-  // This process's share of `runs` runs; nullopt: all of them.
-  virtual std::optional<pfgen_runtime::RunShare> share(std::size_t runs) = 0;
+  // This process's share of `runs` runs, dealt in chunks of `chunk` (RunShare::chunk); nullopt: all
+  // of them.
+  virtual std::optional<pfgen_runtime::RunShare> share(std::size_t runs, std::size_t chunk) = 0;
 };
 
 class LocalJob final : public JobGroup {
@@ -48,7 +49,7 @@ class LocalJob final : public JobGroup {
   void together(const std::function<void()>& step) override { step(); }
   void build_in_turn(const std::function<void()>& build) override { build(); }
   void check_same_job(const std::string&, const std::string&) override {}
-  std::optional<pfgen_runtime::RunShare> share(std::size_t) override { return std::nullopt; }
+  std::optional<pfgen_runtime::RunShare> share(std::size_t, std::size_t) override { return std::nullopt; }
 };
 
 }  // namespace pfgen::cli

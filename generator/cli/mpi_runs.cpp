@@ -136,13 +136,12 @@ void MpiJob::check_same_job(const std::string& job, const std::string& problem) 
   throw FailedElsewhere();
 }
 
-std::optional<pfgen_runtime::RunShare> MpiJob::share(std::size_t runs) {
+std::optional<pfgen_runtime::RunShare> MpiJob::share(std::size_t runs, std::size_t chunk) {
   if (size_ == 1) return std::nullopt;  // one rank makes and folds every run, as one process does
   const auto ranks = static_cast<std::size_t>(size_), rank = static_cast<std::size_t>(rank_);
-  // Blocks of runs / K runs, the first runs % K of them one run longer.
   pfgen_runtime::RunShare share;
-  share.first = runs / ranks * rank + std::min(rank, runs % ranks);
-  share.count = runs / ranks + (rank < runs % ranks ? 1 : 0);
+  share.chunk = std::max<std::size_t>(1, chunk);
+  share.count = pfgen_runtime::dealt_runs(runs, share.chunk, rank, ranks);
   share.process = rank;
   share.processes = ranks;
   share.exchange = [this](std::vector<std::vector<char>> outgoing) { return exchange(std::move(outgoing)); };

@@ -1,11 +1,12 @@
 #pragma once
 // `mpirun -n K pfgen simulate ...` (built with -DPFGEN_WITH_MPI=ON; this file is compiled only
 // then): the K ranks make one job. Every rank reads the model and derives alike; one rank per
-// machine compiles the plugin into that machine's cache before the others load it; rank r makes
-// the contiguous block of runs [r R / K, (r + 1) R / K). The ranks then exchange their runs' record
-// series, each folding a range of record times, and rank 0 gathers the blocks of runs and folded
-// rows, which in rank order are in run order, and folds the rest and writes the result exactly as
-// one process would.
+// machine compiles the plugin into that machine's cache before the others load it; the runs are
+// dealt to the ranks in chunks of a batch (RunShare::chunk: chunk c to rank c mod K), so that every
+// rank gets runs from all along the job and none is left the slower part of it. The ranks then
+// exchange their runs' record series, each folding a range of record times, and rank 0 gathers the
+// runs and folded rows, deals the runs back into run order, folds the rest and writes the result
+// exactly as one process would.
 // Only rank 0 writes stdout, files and stderr's messages. A step that fails on any rank stops
 // every rank, the first failing rank reporting its error (no rank waits for one that gave up).
 #include <optional>
@@ -32,7 +33,7 @@ class MpiJob final : public JobGroup {
   void together(const std::function<void()>& step) override;
   void build_in_turn(const std::function<void()>& build) override;
   void check_same_job(const std::string& job, const std::string& problem) override;
-  std::optional<pfgen_runtime::RunShare> share(std::size_t runs) override;
+  std::optional<pfgen_runtime::RunShare> share(std::size_t runs, std::size_t chunk) override;
 
  private:
   // The lowest rank whose step failed (`ok` false here), or the number of ranks when none did.

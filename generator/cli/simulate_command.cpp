@@ -401,7 +401,8 @@ SimulationOutcome simulate(const SimulateOptions& options, JobGroup& group) {
   const pfgen_runtime::SimulationPlugin& plugin = *loaded;
 
   // This process's runs (all of them but in an MPI job); the progress bar counts those.
-  std::optional<pfgen_runtime::RunShare> share = group.share(settings.runs);
+  // Dealt in chunks of a batch, so that a thread's batches keep their lanes full.
+  std::optional<pfgen_runtime::RunShare> share = group.share(settings.runs, options.batch);
   ProgressBar progress("simulate", !speaks ? 0 : share ? share->count : settings.runs);
   std::optional<pfgen_runtime::MonteCarloResult> folded;
   group.together([&] {

@@ -8,10 +8,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <iterator>
 #include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "monte_carlo/aggregate.hpp"
 #include "monte_carlo/clock.hpp"
@@ -48,12 +51,17 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
   if (options.batch == 0) throw std::invalid_argument("monte carlo: batch must be at least 1");
   if (options.record_points == 0) throw std::invalid_argument("monte carlo: record_points must be at least 1");
   if (options.shown_run >= options.runs) throw std::invalid_argument("monte carlo: the shown run is not among the runs");
-  if (options.share && (options.share->first > options.runs || options.share->count > options.runs - options.share->first ||
-                        options.share->process >= options.share->processes || !options.share->exchange ||
-                        !options.share->gather))
-    throw std::invalid_argument(
-        "monte carlo: a process's share must be runs among the job's, of a process among the job's, with an exchange "
-        "and a gather");
+  if (options.share) {
+    const RunShare& share = *options.share;
+    const bool runs_among =
+        share.chunk == 0 ? share.first <= options.runs && share.count <= options.runs - share.first
+                         : share.process < share.processes &&
+                               share.count == dealt_runs(options.runs, share.chunk, share.process, share.processes);
+    if (!runs_among || share.process >= share.processes || !share.exchange || !share.gather)
+      throw std::invalid_argument(
+          "monte carlo: a process's share must be runs among the job's, of a process among the job's, with an "
+          "exchange and a gather");
+  }
   std::set<std::string> names;
   for (const FilterModel& filter : filters) {
     if (filter.name.empty() || !names.insert(filter.name).second)
@@ -96,7 +104,48 @@ void check_share_count(std::size_t blocks, std::size_t runs, const RunShare& sha
                              std::to_string(expected));
 }
 
+// The runs each process sent (per_process, in process order), in run order: one block after the
+// other, or dealt back a chunk at a time. Throws when a process sent more or fewer than its runs.
+std::vector<RunResult> in_run_order(std::vector<std::vector<RunResult>> per_process, const RunShare& share,
+                                    std::size_t runs) {
+  std::vector<RunResult> ordered;
+  ordered.reserve(runs);
+  const auto take = [&ordered](std::vector<RunResult>& from, std::size_t at, std::size_t count) {
+    std::move(from.begin() + static_cast<std::ptrdiff_t>(at), from.begin() + static_cast<std::ptrdiff_t>(at + count),
+              std::back_inserter(ordered));
+  };
+  if (share.chunk == 0) {
+    for (std::vector<RunResult>& block : per_process) take(block, 0, block.size());
+    return ordered;
+  }
+  if (per_process.size() != share.processes)
+    throw std::runtime_error("monte carlo: " + std::to_string(per_process.size()) + " processes' shares arrived, not " +
+                             std::to_string(share.processes));
+  for (std::size_t process = 0; process < per_process.size(); ++process) {
+    const std::size_t dealt = dealt_runs(runs, share.chunk, process, share.processes);
+    if (per_process[process].size() != dealt)
+      throw std::runtime_error("monte carlo: process " + std::to_string(process) + " sent " +
+                               std::to_string(per_process[process].size()) + " runs, not the " +
+                               std::to_string(dealt) + " dealt to it");
+  }
+  std::vector<std::size_t> taken(per_process.size(), 0);
+  for (std::size_t start = 0, c = 0; start < runs; start += share.chunk, ++c) {
+    const std::size_t process = c % share.processes, count = std::min(share.chunk, runs - start);
+    take(per_process[process], taken[process], count);
+    taken[process] += count;
+  }
+  return ordered;
+}
+
 }  // namespace
+
+std::size_t dealt_runs(std::size_t runs, std::size_t chunk, std::size_t process, std::size_t processes) {
+  if (chunk == 0 || processes == 0) throw std::invalid_argument("monte carlo: runs are dealt in chunks of >= 1 run");
+  const std::size_t chunks = runs / chunk, rest = runs % chunk;  // whole chunks, then a shorter last one
+  std::size_t count = (chunks / processes + (process < chunks % processes ? 1 : 0)) * chunk;
+  if (rest != 0 && chunks % processes == process) count += rest;
+  return count;
+}
 
 double EventSummary::earliest() const {
   double t = nan;
@@ -147,15 +196,28 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   validate(scheme, observation, measurement, x0, filters, options);
   const Plan plan = make_plan(scheme.system().n, measurement ? measurement->p() : observation.p(), options);
 
-  // This process's runs: all of them, or its share (the runs first .. first + count - 1).
-  const std::size_t first = options.share ? options.share->first : 0;
+  // This process's runs: all of them, or its share (a block, or the chunks dealt to it).
   const std::size_t count = options.share ? options.share->count : options.runs;
+  const std::size_t chunk = options.share ? options.share->chunk : 0;
+  // The job's number of this process's k-th run.
+  const auto run_number = [&options, chunk](std::size_t k) -> std::size_t {
+    if (!options.share) return k;
+    if (chunk == 0) return options.share->first + k;
+    return (k / chunk * options.share->processes + options.share->process) * chunk + k % chunk;
+  };
   std::vector<RunResult> runs(count);
   // The runs in batches of consecutive runs, a batch to a worker at a time; smaller batches where
-  // there would not be one for every thread.
+  // there would not be one for every thread, and none across the end of a dealt chunk (the next
+  // run of this process is then not the next run of the job).
   const std::size_t per_thread = (count + options.threads - 1) / options.threads;
   const std::size_t batch = std::max<std::size_t>(1, std::min({options.batch, per_thread, batch_limit(plan)}));
-  const std::size_t batches = count == 0 ? 0 : (count + batch - 1) / batch;
+  std::vector<std::pair<std::size_t, std::size_t>> batch_runs;  // (this process's first run, count)
+  for (std::size_t k = 0; k < count;) {
+    const std::size_t size = std::min({batch, count - k, chunk == 0 ? count : chunk - k % chunk});
+    batch_runs.emplace_back(k, size);
+    k += size;
+  }
+  const std::size_t batches = batch_runs.size();
   const unsigned threads = static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(options.threads, batches)));
   std::vector<std::unique_ptr<Worker>> workers(threads);
   std::atomic<std::size_t> finished{0};
@@ -164,8 +226,8 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     return workers[thread].get();
   };
   parallel_for(batches, threads, make_worker, [&](std::size_t b, Worker* worker) {
-    const std::size_t k = b * batch, size = std::min(batch, count - k);
-    worker->run(first + k, size, runs.data() + k);
+    const auto [k, size] = batch_runs[b];
+    worker->run(run_number(k), size, runs.data() + k);
     for (std::size_t r = 0; r < size; ++r) {
       const std::size_t done = finished.fetch_add(1) + 1;
       if (options.on_run_finished) options.on_run_finished(done, count);
@@ -214,18 +276,22 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     // each sends each its runs' values there, and receives, in process order (which is run
     // order), every run's values at its own range.
     const auto range = [&](std::size_t process) { return series_range(plan.records.size(), process, share.processes); };
-    std::vector<std::vector<char>> slices;
+    // This process's own slice does not travel: it is taken from its runs directly below.
+    std::vector<std::vector<char>> slices(share.processes);
     for (std::size_t process = 0; process < share.processes; ++process)
-      slices.push_back(encode_series_slice(runs, range(process), plan.n));
+      if (process != share.process) slices[process] = encode_series_slice(runs, range(process), plan.n);
     const Clock::time_point exchange_start = Clock::now();
     const std::vector<std::vector<char>> received = share.exchange(std::move(slices));
     timing.exchange_seconds = seconds_since(exchange_start);
-    std::vector<RunResult> slice;
-    slice.reserve(options.runs);
-    for (const std::vector<char>& block : received) {
-      timing.exchanged_bytes += block.size();
-      decode_series_slice(block, filters.size(), range(share.process), plan.n, slice);
+    std::vector<std::vector<RunResult>> sent(received.size());
+    for (std::size_t process = 0; process < received.size(); ++process) {
+      timing.exchanged_bytes += received[process].size();
+      if (process == share.process)
+        append_series_slice(runs, range(share.process), plan.n, sent[process]);
+      else
+        decode_series_slice(received[process], filters.size(), range(share.process), plan.n, sent[process]);
     }
+    std::vector<RunResult> slice = in_run_order(std::move(sent), share, options.runs);
     check_share_count(received.size(), slice.size(), share, options.runs);
     const Clock::time_point fold_start = Clock::now();
     fold_series(plan, filters.size(), slice, range(share.process), reference, threads, result.series);
@@ -236,7 +302,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
       RunResult& run = runs[k];
       for (FilterRunResult& filter : run.filters) filter.error_record = {};
       run.reference.error_record = {};
-      if (first + k == options.shown_run) continue;
+      if (run_number(k) == options.shown_run) continue;
       run.truth_record = {};
       for (FilterRunResult& filter : run.filters) filter.reference_record = {};
     }
@@ -253,10 +319,12 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
       timing.wall_seconds = seconds_since(wall_start);
       return result;
     }
-    runs.clear();
     MonteCarloTiming all = no_timing();  // every process's threads and times
-    for (std::size_t process = 0; process < blocks.size() && process < share.processes; ++process)
-      decode_series_rows(decode_share(blocks[process], filters.size(), runs, all), range(process), result.series);
+    std::vector<std::vector<RunResult>> made(std::min(blocks.size(), share.processes));
+    for (std::size_t process = 0; process < made.size(); ++process)
+      decode_series_rows(decode_share(blocks[process], filters.size(), made[process], all), range(process),
+                         result.series);
+    runs = in_run_order(std::move(made), share, options.runs);
     check_share_count(blocks.size(), runs.size(), share, options.runs);
     all.exchange_seconds = timing.exchange_seconds;
     all.exchanged_bytes = timing.exchanged_bytes;

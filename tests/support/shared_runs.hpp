@@ -1,8 +1,11 @@
 #pragma once
 // The processes of one job whose runs are shared among them (MonteCarloOptions::share, what
 // `mpirun pfgen simulate` makes of its ranks), here as threads of this process: process k makes
-// the runs [first_k, first_k + counts[k]) and meets the others in the exchange and the gather as
-// ranks do. A process that fails releases the others (they throw), so a test fails, not hangs.
+// the runs [first_k, first_k + counts[k]) (run) or the chunks dealt to it (deal), and meets the
+// others in the exchange and the gather as ranks do. A process that fails releases the others
+// (they throw), so a test fails, not hangs. The tamper hooks, when set, see every block on its way
+// (in the exchange, from process `from` to process `to`; in the gather, from `from` to process 0)
+// and may change it.
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -22,22 +25,42 @@ class SharedRuns {
 
   // Runs job(share) on one thread per process, shares of `counts` runs in process order; the
   // results in process order. Rethrows the first failure.
-  std::vector<pfgen_runtime::MonteCarloResult> run(
-      const std::vector<std::size_t>& counts,
-      const std::function<pfgen_runtime::MonteCarloResult(pfgen_runtime::RunShare)>& job) {
+  using Job = std::function<pfgen_runtime::MonteCarloResult(pfgen_runtime::RunShare)>;
+  std::vector<pfgen_runtime::MonteCarloResult> run(const std::vector<std::size_t>& counts, const Job& job) {
+    std::vector<pfgen_runtime::RunShare> shares(processes_);
+    std::size_t first = 0;
+    for (std::size_t k = 0; k < processes_; ++k) {
+      shares[k].first = first;
+      shares[k].count = counts[k];
+      first += counts[k];
+    }
+    return run_shares(std::move(shares), job);
+  }
+
+  // `runs` runs dealt in chunks of `chunk` (RunShare::chunk).
+  std::vector<pfgen_runtime::MonteCarloResult> deal(std::size_t runs, std::size_t chunk, const Job& job) {
+    std::vector<pfgen_runtime::RunShare> shares(processes_);
+    for (std::size_t k = 0; k < processes_; ++k) {
+      shares[k].chunk = chunk;
+      shares[k].count = pfgen_runtime::dealt_runs(runs, chunk, k, processes_);
+    }
+    return run_shares(std::move(shares), job);
+  }
+
+  std::function<void(std::size_t from, std::size_t to, std::vector<char>& block)> tamper_exchange;
+  std::function<void(std::size_t from, std::vector<char>& block)> tamper_gather;
+
+ private:
+  std::vector<pfgen_runtime::MonteCarloResult> run_shares(std::vector<pfgen_runtime::RunShare> shares, const Job& job) {
     std::vector<pfgen_runtime::MonteCarloResult> results(processes_);
     std::vector<std::exception_ptr> errors(processes_);
     std::vector<std::thread> threads;
-    std::size_t first = 0;
     for (std::size_t k = 0; k < processes_; ++k) {
-      pfgen_runtime::RunShare share;
-      share.first = first;
-      share.count = counts[k];
+      pfgen_runtime::RunShare share = std::move(shares[k]);
       share.process = k;
       share.processes = processes_;
       share.exchange = [this, k](std::vector<std::vector<char>> outgoing) { return exchange(k, std::move(outgoing)); };
       share.gather = [this, k](std::vector<char> mine) { return gather(k, std::move(mine)); };
-      first += counts[k];
       threads.emplace_back([&, k, share] {
         try {
           results[k] = job(share);
@@ -55,8 +78,9 @@ class SharedRuns {
     return results;
   }
 
- private:
   std::vector<std::vector<char>> exchange(std::size_t k, std::vector<std::vector<char>> outgoing) {
+    if (tamper_exchange)
+      for (std::size_t to = 0; to < outgoing.size(); ++to) tamper_exchange(k, to, outgoing[to]);
     outboxes_[k] = std::move(outgoing);
     meet();
     std::vector<std::vector<char>> incoming;
@@ -66,6 +90,7 @@ class SharedRuns {
   }
 
   std::vector<std::vector<char>> gather(std::size_t k, std::vector<char> mine) {
+    if (tamper_gather) tamper_gather(k, mine);
     gathered_[k] = std::move(mine);
     meet();
     return k == 0 ? gathered_ : std::vector<std::vector<char>>{};

@@ -33,21 +33,32 @@
 
 namespace pfgen_runtime {
 
+// How many of `runs` runs process `process` of `processes` makes when they are dealt in chunks of
+// `chunk` runs (chunk >= 1), chunk c to process c mod processes.
+std::size_t dealt_runs(std::size_t runs, std::size_t chunk, std::size_t process, std::size_t processes);
+
 // The runs of one job shared among processes (the MPI ranks of `pfgen simulate`, whose MPI code
-// lives in the program, not here): this process, number `process` of `processes`, makes runs
-// [first, first + count) only. Every process then calls the same two collectives, in this order:
+// lives in the program, not here): this process, number `process` of `processes`, makes `count`
+// of them: with `chunk` 0 the block [first, first + count); otherwise the runs dealt to it in
+// chunks of `chunk` consecutive runs, chunk c to process c mod processes (count is then
+// dealt_runs(...), and first is not read). Dealt, every process gets runs from all along the job:
+// runs whose cost changes with their number (their random streams do) no longer leave one process
+// the slower block. Every process then calls the same two collectives, in this order:
 // - exchange: each process hands one block per process (outgoing[j] for process j) and gets back,
-//   in process order, the blocks every process addressed to it. Each process folds the series at
-//   its own range of record times from them, so that the largest part of folding is shared.
+//   in process order, the blocks every process addressed to it (its own, empty: a process's values
+//   at its own range do not travel). Each process folds the series at its own range of record times
+//   from them, so that the largest part of folding is shared.
 // - gather: each process hands one block (its runs' results and its folded rows); process 0 gets
 //   every process's, in process order, and the others get nothing.
-// The processes' runs, in process order, must be runs 0 .. runs - 1. Every value is folded in run
-// order exactly as one process folds it, so the result is bitwise the same.
+// The processes' runs, in process order (blocks) or dealt back chunk by chunk, must be runs
+// 0 .. runs - 1. Every value is folded in run order exactly as one process folds it, so the result
+// is bitwise the same.
 struct RunShare {
   std::size_t first = 0, count = 0;
   std::size_t process = 0, processes = 1;
   std::function<std::vector<std::vector<char>>(std::vector<std::vector<char>> outgoing)> exchange;
   std::function<std::vector<std::vector<char>>(std::vector<char> mine)> gather;
+  std::size_t chunk = 0;
 };
 
 // The truth's initial state drawn per run from N(mean, covariance) instead of a fixed x0: the

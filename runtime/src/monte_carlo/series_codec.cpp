@@ -112,6 +112,30 @@ void decode_series_slice(const std::vector<char>& bytes, std::size_t filters, Re
   if (!reader.done()) ByteReader::fail();
 }
 
+void append_series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n,
+                         std::vector<RunResult>& slice) {
+  // put_rows' rows, or nothing for an empty vector.
+  const auto rows = [&](const std::vector<double>& values, std::vector<double>& to) {
+    if (values.empty()) return;
+    if (values.size() < range.last * n) throw std::logic_error("monte carlo: a run's record series is shorter than its plan");
+    const auto from = values.begin() + static_cast<std::ptrdiff_t>(range.first * n);
+    to.assign(from, from + static_cast<std::ptrdiff_t>(range.size() * n));
+  };
+  for (const RunResult& run : runs) {
+    RunResult& copy = slice.emplace_back();
+    copy.truth_last = run.truth_last;
+    copy.filters.resize(run.filters.size());
+    for (std::size_t f = 0; f < run.filters.size(); ++f) {
+      copy.filters[f].last = run.filters[f].last;
+      rows(run.filters[f].error_record, copy.filters[f].error_record);
+      rows(run.filters[f].reference_record, copy.filters[f].reference_record);
+    }
+    copy.reference.last = run.reference.last;
+    rows(run.truth_record, copy.truth_record);
+    rows(run.reference.error_record, copy.reference.error_record);
+  }
+}
+
 std::vector<char> encode_series_rows(const MonteCarloSeries& series, RecordRange range) {
   ByteWriter writer;
   writer.put_magic(kRowsMagic);

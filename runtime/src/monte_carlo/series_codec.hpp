@@ -25,6 +25,11 @@ std::vector<char> encode_series_slice(const std::vector<RunResult>& runs, Record
 void decode_series_slice(const std::vector<char>& bytes, std::size_t filters, RecordRange range, std::size_t n,
                          std::vector<RunResult>& runs);
 
+// Appends to `slice` what decode_series_slice(encode_series_slice(runs, range, n), ...) appends,
+// without the bytes in between: a process's own runs at its own range.
+void append_series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n,
+                         std::vector<RunResult>& slice);
+
 // The rows `range` of the series' statistics across runs (what fold_series fills).
 std::vector<char> encode_series_rows(const MonteCarloSeries& series, RecordRange range);
 
