@@ -4,7 +4,8 @@
 // The Gaussian-closure kinds' P drift is E[J] P + P E[J]^T + E[g g^T] - K (A P), K the gain. Written
 // out per entry, as the straight-line forms do, each product is its own scalar expression: the code
 // is as long as its operation count, and compilers keep it scalar. Written as products of full
-// blocks (E[J] P once, read back transposed for P E[J]^T; H = A P; K^T = M H where the gain is
+// blocks (E[J] P once, read back transposed for P E[J]^T, below kFullCombineBelow from a copy
+// transposed entry by entry; H = A P; K^T = M H where the gain is
 // P A^T M, M = R^-1 for the mean-square kinds), the same operations are a few loops whose inner
 // trip counts are n, which compilers vectorise. For a dense E[J] the loops do the straight-line
 // structured form's products (n^3 for E[J] P, where the straight-line form does n^2 (n + 1) / 2 twice
