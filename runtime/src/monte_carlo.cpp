@@ -105,7 +105,8 @@ void check_share_count(std::size_t blocks, std::size_t runs, const RunShare& sha
 }
 
 // The runs each process sent (per_process, in process order), in run order: one block after the
-// other, or dealt back a chunk at a time. Throws when a process sent more or fewer than its runs.
+// other, or dealt back a chunk at a time (then a process that sent more or fewer runs than were
+// dealt to it is refused; blocks are counted as a whole by check_share_count).
 std::vector<RunResult> in_run_order(std::vector<std::vector<RunResult>> per_process, const RunShare& share,
                                     std::size_t runs) {
   std::vector<RunResult> ordered;
@@ -273,8 +274,8 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   } else {
     const RunShare& share = *options.share;
     // Every process folds the series at its range of record times, from every process's runs:
-    // each sends each its runs' values there, and receives, in process order (which is run
-    // order), every run's values at its own range.
+    // each sends each its runs' values there, and receives, in process order, every run's values
+    // at its own range, which it puts back in run order.
     const auto range = [&](std::size_t process) { return series_range(plan.records.size(), process, share.processes); };
     // This process's own slice does not travel: it is taken from its runs directly below.
     std::vector<std::vector<char>> slices(share.processes);
@@ -306,8 +307,8 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
       run.truth_record = {};
       for (FilterRunResult& filter : run.filters) filter.reference_record = {};
     }
-    // Every process's runs, in run order, and the rows each folded, on the one that writes the
-    // result; the others stop here.
+    // Every process's runs and the rows each folded, on the one that writes the result (which puts
+    // the runs back in run order); the others stop here.
     std::vector<char> mine = encode_share(runs, timing, encode_series_rows(result.series, range(share.process)));
     const Clock::time_point gather_start = Clock::now();
     const std::vector<std::vector<char>> blocks = share.gather(std::move(mine));
