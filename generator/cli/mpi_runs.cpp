@@ -143,7 +143,8 @@ std::optional<pfgen_runtime::RunShare> MpiJob::share(std::size_t runs, std::size
   if (size_ == 1) return std::nullopt;  // one rank makes and folds every run, as one process does
   const auto ranks = static_cast<std::size_t>(size_), rank = static_cast<std::size_t>(rank_);
   pfgen_runtime::RunShare share;
-  share.chunk = std::max<std::size_t>(1, chunk);
+  // At most runs / K, so that a large --batch still gives every rank runs.
+  share.chunk = std::max<std::size_t>(1, std::min(chunk, runs / ranks));
   share.count = pfgen_runtime::dealt_runs(runs, share.chunk, rank, ranks);
   share.process = rank;
   share.processes = ranks;

@@ -2,8 +2,9 @@
 // `mpirun -n K pfgen simulate ...` (built with -DPFGEN_WITH_MPI=ON; this file is compiled only
 // then): the K ranks make one job. Every rank reads the model and derives alike; one rank per
 // machine compiles the plugin into that machine's cache before the others load it; the runs are
-// dealt to the ranks in chunks of a batch (RunShare::chunk: chunk c to rank c mod K), so that every
-// rank gets runs from all along the job and none is left the slower part of it. The ranks then
+// dealt to the ranks in chunks of a batch, at most R / K runs (RunShare::chunk: chunk c to rank
+// c mod K), so that every rank gets runs from all along the job and none is left the slower part
+// of it. The ranks then
 // exchange their runs' record series, each folding a range of record times, and rank 0 gathers the
 // runs and folded rows, deals the runs back into run order, folds the rest and writes the result
 // exactly as one process would.
