@@ -12,8 +12,8 @@
 # and one 2-rank job of RUNS runs: the work per run (1 rank: wall minus aggregation, over the
 # runs), the series folding per run (shared among the ranks) and the rest of the folding (rank 0
 # alone), the bytes per run of the exchange (each rank receives the other ranks' runs' values at
-# its own record times: a quarter of every run's values with 2 ranks) and of the gather into rank 0. The projection for K ranks of one thread each over
-# many machines is
+# its own record times: a quarter of every run's values with 2 ranks) and of the gather into
+# rank 0. The projection for K ranks of one thread each over many machines is
 #   T(K) = fixed + R (w + s) / K + R x (K - 1) / (K^2 BW) + R b / BW + R a,
 # R runs, w work, s series folding, x exchanged and b gathered bytes, a rank 0's folding per run,
 # BW the bandwidth of each rank's link (assumed 1.25 GB/s, a 10 Gb/s network); printed for

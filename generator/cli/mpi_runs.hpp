@@ -4,10 +4,9 @@
 // machine compiles the plugin into that machine's cache before the others load it; the runs are
 // dealt to the ranks in chunks of a batch, at most R / K runs (RunShare::chunk: chunk c to rank
 // c mod K), so that every rank gets runs from all along the job and none is left the slower part
-// of it. The ranks then
-// exchange their runs' record series, each folding a range of record times, and rank 0 gathers the
-// runs and folded rows, deals the runs back into run order, folds the rest and writes the result
-// exactly as one process would.
+// of it. The ranks then exchange their runs' record series, each folding a range of record times,
+// and rank 0 gathers the runs and folded rows, deals the runs back into run order, folds the rest
+// and writes the result exactly as one process would.
 // Only rank 0 writes stdout, files and stderr's messages. A step that fails on any rank stops
 // every rank, the first failing rank reporting its error (no rank waits for one that gave up).
 #include <optional>

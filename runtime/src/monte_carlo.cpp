@@ -104,19 +104,22 @@ void check_share_count(std::size_t blocks, std::size_t runs, const RunShare& sha
                              std::to_string(expected));
 }
 
+// The job's number of the k-th run dealt to process `process` (share.chunk > 0): the process's
+// (k / chunk)-th chunk is the job's chunk (k / chunk) K + process.
+std::size_t dealt_run_number(const RunShare& share, std::size_t process, std::size_t k) {
+  return (k / share.chunk * share.processes + process) * share.chunk + k % share.chunk;
+}
+
 // The runs each process sent (per_process, in process order), in run order: one block after the
-// other, or dealt back a chunk at a time (then a process that sent more or fewer runs than were
-// dealt to it is refused; blocks are counted as a whole by check_share_count).
+// other, or dealt back (then a process that sent more or fewer runs than were dealt to it is
+// refused; blocks are counted as a whole by check_share_count).
 std::vector<RunResult> in_run_order(std::vector<std::vector<RunResult>> per_process, const RunShare& share,
                                     std::size_t runs) {
   std::vector<RunResult> ordered;
-  ordered.reserve(runs);
-  const auto take = [&ordered](std::vector<RunResult>& from, std::size_t at, std::size_t count) {
-    std::move(from.begin() + static_cast<std::ptrdiff_t>(at), from.begin() + static_cast<std::ptrdiff_t>(at + count),
-              std::back_inserter(ordered));
-  };
   if (share.chunk == 0) {
-    for (std::vector<RunResult>& block : per_process) take(block, 0, block.size());
+    ordered.reserve(runs);
+    for (std::vector<RunResult>& block : per_process)
+      std::move(block.begin(), block.end(), std::back_inserter(ordered));
     return ordered;
   }
   if (per_process.size() != share.processes)
@@ -129,12 +132,11 @@ std::vector<RunResult> in_run_order(std::vector<std::vector<RunResult>> per_proc
                                std::to_string(per_process[process].size()) + " runs, not the " +
                                std::to_string(dealt) + " dealt to it");
   }
-  std::vector<std::size_t> taken(per_process.size(), 0);
-  for (std::size_t start = 0, c = 0; start < runs; start += share.chunk, ++c) {
-    const std::size_t process = c % share.processes, count = std::min(share.chunk, runs - start);
-    take(per_process[process], taken[process], count);
-    taken[process] += count;
-  }
+  // Each process sent as many runs as were dealt to it, so every run number below is taken once.
+  ordered.resize(runs);
+  for (std::size_t process = 0; process < per_process.size(); ++process)
+    for (std::size_t k = 0; k < per_process[process].size(); ++k)
+      ordered[dealt_run_number(share, process, k)] = std::move(per_process[process][k]);
   return ordered;
 }
 
@@ -203,8 +205,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   // The job's number of this process's k-th run.
   const auto run_number = [&options, chunk](std::size_t k) -> std::size_t {
     if (!options.share) return k;
-    if (chunk == 0) return options.share->first + k;
-    return (k / chunk * options.share->processes + options.share->process) * chunk + k % chunk;
+    return chunk == 0 ? options.share->first + k : dealt_run_number(*options.share, options.share->process, k);
   };
   std::vector<RunResult> runs(count);
   // The runs in batches of consecutive runs, a batch to a worker at a time; smaller batches where

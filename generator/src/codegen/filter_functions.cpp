@@ -118,9 +118,10 @@ FunctionCode written(const BuiltFunction& built, const std::string& target, cons
   code.body = emitter.function_body(built.graph, built.roots,
                                     signature(built.function, names, built.layout, names.work),
                                     built.declaration_order, shared);
-  code.body.statements = emitter.full_P(*built.loops, loop_names(names)) + "  " + emitter.scalar_type() + " " +
-                         names.work + "[" + std::to_string(built.loops->work_size) + "];\n" + code.body.statements +
-                         emitter.p_drift_loops(*built.loops, loop_names(names));
+  const PDriftLoopNames loop = loop_names(names);
+  code.body.statements = emitter.full_P(*built.loops, loop) + "  " + emitter.scalar_type() + " " + names.work + "[" +
+                         std::to_string(built.loops->work_size) + "];\n" + code.body.statements +
+                         emitter.p_drift_loops(*built.loops, loop);
   return code;
 }
 

@@ -95,9 +95,6 @@ std::string CFamilyEmitter::p_drift_loops(const PDriftLoops& loops, const PDrift
     for (std::size_t r = 0; r < p; ++r) correction += (r ? " + " : "") + entry(K, r, i) + " * " + entry(H, r, j);
     sum += " - (" + correction + ")";
   }
-  const std::string rest = loops.rest ? " + " + at(w, loops.rest_offset, u) : "";
-  const std::string upper_loops = "  for (int " + i + " = 0, " + u + " = 0; " + i + " < " + N + "; ++" + i + ")\n" +
-                                  "    for (int " + j + " = " + i + "; " + j + " < " + N + "; ++" + j + ", ++" + u + ") ";
   if (loops.full_combine()) {
     text += "  " + T + " " + names.sum + "[" + std::to_string(n * n) + "];\n";
     text += "  " + loop(i, 0, n) + "\n    " + loop(j, 0, n) + " " + names.sum + "[" + i + " * " + N + " + " + j +
@@ -113,7 +110,10 @@ std::string CFamilyEmitter::p_drift_loops(const PDriftLoops& loops, const PDrift
                 (loops.rest ? " + " + w + "[" + std::to_string(loops.rest_offset + entry) + "]" : "") + ";\n";
       }
   } else {
-    text += upper_loops + at(names.out, n, u) + " = " + sum + rest + ";\n";
+    const std::string rest = loops.rest ? " + " + at(w, loops.rest_offset, u) : "";
+    text += "  for (int " + i + " = 0, " + u + " = 0; " + i + " < " + N + "; ++" + i + ")\n" + "    for (int " + j +
+            " = " + i + "; " + j + " < " + N + "; ++" + j + ", ++" + u + ") " + at(names.out, n, u) + " = " + sum +
+            rest + ";\n";
   }
   text += "  " + loop(i, 0, n) + " " + names.out + "[" + i + "] = " + w + "[" + i + "];\n";
   if (loops.gain_out && loops.full_combine()) {
