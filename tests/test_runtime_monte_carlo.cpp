@@ -9,12 +9,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <random>
 #include <regex>
@@ -370,17 +372,26 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
       part.share = std::move(share);
       return run_monte_carlo(scheme, observation, x0, scenario.filters, part);
     };
-    // In blocks, and dealt in chunks: of 4 (the 23 runs end in a short chunk, process 2's), and of
-    // 10 (process 2 gets none).
-    for (const std::size_t chunk : {std::size_t{0}, std::size_t{4}, std::size_t{10}}) {
-      const std::vector<MonteCarloResult> results =
-          chunk == 0 ? pfgen_test::SharedRuns(3).run({9, 0, 14}, job) : pfgen_test::SharedRuns(3).deal(23, chunk, job);
-      INFO("record_points = " << records << ", chunk = " << chunk);
+    // In blocks; dealt in chunks of 4 (the 23 runs end in a short chunk, process 2's) and of 10
+    // (process 2 gets none); handed out in chunks of 4 from a counter the processes share (a
+    // different assignment each time), and as scripts: the shown run 4 with process 2, and every
+    // chunk with process 1 (process 0, which folds, makes none).
+    const std::vector<std::pair<std::string, std::function<std::vector<MonteCarloResult>()>>> ways = {
+        {"blocks", [&] { return pfgen_test::SharedRuns(3).run({9, 0, 14}, job); }},
+        {"dealt by 4", [&] { return pfgen_test::SharedRuns(3).deal(23, 4, job); }},
+        {"dealt by 10", [&] { return pfgen_test::SharedRuns(3).deal(23, 10, job); }},
+        {"handed out by 4", [&] { return pfgen_test::SharedRuns(3).hand_out(23, 4, job); }},
+        {"handed out by 4, scripted", [&] { return pfgen_test::SharedRuns(3).hand_out(23, 4, job, {2, 2, 0, 1, 2, 0}); }},
+        {"handed out by 10, all to 1", [&] { return pfgen_test::SharedRuns(3).hand_out(23, 10, job, {1, 1, 1}); }},
+    };
+    for (const auto& [way, shared_job] : ways) {
+      const std::vector<MonteCarloResult> results = shared_job();
+      INFO("record_points = " << records << ", " << way);
       const MonteCarloResult& folded = results[0];
       CHECK_FALSE(results[1].folded);
       CHECK_FALSE(results[2].folded);
       REQUIRE(folded.folded);
-      CHECK(folded.timing.threads == (chunk == 0 ? 2u + 1 + 2 : 2u + 2 + 2));  // every process's threads
+      CHECK(folded.timing.threads == (way == "blocks" ? 2u + 1 + 2 : 2u + 2 + 2));  // every process's threads
       CHECK(folded.timing.truth_steps == single.timing.truth_steps);
       CHECK(folded.timing.exchanged_bytes > 0);
       CHECK(folded.timing.gathered_bytes > 0);
@@ -404,8 +415,11 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
 
   // Shares that miss runs, or bytes cut short, are refused rather than folded.
   const auto alone = [](std::size_t first, std::size_t count) {
-    RunShare share{first, count, 0, 1, [](std::vector<std::vector<char>> outgoing) { return outgoing; },
-                   [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine}; }};
+    RunShare share;
+    share.first = first;
+    share.count = count;
+    share.exchange = [](std::vector<std::vector<char>> outgoing) { return outgoing; };
+    share.gather = [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine}; };
     return share;
   };
   MonteCarloOptions gap = scenario.options;
@@ -440,6 +454,70 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
   dealt_wrong.share->gather = [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine, mine}; };
   CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, dealt_wrong),
                     Catch::Contains("2 processes' shares arrived, not 1"));
+  {  // Hand-outs that break the rules are refused; a run that fails stops the hand-out, not hangs it.
+    const auto handed = [&](std::function<std::vector<std::size_t>(ChunkFeed&)> hand_out) {
+      MonteCarloOptions options = scenario.options;
+      options.share = alone(0, 0);
+      options.share->chunk = 4;  // 6 chunks
+      options.share->hand_out = std::move(hand_out);
+      return options;
+    };
+    const auto give_all = [](ChunkFeed& feed, std::size_t chunks) {
+      for (std::size_t c = 0; c < chunks && !feed.stopped(); ++c) feed.give(c);
+    };
+    CHECK(format_results_csv(run_monte_carlo(scheme, observation, x0, scenario.filters, handed([&](ChunkFeed& feed) {
+                                               give_all(feed, 6);
+                                               return std::vector<std::size_t>(6, 0);
+                                             })),
+                             {"x"}) == format_results_csv(whole, {"x"}));
+    CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, handed([&](ChunkFeed& feed) {
+                                        give_all(feed, 6);
+                                        feed.give(2);
+                                        return std::vector<std::size_t>(6, 0);
+                                      })),
+                      "monte carlo: chunk 2 was handed out twice");
+    CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, handed([&](ChunkFeed& feed) {
+                                        feed.give(6);
+                                        return std::vector<std::size_t>(6, 0);
+                                      })),
+                      "monte carlo: chunk 6 was handed out, but the job has 6 chunks");
+    CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, handed([&](ChunkFeed& feed) {
+                                        give_all(feed, 5);
+                                        return std::vector<std::size_t>(6, 0);
+                                      })),
+                      "monte carlo: process 0 was given 5 chunks, and the hand-out's table says 6 (or other ones)");
+    CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, handed([&](ChunkFeed& feed) {
+                                        give_all(feed, 6);
+                                        return std::vector<std::size_t>{0, 0, 0, 0, 0, 1};
+                                      })),
+                      "monte carlo: the hand-out's table gives chunk 5 to process 1 of 1");
+    CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, handed([&](ChunkFeed& feed) {
+                                        give_all(feed, 6);
+                                        return std::vector<std::size_t>(5, 0);
+                                      })),
+                      "monte carlo: the hand-out's table has 5 chunks, not the job's 6");
+    CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters,
+                                      handed([](ChunkFeed&) -> std::vector<std::size_t> {
+                                        throw std::runtime_error("the hand-out failed");
+                                      })),
+                      "the hand-out failed");
+    // The third run's callback fails: the threads stop, the hand-out sees it and ends, the error
+    // reaches the caller.
+    MonteCarloOptions failing = handed([&](ChunkFeed& feed) {
+      for (std::size_t c = 0; c < 6 && !feed.stopped(); ++c) {
+        while (feed.waiting() > 0 && !feed.stopped()) feed.wait_below(1, std::chrono::milliseconds(1));
+        if (!feed.stopped()) feed.give(c);
+      }
+      return std::vector<std::size_t>(6, 0);
+    });
+    failing.on_run_finished = [](std::size_t done, std::size_t) {
+      if (done == 3) throw std::runtime_error("stopped at the third run");
+    };
+    CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, failing), "stopped at the third run");
+    MonteCarloOptions unchunked = handed([](ChunkFeed&) { return std::vector<std::size_t>{}; });
+    unchunked.share->chunk = 0;
+    CHECK_THROWS_AS(run_monte_carlo(scheme, observation, x0, scenario.filters, unchunked), std::invalid_argument);
+  }
   MonteCarloOptions missing = scenario.options;
   missing.share = alone(0, 23);
   missing.share->gather = [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine, mine}; };

@@ -9,6 +9,7 @@
 // and writes the result exactly as one process would.
 // Only rank 0 writes stdout, files and stderr's messages. A step that fails on any rank stops
 // every rank, the first failing rank reporting its error (no rank waits for one that gave up).
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -38,6 +39,11 @@ class MpiJob final : public JobGroup {
  private:
   // The lowest rank whose step failed (`ok` false here), or the number of ranks when none did.
   int lowest_failing(bool ok) const;
+  // RunShare::hand_out: rank 0 hands out the chunks, to itself and to the ranks that ask; the table
+  // of who was given which chunk then goes from rank 0 to every rank.
+  std::vector<std::size_t> hand_out(pfgen_runtime::ChunkFeed& feed, std::size_t chunks);
+  void serve_chunks(pfgen_runtime::ChunkFeed& feed, std::vector<std::uint64_t>& owners);
+  void ask_for_chunks(pfgen_runtime::ChunkFeed& feed);
   std::vector<std::vector<char>> exchange(std::vector<std::vector<char>> outgoing);
   std::vector<std::vector<char>> gather(std::vector<char> mine);
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 
 namespace pfgen::cli {
@@ -30,6 +31,7 @@ void ProgressBar::update(std::size_t done) {
 }
 
 void ProgressBar::draw(std::size_t done, double elapsed) {
+  done = std::min(done, total_);  // an estimated total (an MPI rank's share of handed-out runs) may be passed
   const double fraction = total_ ? static_cast<double>(done) / static_cast<double>(total_) : 1.0;
   const int filled = static_cast<int>(fraction * kBarWidth);
   std::string bar(static_cast<std::size_t>(filled), '#');

@@ -400,10 +400,14 @@ SimulationOutcome simulate(const SimulateOptions& options, JobGroup& group) {
   group.build_in_turn([&] { loaded.emplace(load_plugin(source, build_options, talk, build)); });
   const pfgen_runtime::SimulationPlugin& plugin = *loaded;
 
-  // This process's runs (all of them but in an MPI job); the progress bar counts those.
-  // Dealt in chunks of a batch, so that a thread's batches keep their lanes full.
+  // This process's runs (all of them but in an MPI job); the progress bar counts those, against
+  // an even share of the job where the runs are handed out as the processes ask.
+  // In chunks of a batch, so that a thread's batches keep their lanes full.
   std::optional<pfgen_runtime::RunShare> share = group.share(settings.runs, options.batch);
-  ProgressBar progress("simulate", !speaks ? 0 : share ? share->count : settings.runs);
+  const std::size_t own_runs = !share                ? settings.runs
+                               : share->hand_out ? (settings.runs + share->processes - 1) / share->processes
+                                                 : share->count;
+  ProgressBar progress("simulate", speaks ? own_runs : 0);
   std::optional<pfgen_runtime::MonteCarloResult> folded;
   group.together([&] {
     plugin.check_grid_step(settings.dt);  // a delayed filter runs only on the grid it was made for

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <iterator>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,7 @@
 
 #include "monte_carlo/aggregate.hpp"
 #include "monte_carlo/clock.hpp"
+#include "monte_carlo/handed_out_runs.hpp"
 #include "monte_carlo/parallel_for.hpp"
 #include "monte_carlo/plan.hpp"
 #include "monte_carlo/run_codec.hpp"
@@ -54,13 +56,14 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
   if (options.share) {
     const RunShare& share = *options.share;
     const bool runs_among =
-        share.chunk == 0 ? share.first <= options.runs && share.count <= options.runs - share.first
+        share.chunk == 0 ? share.first <= options.runs && share.count <= options.runs - share.first && !share.hand_out
                          : share.process < share.processes &&
-                               share.count == dealt_runs(options.runs, share.chunk, share.process, share.processes);
+                               (share.hand_out ||
+                                share.count == dealt_runs(options.runs, share.chunk, share.process, share.processes));
     if (!runs_among || share.process >= share.processes || !share.exchange || !share.gather)
       throw std::invalid_argument(
-          "monte carlo: a process's share must be runs among the job's, of a process among the job's, with an "
-          "exchange and a gather");
+          "monte carlo: a process's share must be runs among the job's (chunks when handed out), of a process among "
+          "the job's, with an exchange and a gather");
   }
   std::set<std::string> names;
   for (const FilterModel& filter : filters) {
@@ -104,17 +107,28 @@ void check_share_count(std::size_t blocks, std::size_t runs, const RunShare& sha
                              std::to_string(expected));
 }
 
-// The job's number of the k-th run dealt to process `process` (share.chunk > 0): the process's
-// (k / chunk)-th chunk is the job's chunk (k / chunk) K + process.
-std::size_t dealt_run_number(const RunShare& share, std::size_t process, std::size_t k) {
-  return (k / share.chunk * share.processes + process) * share.chunk + k % share.chunk;
+// The process of each chunk of `chunk` runs when they are dealt: chunk c to process c mod processes.
+std::vector<std::size_t> dealt_owners(std::size_t runs, std::size_t chunk, std::size_t processes) {
+  std::vector<std::size_t> owners((runs + chunk - 1) / chunk);
+  for (std::size_t c = 0; c < owners.size(); ++c) owners[c] = c % processes;
+  return owners;
+}
+
+// The job's numbers of the runs of `process`, which made the chunks `owners` gives it, in order.
+std::vector<std::size_t> runs_of(const std::vector<std::size_t>& owners, std::size_t chunk, std::size_t runs,
+                                 std::size_t process) {
+  std::vector<std::size_t> numbers;
+  for (std::size_t c = 0; c < owners.size(); ++c)
+    if (owners[c] == process)
+      for (std::size_t r = c * chunk; r < std::min(runs, (c + 1) * chunk); ++r) numbers.push_back(r);
+  return numbers;
 }
 
 // The runs each process sent (per_process, in process order), in run order: one block after the
-// other, or dealt back (then a process that sent more or fewer runs than were dealt to it is
-// refused; blocks are counted as a whole by check_share_count).
+// other, or put back chunk by chunk as `owners` says (then a process that sent more or fewer runs
+// than its chunks hold is refused; blocks are counted as a whole by check_share_count).
 std::vector<RunResult> in_run_order(std::vector<std::vector<RunResult>> per_process, const RunShare& share,
-                                    std::size_t runs) {
+                                    std::size_t runs, const std::vector<std::size_t>& owners) {
   std::vector<RunResult> ordered;
   if (share.chunk == 0) {
     ordered.reserve(runs);
@@ -125,18 +139,19 @@ std::vector<RunResult> in_run_order(std::vector<std::vector<RunResult>> per_proc
   if (per_process.size() != share.processes)
     throw std::runtime_error("monte carlo: " + std::to_string(per_process.size()) + " processes' shares arrived, not " +
                              std::to_string(share.processes));
+  std::vector<std::vector<std::size_t>> numbers(per_process.size());
   for (std::size_t process = 0; process < per_process.size(); ++process) {
-    const std::size_t dealt = dealt_runs(runs, share.chunk, process, share.processes);
-    if (per_process[process].size() != dealt)
+    numbers[process] = runs_of(owners, share.chunk, runs, process);
+    if (per_process[process].size() != numbers[process].size())
       throw std::runtime_error("monte carlo: process " + std::to_string(process) + " sent " +
                                std::to_string(per_process[process].size()) + " runs, not the " +
-                               std::to_string(dealt) + " dealt to it");
+                               std::to_string(numbers[process].size()) + " of its chunks");
   }
-  // Each process sent as many runs as were dealt to it, so every run number below is taken once.
+  // Each process sent as many runs as its chunks hold, so every run number below is taken once.
   ordered.resize(runs);
   for (std::size_t process = 0; process < per_process.size(); ++process)
     for (std::size_t k = 0; k < per_process[process].size(); ++k)
-      ordered[dealt_run_number(share, process, k)] = std::move(per_process[process][k]);
+      ordered[numbers[process][k]] = std::move(per_process[process][k]);
   return ordered;
 }
 
@@ -199,42 +214,66 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   validate(scheme, observation, measurement, x0, filters, options);
   const Plan plan = make_plan(scheme.system().n, measurement ? measurement->p() : observation.p(), options);
 
-  // This process's runs: all of them, or its share (a block, or the chunks dealt to it).
-  const std::size_t count = options.share ? options.share->count : options.runs;
-  const std::size_t chunk = options.share ? options.share->chunk : 0;
-  // The job's number of this process's k-th run.
-  const auto run_number = [&options, chunk](std::size_t k) -> std::size_t {
-    if (!options.share) return k;
-    return chunk == 0 ? options.share->first + k : dealt_run_number(*options.share, options.share->process, k);
+  // This process's runs: all of them, or its share (a block, or chunks dealt or handed out to it).
+  const RunShare* share = options.share ? &*options.share : nullptr;
+  const std::size_t chunk = share ? share->chunk : 0;
+  std::vector<std::size_t> owners;  // with chunks: the process of each chunk of the job
+  std::vector<std::size_t> numbers;  // the job's number of this process's k-th run
+  std::vector<RunResult> runs;
+  std::vector<std::unique_ptr<Worker>> workers;
+  std::size_t finished = 0;
+  std::mutex finished_mutex;
+  const auto one_run_finished = [&](std::size_t count) {
+    std::lock_guard<std::mutex> lock(finished_mutex);
+    ++finished;
+    if (options.on_run_finished) options.on_run_finished(finished, count);
   };
-  std::vector<RunResult> runs(count);
-  // The runs in batches of consecutive runs, a batch to a worker at a time; smaller batches where
-  // there would not be one for every thread, and none across the end of a dealt chunk (the next
-  // run of this process is then not the next run of the job).
-  const std::size_t per_thread = (count + options.threads - 1) / options.threads;
-  const std::size_t batch = std::max<std::size_t>(1, std::min({options.batch, per_thread, batch_limit(plan)}));
-  std::vector<std::pair<std::size_t, std::size_t>> batch_runs;  // (this process's first run, count)
-  for (std::size_t k = 0; k < count;) {
-    const std::size_t size = std::min({batch, count - k, chunk == 0 ? count : chunk - k % chunk});
-    batch_runs.emplace_back(k, size);
-    k += size;
-  }
-  const std::size_t batches = batch_runs.size();
-  const unsigned threads = static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(options.threads, batches)));
-  std::vector<std::unique_ptr<Worker>> workers(threads);
-  std::atomic<std::size_t> finished{0};
-  auto make_worker = [&](unsigned thread) {
-    workers[thread] = std::make_unique<Worker>(scheme, observation, measurement, filters, x0, plan, options, batch);
-    return workers[thread].get();
+  const auto make_worker = [&](std::size_t batch) {
+    return [&, batch](unsigned thread) {
+      workers[thread] = std::make_unique<Worker>(scheme, observation, measurement, filters, x0, plan, options, batch);
+      return workers[thread].get();
+    };
   };
-  parallel_for(batches, threads, make_worker, [&](std::size_t b, Worker* worker) {
-    const auto [k, size] = batch_runs[b];
-    worker->run(run_number(k), size, runs.data() + k);
-    for (std::size_t r = 0; r < size; ++r) {
-      const std::size_t done = finished.fetch_add(1) + 1;
-      if (options.on_run_finished) options.on_run_finished(done, count);
+  if (share && share->hand_out) {
+    // Handed out: batches of a chunk's consecutive runs; the chunks come as the threads are free.
+    const std::size_t chunks = (options.runs + chunk - 1) / chunk;
+    const std::size_t batch = std::max<std::size_t>(1, std::min({options.batch, chunk, batch_limit(plan)}));
+    workers.resize(std::max<std::size_t>(1, std::min<std::size_t>(options.threads, chunks)));
+    HandedOutRuns handed = make_handed_out_runs(*share, options.runs, static_cast<unsigned>(workers.size()), batch,
+                                                make_worker(batch), [&] { one_run_finished(options.runs); });
+    owners = std::move(handed.owners);
+    numbers = runs_of(owners, chunk, options.runs, share->process);
+    for (std::size_t c = 0; c < chunks; ++c)
+      for (RunResult& run : handed.made[c]) runs.push_back(std::move(run));
+  } else {
+    const std::size_t count = share ? share->count : options.runs;
+    if (chunk != 0) {
+      owners = dealt_owners(options.runs, chunk, share->processes);
+      numbers = runs_of(owners, chunk, options.runs, share->process);
+    } else {
+      for (std::size_t k = 0; k < count; ++k) numbers.push_back(share ? share->first + k : k);
     }
-  });
+    runs.resize(count);
+    // The runs in batches of consecutive runs, a batch to a worker at a time; smaller batches where
+    // there would not be one for every thread, and none across the end of a dealt chunk (the next
+    // run of this process is then not the next run of the job).
+    const std::size_t per_thread = (count + options.threads - 1) / options.threads;
+    const std::size_t batch = std::max<std::size_t>(1, std::min({options.batch, per_thread, batch_limit(plan)}));
+    std::vector<std::pair<std::size_t, std::size_t>> batch_runs;  // (this process's first run, count)
+    for (std::size_t k = 0; k < count;) {
+      const std::size_t size = std::min({batch, count - k, chunk == 0 ? count : chunk - k % chunk});
+      batch_runs.emplace_back(k, size);
+      k += size;
+    }
+    const std::size_t batches = batch_runs.size();
+    workers.resize(std::max<std::size_t>(1, std::min<std::size_t>(options.threads, batches)));
+    parallel_for(batches, static_cast<unsigned>(workers.size()), make_worker(batch), [&](std::size_t b, Worker* worker) {
+      const auto [k, size] = batch_runs[b];
+      worker->run(numbers[k], size, runs.data() + k);
+      for (std::size_t r = 0; r < size; ++r) one_run_finished(count);
+    });
+  }
+  const unsigned threads = static_cast<unsigned>(workers.size());
 
   // Zero timing with one entry per filter (and per sampled filter).
   const auto no_timing = [&] {
@@ -293,7 +332,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
       else
         decode_series_slice(received[process], filters.size(), range(share.process), plan.n, sent[process]);
     }
-    std::vector<RunResult> slice = in_run_order(std::move(sent), share, options.runs);
+    std::vector<RunResult> slice = in_run_order(std::move(sent), share, options.runs, owners);
     check_share_count(received.size(), slice.size(), share, options.runs);
     const Clock::time_point fold_start = Clock::now();
     fold_series(plan, filters.size(), slice, range(share.process), reference, threads, result.series);
@@ -304,7 +343,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
       RunResult& run = runs[k];
       for (FilterRunResult& filter : run.filters) filter.error_record = {};
       run.reference.error_record = {};
-      if (run_number(k) == options.shown_run) continue;
+      if (numbers[k] == options.shown_run) continue;
       run.truth_record = {};
       for (FilterRunResult& filter : run.filters) filter.reference_record = {};
     }
@@ -326,7 +365,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     for (std::size_t process = 0; process < made.size(); ++process)
       decode_series_rows(decode_share(blocks[process], filters.size(), made[process], all), range(process),
                          result.series);
-    runs = in_run_order(std::move(made), share, options.runs);
+    runs = in_run_order(std::move(made), share, options.runs, owners);
     check_share_count(blocks.size(), runs.size(), share, options.runs);
     all.exchange_seconds = timing.exchange_seconds;
     all.exchanged_bytes = timing.exchanged_bytes;

@@ -6,6 +6,7 @@
 // (they throw), so a test fails, not hangs. The tamper hooks, when set, see every block on its way
 // (in the exchange, from process `from` to process `to`; in the gather, from `from` to process 0)
 // and may change it.
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -43,6 +44,24 @@ class SharedRuns {
     for (std::size_t k = 0; k < processes_; ++k) {
       shares[k].chunk = chunk;
       shares[k].count = pfgen_runtime::dealt_runs(runs, chunk, k, processes_);
+    }
+    return run_shares(std::move(shares), job);
+  }
+
+  // `runs` runs in chunks of `chunk` handed out as the processes' threads become free
+  // (RunShare::hand_out): from one counter shared by all, so that which process makes which chunk
+  // changes from call to call; or, with `script`, chunk c to process script[c].
+  std::vector<pfgen_runtime::MonteCarloResult> hand_out(std::size_t runs, std::size_t chunk, const Job& job,
+                                                        std::vector<std::size_t> script = {}) {
+    const std::size_t chunks = (runs + chunk - 1) / chunk;
+    next_chunk_ = 0;
+    owners_.assign(chunks, 0);
+    std::vector<pfgen_runtime::RunShare> shares(processes_);
+    for (std::size_t k = 0; k < processes_; ++k) {
+      shares[k].chunk = chunk;
+      shares[k].hand_out = [this, k, script](pfgen_runtime::ChunkFeed& feed) {
+        return script.empty() ? take_from_counter(k, feed) : follow(script, k, feed);
+      };
     }
     return run_shares(std::move(shares), job);
   }
@@ -96,6 +115,37 @@ class SharedRuns {
     return k == 0 ? gathered_ : std::vector<std::vector<char>>{};
   }
 
+  // Process k takes chunks from the shared counter while fewer than one waits; the table is whole
+  // once the counter has passed the last chunk (each is written down as it is taken).
+  std::vector<std::size_t> take_from_counter(std::size_t k, pfgen_runtime::ChunkFeed& feed) {
+    while (!feed.stopped()) {
+      if (feed.waiting() == 0) {
+        std::size_t chunk = 0;
+        {
+          std::lock_guard<std::mutex> lock(mutex_);
+          if (next_chunk_ >= owners_.size()) break;
+          chunk = next_chunk_++;
+          owners_[chunk] = k;
+        }
+        feed.give(chunk);
+      }
+      feed.wait_below(1, std::chrono::milliseconds(1));
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    return owners_;
+  }
+
+  // Process k is given the chunks script names for it, in order, one waiting at a time.
+  static std::vector<std::size_t> follow(const std::vector<std::size_t>& script, std::size_t k,
+                                         pfgen_runtime::ChunkFeed& feed) {
+    for (std::size_t c = 0; c < script.size() && !feed.stopped(); ++c) {
+      if (script[c] != k) continue;
+      while (feed.waiting() > 0 && !feed.stopped()) feed.wait_below(1, std::chrono::milliseconds(1));
+      feed.give(c);
+    }
+    return script;
+  }
+
   // A barrier of all processes; throws when one of them has failed instead of arriving.
   void meet() {
     std::unique_lock<std::mutex> lock(mutex_);
@@ -116,6 +166,8 @@ class SharedRuns {
   std::mutex mutex_;
   std::condition_variable arrived_;
   std::size_t waiting_ = 0, generation_ = 0;
+  std::size_t next_chunk_ = 0;         // hand_out: the next chunk of the shared counter
+  std::vector<std::size_t> owners_;    // hand_out: the process each chunk went to
   bool broken_ = false;
 };
 

@@ -13,6 +13,7 @@
 //
 // Undefined numbers (no run alive at a time, no run reached a window's end, ...) are NaN here;
 // the writers print them as '-' or empty cells, never as "nan".
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -37,28 +38,52 @@ namespace pfgen_runtime {
 // `chunk` runs (chunk >= 1), chunk c to process c mod processes.
 std::size_t dealt_runs(std::size_t runs, std::size_t chunk, std::size_t process, std::size_t processes);
 
+// This process's side of chunks handed out while the runs are made (RunShare::hand_out): the
+// chunks it has been given wait here until one of its threads starts them. Safe to call from any
+// thread.
+class ChunkFeed {
+ public:
+  virtual ~ChunkFeed() = default;
+  // Chunks given and not yet started.
+  virtual std::size_t waiting() const = 0;
+  // Chunk `chunk` of the job (runs chunk * RunShare::chunk onwards) is this process's to make.
+  virtual void give(std::size_t chunk) = 0;
+  // This process's runs failed: a chunk given now would not be made.
+  virtual bool stopped() const = 0;
+  // Returns when waiting() is below `below`, the runs have stopped, or `timeout` has passed.
+  virtual void wait_below(std::size_t below, std::chrono::microseconds timeout) const = 0;
+};
+
 // The runs of one job shared among processes (the MPI ranks of `pfgen simulate`, whose MPI code
-// lives in the program, not here): this process, number `process` of `processes`, makes `count`
-// of them: with `chunk` 0 the block [first, first + count); otherwise the runs dealt to it in
-// chunks of `chunk` consecutive runs, chunk c to process c mod processes (count is then
-// dealt_runs(...), and first is not read). Dealt, every process gets runs from all along the job:
-// runs whose cost changes with their number (their random streams do) no longer leave one process
-// the slower block. Every process then calls the same two collectives, in this order:
+// lives in the program, not here): this process is number `process` of `processes`. Its runs are
+// - with `chunk` 0: the block [first, first + count);
+// - with `chunk` > 0, the job's runs in chunks of `chunk` consecutive runs (the last one shorter):
+//   - without hand_out, chunk c is process c mod processes's (count is then dealt_runs(...));
+//   - with hand_out, the chunks go to the processes as they ask for them, so that a process that
+//     drew cheaper runs makes more of them and none is left finishing alone. The runtime makes the
+//     chunks given to this process on `threads` threads of their own and calls hand_out(feed) on
+//     the calling thread. hand_out gives this process its chunks through `feed`, keeping a few
+//     waiting, and returns once no more will come, with the process that was given each chunk of
+//     the job: the same table on every process. count is not read.
+//   Either way every process gets runs from all along the job: runs whose cost changes with
+//   their number (their random streams do) no longer leave one process the slower block.
+// Every process then calls the same two collectives, in this order:
 // - exchange: each process hands one block per process (outgoing[j] for process j) and gets back,
 //   in process order, the blocks every process addressed to it (its own, empty: a process's values
 //   at its own range do not travel). Each process folds the series at its own range of record times
 //   from them, so that the largest part of folding is shared.
 // - gather: each process hands one block (its runs' results and its folded rows); process 0 gets
 //   every process's, in process order, and the others get nothing.
-// The processes' runs, in process order (blocks) or dealt back chunk by chunk, must be runs
+// The processes' runs, in process order (blocks) or put back chunk by chunk, must be runs
 // 0 .. runs - 1. Every value is folded in run order exactly as one process folds it, so the result
-// is bitwise the same.
+// is bitwise the same whichever process made which run.
 struct RunShare {
   std::size_t first = 0, count = 0;
   std::size_t process = 0, processes = 1;
   std::function<std::vector<std::vector<char>>(std::vector<std::vector<char>> outgoing)> exchange;
   std::function<std::vector<std::vector<char>>(std::vector<char> mine)> gather;
   std::size_t chunk = 0;
+  std::function<std::vector<std::size_t>(ChunkFeed& feed)> hand_out;
 };
 
 // The truth's initial state drawn per run from N(mean, covariance) instead of a fixed x0: the
