@@ -46,6 +46,8 @@ class ChunkFeed {
   virtual ~ChunkFeed() = default;
   // Chunks given and not yet started.
   virtual std::size_t waiting() const = 0;
+  // Chunks this process's threads have finished.
+  virtual std::size_t made() const = 0;
   // Chunk `chunk` of the job (runs chunk * RunShare::chunk onwards) is this process's to make.
   virtual void give(std::size_t chunk) = 0;
   // This process's runs failed: a chunk given now would not be made.

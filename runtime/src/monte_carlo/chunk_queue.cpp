@@ -23,6 +23,16 @@ void ChunkQueue::give(std::size_t chunk) {
   changed_.notify_all();
 }
 
+std::size_t ChunkQueue::made() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return made_;
+}
+
+void ChunkQueue::finished() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++made_;
+}
+
 bool ChunkQueue::stopped() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return stopped_;
@@ -30,7 +40,9 @@ bool ChunkQueue::stopped() const {
 
 void ChunkQueue::wait_below(std::size_t below, std::chrono::microseconds timeout) const {
   std::unique_lock<std::mutex> lock(mutex_);
+  wake_below_ = below;
   changed_.wait_for(lock, timeout, [&] { return waiting_.size() < below || stopped_; });
+  wake_below_ = 0;
 }
 
 std::optional<std::size_t> ChunkQueue::take() {
@@ -39,7 +51,8 @@ std::optional<std::size_t> ChunkQueue::take() {
   if (stopped_ || waiting_.empty()) return std::nullopt;
   const std::size_t chunk = waiting_.front();
   waiting_.pop_front();
-  changed_.notify_all();  // the hand-out may be waiting for room
+  // Only when the hand-out waits for this (a wake-up per chunk would take the core from the runs).
+  if (waiting_.size() < wake_below_) changed_.notify_all();
   return chunk;
 }
 

@@ -19,6 +19,7 @@ class ChunkQueue final : public ChunkFeed {
   explicit ChunkQueue(std::size_t chunks) : taken_(chunks, false) {}
 
   std::size_t waiting() const override;
+  std::size_t made() const override;
   // std::invalid_argument for a chunk that is not the job's or was given before.
   void give(std::size_t chunk) override;
   bool stopped() const override;
@@ -27,6 +28,8 @@ class ChunkQueue final : public ChunkFeed {
   // The threads' side: the next chunk to make; nullopt once the runs have stopped, or the hand-out
   // has ended and no chunk waits.
   std::optional<std::size_t> take();
+  // A thread finished a chunk it took.
+  void finished();
   // The hand-out has ended: no chunk comes after those waiting.
   void close();
   // A thread failed: the others stop at their next chunk, and the hand-out winds down.
@@ -40,7 +43,9 @@ class ChunkQueue final : public ChunkFeed {
   std::deque<std::size_t> waiting_;
   std::vector<std::size_t> given_;
   std::vector<bool> taken_;  // per chunk of the job: given already
+  std::size_t made_ = 0;
   bool closed_ = false, stopped_ = false;
+  mutable std::size_t wake_below_ = 0;  // wait_below's `below` while it waits, else 0
 };
 
 }  // namespace pfgen_runtime::monte_carlo_detail

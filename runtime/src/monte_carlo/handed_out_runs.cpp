@@ -57,6 +57,7 @@ HandedOutRuns make_handed_out_runs(const RunShare& share, std::size_t runs, unsi
           worker->run(first + k, count, out.data() + k);
           for (std::size_t r = 0; r < count; ++r) on_run();
         }
+        queue.finished();
       }
     } catch (...) {
       std::lock_guard<std::mutex> lock(error_mutex);
