@@ -470,6 +470,16 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
                                                return std::vector<std::size_t>(6, 0);
                                              })),
                              {"x"}) == format_results_csv(whole, {"x"}));
+    // made() counts the chunks the threads have finished: all 6 before the hand-out returns.
+    std::size_t made = 0;
+    (void)run_monte_carlo(scheme, observation, x0, scenario.filters, handed([&](ChunkFeed& feed) {
+                            give_all(feed, 6);
+                            for (int wait = 0; wait < 100000 && feed.made() < 6; ++wait)
+                              feed.wait_below(0, std::chrono::microseconds(100));
+                            made = feed.made();
+                            return std::vector<std::size_t>(6, 0);
+                          }));
+    CHECK(made == 6);
     CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, scenario.filters, handed([&](ChunkFeed& feed) {
                                         give_all(feed, 6);
                                         feed.give(2);
