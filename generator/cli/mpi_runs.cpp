@@ -220,7 +220,7 @@ std::optional<pfgen_runtime::RunShare> MpiJob::share(std::size_t runs, std::size
   share.chunk = std::max<std::size_t>(1, std::min(chunk, runs / ranks));
   share.process = rank;
   share.processes = ranks;
-  const std::size_t chunks = (runs + share.chunk - 1) / share.chunk;
+  const std::size_t chunks = pfgen_runtime::chunk_count(runs, share.chunk);
   share.hand_out = [this, chunks](pfgen_runtime::ChunkFeed& feed) { return hand_out(feed, chunks); };
   share.exchange = [this](std::vector<std::vector<char>> outgoing) { return exchange(std::move(outgoing)); };
   share.gather = [this](std::vector<char> mine) { return gather(std::move(mine)); };

@@ -109,7 +109,7 @@ void check_share_count(std::size_t blocks, std::size_t runs, const RunShare& sha
 
 // The process of each chunk of `chunk` runs when they are dealt: chunk c to process c mod processes.
 std::vector<std::size_t> dealt_owners(std::size_t runs, std::size_t chunk, std::size_t processes) {
-  std::vector<std::size_t> owners((runs + chunk - 1) / chunk);
+  std::vector<std::size_t> owners(chunk_count(runs, chunk));
   for (std::size_t c = 0; c < owners.size(); ++c) owners[c] = c % processes;
   return owners;
 }
@@ -159,10 +159,7 @@ std::vector<RunResult> in_run_order(std::vector<std::vector<RunResult>> per_proc
 
 std::size_t dealt_runs(std::size_t runs, std::size_t chunk, std::size_t process, std::size_t processes) {
   if (chunk == 0 || processes == 0) throw std::invalid_argument("monte carlo: runs are dealt in chunks of >= 1 run");
-  const std::size_t chunks = runs / chunk, rest = runs % chunk;  // whole chunks, then a shorter last one
-  std::size_t count = (chunks / processes + (process < chunks % processes ? 1 : 0)) * chunk;
-  if (rest != 0 && chunks % processes == process) count += rest;
-  return count;
+  return runs_of(dealt_owners(runs, chunk, processes), chunk, runs, process).size();
 }
 
 double EventSummary::earliest() const {
@@ -236,13 +233,14 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   };
   if (share && share->hand_out) {
     // Handed out: batches of a chunk's consecutive runs; the chunks come as the threads are free.
-    const std::size_t chunks = (options.runs + chunk - 1) / chunk;
+    const std::size_t chunks = chunk_count(options.runs, chunk);
     const std::size_t batch = std::max<std::size_t>(1, std::min({options.batch, chunk, batch_limit(plan)}));
     workers.resize(std::max<std::size_t>(1, std::min<std::size_t>(options.threads, chunks)));
     HandedOutRuns handed = make_handed_out_runs(*share, options.runs, static_cast<unsigned>(workers.size()), batch,
                                                 make_worker(batch), [&] { one_run_finished(options.runs); });
     owners = std::move(handed.owners);
     numbers = runs_of(owners, chunk, options.runs, share->process);
+    runs.reserve(numbers.size());
     for (std::size_t c = 0; c < chunks; ++c)
       for (RunResult& run : handed.made[c]) runs.push_back(std::move(run));
   } else {

@@ -53,7 +53,7 @@ class SharedRuns {
   // changes from call to call; or, with `script`, chunk c to process script[c].
   std::vector<pfgen_runtime::MonteCarloResult> hand_out(std::size_t runs, std::size_t chunk, const Job& job,
                                                         std::vector<std::size_t> script = {}) {
-    const std::size_t chunks = (runs + chunk - 1) / chunk;
+    const std::size_t chunks = pfgen_runtime::chunk_count(runs, chunk);
     next_chunk_ = 0;
     owners_.assign(chunks, 0);
     std::vector<pfgen_runtime::RunShare> shares(processes_);

@@ -37,6 +37,8 @@ namespace pfgen_runtime {
 // How many of `runs` runs process `process` of `processes` makes when they are dealt in chunks of
 // `chunk` runs (chunk >= 1), chunk c to process c mod processes.
 std::size_t dealt_runs(std::size_t runs, std::size_t chunk, std::size_t process, std::size_t processes);
+// How many chunks of `chunk` consecutive runs (chunk >= 1) `runs` runs make, the last one shorter.
+inline std::size_t chunk_count(std::size_t runs, std::size_t chunk) { return (runs + chunk - 1) / chunk; }
 
 // This process's side of chunks handed out while the runs are made (RunShare::hand_out): the
 // chunks it has been given wait here until one of its threads starts them. Safe to call from any

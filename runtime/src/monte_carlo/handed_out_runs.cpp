@@ -39,7 +39,7 @@ void check_owners(const std::vector<std::size_t>& owners, std::vector<std::size_
 HandedOutRuns make_handed_out_runs(const RunShare& share, std::size_t runs, unsigned threads, std::size_t batch,
                                    const std::function<Worker*(unsigned)>& make_worker,
                                    const std::function<void()>& on_run) {
-  const std::size_t chunk = share.chunk, chunks = (runs + chunk - 1) / chunk;
+  const std::size_t chunk = share.chunk, chunks = chunk_count(runs, chunk);
   HandedOutRuns result;
   result.made.resize(chunks);
   ChunkQueue queue(chunks);
