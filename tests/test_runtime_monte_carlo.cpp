@@ -309,6 +309,14 @@ TEST_CASE("monte carlo: results are bitwise identical for any batch, filters ste
   std::vector<FilterModel> mixed = in_lanes_only;
   mixed.push_back(in_lanes(kalman_bucy(scenario.model, "other-width"), 2));  // one run at a time
   mixed.push_back(kalman_bucy(scenario.model, "no-lanes"));
+  // The widths of the lane packs a generated plugin uses: the diverging, the PSD-losing and the
+  // refined filter again, in lanes of 8 and 16.
+  for (const std::size_t width : {8, 16})
+    for (const std::size_t f : {1, 2, 3}) {
+      FilterModel wide = in_lanes(in_lanes_only[f], width);
+      wide.name += "-" + std::to_string(width);
+      mixed.push_back(wide);
+    }
 
   struct Variant {
     const char* name;

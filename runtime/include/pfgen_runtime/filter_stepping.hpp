@@ -26,6 +26,7 @@
 
 #include "pfgen_runtime/guards.hpp"
 #include "pfgen_runtime/lane_flag.hpp"
+#include "pfgen_runtime/lane_pack.hpp"
 
 
 namespace pfgen_runtime {
@@ -71,6 +72,32 @@ class FilterStepper {
   // where lane k's step would not be kept; the others are left as they are.
   void keeps_lanes(const double* before, const double* after, std::size_t width, LaneFlag* keep) const {
     if (control_.adaptive && control_.max_depth > 0) reject_lanes(before, after, width, keep);
+  }
+  // keeps() for W states side by side (W a lane pack's width): all ones where lane k's step would
+  // be kept. reject_lanes' tests, term for term, on lane packs.
+  template <std::size_t W>
+  PFGEN_LANE_PACK_INLINE lane_pack::Mask<W> keeps_pack(const double* before, const double* after) const {
+    namespace lp = lane_pack;
+    lp::Mask<W> keep = lp::all_set<W>();
+    if (!control_.adaptive || control_.max_depth == 0) return keep;
+    for (std::size_t i = 0; i < n_; ++i) keep &= lp::finite<W>(lp::load<W>(after + i * W));
+    const double* P0 = before + n_ * W;
+    const double* P1 = after + n_ * W;
+    const lp::Values<W> tolerance = lp::splat<W>(control_.tolerance), floor = lp::splat<W>(control_.floor);
+    for (std::size_t i = 0, e = 0; i < n_; ++i)
+      for (std::size_t j = i; j < n_; ++j, ++e) {
+        const lp::Values<W> p0 = lp::load<W>(P0 + e * W), p1 = lp::load<W>(P1 + e * W);
+        if (i == j) {
+          const lp::Values<W> change = lp::abs<W>(p1 - p0);
+          keep &= lp::finite<W>(p1) & ~(change > tolerance * (lp::abs<W>(p0) + floor));
+          continue;
+        }
+        const lp::Values<W> excess = lp::abs<W>(p1 - p0) / tolerance - floor;
+        const lp::Values<W> d_i = lp::load<W>(P0 + packed_diagonal(n_, i) * W);
+        const lp::Values<W> d_j = lp::load<W>(P0 + packed_diagonal(n_, j) * W);
+        keep &= lp::finite<W>(p1) & ~((excess > lp::splat<W>(0.0)) & (excess * excess > lp::abs<W>(d_i * d_j)));
+      }
+    return keep;
   }
   // What advance() does after its first step was not kept: `state` holds the grid step's start
   // again, and the step is taken in halves. Same return value as advance().

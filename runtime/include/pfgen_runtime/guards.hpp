@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "pfgen_runtime/lane_flag.hpp"
+#include "pfgen_runtime/lane_pack.hpp"
 
 namespace pfgen_runtime {
 
@@ -53,6 +54,15 @@ class DivergenceGuard {
   void pass_lanes(const double* values, std::size_t count, std::size_t width, LaneFlag* pass) const {
     for (std::size_t i = 0; i < count; ++i)
       for (std::size_t k = 0; k < width; ++k) pass[k] = std::abs(values[i * width + k]) <= bound_ ? pass[k] : 0.0;
+  }
+  // pass_lanes over W lists held as lane packs: all ones where list k has no event.
+  template <std::size_t W>
+  PFGEN_LANE_PACK_INLINE lane_pack::Mask<W> passes_pack(const double* values, std::size_t count) const {
+    namespace lp = lane_pack;
+    lp::Mask<W> pass = lp::all_set<W>();
+    const lp::Values<W> bound = lp::splat<W>(bound_);
+    for (std::size_t i = 0; i < count; ++i) pass &= lp::abs<W>(lp::load<W>(values + i * W)) <= bound;
+    return pass;
   }
 
  private:
@@ -117,6 +127,14 @@ class CovarianceGuard {
                         (P[k] >= -(absolute_tolerance_ + relative_tolerance_ * std::abs(P[k])))
                     ? pass[k]
                     : 0.0;
+  }
+  // pass_lanes_1 over W states held as a lane pack: all ones where P[k] passes.
+  template <std::size_t W>
+  PFGEN_LANE_PACK_INLINE lane_pack::Mask<W> passes_pack_1(const double* P) const {
+    namespace lp = lane_pack;
+    const lp::Values<W> p = lp::load<W>(P), size = lp::abs<W>(p);
+    return (size <= lp::splat<W>(std::numeric_limits<double>::max())) &
+           (p >= -(lp::splat<W>(absolute_tolerance_) + lp::splat<W>(relative_tolerance_) * size));
   }
 
  private:

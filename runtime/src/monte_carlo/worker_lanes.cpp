@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "pfgen_runtime/lane_pack.hpp"
 #include "worker.hpp"
 
 namespace pfgen_runtime::monte_carlo_detail {
@@ -42,19 +43,19 @@ namespace {
 
 using Flags = std::array<LaneFlag, 16>;  // W <= 16 entries used
 
-// FilterStepper::keeps and the divergence guards over W lanes: pass[k] = 0 where lane k fails.
+// FilterStepper::keeps and the divergence guards over W lanes: all ones where lane k passes.
 template <std::size_t W>
-void packed_checks(const FilterStepper& stepper, const FilterGuardOptions& guards, std::size_t n, const double* saved,
-                   const double* state, LaneFlag* pass) {
-  stepper.keeps_lanes(saved, state, W, pass);
-  guards.estimate_guard.pass_lanes(state, n, W, pass);
-  guards.covariance_guard.pass_lanes(state + n * W, packed_size(n), W, pass);
+lane_pack::Mask<W> packed_checks(const FilterStepper& stepper, const FilterGuardOptions& guards, std::size_t n,
+                                 const double* saved, const double* state) {
+  return stepper.keeps_pack<W>(saved, state) & guards.estimate_guard.passes_pack<W>(state, n) &
+         guards.covariance_guard.passes_pack<W>(state + n * W, packed_size(n));
 }
 
 }  // namespace
 
 template <std::size_t W>
 void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs) {
+  namespace lp = lane_pack;
   const FilterModel& filter = filters_[f];
   const FilterGuardOptions& guards = options_.filter_guards;
   const TimeGrid& grid = plan_.grid;
@@ -70,7 +71,7 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   double* before = lane_before_.data();
   // live: the lane's run goes on; visited: the lane's state at the grid point is kept and counted.
   // A lane's out.last is written when it stops, not at every grid point.
-  Flags live{}, visited{}, pass{};
+  Flags live{}, visited{}, pass{}, psd{};
   std::array<std::ptrdiff_t, W> end{};  // the lane's truth_last
   std::array<std::uint64_t, W> refined{};
   std::size_t living = 0;
@@ -89,21 +90,18 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   auto visit_lanes = [&](std::size_t j) {
     enter(j);
     const double* x = lane_path + j * n * W;
+    const lp::Mask<W> seen = lp::load<W>(visited.data()) != lp::splat<W>(0.0);
     for (std::size_t i = 0; i < n; ++i) {
-      double* __restrict sq = square.data() + i * W;
-      double* __restrict sum = sums.data() + i * W;
-      double* __restrict top = peak.data() + i * W;
-      const double* __restrict xi = x + i * W;
-      const double* __restrict m = states.data() + i * W;
-      for (std::size_t k = 0; k < W; ++k) {
-        const double e = xi[k] - m[k];
-        sq[k] = visited[k] != 0 ? e * e : 0.0;
-        sum[k] += sq[k];
-        top[k] = std::max(top[k], visited[k] != 0 ? std::abs(e) : 0.0);
-      }
+      const lp::Values<W> e = lp::load<W>(x + i * W) - lp::load<W>(states.data() + i * W);
+      const lp::Values<W> sq = lp::keep_where<W>(seen, e * e), size = lp::keep_where<W>(seen, lp::abs<W>(e));
+      double* sum = sums.data() + i * W;
+      double* top = peak.data() + i * W;
+      lp::store<W>(sum, lp::load<W>(sum) + sq);
+      const lp::Values<W> peak_so_far = lp::load<W>(top);
+      lp::store<W>(top, lp::select<W>(peak_so_far < size, size, peak_so_far));  // std::max(top, size)
       for (std::size_t w : active_) {
-        double* __restrict window = sums.data() + ((1 + w) * n + i) * W;
-        for (std::size_t k = 0; k < W; ++k) window[k] += sq[k];
+        double* window = sums.data() + ((1 + w) * n + i) * W;
+        lp::store<W>(window, lp::load<W>(window) + sq);
       }
     }
     if (criterion_ || reference_ || events_begin_ != next_event_) {
@@ -140,20 +138,22 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   std::ptrdiff_t first_end = 0;  // no live lane's truth ends before this grid point
   for (std::size_t step = 0; living > 0; ++step) {
     const double t = grid.time(step), next = grid.time(step + 1);
-    std::copy(states.begin(), states.end(), saved.begin());
+    // Entry by entry in packs: memmove's wider loads would straddle the step's narrower stores.
+    for (std::size_t e = 0; e < size; ++e) lp::store<W>(saved.data() + e * W, lp::load<W>(states.data() + e * W));
     filter.step_lanes(states.data(), t, grid.dt, lane_dy + step * p * W);
-    pass = live;
-    packed_checks<W>(stepper_, guards, n, saved.data(), states.data(), pass.data());
-    Flags psd;
-    psd.fill(1.0);
-    if (guards.check_psd && psd_packed) guards.psd.pass_lanes_1(states.data() + W, W, psd.data());
-    double failed = 0;  // live lanes that failed a check
-    for (std::size_t k = 0; k < W; ++k) failed += live[k] - pass[k] * psd[k];
-    const bool all = failed == 0 && !(guards.check_psd && !psd_packed);
+    const lp::Values<W> living_lanes = lp::load<W>(live.data());
+    const lp::Mask<W> passes = packed_checks<W>(stepper_, guards, n, saved.data(), states.data());
+    lp::Mask<W> psd_passes = lp::all_set<W>();
+    if (guards.check_psd && psd_packed) psd_passes = guards.psd.passes_pack_1<W>(states.data() + W);
+    // No live lane failed a check (and no PSD test is left to run lane by lane).
+    const bool all = lp::none<W>((living_lanes != lp::splat<W>(0.0)) & ~(passes & psd_passes)) &&
+                     !(guards.check_psd && !psd_packed);
     if (all) {
       steps += living;
       visited = live;
     } else {
+      lp::store<W>(pass.data(), lp::keep_where<W>(passes, living_lanes));
+      lp::store<W>(psd.data(), lp::keep_where<W>(psd_passes, lp::splat<W>(1.0)));
       for (std::size_t k = 0; k < W; ++k) visited[k] = 0.0;
       for (std::size_t k = 0; k < count; ++k) {
         if (live[k] == 0) continue;
