@@ -143,10 +143,18 @@ class WienerIncrements {
     }
     return values_.data() + size_ * used_++;
   }
+  // The increments of the next kChunkSteps steps at once (kChunkSteps * size() entries, step by
+  // step), the values next() would give one call after another. Only at a chunk's start: before
+  // the first next(), or after a multiple of kChunkSteps steps.
+  const double* next_chunk() {
+    const double* chunk = next();
+    used_ = kChunkSteps;
+    return chunk;
+  }
   std::size_t size() const { return size_; }
+  static constexpr std::size_t kChunkSteps = 256;
 
  private:
-  static constexpr std::size_t kChunkSteps = 256;
   RandomStream& stream_;
   std::size_t size_;
   double scale_;

@@ -22,8 +22,12 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
   }
   truth_x_.resize(n * W);
   truth_start_.resize(n * W);
-  truth_dW_.resize(q * W);
-  truth_dW2_.resize(r * W);
+  // The lanes' increments a chunk of steps at a time, step-major: step s's entry j of lane k at
+  // (s * q + j) * W + k. Every living lane's stream is at a chunk's start together, since each
+  // takes one increment a step; a lane that stops takes no more.
+  constexpr std::size_t chunk_steps = WienerIncrements::kChunkSteps;
+  truth_dW_.resize(chunk_steps * q * W);
+  truth_dW2_.resize(chunk_steps * r * W);
   truth_dy_.resize(p * W);
   truth_live_.assign(W, 0.0);
   truth_take_.resize(W);
@@ -70,18 +74,22 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
   }
   for (std::size_t step = 0; living > 0 && step < grid.steps; ++step) {
     const double t = grid.time(step);
-    for (std::size_t k = 0; k < count; ++k) {
-      if (live[k] == 0) continue;
-      TruthLane& truth = *truth_lanes_[k];
-      const double* dW = truth.dW->next();
-      const double* dW2 = truth.dW2->next();
-      for (std::size_t j = 0; j < q; ++j) truth_dW_[j * W + k] = dW[j];
-      for (std::size_t j = 0; j < r; ++j) truth_dW2_[j * W + k] = dW2[j];
-    }
+    const std::size_t in_chunk = step % chunk_steps;
+    if (in_chunk == 0)
+      for (std::size_t k = 0; k < count; ++k) {
+        if (live[k] == 0) continue;
+        TruthLane& truth = *truth_lanes_[k];
+        const double* dW = truth.dW->next_chunk();
+        const double* dW2 = truth.dW2->next_chunk();
+        for (std::size_t e = 0; e < chunk_steps * q; ++e) truth_dW_[e * W + k] = dW[e];
+        for (std::size_t e = 0; e < chunk_steps * r; ++e) truth_dW2_[e * W + k] = dW2[e];
+      }
+    const double* step_dW = truth_dW_.data() + in_chunk * q * W;
+    const double* step_dW2 = truth_dW2_.data() + in_chunk * r * W;
     std::copy(truth_x_.begin(), truth_x_.end(), truth_start_.begin());
     LaneFlag* take = truth_take_.data();
     std::copy(live, live + W, take);
-    scheme_->step_lanes_at_once(t, W, x, grid.dt, truth_dW_.data(), take);
+    scheme_->step_lanes_at_once(t, W, x, grid.dt, step_dW, take);
     const double next = grid.time(step + 1);
     // DivergenceGuard::check's test of every lane, packed; a lane stepped alone below is checked
     // after its step.
@@ -100,7 +108,7 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
       for (std::size_t i = 0; i < n; ++i) truth_lane_x_[static_cast<Eigen::Index>(i)] = x[i * W + k];
       std::optional<DivergenceEvent> event;
       if (take[k] == 0) {
-        for (std::size_t j = 0; j < q; ++j) truth_lane_dW_[static_cast<Eigen::Index>(j)] = truth_dW_[j * W + k];
+        for (std::size_t j = 0; j < q; ++j) truth_lane_dW_[static_cast<Eigen::Index>(j)] = step_dW[j * W + k];
         event = take_truth_step(*truth_lanes_[k]->scheme, t, truth_lane_x_, grid.dt, truth_lane_dW_);
         if (!event) {
           for (std::size_t i = 0; i < n; ++i) x[i * W + k] = truth_lane_x_[static_cast<Eigen::Index>(i)];
@@ -115,7 +123,18 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
       live[k] = 0.0;
       --living;
     }
-    observation_.increment_lanes(t, grid.dt, W, truth_start_.data(), x, truth_dW2_.data(), truth_dy_.data());
+    observation_.increment_lanes(t, grid.dt, W, truth_start_.data(), x, step_dW2, truth_dy_.data());
+    if (lanes_only_ && width > 0 && living == count && count % width == 0) {
+      // Every lane lives and fills its group: the interleaved rows are the step's rows, group by
+      // group, copied whole.
+      for (std::size_t g = 0; g < count / width; ++g) {
+        double* path = lane_path_.data() + g * group_path_size() + (step + 1) * n * width;
+        double* dy = lane_dy_.data() + g * group_dy_size() + step * p * width;
+        for (std::size_t i = 0; i < n; ++i) std::copy_n(x + i * W + g * width, width, path + i * width);
+        for (std::size_t a = 0; a < p; ++a) std::copy_n(truth_dy_.data() + a * W + g * width, width, dy + a * width);
+      }
+      continue;
+    }
     for (std::size_t k = 0; k < count; ++k) {
       if (live[k] == 0) continue;
       if (!lanes_only_) {
