@@ -239,3 +239,24 @@ TEST_CASE("batch stepping: WienerIncrements gives, step by step, the increments 
     CHECK(ahead.size() == size);
   }
 }
+
+TEST_CASE("batch stepping: WienerIncrements::next_chunk gives a chunk of steps, next()'s values in its order",
+          "[runtime][batch][random][unit]") {
+  constexpr std::size_t chunk = WienerIncrements::kChunkSteps;
+  for (const std::size_t size : {0, 1, 3}) {
+    RandomStream chunk_stream(8, 9, substream::observation_noise), step_stream(8, 9, substream::observation_noise);
+    WienerIncrements chunks(chunk_stream, size, 0.02), steps(step_stream, size, 0.02);
+    for (int c = 0; c < 3; ++c) {  // a whole chunk, then next() and next_chunk() alternating
+      const bool by_chunk = c != 1;
+      const double* drawn = by_chunk ? chunks.next_chunk() : nullptr;
+      for (std::size_t s = 0; s < chunk; ++s) {
+        const double* one = by_chunk ? drawn + s * size : chunks.next();
+        const double* expected = steps.next();
+        for (std::size_t j = 0; j < size; ++j) {
+          INFO("size " << size << ", chunk " << c << ", step " << s << ", entry " << j);
+          REQUIRE(same_bits(one[j], expected[j]));
+        }
+      }
+    }
+  }
+}
