@@ -24,14 +24,17 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The lanes a mask sets.
-template <std::size_t W>
-std::vector<bool> lanes_of(const lane_pack::Mask<W>& mask) {
-  const lane_pack::Values<W> flags = lane_pack::keep_where<W>(mask, lane_pack::splat<W>(1.0));
-  double values[W];
-  lane_pack::store<W>(values, flags);
+// The lanes a pass over W lanes sets, pack by pack: mask_at(c) is the mask of the pack whose first
+// lane is c.
+template <std::size_t W, class MaskAt>
+std::vector<bool> lanes_of(MaskAt mask_at) {
+  constexpr std::size_t width = lane_pack::kLanes;
   std::vector<bool> set(W);
-  for (std::size_t k = 0; k < W; ++k) set[k] = values[k] == 1.0;
+  for (std::size_t c = 0; c < W; c += width) {
+    double flags[width];
+    lane_pack::store(flags, lane_pack::keep_where(mask_at(c), lane_pack::splat(1.0)));
+    for (std::size_t k = 0; k < width; ++k) set[c + k] = flags[k] == 1.0;
+  }
   return set;
 }
 
@@ -58,7 +61,8 @@ void check_keeps(std::size_t n, std::mt19937_64& random) {
       after[e] = std::uniform_int_distribution<int>(0, 4)(random) == 0 ? edgy(random, 1.0)
                                                                         : before[e] * (1 + change) + 1e-10;
     }
-    const std::vector<bool> packed = lanes_of<W>(stepper.keeps_pack<W>(before.data(), after.data()));
+    const std::vector<bool> packed =
+        lanes_of<W>([&](std::size_t c) { return stepper.keeps_pack<W>(before.data() + c, after.data() + c); });
     for (std::size_t k = 0; k < W; ++k) {
       for (std::size_t e = 0; e < size; ++e) {
         one_before[e] = before[e * W + k];
@@ -79,7 +83,8 @@ void check_guards(std::mt19937_64& random) {
     std::vector<double> values(count * W);
     for (double& value : values) value = edgy(random, 1e8);
     for (const DivergenceGuard* guard : {&bounded, &finite_only}) {
-      const std::vector<bool> packed = lanes_of<W>(guard->passes_pack<W>(values.data(), count));
+      const std::vector<bool> packed =
+          lanes_of<W>([&](std::size_t c) { return guard->passes_pack<W>(values.data() + c, count); });
       std::vector<LaneFlag> flags(W, 1.0);
       guard->pass_lanes(values.data(), count, W, flags.data());
       for (std::size_t k = 0; k < W; ++k) {
@@ -102,7 +107,7 @@ void check_guards(std::mt19937_64& random) {
         default: P[k] = edgy(random, 1.0);
       }
     }
-    const std::vector<bool> packed = lanes_of<W>(psd.passes_pack_1<W>(P.data()));
+    const std::vector<bool> packed = lanes_of<W>([&](std::size_t c) { return psd.passes_pack_1(P.data() + c); });
     for (std::size_t k = 0; k < W; ++k) {
       const double one[2] = {0.0, P[k]};
       INFO("W = " << W << ", trial " << trial << ", lane " << k << ", P = " << P[k]);
@@ -132,30 +137,42 @@ TEST_CASE("lane packs: the guards' packed tests pass exactly the lanes their one
   check_guards<16>(random);
 }
 
-TEST_CASE("lane packs: select, abs, keep_where and none act lane by lane", "[batch][runtime][unit]") {
+TEST_CASE("lane packs: the operations act lane by lane, as on doubles", "[batch][runtime][unit]") {
   namespace lp = lane_pack;
-  const double a[8] = {1.0, -2.0, -0.0, kNaN, -kInf, 3.5, -1e-300, 0.0};
-  const double b[8] = {9.0, 8.0, 7.0, 6.0, 5.0, 4.0, 3.0, 2.0};
-  const lp::Values<8> x = lp::load<8>(a), y = lp::load<8>(b);
-  double out[8];
-  lp::store<8>(out, lp::abs<8>(x));
-  for (std::size_t k = 0; k < 8; ++k) {
-    if (std::isnan(a[k])) {
-      CHECK(std::isnan(out[k]));
-    } else {
-      CHECK(out[k] == std::abs(a[k]));
+  constexpr std::size_t W = 10, width = lp::kLanes;
+  const double a[W] = {1.0, -2.0, -0.0, kNaN, -kInf, 3.5, -1e-300, 0.0, 2.0, kInf};
+  const double b[W] = {9.0, 8.0, 0.0, 6.0, 5.0, kNaN, 3.0, 2.0, 2.0, kInf};
+  auto same = [](double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; };
+  for (std::size_t c = 0; c < W; c += width) {
+    const lp::Pack x = lp::load(a + c), y = lp::load(b + c);
+    double out[width];
+    auto lanes = [&](lp::Pack v) {
+      lp::store(out, v);
+      return out;
+    };
+    auto flags = [&](lp::Pack mask) { return lanes(lp::keep_where(mask, lp::splat(1.0))); };
+    for (std::size_t k = 0; k < width; ++k) {
+      const double u = a[c + k], v = b[c + k];
+      INFO("lanes " << u << ", " << v);
+      CHECK(same(lanes(lp::abs(x))[k], std::abs(u)));
+      CHECK(same(lanes(lp::negate(x))[k], -u));
+      CHECK(same(lanes(lp::add(x, y))[k], u + v));
+      CHECK(same(lanes(lp::subtract(x, y))[k], u - v));
+      CHECK(same(lanes(lp::multiply(x, y))[k], u * v));
+      CHECK(same(lanes(lp::divide(x, y))[k], u / v));
+      CHECK(flags(lp::less(x, y))[k] == (u < v ? 1.0 : 0.0));
+      CHECK(flags(lp::less_equal(x, y))[k] == (u <= v ? 1.0 : 0.0));
+      CHECK(flags(lp::greater(x, y))[k] == (u > v ? 1.0 : 0.0));
+      CHECK(flags(lp::greater_equal(x, y))[k] == (u >= v ? 1.0 : 0.0));
+      CHECK(flags(lp::equal(x, y))[k] == (u == v ? 1.0 : 0.0));
+      CHECK(flags(lp::not_equal(x, y))[k] == (u != v ? 1.0 : 0.0));
+      CHECK(flags(lp::finite(x))[k] == (std::isfinite(u) ? 1.0 : 0.0));
+      CHECK(same(lanes(lp::select(lp::less(x, y), x, y))[k], u < v ? u : v));
+      CHECK(same(lanes(lp::keep_where(lp::greater(x, y), x))[k], u > v ? u : 0.0));
+      CHECK(flags(lp::both(lp::less(x, y), lp::finite(y)))[k] == (u < v && std::isfinite(v) ? 1.0 : 0.0));
+      CHECK(flags(lp::except(lp::finite(x), lp::less(x, y)))[k] == (std::isfinite(u) && !(u < v) ? 1.0 : 0.0));
     }
-    CHECK(!std::signbit(out[k]));
+    CHECK(lp::none(lp::less(x, y)) == !(a[c] < b[c] || a[c + 1] < b[c + 1]));
+    CHECK(!lp::none(lp::all_set()));
   }
-  const lp::Mask<8> less = x < y;  // false where x is NaN
-  lp::store<8>(out, lp::select<8>(less, x, y));
-  for (std::size_t k = 0; k < 8; ++k) {
-    const double expected = a[k] < b[k] ? a[k] : b[k];
-    CHECK(std::memcmp(&out[k], &expected, sizeof expected) == 0);
-  }
-  CHECK(!lp::none<8>(less));
-  CHECK(lp::none<8>(x > lp::splat<8>(kInf)));
-  lp::store<8>(out, lp::keep_where<8>(x > lp::splat<8>(0.0), lp::splat<8>(1.0)));
-  for (std::size_t k = 0; k < 8; ++k) CHECK(out[k] == (a[k] > 0.0 ? 1.0 : 0.0));
-  CHECK(lp::sum<8>(lp::load<8>(b)) == 44.0);
 }

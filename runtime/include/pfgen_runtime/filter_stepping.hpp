@@ -73,29 +73,33 @@ class FilterStepper {
   void keeps_lanes(const double* before, const double* after, std::size_t width, LaneFlag* keep) const {
     if (control_.adaptive && control_.max_depth > 0) reject_lanes(before, after, width, keep);
   }
-  // keeps() for W states side by side (W a lane pack's width): all ones where lane k's step would
-  // be kept. reject_lanes' tests, term for term, on lane packs.
+  // keeps() for one lane pack of W states side by side (lane_pack.hpp: `before` and `after` at the
+  // pack's first lane, W between entries): all ones where the lane's step would be kept.
+  // reject_lanes' tests, term for term.
   template <std::size_t W>
-  PFGEN_LANE_PACK_INLINE lane_pack::Mask<W> keeps_pack(const double* before, const double* after) const {
+  PFGEN_LANE_PACK_INLINE lane_pack::Pack keeps_pack(const double* before, const double* after) const {
     namespace lp = lane_pack;
-    lp::Mask<W> keep = lp::all_set<W>();
+    lp::Pack keep = lp::all_set();
     if (!control_.adaptive || control_.max_depth == 0) return keep;
-    for (std::size_t i = 0; i < n_; ++i) keep &= lp::finite<W>(lp::load<W>(after + i * W));
+    for (std::size_t i = 0; i < n_; ++i) keep = lp::both(keep, lp::finite(lp::load(after + i * W)));
     const double* P0 = before + n_ * W;
     const double* P1 = after + n_ * W;
-    const lp::Values<W> tolerance = lp::splat<W>(control_.tolerance), floor = lp::splat<W>(control_.floor);
+    const lp::Pack tolerance = lp::splat(control_.tolerance), floor = lp::splat(control_.floor);
     for (std::size_t i = 0, e = 0; i < n_; ++i)
       for (std::size_t j = i; j < n_; ++j, ++e) {
-        const lp::Values<W> p0 = lp::load<W>(P0 + e * W), p1 = lp::load<W>(P1 + e * W);
+        const lp::Pack p0 = lp::load(P0 + e * W), p1 = lp::load(P1 + e * W);
+        const lp::Pack change = lp::abs(lp::subtract(p1, p0));
         if (i == j) {
-          const lp::Values<W> change = lp::abs<W>(p1 - p0);
-          keep &= lp::finite<W>(p1) & ~(change > tolerance * (lp::abs<W>(p0) + floor));
+          const lp::Pack too_large = lp::greater(change, lp::multiply(tolerance, lp::add(lp::abs(p0), floor)));
+          keep = lp::both(keep, lp::except(lp::finite(p1), too_large));
           continue;
         }
-        const lp::Values<W> excess = lp::abs<W>(p1 - p0) / tolerance - floor;
-        const lp::Values<W> d_i = lp::load<W>(P0 + packed_diagonal(n_, i) * W);
-        const lp::Values<W> d_j = lp::load<W>(P0 + packed_diagonal(n_, j) * W);
-        keep &= lp::finite<W>(p1) & ~((excess > lp::splat<W>(0.0)) & (excess * excess > lp::abs<W>(d_i * d_j)));
+        const lp::Pack excess = lp::subtract(lp::divide(change, tolerance), floor);
+        const lp::Pack d_i = lp::load(P0 + packed_diagonal(n_, i) * W);
+        const lp::Pack d_j = lp::load(P0 + packed_diagonal(n_, j) * W);
+        const lp::Pack too_large = lp::both(lp::greater(excess, lp::splat(0.0)),
+                                            lp::greater(lp::multiply(excess, excess), lp::abs(lp::multiply(d_i, d_j))));
+        keep = lp::both(keep, lp::except(lp::finite(p1), too_large));
       }
     return keep;
   }

@@ -55,15 +55,17 @@ class DivergenceGuard {
     for (std::size_t i = 0; i < count; ++i)
       for (std::size_t k = 0; k < width; ++k) pass[k] = std::abs(values[i * width + k]) <= bound_ ? pass[k] : 0.0;
   }
-  // pass_lanes over W lists held as lane packs: all ones where list k has no event.
+  // pass_lanes for one lane pack of W lists side by side (lane_pack.hpp: `values` at the pack's
+  // first lane, W between entries): all ones where the lane's list has no event.
   template <std::size_t W>
-  PFGEN_LANE_PACK_INLINE lane_pack::Mask<W> passes_pack(const double* values, std::size_t count) const {
+  PFGEN_LANE_PACK_INLINE lane_pack::Pack passes_pack(const double* values, std::size_t count) const {
     namespace lp = lane_pack;
-    lp::Mask<W> pass = lp::all_set<W>();
-    const lp::Values<W> bound = lp::splat<W>(bound_);
-    for (std::size_t i = 0; i < count; ++i) pass &= lp::abs<W>(lp::load<W>(values + i * W)) <= bound;
+    lp::Pack pass = lp::all_set();
+    const lp::Pack bound = lp::splat(bound_);
+    for (std::size_t i = 0; i < count; ++i) pass = lp::both(pass, lp::less_equal(lp::abs(lp::load(values + i * W)), bound));
     return pass;
   }
+
 
  private:
   DivergenceEvent event(double t, std::size_t index, double value) const;
@@ -128,14 +130,16 @@ class CovarianceGuard {
                     ? pass[k]
                     : 0.0;
   }
-  // pass_lanes_1 over W states held as a lane pack: all ones where P[k] passes.
-  template <std::size_t W>
-  PFGEN_LANE_PACK_INLINE lane_pack::Mask<W> passes_pack_1(const double* P) const {
+  // pass_lanes_1 for one lane pack (lane_pack.hpp; `P` at its first lane): all ones where the
+  // lane's P passes.
+  PFGEN_LANE_PACK_INLINE lane_pack::Pack passes_pack_1(const double* P) const {
     namespace lp = lane_pack;
-    const lp::Values<W> p = lp::load<W>(P), size = lp::abs<W>(p);
-    return (size <= lp::splat<W>(std::numeric_limits<double>::max())) &
-           (p >= -(lp::splat<W>(absolute_tolerance_) + lp::splat<W>(relative_tolerance_) * size));
+    const lp::Pack p = lp::load(P), size = lp::abs(p);
+    const lp::Pack threshold =
+        lp::negate(lp::add(lp::splat(absolute_tolerance_), lp::multiply(lp::splat(relative_tolerance_), size)));
+    return lp::both(lp::less_equal(size, lp::splat(std::numeric_limits<double>::max())), lp::greater_equal(p, threshold));
   }
+
 
  private:
   bool passes_filter_state_general(const double* state, std::size_t n) const;

@@ -1,169 +1,100 @@
 #pragma once
-// W lanes of doubles held as one value (W a power of two, at most 16), for the batched stepping's
-// per-step passes over a compile-time number of lanes: the tests and sums that run beside every
-// step of W runs side by side.
+// The per-step passes over W lanes of the batched stepping (the tests and sums that run beside
+// every step of W runs side by side), two lanes at a time: a lane pack is two consecutive lanes in
+// one SSE2 register (x86-64's baseline; elsewhere GCC's and Clang's vector extension), and a pass
+// over W lanes (W even) is a loop over W / 2 packs.
 //
-// Written as loops over W doubles, compilers unroll these passes into scalar code with a compare
-// and a branch per lane (GCC 12 does, even with AVX-512 enabled). Here a pack is an array of the
-// target's own SIMD vectors (GCC's and Clang's vector extension: 2 doubles with SSE2, 4 with AVX,
-// 8 with AVX-512), since a vector wider than the target's is lowered lane by lane for compares.
-// Every operation is lane by lane IEEE arithmetic, so each lane's result is the scalar code's, bit
-// for bit.
+// Why not loops over W doubles: compilers unroll those into scalar code with a compare and a
+// branch per lane (GCC 12 does, even with AVX-512 enabled). Why not one vector of W doubles, or
+// the vector extension's compares: GCC lowers compares of vectors wider than the target lane by
+// lane, keeps arrays of vectors in memory, and turned a select on a compare into code it could
+// not expand (an internal compiler error in GCC 12). The SSE2 compares give masks as doubles,
+// combined by and/andnot and tested by movemask. Every operation is lane by lane IEEE arithmetic,
+// so each lane's result is the scalar code's, bit for bit.
+//
+// Layout: entry-major, entry e of lane k at e * W + k. A pack's functions take pointers to its
+// first lane (the pass's pointer + the pack's first lane) and step W between entries.
 #include <cstddef>
-#include <cstdint>
 #include <cstring>
+#include <limits>
 
-#include "pfgen_runtime/lane_flag.hpp"
-
-#if !defined(__GNUC__)
-#error "pfgen's runtime needs GCC's or Clang's vector extension (lane_pack.hpp)"
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#elif !defined(__GNUC__)
+#error "pfgen's runtime needs SSE2 or GCC's or Clang's vector extension (lane_pack.hpp)"
 #endif
 
-// Lane packs are values of up to 128 bytes, returned through memory by a call: every function on
-// them, here and in the classes' *_pack tests, is always inlined.
+// Functions on packs, here and in the classes' *_pack tests, are always inlined.
 #define PFGEN_LANE_PACK_INLINE inline __attribute__((always_inline))
 
 namespace pfgen_runtime::lane_pack {
 
-#if defined(__AVX512F__)
-inline constexpr std::size_t kNativeLanes = 8;
-#elif defined(__AVX__)
-inline constexpr std::size_t kNativeLanes = 4;
+inline constexpr std::size_t kLanes = 2;  // lanes per pack
+
+#if defined(__SSE2__)
+using Pack = __m128d;  // two doubles; also a mask: all ones (true) or 0 per lane
+PFGEN_LANE_PACK_INLINE Pack load(const double* from) { return _mm_loadu_pd(from); }
+PFGEN_LANE_PACK_INLINE void store(double* to, Pack v) { _mm_storeu_pd(to, v); }
+PFGEN_LANE_PACK_INLINE Pack splat(double x) { return _mm_set1_pd(x); }
+PFGEN_LANE_PACK_INLINE Pack add(Pack a, Pack b) { return _mm_add_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack subtract(Pack a, Pack b) { return _mm_sub_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack multiply(Pack a, Pack b) { return _mm_mul_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack divide(Pack a, Pack b) { return _mm_div_pd(a, b); }
+// Compares as C++'s on doubles: false where either side is NaN, except not_equal.
+PFGEN_LANE_PACK_INLINE Pack less(Pack a, Pack b) { return _mm_cmplt_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack less_equal(Pack a, Pack b) { return _mm_cmple_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack greater(Pack a, Pack b) { return _mm_cmpgt_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack greater_equal(Pack a, Pack b) { return _mm_cmpge_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack equal(Pack a, Pack b) { return _mm_cmpeq_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack not_equal(Pack a, Pack b) { return _mm_cmpneq_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack all_set() { return _mm_castsi128_pd(_mm_set1_epi32(-1)); }
+PFGEN_LANE_PACK_INLINE Pack both(Pack a, Pack b) { return _mm_and_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack except(Pack a, Pack b) { return _mm_andnot_pd(b, a); }  // a and not b
+// where ? a : b, lane by lane.
+PFGEN_LANE_PACK_INLINE Pack select(Pack where, Pack a, Pack b) {
+  return _mm_or_pd(_mm_and_pd(where, a), _mm_andnot_pd(where, b));
+}
+// Whether no lane of the mask is set.
+PFGEN_LANE_PACK_INLINE bool none(Pack mask) { return _mm_movemask_pd(mask) == 0; }
+// -a: the sign bit flipped, as double's -x.
+PFGEN_LANE_PACK_INLINE Pack negate(Pack a) { return _mm_xor_pd(a, _mm_set1_pd(-0.0)); }
 #else
-inline constexpr std::size_t kNativeLanes = 2;
-#endif
-
-template <std::size_t W>
-struct Pieces {
-  static_assert(W >= 2 && W <= 16 && (W & (W - 1)) == 0, "a lane pack is 2, 4, 8 or 16 doubles");
-  static constexpr std::size_t width = W < kNativeLanes ? W : kNativeLanes;  // lanes per piece
-  static constexpr std::size_t count = W / width;
-  typedef double Values __attribute__((vector_size(width * sizeof(double))));
-  typedef std::int64_t Mask __attribute__((vector_size(width * sizeof(double))));  // all ones or 0
-};
-
-// A pack's lanes; Mask: all ones (true) or 0 per lane, from a compare.
-template <std::size_t W>
-struct Mask {
-  typename Pieces<W>::Mask piece[Pieces<W>::count];
-};
-template <std::size_t W>
-struct Values {
-  typename Pieces<W>::Values piece[Pieces<W>::count];
-};
-
-#define PFGEN_LANE_PACK_OPERATOR(Result, Operand, op)                          \
-  template <std::size_t W>                                                     \
-  PFGEN_LANE_PACK_INLINE Result<W> operator op(const Operand<W>& a, const Operand<W>& b) {     \
-    Result<W> r;                                                               \
-    for (std::size_t c = 0; c < Pieces<W>::count; ++c) r.piece[c] = a.piece[c] op b.piece[c]; \
-    return r;                                                                  \
-  }
-PFGEN_LANE_PACK_OPERATOR(Values, Values, +)
-PFGEN_LANE_PACK_OPERATOR(Values, Values, -)
-PFGEN_LANE_PACK_OPERATOR(Values, Values, *)
-PFGEN_LANE_PACK_OPERATOR(Values, Values, /)
-PFGEN_LANE_PACK_OPERATOR(Mask, Values, <)
-PFGEN_LANE_PACK_OPERATOR(Mask, Values, <=)
-PFGEN_LANE_PACK_OPERATOR(Mask, Values, >)
-PFGEN_LANE_PACK_OPERATOR(Mask, Values, >=)
-PFGEN_LANE_PACK_OPERATOR(Mask, Values, ==)
-PFGEN_LANE_PACK_OPERATOR(Mask, Values, !=)
-PFGEN_LANE_PACK_OPERATOR(Mask, Mask, &)
-#undef PFGEN_LANE_PACK_OPERATOR
-
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE Mask<W>& operator&=(Mask<W>& a, const Mask<W>& b) {
-  return a = a & b;
-}
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE Mask<W> operator~(const Mask<W>& a) {
-  Mask<W> r;
-  for (std::size_t c = 0; c < Pieces<W>::count; ++c) r.piece[c] = ~a.piece[c];
-  return r;
-}
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE Values<W> operator-(const Values<W>& a) {  // the sign flipped, as double's -x
-  Values<W> r;
-  for (std::size_t c = 0; c < Pieces<W>::count; ++c) r.piece[c] = -a.piece[c];
-  return r;
-}
-
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE Values<W> load(const double* from) {  // no alignment assumed
-  Values<W> v;
+typedef double Pack __attribute__((vector_size(2 * sizeof(double))));
+typedef long long PackBits __attribute__((vector_size(2 * sizeof(double))));
+PFGEN_LANE_PACK_INLINE Pack load(const double* from) {
+  Pack v;
   std::memcpy(&v, from, sizeof v);
   return v;
 }
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE void store(double* to, const Values<W>& v) {
-  std::memcpy(to, &v, sizeof v);
+PFGEN_LANE_PACK_INLINE void store(double* to, Pack v) { std::memcpy(to, &v, sizeof v); }
+PFGEN_LANE_PACK_INLINE Pack splat(double x) { return Pack{x, x}; }
+PFGEN_LANE_PACK_INLINE Pack add(Pack a, Pack b) { return a + b; }
+PFGEN_LANE_PACK_INLINE Pack subtract(Pack a, Pack b) { return a - b; }
+PFGEN_LANE_PACK_INLINE Pack multiply(Pack a, Pack b) { return a * b; }
+PFGEN_LANE_PACK_INLINE Pack divide(Pack a, Pack b) { return a / b; }
+PFGEN_LANE_PACK_INLINE Pack as_pack(PackBits bits) { return reinterpret_cast<Pack>(bits); }
+PFGEN_LANE_PACK_INLINE PackBits bits_of(Pack v) { return reinterpret_cast<PackBits>(v); }
+PFGEN_LANE_PACK_INLINE Pack less(Pack a, Pack b) { return as_pack(a < b); }
+PFGEN_LANE_PACK_INLINE Pack less_equal(Pack a, Pack b) { return as_pack(a <= b); }
+PFGEN_LANE_PACK_INLINE Pack greater(Pack a, Pack b) { return as_pack(a > b); }
+PFGEN_LANE_PACK_INLINE Pack greater_equal(Pack a, Pack b) { return as_pack(a >= b); }
+PFGEN_LANE_PACK_INLINE Pack equal(Pack a, Pack b) { return as_pack(a == b); }
+PFGEN_LANE_PACK_INLINE Pack not_equal(Pack a, Pack b) { return as_pack(a != b); }
+PFGEN_LANE_PACK_INLINE Pack all_set() { return as_pack(PackBits{-1, -1}); }
+PFGEN_LANE_PACK_INLINE Pack both(Pack a, Pack b) { return as_pack(bits_of(a) & bits_of(b)); }
+PFGEN_LANE_PACK_INLINE Pack except(Pack a, Pack b) { return as_pack(bits_of(a) & ~bits_of(b)); }
+PFGEN_LANE_PACK_INLINE Pack select(Pack where, Pack a, Pack b) {
+  return as_pack((bits_of(where) & bits_of(a)) | (~bits_of(where) & bits_of(b)));
 }
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE Values<W> splat(double x) {
-  Values<W> v;
-  for (std::size_t c = 0; c < Pieces<W>::count; ++c) v.piece[c] = typename Pieces<W>::Values{} + x;
-  return v;
-}
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE Mask<W> all_set() {
-  Mask<W> m;
-  for (std::size_t c = 0; c < Pieces<W>::count; ++c) m.piece[c] = typename Pieces<W>::Mask{} - 1;
-  return m;
-}
-// where ? a : b, lane by lane.
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE Values<W> select(const Mask<W>& where, const Values<W>& a, const Values<W>& b) {
-  using Bits = typename Pieces<W>::Mask;
-  using Doubles = typename Pieces<W>::Values;
-  Values<W> r;
-  for (std::size_t c = 0; c < Pieces<W>::count; ++c)
-    r.piece[c] = reinterpret_cast<Doubles>((reinterpret_cast<Bits>(a.piece[c]) & where.piece[c]) |
-                                           (reinterpret_cast<Bits>(b.piece[c]) & ~where.piece[c]));
-  return r;
-}
+PFGEN_LANE_PACK_INLINE bool none(Pack mask) { return (bits_of(mask)[0] | bits_of(mask)[1]) == 0; }
+PFGEN_LANE_PACK_INLINE Pack negate(Pack a) { return as_pack(bits_of(a) ^ bits_of(Pack{-0.0, -0.0})); }
+#endif
+
 // where ? a : +0.0, lane by lane (a flag kept where `where` holds, cleared elsewhere).
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE Values<W> keep_where(const Mask<W>& where, const Values<W>& a) {
-  using Bits = typename Pieces<W>::Mask;
-  using Doubles = typename Pieces<W>::Values;
-  Values<W> r;
-  for (std::size_t c = 0; c < Pieces<W>::count; ++c)
-    r.piece[c] = reinterpret_cast<Doubles>(reinterpret_cast<Bits>(a.piece[c]) & where.piece[c]);
-  return r;
-}
+PFGEN_LANE_PACK_INLINE Pack keep_where(Pack where, Pack a) { return both(where, a); }
 // std::abs: the sign bit cleared.
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE Values<W> abs(const Values<W>& a) {
-  using Bits = typename Pieces<W>::Mask;
-  using Doubles = typename Pieces<W>::Values;
-  Values<W> r;
-  for (std::size_t c = 0; c < Pieces<W>::count; ++c)
-    r.piece[c] = reinterpret_cast<Doubles>(reinterpret_cast<Bits>(a.piece[c]) & (Bits{} + INT64_MAX));
-  return r;
-}
+PFGEN_LANE_PACK_INLINE Pack abs(Pack a) { return except(a, splat(-0.0)); }
 // FilterStepper::finite: x - x == 0, false for inf and NaN.
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE Mask<W> finite(const Values<W>& x) {
-  return (x - x) == splat<W>(0.0);
-}
-// Whether no lane of the mask is set.
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE bool none(const Mask<W>& m) {
-  typename Pieces<W>::Mask any = m.piece[0];
-  for (std::size_t c = 1; c < Pieces<W>::count; ++c) any |= m.piece[c];
-  for (std::size_t k = 0; k < Pieces<W>::width; ++k)
-    if (any[k] != 0) return false;
-  return true;
-}
-// The lanes' sum, lane 0 first (exact for flags: whole numbers far below 2^53, in any order).
-template <std::size_t W>
-PFGEN_LANE_PACK_INLINE double sum(const Values<W>& v) {
-  double lanes[W];
-  std::memcpy(lanes, &v, sizeof lanes);
-  double total = 0;
-  for (std::size_t k = 0; k < W; ++k) total += lanes[k];
-  return total;
-}
+PFGEN_LANE_PACK_INLINE Pack finite(Pack x) { return equal(subtract(x, x), splat(0.0)); }
 
 }  // namespace pfgen_runtime::lane_pack

@@ -43,12 +43,14 @@ namespace {
 
 using Flags = std::array<LaneFlag, 16>;  // W <= 16 entries used
 
-// FilterStepper::keeps and the divergence guards over W lanes: all ones where lane k passes.
+// FilterStepper::keeps and the divergence guards for the lane pack at the pointers (lane_pack.hpp):
+// all ones where the lane passes.
 template <std::size_t W>
-lane_pack::Mask<W> packed_checks(const FilterStepper& stepper, const FilterGuardOptions& guards, std::size_t n,
-                                 const double* saved, const double* state) {
-  return stepper.keeps_pack<W>(saved, state) & guards.estimate_guard.passes_pack<W>(state, n) &
-         guards.covariance_guard.passes_pack<W>(state + n * W, packed_size(n));
+lane_pack::Pack packed_checks(const FilterStepper& stepper, const FilterGuardOptions& guards, std::size_t n,
+                              const double* saved, const double* state) {
+  namespace lp = lane_pack;
+  return lp::both(lp::both(stepper.keeps_pack<W>(saved, state), guards.estimate_guard.passes_pack<W>(state, n)),
+                  guards.covariance_guard.passes_pack<W>(state + n * W, packed_size(n)));
 }
 
 }  // namespace
@@ -90,18 +92,20 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   auto visit_lanes = [&](std::size_t j) {
     enter(j);
     const double* x = lane_path + j * n * W;
-    const lp::Mask<W> seen = lp::load<W>(visited.data()) != lp::splat<W>(0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-      const lp::Values<W> e = lp::load<W>(x + i * W) - lp::load<W>(states.data() + i * W);
-      const lp::Values<W> sq = lp::keep_where<W>(seen, e * e), size = lp::keep_where<W>(seen, lp::abs<W>(e));
-      double* sum = sums.data() + i * W;
-      double* top = peak.data() + i * W;
-      lp::store<W>(sum, lp::load<W>(sum) + sq);
-      const lp::Values<W> peak_so_far = lp::load<W>(top);
-      lp::store<W>(top, lp::select<W>(peak_so_far < size, size, peak_so_far));  // std::max(top, size)
-      for (std::size_t w : active_) {
-        double* window = sums.data() + ((1 + w) * n + i) * W;
-        lp::store<W>(window, lp::load<W>(window) + sq);
+    for (std::size_t c = 0; c < W; c += lp::kLanes) {  // lane packs
+      const lp::Pack seen = lp::not_equal(lp::load(visited.data() + c), lp::splat(0.0));
+      for (std::size_t i = 0; i < n; ++i) {
+        const lp::Pack e = lp::subtract(lp::load(x + i * W + c), lp::load(states.data() + i * W + c));
+        const lp::Pack sq = lp::keep_where(seen, lp::multiply(e, e)), size = lp::keep_where(seen, lp::abs(e));
+        double* sum = sums.data() + i * W + c;
+        double* top = peak.data() + i * W + c;
+        lp::store(sum, lp::add(lp::load(sum), sq));
+        const lp::Pack peak_so_far = lp::load(top);
+        lp::store(top, lp::select(lp::less(peak_so_far, size), size, peak_so_far));  // std::max(top, size)
+        for (std::size_t w : active_) {
+          double* window = sums.data() + ((1 + w) * n + i) * W + c;
+          lp::store(window, lp::add(lp::load(window), sq));
+        }
       }
     }
     if (criterion_ || reference_ || events_begin_ != next_event_) {
@@ -139,21 +143,32 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   for (std::size_t step = 0; living > 0; ++step) {
     const double t = grid.time(step), next = grid.time(step + 1);
     // Entry by entry in packs: memmove's wider loads would straddle the step's narrower stores.
-    for (std::size_t e = 0; e < size; ++e) lp::store<W>(saved.data() + e * W, lp::load<W>(states.data() + e * W));
+    for (std::size_t e = 0; e < size * W; e += lp::kLanes) lp::store(saved.data() + e, lp::load(states.data() + e));
     filter.step_lanes(states.data(), t, grid.dt, lane_dy + step * p * W);
-    const lp::Values<W> living_lanes = lp::load<W>(live.data());
-    const lp::Mask<W> passes = packed_checks<W>(stepper_, guards, n, saved.data(), states.data());
-    lp::Mask<W> psd_passes = lp::all_set<W>();
-    if (guards.check_psd && psd_packed) psd_passes = guards.psd.passes_pack_1<W>(states.data() + W);
-    // No live lane failed a check (and no PSD test is left to run lane by lane).
-    const bool all = lp::none<W>((living_lanes != lp::splat<W>(0.0)) & ~(passes & psd_passes)) &&
-                     !(guards.check_psd && !psd_packed);
-    if (all) {
+    // Whether a live lane failed a check, pack by pack (a PSD test of n > 1 is left to each lane).
+    const bool psd_each = guards.check_psd && !psd_packed;
+    bool failed = psd_each;
+    auto checks = [&](std::size_t c, lp::Pack& passes, lp::Pack& psd_passes) {
+      passes = packed_checks<W>(stepper_, guards, n, saved.data() + c, states.data() + c);
+      psd_passes = lp::all_set();
+      if (guards.check_psd && psd_packed) psd_passes = guards.psd.passes_pack_1(states.data() + W + c);
+    };
+    for (std::size_t c = 0; c < W && !failed; c += lp::kLanes) {
+      lp::Pack passes, psd_passes;
+      checks(c, passes, psd_passes);
+      const lp::Pack living_lanes = lp::not_equal(lp::load(live.data() + c), lp::splat(0.0));
+      failed = !lp::none(lp::except(living_lanes, lp::both(passes, psd_passes)));
+    }
+    if (!failed) {
       steps += living;
       visited = live;
     } else {
-      lp::store<W>(pass.data(), lp::keep_where<W>(passes, living_lanes));
-      lp::store<W>(psd.data(), lp::keep_where<W>(psd_passes, lp::splat<W>(1.0)));
+      for (std::size_t c = 0; c < W; c += lp::kLanes) {  // the lanes' flags, for the loop below
+        lp::Pack passes, psd_passes;
+        checks(c, passes, psd_passes);
+        lp::store(pass.data() + c, lp::keep_where(passes, lp::load(live.data() + c)));
+        lp::store(psd.data() + c, lp::keep_where(psd_passes, lp::splat(1.0)));
+      }
       for (std::size_t k = 0; k < W; ++k) visited[k] = 0.0;
       for (std::size_t k = 0; k < count; ++k) {
         if (live[k] == 0) continue;
