@@ -260,3 +260,45 @@ TEST_CASE("batch stepping: WienerIncrements::next_chunk gives a chunk of steps, 
     }
   }
 }
+
+TEST_CASE("batch stepping: a linear observation's increment over lanes is increment()'s, lane by lane",
+          "[runtime][batch][observation][unit]") {
+  const std::size_t p = 2, n = 3, r = 2;
+  std::mt19937_64 random(5);
+  std::normal_distribution<double> normal;
+  // Time-varying coefficients (with a -0.0 in A0), and constant ones.
+  const LinearObservation varying(p, n, r, [](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
+    A0 << -0.0, std::sin(t);
+    A << 1.0, -2.0 * t, 0.5, 0.0, 3.0, -1.0 + t;
+    B << 1.0, 0.25 * t, 0.0, 2.0;
+  });
+  Eigen::MatrixXd A(p, n), B(p, r);
+  A << 0.3, -1.0, 2.0, 0.0, 1.5, -0.7;
+  B << 0.9, 0.0, 0.1, 1.1;
+  const LinearObservation constant(Eigen::Vector2d(0.2, -0.4), A, B);
+  for (const LinearObservation* model : {&varying, &constant}) {
+    LinearObservation lanes_model = *model, one_model = *model;
+    for (const std::size_t count : {1, 2, 5, 8}) {
+      std::vector<double> x_start(n * count), x_end(n * count), dW2(r * count), dy(p * count);
+      for (double& v : x_start) v = normal(random);
+      for (double& v : x_end) v = normal(random);
+      for (double& v : dW2) v = 0.01 * normal(random);
+      x_start[0] = 0.0;  // a lane whose rate may be a signed zero
+      x_end[0] = 0.0;
+      lanes_model.increment_lanes(0.3, 0.01, count, x_start.data(), x_end.data(), dW2.data(), dy.data());
+      for (std::size_t k = 0; k < count; ++k) {
+        Eigen::VectorXd start(n), end(n), noise(r), one(p);
+        for (std::size_t i = 0; i < n; ++i) {
+          start[static_cast<Eigen::Index>(i)] = x_start[i * count + k];
+          end[static_cast<Eigen::Index>(i)] = x_end[i * count + k];
+        }
+        for (std::size_t j = 0; j < r; ++j) noise[static_cast<Eigen::Index>(j)] = dW2[j * count + k];
+        one_model.increment(0.3, 0.01, start, end, noise, one);
+        for (std::size_t a = 0; a < p; ++a) {
+          INFO("count " << count << ", lane " << k << ", entry " << a);
+          CHECK(same_bits(dy[a * count + k], one[static_cast<Eigen::Index>(a)]));
+        }
+      }
+    }
+  }
+}

@@ -135,29 +135,42 @@ void LinearObservation::increment_lanes(double t, double dt, std::size_t count, 
     for (std::size_t i = 0; i < p_; ++i)
       for (std::size_t k = 0; k < count; ++k) end[i * count + k] = (end[i * count + k] + start[i * count + k]) * half;
   } else {
+    // Each coefficient read once into a local and each row through a restrict pointer: with the
+    // coefficients read from A0_ and A_ inside the loops, the compiler must reload them after
+    // every store to a row (they might alias), and the loops stay scalar.
+    // first: end = A0 + A x; otherwise end += A0 + A x.
+    auto add_rate = [&](const double* x, bool first) {
+      for (std::size_t i = 0; i < p_; ++i) {
+        const auto row = static_cast<Eigen::Index>(i);
+        double* __restrict rate = end + i * count;
+        const double a0 = A0_[row];
+        if (first) {
+          for (std::size_t k = 0; k < count; ++k) rate[k] = a0;
+        } else {
+          for (std::size_t k = 0; k < count; ++k) rate[k] += a0;
+        }
+        for (std::size_t j = 0; j < n_; ++j) {
+          const double a = A_(row, static_cast<Eigen::Index>(j));
+          const double* __restrict xj = x + j * count;
+          for (std::size_t k = 0; k < count; ++k) rate[k] += a * xj[k];
+        }
+      }
+    };
     evaluate(t + dt);
-    for (std::size_t i = 0; i < p_; ++i) {
-      const auto row = static_cast<Eigen::Index>(i);
-      for (std::size_t k = 0; k < count; ++k) end[i * count + k] = A0_[row];
-      for (std::size_t j = 0; j < n_; ++j)
-        for (std::size_t k = 0; k < count; ++k)
-          end[i * count + k] += A_(row, static_cast<Eigen::Index>(j)) * x_end[j * count + k];
-    }
+    add_rate(x_end, true);
     evaluate(t);
-    for (std::size_t i = 0; i < p_; ++i) {
-      const auto row = static_cast<Eigen::Index>(i);
-      for (std::size_t k = 0; k < count; ++k) end[i * count + k] += A0_[row];
-      for (std::size_t j = 0; j < n_; ++j)
-        for (std::size_t k = 0; k < count; ++k)
-          end[i * count + k] += A_(row, static_cast<Eigen::Index>(j)) * x_start[j * count + k];
-      for (std::size_t k = 0; k < count; ++k) end[i * count + k] *= half;
-    }
+    add_rate(x_start, false);
+    for (std::size_t e = 0; e < p_ * count; ++e) end[e] *= half;
   }
   for (std::size_t i = 0; i < p_; ++i) {
-    for (std::size_t k = 0; k < count; ++k) dy[i * count + k] = end[i * count + k];
-    for (std::size_t j = 0; j < r_; ++j)
-      for (std::size_t k = 0; k < count; ++k)
-        dy[i * count + k] += B_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) * dW2[j * count + k];
+    double* __restrict increment = dy + i * count;
+    const double* __restrict rate = end + i * count;
+    for (std::size_t k = 0; k < count; ++k) increment[k] = rate[k];
+    for (std::size_t j = 0; j < r_; ++j) {
+      const double b = B_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+      const double* __restrict noise = dW2 + j * count;
+      for (std::size_t k = 0; k < count; ++k) increment[k] += b * noise[k];
+    }
   }
 }
 
