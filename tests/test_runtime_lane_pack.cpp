@@ -1,5 +1,5 @@
-// The lane-pack tests that run after every step of W runs side by side (FilterStepper::keeps_pack,
-// DivergenceGuard::passes_pack, CovarianceGuard::passes_pack_1) decide which lanes go on without
+// The lane-pack tests that run after every step of W runs side by side (FilterStepper::keeps_packs,
+// DivergenceGuard::passes_packs, CovarianceGuard::passes_packs_1) decide which lanes go on without
 // their one-lane checks. Each is compared here, lane by lane, with the one-lane test it stands for,
 // on values chosen to sit on every edge: NaN, infinities, signed zeros, the bound and the
 // tolerances themselves, and random states around them. A pack that passed a lane its one-lane
@@ -24,16 +24,18 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The lanes a pass over W lanes sets, pack by pack: mask_at(c) is the mask of the pack whose first
-// lane is c.
-template <std::size_t W, class MaskAt>
-std::vector<bool> lanes_of(MaskAt mask_at) {
-  constexpr std::size_t width = lane_pack::kLanes;
+// The lanes a pass over W lanes keeps: test(packs) ands its verdicts into W / 2 packs of ones.
+template <std::size_t W, class Test>
+std::vector<bool> lanes_of(Test test) {
+  constexpr std::size_t width = lane_pack::kLanes, packs = W / width;
+  lane_pack::Pack kept[packs];
+  for (lane_pack::Pack& pack : kept) pack = lane_pack::all_set();
+  test(kept);
   std::vector<bool> set(W);
-  for (std::size_t c = 0; c < W; c += width) {
+  for (std::size_t c = 0; c < packs; ++c) {
     double flags[width];
-    lane_pack::store(flags, lane_pack::keep_where(mask_at(c), lane_pack::splat(1.0)));
-    for (std::size_t k = 0; k < width; ++k) set[c + k] = flags[k] == 1.0;
+    lane_pack::store(flags, lane_pack::keep_where(kept[c], lane_pack::splat(1.0)));
+    for (std::size_t k = 0; k < width; ++k) set[c * width + k] = flags[k] == 1.0;
   }
   return set;
 }
@@ -62,7 +64,7 @@ void check_keeps(std::size_t n, std::mt19937_64& random) {
                                                                         : before[e] * (1 + change) + 1e-10;
     }
     const std::vector<bool> packed =
-        lanes_of<W>([&](std::size_t c) { return stepper.keeps_pack<W>(before.data() + c, after.data() + c); });
+        lanes_of<W>([&](lane_pack::Pack* packs) { stepper.keeps_packs<W>(before.data(), after.data(), packs); });
     for (std::size_t k = 0; k < W; ++k) {
       for (std::size_t e = 0; e < size; ++e) {
         one_before[e] = before[e * W + k];
@@ -84,7 +86,7 @@ void check_guards(std::mt19937_64& random) {
     for (double& value : values) value = edgy(random, 1e8);
     for (const DivergenceGuard* guard : {&bounded, &finite_only}) {
       const std::vector<bool> packed =
-          lanes_of<W>([&](std::size_t c) { return guard->passes_pack<W>(values.data() + c, count); });
+          lanes_of<W>([&](lane_pack::Pack* packs) { guard->passes_packs<W>(values.data(), count, packs); });
       std::vector<LaneFlag> flags(W, 1.0);
       guard->pass_lanes(values.data(), count, W, flags.data());
       for (std::size_t k = 0; k < W; ++k) {
@@ -107,7 +109,8 @@ void check_guards(std::mt19937_64& random) {
         default: P[k] = edgy(random, 1.0);
       }
     }
-    const std::vector<bool> packed = lanes_of<W>([&](std::size_t c) { return psd.passes_pack_1(P.data() + c); });
+    const std::vector<bool> packed =
+        lanes_of<W>([&](lane_pack::Pack* packs) { psd.passes_packs_1<W>(P.data(), packs); });
     for (std::size_t k = 0; k < W; ++k) {
       const double one[2] = {0.0, P[k]};
       INFO("W = " << W << ", trial " << trial << ", lane " << k << ", P = " << P[k]);
@@ -170,6 +173,7 @@ TEST_CASE("lane packs: the operations act lane by lane, as on doubles", "[batch]
       CHECK(same(lanes(lp::select(lp::less(x, y), x, y))[k], u < v ? u : v));
       CHECK(same(lanes(lp::keep_where(lp::greater(x, y), x))[k], u > v ? u : 0.0));
       CHECK(flags(lp::both(lp::less(x, y), lp::finite(y)))[k] == (u < v && std::isfinite(v) ? 1.0 : 0.0));
+      CHECK(flags(lp::either(lp::less(x, y), lp::finite(y)))[k] == (u < v || std::isfinite(v) ? 1.0 : 0.0));
       CHECK(flags(lp::except(lp::finite(x), lp::less(x, y)))[k] == (std::isfinite(u) && !(u < v) ? 1.0 : 0.0));
     }
     CHECK(lp::none(lp::less(x, y)) == !(a[c] < b[c] || a[c + 1] < b[c + 1]));

@@ -73,35 +73,40 @@ class FilterStepper {
   void keeps_lanes(const double* before, const double* after, std::size_t width, LaneFlag* keep) const {
     if (control_.adaptive && control_.max_depth > 0) reject_lanes(before, after, width, keep);
   }
-  // keeps() for one lane pack of W states side by side (lane_pack.hpp: `before` and `after` at the
-  // pack's first lane, W between entries): all ones where the lane's step would be kept.
-  // reject_lanes' tests, term for term.
+  // keeps() for W states side by side in W / 2 lane packs (lane_pack.hpp; W even, W between
+  // entries): keep[c] keeps its ones only where lane 2c + k's step would be kept. reject_lanes'
+  // tests, term for term; each entry's tests over every pack in turn, so that the loops over the
+  // entries run once, not once a pack.
   template <std::size_t W>
-  PFGEN_LANE_PACK_INLINE lane_pack::Pack keeps_pack(const double* before, const double* after) const {
+  PFGEN_LANE_PACK_INLINE void keeps_packs(const double* before, const double* after, lane_pack::Pack* keep) const {
     namespace lp = lane_pack;
-    lp::Pack keep = lp::all_set();
-    if (!control_.adaptive || control_.max_depth == 0) return keep;
-    for (std::size_t i = 0; i < n_; ++i) keep = lp::both(keep, lp::finite(lp::load(after + i * W)));
+    constexpr std::size_t packs = W / lp::kLanes;
+    if (!control_.adaptive || control_.max_depth == 0) return;
+    for (std::size_t i = 0; i < n_; ++i)
+      for (std::size_t c = 0; c < packs; ++c)
+        keep[c] = lp::both(keep[c], lp::finite(lp::load(after + i * W + c * lp::kLanes)));
     const double* P0 = before + n_ * W;
     const double* P1 = after + n_ * W;
     const lp::Pack tolerance = lp::splat(control_.tolerance), floor = lp::splat(control_.floor);
     for (std::size_t i = 0, e = 0; i < n_; ++i)
       for (std::size_t j = i; j < n_; ++j, ++e) {
-        const lp::Pack p0 = lp::load(P0 + e * W), p1 = lp::load(P1 + e * W);
-        const lp::Pack change = lp::abs(lp::subtract(p1, p0));
-        if (i == j) {
-          const lp::Pack too_large = lp::greater(change, lp::multiply(tolerance, lp::add(lp::abs(p0), floor)));
-          keep = lp::both(keep, lp::except(lp::finite(p1), too_large));
-          continue;
+        const double* d_i = P0 + packed_diagonal(n_, i) * W;
+        const double* d_j = P0 + packed_diagonal(n_, j) * W;
+        for (std::size_t c = 0; c < packs; ++c) {
+          const std::size_t lane = c * lp::kLanes;
+          const lp::Pack p0 = lp::load(P0 + e * W + lane), p1 = lp::load(P1 + e * W + lane);
+          const lp::Pack change = lp::abs(lp::subtract(p1, p0));
+          lp::Pack too_large;
+          if (i == j) {  // scale |P_ii| + floor
+            too_large = lp::greater(change, lp::multiply(tolerance, lp::add(lp::abs(p0), floor)));
+          } else {  // change <= tolerance (sqrt|P_ii P_jj| + floor), squared
+            const lp::Pack excess = lp::subtract(lp::divide(change, tolerance), floor);
+            const lp::Pack scale = lp::abs(lp::multiply(lp::load(d_i + lane), lp::load(d_j + lane)));
+            too_large = lp::both(lp::greater(excess, lp::splat(0.0)), lp::greater(lp::multiply(excess, excess), scale));
+          }
+          keep[c] = lp::both(keep[c], lp::except(lp::finite(p1), too_large));
         }
-        const lp::Pack excess = lp::subtract(lp::divide(change, tolerance), floor);
-        const lp::Pack d_i = lp::load(P0 + packed_diagonal(n_, i) * W);
-        const lp::Pack d_j = lp::load(P0 + packed_diagonal(n_, j) * W);
-        const lp::Pack too_large = lp::both(lp::greater(excess, lp::splat(0.0)),
-                                            lp::greater(lp::multiply(excess, excess), lp::abs(lp::multiply(d_i, d_j))));
-        keep = lp::both(keep, lp::except(lp::finite(p1), too_large));
       }
-    return keep;
   }
   // What advance() does after its first step was not kept: `state` holds the grid step's start
   // again, and the step is taken in halves. Same return value as advance().

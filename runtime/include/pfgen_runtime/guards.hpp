@@ -55,16 +55,17 @@ class DivergenceGuard {
     for (std::size_t i = 0; i < count; ++i)
       for (std::size_t k = 0; k < width; ++k) pass[k] = std::abs(values[i * width + k]) <= bound_ ? pass[k] : 0.0;
   }
-  // pass_lanes for one lane pack of W lists side by side (lane_pack.hpp: `values` at the pack's
-  // first lane, W between entries): all ones where the lane's list has no event.
+  // pass_lanes for W lists side by side in W / 2 lane packs (lane_pack.hpp; W even, W between
+  // entries): pass[c] keeps its ones only where lane 2c + k's list has no event.
   template <std::size_t W>
-  PFGEN_LANE_PACK_INLINE lane_pack::Pack passes_pack(const double* values, std::size_t count) const {
+  PFGEN_LANE_PACK_INLINE void passes_packs(const double* values, std::size_t count, lane_pack::Pack* pass) const {
     namespace lp = lane_pack;
-    lp::Pack pass = lp::all_set();
     const lp::Pack bound = lp::splat(bound_);
-    for (std::size_t i = 0; i < count; ++i) pass = lp::both(pass, lp::less_equal(lp::abs(lp::load(values + i * W)), bound));
-    return pass;
+    for (std::size_t i = 0; i < count; ++i)
+      for (std::size_t c = 0; c < W / lp::kLanes; ++c)
+        pass[c] = lp::both(pass[c], lp::less_equal(lp::abs(lp::load(values + i * W + c * lp::kLanes)), bound));
   }
+
 
 
  private:
@@ -130,15 +131,20 @@ class CovarianceGuard {
                     ? pass[k]
                     : 0.0;
   }
-  // pass_lanes_1 for one lane pack (lane_pack.hpp; `P` at its first lane): all ones where the
-  // lane's P passes.
-  PFGEN_LANE_PACK_INLINE lane_pack::Pack passes_pack_1(const double* P) const {
+  // pass_lanes_1 for W states side by side in W / 2 lane packs (lane_pack.hpp; P[k] lane k's P):
+  // pass[c] keeps its ones only where lane 2c + k's P passes.
+  template <std::size_t W>
+  PFGEN_LANE_PACK_INLINE void passes_packs_1(const double* P, lane_pack::Pack* pass) const {
     namespace lp = lane_pack;
-    const lp::Pack p = lp::load(P), size = lp::abs(p);
-    const lp::Pack threshold =
-        lp::negate(lp::add(lp::splat(absolute_tolerance_), lp::multiply(lp::splat(relative_tolerance_), size)));
-    return lp::both(lp::less_equal(size, lp::splat(std::numeric_limits<double>::max())), lp::greater_equal(p, threshold));
+    const lp::Pack largest = lp::splat(std::numeric_limits<double>::max());
+    const lp::Pack absolute = lp::splat(absolute_tolerance_), relative = lp::splat(relative_tolerance_);
+    for (std::size_t c = 0; c < W / lp::kLanes; ++c) {
+      const lp::Pack p = lp::load(P + c * lp::kLanes), size = lp::abs(p);
+      const lp::Pack threshold = lp::negate(lp::add(absolute, lp::multiply(relative, size)));
+      pass[c] = lp::both(pass[c], lp::both(lp::less_equal(size, largest), lp::greater_equal(p, threshold)));
+    }
   }
+
 
 
  private:

@@ -12,8 +12,8 @@
 // combined by and/andnot and tested by movemask. Every operation is lane by lane IEEE arithmetic,
 // so each lane's result is the scalar code's, bit for bit.
 //
-// Layout: entry-major, entry e of lane k at e * W + k. A pack's functions take pointers to its
-// first lane (the pass's pointer + the pack's first lane) and step W between entries.
+// Layout: entry-major, entry e of lane k at e * W + k; pack c holds lanes 2c and 2c + 1. A pass's
+// functions take its W / 2 packs as an array, and loop over the entries outside, the packs inside.
 #include <cstddef>
 #include <cstring>
 #include <limits>
@@ -49,6 +49,7 @@ PFGEN_LANE_PACK_INLINE Pack equal(Pack a, Pack b) { return _mm_cmpeq_pd(a, b); }
 PFGEN_LANE_PACK_INLINE Pack not_equal(Pack a, Pack b) { return _mm_cmpneq_pd(a, b); }
 PFGEN_LANE_PACK_INLINE Pack all_set() { return _mm_castsi128_pd(_mm_set1_epi32(-1)); }
 PFGEN_LANE_PACK_INLINE Pack both(Pack a, Pack b) { return _mm_and_pd(a, b); }
+PFGEN_LANE_PACK_INLINE Pack either(Pack a, Pack b) { return _mm_or_pd(a, b); }
 PFGEN_LANE_PACK_INLINE Pack except(Pack a, Pack b) { return _mm_andnot_pd(b, a); }  // a and not b
 // where ? a : b, lane by lane.
 PFGEN_LANE_PACK_INLINE Pack select(Pack where, Pack a, Pack b) {
@@ -82,6 +83,7 @@ PFGEN_LANE_PACK_INLINE Pack equal(Pack a, Pack b) { return as_pack(a == b); }
 PFGEN_LANE_PACK_INLINE Pack not_equal(Pack a, Pack b) { return as_pack(a != b); }
 PFGEN_LANE_PACK_INLINE Pack all_set() { return as_pack(PackBits{-1, -1}); }
 PFGEN_LANE_PACK_INLINE Pack both(Pack a, Pack b) { return as_pack(bits_of(a) & bits_of(b)); }
+PFGEN_LANE_PACK_INLINE Pack either(Pack a, Pack b) { return as_pack(bits_of(a) | bits_of(b)); }
 PFGEN_LANE_PACK_INLINE Pack except(Pack a, Pack b) { return as_pack(bits_of(a) & ~bits_of(b)); }
 PFGEN_LANE_PACK_INLINE Pack select(Pack where, Pack a, Pack b) {
   return as_pack((bits_of(where) & bits_of(a)) | (~bits_of(where) & bits_of(b)));

@@ -43,14 +43,16 @@ namespace {
 
 using Flags = std::array<LaneFlag, 16>;  // W <= 16 entries used
 
-// FilterStepper::keeps and the divergence guards for the lane pack at the pointers (lane_pack.hpp):
-// all ones where the lane passes.
+// FilterStepper::keeps, the divergence guards and (n = 1) the PSD test over W lanes in W / 2 lane
+// packs: pass[c] is all ones where lane 2c + k passes them all.
 template <std::size_t W>
-lane_pack::Pack packed_checks(const FilterStepper& stepper, const FilterGuardOptions& guards, std::size_t n,
-                              const double* saved, const double* state) {
-  namespace lp = lane_pack;
-  return lp::both(lp::both(stepper.keeps_pack<W>(saved, state), guards.estimate_guard.passes_pack<W>(state, n)),
-                  guards.covariance_guard.passes_pack<W>(state + n * W, packed_size(n)));
+void packed_checks(const FilterStepper& stepper, const FilterGuardOptions& guards, std::size_t n, bool psd_packed,
+                   const double* saved, const double* state, lane_pack::Pack* pass) {
+  for (std::size_t c = 0; c < W / lane_pack::kLanes; ++c) pass[c] = lane_pack::all_set();
+  stepper.keeps_packs<W>(saved, state, pass);
+  guards.estimate_guard.passes_packs<W>(state, n, pass);
+  guards.covariance_guard.passes_packs<W>(state + n * W, packed_size(n), pass);
+  if (guards.check_psd && psd_packed) guards.psd.passes_packs_1<W>(state + W, pass);
 }
 
 }  // namespace
@@ -92,20 +94,24 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   auto visit_lanes = [&](std::size_t j) {
     enter(j);
     const double* x = lane_path + j * n * W;
-    for (std::size_t c = 0; c < W; c += lp::kLanes) {  // lane packs
-      const lp::Pack seen = lp::not_equal(lp::load(visited.data() + c), lp::splat(0.0));
-      for (std::size_t i = 0; i < n; ++i) {
-        const lp::Pack e = lp::subtract(lp::load(x + i * W + c), lp::load(states.data() + i * W + c));
-        const lp::Pack sq = lp::keep_where(seen, lp::multiply(e, e)), size = lp::keep_where(seen, lp::abs(e));
-        double* sum = sums.data() + i * W + c;
-        double* top = peak.data() + i * W + c;
-        lp::store(sum, lp::add(lp::load(sum), sq));
-        const lp::Pack peak_so_far = lp::load(top);
-        lp::store(top, lp::select(lp::less(peak_so_far, size), size, peak_so_far));  // std::max(top, size)
-        for (std::size_t w : active_) {
-          double* window = sums.data() + ((1 + w) * n + i) * W + c;
-          lp::store(window, lp::add(lp::load(window), sq));
-        }
+    constexpr std::size_t packs = W / lp::kLanes;
+    lp::Pack seen[packs];
+    for (std::size_t c = 0; c < packs; ++c) seen[c] = lp::not_equal(lp::load(visited.data() + c * lp::kLanes), lp::splat(0.0));
+    for (std::size_t i = 0; i < n; ++i) {
+      lp::Pack sq[packs];
+      for (std::size_t c = 0; c < packs; ++c) {
+        const std::size_t at = i * W + c * lp::kLanes;
+        const lp::Pack e = lp::subtract(lp::load(x + at), lp::load(states.data() + at));
+        const lp::Pack size = lp::keep_where(seen[c], lp::abs(e));
+        sq[c] = lp::keep_where(seen[c], lp::multiply(e, e));
+        lp::store(sums.data() + at, lp::add(lp::load(sums.data() + at), sq[c]));
+        const lp::Pack peak_so_far = lp::load(peak.data() + at);
+        lp::store(peak.data() + at, lp::select(lp::less(peak_so_far, size), size, peak_so_far));  // std::max
+      }
+      for (std::size_t w : active_) {
+        double* window = sums.data() + ((1 + w) * n + i) * W;
+        for (std::size_t c = 0; c < packs; ++c)
+          lp::store(window + c * lp::kLanes, lp::add(lp::load(window + c * lp::kLanes), sq[c]));
       }
     }
     if (criterion_ || reference_ || events_begin_ != next_event_) {
@@ -145,29 +151,28 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
     // Entry by entry in packs: memmove's wider loads would straddle the step's narrower stores.
     for (std::size_t e = 0; e < size * W; e += lp::kLanes) lp::store(saved.data() + e, lp::load(states.data() + e));
     filter.step_lanes(states.data(), t, grid.dt, lane_dy + step * p * W);
-    // Whether a live lane failed a check, pack by pack (a PSD test of n > 1 is left to each lane).
-    const bool psd_each = guards.check_psd && !psd_packed;
-    bool failed = psd_each;
-    auto checks = [&](std::size_t c, lp::Pack& passes, lp::Pack& psd_passes) {
-      passes = packed_checks<W>(stepper_, guards, n, saved.data() + c, states.data() + c);
-      psd_passes = lp::all_set();
-      if (guards.check_psd && psd_packed) psd_passes = guards.psd.passes_pack_1(states.data() + W + c);
-    };
-    for (std::size_t c = 0; c < W && !failed; c += lp::kLanes) {
-      lp::Pack passes, psd_passes;
-      checks(c, passes, psd_passes);
-      const lp::Pack living_lanes = lp::not_equal(lp::load(live.data() + c), lp::splat(0.0));
-      failed = !lp::none(lp::except(living_lanes, lp::both(passes, psd_passes)));
+    // Whether a live lane failed a check (a PSD test of n > 1 is left to each lane).
+    constexpr std::size_t packs = W / lp::kLanes;
+    lp::Pack passes[packs];
+    packed_checks<W>(stepper_, guards, n, psd_packed, saved.data(), states.data(), passes);
+    lp::Pack failing = lp::splat(0.0);
+    for (std::size_t c = 0; c < packs; ++c) {
+      const lp::Pack living_lanes = lp::not_equal(lp::load(live.data() + c * lp::kLanes), lp::splat(0.0));
+      failing = lp::either(failing, lp::except(living_lanes, passes[c]));
     }
-    if (!failed) {
+    if (lp::none(failing) && !(guards.check_psd && !psd_packed)) {
       steps += living;
       visited = live;
     } else {
-      for (std::size_t c = 0; c < W; c += lp::kLanes) {  // the lanes' flags, for the loop below
-        lp::Pack passes, psd_passes;
-        checks(c, passes, psd_passes);
-        lp::store(pass.data() + c, lp::keep_where(passes, lp::load(live.data() + c)));
-        lp::store(psd.data() + c, lp::keep_where(psd_passes, lp::splat(1.0)));
+      // The lanes' flags for the loop below: pass (the stepper and the guards) and psd apart.
+      lp::Pack psd_passes[packs];
+      for (std::size_t c = 0; c < packs; ++c) psd_passes[c] = lp::all_set();
+      if (guards.check_psd && psd_packed) guards.psd.passes_packs_1<W>(states.data() + W, psd_passes);
+      packed_checks<W>(stepper_, guards, n, false, saved.data(), states.data(), passes);
+      for (std::size_t c = 0; c < packs; ++c) {
+        const std::size_t lane = c * lp::kLanes;
+        lp::store(pass.data() + lane, lp::keep_where(passes[c], lp::load(live.data() + lane)));
+        lp::store(psd.data() + lane, lp::keep_where(psd_passes[c], lp::splat(1.0)));
       }
       for (std::size_t k = 0; k < W; ++k) visited[k] = 0.0;
       for (std::size_t k = 0; k < count; ++k) {
