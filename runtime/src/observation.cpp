@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "pfgen_runtime/lane_pack.hpp"
 #include "pfgen_support/whole_steps.hpp"
 
 namespace pfgen_runtime {
@@ -122,6 +123,7 @@ void LinearObservation::increment(double t, double dt, const Eigen::Ref<const Ei
 
 void LinearObservation::increment_lanes(double t, double dt, std::size_t count, const double* x_start,
                                         const double* x_end, const double* dW2, double* dy) {
+  namespace lp = lane_pack;
   // increment()'s sums, term by term in its order, each over the lanes.
   lane_end_.resize(p_ * count);
   lane_start_.resize(p_ * count);
@@ -135,43 +137,37 @@ void LinearObservation::increment_lanes(double t, double dt, std::size_t count, 
     for (std::size_t i = 0; i < p_; ++i)
       for (std::size_t k = 0; k < count; ++k) end[i * count + k] = (end[i * count + k] + start[i * count + k]) * half;
   } else {
-    // Each coefficient read once into a local and each row through a restrict pointer: with the
-    // coefficients read from A0_ and A_ inside the loops, the compiler must reload them after
-    // every store to a row (they might alias), and the loops stay scalar.
-    // first: end = A0 + A x; otherwise end += A0 + A x.
-    auto add_rate = [&](const double* x, bool first) {
-      for (std::size_t i = 0; i < p_; ++i) {
-        const auto row = static_cast<Eigen::Index>(i);
-        double* __restrict rate = end + i * count;
-        const double a0 = A0_[row];
-        if (first) {
-          for (std::size_t k = 0; k < count; ++k) rate[k] = a0;
-        } else {
-          for (std::size_t k = 0; k < count; ++k) rate[k] += a0;
-        }
-        for (std::size_t j = 0; j < n_; ++j) {
-          const double a = A_(row, static_cast<Eigen::Index>(j));
-          const double* __restrict xj = x + j * count;
-          for (std::size_t k = 0; k < count; ++k) rate[k] += a * xj[k];
-        }
-      }
-    };
+    // increment()'s sums in its order, lane by lane: end = A0 + A x_end at t + dt, then += A0 +
+    // A x_start at t, then * dt / 2.
     evaluate(t + dt);
-    add_rate(x_end, true);
+    for (std::size_t i = 0; i < p_; ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      lp::for_lanes(count, [&](std::size_t k, auto lanes) {
+        auto rate = lp::splat(A0_[row], lanes);
+        for (std::size_t j = 0; j < n_; ++j)
+          rate = rate + lp::splat(A_(row, static_cast<Eigen::Index>(j)), lanes) * lp::load(x_end + j * count + k, lanes);
+        lp::store(end + i * count + k, rate, lanes);
+      });
+    }
     evaluate(t);
-    add_rate(x_start, false);
-    for (std::size_t e = 0; e < p_ * count; ++e) end[e] *= half;
-  }
-  for (std::size_t i = 0; i < p_; ++i) {
-    double* __restrict increment = dy + i * count;
-    const double* __restrict rate = end + i * count;
-    for (std::size_t k = 0; k < count; ++k) increment[k] = rate[k];
-    for (std::size_t j = 0; j < r_; ++j) {
-      const double b = B_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
-      const double* __restrict noise = dW2 + j * count;
-      for (std::size_t k = 0; k < count; ++k) increment[k] += b * noise[k];
+    for (std::size_t i = 0; i < p_; ++i) {
+      const auto row = static_cast<Eigen::Index>(i);
+      lp::for_lanes(count, [&](std::size_t k, auto lanes) {
+        auto rate = lp::load(end + i * count + k, lanes) + lp::splat(A0_[row], lanes);
+        for (std::size_t j = 0; j < n_; ++j)
+          rate = rate + lp::splat(A_(row, static_cast<Eigen::Index>(j)), lanes) * lp::load(x_start + j * count + k, lanes);
+        lp::store(end + i * count + k, rate * lp::splat(half, lanes), lanes);
+      });
     }
   }
+  for (std::size_t i = 0; i < p_; ++i)
+    lp::for_lanes(count, [&](std::size_t k, auto lanes) {
+      auto increment = lp::load(end + i * count + k, lanes);
+      for (std::size_t j = 0; j < r_; ++j)
+        increment = increment + lp::splat(B_(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)), lanes) *
+                                    lp::load(dW2 + j * count + k, lanes);
+      lp::store(dy + i * count + k, increment, lanes);
+    });
 }
 
 void LinearObservation::coefficients(double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {

@@ -1,5 +1,7 @@
 #include "pfgen_runtime/schemes.hpp"
 
+#include "pfgen_runtime/lane_pack.hpp"
+
 #include "pfgen_support/truth_schemes.hpp"
 
 #include <algorithm>
@@ -78,28 +80,21 @@ bool TruthScheme::has_batch() const {
 }
 
 void TruthScheme::euler_lanes(std::size_t count, double* x, double dt, const double* dW, const LaneFlag* take) {
+  namespace lp = lane_pack;
   const std::size_t n = system_.n, q = system_.q;
-  lane_increment_.resize(count);
-  lane_before_.resize(count);
-  double* __restrict value = lane_increment_.data();
+  const double* f = batch_f_.data();
+  const double* g = batch_g_.data();
+  // Each lane's x + (f dt + sum_j g_j dW_j), in that order, kept where the lane takes the step.
   for (std::size_t i = 0; i < n; ++i) {
-    const double* __restrict fi = batch_f_.data() + i * count;
-    for (std::size_t k = 0; k < count; ++k) value[k] = fi[k] * dt;
-    for (std::size_t j = 0; j < q; ++j) {
-      const double* __restrict gij = batch_g_.data() + (i * q + j) * count;
-      const double* __restrict dWj = dW + j * count;
-      for (std::size_t k = 0; k < count; ++k) value[k] += gij[k] * dWj[k];
-    }
-    // Every lane's x + increment, then chosen or not. x is copied aside first and the select reads
-    // only the copy: with both values loaded, and x not read where it is written, the select
-    // packs (the compiler would make it a store under a condition otherwise, which does not).
-    double* __restrict xi = x + i * count;
-    double* __restrict before = lane_before_.data();
-    for (std::size_t k = 0; k < count; ++k) before[k] = xi[k];
-    for (std::size_t k = 0; k < count; ++k) {
-      const double old = before[k], updated = old + value[k];
-      xi[k] = take[k] != 0 ? updated : old;
-    }
+    double* xi = x + i * count;
+    lp::for_lanes(count, [&](std::size_t k, auto lanes) {
+      auto value = lp::load(f + i * count + k, lanes) * lp::splat(dt, lanes);
+      for (std::size_t j = 0; j < q; ++j)
+        value = value + lp::load(g + (i * q + j) * count + k, lanes) * lp::load(dW + j * count + k, lanes);
+      const auto old = lp::load(xi + k, lanes);
+      const auto taking = lp::not_equal(lp::load(take + k, lanes), lp::splat(0.0, lanes));
+      lp::store(xi + k, lp::choose(taking, old + value, old), lanes);
+    });
   }
 }
 
@@ -338,31 +333,28 @@ void AdaptiveEuler::step_lanes_at_once(double t, std::size_t count, double* x, d
   const double* f = batch_f_.data();
   const double* g = batch_g_.data();
   const double root_h = std::sqrt(dt), tolerance = options_.tolerance, scale = options_.scale;
-  // step()'s first interval is the whole grid step: its size test for every lane, in passes over
-  // contiguous lanes (the row norms summed as row_norm sums them).
-  // The entries failing the test are counted per lane in doubles, the compare's own width, so that
-  // the loops stay packed.
-  exceeding_.assign(count, 0.0);
-  spread_.resize(count);
-  double* __restrict exceeding = exceeding_.data();
-  double* __restrict spread = spread_.data();
-  for (std::size_t i = 0; i < n; ++i) {
-    std::fill(spread_.begin(), spread_.end(), 0.0);
-    for (std::size_t j = 0; j < q; ++j) {
-      const double* __restrict gij = g + (i * q + j) * count;
-      for (std::size_t k = 0; k < count; ++k) spread[k] += gij[k] * gij[k];
+  // step()'s first interval is the whole grid step: its size test for every lane, the row norms
+  // summed as row_norm sums them. A lane takes the Euler substep at once when it takes steps and
+  // no entry fails the test; the others are left for step(), which bisects.
+  namespace lp = lane_pack;
+  lp::for_lanes(count, [&](std::size_t k, auto lanes) {
+    auto exceeding = lp::splat(0.0, lanes);  // the entries failing the test, counted in doubles
+    for (std::size_t i = 0; i < n; ++i) {
+      auto spread = lp::splat(0.0, lanes);
+      for (std::size_t j = 0; j < q; ++j) {
+        const auto gij = lp::load(g + (i * q + j) * count + k, lanes);
+        spread = spread + gij * gij;
+      }
+      if (q > 0) spread = lp::sqrt(spread) * lp::splat(root_h, lanes);
+      const auto fi = lp::load(f + i * count + k, lanes), xi = lp::load(x + i * count + k, lanes);
+      const auto size = lp::abs(fi) * lp::splat(dt, lanes) + spread;
+      const auto allowed = lp::splat(tolerance, lanes) * (lp::abs(xi) + lp::splat(scale, lanes));
+      exceeding = exceeding + lp::flag(lp::greater(size, allowed));
     }
-    if (q > 0)
-      for (std::size_t k = 0; k < count; ++k) spread[k] = std::sqrt(spread[k]) * root_h;
-    const double* __restrict fi = f + i * count;
-    const double* __restrict xi = x + i * count;
-    for (std::size_t k = 0; k < count; ++k)
-      exceeding[k] += std::abs(fi[k]) * dt + spread[k] > tolerance * (std::abs(xi[k]) + scale) ? 1.0 : 0.0;
-  }
-  // The lanes that pass take that Euler substep at once; the others are left for step(), which
-  // bisects.
-  LaneFlag* __restrict taking = take;
-  for (std::size_t k = 0; k < count; ++k) taking[k] = (taking[k] != 0) & (exceeding[k] == 0) ? 1.0 : 0.0;
+    const auto taking = lp::both(lp::not_equal(lp::load(take + k, lanes), lp::splat(0.0, lanes)),
+                                 lp::equal(exceeding, lp::splat(0.0, lanes)));
+    lp::store(take + k, lp::flag(taking), lanes);
+  });
   euler_lanes(count, x, dt, dW, take);
   substeps_ += lanes_set(take, count);
   incomplete_ = false;

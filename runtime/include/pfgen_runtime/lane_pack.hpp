@@ -99,4 +99,41 @@ PFGEN_LANE_PACK_INLINE Pack abs(Pack a) { return except(a, splat(-0.0)); }
 // FilterStepper::finite: x - x == 0, false for inf and NaN.
 PFGEN_LANE_PACK_INLINE Pack finite(Pack x) { return equal(subtract(x, x), splat(0.0)); }
 
+// Passes over a run-time number of lanes (a batch of any size): for_lanes(count, op) calls
+// op(k, lanes) for the packs of two lanes from k, then for the last lane alone when count is odd,
+// with `lanes` TwoLanes or OneLane. The same generic op then works on a Pack or a double: load,
+// store, splat, sqrt, greater, flag and choose below take either, and +, -, * and / are the
+// operators of both (GCC's and Clang's vector extension on a Pack).
+struct TwoLanes {};
+struct OneLane {};
+template <class Op>
+PFGEN_LANE_PACK_INLINE void for_lanes(std::size_t count, Op op) {
+  std::size_t k = 0;
+  for (; k + kLanes <= count; k += kLanes) op(k, TwoLanes{});
+  if (k < count) op(k, OneLane{});
+}
+PFGEN_LANE_PACK_INLINE Pack load(const double* from, TwoLanes) { return load(from); }
+PFGEN_LANE_PACK_INLINE double load(const double* from, OneLane) { return *from; }
+PFGEN_LANE_PACK_INLINE void store(double* to, Pack v, TwoLanes) { store(to, v); }
+PFGEN_LANE_PACK_INLINE void store(double* to, double v, OneLane) { *to = v; }
+PFGEN_LANE_PACK_INLINE Pack splat(double x, TwoLanes) { return splat(x); }
+PFGEN_LANE_PACK_INLINE double splat(double x, OneLane) { return x; }
+#if defined(__SSE2__)
+PFGEN_LANE_PACK_INLINE Pack sqrt(Pack x) { return _mm_sqrt_pd(x); }  // IEEE's correctly rounded root
+#else
+PFGEN_LANE_PACK_INLINE Pack sqrt(Pack x) { return Pack{__builtin_sqrt(x[0]), __builtin_sqrt(x[1])}; }
+#endif
+PFGEN_LANE_PACK_INLINE double sqrt(double x) { return __builtin_sqrt(x); }
+PFGEN_LANE_PACK_INLINE double abs(double x) { return __builtin_fabs(x); }
+PFGEN_LANE_PACK_INLINE bool greater(double a, double b) { return a > b; }
+PFGEN_LANE_PACK_INLINE bool not_equal(double a, double b) { return a != b; }
+PFGEN_LANE_PACK_INLINE bool equal(double a, double b) { return a == b; }
+PFGEN_LANE_PACK_INLINE bool both(bool a, bool b) { return a && b; }
+// A mask as flags: 1.0 where set, 0.0 elsewhere.
+PFGEN_LANE_PACK_INLINE Pack flag(Pack mask) { return keep_where(mask, splat(1.0)); }
+PFGEN_LANE_PACK_INLINE double flag(bool set) { return set ? 1.0 : 0.0; }
+// where ? a : b.
+PFGEN_LANE_PACK_INLINE Pack choose(Pack where, Pack a, Pack b) { return select(where, a, b); }
+PFGEN_LANE_PACK_INLINE double choose(bool where, double a, double b) { return where ? a : b; }
+
 }  // namespace pfgen_runtime::lane_pack

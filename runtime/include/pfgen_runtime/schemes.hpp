@@ -94,7 +94,6 @@ class TruthScheme {
   Eigen::VectorXd increment_;  // n
   Eigen::VectorXd lane_x_, lane_dW_;     // step_lane's state and increment
   std::vector<double> batch_f_, batch_g_;  // evaluate_batch's values
-  std::vector<double> lane_increment_, lane_before_;  // euler_lanes' sums, and x before them
   std::vector<LaneFlag> batch_take_;                  // step_batch's lanes taken at once
   double escape_bound_ = std::numeric_limits<double>::infinity();
 };
@@ -215,8 +214,6 @@ class AdaptiveEuler : public TruthScheme {
   std::uint64_t substeps_ = 0;
   std::uint64_t depth_hits_ = 0;
   bool incomplete_ = false;
-  std::vector<double> exceeding_;        // step_batch: per lane, the entries failing the size test
-  std::vector<double> spread_;           // step_batch: a row's norm times sqrt(dt), per lane
 };
 
 // Classical fourth-order Runge-Kutta on the drift, for deterministic truths dx = f(t, x) dt
