@@ -351,7 +351,7 @@ void Worker::step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth
 }
 
 // The plan's windows opening at grid point j, and its events there [events_begin_, next_event_).
-void Worker::enter(std::size_t j) {
+void Worker::enter_events(std::size_t j) {
   while (next_open_ < plan_.opens.size() && plan_.opens[next_open_].first == j)
     active_.push_back(plan_.opens[next_open_++].second);
   events_begin_ = next_event_;
@@ -359,7 +359,7 @@ void Worker::enter(std::size_t j) {
 }
 
 // The windows closing at the current grid point, once every run has visited it.
-void Worker::leave() {
+void Worker::leave_events() {
   for (std::size_t e = events_begin_; e < next_event_; ++e)
     if (plan_.events[e].kind == Plan::Kind::window_close)
       active_.erase(std::find(active_.begin(), active_.end(), plan_.events[e].slot));

@@ -105,10 +105,20 @@ class Worker {
                            FilterRunResult& out, PassSums& pass, bool shown, std::uint64_t& steps);
   // The plan at grid point j: enter() opens its windows and finds its events, visit() takes one
   // run's state there, leave() closes its windows. Every run of a pass visits j between the two.
-  void enter(std::size_t j);
+  void enter_events(std::size_t j);  // enter() where j opens a window or holds an event
+  void leave_events();                // leave() after such a j
+  void enter(std::size_t j) {  // inline: most grid points open no window and hold no event
+    if ((next_open_ < plan_.opens.size() && plan_.opens[next_open_].first == j) ||
+        (next_event_ < plan_.events.size() && plan_.events[next_event_].index == j))
+      enter_events(j);
+    else
+      events_begin_ = next_event_;
+  }
   void visit(std::size_t j, const double* state, bool shown, const RunBuffers& lane, FilterRunResult& out,
              PassSums& pass) const;
-  void leave();
+  void leave() {
+    if (events_begin_ != next_event_) leave_events();
+  }
   // What follows the error sums in visit() (step_filter_lanes sums the errors in packed passes).
   void visit_rest(std::size_t j, const double* state, bool shown, const RunBuffers& lane, FilterRunResult& out,
                   PassSums& pass) const;
