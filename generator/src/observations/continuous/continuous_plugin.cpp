@@ -62,7 +62,7 @@ std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vecto
     // The same step over batch::kLanes runs: the generated step<Scalar> on batch::Lanes.
     out += "void " + name + "_step_lanes(double* state, double t, double dt, const double* dy) {\n" + alias +
            "  using L = ::pfgen_simulation::batch::Lanes;\n"
-           "  ::pfgen_simulation::batch::step_lanes<void (*)(L*, L, L, const L*), F::state_size, F::p>(\n"
+           "  ::pfgen_simulation::batch::step_lanes<F::state_size, F::p>(\n"
            "      [](L* state, L t, L dt, const L* dy) { F::step(state, t, dt, dy, F::Params<L>{}); }, state, t, dt, dy);\n"
            "}\n\n";
   }
