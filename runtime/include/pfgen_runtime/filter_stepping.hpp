@@ -68,11 +68,6 @@ class FilterStepper {
   bool keeps(const double* before, const double* after) const {
     return !control_.adaptive || control_.max_depth == 0 || acceptable(before, after);
   }
-  // keeps() for `width` states side by side, entry-major (before[e * width + k]): keep[k] = 0
-  // where lane k's step would not be kept; the others are left as they are.
-  void keeps_lanes(const double* before, const double* after, std::size_t width, LaneFlag* keep) const {
-    if (control_.adaptive && control_.max_depth > 0) reject_lanes(before, after, width, keep);
-  }
   // keeps() for W states side by side in W / 2 lane packs (lane_pack.hpp; W even, W between
   // entries): keep[c] keeps its ones only where lane 2c + k's step would be kept. reject_lanes'
   // tests, term for term; each entry's tests over every pack in turn, so that the loops over the

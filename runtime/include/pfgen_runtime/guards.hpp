@@ -66,8 +66,6 @@ class DivergenceGuard {
         pass[c] = lp::both(pass[c], lp::less_equal(lp::abs(lp::load(values + i * W + c * lp::kLanes)), bound));
   }
 
-
-
  private:
   DivergenceEvent event(double t, std::size_t index, double value) const;
   double bound_;
@@ -144,8 +142,6 @@ class CovarianceGuard {
       pass[c] = lp::both(pass[c], lp::both(lp::less_equal(size, largest), lp::greater_equal(p, threshold)));
     }
   }
-
-
 
  private:
   bool passes_filter_state_general(const double* state, std::size_t n) const;

@@ -24,7 +24,7 @@
 #error "pfgen's runtime needs SSE2 or GCC's or Clang's vector extension (lane_pack.hpp)"
 #endif
 
-// Functions on packs, here and in the classes' *_pack tests, are always inlined.
+// Functions on packs, here and in the classes' *_packs tests, are always inlined.
 #define PFGEN_LANE_PACK_INLINE inline __attribute__((always_inline))
 
 namespace pfgen_runtime::lane_pack {
@@ -135,5 +135,11 @@ PFGEN_LANE_PACK_INLINE double flag(bool set) { return set ? 1.0 : 0.0; }
 // where ? a : b.
 PFGEN_LANE_PACK_INLINE Pack choose(Pack where, Pack a, Pack b) { return select(where, a, b); }
 PFGEN_LANE_PACK_INLINE double choose(bool where, double a, double b) { return where ? a : b; }
+
+// `count` doubles from `from` to `to` in packs: the few a step copies, where a call of memmove
+// costs more than the copy (and its wider loads would straddle the narrower stores just made).
+PFGEN_LANE_PACK_INLINE void copy(const double* from, std::size_t count, double* to) {
+  for_lanes(count, [&](std::size_t k, auto lanes) { store(to + k, load(from + k, lanes), lanes); });
+}
 
 }  // namespace pfgen_runtime::lane_pack

@@ -12,16 +12,6 @@
 
 namespace pfgen_runtime::monte_carlo_detail {
 
-namespace {
-
-// `count` doubles from `from` to `to` in lane packs: a handful a step, where a call of memmove
-// costs more than the copy.
-void copy_lanes(const double* from, std::size_t count, double* to) {
-  lane_pack::for_lanes(count, [&](std::size_t k, auto lanes) { lane_pack::store(to + k, lane_pack::load(from + k, lanes), lanes); });
-}
-
-}  // namespace
-
 void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResult* out) {
   const TimeGrid& grid = plan_.grid;
   const DivergenceGuard& guard = options_.truth_guard;
@@ -97,9 +87,9 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
       }
     const double* step_dW = truth_dW_.data() + in_chunk * q * W;
     const double* step_dW2 = truth_dW2_.data() + in_chunk * r * W;
-    copy_lanes(truth_x_.data(), n * W, truth_start_.data());
+    lane_pack::copy(truth_x_.data(), n * W, truth_start_.data());
     LaneFlag* take = truth_take_.data();
-    copy_lanes(live, W, take);
+    lane_pack::copy(live, W, take);
     scheme_->step_lanes_at_once(t, W, x, grid.dt, step_dW, take);
     const double next = grid.time(step + 1);
     // DivergenceGuard::check's test of every lane, packed; a lane stepped alone below is checked
@@ -141,8 +131,8 @@ void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResu
       for (std::size_t g = 0; g < count / width; ++g) {
         double* path = lane_path_.data() + g * group_path_size() + (step + 1) * n * width;
         double* dy = lane_dy_.data() + g * group_dy_size() + step * p * width;
-        for (std::size_t i = 0; i < n; ++i) copy_lanes(x + i * W + g * width, width, path + i * width);
-        for (std::size_t a = 0; a < p; ++a) copy_lanes(truth_dy_.data() + a * W + g * width, width, dy + a * width);
+        for (std::size_t i = 0; i < n; ++i) lane_pack::copy(x + i * W + g * width, width, path + i * width);
+        for (std::size_t a = 0; a < p; ++a) lane_pack::copy(truth_dy_.data() + a * W + g * width, width, dy + a * width);
       }
       continue;
     }

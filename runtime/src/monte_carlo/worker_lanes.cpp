@@ -69,7 +69,7 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   const double* lane_dy = lane_dy_.data() + group_ / W * group_dy_size();
   std::array<FilterRunResult*, W> outs{};
   for (std::size_t k = 0; k < count; ++k) outs[k] = &runs[k].filters[f];
-  std::vector<double> states(size * W), saved(size * W), square(n * W), peak(n * W, 0.0),
+  std::vector<double> states(size * W), saved(size * W), peak(n * W, 0.0),
       sums((1 + windows) * n * W, 0.0);
   double* state = state_.data();
   double* before = lane_before_.data();
@@ -143,13 +143,13 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   for (std::size_t k = count; k < W; ++k)  // unused lanes: a copy of lane 0, never visited
     for (std::size_t i = 0; i < size; ++i) states[i * W + k] = states[i * W];
   visit_lanes(0);
-  // The n = 1 PSD test packs (CovarianceGuard::pass_lanes_1); for n > 1 each lane is tested alone.
+  // The n = 1 PSD test packs (CovarianceGuard::passes_packs_1); for n > 1 each lane is tested alone.
   const bool psd_packed = n == 1;
   std::ptrdiff_t first_end = 0;  // no live lane's truth ends before this grid point
   for (std::size_t step = 0; living > 0; ++step) {
     const double t = grid.time(step), next = grid.time(step + 1);
     // Entry by entry in packs: memmove's wider loads would straddle the step's narrower stores.
-    for (std::size_t e = 0; e < size * W; e += lp::kLanes) lp::store(saved.data() + e, lp::load(states.data() + e));
+    lp::copy(states.data(), size * W, saved.data());
     filter.step_lanes(states.data(), t, grid.dt, lane_dy + step * p * W);
     // Whether a live lane failed a check (a PSD test of n > 1 is left to each lane).
     constexpr std::size_t packs = W / lp::kLanes;
