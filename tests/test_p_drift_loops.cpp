@@ -9,7 +9,9 @@
 // and R (its M and A are computed, not literal, and its E[J] reads P), and one whose parameters are
 // named as the loops' arrays and indices. Each is compiled as C++
 // (g++ and clang++, -Wall -Wextra -Werror) and as C99 (gcc -std=c99 -Wpedantic -Werror); C's
-// rates() is static, so its step is compared with C++'s.
+// rates() is static, so its step is compared with C++'s. C++'s step() is also compared, bit for bit,
+// with the same Heun step through rates() in loops, which step() is written out from below
+// kStepWrittenOutBelow states.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -24,6 +26,7 @@
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
+#include "pfgen/observations/continuous/heun_step_text.hpp"
 #include "support/cli_helpers.hpp"
 #include "support/dense_linear_system.hpp"
 #include "support/process.hpp"
@@ -158,7 +161,17 @@ std::string program(const std::vector<std::vector<double>>& states, bool c) {
     for (double v : state) text += literal(v) + ", ";
     text += "},\n";
   }
-  text += "};\nint main(void) {\n";
+  text += "};\n";
+  if (!c)
+    text += "static void loop_increment(double t, const double* state, double dt, const double* dy,\n"
+            "                           const G::Params<double>& params, double* delta) {\n"
+            "  double all[S + N * P + P];\n  G::rates(t, state, params, all);\n"
+            "  const double* K = all + S;\n  double* innovation = all + S + N * P;\n"
+            "  for (std::size_t r = 0; r < P; ++r) innovation[r] = dy[r] - innovation[r] * dt;\n"
+            "  for (std::size_t i = 0; i < S; ++i) delta[i] = all[i] * dt;\n"
+            "  for (std::size_t i = 0; i < N; ++i)\n"
+            "    for (std::size_t r = 0; r < P; ++r) delta[i] += K[i * P + r] * innovation[r];\n}\n";
+  text += "int main(void) {\n";
   text += c ? "  PARAMS params;\n  PREFIX_default_params(&params);\n" : "  const G::Params<double> params{};\n";
   const std::string params = c ? "&params" : "params";
   text += "  double dy[P];\n  for (int r = 0; r < (int)P; ++r) dy[r] = r % 2 ? -1e-3 : 1e-3;\n";
@@ -170,6 +183,15 @@ std::string program(const std::vector<std::vector<double>>& states, bool c) {
   if (!c) text += "    double all[S + N * P + P];\n    G::rates(0.5, states[s], params, all);\n    print(all, S + N * P + P);\n";
   text += "    for (int k = 0; k < (int)S; ++k) step[k] = states[s][k];\n";
   text += "    " + call_prefix + "step(step, 0.5, 1e-3, dy, " + params + ");\n    print(step, S);\n";
+  // C++: the same Heun step again, from rates() through the loops step() had before it was written
+  // out below kStepWrittenOutBelow states: its arithmetic, so the same numbers to the last bit.
+  if (!c)
+    text += "    {\n      double first[S], predicted[S], second[S], looped[S];\n"
+            "      loop_increment(0.5, states[s], 1e-3, dy, params, first);\n"
+            "      for (std::size_t i = 0; i < S; ++i) predicted[i] = states[s][i] + first[i];\n"
+            "      loop_increment(0.5 + 1e-3, predicted, 1e-3, dy, params, second);\n"
+            "      for (std::size_t i = 0; i < S; ++i) looped[i] = states[s][i] + (first[i] + second[i]) / 2.0;\n"
+            "      print(looped, S);\n    }\n";
   text += "  }\n  return 0;\n}\n";
   return text;
 }
@@ -194,6 +216,11 @@ void check_model(const Model& model, bool full_combine) {
   for (std::string line; std::getline(header_lines, line);) blocks += std::regex_match(line, block);
   CHECK(blocks == (full_combine ? 4u : 2u) * (n >= codegen::kMinLoopDimensionAlone ? 2u : 1u));
   CHECK(header.find("  rates(t, state, params, all.data());") != std::string::npos);
+  // step()'s loops written out below kStepWrittenOutBelow states, loops from there on.
+  CHECK((header.find("\n  predicted[0] = state[0] + first[0];\n") != std::string::npos) ==
+        (n < codegen::kStepWrittenOutBelow));
+  CHECK((header.find("for (std::size_t i = 0; i < state_size; ++i) predicted[i]") != std::string::npos) ==
+        (n >= codegen::kStepWrittenOutBelow));
 
   std::mt19937 rng(2026);
   std::vector<EvaluationPoint> points;
@@ -256,6 +283,12 @@ void check_model(const Model& model, bool full_combine) {
         check_close(std::vector<double>(all.end() - p, all.end()), h, build.name + " rates: predicted observation");
       }
       std::getline(lines, line);
+      if (!c) {
+        std::string looped;
+        std::getline(lines, looped);
+        INFO(build.name << ": step() against the same step in loops");
+        CHECK(line == looped);
+      }
       if (build.name == "g++") {
         cpp_steps.push_back(line);
       } else if (c) {

@@ -145,10 +145,14 @@ inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy
   rates(t, state, params, all.data());
   const Scalar* K = all.data() + state_size;
   Scalar* innovation = all.data() + state_size + n * p;  // h, replaced by dy - h dt
-  for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - innovation[r] * dt;
-  for (std::size_t i = 0; i < state_size; ++i) delta[i] = all[i] * dt;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t r = 0; r < p; ++r) delta[i] += K[i * p + r] * innovation[r];
+  innovation[0] = dy[0] - innovation[0] * dt;
+  delta[0] = all[0] * dt;
+  delta[1] = all[1] * dt;
+  delta[2] = all[2] * dt;
+  delta[3] = all[3] * dt;
+  delta[4] = all[4] * dt;
+  delta[0] += K[0] * innovation[0];
+  delta[1] += K[1] * innovation[0];
 }
 
 }  // namespace detail
@@ -160,9 +164,17 @@ inline void increment(Scalar t, const Scalar* state, Scalar dt, const Scalar* dy
 inline void step(Scalar* state, Scalar t, Scalar dt, const Scalar* dy, const Params<Scalar>& params) {
   std::array<Scalar, state_size> first, predicted, second;  // written before they are read
   detail::increment(t, state, dt, dy, params, first.data());
-  for (std::size_t i = 0; i < state_size; ++i) predicted[i] = state[i] + first[i];
+  predicted[0] = state[0] + first[0];
+  predicted[1] = state[1] + first[1];
+  predicted[2] = state[2] + first[2];
+  predicted[3] = state[3] + first[3];
+  predicted[4] = state[4] + first[4];
   detail::increment(t + dt, predicted.data(), dt, dy, params, second.data());
-  for (std::size_t i = 0; i < state_size; ++i) state[i] += (first[i] + second[i]) / Scalar(2);
+  state[0] += (first[0] + second[0]) / Scalar(2);
+  state[1] += (first[1] + second[1]) / Scalar(2);
+  state[2] += (first[2] + second[2]) / Scalar(2);
+  state[3] += (first[3] + second[3]) / Scalar(2);
+  state[4] += (first[4] + second[4]) / Scalar(2);
 }
 
 }  // namespace pfgen_models::basin_skliar_partial::ekf

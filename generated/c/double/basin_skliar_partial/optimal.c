@@ -123,16 +123,28 @@ static void pfgen_models_basin_skliar_partial_optimal_increment(double t, const 
   const double* K = all + pfgen_models_basin_skliar_partial_optimal_state_size;
   double* innovation = all + pfgen_models_basin_skliar_partial_optimal_state_size + pfgen_models_basin_skliar_partial_optimal_n * pfgen_models_basin_skliar_partial_optimal_p;  /* h, replaced by dy - h dt */
   pfgen_models_basin_skliar_partial_optimal_rates(t, state, params, all);
-  for (size_t r = 0; r < pfgen_models_basin_skliar_partial_optimal_p; ++r) innovation[r] = dy[r] - innovation[r] * dt;
-  for (size_t i = 0; i < pfgen_models_basin_skliar_partial_optimal_state_size; ++i) delta[i] = all[i] * dt;
-  for (size_t i = 0; i < pfgen_models_basin_skliar_partial_optimal_n; ++i)
-    for (size_t r = 0; r < pfgen_models_basin_skliar_partial_optimal_p; ++r) delta[i] += K[i * pfgen_models_basin_skliar_partial_optimal_p + r] * innovation[r];
+  innovation[0] = dy[0] - innovation[0] * dt;
+  delta[0] = all[0] * dt;
+  delta[1] = all[1] * dt;
+  delta[2] = all[2] * dt;
+  delta[3] = all[3] * dt;
+  delta[4] = all[4] * dt;
+  delta[0] += K[0] * innovation[0];
+  delta[1] += K[1] * innovation[0];
 }
 
 void pfgen_models_basin_skliar_partial_optimal_step(double* state, double t, double dt, const double* dy, const pfgen_models_basin_skliar_partial_optimal_params* params) {
   double first[pfgen_models_basin_skliar_partial_optimal_state_size], predicted[pfgen_models_basin_skliar_partial_optimal_state_size], second[pfgen_models_basin_skliar_partial_optimal_state_size];
   pfgen_models_basin_skliar_partial_optimal_increment(t, state, dt, dy, params, first);
-  for (size_t i = 0; i < pfgen_models_basin_skliar_partial_optimal_state_size; ++i) predicted[i] = state[i] + first[i];
+  predicted[0] = state[0] + first[0];
+  predicted[1] = state[1] + first[1];
+  predicted[2] = state[2] + first[2];
+  predicted[3] = state[3] + first[3];
+  predicted[4] = state[4] + first[4];
   pfgen_models_basin_skliar_partial_optimal_increment(t + dt, predicted, dt, dy, params, second);
-  for (size_t i = 0; i < pfgen_models_basin_skliar_partial_optimal_state_size; ++i) state[i] += (first[i] + second[i]) / 2.0;
+  state[0] += (first[0] + second[0]) / 2.0;
+  state[1] += (first[1] + second[1]) / 2.0;
+  state[2] += (first[2] + second[2]) / 2.0;
+  state[3] += (first[3] + second[3]) / 2.0;
+  state[4] += (first[4] + second[4]) / 2.0;
 }

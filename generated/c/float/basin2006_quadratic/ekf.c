@@ -81,16 +81,18 @@ static void pfgen_models_basin2006_quadratic_ekf_increment(float t, const float*
   const float* K = all + pfgen_models_basin2006_quadratic_ekf_state_size;
   float* innovation = all + pfgen_models_basin2006_quadratic_ekf_state_size + pfgen_models_basin2006_quadratic_ekf_n * pfgen_models_basin2006_quadratic_ekf_p;  /* h, replaced by dy - h dt */
   pfgen_models_basin2006_quadratic_ekf_rates(t, state, params, all);
-  for (size_t r = 0; r < pfgen_models_basin2006_quadratic_ekf_p; ++r) innovation[r] = dy[r] - innovation[r] * dt;
-  for (size_t i = 0; i < pfgen_models_basin2006_quadratic_ekf_state_size; ++i) delta[i] = all[i] * dt;
-  for (size_t i = 0; i < pfgen_models_basin2006_quadratic_ekf_n; ++i)
-    for (size_t r = 0; r < pfgen_models_basin2006_quadratic_ekf_p; ++r) delta[i] += K[i * pfgen_models_basin2006_quadratic_ekf_p + r] * innovation[r];
+  innovation[0] = dy[0] - innovation[0] * dt;
+  delta[0] = all[0] * dt;
+  delta[1] = all[1] * dt;
+  delta[0] += K[0] * innovation[0];
 }
 
 void pfgen_models_basin2006_quadratic_ekf_step(float* state, float t, float dt, const float* dy, const pfgen_models_basin2006_quadratic_ekf_params* params) {
   float first[pfgen_models_basin2006_quadratic_ekf_state_size], predicted[pfgen_models_basin2006_quadratic_ekf_state_size], second[pfgen_models_basin2006_quadratic_ekf_state_size];
   pfgen_models_basin2006_quadratic_ekf_increment(t, state, dt, dy, params, first);
-  for (size_t i = 0; i < pfgen_models_basin2006_quadratic_ekf_state_size; ++i) predicted[i] = state[i] + first[i];
+  predicted[0] = state[0] + first[0];
+  predicted[1] = state[1] + first[1];
   pfgen_models_basin2006_quadratic_ekf_increment(t + dt, predicted, dt, dy, params, second);
-  for (size_t i = 0; i < pfgen_models_basin2006_quadratic_ekf_state_size; ++i) state[i] += (first[i] + second[i]) / 2.0f;
+  state[0] += (first[0] + second[0]) / 2.0f;
+  state[1] += (first[1] + second[1]) / 2.0f;
 }
