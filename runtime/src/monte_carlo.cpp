@@ -25,6 +25,7 @@
 #include "monte_carlo/run_codec.hpp"
 #include "monte_carlo/run_result.hpp"
 #include "monte_carlo/series_codec.hpp"
+#include "monte_carlo/series_rows.hpp"
 #include "monte_carlo/worker.hpp"
 #include "pfgen_runtime/statistics.hpp"
 
@@ -127,13 +128,13 @@ std::vector<std::size_t> runs_of(const std::vector<std::size_t>& owners, std::si
 // The runs each process sent (per_process, in process order), in run order: one block after the
 // other, or put back chunk by chunk as `owners` says (then a process that sent more or fewer runs
 // than its chunks hold is refused; blocks are counted as a whole by check_share_count).
-std::vector<RunResult> in_run_order(std::vector<std::vector<RunResult>> per_process, const RunShare& share,
-                                    std::size_t runs, const std::vector<std::size_t>& owners) {
-  std::vector<RunResult> ordered;
+template <class Run>
+std::vector<Run> in_run_order(std::vector<std::vector<Run>> per_process, const RunShare& share, std::size_t runs,
+                              const std::vector<std::size_t>& owners) {
+  std::vector<Run> ordered;
   if (share.chunk == 0) {
     ordered.reserve(runs);
-    for (std::vector<RunResult>& block : per_process)
-      std::move(block.begin(), block.end(), std::back_inserter(ordered));
+    for (std::vector<Run>& block : per_process) std::move(block.begin(), block.end(), std::back_inserter(ordered));
     return ordered;
   }
   if (per_process.size() != share.processes)
@@ -307,7 +308,9 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   double series_seconds = 0;  // folding the series (this process's range of them)
   if (!options.share) {
     const Clock::time_point fold_start = Clock::now();
-    fold_series(plan, filters.size(), runs, RecordRange{0, plan.records.size()}, reference, threads, result.series);
+    const RecordRange all_records{0, plan.records.size()};
+    fold_series(plan, filters.size(), rows_of(runs, all_records, plan.n, filters.size()).runs, all_records, reference,
+                threads, result.series);
     series_seconds = seconds_since(fold_start);
   } else {
     const RunShare& share = *options.share;
@@ -322,20 +325,22 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     const Clock::time_point exchange_start = Clock::now();
     const std::vector<std::vector<char>> received = share.exchange(std::move(slices));
     timing.exchange_seconds = seconds_since(exchange_start);
-    std::vector<std::vector<RunResult>> sent(received.size());
+    // The rows stay where they are (series_rows.hpp): in the received bytes, and in this
+    // process's own runs, both kept until the fold is done.
+    std::vector<SliceRows> sent(received.size());
+    std::vector<std::vector<RunRows>> per_process(received.size());
     for (std::size_t process = 0; process < received.size(); ++process) {
       timing.exchanged_bytes += received[process].size();
-      if (process == share.process)
-        append_series_slice(runs, range(share.process), plan.n, sent[process]);
-      else
-        decode_series_slice(received[process], filters.size(), range(share.process), plan.n, sent[process]);
+      sent[process] = process == share.process
+                          ? rows_of(runs, range(share.process), plan.n, filters.size())
+                          : read_series_slice(received[process], filters.size(), range(share.process), plan.n);
+      per_process[process] = sent[process].runs;
     }
-    std::vector<RunResult> slice = in_run_order(std::move(sent), share, options.runs, owners);
+    const std::vector<RunRows> slice = in_run_order(std::move(per_process), share, options.runs, owners);
     check_share_count(received.size(), slice.size(), share, options.runs);
     const Clock::time_point fold_start = Clock::now();
     fold_series(plan, filters.size(), slice, range(share.process), reference, threads, result.series);
     series_seconds = seconds_since(fold_start);
-    slice = {};
     // Folded: of the record vectors only the shown run's paths are still read.
     for (std::size_t k = 0; k < runs.size(); ++k) {
       RunResult& run = runs[k];

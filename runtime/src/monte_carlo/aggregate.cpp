@@ -502,7 +502,7 @@ void start_series(const Plan& plan, std::size_t filters, bool reference, MonteCa
   if (reference) series.reference_error_rms.resize(rows, cols);
 }
 
-void fold_series(const Plan& plan, std::size_t filters, const std::vector<RunResult>& runs, RecordRange range,
+void fold_series(const Plan& plan, std::size_t filters, const std::vector<RunRows>& runs, RecordRange range,
                  bool reference, unsigned threads, MonteCarloSeries& series) {
   const std::size_t n = plan.n;
   // Across runs at each record time. Record times are independent (each writes its own rows), so
@@ -524,13 +524,13 @@ void fold_series(const Plan& plan, std::size_t filters, const std::vector<RunRes
     // run order; a run's record vectors start at the range's first record.
     auto gather = [&](auto alive, auto value) {
       for (auto& c : columns) c.clear();
-      for (const RunResult& run : runs)
+      for (const RunRows& run : runs)
         for (std::size_t r = r0; r < r1; ++r)
           if (alive(run, static_cast<std::ptrdiff_t>(plan.records[r])))
             for (std::size_t i = 0; i < n; ++i) column(r, i).push_back(value(run, (r - range.first) * n + i));
     };
-    gather([](const RunResult& run, std::ptrdiff_t index) { return run.truth_last >= index; },
-           [](const RunResult& run, std::size_t at) { return run.truth_record[at]; });
+    gather([](const RunRows& run, std::ptrdiff_t index) { return run.truth_last >= index; },
+           [](const RunRows& run, std::size_t at) { return row_value(run.truth, at); });
     for (std::size_t r = r0; r < r1; ++r) {
       series.truth_alive[r] = column(r, 0).size();
       for (std::size_t i = 0; i < n; ++i)
@@ -538,8 +538,8 @@ void fold_series(const Plan& plan, std::size_t filters, const std::vector<RunRes
     }
     for (std::size_t f = 0; f < filters; ++f) {
       FilterSeries& filter = series.filters[f];
-      gather([f](const RunResult& run, std::ptrdiff_t index) { return run.filters[f].last >= index; },
-             [f](const RunResult& run, std::size_t at) { return run.filters[f].error_record[at]; });
+      gather([f](const RunRows& run, std::ptrdiff_t index) { return run.filters[f].last >= index; },
+             [f](const RunRows& run, std::size_t at) { return row_value(run.filters[f].error, at); });
       for (std::size_t r = r0; r < r1; ++r) {
         filter.alive[r] = column(r, 0).size();
         for (std::size_t i = 0; i < n; ++i)
@@ -547,17 +547,17 @@ void fold_series(const Plan& plan, std::size_t filters, const std::vector<RunRes
       }
     }
     if (!reference) return;
-    gather([](const RunResult& run, std::ptrdiff_t index) { return run.reference.last >= index; },
-           [](const RunResult& run, std::size_t at) { return run.reference.error_record[at]; });
+    gather([](const RunRows& run, std::ptrdiff_t index) { return run.reference_last >= index; },
+           [](const RunRows& run, std::size_t at) { return row_value(run.reference_error, at); });
     for (std::size_t r = r0; r < r1; ++r)
       for (std::size_t i = 0; i < n; ++i)
         series.reference_error_rms(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i)) =
             root_mean_square(column(r, i));
     for (std::size_t f = 0; f < filters; ++f) {
-      gather([f](const RunResult& run, std::ptrdiff_t index) {
-               return run.reference.last >= index && run.filters[f].last >= index;
+      gather([f](const RunRows& run, std::ptrdiff_t index) {
+               return run.reference_last >= index && run.filters[f].last >= index;
              },
-             [f](const RunResult& run, std::size_t at) { return run.filters[f].reference_record[at]; });
+             [f](const RunRows& run, std::size_t at) { return row_value(run.filters[f].reference, at); });
       for (std::size_t r = r0; r < r1; ++r)
         for (std::size_t i = 0; i < n; ++i)
           series.filters[f].reference_distance_rms(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i)) =

@@ -7,17 +7,17 @@
 #include "pfgen_runtime/monte_carlo.hpp"
 #include "plan.hpp"
 #include "run_result.hpp"
+#include "series_rows.hpp"
 
 namespace pfgen_runtime::monte_carlo_detail {
 
 // The series' statistics across runs, at the record times, in three steps (the runs of a job
 // shared among processes are folded a range of record times on each process, series_codec.hpp):
 // start_series sizes their matrices (records x n); fold_series fills the rows `range` from
-// `runs`, every run in run order, whose record vectors start at the range's first record (all of
-// them: range.first == 0), the record times shared among up to `threads` threads without changing
-// a bit.
+// `runs`, every run's rows of the range in run order (series_rows.hpp), the record times shared
+// among up to `threads` threads without changing a bit.
 void start_series(const Plan& plan, std::size_t filters, bool reference, MonteCarloSeries& series);
-void fold_series(const Plan& plan, std::size_t filters, const std::vector<RunResult>& runs, RecordRange range,
+void fold_series(const Plan& plan, std::size_t filters, const std::vector<RunRows>& runs, RecordRange range,
                  bool reference, unsigned threads, MonteCarloSeries& series);
 
 // Fills result.truth_divergences, truth_reports, filters, and the series' times and the shown

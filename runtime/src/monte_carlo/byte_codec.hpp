@@ -66,6 +66,19 @@ class ByteReader {
     if (size > 0) std::memcpy(values.data(), bytes_.data() + at_, values.size() * sizeof(T));
     at_ += values.size() * sizeof(T);
   }
+  // A vector left where it is in the bytes: its elements' first byte (nullptr when it has none),
+  // its length in `size`.
+  template <class T>
+  const char* get_in_place(std::size_t& size) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::uint64_t length = 0;
+    get(length);
+    if (length > (bytes_.size() - at_) / sizeof(T)) fail();
+    size = static_cast<std::size_t>(length);
+    const char* first = size > 0 ? bytes_.data() + at_ : nullptr;
+    at_ += size * sizeof(T);
+    return first;
+  }
   // Reads the block's tag; fail() unless it is `magic`.
   void check_magic(const char (&magic)[8]) {
     for (char expected : magic) {

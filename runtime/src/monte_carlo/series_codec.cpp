@@ -23,11 +23,13 @@ void put_rows(ByteWriter& writer, const std::vector<double>& values, RecordRange
   writer.put_range(values.data() + range.first * n, range.size() * n);
 }
 
-// A run's rows of the range, or none; none only where the fold never reads them (`read`: the run
-// reached a record time, so fold_series reads the vector there).
-void get_rows(ByteReader& reader, std::vector<double>& values, RecordRange range, std::size_t n, bool read) {
-  reader.get(values);
-  if (values.empty() ? read && range.size() > 0 : values.size() != range.size() * n) ByteReader::fail();
+// A run's rows of the range where they are in the bytes, or none (nullptr); none only where the
+// fold never reads them (`read`: the run reached a record time, so fold_series reads its rows there).
+const char* rows_in_place(ByteReader& reader, RecordRange range, std::size_t n, bool read) {
+  std::size_t size = 0;
+  const char* rows = reader.get_in_place<double>(size);
+  if (size == 0 ? read && range.size() > 0 : size != range.size() * n) ByteReader::fail();
+  return rows;
 }
 
 // Every matrix of the series' statistics across runs, in one order for both directions.
@@ -87,53 +89,37 @@ std::vector<char> encode_series_slice(const std::vector<RunResult>& runs, Record
   return std::move(writer.out);
 }
 
-void decode_series_slice(const std::vector<char>& bytes, std::size_t filters, RecordRange range, std::size_t n,
-                         std::vector<RunResult>& runs) {
+SliceRows read_series_slice(const std::vector<char>& bytes, std::size_t filters, RecordRange range, std::size_t n) {
   ByteReader reader(bytes);
   reader.check_magic(kSliceMagic);
   std::uint64_t count = 0;
   reader.get(count);
+  // At least a run's fixed fields per run, before reserving for a corrupt count.
+  if (count > bytes.size() / (4 * sizeof(std::uint64_t))) ByteReader::fail();
+  SliceRows slice;
+  slice.runs.reserve(static_cast<std::size_t>(count));
+  slice.filters.reserve(static_cast<std::size_t>(count) * filters);  // the runs point into it
   for (std::uint64_t k = 0; k < count; ++k) {
-    RunResult& run = runs.emplace_back();
+    RunRows& run = slice.runs.emplace_back();
     reader.get(run.truth_last);
     std::uint64_t run_filters = 0;
     reader.get(run_filters);
     if (run_filters != filters) ByteReader::fail();
-    run.filters.resize(filters);
-    for (FilterRunResult& filter : run.filters) reader.get(filter.last);
-    reader.get(run.reference.last);
-    get_rows(reader, run.truth_record, range, n, run.truth_last >= 0);
-    for (FilterRunResult& filter : run.filters) {
-      get_rows(reader, filter.error_record, range, n, filter.last >= 0);
-      get_rows(reader, filter.reference_record, range, n, filter.last >= 0 && run.reference.last >= 0);
+    run.filters = slice.filters.data() + slice.filters.size();
+    slice.filters.resize(slice.filters.size() + filters);
+    FilterRows* run_filter = slice.filters.data() + (slice.filters.size() - filters);
+    for (std::size_t f = 0; f < filters; ++f) reader.get(run_filter[f].last);
+    reader.get(run.reference_last);
+    run.truth = rows_in_place(reader, range, n, run.truth_last >= 0);
+    for (std::size_t f = 0; f < filters; ++f) {
+      FilterRows& filter = run_filter[f];
+      filter.error = rows_in_place(reader, range, n, filter.last >= 0);
+      filter.reference = rows_in_place(reader, range, n, filter.last >= 0 && run.reference_last >= 0);
     }
-    get_rows(reader, run.reference.error_record, range, n, run.reference.last >= 0);
+    run.reference_error = rows_in_place(reader, range, n, run.reference_last >= 0);
   }
   if (!reader.done()) ByteReader::fail();
-}
-
-void append_series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n,
-                         std::vector<RunResult>& slice) {
-  // put_rows' rows, or nothing for an empty vector.
-  const auto rows = [&](const std::vector<double>& values, std::vector<double>& to) {
-    if (values.empty()) return;
-    if (values.size() < range.last * n) throw std::logic_error("monte carlo: a run's record series is shorter than its plan");
-    const auto from = values.begin() + static_cast<std::ptrdiff_t>(range.first * n);
-    to.assign(from, from + static_cast<std::ptrdiff_t>(range.size() * n));
-  };
-  for (const RunResult& run : runs) {
-    RunResult& copy = slice.emplace_back();
-    copy.truth_last = run.truth_last;
-    copy.filters.resize(run.filters.size());
-    for (std::size_t f = 0; f < run.filters.size(); ++f) {
-      copy.filters[f].last = run.filters[f].last;
-      rows(run.filters[f].error_record, copy.filters[f].error_record);
-      rows(run.filters[f].reference_record, copy.filters[f].reference_record);
-    }
-    copy.reference.last = run.reference.last;
-    rows(run.truth_record, copy.truth_record);
-    rows(run.reference.error_record, copy.reference.error_record);
-  }
+  return slice;
 }
 
 std::vector<char> encode_series_rows(const MonteCarloSeries& series, RecordRange range) {

@@ -11,6 +11,7 @@
 #include "pfgen_runtime/monte_carlo.hpp"
 #include "plan.hpp"
 #include "run_result.hpp"
+#include "series_rows.hpp"
 
 namespace pfgen_runtime::monte_carlo_detail {
 
@@ -19,16 +20,11 @@ namespace pfgen_runtime::monte_carlo_detail {
 // and reference_record, the reference's error_record).
 std::vector<char> encode_series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n);
 
-// Appends the block's runs to `runs`, with only what encode_series_slice sends; their record
-// vectors hold the range's rows alone (record r at (r - range.first) * n). std::runtime_error for
-// bytes that are not such a block.
-void decode_series_slice(const std::vector<char>& bytes, std::size_t filters, RecordRange range, std::size_t n,
-                         std::vector<RunResult>& runs);
-
-// Appends to `slice` what decode_series_slice(encode_series_slice(runs, range, n), ...) appends,
-// without the bytes in between: a process's own runs at its own range.
-void append_series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n,
-                         std::vector<RunResult>& slice);
+// The block's runs' rows, where they are in `bytes` (which must outlive the result); their rows
+// start at the range's first record (record r at (r - range.first) * n). std::runtime_error for
+// bytes that are not such a block. A process's own runs at its own range do not travel: rows_of
+// (series_rows.hpp) gives theirs.
+SliceRows read_series_slice(const std::vector<char>& bytes, std::size_t filters, RecordRange range, std::size_t n);
 
 // The rows `range` of the series' statistics across runs (what fold_series fills).
 std::vector<char> encode_series_rows(const MonteCarloSeries& series, RecordRange range);
