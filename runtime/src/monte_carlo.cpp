@@ -309,8 +309,8 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   if (!options.share) {
     const Clock::time_point fold_start = Clock::now();
     const RecordRange all_records{0, plan.records.size()};
-    fold_series(plan, filters.size(), rows_of(runs, all_records, plan.n, filters.size()).runs, all_records, reference,
-                threads, result.series);
+    const SliceRows rows = rows_of(runs, all_records, plan.n, filters.size());
+    fold_series(plan, filters.size(), rows.runs, all_records, reference, threads, result.series);
     series_seconds = seconds_since(fold_start);
   } else {
     const RunShare& share = *options.share;
@@ -323,24 +323,27 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     for (std::size_t process = 0; process < share.processes; ++process)
       if (process != share.process) slices[process] = encode_series_slice(runs, range(process), plan.n);
     const Clock::time_point exchange_start = Clock::now();
-    const std::vector<std::vector<char>> received = share.exchange(std::move(slices));
+    std::vector<std::vector<char>> received = share.exchange(std::move(slices));
     timing.exchange_seconds = seconds_since(exchange_start);
-    // The rows stay where they are (series_rows.hpp): in the received bytes, and in this
-    // process's own runs, both kept until the fold is done.
-    std::vector<SliceRows> sent(received.size());
-    std::vector<std::vector<RunRows>> per_process(received.size());
-    for (std::size_t process = 0; process < received.size(); ++process) {
-      timing.exchanged_bytes += received[process].size();
-      sent[process] = process == share.process
-                          ? rows_of(runs, range(share.process), plan.n, filters.size())
-                          : read_series_slice(received[process], filters.size(), range(share.process), plan.n);
-      per_process[process] = sent[process].runs;
+    {
+      // The rows stay where they are (series_rows.hpp): in the received bytes, and in this
+      // process's own runs, both kept until the fold is done; the views end with this scope.
+      std::vector<SliceRows> sent(received.size());
+      std::vector<std::vector<RunRows>> per_process(received.size());
+      for (std::size_t process = 0; process < received.size(); ++process) {
+        timing.exchanged_bytes += received[process].size();
+        sent[process] = process == share.process
+                            ? rows_of(runs, range(share.process), plan.n, filters.size())
+                            : read_series_slice(received[process], filters.size(), range(share.process), plan.n);
+        per_process[process] = sent[process].runs;
+      }
+      const std::vector<RunRows> slice = in_run_order(std::move(per_process), share, options.runs, owners);
+      check_share_count(received.size(), slice.size(), share, options.runs);
+      const Clock::time_point fold_start = Clock::now();
+      fold_series(plan, filters.size(), slice, range(share.process), reference, threads, result.series);
+      series_seconds = seconds_since(fold_start);
     }
-    const std::vector<RunRows> slice = in_run_order(std::move(per_process), share, options.runs, owners);
-    check_share_count(received.size(), slice.size(), share, options.runs);
-    const Clock::time_point fold_start = Clock::now();
-    fold_series(plan, filters.size(), slice, range(share.process), reference, threads, result.series);
-    series_seconds = seconds_since(fold_start);
+    received = {};  // folded: the other processes' values are no longer read
     // Folded: of the record vectors only the shown run's paths are still read.
     for (std::size_t k = 0; k < runs.size(); ++k) {
       RunResult& run = runs[k];
