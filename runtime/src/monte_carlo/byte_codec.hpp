@@ -58,13 +58,10 @@ class ByteReader {
   }
   template <class T>
   void get(std::vector<T>& values) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    std::uint64_t size = 0;
-    get(size);
-    if (size > (bytes_.size() - at_) / sizeof(T)) fail();  // before allocating a corrupt size
-    values.resize(static_cast<std::size_t>(size));
-    if (size > 0) std::memcpy(values.data(), bytes_.data() + at_, values.size() * sizeof(T));
-    at_ += values.size() * sizeof(T);
+    std::size_t size = 0;
+    const char* first = get_in_place<T>(size);  // its length checked before allocating it
+    values.resize(size);
+    if (size > 0) std::memcpy(values.data(), first, size * sizeof(T));
   }
   // A vector left where it is in the bytes: its elements' first byte (nullptr when it has none),
   // its length in `size`.
@@ -73,7 +70,7 @@ class ByteReader {
     static_assert(std::is_trivially_copyable_v<T>);
     std::uint64_t length = 0;
     get(length);
-    if (length > (bytes_.size() - at_) / sizeof(T)) fail();
+    if (length > (bytes_.size() - at_) / sizeof(T)) fail();  // before anyone allocates a corrupt length
     size = static_cast<std::size_t>(length);
     const char* first = size > 0 ? bytes_.data() + at_ : nullptr;
     at_ += size * sizeof(T);

@@ -107,9 +107,8 @@ std::string CFamilyEmitter::p_drift_loops(const PDriftLoops& loops, const PDrift
   // E[J] P + P E[J]^T (- K (A P)) at (row, j): the full block's row a number (rows written out), the
   // triangle's the index i.
   auto combined = [&](std::optional<std::size_t> row) {
-    const std::string at_ij = row ? (*row == 0 ? j : std::to_string(*row * n) + " + " + j) : i + " * " + N + " + " + j;
-    std::string sum = JP + "[" + at_ij + "] + " +
-                      (row ? names.JP_T + "[" + at_ij + "]" : JP + "[" + j + " * " + N + " + " + i + "]");
+    std::string sum = row ? at(JP, *row * n, j) + " + " + at(names.JP_T, *row * n, j)
+                          : JP + "[" + i + " * " + N + " + " + j + "] + " + JP + "[" + j + " * " + N + " + " + i + "]";
     if (loops.factored) {
       // sum_r K_ir H_rj = sum_r K^T[r n + i] H[r n + j]
       std::string correction;
