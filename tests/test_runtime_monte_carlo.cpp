@@ -426,7 +426,11 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
     RunShare share;
     share.first = first;
     share.count = count;
-    share.exchange = [](std::vector<std::vector<char>> outgoing) { return outgoing; };
+    share.exchange = [](const std::vector<PiecedBlock>& outgoing) {
+      std::vector<std::vector<char>> incoming;
+      for (const PiecedBlock& block : outgoing) incoming.push_back(joined(block));
+      return incoming;
+    };
     share.gather = [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine}; };
     return share;
   };

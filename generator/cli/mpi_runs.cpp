@@ -23,6 +23,7 @@
 #include <thread>
 #include <utility>
 
+#include "message_pieces.hpp"
 #include "pfgen/toolchain/content_hash.hpp"
 
 namespace pfgen::cli {
@@ -118,6 +119,28 @@ void send_pieces(std::vector<char>& block, int target, int tag, std::vector<MPI_
   post_pieces(block, target, tag, requests, [](char* data, int count, int to, int with_tag, MPI_Request* request) {
     MPI_Isend(data, count, MPI_BYTE, to, with_tag, MPI_COMM_WORLD, request);
   });
+}
+
+// A block in pieces, sent from where they are: each message (in_messages: the same bytes per
+// message as receive_pieces posts) is one MPI datatype of the pieces' addresses, which MPI packs
+// as it sends. (Copying 2000 satellite runs' values into one buffer first took 24 ms of a 2-rank
+// job's 1.78 s.) A datatype may be freed while a send uses it.
+void send_pieced(const pfgen_runtime::PiecedBlock& block, int target, int tag, std::vector<MPI_Request>& requests) {
+  for (const pfgen_runtime::PiecedBlock& message : in_messages(block, kPiece)) {
+    std::vector<int> sizes;
+    std::vector<MPI_Aint> addresses;
+    sizes.reserve(message.size());
+    addresses.reserve(message.size());
+    for (const pfgen_runtime::BytePiece& piece : message) {
+      sizes.push_back(static_cast<int>(piece.size));
+      MPI_Get_address(piece.data, &addresses.emplace_back());
+    }
+    MPI_Datatype pieces;
+    MPI_Type_create_hindexed(static_cast<int>(message.size()), sizes.data(), addresses.data(), MPI_BYTE, &pieces);
+    MPI_Type_commit(&pieces);
+    MPI_Isend(MPI_BOTTOM, 1, pieces, target, tag, MPI_COMM_WORLD, &requests.emplace_back());
+    MPI_Type_free(&pieces);
+  }
 }
 
 void receive_pieces(std::vector<char>& block, int source, int tag, std::vector<MPI_Request>& requests) {
@@ -251,7 +274,7 @@ std::optional<pfgen_runtime::RunShare> MpiJob::share(std::size_t runs, std::size
   share.processes = ranks;
   const std::size_t chunks = pfgen_runtime::chunk_count(runs, share.chunk);
   share.hand_out = [this, chunks](pfgen_runtime::ChunkFeed& feed) { return hand_out(feed, chunks); };
-  share.exchange = [this](std::vector<std::vector<char>> outgoing) { return exchange(std::move(outgoing)); };
+  share.exchange = [this](const std::vector<pfgen_runtime::PiecedBlock>& outgoing) { return exchange(outgoing); };
   share.gather = [this](std::vector<char> mine) { return gather(std::move(mine)); };
   return share;
 }
@@ -369,14 +392,15 @@ void MpiJob::ask_for_chunks(pfgen_runtime::ChunkFeed& feed) {
   if (error) std::rethrow_exception(error);
 }
 
-std::vector<std::vector<char>> MpiJob::exchange(std::vector<std::vector<char>> outgoing) {
+std::vector<std::vector<char>> MpiJob::exchange(const std::vector<pfgen_runtime::PiecedBlock>& outgoing) {
   // As in gather: every rank made its runs, or none goes on.
   agreed_ = true;
   if (lowest_failing(true) != size_) throw FailedElsewhere();
   if (outgoing.size() != static_cast<std::size_t>(size_))
     throw std::logic_error("mpi: an exchange needs one block for every rank");
   std::vector<std::uint64_t> sizes(outgoing.size()), incoming_sizes(outgoing.size());
-  for (std::size_t rank = 0; rank < outgoing.size(); ++rank) sizes[rank] = outgoing[rank].size();
+  for (std::size_t rank = 0; rank < outgoing.size(); ++rank)
+    for (const pfgen_runtime::BytePiece& piece : outgoing[rank]) sizes[rank] += piece.size;
   // Every rank agreed above, so every rank is here: a blocking all-to-all waits for no one who is
   // still working (waited on with sleeps, the last rank to arrive slept on after the others had
   // answered).
@@ -384,14 +408,11 @@ std::vector<std::vector<char>> MpiJob::exchange(std::vector<std::vector<char>> o
   std::vector<std::vector<char>> incoming(outgoing.size());
   std::vector<MPI_Request> requests;
   for (int rank = 0; rank < size_; ++rank) {
+    if (rank == rank_) continue;  // a rank's values at its own range do not travel
     const auto r = static_cast<std::size_t>(rank);
-    if (rank == rank_) {
-      incoming[r] = std::move(outgoing[r]);
-      continue;
-    }
     incoming[r].resize(static_cast<std::size_t>(incoming_sizes[r]));
     receive_pieces(incoming[r], rank, kExchangeTag, requests);
-    send_pieces(outgoing[r], rank, kExchangeTag, requests);
+    send_pieced(outgoing[r], rank, kExchangeTag, requests);
   }
   // Every rank is here: the bytes flow at full speed only while MPI is polled, so they are waited on
   // without sleeping.

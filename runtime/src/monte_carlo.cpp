@@ -23,9 +23,11 @@
 #include "monte_carlo/parallel_for.hpp"
 #include "monte_carlo/plan.hpp"
 #include "monte_carlo/run_codec.hpp"
+#include "monte_carlo/run_order.hpp"
 #include "monte_carlo/run_result.hpp"
 #include "monte_carlo/series_codec.hpp"
 #include "monte_carlo/series_rows.hpp"
+#include "monte_carlo/shared_series.hpp"
 #include "monte_carlo/worker.hpp"
 #include "pfgen_runtime/statistics.hpp"
 
@@ -97,64 +99,6 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
 MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observation,
                      const SampledMeasurement* measurement, const Eigen::VectorXd& x0,
                      const std::vector<FilterModel>& filters, const MonteCarloOptions& options);
-
-// What the processes of a shared job sent must be a block from each of them and every run once.
-void check_share_count(std::size_t blocks, std::size_t runs, const RunShare& share, std::size_t expected) {
-  if (blocks != share.processes)
-    throw std::runtime_error("monte carlo: " + std::to_string(blocks) + " processes' shares arrived, not " +
-                             std::to_string(share.processes));
-  if (runs != expected)
-    throw std::runtime_error("monte carlo: the processes' shares hold " + std::to_string(runs) + " runs, not " +
-                             std::to_string(expected));
-}
-
-// The process of each chunk of `chunk` runs when they are dealt: chunk c to process c mod processes.
-std::vector<std::size_t> dealt_owners(std::size_t runs, std::size_t chunk, std::size_t processes) {
-  std::vector<std::size_t> owners(chunk_count(runs, chunk));
-  for (std::size_t c = 0; c < owners.size(); ++c) owners[c] = c % processes;
-  return owners;
-}
-
-// The job's numbers of the runs of `process`, which made the chunks `owners` gives it, in order.
-std::vector<std::size_t> runs_of(const std::vector<std::size_t>& owners, std::size_t chunk, std::size_t runs,
-                                 std::size_t process) {
-  std::vector<std::size_t> numbers;
-  for (std::size_t c = 0; c < owners.size(); ++c)
-    if (owners[c] == process)
-      for (std::size_t r = c * chunk; r < std::min(runs, (c + 1) * chunk); ++r) numbers.push_back(r);
-  return numbers;
-}
-
-// The runs each process sent (per_process, in process order), in run order: one block after the
-// other, or put back chunk by chunk as `owners` says (then a process that sent more or fewer runs
-// than its chunks hold is refused; blocks are counted as a whole by check_share_count).
-template <class Run>
-std::vector<Run> in_run_order(std::vector<std::vector<Run>> per_process, const RunShare& share, std::size_t runs,
-                              const std::vector<std::size_t>& owners) {
-  std::vector<Run> ordered;
-  if (share.chunk == 0) {
-    ordered.reserve(runs);
-    for (std::vector<Run>& block : per_process) std::move(block.begin(), block.end(), std::back_inserter(ordered));
-    return ordered;
-  }
-  if (per_process.size() != share.processes)
-    throw std::runtime_error("monte carlo: " + std::to_string(per_process.size()) + " processes' shares arrived, not " +
-                             std::to_string(share.processes));
-  std::vector<std::vector<std::size_t>> numbers(per_process.size());
-  for (std::size_t process = 0; process < per_process.size(); ++process) {
-    numbers[process] = runs_of(owners, share.chunk, runs, process);
-    if (per_process[process].size() != numbers[process].size())
-      throw std::runtime_error("monte carlo: process " + std::to_string(process) + " sent " +
-                               std::to_string(per_process[process].size()) + " runs, not the " +
-                               std::to_string(numbers[process].size()) + " of its chunks");
-  }
-  // Each process sent as many runs as its chunks hold, so every run number below is taken once.
-  ordered.resize(runs);
-  for (std::size_t process = 0; process < per_process.size(); ++process)
-    for (std::size_t k = 0; k < per_process[process].size(); ++k)
-      ordered[numbers[process][k]] = std::move(per_process[process][k]);
-  return ordered;
-}
 
 }  // namespace
 
@@ -314,36 +258,12 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     series_seconds = seconds_since(fold_start);
   } else {
     const RunShare& share = *options.share;
-    // Every process folds the series at its range of record times, from every process's runs:
-    // each sends each its runs' values there, and receives, in process order, every run's values
-    // at its own range, which it puts back in run order.
     const auto range = [&](std::size_t process) { return series_range(plan.records.size(), process, share.processes); };
-    // This process's own slice does not travel: it is taken from its runs directly below.
-    std::vector<std::vector<char>> slices(share.processes);
-    for (std::size_t process = 0; process < share.processes; ++process)
-      if (process != share.process) slices[process] = encode_series_slice(runs, range(process), plan.n);
-    const Clock::time_point exchange_start = Clock::now();
-    std::vector<std::vector<char>> received = share.exchange(std::move(slices));
-    timing.exchange_seconds = seconds_since(exchange_start);
-    {
-      // The rows stay where they are (series_rows.hpp): in the received bytes, and in this
-      // process's own runs, both kept until the fold is done; the views end with this scope.
-      std::vector<SliceRows> sent(received.size());
-      std::vector<std::vector<RunRows>> per_process(received.size());
-      for (std::size_t process = 0; process < received.size(); ++process) {
-        timing.exchanged_bytes += received[process].size();
-        sent[process] = process == share.process
-                            ? rows_of(runs, range(share.process), plan.n, filters.size())
-                            : read_series_slice(received[process], filters.size(), range(share.process), plan.n);
-        per_process[process] = sent[process].runs;
-      }
-      const std::vector<RunRows> slice = in_run_order(std::move(per_process), share, options.runs, owners);
-      check_share_count(received.size(), slice.size(), share, options.runs);
-      const Clock::time_point fold_start = Clock::now();
-      fold_series(plan, filters.size(), slice, range(share.process), reference, threads, result.series);
-      series_seconds = seconds_since(fold_start);
-    }
-    received = {};  // folded: the other processes' values are no longer read
+    const SharedFoldTiming shared =
+        fold_shared_series(plan, filters.size(), runs, reference, threads, options.runs, owners, share, result.series);
+    timing.exchange_seconds = shared.exchange_seconds;
+    timing.exchanged_bytes = shared.exchanged_bytes;
+    series_seconds = shared.fold_seconds;
     // Folded: of the record vectors only the shown run's paths are still read.
     for (std::size_t k = 0; k < runs.size(); ++k) {
       RunResult& run = runs[k];

@@ -78,7 +78,7 @@ class SharedRuns {
       pfgen_runtime::RunShare share = std::move(shares[k]);
       share.process = k;
       share.processes = processes_;
-      share.exchange = [this, k](std::vector<std::vector<char>> outgoing) { return exchange(k, std::move(outgoing)); };
+      share.exchange = [this, k](const std::vector<pfgen_runtime::PiecedBlock>& outgoing) { return exchange(k, outgoing); };
       share.gather = [this, k](std::vector<char> mine) { return gather(k, std::move(mine)); };
       threads.emplace_back([&, k, share] {
         try {
@@ -97,7 +97,10 @@ class SharedRuns {
     return results;
   }
 
-  std::vector<std::vector<char>> exchange(std::size_t k, std::vector<std::vector<char>> outgoing) {
+  // The blocks' bytes travel joined, as MPI receives them.
+  std::vector<std::vector<char>> exchange(std::size_t k, const std::vector<pfgen_runtime::PiecedBlock>& pieced) {
+    std::vector<std::vector<char>> outgoing;
+    for (const pfgen_runtime::PiecedBlock& block : pieced) outgoing.push_back(pfgen_runtime::joined(block));
     if (tamper_exchange)
       for (std::size_t to = 0; to < outgoing.size(); ++to) tamper_exchange(k, to, outgoing[to]);
     outboxes_[k] = std::move(outgoing);

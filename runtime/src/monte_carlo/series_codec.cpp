@@ -13,16 +13,6 @@ namespace {
 constexpr char kSliceMagic[8] = {'p', 'f', 'g', 'e', 'n', 's', 'l', '1'};
 constexpr char kRowsMagic[8] = {'p', 'f', 'g', 'e', 'n', 's', 'r', '1'};
 
-// Rows `range` of a record vector (records x n, row-major), or nothing when the run has none.
-void put_rows(ByteWriter& writer, const std::vector<double>& values, RecordRange range, std::size_t n) {
-  if (values.empty()) {
-    writer.put_range(values.data(), 0);
-    return;
-  }
-  if (values.size() < range.last * n) throw std::logic_error("monte carlo: a run's record series is shorter than its plan");
-  writer.put_range(values.data() + range.first * n, range.size() * n);
-}
-
 // A run's rows of the range where they are in the bytes, or none (nullptr); none only where the
 // fold never reads them (`read`: the run reached a record time, so fold_series reads its rows there).
 const char* rows_in_place(ByteReader& reader, RecordRange range, std::size_t n, bool read) {
@@ -57,36 +47,54 @@ void alive_counts(Series& series, Visit visit) {
 
 }  // namespace
 
-std::vector<char> encode_series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n) {
-  ByteWriter writer;
-  // The exact size first: the slices of a large job are tens of megabytes, which growing by
-  // doubling would copy again and again.
-  const auto rows_bytes = [&](const std::vector<double>& values) {
-    return sizeof(std::uint64_t) + (values.empty() ? 0 : range.size() * n * sizeof(double));
+SeriesSlice series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n) {
+  // The fixed fields and every rows' length go into `heads`; rows, where a run has them, follow
+  // the head bytes up to `head_end` as a piece of their own.
+  struct Rows {
+    std::size_t head_end = 0;
+    const double* values = nullptr;
+    std::size_t count = 0;
   };
-  std::size_t size = sizeof(kSliceMagic) + sizeof(std::uint64_t);
-  for (const RunResult& run : runs) {
-    size += sizeof(run.truth_last) + sizeof(std::uint64_t) + run.filters.size() * sizeof(std::ptrdiff_t) +
-            sizeof(run.reference.last) + rows_bytes(run.truth_record) + rows_bytes(run.reference.error_record);
-    for (const FilterRunResult& filter : run.filters)
-      size += rows_bytes(filter.error_record) + rows_bytes(filter.reference_record);
-  }
-  writer.out.reserve(size);
-  writer.put_magic(kSliceMagic);
-  writer.put(static_cast<std::uint64_t>(runs.size()));
-  for (const RunResult& run : runs) {
-    writer.put(run.truth_last);
-    writer.put(static_cast<std::uint64_t>(run.filters.size()));
-    for (const FilterRunResult& filter : run.filters) writer.put(filter.last);
-    writer.put(run.reference.last);
-    put_rows(writer, run.truth_record, range, n);
-    for (const FilterRunResult& filter : run.filters) {
-      put_rows(writer, filter.error_record, range, n);
-      put_rows(writer, filter.reference_record, range, n);
+  ByteWriter heads;
+  std::vector<Rows> rows;
+  const std::size_t filters = runs.empty() ? 0 : runs.front().filters.size();
+  heads.out.reserve(sizeof(kSliceMagic) + sizeof(std::uint64_t) +
+                    runs.size() * (4 + 3 * filters) * sizeof(std::uint64_t));
+  rows.reserve(runs.size() * (2 + 2 * filters));
+  // Rows `range` of a record vector (records x n, row-major), or nothing when the run has none.
+  const auto put_rows = [&](const std::vector<double>& values) {
+    if (values.empty()) {
+      heads.put(std::uint64_t{0});
+      return;
     }
-    put_rows(writer, run.reference.error_record, range, n);
+    if (values.size() < range.last * n) throw std::logic_error("monte carlo: a run's record series is shorter than its plan");
+    heads.put(static_cast<std::uint64_t>(range.size() * n));
+    rows.push_back({heads.out.size(), values.data() + range.first * n, range.size() * n});
+  };
+  heads.put_magic(kSliceMagic);
+  heads.put(static_cast<std::uint64_t>(runs.size()));
+  for (const RunResult& run : runs) {
+    heads.put(run.truth_last);
+    heads.put(static_cast<std::uint64_t>(run.filters.size()));
+    for (const FilterRunResult& filter : run.filters) heads.put(filter.last);
+    heads.put(run.reference.last);
+    put_rows(run.truth_record);
+    for (const FilterRunResult& filter : run.filters) {
+      put_rows(filter.error_record);
+      put_rows(filter.reference_record);
+    }
+    put_rows(run.reference.error_record);
   }
-  return std::move(writer.out);
+  SeriesSlice slice;
+  slice.heads = std::move(heads.out);  // from here on its bytes stay where they are
+  std::size_t from = 0;
+  for (const Rows& part : rows) {
+    slice.pieces.push_back({slice.heads.data() + from, part.head_end - from});
+    if (part.count > 0) slice.pieces.push_back({reinterpret_cast<const char*>(part.values), part.count * sizeof(double)});
+    from = part.head_end;
+  }
+  if (from < slice.heads.size()) slice.pieces.push_back({slice.heads.data() + from, slice.heads.size() - from});
+  return slice;
 }
 
 SliceRows read_series_slice(const std::vector<char>& bytes, std::size_t filters, RecordRange range, std::size_t n) {

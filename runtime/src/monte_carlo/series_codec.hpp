@@ -17,10 +17,23 @@ namespace pfgen_runtime::monte_carlo_detail {
 
 // Of each run, in run order, at the record times `range`: how far the truth, every filter and the
 // reference got, and their values that the series fold (truth_record, every filter's error_record
-// and reference_record, the reference's error_record).
-std::vector<char> encode_series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n);
+// and reference_record, the reference's error_record), as the pieces of one block. The values are
+// not copied: their pieces point into the runs' record vectors, which must outlive the slice and
+// stay unchanged; the rest (the fields, the rows' lengths) is in `heads`, which moving the slice
+// keeps where it is.
+struct SeriesSlice {
+  SeriesSlice() = default;
+  SeriesSlice(SeriesSlice&&) = default;
+  SeriesSlice& operator=(SeriesSlice&&) = default;
+  SeriesSlice(const SeriesSlice&) = delete;
+  SeriesSlice& operator=(const SeriesSlice&) = delete;
 
-// The block's runs' rows, where they are in `bytes` (which must outlive the result); their rows
+  std::vector<char> heads;
+  PiecedBlock pieces;
+};
+SeriesSlice series_slice(const std::vector<RunResult>& runs, RecordRange range, std::size_t n);
+
+// A slice's runs' rows, where they are in its bytes (`bytes`, which must outlive the result); their rows
 // start at the range's first record (record r at (r - range.first) * n). std::runtime_error for
 // bytes that are not such a block. A process's own runs at its own range do not travel: rows_of
 // (series_rows.hpp) gives theirs.
