@@ -380,11 +380,32 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
       part.share = std::move(share);
       return run_monte_carlo(scheme, observation, x0, scenario.filters, part);
     };
+    // Values exchanged in rounds of at most about 3000 bytes and of 1 byte (as many rounds as the
+    // shortest of the 3 ranges has records, when it has 2 or more), each over a part of every
+    // process's range; and in one round, the default's for a job this small.
+    const std::size_t shortest = single.series.index.size() / 3;
+    const auto in_rounds = [&](std::size_t round_bytes) {
+      pfgen_test::SharedRuns processes(3);
+      std::vector<MonteCarloResult> results = processes.hand_out(23, 4, [&job, round_bytes](RunShare share) {
+        share.exchange_round_bytes = round_bytes;
+        return job(std::move(share));
+      });
+      INFO("rounds of " << round_bytes << " bytes, shortest range " << shortest << " records");
+      if (round_bytes == 1) CHECK(processes.exchanges() == (shortest < 2 ? 1 : shortest));
+      CHECK(processes.exchanges() >= 1);
+      CHECK(processes.exchanges() <= std::max<std::size_t>(1, shortest));
+      if (round_bytes == 3000 && shortest >= 4) CHECK((processes.exchanges() > 1 && processes.exchanges() < shortest));
+      if (round_bytes == RunShare{}.exchange_round_bytes) CHECK(processes.exchanges() == 1);
+      return results;
+    };
     // In blocks; dealt in chunks of 4 (the 23 runs end in a short chunk, process 2's) and of 10
     // (process 2 gets none); handed out in chunks of 4 from a counter the processes share (a
     // different assignment each time), and as scripts: the shown run 4 with process 2, and every
     // chunk with process 1 (process 0, which folds, makes none).
     const std::vector<std::pair<std::string, std::function<std::vector<MonteCarloResult>()>>> ways = {
+        {"in rounds of 3000 bytes", [&] { return in_rounds(3000); }},
+        {"in rounds of 1 byte", [&] { return in_rounds(1); }},
+        {"in one round", [&] { return in_rounds(RunShare{}.exchange_round_bytes); }},
         {"blocks", [&] { return pfgen_test::SharedRuns(3).run({9, 0, 14}, job); }},
         {"dealt by 4", [&] { return pfgen_test::SharedRuns(3).deal(23, 4, job); }},
         {"dealt by 10", [&] { return pfgen_test::SharedRuns(3).deal(23, 10, job); }},
@@ -426,10 +447,9 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
     RunShare share;
     share.first = first;
     share.count = count;
-    share.exchange = [](const std::vector<PiecedBlock>& outgoing) {
-      std::vector<std::vector<char>> incoming;
+    share.exchange = [](const std::vector<PiecedBlock>& outgoing, std::vector<std::vector<char>>& incoming) {
+      incoming.clear();
       for (const PiecedBlock& block : outgoing) incoming.push_back(joined(block));
-      return incoming;
     };
     share.gather = [](std::vector<char> mine) { return std::vector<std::vector<char>>{mine}; };
     return share;

@@ -274,7 +274,8 @@ std::optional<pfgen_runtime::RunShare> MpiJob::share(std::size_t runs, std::size
   share.processes = ranks;
   const std::size_t chunks = pfgen_runtime::chunk_count(runs, share.chunk);
   share.hand_out = [this, chunks](pfgen_runtime::ChunkFeed& feed) { return hand_out(feed, chunks); };
-  share.exchange = [this](const std::vector<pfgen_runtime::PiecedBlock>& outgoing) { return exchange(outgoing); };
+  share.exchange = [this](const std::vector<pfgen_runtime::PiecedBlock>& outgoing,
+                          std::vector<std::vector<char>>& incoming) { exchange(outgoing, incoming); };
   share.gather = [this](std::vector<char> mine) { return gather(std::move(mine)); };
   return share;
 }
@@ -392,8 +393,8 @@ void MpiJob::ask_for_chunks(pfgen_runtime::ChunkFeed& feed) {
   if (error) std::rethrow_exception(error);
 }
 
-std::vector<std::vector<char>> MpiJob::exchange(const std::vector<pfgen_runtime::PiecedBlock>& outgoing) {
-  // As in gather: every rank made its runs, or none goes on.
+void MpiJob::exchange(const std::vector<pfgen_runtime::PiecedBlock>& outgoing, std::vector<std::vector<char>>& incoming) {
+  // As in gather: every rank made its runs (and folded the round before), or none goes on.
   agreed_ = true;
   if (lowest_failing(true) != size_) throw FailedElsewhere();
   if (outgoing.size() != static_cast<std::size_t>(size_))
@@ -405,11 +406,13 @@ std::vector<std::vector<char>> MpiJob::exchange(const std::vector<pfgen_runtime:
   // still working (waited on with sleeps, the last rank to arrive slept on after the others had
   // answered).
   MPI_Alltoall(sizes.data(), 1, MPI_UINT64_T, incoming_sizes.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
-  std::vector<std::vector<char>> incoming(outgoing.size());
+  incoming.resize(outgoing.size());
   std::vector<MPI_Request> requests;
   for (int rank = 0; rank < size_; ++rank) {
-    if (rank == rank_) continue;  // a rank's values at its own range do not travel
     const auto r = static_cast<std::size_t>(rank);
+    // Emptied first: a buffer that must grow is not copied, one large enough keeps its memory.
+    incoming[r].clear();
+    if (rank == rank_) continue;  // a rank's values at its own range do not travel
     incoming[r].resize(static_cast<std::size_t>(incoming_sizes[r]));
     receive_pieces(incoming[r], rank, kExchangeTag, requests);
     send_pieced(outgoing[r], rank, kExchangeTag, requests);
@@ -417,9 +420,9 @@ std::vector<std::vector<char>> MpiJob::exchange(const std::vector<pfgen_runtime:
   // Every rank is here: the bytes flow at full speed only while MPI is polled, so they are waited on
   // without sleeping.
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-  // What follows (folding, then the gather) can fail on one rank alone: the gather agrees again.
+  // What follows (folding, then the next round or the gather) can fail on one rank alone: the next
+  // collective agrees again.
   agreed_ = false;
-  return incoming;
 }
 
 std::vector<std::vector<char>> MpiJob::gather(std::vector<char> mine) {

@@ -44,7 +44,7 @@ class MpiJob final : public JobGroup {
   std::vector<std::size_t> hand_out(pfgen_runtime::ChunkFeed& feed, std::size_t chunks);
   void serve_chunks(pfgen_runtime::ChunkFeed& feed, std::vector<std::uint64_t>& owners);
   void ask_for_chunks(pfgen_runtime::ChunkFeed& feed);
-  std::vector<std::vector<char>> exchange(const std::vector<pfgen_runtime::PiecedBlock>& outgoing);
+  void exchange(const std::vector<pfgen_runtime::PiecedBlock>& outgoing, std::vector<std::vector<char>>& incoming);
   std::vector<std::vector<char>> gather(std::vector<char> mine);
 
   int rank_ = 0, size_ = 1;

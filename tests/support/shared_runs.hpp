@@ -67,6 +67,8 @@ class SharedRuns {
   }
 
   std::function<void(std::size_t from, std::size_t to, std::vector<char>& block)> tamper_exchange;
+  // Exchanges process 0 took part in (the rounds of the last job).
+  std::size_t exchanges() const { return exchanges_; }
   std::function<void(std::size_t from, std::vector<char>& block)> tamper_gather;
 
  private:
@@ -78,7 +80,8 @@ class SharedRuns {
       pfgen_runtime::RunShare share = std::move(shares[k]);
       share.process = k;
       share.processes = processes_;
-      share.exchange = [this, k](const std::vector<pfgen_runtime::PiecedBlock>& outgoing) { return exchange(k, outgoing); };
+      share.exchange = [this, k](const std::vector<pfgen_runtime::PiecedBlock>& outgoing,
+                                  std::vector<std::vector<char>>& incoming) { incoming = exchange(k, outgoing); };
       share.gather = [this, k](std::vector<char> mine) { return gather(k, std::move(mine)); };
       threads.emplace_back([&, k, share] {
         try {
@@ -104,6 +107,7 @@ class SharedRuns {
     if (tamper_exchange)
       for (std::size_t to = 0; to < outgoing.size(); ++to) tamper_exchange(k, to, outgoing[to]);
     outboxes_[k] = std::move(outgoing);
+    if (k == 0) ++exchanges_;
     meet();
     std::vector<std::vector<char>> incoming;
     for (std::size_t from = 0; from < processes_; ++from) incoming.push_back(outboxes_[from].at(k));
@@ -165,6 +169,7 @@ class SharedRuns {
 
   const std::size_t processes_;
   std::vector<std::vector<std::vector<char>>> outboxes_;
+  std::size_t exchanges_ = 0;
   std::vector<std::vector<char>> gathered_;
   std::mutex mutex_;
   std::condition_variable arrived_;

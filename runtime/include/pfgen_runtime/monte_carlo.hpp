@@ -92,11 +92,15 @@ inline std::vector<char> joined(const PiecedBlock& block) {
 //   Either way every process gets runs from all along the job: runs whose cost changes with
 //   their number (their random streams do) no longer leave one process the slower block.
 // Every process then calls the same two collectives, in this order:
-// - exchange: each process hands one block per process (outgoing[j] for process j, in pieces) and
-//   gets back, in process order, the bytes of the blocks every process addressed to it, each in one
-//   buffer (its own, empty: a process's values at its own range do not travel). Each process folds
-//   the series at its own range of record times from them, so that the largest part of folding is
-//   shared.
+// - exchange, in rounds (the same number on every process, from the job alone): in each, every
+//   process hands one block per process (outgoing[j] for process j, in pieces) and receives into
+//   incoming[j], in process order, the bytes of the block process j addressed to it (its own,
+//   empty: a process's values at its own range do not travel). incoming holds one buffer per
+//   process on return; a buffer's memory is reused from round to round where it is large enough.
+//   Each process folds the series at its own range of record times from them, a part of the range
+//   a round, so that the largest part of folding is shared. A round brings a process about
+//   exchange_round_bytes (0: everything in one round), so that what it receives lands in memory
+//   the round before used, not in ever more fresh pages.
 // - gather: each process hands one block (its runs' results and its folded rows); process 0 gets
 //   every process's, in process order, and the others get nothing.
 // The processes' runs, in process order (blocks) or put back chunk by chunk, must be runs
@@ -105,10 +109,11 @@ inline std::vector<char> joined(const PiecedBlock& block) {
 struct RunShare {
   std::size_t first = 0, count = 0;
   std::size_t process = 0, processes = 1;
-  std::function<std::vector<std::vector<char>>(const std::vector<PiecedBlock>& outgoing)> exchange;
+  std::function<void(const std::vector<PiecedBlock>& outgoing, std::vector<std::vector<char>>& incoming)> exchange;
   std::function<std::vector<std::vector<char>>(std::vector<char> mine)> gather;
   std::size_t chunk = 0;
   std::function<std::vector<std::size_t>(ChunkFeed& feed)> hand_out;
+  std::size_t exchange_round_bytes = std::size_t(64) << 20;
 };
 
 // The truth's initial state drawn per run from N(mean, covariance) instead of a fixed x0: the
