@@ -108,7 +108,8 @@ void wait_sleeping(MPI_Request& request) {
 }
 
 // A block's bytes as non-blocking messages of at most kPiece bytes each (MPI counts are ints), to
-// or from `rank`, their requests appended to `requests`: the one way both collectives move bytes.
+// or from `rank`, their requests appended to `requests`: how the gather moves bytes and the
+// exchange receives them (the exchange sends with send_pieced, cut at the same boundaries).
 template <class Post>
 void post_pieces(std::vector<char>& block, int rank, int tag, std::vector<MPI_Request>& requests, Post post) {
   for (std::size_t at = 0; at < block.size(); at += kPiece)

@@ -58,8 +58,10 @@ SeriesSlice series_slice(const std::vector<RunResult>& runs, RecordRange range, 
   ByteWriter heads;
   std::vector<Rows> rows;
   const std::size_t filters = runs.empty() ? 0 : runs.front().filters.size();
+  // A run's fields: truth_last, the filter count, each filter's last, the reference's last; then a
+  // length for the truth's rows, each filter's two and the reference's.
   heads.out.reserve(sizeof(kSliceMagic) + sizeof(std::uint64_t) +
-                    runs.size() * (4 + 3 * filters) * sizeof(std::uint64_t));
+                    runs.size() * (5 + 3 * filters) * sizeof(std::uint64_t));
   rows.reserve(runs.size() * (2 + 2 * filters));
   // Rows `range` of a record vector (records x n, row-major), or nothing when the run has none.
   const auto put_rows = [&](const std::vector<double>& values) {
