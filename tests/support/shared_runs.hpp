@@ -67,9 +67,9 @@ class SharedRuns {
   }
 
   std::function<void(std::size_t from, std::size_t to, std::vector<char>& block)> tamper_exchange;
+  std::function<void(std::size_t from, std::vector<char>& block)> tamper_gather;
   // Exchanges process 0 took part in (the rounds of the last job).
   std::size_t exchanges() const { return exchanges_; }
-  std::function<void(std::size_t from, std::vector<char>& block)> tamper_gather;
 
  private:
   std::vector<pfgen_runtime::MonteCarloResult> run_shares(std::vector<pfgen_runtime::RunShare> shares, const Job& job) {

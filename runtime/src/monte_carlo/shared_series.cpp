@@ -38,11 +38,11 @@ SharedFoldTiming fold_shared_series(const Plan& plan, std::size_t filters, const
                                     const std::vector<std::size_t>& owners, const RunShare& share,
                                     MonteCarloSeries& series) {
   SharedFoldTiming timing;
-  timing.rounds = exchange_rounds(plan, total_runs, filters, reference, share);
+  const std::size_t rounds = exchange_rounds(plan, total_runs, filters, reference, share);
   const auto range = [&](std::size_t process) { return series_range(plan.records.size(), process, share.processes); };
   std::vector<std::vector<char>> received(share.processes);  // kept from round to round
-  for (std::size_t round = 0; round < timing.rounds; ++round) {
-    const auto part = [&](std::size_t process) { return round_part(range(process), round, timing.rounds); };
+  for (std::size_t round = 0; round < rounds; ++round) {
+    const auto part = [&](std::size_t process) { return round_part(range(process), round, rounds); };
     // Every process sends every other its runs' values at that process's part, from the runs'
     // record vectors and the slices' heads (series_slice), unchanged until the exchange returns;
     // its own part is taken from its runs directly below.

@@ -28,7 +28,6 @@ RecordRange round_part(RecordRange range, std::size_t round, std::size_t rounds)
 struct SharedFoldTiming {
   double exchange_seconds = 0, fold_seconds = 0;  // over the rounds
   std::size_t exchanged_bytes = 0;                // received by this process
-  std::size_t rounds = 0;
 };
 
 // Folds this process's range of the series (fold_series) from every process's runs: this
