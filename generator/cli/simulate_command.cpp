@@ -248,6 +248,11 @@ PreparedJob prepare(const SimulateOptions& options, bool speaks, Clock::time_poi
   std::vector<FilterEquations> filters;
   for (const std::string& name : settings.filters.empty() ? default_filter_names(model) : settings.filters)
     filters.push_back(derive_named_filter(model, name));
+  for (const FilterEquations& eq : filters)  // sub-steps a filter chose (the model gives none)
+    if (eq.update.substeps_chosen)
+      if (auto problem = substep_budget_problem(eq.name, settings.T, eq.update.period.to_double(),
+                                                static_cast<double>(eq.update.substeps)))
+        throw CliValueError(model.source + ": observation.sampled: " + *problem);
   check_memory(model, settings, thread_count(options.threads, settings.runs), filters.size(),
                effective_record_points(options, settings));
   // Delayed observations: filters generated for this grid step (settings checked D = h / dt).

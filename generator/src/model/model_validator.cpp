@@ -272,7 +272,7 @@ void validate_sampled_observation(const Model& model) {
   const SampledObservation& obs = model.observation.sampled();
   const std::string field = "observation.sampled";
   if (!(obs.period > 0)) throw ModelError(field + ".period", "must be positive, found " + to_text(obs.period));
-  if (obs.substeps < 1) throw ModelError(field + ".substeps", "must be at least 1 (1 sub-step: predict over the whole period)");
+  if (obs.substeps && *obs.substeps < 1) throw ModelError(field + ".substeps", "must be at least 1 (1 sub-step: predict over the whole period)");
   std::size_t r = obs.C.size();
   for (std::size_t i = 0; i < obs.c.size(); ++i) require_polynomial(model, obs.c[i], field + ".c", one_based(i), std::nullopt);
   if (r == 0) throw ModelError(field + ".C", "at least one observation row is required");

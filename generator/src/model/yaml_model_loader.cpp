@@ -292,7 +292,7 @@ class Loader {
     if (!period) throw ModelError(field + ".period", pfgen_support::quoted(period_text) + " is not a number");
     if (auto problem = double_range_problem(*period))
       throw ModelError(field + ".period", pfgen_support::quoted(period_text) + " " + *problem);
-    std::size_t substeps = 1;
+    std::optional<std::size_t> substeps;  // absent: each filter chooses (substep_choice.hpp)
     if (YAML::Node s = sampled["substeps"]; s && !s.IsNull())
       substeps = static_cast<std::size_t>(whole_number(s, field + ".substeps", 1000000));
     if (polynomial) {

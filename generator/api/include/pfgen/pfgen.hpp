@@ -242,12 +242,13 @@ class ModelBuilder {
   ModelBuilder& delayed_observation(double delay, const Exprs& A0, const ExprMatrix& A, const ExprMatrix& B);
   // dy = h(x, t) dt + B dW2, each h_r a polynomial in the states
   ModelBuilder& polynomial_observation(const Exprs& h, const ExprMatrix& B);
-  // y_k = C0 + C x(k period) + Uv v_k
+  // y_k = C0 + C x(k period) + Uv v_k; substeps 0 (the default) as when a model file leaves them
+  // out: each filter takes as many prediction sub-steps per period as its rate at the prior needs
   ModelBuilder& sampled_observation(double period, const Exprs& C0, const ExprMatrix& C, const ExprMatrix& Uv,
-                                    std::size_t substeps = 1);
+                                    std::size_t substeps = 0);
   // y_k = c(x(k period)) + Uv v_k, each c_r a polynomial in the states (degree <= 1: as C0 + C x)
   ModelBuilder& sampled_polynomial_observation(double period, const Exprs& c, const ExprMatrix& Uv,
-                                               std::size_t substeps = 1);
+                                               std::size_t substeps = 0);
   // The filters' prior N(m0, P0) and the truth's x0 (empty: drawn from the prior in each run).
   ModelBuilder& initial(const Vector& m0, const Matrix& P0, const Vector& x0 = {});
   // dW read in Stratonovich's sense (the drift is converted to Ito's form).
