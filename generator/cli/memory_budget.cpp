@@ -105,8 +105,7 @@ MemoryBudget memory_budget(const MemoryFacts& facts) {
                                  const std::string& what) {
     if (!limit) return;
     const double use = used.value_or(0);
-    lower(0.75 * (*limit - use), "three quarters of what " + what + " of " + gib(*limit) + " GiB leaves beside the " +
-                                     gib(use) + " GiB in use");
+    lower(0.75 * (*limit - use), "three quarters of what is left of " + what + ", " + gib(*limit) + " GiB");
   };
   headroom(facts.address_limit, facts.address_used, "the process's address-space limit (ulimit -v)");
   headroom(facts.data_limit, facts.data_used, "the process's data limit (ulimit -d)");
