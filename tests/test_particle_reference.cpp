@@ -225,7 +225,8 @@ TEST_CASE("particle reference: identical for 1, 2 and 3 threads and after travel
       CHECK(result.truth_divergences.count() > 0);
       CHECK(result.truth_divergences.count() < result.runs);
       CHECK(table.find("Distance to the particle reference (N = 64 particles") != std::string::npos);
-      CHECK(csv.find(",reference_m_x,reference_err_x,reference_err_x_rms,kalman-bucy_dref_x,kalman-bucy_dref_x_rms\n") !=
+      CHECK(csv.find(",reference_m_x,reference_err_x,reference_err_x_rms,kalman-bucy_dref_x,kalman-bucy_dref_x_rms,"
+                   "kalman-bucy_err_x_rms,kalman-bucy_nees,kalman-bucy_nees_low,kalman-bucy_nees_high\n") !=
             std::string::npos);
       CHECK(result.timing.reference_steps > 0);
       continue;

@@ -171,6 +171,10 @@ std::string consistency_section(const MonteCarloResult& result) {
   for (const FilterStatistics& filter : result.filters)
     for (std::size_t q = 0; q < filter.nees.size(); ++q) {
       const double t = q < filter.reports.size() ? filter.reports[q].t : result.grid.end();
+      // T once, when it is also a report time; nothing where no run had a definite P (a
+      // deterministic truth's P = 0, or every run stopped).
+      const bool repeated = q == filter.reports.size() && q > 0 && filter.reports[q - 1].t == t;
+      if (repeated || filter.nees_runs[q] == 0) continue;
       const double nees = filter.nees[q], low = filter.nees_low[q], high = filter.nees_high[q];
       const std::string verdict = !std::isfinite(nees) ? "-"
                                   : nees > high        ? "too small"
