@@ -220,6 +220,9 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--x0", so.x0,
                            "prior: each run's truth starts from a draw of N(m0, P0), the filters' prior (as the "
                            "particle reference assumes); model: the model's x0 (default: the model's initial: x0)");
+  simulate_cmd->add_option("--stepping", so.stepping,
+                           "refined: split a filter's grid step where one step would change P too fast (default); "
+                           "generated: one step() per grid step, as the generated code runs");
   simulate_cmd->add_option("--criterion-csv", simulate.criterion_csv_path,
                            "Write J per filter as CSV to FILE (needs --risk-epsilon or a risk: section)")
       ->check(named_file);
