@@ -2,9 +2,8 @@
 // A progress bar for long Monte Carlo jobs. The command draws it on stderr only when stderr is a
 // terminal and the job has run for more than a second (short jobs and redirected output stay
 // clean); the API's caller may ask for its text instead (pfgen::api::SimulationOptions::progress).
-// It is safe to update from worker threads: each update is one atomic counter write, and drawing
-// is rate-limited to a few times a second under a mutex.
-#include <atomic>
+// It is safe to update from worker threads: an update never waits (it draws only when it gets
+// the bar's mutex at once), and drawing is rate-limited to five times a second.
 #include <chrono>
 #include <cstddef>
 #include <functional>

@@ -75,16 +75,18 @@ def _float_array(values, option):
     try:
         return _np.asarray(values, dtype=float)
     except OverflowError:
-        big = next((v for v in _np.asarray(values, dtype=object).ravel() if isinstance(v, int) and not _fits(v)), None)
+        big = next((v for v in _np.asarray(values, dtype=object).ravel() if not _fits(v)), values)
         raise _out_of_range(option, big) from None
 
 
 def _fits(value):
     try:
         float(value)
-        return True
     except OverflowError:
         return False
+    except (TypeError, ValueError):
+        pass
+    return True
 
 
 def _number_list(values, option):
