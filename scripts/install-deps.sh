@@ -18,6 +18,7 @@ tests=(
   catch2                               # tests
   python3-dev pybind11-dev             # the Python module (python/), built with pybind11
   python3-numpy python3-sympy python3-pytest  # its arrays, Filter.to_sympy, and its tests
+  python3-pandas python3-matplotlib    # its optional Simulation.to_pandas and Simulation.plot (tested)
   python3-yaml                         # benchmarks/bench_sympy_peer.py reads model files (SymPy peer)
   poppler-utils                        # pdftoppm: tests render LaTeX pages to check the layout
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # embedded proof:

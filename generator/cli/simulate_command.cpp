@@ -407,7 +407,7 @@ SimulationOutcome simulate(const SimulateOptions& options, JobGroup& group) {
   const std::size_t own_runs = !share                ? settings.runs
                                : share->hand_out ? (settings.runs + share->processes - 1) / share->processes
                                                  : share->count;
-  ProgressBar progress("simulate", speaks ? own_runs : 0);
+  ProgressBar progress("simulate", speaks ? own_runs : 0, options.progress);
   std::optional<pfgen_runtime::MonteCarloResult> folded;
   group.together([&] {
     plugin.check_grid_step(settings.dt);  // a delayed filter runs only on the grid it was made for
