@@ -42,6 +42,19 @@ void check_standard_output_written() {
                              (errno ? std::strerror(errno) : "write error"));
 }
 
+// CLI11 reads "--filter=" (nothing after '=') as "--filter" without its value and takes the next
+// argument as the value: `eval --filter= --m 0.5` reported "--m is required". A long option
+// written with '=' and nothing after it is refused here, named, before CLI11 parses.
+void refuse_empty_equals_values(int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    const std::string argument = argv[k];
+    if (argument == "--") return;  // what follows is positional
+    if (argument.size() > 3 && argument.compare(0, 2, "--") == 0 && argument.back() == '=' &&
+        argument.find('=') == argument.size() - 1)
+      throw std::runtime_error(argument.substr(0, argument.size() - 1) + ": no value after '='");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -229,9 +242,16 @@ int main(int argc, char** argv) {
   simulate_cmd->add_flag("-q,--quiet", simulate.quiet, "No plugin and timing lines on stderr");
 
   try {
+    refuse_empty_equals_values(argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version end here with status 0. A parse error exits 1, as every other error
+    // does (docs/guide/commands.md), not with CLI11's own codes (105 for a value a check refuses,
+    // 106 for a missing option, 109 for an unknown one).
+    return app.exit(e) == 0 ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::cerr << "pfgen: error: " << one_line(e.what()) << " (see pfgen --help)\n";
+    return 1;
   }
   try {
     int status = 1;
