@@ -684,6 +684,11 @@ TEST_CASE("command-line parse errors exit 1 with one line naming the option", "[
       {{"eval", model, "--filter=", "--m", "0.5", "--P", "1"}, "--filter: no value after '='"},
       {{"codegen", model, "--namespace=", "-o", dir.file("out")}, "--namespace: no value after '='"},
       {{"simulate", model, "--T=", "--runs", "2"}, "--T: no value after '='"},
+      // An empty list given as its own argument meant the default filters, without a word.
+      {{"derive", model, "--filter", ""}, "--filter: the list is empty"},
+      {{"latex", model, "-o", dir.file("m.tex"), "--filter", ""}, "--filter: the list is empty"},
+      {{"codegen", model, "--stats", "--filter", ""}, "--filter: the list is empty"},
+      {{"simulate", model, "--filters", "", "--runs", "1"}, "--filters: the list is empty"},
   };
   for (const auto& c : cases) {
     const auto result = run_pfgen(c.args);
