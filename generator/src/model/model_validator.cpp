@@ -134,6 +134,7 @@ GiNaC::ex at_defaults(const Model& model, const GiNaC::ex& e) {
 void validate_names(const Model& model) {
   if (auto problem = identifier_problem(model.name)) throw ModelError("name", *problem);
   if (auto problem = namespace_name_problem(model.name)) throw ModelError("name", *problem);
+  if (auto problem = name_part_problem(model.name)) throw ModelError("name", *problem);
   if (model.states.empty()) throw ModelError("states", "at least one state is required");
   std::set<std::string> seen;
   const std::string time = model.time.get_name();
@@ -471,6 +472,7 @@ void validate_user_filters(const Model& model) {
         throw ModelError(field, "'" + filter.name + "' is a built-in filter kind; give the model's filter another name");
     const std::string identifier = filter_identifier(filter.name);
     if (auto problem = namespace_name_problem(identifier)) throw ModelError(field, *problem);
+    if (auto problem = name_part_problem(identifier)) throw ModelError(field, *problem);
     for (const auto& [taken, owner] : identifiers) {
       if (taken == identifier)
         throw ModelError(field, "its C++ identifier '" + identifier + "' is also that of filter '" + owner + "'");

@@ -76,7 +76,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
          substep_phrase(u) + " of dt = T/" + std::to_string(u.substeps) + " between samples" +
          (substep_reason(u).empty() ? "" : " (" + substep_reason(u) + ")") + "\n\n";
   if (eq.P_euler.empty()) {
-    out += "prediction between samples (no observation term; dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion]):\n";
+    out += "prediction between samples (no observation term; dP terms: [" + moment_terms_text(eq) + "] + [diffusion]):\n";
     for (std::size_t i = 0; i < n; ++i)
       out += "dm" + std::to_string(i + 1) + " = (" + writer.print(eq.m_drift[i]) + ") dt\n";
     for (std::size_t i = 0; i < n; ++i)
@@ -84,8 +84,8 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
         out += "d" + vars.text_name(vars.P(i, j)) + " = (" + join_parts(writer, P_parts(eq, vars.upper_index(i, j))) +
                ") dt\n";
   } else {
-    out += "prediction over one sub-step dt (exact moments of x + f dt + g sqrt(dt) xi; dP terms: "
-           "[E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion], then Cov(f)):\n";
+    out += "prediction over one sub-step dt (exact moments of x + f dt + g sqrt(dt) xi; dP terms: [" +
+           moment_terms_text(eq) + "] + [diffusion], then Cov(f)):\n";
     for (std::size_t i = 0; i < n; ++i) {
       const std::string m = vars.text_name(vars.m(i));
       out += m + "' = " + m + " + (" + writer.print(eq.m_drift[i]) + ") dt\n";
@@ -108,8 +108,8 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
       out += "PCt" + index2(i, a) + " = " + writer.print(u.PCt[i][a]) + "\n";
   for (std::size_t a = 0; a < r; ++a)
     for (std::size_t b = a; b < r; ++b)
-      out += "S" + index2(a, b) + " = " + writer.print(u.S[u.upper_index(a, b)]) + "\n";
-  out += "K = PCt S^-1\n";
+      out += "Pyy" + index2(a, b) + " = " + writer.print(u.S[u.upper_index(a, b)]) + "\n";
+  out += "K = PCt Pyy^-1\n";
   out += "m <- m + K (y - h)\n";
   out += "P <- (I - K C) P (I - K C)^T + K R K^T\n";
   out += "C = [";
@@ -271,9 +271,11 @@ class SampledReport final : public ObservationReport {
   std::string latex(const FilterEquations& eq) const override { return sampled_equations_latex(eq); }
   Json json(const Model& model, const FilterEquations& eq) const override { return sampled_equations_json(model, eq); }
 
-  // The document's display has read so since sampled observations came: dx's equation beside the
-  // continuous observation's, the sampled one's matrices below it.
-  std::string equation_latex() const override { return "dy = (A_0 + A x)\\,dt + B\\,dW_2"; }
+  // The samples' equation beside dx's, their matrices (or c) below it.
+  std::string equation_latex(const Model& model) const override {
+    return model.observation.sampled().is_polynomial() ? "y_k = c(x(t_k)) + U_v v_k"
+                                                       : "y_k = C_0 + C\\,x(t_k) + U_v v_k";
+  }
 
   std::string matrices_latex(const Model& model) const override {
     LatexPrinter printer;
