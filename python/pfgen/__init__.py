@@ -523,7 +523,7 @@ def _simulation_figure(simulation, ylim):
 
 
 def simulate(model, runs=None, T=None, dt=None, filters=None, seed=None, threads=0, reference=None, *,
-             scheme=None, x0=None, record_points=None, shown_run=None, bound=None, risk_epsilon=None,
+             scheme=None, x0=None, stepping=None, record_points=None, shown_run=None, bound=None, risk_epsilon=None,
              report_times=None, windows=None, parameters=None, cache_dir=None, compiler=None, batch=8,
              progress=False):
     """``pfgen simulate``: the model's filters (or ``filters``) against simulated truths in Monte
@@ -544,6 +544,7 @@ def simulate(model, runs=None, T=None, dt=None, filters=None, seed=None, threads
     options.reference = _whole(reference, "--reference")
     options.scheme = _text(scheme, "--scheme", None)
     options.x0 = _text(x0, "--x0", None)
+    options.stepping = _text(stepping, "--stepping", None)
     options.record_points = _whole(record_points, "--record-points")
     options.shown_run = _whole(shown_run, "--shown-run")
     options.bound = _optional_number(bound, "--bound")

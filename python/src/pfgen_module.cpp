@@ -141,6 +141,7 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readwrite("reference", &api::SimulationOptions::reference)
       .def_readwrite("scheme", &api::SimulationOptions::scheme)
       .def_readwrite("x0", &api::SimulationOptions::x0)
+      .def_readwrite("stepping", &api::SimulationOptions::stepping)
       .def_readwrite("record_points", &api::SimulationOptions::record_points)
       .def_readwrite("shown_run", &api::SimulationOptions::shown_run)
       .def_readwrite("bound", &api::SimulationOptions::bound)

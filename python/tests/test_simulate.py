@@ -66,6 +66,16 @@ def test_batch_does_not_change_the_result():
             pfgen.simulate(model, runs=2, T=0.1, batch=bad)
 
 
+def test_stepping_is_the_commands(pfgen_command):
+    done = pfgen_command.run("simulate", QUADRATIC, "--runs", "3", "--T", "1", "--filters", "optimal",
+                             "--stepping", "generated", "--quiet")
+    result = pfgen.simulate(pfgen.Model.load(QUADRATIC), runs=3, T=1, filters=["optimal"], stepping="generated")
+    assert result.report == done.stdout
+    assert "Stepping: generated" in result.report
+    with pytest.raises(pfgen.Error, match="--stepping"):
+        pfgen.simulate(pfgen.Model.load(QUADRATIC), runs=1, T=0.1, stepping="coarse")
+
+
 def test_notes_are_kept(pfgen_command):
     result = pfgen.simulate(pfgen.Model.load(QUADRATIC), runs=2, T=1, filters=["optimal"])
     done = pfgen_command.run("simulate", QUADRATIC, "--runs", "2", "--T", "1", "--filters", "optimal", "--quiet")

@@ -30,6 +30,7 @@ cli::SimulateOptions command_options(const pfgen::Model& model, const Simulation
     check_no_nul(option, *text);
   if (options.scheme) check_no_nul("--scheme", *options.scheme);
   if (options.x0) check_no_nul("--x0", *options.x0);
+  if (options.stepping) check_no_nul("--stepping", *options.stepping);
   cli::SimulateOptions out;
   out.model = &model;
   out.model_path = model.source;
@@ -54,6 +55,7 @@ cli::SimulateOptions command_options(const pfgen::Model& model, const Simulation
   if (!options.filters.empty()) o.filters = joined(options.filters);
   o.scheme = options.scheme;
   o.x0 = options.x0;
+  o.stepping = options.stepping;
   o.risk_epsilon = options.risk_epsilon;
   if (options.reference) o.reference = "particles:" + std::to_string(*options.reference);
   if (!options.report_times.empty()) {

@@ -144,6 +144,9 @@ struct SimulationOptions {
   std::optional<std::uint64_t> seed;
   std::optional<std::size_t> reference;
   std::optional<std::string> scheme, x0;
+  // `--stepping`: "refined" (unset: the default) or "generated", each filter's grid step as its
+  // generated step() takes it, never split (docs/guide/simulation.md)
+  std::optional<std::string> stepping;
   std::optional<std::size_t> record_points, shown_run;
   std::optional<double> bound, risk_epsilon;
   std::vector<double> report_times;
