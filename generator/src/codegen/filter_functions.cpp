@@ -152,19 +152,37 @@ class Expectations {
   std::optional<MomentForm> form_;
 };
 
+// The number or parameter expression an entry of E[J] is, where it is one (its only monomial is 1).
+const GiNaC::ex* constant_entry(const Polynomial& entry) {
+  if (entry.terms().size() != 1 || !entry.terms().begin()->first.is_one()) return nullptr;
+  return &entry.terms().begin()->second;
+}
+
+// How build_structured writes P's drift besides the form of its expectations.
+struct StructuredOptions {
+  bool moments = false;  // E[f], E[J] and E[g g^T] over shared moments (moment_form.hpp)
+  // The products of P with the entries of E[J] that are numbers or parameters (sigma, -1) are
+  // terms of a polynomial in P, summed with E[g g^T] as one expanded polynomial, so that equal
+  // monomials merge: on the Lorenz model's diagonal -2 sigma P11 and s^2 P11 are one product.
+  bool collect_constant_jacobian = false;
+};
+
 // derivatives() in the derivation's structure (see derivatives_code): E[f], E[J] and E[g g^T] as
 // Expectations gives them; P's moment terms as P E[J]^T + E[J] P; the correction as K (A P) where
 // correction_factor() finds it equal.
-void build_structured(const FilterEquations& eq, bool moments, GraphBuilder& builder, ExpressionGraph& graph,
-                      std::vector<std::size_t>& roots) {
+void build_structured(const FilterEquations& eq, const StructuredOptions& options, GraphBuilder& builder,
+                      ExpressionGraph& graph, std::vector<std::size_t>& roots) {
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
-  Expectations expectations(eq, moments, builder);
+  Expectations expectations(eq, options.moments, builder);
   for (std::size_t j = 0; j < n; ++j) roots.push_back(expectations.drift(j));
+  auto collected = [&](std::size_t j, std::size_t k) -> const GiNaC::ex* {
+    return options.collect_constant_jacobian ? constant_entry(eq.jacobian_term[j][k]) : nullptr;
+  };
   std::vector<std::vector<std::size_t>> J(n, std::vector<std::size_t>(n));
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t k = 0; k < n; ++k)
-      if (!eq.jacobian_term[j][k].is_zero()) J[j][k] = expectations.jacobian(j, k);
+      if (!eq.jacobian_term[j][k].is_zero() && !collected(j, k)) J[j][k] = expectations.jacobian(j, k);
   // The correction's factors: K (n x p) and H = A P (p x n), each entry built once.
   const auto H = correction_factor(eq);
   std::vector<std::vector<std::size_t>> K_node, H_node;
@@ -181,37 +199,57 @@ void build_structured(const FilterEquations& eq, bool moments, GraphBuilder& bui
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) {
       const std::size_t u = vars.upper_index(i, j);
+      // P_ik times an entry of E[J], a negated entry (-m1, -10) as its positive, the product
+      // subtracted: no negation, no multiplication by -1. The products first, then their sum.
+      std::vector<std::pair<std::size_t, bool>> products;
+      auto add_product = [&](std::uint32_t p, std::size_t factor) {
+        const Node& node = graph.node(factor);
+        const bool negated = node.kind == OpKind::Neg;
+        products.emplace_back(graph.mul(builder.variable(p), negated ? node.args[0] : factor), negated);
+      };
+      // The collected products and E[g g^T], one polynomial in m and P.
+      Polynomial rest;
+      auto collect = [&](std::uint32_t p, const GiNaC::ex& c) { rest.add_term(Monomial::variable(p), c); };
       // On the diagonal the two products are one, (P E[J]^T)_ii = (E[J] P)_ii: their sum is
       // doubled once instead of adding each product twice.
-      std::vector<std::size_t> terms;
       for (std::size_t k = 0; k < n; ++k) {
-        if (!eq.jacobian_term[j][k].is_zero()) terms.push_back(graph.mul(builder.variable(vars.P(i, k)), J[j][k]));
-        if (i != j && !eq.jacobian_term[i][k].is_zero())
-          terms.push_back(graph.mul(J[i][k], builder.variable(vars.P(k, j))));
+        if (!eq.jacobian_term[j][k].is_zero()) {
+          if (const GiNaC::ex* c = collected(j, k)) {
+            collect(vars.P(i, k), i == j ? 2 * *c : *c);
+          } else {
+            add_product(vars.P(i, k), J[j][k]);
+          }
+        }
+        if (i != j && !eq.jacobian_term[i][k].is_zero()) {
+          if (const GiNaC::ex* c = collected(i, k)) {
+            collect(vars.P(k, j), *c);
+          } else {
+            add_product(vars.P(k, j), J[i][k]);
+          }
+        }
       }
-      std::size_t sum = graph.constant(0);
-      if (!terms.empty()) {
-        sum = terms[0];
-        for (std::size_t k = 1; k < terms.size(); ++k) sum = graph.add(sum, terms[k]);
-        if (i == j) sum = graph.add(sum, sum);
-      }
-      if (!eq.P_diffusion[u].is_zero()) {
-        const std::size_t diffusion = expectations.diffusion(u);
-        sum = terms.empty() ? diffusion : graph.add(sum, diffusion);
+      SignedSum sum(graph);
+      for (const auto& [product, negative] : products) sum.add(product, negative);
+      if (i == j) sum.double_it();
+      if (options.collect_constant_jacobian) {
+        rest += eq.P_diffusion[u];
+        if (!rest.is_zero()) sum.add(builder.polynomial(rest));
+      } else if (!eq.P_diffusion[u].is_zero()) {
+        sum.add(expectations.diffusion(u));
       }
       if (eq.P_correction[u].is_zero()) {
       } else if (H) {
-        std::vector<std::size_t> products;
+        std::vector<std::size_t> gain_products;
         for (std::size_t r = 0; r < eq.p; ++r)
           if (!eq.gain[i][r].is_zero() && !(*H)[r][j].is_zero())
-            products.push_back(graph.mul(K_node[i][r], H_node[r][j]));
-        std::size_t correction = products[0];  // not empty: the correction is not zero
-        for (std::size_t k = 1; k < products.size(); ++k) correction = graph.add(correction, products[k]);
-        sum = graph.sub(sum, correction);
+            gain_products.push_back(graph.mul(K_node[i][r], H_node[r][j]));
+        std::size_t correction = gain_products[0];  // not empty: the correction is not zero
+        for (std::size_t k = 1; k < gain_products.size(); ++k) correction = graph.add(correction, gain_products[k]);
+        sum.add(correction, true);
       } else {
-        sum = graph.sub(sum, builder.polynomial(eq.P_correction[u]));
+        sum.add(builder.polynomial(eq.P_correction[u]), true);
       }
-      roots.push_back(sum);
+      roots.push_back(sum.result());
     }
   for (const auto& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
 }
@@ -337,6 +375,15 @@ bool dense_jacobian(const FilterEquations& eq) {
   return !eq.jacobian_term.empty();
 }
 
+// Whether an entry of E[J] is a number or a parameter expression, which the Collected forms
+// collect (none in a dense cubic model: the forms are not built there).
+bool constant_jacobian_entry(const FilterEquations& eq) {
+  for (const auto& row : eq.jacobian_term)
+    for (const Polynomial& entry : row)
+      if (constant_entry(entry)) return true;
+  return false;
+}
+
 // The outputs rates() writes after derivatives' own: the gain (n x p, row-major), then the
 // predicted observation.
 struct ExtraOutputs {
@@ -369,9 +416,15 @@ std::unique_ptr<BuiltFunction> built_form(DerivativesForm form, const std::strin
                             });
     case DerivativesForm::Structured:
     case DerivativesForm::Moments:
+    case DerivativesForm::CollectedStructured:
+    case DerivativesForm::CollectedMoments:
       return built_function(function, model, eq, names,
                             [&](GraphBuilder& builder, ExpressionGraph& graph, std::vector<std::size_t>& roots) {
-                              build_structured(eq, form == DerivativesForm::Moments, builder, graph, roots);
+                              const StructuredOptions options{
+                                  form == DerivativesForm::Moments || form == DerivativesForm::CollectedMoments,
+                                  form == DerivativesForm::CollectedStructured ||
+                                      form == DerivativesForm::CollectedMoments};
+                              build_structured(eq, options, builder, graph, roots);
                               extras.append(builder, roots, true);
                             });
     case DerivativesForm::Loops:
@@ -412,10 +465,15 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
   // The form with the fewest operations after sharing, the earlier on a tie.
   std::unique_ptr<BuiltFunction> kept = std::move(flat);
   const OpCounts naive = kept->stats.naive;  // the count of the expanded equations, whichever form is written
-  for (DerivativesForm candidate_form : {DerivativesForm::Structured, DerivativesForm::Moments}) {
-    if (candidate_form == DerivativesForm::Moments &&
-        !(eq.expectation_sources && eq.expectation_sources->drift.size() == n))
+  const bool moments = eq.expectation_sources && eq.expectation_sources->drift.size() == n;
+  for (DerivativesForm candidate_form : {DerivativesForm::Structured, DerivativesForm::Moments,
+                                         DerivativesForm::CollectedStructured, DerivativesForm::CollectedMoments}) {
+    const bool collected =
+        candidate_form == DerivativesForm::CollectedStructured || candidate_form == DerivativesForm::CollectedMoments;
+    if ((candidate_form == DerivativesForm::Moments || candidate_form == DerivativesForm::CollectedMoments) &&
+        !moments)
       continue;
+    if (collected && !constant_jacobian_entry(eq)) continue;
     auto candidate = built_form(candidate_form, "derivatives", model, eq, names, {});
     if (candidate->stats.cse.total() < kept->stats.cse.total()) {
       kept = std::move(candidate);
@@ -433,7 +491,8 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
   // A delayed filter's x* drift follows P's in `out`, which the loops do not write.
   if (n >= kMinLoopDimension && eq.x_star_drift.empty()) {
     const DerivativesForm loop_form =
-        form == DerivativesForm::Moments ? DerivativesForm::MomentLoops : DerivativesForm::Loops;
+        form == DerivativesForm::Moments || form == DerivativesForm::CollectedMoments ? DerivativesForm::MomentLoops
+                                                                                      : DerivativesForm::Loops;
     auto candidate = built_form(loop_form, "derivatives", model, eq, names, {});
     if (dense_jacobian(eq) || candidate->stats.cse.total() <= kept->stats.cse.total()) {
       if (rates_form) *rates_form = loop_form;

@@ -114,34 +114,23 @@ std::size_t GraphBuilder::monomial(const Monomial& m) {
   return first ? graph_.constant(1) : product;
 }
 
-// Terms added one at a time into a sum, each with its sign: a negative term is subtracted.
-// -s - t is -(s + t) exactly, and -s + t is t - s: the leading negative terms are summed as they
-// are and subtracted from the first positive one, which saves their negation.
-class GraphBuilder::SignedSum {
- public:
-  explicit SignedSum(ExpressionGraph& graph) : graph_(graph) {}
-  void add(std::size_t term, bool negative) {
-    if (empty_) {
-      sum_ = term;
-      negated_ = negative;
-      empty_ = false;
-    } else if (negated_) {
-      sum_ = negative ? graph_.add(sum_, term) : graph_.sub(term, sum_);
-      negated_ = negative;
-    } else {
-      sum_ = negative ? graph_.sub(sum_, term) : graph_.add(sum_, term);
-    }
+void SignedSum::add(std::size_t term, bool negative) {
+  if (empty_) {
+    sum_ = term;
+    negated_ = negative;
+    empty_ = false;
+  } else if (negated_) {
+    sum_ = negative ? graph_.add(sum_, term) : graph_.sub(term, sum_);
+    negated_ = negative;
+  } else {
+    sum_ = negative ? graph_.sub(sum_, term) : graph_.add(sum_, term);
   }
-  std::size_t result() const {
-    if (empty_) return graph_.constant(0);
-    return negated_ ? graph_.neg(sum_) : sum_;
-  }
+}
 
- private:
-  ExpressionGraph& graph_;
-  std::size_t sum_ = 0;
-  bool empty_ = true, negated_ = false;  // negated: the terms so far sum to -sum_
-};
+std::size_t SignedSum::result() const {
+  if (empty_) return graph_.constant(0);
+  return negated_ ? graph_.neg(sum_) : sum_;
+}
 
 template <class Factor>
 std::pair<std::size_t, bool> GraphBuilder::scaled(const GiNaC::ex& coefficient, bool unit, Factor factor) {

@@ -57,9 +57,10 @@ FunctionCode function_code(const std::string& function, const std::vector<Polyno
                            const CodegenOptions& options, const FunctionNames& names, const CFamilyEmitter& emitter);
 // The forms derivatives() may be written in: the expanded polynomials; the derivation's structure
 // (P E[J]^T + E[J] P, each E[J] entry once; the correction as K (A P)), its expectations as the
-// derivation's polynomials or over shared Gaussian moments (moment_form.hpp); and either of those
-// with P's drift in loops over dense blocks (p_drift_loops.hpp).
-enum class DerivativesForm { Expanded, Structured, Moments, Loops, MomentLoops };
+// derivation's polynomials or over shared Gaussian moments (moment_form.hpp), each also with the
+// products of P and E[J]'s constant entries collected with E[g g^T] into one expanded polynomial
+// (Collected...); and the first two with P's drift in loops over dense blocks (p_drift_loops.hpp).
+enum class DerivativesForm { Expanded, Structured, Moments, Loops, MomentLoops, CollectedStructured, CollectedMoments };
 
 // derivatives(): m's drift, P's drift (upper triangle) and x*'s drift when the filter has one, to
 // `out`; in the form that needs the fewest operations after sharing (the earlier on a tie), or in

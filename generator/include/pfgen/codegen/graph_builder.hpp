@@ -27,6 +27,31 @@ struct InputUse {
   bool time = false;
 };
 
+// Terms added one at a time into a sum, each with its sign: a negative term is subtracted.
+// -s - t is -(s + t) exactly, and -s + t is t - s: the leading negative terms are summed as they
+// are and subtracted from the first positive one, which saves their negation.
+class SignedSum {
+ public:
+  explicit SignedSum(ExpressionGraph& graph) : graph_(graph) {}
+  void add(std::size_t term, bool negative);
+  // A node whose sign the graph shows: -a (a Neg node) is added as a, subtracted.
+  void add(std::size_t term) {
+    const bool negated = graph_.node(term).kind == OpKind::Neg;
+    add(negated ? graph_.node(term).args[0] : term, negated);
+  }
+  // The sum so far, doubled: 2 s as s + s, exact, its sign kept for the terms that follow.
+  void double_it() {
+    if (!empty_) sum_ = graph_.add(sum_, sum_);
+  }
+  bool empty() const { return empty_; }
+  std::size_t result() const;
+
+ private:
+  ExpressionGraph& graph_;
+  std::size_t sum_ = 0;
+  bool empty_ = true, negated_ = false;  // negated: the terms so far sum to -sum_
+};
+
 class GraphBuilder {
  public:
   // Inputs are named as the equations name them. Filter variable v is named as printed
@@ -67,7 +92,6 @@ class GraphBuilder {
   std::size_t integer_power(std::size_t base, long exponent);
   std::size_t monomial(const Monomial& m);
   std::size_t product(const GiNaC::ex& e);  // a GiNaC mul, its sums' signs made canonical
-  class SignedSum;
   // coefficient * factor() (just the coefficient when `unit`), its coefficient made positive, and
   // whether it was negative: factor() is called only when needed, so nodes are made in one order.
   template <class Factor>
