@@ -105,6 +105,10 @@ TEST_CASE("GiNaC's names: a model's state or parameter of that name is the model
   std::string unparsable = model_text("Pi", "k");
   unparsable.replace(unparsable.find("-k*Pi"), 5, "-k Pi");
   CHECK_THROWS_WITH(pfgen::load_model_text(unparsable, "m.yaml"), Catch::Contains("expected EOF, got: \"Pi\""));
+  // And GiNaC's constant where a name is not the model's: its token has no character to print.
+  CHECK_THROWS_WITH(pfgen::load_model_text("name: c\nstates: [x]\ndrift: [\"-(x I)\"]\ndiffusion: [[\"1\"]]\n"
+                                           "observation: {A: [[\"1\"]], B: [[\"1\"]]}\n", "c.yaml"),
+                    Catch::Contains("cannot parse '-(x I)': expected ')', got: a constant (I, Pi, Euler or Catalan)"));
 }
 
 TEST_CASE("GiNaC's names: derive, eval, codegen in C++ and C, and simulate of a model using every one",

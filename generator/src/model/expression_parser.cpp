@@ -111,6 +111,11 @@ std::string parse_error_reason(const std::string& message, const std::map<std::s
   }
   while (!why.empty() && (why.back() == ' ' || why.back() == '\r')) why.pop_back();
   if (why.empty()) return "syntax error";
+  // GiNaC quotes a token by its code, which for its constants is no character: got: "\xfa".
+  const auto quote = why.find("got: \"");
+  if (quote != std::string::npos && quote + 7 < why.size() && why[quote + 7] == '"' &&
+      !std::isprint(static_cast<unsigned char>(why[quote + 6])))
+    why.replace(quote, 8, "got: a constant (I, Pi, Euler or Catalan)");
   std::map<std::string, std::string> name_of;
   for (const auto& [name, alias] : alias_of) name_of[alias] = name;
   std::string out;
