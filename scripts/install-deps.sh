@@ -1,23 +1,34 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages pfgen needs that are not installed yet
-# (apt-get update first). Needs root, or sudo when not root.
+# Installs the Debian 12 packages pfgen needs that are not installed yet (apt-get update first).
+# Needs root, or sudo when not root.
+#   install-deps.sh main   what the README's main job runs: the pfgen program, pdflatex, gnuplot
+#   install-deps.sh        everything: the main job's, and what the tests, the Python module and
+#                          the embedded proof build and run
 set -euo pipefail
-packages=(
-  g++ make cmake pkg-config            # toolchain
-  clang                                # tests compile generated code with clang++ as well as g++
+main_job=(
+  g++ make cmake pkg-config            # toolchain (simulate compiles its plugin with g++ too)
   libginac-dev libcln-dev              # symbolic derivation
   libeigen3-dev                        # numerics in the validator and the simulation runtime
   libyaml-cpp-dev libcli11-dev         # model files, command line
+  texlive-latex-base                   # pdflatex for `pfgen latex` documents
+  gnuplot-nox                          # `pfgen simulate --plot` (error plots, PNG via cairo or SVG)
+)
+tests=(
+  clang                                # tests compile generated code with clang++ as well as g++
   catch2                               # tests
   python3-dev pybind11-dev             # the Python module (python/), built with pybind11
   python3-numpy python3-sympy python3-pytest  # its arrays, Filter.to_sympy, and its tests
+  python3-pandas python3-matplotlib    # its optional Simulation.to_pandas and Simulation.plot (tested)
   python3-yaml                         # benchmarks/bench_sympy_peer.py reads model files (SymPy peer)
-  texlive-latex-base                   # pdflatex for `pfgen latex` documents
   poppler-utils                        # pdftoppm: tests render LaTeX pages to check the layout
-  gnuplot-nox                          # `pfgen simulate --plot` (error plots, PNG via cairo or SVG)
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # embedded proof:
   qemu-system-arm                      # Cortex-M4F cross-compiler and emulator (embedded-check.sh)
 )
+case "${1:-all}" in
+  main) packages=("${main_job[@]}") ;;
+  all) packages=("${main_job[@]}" "${tests[@]}") ;;
+  *) echo "install-deps: unknown set '$1' (main or all)" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

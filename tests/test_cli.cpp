@@ -665,3 +665,42 @@ TEST_CASE("option values no double holds, and filters a model does not offer, ar
     CHECK(result.err.find(c.message) != std::string::npos);
   }
 }
+
+TEST_CASE("command-line parse errors exit 1 with one line naming the option", "[cli][integration]") {
+  const std::string model = example("basin2006_quadratic.yaml");
+  TempDir dir;
+  const struct {
+    std::vector<std::string> args;
+    std::string message;
+  } cases[] = {
+      {{"codegen", model, "--language", "fortran"}, "--language: fortran not in {cpp,c}"},  // CLI11: 105
+      {{"codegen", model, "-o", ""}, "--output: the file name is empty"},                  // 105
+      {{"eval", model, "--filter", "optimal", "--P", "1"}, "--m is required"},               // 106
+      {{"derive", model, "--no-such-option"}, "--no-such-option"},                           // 109
+      {{"simulate", model, "--batch", "0"}, "--batch"},                                      // 105
+      {{"derive"}, "MODEL is required"},                                                     // 106
+      {{}, "A subcommand is required"},                                                      // 106
+      // An empty value after '=' took the next argument as the value: "--m is required".
+      {{"eval", model, "--filter=", "--m", "0.5", "--P", "1"}, "--filter: no value after '='"},
+      {{"codegen", model, "--namespace=", "-o", dir.file("out")}, "--namespace: no value after '='"},
+      {{"simulate", model, "--T=", "--runs", "2"}, "--T: no value after '='"},
+      // An empty list given as its own argument meant the default filters, without a word.
+      {{"derive", model, "--filter", ""}, "--filter: the list is empty"},
+      {{"latex", model, "-o", dir.file("m.tex"), "--filter", ""}, "--filter: the list is empty"},
+      {{"codegen", model, "--stats", "--filter", ""}, "--filter: the list is empty"},
+      {{"simulate", model, "--filters", "", "--runs", "1"}, "--filters: the list is empty"},
+  };
+  for (const auto& c : cases) {
+    const auto result = run_pfgen(c.args);
+    INFO((c.args.empty() ? "" : c.args.front()) << ": " << result.err);
+    CHECK(result.exit_code == 1);
+    CHECK(result.out.empty());
+    CHECK(count_lines(result.err) == 1);
+    CHECK(result.err.rfind("pfgen: error: ", 0) == 0);
+    CHECK(result.err.find(c.message) != std::string::npos);
+  }
+  CHECK(!std::filesystem::exists(dir.file("out")));
+  // --help and --version still succeed.
+  CHECK(run_pfgen({"--help"}).exit_code == 0);
+  CHECK(run_pfgen({"--version"}).exit_code == 0);
+}

@@ -31,7 +31,7 @@ TEST_CASE("codegen refuses a filter beyond its budget of equation terms, before 
     FAIL("the 20-state dense cubic optimal filter was generated beyond the budget");
   } catch (const codegen::CodegenError& e) {
     const std::string message = e.what();
-    CHECK(message.find("filter 'optimal' of model dense_cubic_20 has 3604699 terms in its equations; code "
+    CHECK(message.find("<api>: filter 'optimal' of model dense_cubic_20 has 3604699 terms in its equations; code "
                        "generation holds at most 1000000") == 0);
     CHECK(message.find("would need about 0.7 GB") != std::string::npos);
   }
@@ -47,7 +47,8 @@ TEST_CASE("codegen and simulate refuse a sampled observation of more outputs tha
   using namespace pfgen_test;
   TempDir dir;
   const std::string model = test_data_dir() + "/sampled_65_outputs.yaml";
-  const std::string message = "filter 'cd-optimal' of model sampled_65_outputs samples 65 outputs";
+  // The message names the model's file, not only its name.
+  const std::string message = model + ": filter 'cd-optimal' of model sampled_65_outputs samples 65 outputs";
   for (const auto& args : {std::vector<std::string>{"codegen", model, "-o", dir.file("out")},
                            std::vector<std::string>{"simulate", model, "--cache-dir", dir.file("cache"), "-q"}}) {
     const auto r = run_pfgen(args);

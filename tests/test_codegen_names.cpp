@@ -167,12 +167,13 @@ TEST_CASE("a model may take every name of the generated code: it compiles warnin
           write_file(dir.file(path), text);
           program += "#include \"" + path + "\"\n";
         }
-      // The clash model's code renames its own names, not the model's.
+      // The clash model's code renames its own names, not the model's, and never to a name holding
+      // '__' (reserved in C++): state and state_ are the model's, so the argument is state_2.
       const std::string& ekf = c.headers.at("clash/ekf.hpp");
-      CHECK(ekf.find("(Scalar tau, const Scalar* state__, const Params<Scalar>& params_, Scalar* K_)") !=
+      CHECK(ekf.find("(Scalar tau, const Scalar* state_2, const Params<Scalar>& params_, Scalar* K_)") !=
             std::string::npos);
       CHECK(ekf.find("  const Scalar tmp0 = params_.tmp0;\n") != std::string::npos);
-      CHECK(ekf.find("  const Scalar tmp__0 = ") != std::string::npos);
+      CHECK(ekf.find("  const Scalar tmp_2_0 = ") != std::string::npos);
       CHECK(ekf.find("tmp_0") == std::string::npos);
       // The plain model keeps the usual names.
       const std::string usual = "(Scalar t, const Scalar* state, const Params<Scalar>& params, Scalar* K)";
@@ -181,8 +182,8 @@ TEST_CASE("a model may take every name of the generated code: it compiles warnin
       const bool with_truth = mode == ScalarMode::Double;
       if (with_truth) {
         const std::string truth = pfgen::codegen::generate_truth_code(clash).definitions;
-        CHECK(truth.find("inline void drift(double tau, const double* x__, double* f_) {") != std::string::npos);
-        CHECK(truth.find("  const Scalar x = x__[0];\n") != std::string::npos);
+        CHECK(truth.find("inline void drift(double tau, const double* x_2, double* f_) {") != std::string::npos);
+        CHECK(truth.find("  const Scalar x = x_2[0];\n") != std::string::npos);
         program += "namespace clash_truth {\n" + truth + "}\nnamespace plain_truth {\n" +
                    pfgen::codegen::generate_truth_code(plain).definitions + "}\n";
       }

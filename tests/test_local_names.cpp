@@ -1,6 +1,6 @@
 // LocalNames (codegen/local_names.hpp): the generated code's own names keep clear of the model's.
-// The usual spelling when it is free, `_` appended until it is; temporaries `tmp<N>` move to
-// `tmp_<N>`, `tmp__<N>`, ... while a model name has that form. Compiling such code is
+// The usual spelling when it is free, then with `_`, `_2`, `_3`, ... (never `__`, which C++
+// reserves); temporaries `tmp<N>` move to `tmp_<N>`, `tmp_2_<N>`, ... while a model name has that form. Compiling such code is
 // test_codegen_names.cpp's part.
 #include <catch2/catch.hpp>
 
@@ -18,18 +18,21 @@ TEST_CASE("local names: the usual spellings when the model leaves them free", "[
   CHECK(names.take("x") == "x_");
 }
 
-TEST_CASE("local names: a taken name gets `_` until free, and each name is given once", "[unit][codegen]") {
-  LocalNames names({"state", "state_", "K"});
-  CHECK(names.take("state") == "state__");
+TEST_CASE("local names: a taken name gets `_`, then `_2`, `_3`, ..., and each name is given once",
+          "[unit][codegen]") {
+  LocalNames names({"state", "state_", "K", "shared", "shared_", "shared_2"});
+  CHECK(names.take("state") == "state_2");  // was state__, reserved in C++
+  CHECK(names.take("shared") == "shared_3");
   CHECK(names.take("K") == "K_");
-  CHECK(names.take("K") == "K__");  // K_ is given out now
+  CHECK(names.take("K") == "K_2");  // K_ is given out now
   CHECK(names.take("h") == "h");
   CHECK(names.take("h") == "h_");
 }
 
 TEST_CASE("local names: temporaries move away from model names of their form", "[unit][codegen]") {
   CHECK(LocalNames({"tmp0"}).temporary_prefix() == "tmp_");
-  CHECK(LocalNames({"tmp12", "tmp_3"}).temporary_prefix() == "tmp__");
+  CHECK(LocalNames({"tmp12", "tmp_3"}).temporary_prefix() == "tmp_2_");  // was tmp__, reserved in C++
+  CHECK(LocalNames({"tmp12", "tmp_3", "tmp_2_0"}).temporary_prefix() == "tmp_3_");
   CHECK(LocalNames({"tmp_3"}).temporary_prefix() == "tmp");  // tmp_3 is not tmp<digits>
   // An argument never takes the temporaries' form.
   LocalNames names({"tmp0"});

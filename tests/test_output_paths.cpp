@@ -232,3 +232,38 @@ TEST_CASE("creating -o's directories fails whole: what was made is removed", "[o
   CHECK(pfgen::cli::create_directories_or_none(dir.file("a/x/y"), error));
   CHECK(std::filesystem::is_directory(dir.file("a/x/y")));
 }
+
+TEST_CASE("an output that is the process's own standard output is written after what it printed, not over it",
+          "[output_paths][integration]") {
+  // `ln -s /proc/self/fd/1 out; pfgen ... -o out > log`: the output was renamed over log, the file
+  // standard output goes to, and the report printed there was lost (printed before the rename, or
+  // after it into the replaced file).
+  const std::string model = example("basin2006_quadratic.yaml");
+  TempDir dir;
+  const std::string to_stdout = dir.file("timing.json"), to_stderr = dir.file("timing_err.json");
+  std::filesystem::create_symlink("/proc/self/fd/1", to_stdout);
+  std::filesystem::create_symlink("/proc/self/fd/2", to_stderr);
+  const std::string command = shell_quote(pfgen_executable()) + " derive " + shell_quote(model) +
+                              " --filter optimal --timing ";
+  const auto into_log = run_process(command + shell_quote(to_stdout) + " > " + shell_quote(dir.file("log")));
+  INFO(into_log.err);
+  CHECK(into_log.exit_code == 0);
+  const std::string log = read_file(dir.file("log"));
+  const std::size_t report = log.find("dm1 = "), timing = log.find("{\"read_seconds\":");
+  CHECK(report != std::string::npos);
+  CHECK(timing != std::string::npos);
+  CHECK(report < timing);  // in the order written
+  CHECK(std::filesystem::is_symlink(to_stdout));
+  // Standard error redirected to a file: the same.
+  const auto into_err = run_process(command + shell_quote(to_stderr) + " 2> " + shell_quote(dir.file("err")));
+  CHECK(into_err.exit_code == 0);
+  CHECK(into_err.out.find("dm1 = ") != std::string::npos);
+  CHECK(read_file(dir.file("err")).find("{\"read_seconds\":") != std::string::npos);
+  // codegen writes its files all or none: standard output is no file of that kind.
+  std::filesystem::create_directories(dir.file("gen/basin2006_quadratic"));
+  std::filesystem::create_symlink("/proc/self/fd/1", dir.file("gen/basin2006_quadratic/optimal.hpp"));
+  const auto codegen = run_process(shell_quote(pfgen_executable()) + " codegen " + shell_quote(model) + " -o " +
+                                   shell_quote(dir.file("gen")) + " --filter optimal > " + shell_quote(dir.file("log2")));
+  CHECK(codegen.exit_code == 1);
+  CHECK(codegen.err.find("it exists and is not a regular file") != std::string::npos);
+}

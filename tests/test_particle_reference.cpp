@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
+#include <regex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -115,6 +117,11 @@ TEST_CASE("particle reference: its distance from Kalman-Bucy shrinks like 1/sqrt
     // splits as |x - m_ref|^2 = |x - m|^2 + |m - m_ref|^2 in the mean.
     CHECK(c.reference_rms[0] * c.reference_rms[0] ==
           Approx(c.filter_rms[0] * c.filter_rms[0] + c.distance[0] * c.distance[0]).epsilon(0.05));
+    // Kalman-Bucy is the conditional mean, so its distance from m_ref is the reference's own
+    // Monte Carlo error, which the second particle set estimates without knowing it.
+    INFO("N = " << particles << ": own error " << result.reference->error[0] << ", distance " << c.distance[0]);
+    CHECK(result.reference->error_runs == options.runs);
+    CHECK(result.reference->error[0] == Approx(c.distance[0]).epsilon(0.2));
   }
   check_shrinks_like_inverse_root(distance, filter_rms);
 }
@@ -218,7 +225,8 @@ TEST_CASE("particle reference: identical for 1, 2 and 3 threads and after travel
       CHECK(result.truth_divergences.count() > 0);
       CHECK(result.truth_divergences.count() < result.runs);
       CHECK(table.find("Distance to the particle reference (N = 64 particles") != std::string::npos);
-      CHECK(csv.find(",reference_m_x,reference_err_x,reference_err_x_rms,kalman-bucy_dref_x,kalman-bucy_dref_x_rms\n") !=
+      CHECK(csv.find(",reference_m_x,reference_err_x,reference_err_x_rms,kalman-bucy_dref_x,kalman-bucy_dref_x_rms,"
+                   "kalman-bucy_err_x_rms,kalman-bucy_nees,kalman-bucy_nees_low,kalman-bucy_nees_high\n") !=
             std::string::npos);
       CHECK(result.timing.reference_steps > 0);
       continue;
@@ -355,4 +363,47 @@ TEST_CASE("particle reference: refused where it cannot run, and absent the outpu
   LinearObservation delayed = observation;
   delayed.set_delay(0.1);
   CHECK_THROWS_WITH(ParticleReference(scheme, delayed, prior(model, 10), 1e8), Catch::Contains("delayed"));
+}
+
+TEST_CASE("particle reference: every filter is paired against the closest, and the table says which is worse",
+          "[particles][runtime][statistical]") {
+  ScalarLinear model;
+  EulerMaruyama scheme(scalar_linear_system(model));
+  const LinearObservation observation = scalar_observation(model.r);
+  MonteCarloOptions options;
+  options.grid = TimeGrid::to_horizon(0.0, 2.0, 0.01);
+  options.runs = 30;
+  options.seed = 48;
+  options.record_points = 10;
+  options.reference = prior(model, 400);
+  options.initial_prior = InitialPrior{Eigen::VectorXd::Constant(1, model.m0), Eigen::MatrixXd::Constant(1, 1, model.P0)};
+  // Kalman-Bucy's m with its gain multiplied: 3 is far off, 1.2 a little.
+  auto off_gain = [&model](const std::string& name, double factor) {
+    FilterModel filter = kalman_bucy(model);
+    filter.name = name;
+    filter.step = [model, factor](double* state, double, double dt, const double* dy) {
+      const double m = state[0], P = state[1], K = factor * P / (model.r * model.r);
+      state[0] = m - model.a * m * dt + K * (dy[0] - m * dt);
+      state[1] = P + (-2 * model.a * P + model.s * model.s - P * P / (model.r * model.r)) * dt;
+    };
+    return filter;
+  };
+  const std::vector<FilterModel> filters{off_gain("far", 3.0), kalman_bucy(model), off_gain("near", 1.2)};
+  const MonteCarloResult result = run_monte_carlo(scheme, observation, Eigen::VectorXd::Zero(1), filters, options);
+  REQUIRE(result.reference);
+  const ClosestToReference& c = result.reference->closest[0];
+  CHECK(c.closest == 1);
+  REQUIRE(c.others.size() == 2);
+  CHECK(c.others[0].filter == 2);  // nearest first
+  CHECK(c.others[1].filter == 0);
+  CHECK(c.runner_up == std::optional<std::size_t>(2));
+  CHECK(c.difference == c.others[0].difference);
+  CHECK(c.others[1].runs == 30);
+  CHECK(c.others[1].significant());
+  CHECK(c.others[1].difference > c.others[0].difference);
+  const std::string table = format_summary_table(result, {"x"});
+  INFO(table);
+  CHECK(table.find("\nPaired against the closest to the reference run by run") != std::string::npos);
+  CHECK(std::regex_search(table, std::regex("\nfar +x +kalman-bucy +30 +\\+[0-9.e-]+ ± [0-9.e-]+ +yes\n")));
+  CHECK(table.find("m_ref's own error") != std::string::npos);
 }

@@ -74,3 +74,15 @@ TEST_CASE("public API: a filter outlives its model's handle", "[api][unit]") {
   }
   CHECK(text.find("filter: ekf") != std::string::npos);
 }
+
+TEST_CASE("public API: model text is bounded as a model file is", "[api][unit]") {
+  // The YAML parser takes seconds per hundred megabytes: text beyond a model file's 64 MiB is
+  // refused before it, with the file's message.
+  const std::string text((std::size_t{64} << 20) + 1, '#');
+  try {
+    api::Model::from_yaml(text, "big.yaml");
+    FAIL("from_yaml read text beyond 64 MiB");
+  } catch (const api::Error& e) {
+    CHECK(e.report() == "big.yaml: error: the model file is larger than 64 MiB: not a model file");
+  }
+}

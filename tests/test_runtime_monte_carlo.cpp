@@ -859,7 +859,10 @@ TEST_CASE("monte carlo: the table and CSV are byte-identical across calls and th
   CHECK(std::count(line.begin(), line.end(), ',') + 1 == static_cast<long>(columns.size()));
   CHECK(line.rfind("t,truth_x,kalman-bucy_m_x,kalman-bucy_P_x,kalman-bucy_err_x,", 0) == 0);
   CHECK(line.find(",truth_x_mean,truth_x_q05,truth_x_q50,truth_x_q95,truth_alive,") != std::string::npos);
-  const std::string last_column = ",shrinking_alive";
+  // The per-time RMS error and NEES come after every other column, so that theirs keep their place.
+  CHECK(line.find(",shrinking_alive,kalman-bucy_err_x_rms,kalman-bucy_nees,kalman-bucy_nees_low,kalman-bucy_nees_high,") !=
+        std::string::npos);
+  const std::string last_column = ",shrinking_err_x_rms,shrinking_nees,shrinking_nees_low,shrinking_nees_high";
   CHECK(line.size() > last_column.size());
   CHECK(line.compare(line.size() - last_column.size(), last_column.size(), last_column) == 0);
   std::size_t rows = 0, empty = 0;

@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -19,6 +20,8 @@
 
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
+#include "pfgen/model/model_error.hpp"
+#include "pfgen/printing/equation_report.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 #include "support/isserlis_reference.hpp"
 
@@ -398,4 +401,154 @@ TEST_CASE("cd-euler's dt^2 term is Cov(f) under the Gaussian closure, by Isserli
       const GiNaC::ex exact = (ref.expectation(model.drift[i] * model.drift[j]) - Ef[i] * Ef[j]).subs(at).evalf();
       CHECK(e.P_dt2[i][j] == Approx(GiNaC::ex_to<GiNaC::numeric>(exact).to_double()).epsilon(1e-14));
     }
+}
+
+namespace {
+
+// An epidemic observed once a day (period 1): S susceptible, Inf infected among N = 763, the
+// infected counted with noise r. Its prediction's covariance grows at about 2 (beta S/N - gamma)
+// = 2.5 a day at the prior, so one Heun step a day does not hold P positive definite.
+std::string epidemic_model(const std::string& substeps_line) {
+  return "name: epidemic\nstates: [S, Inf]\nparameters: {beta: 1.7, gamma: 0.45, N: 763, s: 0.05, r: 5}\n"
+         "drift: [\"-beta*S*Inf/N\", \"beta*S*Inf/N - gamma*Inf\"]\n"
+         "diffusion: [[\"-s*S\", \"0\"], [\"s*S\", \"-s*Inf\"]]\n"
+         "observation:\n  sampled:\n    period: 1\n    C: [[\"0\", \"1\"]]\n    Uv: [[\"r\"]]\n" +
+         substeps_line + "initial: {x0: prior, m0: [762, 1], P0: [[1, 0], [0, 1]]}\n";
+}
+
+// The spectral radius of the prediction's Jacobian at (m, P), by central differences of the
+// evaluator's drifts (the test's own, not the derivation's term-wise Jacobian).
+double prediction_rate(const Model& model, const FilterEquations& eq, const VectorXd& m, const MatrixXd& P) {
+  const auto n = m.size();
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> entries;  // -1: m_i; else P_ij, i <= j
+  for (Eigen::Index i = 0; i < n; ++i) entries.push_back({i, -1});
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = i; j < n; ++j) entries.push_back({i, j});
+  auto field = [&](const VectorXd& mm, const MatrixXd& PP) {
+    const EvaluatedFilter e = evaluate(model, eq, mm, PP);
+    VectorXd out(static_cast<Eigen::Index>(entries.size()));
+    for (std::size_t k = 0; k < entries.size(); ++k)
+      out(static_cast<Eigen::Index>(k)) = entries[k].second < 0 ? e.m_drift[entries[k].first]
+                                                                : e.P_drift[entries[k].first][entries[k].second];
+    return out;
+  };
+  const auto d = static_cast<Eigen::Index>(entries.size());
+  MatrixXd J(d, d);
+  for (Eigen::Index k = 0; k < d; ++k) {
+    const double h = 1e-4;
+    VectorXd m_plus = m, m_minus = m;
+    MatrixXd P_plus = P, P_minus = P;
+    const auto [i, j] = entries[static_cast<std::size_t>(k)];
+    if (j < 0) {
+      m_plus(i) += h, m_minus(i) -= h;
+    } else {  // one variable for P_ij and P_ji
+      P_plus(i, j) += h, P_minus(i, j) -= h;
+      if (i != j) P_plus(j, i) += h, P_minus(j, i) -= h;
+    }
+    J.col(k) = (field(m_plus, P_plus) - field(m_minus, P_minus)) / (2 * h);
+  }
+  return Eigen::EigenSolver<MatrixXd>(J, false).eigenvalues().cwiseAbs().maxCoeff();
+}
+
+// The filter over `days` daily samples of a noise-free epidemic curve, `substeps` Heun steps a
+// day; the moments after each update, or fewer where P stopped being positive definite.
+std::vector<Moments> daily_filter(const Model& model, const FilterEquations& eq, int substeps, int days) {
+  // The truth: the deterministic epidemic by RK4 at 1000 steps a day.
+  auto f = [](const Eigen::Vector2d& x) {
+    const double infections = 1.7 * x(0) * x(1) / 763;
+    return Eigen::Vector2d(-infections, infections - 0.45 * x(1));
+  };
+  Eigen::Vector2d truth(762, 1);
+  Moments x{(VectorXd(2) << 762, 1).finished(), MatrixXd::Identity(2, 2)};
+  const MatrixXd C = (MatrixXd(1, 2) << 0, 1).finished();
+  std::vector<Moments> out;
+  for (int k = 0; k < days; ++k) {
+    for (int s = 0; s < 1000; ++s) {
+      const double h = 1e-3;
+      const Eigen::Vector2d k1 = f(truth), k2 = f(truth + h / 2 * k1), k3 = f(truth + h / 2 * k2), k4 = f(truth + h * k3);
+      truth += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    }
+    for (int s = 0; s < substeps; ++s) heun(model, eq, x, 1.0 / substeps);
+    if (Eigen::LLT<MatrixXd>(x.P).info() != Eigen::Success || !x.m.allFinite()) break;
+    joseph_update(model, eq, x, VectorXd::Constant(1, truth(1)), C, VectorXd::Zero(1), MatrixXd::Constant(1, 1, 25));
+    out.push_back(x);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a sampled model without substeps predicts in as many sub-steps as its rate at the prior needs",
+          "[sampled][unit]") {
+  const Model model = load_model_text(epidemic_model(""), "epidemic.yaml");
+  for (FilterKind kind : {FilterKind::CdOptimal, FilterKind::CdEkf, FilterKind::CdEuler}) {
+    const FilterEquations eq = derive_filter(model, kind);
+    const double rho = prediction_rate(model, eq, (VectorXd(2) << 762, 1).finished(), MatrixXd::Identity(2, 2));
+    INFO(eq.name << ": rate " << rho << ", sub-steps " << eq.update.substeps);
+    CHECK(eq.update.substeps_chosen);
+    CHECK(std::abs(eq.update.prior_rate - rho) <= 1e-6 * rho);
+    // The rate's count (T = 1), doubled while the first period from the prior is not settled.
+    const auto by_rate = static_cast<std::size_t>(std::ceil(rho / 0.25));
+    CHECK(eq.update.substeps >= by_rate);
+    CHECK(eq.update.substeps % by_rate == 0);
+    CHECK(equations_text(model, eq).find("sub-steps of dt = T/" + std::to_string(eq.update.substeps) +
+                                         " between samples (chosen from the prediction at the prior: rate ") !=
+          std::string::npos);
+  }
+
+  // The chosen count holds the filter over the epidemic's peak: positive definite throughout and
+  // within 2 % of a 400-sub-step reference after every update; one Heun step a day (the old
+  // default) loses P's positive definiteness, and the rate's count alone (11) is 5 % off.
+  const FilterEquations eq = derive_filter(model, FilterKind::CdOptimal);
+  const int days = 14;
+  const std::vector<Moments> reference = daily_filter(model, eq, 400, days);
+  REQUIRE(reference.size() == static_cast<std::size_t>(days));
+  const std::vector<Moments> chosen = daily_filter(model, eq, static_cast<int>(eq.update.substeps), days);
+  REQUIRE(chosen.size() == static_cast<std::size_t>(days));
+  double worst = 0;
+  for (int k = 0; k < days; ++k)
+    worst = std::max({worst, (chosen[k].m - reference[k].m).norm() / reference[k].m.norm(),
+                      relative_error(chosen[k].P, reference[k].P)});
+  INFO("largest relative difference from the reference " << worst);
+  CHECK(worst < 2e-2);
+  CHECK(daily_filter(model, eq, 1, days).size() < static_cast<std::size_t>(days));
+}
+
+TEST_CASE("a sampled model's own substeps are kept, with the rule's count beside when it asks for more",
+          "[sampled][unit]") {
+  const Model model = load_model_text(epidemic_model("    substeps: 2\n"), "epidemic.yaml");
+  const FilterEquations eq = derive_filter(model, FilterKind::CdOptimal);
+  CHECK(eq.update.substeps == 2);
+  CHECK_FALSE(eq.update.substeps_chosen);
+  CHECK(equations_text(model, eq).find("2 sub-steps of dt = T/2 between samples (fewer than the " +
+                                       std::to_string(derive_filter(load_model_text(epidemic_model(""), "e.yaml"),
+                                                                    FilterKind::CdOptimal).update.substeps) +
+                                       " asked for by the prediction at the prior: rate 2.51 per unit of time, first "
+                                       "period to 1 %)") != std::string::npos);
+  // KIND@S is the count asked for by name: kept, not chosen.
+  const FilterEquations named = derive_named_filter(model, "cd-euler@1");
+  CHECK(named.update.substeps == 1);
+  CHECK_FALSE(named.update.substeps_chosen);
+}
+
+TEST_CASE("a sampled model whose prediction is too fast for any chosen count is refused, naming the field",
+          "[sampled][unit]") {
+  const std::string text = "name: stiff\nstates: [x]\ndrift: [\"-1e6*x\"]\ndiffusion: [[\"1\"]]\n"
+                           "observation:\n  sampled: {period: 1, C: [[\"1\"]], Uv: [[\"1\"]]}\n";
+  const Model model = load_model_text(text, "stiff.yaml");
+  try {
+    derive_filter(model, FilterKind::CdOptimal);
+    FAIL("no error");
+  } catch (const ModelError& error) {
+    const std::string message = error.what();
+    INFO(message);
+    CHECK(message.find("stiff.yaml") != std::string::npos);
+    CHECK(message.find("observation.sampled") != std::string::npos);
+    CHECK(message.find("prediction from the prior (rate 2e+06 per unit of time) needs more than 100000 sub-steps") !=
+          std::string::npos);
+    CHECK(message.find("give substeps, or a shorter period") != std::string::npos);
+  }
+  // With substeps given the model is the user's to run.
+  const Model given = load_model_text(text.substr(0, text.size() - 2) + ", substeps: 3}\n", "stiff.yaml");
+  CHECK(derive_filter(given, FilterKind::CdOptimal).update.substeps == 3);
 }

@@ -11,6 +11,7 @@
 #include "cli_options.hpp"
 #include "observation_command.hpp"
 #include "output_paths.hpp"
+#include "pfgen/codegen/backends/c/c_names.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/derivation/drift_coefficients.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
@@ -68,6 +69,9 @@ CodegenJob codegen_job(const CodegenCliOptions& options, const Model& model) {
     throw CliValueError("--namespace: '" + options.name_space + "' is not a C++ namespace name");
   for (const auto& part : split(std::regex_replace(options.name_space, std::regex("::"), ":"), ':'))
     if (auto problem = namespace_name_problem(part)) throw CliValueError("--namespace: " + *problem);
+  if (options.name_space.front() == '_')
+    throw CliValueError("--namespace: '" + options.name_space + "' starts with '_', which C++ reserves for the "
+                        "implementation in the global namespace, and C at file scope");
   CodegenJob job;
   codegen::CodegenOptions& codegen_options = job.options;
   codegen_options.language = options.language == "c" ? codegen::Language::C : codegen::Language::Cpp;
@@ -78,6 +82,7 @@ CodegenJob codegen_job(const CodegenCliOptions& options, const Model& model) {
   codegen_options.scalar = options.scalar == "float"         ? codegen::ScalarMode::Float
                            : options.scalar == "double" || c ? codegen::ScalarMode::Double
                                                              : codegen::ScalarMode::Template;
+  if (c) codegen::check_c_names(model, options.name_space);
   if (c && options.eigen) throw CliValueError("--eigen: the Eigen wrappers are C++; drop --eigen for --language c");
   codegen_options.name_space = options.name_space;
   codegen_options.eliminate_common_subexpressions = !options.no_cse;

@@ -42,6 +42,19 @@ void check_standard_output_written() {
                              (errno ? std::strerror(errno) : "write error"));
 }
 
+// CLI11 reads "--filter=" (nothing after '=') as "--filter" without its value and takes the next
+// argument as the value: `eval --filter= --m 0.5` reported "--m is required". A long option
+// written with '=' and nothing after it is refused here, named, before CLI11 parses.
+void refuse_empty_equals_values(int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    const std::string argument = argv[k];
+    if (argument == "--") return;  // what follows is positional
+    if (argument.size() > 3 && argument.compare(0, 2, "--") == 0 && argument.back() == '=' &&
+        argument.find('=') == argument.size() - 1)
+      throw std::runtime_error(argument.substr(0, argument.size() - 1) + ": no value after '='");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -80,11 +93,19 @@ int main(int argc, char** argv) {
       [](std::string& text) -> std::string { return text.empty() ? "the file name is empty" : std::string(); },
       "FILE");
 
+  // An empty filter list is no list: derive --filter "" printed the default filter without a word.
+  const CLI::Validator named_filters(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "the list is empty; name filters, or leave the option out for the default" : std::string();
+      },
+      "FILTERS");
+
   DeriveOptions derive;
   CLI::App* derive_cmd = app.add_subcommand("derive", "Print the closed filter equations of a model");
   derive_cmd->add_option("MODEL", derive.model_path, "Model file (YAML)")->required();
   derive_cmd->add_option("--filter", derive.filter,
-                         one_filter_help + " (default: the model's first, optimal for continuous observations)");
+                         one_filter_help + " (default: the model's first, optimal for continuous observations)")
+      ->check(named_filters);
   derive_cmd->add_option("--format", derive.format, "text | latex | json")
       ->check(CLI::IsMember({"text", "latex", "json"}))
       ->capture_default_str();
@@ -99,7 +120,8 @@ int main(int argc, char** argv) {
   CLI::App* latex_cmd = app.add_subcommand("latex", "Write a standalone LaTeX document of the model and its filters");
   latex_cmd->add_option("MODEL", latex.model_path, "Model file (YAML)")->required();
   latex_cmd->add_option("-o,--output", latex.output_path, "Output .tex file")->required()->check(named_file);
-  latex_cmd->add_option("--filter", latex.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)");
+  latex_cmd->add_option("--filter", latex.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)")
+      ->check(named_filters);
   latex_cmd->add_flag("--coefficients", latex.coefficients,
                       "Add a section with the model's coefficient form A..A3, E, E1 (drift of degree <= 3)");
 
@@ -126,7 +148,8 @@ int main(int argc, char** argv) {
   codegen_cmd->add_option("MODEL", codegen.model_path, "Model file (YAML)")->required();
   codegen_cmd->add_option("-o,--output", codegen.output_dir, "Output directory; files go to DIR/<model>/<filter>.hpp (C: .h and .c)")
       ->check(named_file);
-  codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)");
+  codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)")
+      ->check(named_filters);
   std::vector<std::string> language_names;
   for (const auto& language : pfgen::output_languages()) language_names.push_back(language.name);
   codegen_cmd->add_option("--language", codegen.language, "cpp | c: header-only C++, or C99 .h/.c pairs")
@@ -171,7 +194,8 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("MODEL", simulate.model_path, "Model file (YAML)")->required();
   simulate_cmd->add_option("--filters", so.filters,
                            "Comma-separated filters, built-in kinds or the model's own (default: simulation.filters, "
-                           "else every filter of the model but the opt-in ukf)");
+                           "else every filter of the model but the opt-in ukf)")
+      ->check(named_filters);
   simulate_cmd->add_option("--T", so.T, "Horizon (default: simulation.T)")->check(double_number);
   simulate_cmd->add_option("--dt", so.dt, "Time step of the truth and the filters (default: simulation.dt, else 1e-3)")
       ->check(double_number);
@@ -220,6 +244,9 @@ int main(int argc, char** argv) {
   simulate_cmd->add_option("--x0", so.x0,
                            "prior: each run's truth starts from a draw of N(m0, P0), the filters' prior (as the "
                            "particle reference assumes); model: the model's x0 (default: the model's initial: x0)");
+  simulate_cmd->add_option("--stepping", so.stepping,
+                           "refined: split a filter's grid step where one step would change P too fast (default); "
+                           "generated: one step() per grid step, as the generated code runs");
   simulate_cmd->add_option("--criterion-csv", simulate.criterion_csv_path,
                            "Write J per filter as CSV to FILE (needs --risk-epsilon or a risk: section)")
       ->check(named_file);
@@ -229,9 +256,16 @@ int main(int argc, char** argv) {
   simulate_cmd->add_flag("-q,--quiet", simulate.quiet, "No plugin and timing lines on stderr");
 
   try {
+    refuse_empty_equals_values(argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version end here with status 0. A parse error exits 1, as every other error
+    // does (docs/guide/commands.md), not with CLI11's own codes (105 for a value a check refuses,
+    // 106 for a missing option, 109 for an unknown one).
+    return app.exit(e) == 0 ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::cerr << "pfgen: error: " << one_line(e.what()) << " (see pfgen --help)\n";
+    return 1;
   }
   try {
     int status = 1;

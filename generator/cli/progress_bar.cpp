@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 
 namespace pfgen::cli {
 
@@ -13,16 +14,28 @@ constexpr double kRedrawSeconds = 0.2;    // at most five redraws a second
 constexpr int kBarWidth = 40;
 }  // namespace
 
-ProgressBar::ProgressBar(std::string label, std::size_t total)
-    : label_(std::move(label)), total_(total), enabled_(isatty(STDERR_FILENO) == 1 && total > 0),
-      start_(std::chrono::steady_clock::now()) {}
+ProgressOutput ProgressOutput::terminal() {
+  if (isatty(STDERR_FILENO) != 1) return none();
+  return {[](const std::string& text) {
+            std::fputs(text.c_str(), stderr);
+            std::fflush(stderr);
+          },
+          kQuietSeconds};
+}
+
+ProgressOutput ProgressOutput::to(std::function<void(const std::string& text)> write) { return {std::move(write), 0}; }
+
+ProgressBar::ProgressBar(std::string label, std::size_t total, ProgressOutput output)
+    : label_(std::move(label)), total_(total), output_(std::move(output)), start_(std::chrono::steady_clock::now()) {
+  if (total_ == 0) output_ = ProgressOutput::none();
+}
 
 ProgressBar::~ProgressBar() { finish(); }
 
 void ProgressBar::update(std::size_t done) {
-  if (!enabled_) return;
+  if (!output_.write) return;
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  if (elapsed < kQuietSeconds) return;
+  if (elapsed < output_.quiet_seconds) return;
   std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
   if (!lock.owns_lock() || finished_) return;  // another thread is drawing: skip, never wait
   if (last_draw_ >= 0 && elapsed - last_draw_ < kRedrawSeconds && done < total_) return;
@@ -37,9 +50,10 @@ void ProgressBar::draw(std::size_t done, double elapsed) {
   std::string bar(static_cast<std::size_t>(filled), '#');
   bar.resize(kBarWidth, '.');
   const double remaining = done > 0 ? elapsed * (1.0 / fraction - 1.0) : 0.0;
-  std::fprintf(stderr, "\r%s [%s] %zu/%zu runs, %.0f s elapsed, ~%.0f s left ", label_.c_str(), bar.c_str(), done,
-               total_, elapsed, remaining);
-  std::fflush(stderr);
+  char numbers[128];
+  std::snprintf(numbers, sizeof numbers, "] %zu/%zu runs, %.0f s elapsed, ~%.0f s left ", done, total_, elapsed,
+                remaining);
+  output_.write("\r" + label_ + " [" + bar + numbers);
   drawn_ = true;
 }
 
@@ -47,10 +61,7 @@ void ProgressBar::finish() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (finished_) return;
   finished_ = true;
-  if (drawn_) {
-    std::fprintf(stderr, "\r%*s\r", kBarWidth + 60 + static_cast<int>(label_.size()), "");
-    std::fflush(stderr);
-  }
+  if (drawn_) output_.write("\r" + std::string(kBarWidth + 60 + label_.size(), ' ') + "\r");
 }
 
 }  // namespace pfgen::cli

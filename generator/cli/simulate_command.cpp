@@ -16,6 +16,7 @@
 #include "cli_options.hpp"
 #include "commands.hpp"
 #include "job_group.hpp"
+#include "memory_budget.hpp"
 #include "observation_command.hpp"
 #include "output_paths.hpp"
 #include "progress_bar.hpp"
@@ -71,14 +72,6 @@ std::size_t effective_record_points(const SimulateOptions& options, const Simula
   return options.csv_path.empty() && options.plot_path.empty() && !options.keep_series ? 1 : s.record_points;
 }
 
-// Half the machine's memory, and never more than 8 GiB.
-double memory_limit_bytes() {
-  constexpr double cap = 8.0 * 1024 * 1024 * 1024;
-  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
-  if (pages <= 0 || page <= 0) return cap;
-  return std::min(cap, 0.5 * static_cast<double>(pages) * static_cast<double>(page));
-}
-
 // The CSV the plot reads: -o's file, or one beside the plot.
 std::string csv_for_plot(const SimulateOptions& options) {
   if (!options.csv_path.empty()) return options.csv_path;
@@ -130,39 +123,41 @@ void check_memory(const Model& model, const SimulationSettings& s, unsigned thre
   // A delayed filter also keeps D = h / dt grid values of m and x* (at most 2n each) per thread.
   const double history = std::round(model.observation.delay().to_double() / s.dt) * 2.0 *
                          static_cast<double>(model.n() * filters);
-  // The particle reference: its mean path, and N particles with their rates, twice (resampling).
+  // The particle reference: the mean paths of its two particle sets, and N particles with their
+  // rates, twice (resampling).
   const double particles = s.reference_particles
-                               ? (steps + 1) * static_cast<double>(model.n()) +
+                               ? static_cast<double>(kReferenceParticleSets) * (steps + 1) * static_cast<double>(model.n()) +
                                      2.0 * static_cast<double>(*s.reference_particles) *
                                          static_cast<double>(model.n() + model.p() + 2)
                                : 0.0;
   const double per_thread =
       ((steps + 1) * static_cast<double>(model.n() + model.p()) + history + particles) * sizeof(double);
   const double records = std::min(steps + 1, static_cast<double>(record_points) + 1);
-  // Per run and record point: the truth and each filter's error; with the particle reference also
-  // its error and each filter's distance from it.
-  const double recorded = static_cast<double>((filters + 1) * (s.reference_particles ? 2 : 1));
+  // Per run and record point: the truth and each filter's error and NEES; with the particle
+  // reference also its error and each filter's distance from it.
+  const double recorded = static_cast<double>((filters + 1) * (s.reference_particles ? 2 : 1)) +
+                          static_cast<double>(filters) / static_cast<double>(model.n());
   const double statistics = static_cast<double>(s.runs) * records * recorded * static_cast<double>(model.n()) *
                             sizeof(double);
   // Only min(threads, runs) threads are started (run_monte_carlo): --threads 1000000 --runs 2 is fine.
   // A thread's batch of runs (MonteCarloOptions::batch) adds at most kBatchBytes.
   const double paths = (per_thread + static_cast<double>(pfgen_runtime::kBatchBytes)) *
                        static_cast<double>(std::min<std::size_t>(threads, s.runs));
-  const double bytes = paths + statistics, limit = memory_limit_bytes();
+  const MemoryBudget budget = memory_budget(read_memory_facts());
+  const double bytes = paths + statistics, limit = budget.bytes;
   if (bytes > limit) {
     // Named by the larger part: the recorded series (--record-points, with the CSV or plot), or the
     // paths the threads keep.
     const bool series = statistics > paths;
-    char text[300];
+    char text[600];
     std::snprintf(text, sizeof text,
                   series ? "--record-points: the job needs about %.1f GiB (%.0f runs x %.0f recorded points); the "
-                           "limit on this machine is %.1f GiB (half its memory, at most 8): lower --record-points "
-                           "or --runs"
+                           "limit on this machine is %.1f GiB (%s): lower --record-points or --runs"
                          : "--dt: the job needs about %.1f GiB (%.3g steps per run on %.0f threads); the limit on "
-                           "this machine is %.1f GiB (half its memory, at most 8): raise --dt, lower --T, or lower "
-                           "--threads",
+                           "this machine is %.1f GiB (%s): raise --dt, lower --T, or lower --threads",
                   bytes / (1024.0 * 1024 * 1024), series ? static_cast<double>(s.runs) : steps,
-                  series ? records : static_cast<double>(threads), limit / (1024.0 * 1024 * 1024));
+                  series ? records : static_cast<double>(threads), limit / (1024.0 * 1024 * 1024),
+                  budget.reason.c_str());
     throw CliValueError(text);
   }
 }
@@ -248,6 +243,11 @@ PreparedJob prepare(const SimulateOptions& options, bool speaks, Clock::time_poi
   std::vector<FilterEquations> filters;
   for (const std::string& name : settings.filters.empty() ? default_filter_names(model) : settings.filters)
     filters.push_back(derive_named_filter(model, name));
+  for (const FilterEquations& eq : filters)  // sub-steps a filter chose (the model gives none)
+    if (eq.update.substeps_chosen)
+      if (auto problem = substep_budget_problem(eq.name, settings.T, eq.update.period.to_double(),
+                                                static_cast<double>(eq.update.substeps)))
+        throw CliValueError(model.source + ": observation.sampled: " + *problem);
   check_memory(model, settings, thread_count(options.threads, settings.runs), filters.size(),
                effective_record_points(options, settings));
   // Delayed observations: filters generated for this grid step (settings checked D = h / dt).
@@ -270,7 +270,7 @@ std::string job_text(const PreparedJob& job) {
   };
   text += "\nscheme " + s.scheme + " runs " + std::to_string(s.runs) + " seed " + std::to_string(s.seed) +
           " record_points " + std::to_string(s.record_points) + " shown_run " + std::to_string(s.shown_run) +
-          (s.x0_from_prior ? " x0 prior" : "") + "\n";
+          (s.x0_from_prior ? " x0 prior" : "") + (s.refined_stepping ? "" : " stepping generated") + "\n";
   for (double value : {s.T, s.dt, s.bound}) number(value);
   text += "\nreports";
   for (double t : s.report_times) number(t);
@@ -407,7 +407,7 @@ SimulationOutcome simulate(const SimulateOptions& options, JobGroup& group) {
   const std::size_t own_runs = !share                ? settings.runs
                                : share->hand_out ? (settings.runs + share->processes - 1) / share->processes
                                                  : share->count;
-  ProgressBar progress("simulate", speaks ? own_runs : 0);
+  ProgressBar progress("simulate", speaks ? own_runs : 0, options.progress);
   std::optional<pfgen_runtime::MonteCarloResult> folded;
   group.together([&] {
     plugin.check_grid_step(settings.dt);  // a delayed filter runs only on the grid it was made for
@@ -429,6 +429,7 @@ SimulationOutcome simulate(const SimulateOptions& options, JobGroup& group) {
     mc.filter_guards.estimate_guard = pfgen_runtime::DivergenceGuard(settings.bound);
     mc.filter_guards.covariance_guard =
         pfgen_runtime::DivergenceGuard(std::max(1e16, settings.bound * settings.bound));
+    mc.filter_guards.stepping.adaptive = settings.refined_stepping;
     if (settings.criterion) mc.criterion = criterion_options(*settings.criterion, model.n());
     if (settings.x0_from_prior) mc.initial_prior = filters_prior(model);
     if (settings.reference_particles) {

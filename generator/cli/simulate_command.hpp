@@ -10,6 +10,7 @@
 #include "pfgen/model/model.hpp"
 #include "pfgen/toolchain/plugin_compiler.hpp"
 #include "pfgen_runtime/monte_carlo.hpp"
+#include "progress_bar.hpp"
 #include "simulation_settings.hpp"
 
 namespace pfgen::cli {
@@ -34,6 +35,8 @@ struct SimulateOptions {
   // written, for the caller to read from the result.
   const Model* model = nullptr;
   bool keep_series = false;
+  // Where the progress bar goes: the command's on a terminal, or the API caller's own, or none.
+  ProgressOutput progress = ProgressOutput::terminal();
 };
 
 class JobGroup;

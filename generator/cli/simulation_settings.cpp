@@ -50,6 +50,20 @@ std::optional<CriterionSettings> resolve_criterion(const Model& model, const Sim
   return criterion;
 }
 
+// The particle reference's steps per run, N particles of each set over every grid step, under the
+// budget of one run as the truth's and each filter's steps are: particles:1000000 over 10^4 steps
+// (2 x 10^10 particle steps) ran for minutes a run before it was refused.
+void check_reference_budget(std::size_t particles, const SimulationSettings& s) {
+  const double steps = std::round(s.T / s.dt);
+  const double particle_steps = static_cast<double>(kReferenceParticleSets) * static_cast<double>(particles) * steps;
+  if (particle_steps > kMaxStepsPerRun)
+    throw CliValueError("--reference: particles:" + std::to_string(particles) + " over " + number_text(steps) +
+                        " steps of dt = " + number_text(s.dt) + " would take " + number_text(particle_steps) +
+                        " particle steps per run (" + std::to_string(kReferenceParticleSets) +
+                        " sets of N particles, the second for the reference's own error); the budget of one run is "
+                        "1e9 steps: lower N or the steps T / dt");
+}
+
 }  // namespace
 
 std::size_t parse_reference(const std::string& text) {
@@ -94,13 +108,23 @@ SimulationSettings resolve_simulation_settings(const Model& model, const Simulat
   s.bound = *job.bound;
   s.shown_run = *job.shown_run;
   s.criterion = resolve_criterion(model, cli);
-  if (cli.reference) s.reference_particles = parse_reference(*cli.reference);
+  if (cli.reference) {
+    s.reference_particles = parse_reference(*cli.reference);
+    check_reference_budget(*s.reference_particles, s);
+  }
   s.x0_from_prior = model.initial && model.initial->x0_from_prior;
   if (cli.x0) {
     if (*cli.x0 != "prior" && *cli.x0 != "model")
       throw CliValueError("--x0: " + pfgen_support::quoted(*cli.x0) +
                           " is neither prior (each run's truth drawn from N(m0, P0)) nor model (the model's x0)");
     s.x0_from_prior = *cli.x0 == "prior";
+  }
+  if (cli.stepping) {
+    if (*cli.stepping != "generated" && *cli.stepping != "refined")
+      throw CliValueError("--stepping: " + pfgen_support::quoted(*cli.stepping) +
+                          " is neither generated (one step() per grid step, as the generated code runs) nor refined "
+                          "(a grid step split where P would change too fast; the default)");
+    s.refined_stepping = *cli.stepping == "refined";
   }
   if (s.x0_from_prior && !model.initial)
     throw CliValueError("--x0 prior: " + model.source + " gives no initial: m0 and P0 to draw from");

@@ -28,11 +28,16 @@ struct SimulationOverrides {
   std::optional<double> risk_epsilon;       // --risk-epsilon: J's eps, over the model's risk.epsilon
   std::optional<std::string> reference;     // --reference particles:N
   std::optional<std::string> x0;            // --x0 prior | model
+  std::optional<std::string> stepping;      // --stepping generated | refined
 };
 
 // The most particles --reference accepts (the runtime's kMaxParticles; simulate_command checks
 // that they agree): N doubles of n states per thread, so a typo cannot ask for terabytes.
 inline constexpr std::size_t kMaxReferenceParticles = 1000000;
+
+// The particle reference runs two independent sets of N particles on every run (the second one
+// only to estimate the first's Monte Carlo error; pfgen_runtime::ParticleReferenceOptions).
+inline constexpr std::size_t kReferenceParticleSets = 2;
 
 // --reference's text "particles:N" -> N, a whole number 1 .. kMaxReferenceParticles; anything
 // else is a CliValueError naming --reference.
@@ -65,6 +70,10 @@ struct SimulationSettings {
   // Each run's truth from a draw of N(m0, P0) (--x0 prior, or the model's `x0: prior`), instead of
   // the model's fixed x0.
   bool x0_from_prior = false;
+  // --stepping: refined (the default) splits a continuous filter's grid step where one step() would
+  // change P too fast (pfgen_runtime::FilterStepper); generated takes one step() per grid step, as
+  // the generated code a user deploys does.
+  bool refined_stepping = true;
 };
 
 // Throws CliValueError naming the option (or the model file's field) and what is wrong.

@@ -12,12 +12,40 @@ matching command prints and fails with the same message (docs/guide/python.md).
     result = pfgen.simulate(model, runs=100, T=1, reference=1000)
     print(result.report)         # pfgen simulate's table
 """
+import importlib as _importlib
 import json as _json
+import os as _os
+import platform as _platform
 import re as _re
+import sys as _sys
+import threading as _threading
 
-import numpy as _np
+from . import _built_for
 
-from . import _pfgen
+
+def _import_hint(error):
+    """Why pfgen cannot be imported here, naming the interpreter it was built for: a python3
+    earlier on PATH than Debian's (pyenv's, a venv's) has neither its numpy nor, often, its ABI."""
+    built, here = _built_for.INTERPRETER, _sys.executable or "this interpreter"
+    try:
+        same = _os.path.samefile(built, here)
+    except OSError:
+        same = False
+    if same:
+        return (f"pfgen cannot be imported: {error}. It was built for this interpreter, {built}; its "
+                "numpy is Debian's python3-numpy (scripts/install-deps.sh installs it)")
+    return (f"pfgen cannot be imported by {here} (Python {_platform.python_version()}): {error}. pfgen was "
+            f"built for {built} (Python {_built_for.VERSION}), for which the set-up installs numpy: run "
+            f"that interpreter ({built} script.py), or build pfgen for this one (cmake "
+            f"-DPython3_EXECUTABLE={here}) with numpy installed for it")
+
+
+try:
+    import numpy as _np
+
+    from . import _pfgen
+except ImportError as _error:
+    raise ImportError(_import_hint(_error)) from _error
 
 __all__ = ["Error", "Model", "Filter", "Simulation", "simulate", "__version__"]
 __version__ = _pfgen.version()
@@ -27,12 +55,46 @@ __version__ = _pfgen.version()
 Error = _pfgen.Error
 
 
+def _shown(value):
+    """A value as a message shows it: its repr, shortened (an int of 10**5000 has no repr)."""
+    try:
+        text = repr(value)
+    except ValueError:
+        return f"<an integer of {value.bit_length()} bits>"
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _out_of_range(option, value):
+    """A Python int beyond a double's range, in the words of the command's own check."""
+    return Error(f"error: {option}: '{_shown(value)}' is outside the range of a double "
+                 "(magnitudes from about 2.2e-308 to 1.8e308)")
+
+
+def _float_array(values, option):
+    """numpy's float array of `values`; an int beyond a double's range is pfgen's Error."""
+    try:
+        return _np.asarray(values, dtype=float)
+    except OverflowError:
+        big = next((v for v in _np.asarray(values, dtype=object).ravel() if not _fits(v)), values)
+        raise _out_of_range(option, big) from None
+
+
+def _fits(value):
+    try:
+        float(value)
+    except OverflowError:
+        return False
+    except (TypeError, ValueError):
+        pass
+    return True
+
+
 def _number_list(values, option):
     """A number or a sequence of numbers (or a numpy array) as a list of floats."""
     if values is None:
         return []
     try:
-        array = _np.asarray(values, dtype=float)
+        array = _float_array(values, option)
     except (TypeError, ValueError):
         raise Error(f"error: {option}: expected a vector of numbers") from None
     if array.ndim == 0:
@@ -46,7 +108,7 @@ def _number_matrix(values, option):
     if values is None:
         raise Error(f"error: {option} is required")
     try:
-        array = _np.asarray(values, dtype=float)
+        array = _float_array(values, option)
     except (TypeError, ValueError):
         raise Error(f"error: {option}: expected a matrix of numbers, row by row") from None
     if array.ndim == 0:  # one state: P may be given as a number
@@ -59,8 +121,10 @@ def _number_matrix(values, option):
 def _number(value, option):
     try:
         return float(value)
+    except OverflowError:
+        raise _out_of_range(option, value) from None
     except (TypeError, ValueError):
-        raise Error(f"error: {option}: {value!r} is not a number") from None
+        raise Error(f"error: {option}: {_shown(value)} is not a number") from None
 
 
 def _optional_number(value, option):
@@ -85,11 +149,62 @@ def _names(names, option):
         return []
     if isinstance(names, str):
         return [names]
-    names = list(names)
+    try:
+        names = list(names)
+    except TypeError:
+        raise Error(f"error: {option}: expected a filter's name or a list of them, got {_shown(names)}") from None
     for name in names:
         if not isinstance(name, str):
             raise Error(f"error: {option}: {name!r} is not a filter's name")
     return names
+
+
+def _path(value, option):
+    """A path as open() takes one: str, bytes (decoded as os.fsdecode does) or os.PathLike. pfgen's
+    paths are UTF-8 text, as its messages and the generated files' names are."""
+    try:
+        path = _os.fsdecode(value)
+    except TypeError:
+        raise Error(f"error: {option}: expected a path (str, bytes or os.PathLike), got {type(value).__name__}") from None
+    try:
+        path.encode("utf-8")
+    except UnicodeEncodeError:
+        raise Error(f"error: {option}: {_shown(value)} is not UTF-8: pfgen's paths are") from None
+    return path
+
+
+def _text(value, option, default):
+    """An option's text (a str); None gives the option's default."""
+    if value is None:
+        return default
+    if not isinstance(value, str):
+        raise Error(f"error: {option}: expected a str, got {type(value).__name__} {_shown(value)}")
+    return value
+
+
+def _optional_module(name, package, call):
+    """An optional module a call needs, or an ImportError naming the Debian package that gives it."""
+    try:
+        return _importlib.import_module(name)
+    except ImportError as e:
+        raise ImportError(f"{call} needs {name}, which this Python cannot import "
+                          f"(Debian: apt-get install {package}): {e}") from e
+
+
+def _parameters(values):
+    """Parameters' new values, name -> number, as --set name=value gives them."""
+    if values is None:
+        return {}
+    try:
+        items = list(values.items())
+    except (AttributeError, TypeError):
+        raise Error(f"error: --set: expected a dict of parameter names and numbers, got {type(values).__name__}") from None
+    out = {}
+    for name, value in items:
+        if not isinstance(name, str):
+            raise Error(f"error: --set: a parameter's name must be a str, got {_shown(name)}")
+        out[name] = _number(value, f"--set {name}")
+    return out
 
 
 def _arrays(value):
@@ -150,11 +265,10 @@ class Filter:
         ``pfgen eval --t T --m M --P P --set name=value``. Returns the command's JSON without
         model and filter, each list a numpy array: m_drift, gain, P_drift (a sampled filter's
         under "prediction" and "update", a delayed filter's inputs under "delayed_inputs")."""
-        values = dict(parameters or {})
-        values.update(more_parameters)
+        values = _parameters(parameters)
+        values.update(_parameters(more_parameters))
         native = self._native.eval(
-            _number(t, "--t"), _number_list(m, "--m"), _number_matrix(P, "--P"),
-            {str(name): _number(value, f"--set {name}") for name, value in values.items()},
+            _number(t, "--t"), _number_list(m, "--m"), _number_matrix(P, "--P"), values,
             _number_list(m_delayed, "--m-delayed"), _number_list(x_star, "--x-star"),
             _number_list(x_star_delayed, "--x-star-delayed"), _number_list(phi, "--phi"))
         values = _json.loads(native.json)
@@ -169,10 +283,7 @@ class Filter:
         is empty; a polynomial observation's dP adds sum_r P_gain[r] (dy_r - predicted_observation_r dt)). Returns a SympyFilter with m_drift (n x 1), gain (n x p), P_drift (n x n),
         predicted_observation (p x 1), definitions (name -> expression, in order) and symbols
         (name -> Symbol: m1, P11, ..., the parameters, the time)."""
-        try:
-            import sympy
-        except ImportError as e:  # pragma: no cover - the set-up installs python3-sympy
-            raise ImportError("Filter.to_sympy needs SymPy (Debian: apt-get install python3-sympy)") from e
+        sympy = _optional_module("sympy", "python3-sympy", "Filter.to_sympy")
         e = self._native.expressions()
         # Every name as a plain Symbol, so that a parameter called gamma or E stays a symbol; in
         # the text each name is first replaced by a placeholder, since a name such as lambda is a
@@ -223,13 +334,16 @@ class Model:
 
     @staticmethod
     def load(path):
-        """Reads and checks a model file (as every command does)."""
-        return Model(_pfgen.Model.load(str(path)))
+        """Reads and checks a model file (as every command does); path: str, bytes or os.PathLike."""
+        return Model(_pfgen.Model.load(_path(path, "the model file")))
 
     @staticmethod
     def from_yaml(text, source="<yaml>"):
-        """Reads a model from YAML text; ``source`` names it in messages."""
-        return Model(_pfgen.Model.from_yaml(text, source))
+        """Reads a model from YAML text (str, or UTF-8 bytes), at most 64 MiB as a model file;
+        ``source`` names it in messages."""
+        if not isinstance(text, (str, bytes)):
+            raise Error(f"error: the model's text: expected a str, got {type(text).__name__}")
+        return Model(_pfgen.Model.from_yaml(text, _path(source, "the model's source name")))
 
     name = property(lambda self: self._native.name)
     source = property(lambda self: self._native.source, doc="The file's path, or from_yaml's source.")
@@ -245,7 +359,7 @@ class Model:
 
     def derive(self, kind=None):
         """Derives one filter (``pfgen derive --filter KIND``; by default the model's first)."""
-        return Filter(self, self._native.derive("" if kind is None else str(kind)))
+        return Filter(self, self._native.derive(_text(kind, "--filter", "")))
 
     def latex_document(self, kinds=None):
         """``pfgen latex``: a LaTeX document with these filters (default: the default ones)."""
@@ -256,17 +370,19 @@ class Model:
         """``pfgen codegen``: the filters' code in C++ or C (language "cpp" or "c"), with scalar
         "template" (C++), "float" or "double" (default: C++ template, C double). With a directory,
         the files are written there (all or none) and their paths returned; without, a dict from
-        each file's relative path to its text."""
+        each file's relative path to its text. A setting left at None takes its default."""
         options = _pfgen.CodegenOptions()
         options.filters = _names(kinds, "--filter")
-        options.language = str(language)
-        options.scalar = str(scalar or "")
-        options.name_space = str(namespace)
+        options.language = _text(language, "--language", "cpp")
+        options.scalar = _text(scalar, "--scalar", "")
+        options.name_space = _text(namespace, "--namespace", "pfgen_models")
+        if not isinstance(eigen, (bool, _np.bool_)) and eigen is not None:
+            raise Error(f"error: --eigen: expected True or False, got {_shown(eigen)}")
         options.eigen = bool(eigen)
         options.dt = _optional_number(dt, "--dt")
         if directory is None:
             return {f.path: f.contents for f in self._native.codegen_files(options)}
-        return self._native.codegen_to(str(directory), options)
+        return self._native.codegen_to(_path(directory, "--output"), options)
 
     def simulate(self, **settings):
         """pfgen.simulate(self, ...)."""
@@ -277,7 +393,12 @@ class Simulation:
     """What ``pfgen simulate`` computes: the report (its table), the time series of its CSV as
     numpy arrays, and a summary per filter (and the particle reference)."""
 
-    def __init__(self, native):
+    def __init__(self, native, model):
+        self.model_name = model.name           #: the model's name, which the plot's title gives
+        self.state_names = model.state_names   #: the states, as summary's arrays and the series order them
+        self.shown_run = native.shown_run      #: the run whose truth, estimates and errors the series show
+        #: the particle reference's N (0 without one)
+        self.reference_particles = native.reference_particles
         self.report = native.report    #: the command's standard output, before the paths of files
         self.notes = native.notes      #: what it says on stderr ("pfgen: note: ...")
         self.csv = native.csv          #: the CSV ``-o`` writes
@@ -300,27 +421,129 @@ class Simulation:
     def t(self):
         return self.series["t"]
 
+    def to_pandas(self, table="summary"):
+        """The summary as a pandas DataFrame, one row per filter and state (index: filter, state),
+        or with table="series" the series, one row per recorded time (index: t). Needs pandas."""
+        return _simulation_frame(self, table)
+
+    def plot(self, ylim=None):
+        """``pfgen simulate --plot``'s panels as a matplotlib Figure (not shown: in Jupyter a cell
+        ending with it draws it; fig.savefig(path) writes it). Per state, the shown run's errors
+        x - m of every filter (and the particle reference's, dashed), then each filter's median
+        error over the runs with its 5-95 % band. ylim=Y: the y range [-Y, Y] (--plot-ylim).
+        Needs matplotlib."""
+        return _simulation_figure(self, ylim)
+
     def __repr__(self):
         return self.report
 
 
+def _simulation_frame(simulation, table):
+    """Simulation.to_pandas."""
+    pandas = _optional_module("pandas", "python3-pandas", "Simulation.to_pandas")
+    if table == "series":
+        frame = pandas.DataFrame({name: values for name, values in simulation.series.items() if name != "t"},
+                                 index=pandas.Index(simulation.t, name="t"))
+        return frame
+    if table != "summary":
+        raise Error(f"error: to_pandas: table is 'summary' or 'series', not {_shown(table)}")
+    states = simulation.state_names
+    rows, index = [], []
+    for name, values in simulation.summary.items():
+        for i, state in enumerate(states):
+            row = {}
+            for key, value in values.items():
+                array = _np.asarray(value)
+                # Per state where the value has one (an empty array: none for this filter).
+                row[key] = (array[i] if len(array) == len(states) else _np.nan) if array.ndim else value
+            rows.append(row)
+            index.append((name, state))
+    return pandas.DataFrame(rows, index=pandas.MultiIndex.from_tuples(index, names=["filter", "state"]))
+
+
+# The --plot styles (runtime/src/gnuplot_plot.cpp): Okabe-Ito colours; per filter its own dash
+# and a width from the widest (the first, drawn first) to the narrowest, so that coinciding curves
+# each show; the particle reference black and dashed, on top.
+_PLOT_COLORS = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442"]
+_PLOT_DASHES = ["-", (0, (6, 2, 1, 2)), (0, (6, 2, 1, 2, 1, 2)), (0, (8, 2)), (0, (1, 2)), (0, (8, 2, 2, 2)),
+                (0, (12, 2, 1, 2, 1, 2)), (0, (4, 2, 2, 2))]
+_PLOT_WIDEST, _PLOT_NARROWEST = 3.0, 1.0  # matplotlib's points: gnuplot's widths 6 and 2, halved
+
+
+def _plot_style(f, count, width=None):
+    if width is None:
+        width = _PLOT_NARROWEST if count < 2 else _PLOT_WIDEST - (_PLOT_WIDEST - _PLOT_NARROWEST) * f / (count - 1)
+    return {"color": _PLOT_COLORS[f % 8], "linestyle": _PLOT_DASHES[f % 8], "linewidth": width}
+
+
+def _simulation_figure(simulation, ylim):
+    """Simulation.plot: the gnuplot script's panels (pfgen_runtime::gnuplot_error_script)."""
+    _optional_module("matplotlib", "python3-matplotlib", "Simulation.plot")
+    from matplotlib.figure import Figure  # no pyplot: no GUI backend, nothing shown twice in Jupyter
+    if ylim is not None:
+        ylim = _number(ylim, "--plot-ylim")
+        if not (ylim >= 0 and _np.isfinite(ylim)):
+            raise Error(f"error: --plot-ylim: {_shown(ylim)} is not a finite number >= 0")
+    series, t = simulation.series, simulation.t
+    filters = [name for name in simulation.summary if name != "reference"]
+    count, states = len(filters), simulation.state_names
+    clipped = f" (clipped at +-{ylim:g})" if ylim else ""
+    figure = Figure(figsize=(10, 3.6 * 2 * len(states)), layout="constrained")
+    figure.suptitle(f"{simulation.model_name}: estimation errors x - m")
+    axes = figure.subplots(2 * len(states), 1, squeeze=False)[:, 0]
+    for i, x in enumerate(states):
+        shown, bands = axes[2 * i], axes[2 * i + 1]
+        shown.set_title(f"{x}: run {simulation.shown_run}{clipped}")
+        for f, name in enumerate(filters):
+            shown.plot(t, series[f"{name}_err_{x}"], label=name, **_plot_style(f, count))
+        if simulation.reference_particles and filters:
+            shown.plot(t, series[f"reference_err_{x}"], color="#000000", linestyle="--", linewidth=0.75,
+                       label=f"reference (N={simulation.reference_particles})")
+        bands.set_title(f"{x}: median over {simulation.runs} runs, 5-95 % band{clipped}")
+        for f, name in enumerate(filters):
+            low, high = series[f"{name}_err_{x}_q05"], series[f"{name}_err_{x}_q95"]
+            if f == 0:  # the first band filled, the others' edges only: bands that coincide stay apart
+                bands.fill_between(t, low, high, color=_PLOT_COLORS[0], alpha=0.2, linewidth=0, label=f"{name} 5-95 %")
+                continue
+            bands.plot(t, low, label=f"{name} 5-95 %", **_plot_style(f, count, 0.5))
+            bands.plot(t, high, **_plot_style(f, count, 0.5))
+        for f, name in enumerate(filters):
+            bands.plot(t, series[f"{name}_err_{x}_q50"], label=name, **_plot_style(f, count))
+        for panel in (shown, bands):
+            panel.set_xlabel("t")
+            panel.set_ylabel(f"{x} - m")
+            panel.set_xlim(t[0], t[-1])
+            if ylim:
+                panel.set_ylim(-ylim, ylim)
+            panel.grid(True)
+            if panel.get_legend_handles_labels()[0]:
+                panel.legend(loc="upper center", bbox_to_anchor=(0.5, -0.22), ncol=min(4, max(1, len(filters))),
+                             frameon=False, handlelength=4)
+    return figure
+
+
 def simulate(model, runs=None, T=None, dt=None, filters=None, seed=None, threads=0, reference=None, *,
              scheme=None, x0=None, record_points=None, shown_run=None, bound=None, risk_epsilon=None,
-             report_times=None, windows=None, parameters=None, cache_dir=None, compiler=None, batch=8):
+             report_times=None, windows=None, parameters=None, cache_dir=None, compiler=None, batch=8,
+             progress=False):
     """``pfgen simulate``: the model's filters (or ``filters``) against simulated truths in Monte
     Carlo, with the particle reference of ``reference`` particles. Unset settings come from the
-    model's simulation: section, then pfgen's defaults. The GIL is released while it runs."""
+    model's simulation: section, then pfgen's defaults. The GIL is released while it runs.
+    progress=True writes the command's progress line to sys.stderr while it runs (or give a
+    text stream)."""
+    if not isinstance(model, Model):
+        raise TypeError(f"pfgen.simulate: expected a pfgen.Model (pfgen.Model.load(path)), got {type(model).__name__}")
     options = _pfgen.SimulationOptions()
     options.runs = _whole(runs, "--runs")
     options.T = _optional_number(T, "--T")
     options.dt = _optional_number(dt, "--dt")
     options.filters = _names(filters, "--filters")
     options.seed = _whole(seed, "--seed")
-    options.threads = _whole(threads, "--threads", 2**32 - 1)
-    options.batch = _whole(batch, "--batch", 2**64 - 1)
+    options.threads = _whole(0 if threads is None else threads, "--threads", 2**32 - 1)
+    options.batch = _whole(8 if batch is None else batch, "--batch", 2**64 - 1)
     options.reference = _whole(reference, "--reference")
-    options.scheme = None if scheme is None else str(scheme)
-    options.x0 = None if x0 is None else str(x0)
+    options.scheme = _text(scheme, "--scheme", None)
+    options.x0 = _text(x0, "--x0", None)
     options.record_points = _whole(record_points, "--record-points")
     options.shown_run = _whole(shown_run, "--shown-run")
     options.bound = _optional_number(bound, "--bound")
@@ -330,7 +553,48 @@ def simulate(model, runs=None, T=None, dt=None, filters=None, seed=None, threads
         options.windows = [(_number(a, "--windows"), _number(b, "--windows")) for a, b in (windows or [])]
     except (TypeError, ValueError):
         raise Error("error: --windows: expected (a, b) pairs of numbers") from None
-    options.parameters = {str(name): _number(value, f"--set {name}") for name, value in (parameters or {}).items()}
-    options.cache_dir = str(cache_dir or "")
-    options.compiler = str(compiler or "")
-    return Simulation(model._native.simulate(options))
+    options.parameters = _parameters(parameters)
+    options.cache_dir = "" if cache_dir is None else _path(cache_dir, "--cache-dir")
+    options.compiler = "" if compiler is None else _path(compiler, "--compiler")
+    stream = _progress_stream(progress)
+    if stream is None:
+        return Simulation(model._native.simulate(options), model)
+    return Simulation(_simulate_showing_progress(model._native, options, stream), model)
+
+
+def _progress_stream(progress):
+    """Where simulate's progress line goes: nowhere (False), sys.stderr (True) or a text stream."""
+    if progress is None or progress is False:
+        return None
+    if progress is True:
+        return _sys.stderr
+    if callable(getattr(progress, "write", None)):
+        return progress
+    raise Error(f"error: progress: expected True, False or a text stream, got {_shown(progress)}")
+
+
+def _simulate_showing_progress(native_model, options, stream):
+    """The native simulate, with its progress line written to `stream` as the command draws it on
+    a terminal. pfgen's threads only append the text (without the GIL); a Python thread of ours
+    writes it out five times a second, and what is left once the simulation returns."""
+    text = _pfgen.ProgressText()
+    options.report_progress_to(text)
+    done = _threading.Event()
+
+    def show():
+        while True:
+            finished = done.wait(0.2)
+            part = text.take()
+            if part:
+                stream.write(part)
+                stream.flush()
+            if finished:
+                return
+
+    shower = _threading.Thread(target=show, name="pfgen simulate progress", daemon=True)
+    shower.start()
+    try:
+        return native_model.simulate(options)
+    finally:
+        done.set()
+        shower.join()

@@ -7,6 +7,11 @@
 
 #include <unistd.h>
 
+#include <memory>
+#include <mutex>
+#include <string>
+#include <utility>
+
 #include "pfgen/pfgen.hpp"
 
 namespace py = pybind11;
@@ -43,6 +48,25 @@ py::cpp_function released_getter(Getter getter) {
   return py::cpp_function(getter, Released());
 }
 
+// What a simulation's progress bar has drawn and Python has not yet shown. The simulation's
+// threads append to it without the GIL (api::SimulationOptions::progress); a Python thread takes
+// it, with the GIL, and writes it to sys.stderr: no thread of pfgen ever waits for the GIL.
+class ProgressText {
+ public:
+  void add(const std::string& text) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    text_ += text;
+  }
+  std::string take() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return std::exchange(text_, {});
+  }
+
+ private:
+  std::mutex mutex_;
+  std::string text_;
+};
+
 }  // namespace
 
 PYBIND11_MODULE(_pfgen, m) {
@@ -54,8 +78,12 @@ PYBIND11_MODULE(_pfgen, m) {
     try {
       if (thrown) std::rethrow_exception(thrown);
     } catch (const api::Error& e) {
-      // The whole line, as a Python str (c_str() would stop at a NUL the message quotes).
-      PyErr_SetObject(error.ptr(), py::str(pfgen_support::one_line(e.report())).ptr());
+      // The whole line, as a Python str (c_str() would stop at a NUL the message quotes); bytes
+      // that are not UTF-8 (a file name's) as \x escapes.
+      const std::string line = pfgen_support::one_line(e.report());
+      const py::object text = py::reinterpret_steal<py::object>(
+          PyUnicode_DecodeUTF8(line.data(), static_cast<Py_ssize_t>(line.size()), "backslashreplace"));
+      PyErr_SetObject(error.ptr(), text.ptr());
     }
   });
 
@@ -123,7 +151,14 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readwrite("threads", &api::SimulationOptions::threads)
       .def_readwrite("batch", &api::SimulationOptions::batch)
       .def_readwrite("cache_dir", &api::SimulationOptions::cache_dir)
-      .def_readwrite("compiler", &api::SimulationOptions::compiler);
+      .def_readwrite("compiler", &api::SimulationOptions::compiler)
+      .def("report_progress_to", [](api::SimulationOptions& options, std::shared_ptr<ProgressText> text) {
+        options.progress = [text = std::move(text)](const std::string& part) { text->add(part); };
+      });
+
+  py::class_<ProgressText, std::shared_ptr<ProgressText>>(m, "ProgressText")
+      .def(py::init<>())
+      .def("take", &ProgressText::take);
 
   py::class_<api::FilterSummary>(m, "FilterSummary")
       .def_readonly("name", &api::FilterSummary::name)
@@ -145,7 +180,9 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readonly("series", &api::SimulationResult::series)
       .def_readonly("filters", &api::SimulationResult::filters)
       .def_readonly("runs", &api::SimulationResult::runs)
-      .def_readonly("steps", &api::SimulationResult::steps);
+      .def_readonly("steps", &api::SimulationResult::steps)
+      .def_readonly("shown_run", &api::SimulationResult::shown_run)
+      .def_readonly("reference_particles", &api::SimulationResult::reference_particles);
 
   py::class_<api::Model>(m, "Model")
       .def_static("load", &api::Model::load, Released())

@@ -5,6 +5,9 @@ import subprocess
 
 import pytest
 
+# Simulation.plot's figures are drawn off screen, as on a machine without a display.
+os.environ.setdefault("MPLBACKEND", "Agg")
+
 SOURCE_DIR = os.environ.get("PFGEN_SOURCE_DIR", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
 PFGEN = os.environ.get("PFGEN_EXECUTABLE", "pfgen")
 

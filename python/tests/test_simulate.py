@@ -33,6 +33,11 @@ def test_simulate_is_the_commands(pfgen_command, work_dir):
     for k, name in enumerate(header):
         np.testing.assert_array_equal(result.series[name], np.array([row[k] for row in rows]), err_msg=name)
     assert result.t[0] == 0 and result.t[-1] == 2
+    # Each filter's RMS error per time and its NEES with the band, what one plots first.
+    for name in ("optimal_err_x_rms", "optimal_nees", "optimal_nees_low", "optimal_nees_high"):
+        assert name in result.series
+    assert np.all(result.series["optimal_nees_low"] < result.series["optimal_nees_high"])
+    assert np.all(np.isfinite(result.series["optimal_err_x_rms"]))
     assert result.runs == 6 and result.steps == 2000
     # The summary holds the table's numbers (which it prints in 4 digits).
     assert set(result.summary) == {"optimal", "ekf", "additive", "ekf-additive", "ekf-printed", "reference"}

@@ -266,7 +266,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     // Folded: of the record vectors only the shown run's paths are still read.
     for (std::size_t k = 0; k < runs.size(); ++k) {
       RunResult& run = runs[k];
-      for (FilterRunResult& filter : run.filters) filter.error_record = {};
+      for (FilterRunResult& filter : run.filters) filter.error_record = filter.nees_record = {};
       run.reference.error_record = {};
       if (numbers[k] == options.shown_run) continue;
       run.truth_record = {};
@@ -305,6 +305,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   result.seed = options.seed;
   result.scheme = scheme.name();
   result.x0_from_prior = options.initial_prior.has_value();
+  result.refined_stepping = options.filter_guards.stepping.adaptive && options.filter_guards.stepping.max_depth > 0;
   result.n = plan.n;
   result.criterion = options.criterion;
   aggregate(plan, filters, runs, options, result);

@@ -251,9 +251,12 @@ void ParticleReference::propagate(double t, double dt, double t_end, RandomStrea
   }
 }
 
-RandomStream ParticleReference::begin_run(std::uint64_t seed, std::uint64_t run) {
-  RandomStream stream(seed, run, substream::particle_reference);
-  scheme_->start_run(RandomStream::derive_key(seed, run, substream::particle_refinement), run);
+RandomStream ParticleReference::begin_run(std::uint64_t seed, std::uint64_t run, unsigned set) {
+  RandomStream stream(seed, run, set == 0 ? substream::particle_reference : substream::second_particle_reference);
+  scheme_->start_run(RandomStream::derive_key(seed, run,
+                                              set == 0 ? substream::particle_refinement
+                                                       : substream::second_particle_refinement),
+                     run);
   scheme_->set_escape_bound(bound_);
   draw_prior(stream);
   return stream;
@@ -266,11 +269,12 @@ ParticleReferenceRun ParticleReference::stopped(ParticleReferenceRun result, dou
 }
 
 ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::MatrixXd& dy, std::ptrdiff_t truth_last,
-                                            std::uint64_t seed, std::uint64_t run, Eigen::MatrixXd& mean) {
+                                            std::uint64_t seed, std::uint64_t run, Eigen::MatrixXd& mean,
+                                            unsigned set) {
   if (!observation_) throw std::logic_error("particle reference: made for sampled observations, run with increments");
   ParticleReferenceRun result;
   if (truth_last < 0) return result;
-  RandomStream stream = begin_run(seed, run);
+  RandomStream stream = begin_run(seed, run, set);
   const auto p = static_cast<Eigen::Index>(p_);
 
   // Every particle's rate at t0.
@@ -300,11 +304,11 @@ ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::M
 ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::size_t steps_per_sample,
                                                     const Eigen::MatrixXd& samples, std::size_t count,
                                                     std::ptrdiff_t truth_last, std::uint64_t seed, std::uint64_t run,
-                                                    Eigen::MatrixXd& mean) {
+                                                    Eigen::MatrixXd& mean, unsigned set) {
   if (!measurement_) throw std::logic_error("particle reference: made for increments dy, run with samples");
   ParticleReferenceRun result;
   if (truth_last < 0) return result;
-  RandomStream stream = begin_run(seed, run);
+  RandomStream stream = begin_run(seed, run, set);
   const std::size_t q = measurement_->q();
   if (!weigh_and_resample(mean.col(0), stream, result.resamplings)) return stopped(result, grid.time(0));
   result.last = 0;

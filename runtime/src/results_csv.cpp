@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 
+#include "pfgen_runtime/statistics.hpp"
 #include "pfgen_support/atomic_file.hpp"
 #include "pfgen_support/shortest_double.hpp"
 
@@ -75,6 +77,28 @@ std::vector<Column> make_columns(const MonteCarloResult& result, const std::vect
         columns.push_back({stem + "_rms", [&filter, i](Eigen::Index r) { return filter.reference_distance_rms(r, i); }});
       }
     }
+  }
+  // Last, so that every column before keeps its position: per filter the RMS of its error over the
+  // runs alive, and its mean NEES per state dimension with the 95 % band for the runs it is over.
+  for (std::size_t f = 0; f < result.filters.size(); ++f) {
+    const FilterSeries& filter = series.filters[f];
+    const std::string& name = result.filters[f].name;
+    for (Eigen::Index i = 0; i < n; ++i)
+      columns.push_back({name + "_err_" + state_names[static_cast<std::size_t>(i)] + "_rms",
+                         [&filter, i](Eigen::Index r) { return filter.error_rms(r, i); }});
+    columns.push_back({name + "_nees", [&filter](Eigen::Index r) { return filter.nees(r, 0); }});
+    // The band changes only with the count of runs: computed once per count.
+    auto bands = std::make_shared<std::vector<NeesBand>>();
+    NeesBand last{0, 0};
+    std::size_t last_runs = 0;
+    for (std::size_t r = 0; r < filter.nees_runs.size(); ++r) {
+      if (r == 0 || filter.nees_runs[r] != last_runs) last = nees_band(filter.nees_runs[r], result.n);
+      last_runs = filter.nees_runs[r];
+      bands->push_back(last);
+    }
+    columns.push_back({name + "_nees_low", [bands](Eigen::Index r) { return (*bands)[static_cast<std::size_t>(r)].low; }});
+    columns.push_back(
+        {name + "_nees_high", [bands](Eigen::Index r) { return (*bands)[static_cast<std::size_t>(r)].high; }});
   }
   return columns;
 }

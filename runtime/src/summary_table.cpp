@@ -164,6 +164,32 @@ std::string precision_section(const MonteCarloResult& result, const std::vector<
   return out;
 }
 
+// The consistency of each filter's P against its errors (Bar-Shalom, Li & Kirubarajan 2001's NEES
+// test) at the report times and at T.
+std::string consistency_section(const MonteCarloResult& result) {
+  std::vector<std::vector<std::string>> rows{{"filter", "t", "runs", "NEES/n", "95 % band", "P is"}};
+  for (const FilterStatistics& filter : result.filters)
+    for (std::size_t q = 0; q < filter.nees.size(); ++q) {
+      const double t = q < filter.reports.size() ? filter.reports[q].t : result.grid.end();
+      // T once, when it is also a report time; nothing where no run had a definite P (a
+      // deterministic truth's P = 0, or every run stopped).
+      const bool repeated = q == filter.reports.size() && q > 0 && filter.reports[q - 1].t == t;
+      if (repeated || filter.nees_runs[q] == 0) continue;
+      const double nees = filter.nees[q], low = filter.nees_low[q], high = filter.nees_high[q];
+      const std::string verdict = !std::isfinite(nees) ? "-"
+                                  : nees > high        ? "too small"
+                                  : nees < low         ? "too large"
+                                                       : "consistent";
+      rows.push_back({filter.name, time(t), count(filter.nees_runs[q]), number(nees),
+                      number(low, "%.3g") + " - " + number(high, "%.3g"), verdict});
+    }
+  if (rows.size() == 1) return "";
+  return "\nConsistency of P (NEES/n: (x - m)^T P^-1 (x - m) / n averaged over the runs alive whose P is positive "
+         "definite; for a consistent filter runs x n x NEES/n is chi-square with runs x n degrees of freedom, whose "
+         "two-sided 95 % interval is the band; above it P is too small for the errors, below it too large):\n" +
+         align(rows);
+}
+
 // How L was weighted: "M = identity" or the matrix row by row.
 std::string weight_text(const Eigen::MatrixXd& weight) {
   if (weight.size() == 0) return "M = identity";
@@ -219,24 +245,44 @@ std::string criterion_section(const MonteCarloResult& result) {
 std::string reference_section(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
   if (!result.reference) return "";
   const ReferenceStatistics& reference = *result.reference;
-  std::vector<std::vector<std::string>> rows{{"filter", "state", "runs", "RMS(m - m_ref)", "RMS(x - m)", "RMS(x - m_ref)"}};
+  std::vector<std::vector<std::string>> rows{
+      {"filter", "state", "runs", "RMS(m - m_ref)", "m_ref's own error", "RMS(x - m)", "RMS(x - m_ref)"}};
   auto cell = [](double value, double error) { return number(value) + " ± " + number(error, "%.2g"); };
+  const auto own_error = [&reference](std::size_t i) {
+    return i < reference.error.size() ? number(reference.error[i]) : std::string("-");
+  };
   for (const FilterStatistics& filter : result.filters) {
     if (!filter.reference) continue;
     const ReferenceComparison& c = *filter.reference;
     for (std::size_t i = 0; i < result.n; ++i)
-      rows.push_back({filter.name, state_names[i], count(c.runs), cell(c.distance[i], c.distance_se[i]),
+      rows.push_back({filter.name, state_names[i], count(c.runs), cell(c.distance[i], c.distance_se[i]), own_error(i),
                       cell(c.filter_rms[i], c.filter_rms_se[i]), cell(c.reference_rms[i], c.reference_rms_se[i])});
   }
   for (std::size_t i = 0; i < result.n; ++i)
-    rows.push_back({"reference", state_names[i], count(reference.horizon.runs), "", "",
+    rows.push_back({"reference", state_names[i], count(reference.horizon.runs), "", own_error(i), "",
                     cell(reference.horizon.rms[i], reference.horizon.rms_se[i])});
   std::ostringstream out;
   out << "\nDistance to the particle reference (N = " << reference.particles
       << " particles, bootstrap filter from the filters' prior; RMS over the runs and grid points of [" << time(result.grid.t0)
       << ", " << time(result.grid.end()) << "] where the filter and the reference reached T, ± standard error over "
-      << "runs; reference: every run it reached T in):\n"
+      << "runs; reference: every run it reached T in; m_ref's own error: its Monte Carlo error, RMS(m_ref - m_ref') / "
+      << "sqrt(2) with m_ref' a second, independent set of N particles, over the " << reference.error_runs
+      << " runs both reached T in):\n"
       << align(rows);
+  // A distance d measured against m_ref is about sqrt(d^2 + e^2) with e the reference's own error:
+  // where e is not small against the smallest distance, the distances say more about N than about
+  // the filters.
+  for (std::size_t i = 0; i < reference.closest.size() && i < result.n && i < reference.error.size(); ++i) {
+    if (reference.closest[i].closest >= result.filters.size()) continue;
+    const FilterStatistics& closest = result.filters[reference.closest[i].closest];
+    if (!closest.reference) continue;
+    const double distance = closest.reference->distance[i], error = reference.error[i];
+    if (std::isfinite(distance) && std::isfinite(error) && 3 * error > distance)
+      out << "Note: in " << state_names[i] << " the reference's own error " << number(error)
+          << " is not small against the smallest distance (" << closest.name << "'s " << number(distance)
+          << "), which it inflates to about sqrt(d^2 + " << number(error) << "^2): use more particles (the error falls "
+          << "as 1/sqrt(N))\n";
+  }
   // Which filter is closest, said only where the paired difference to the next one exceeds twice
   // its standard error: 0.119 against 0.138 may be one seed's luck.
   for (std::size_t i = 0; i < reference.closest.size() && i < result.n; ++i) {
@@ -255,7 +301,40 @@ std::string reference_section(const MonteCarloResult& result, const std::vector<
   }
   out << events_line("Reference stopped (every particle diverged)", reference.stopped, result.runs)
       << "; resampled " << number(reference.mean_resamplings, "%.1f") << " times per run\n";
+  // Every filter against the closest, so that the farthest is called worse only where it is.
+  std::vector<std::vector<std::string>> paired{{"filter", "state", "closest", "runs", "dMS(m - m_ref)", "worse"}};
+  for (std::size_t i = 0; i < reference.closest.size() && i < result.n; ++i)
+    for (const PairedDistance& other : reference.closest[i].others)
+      paired.push_back({result.filters[other.filter].name, state_names[i],
+                        result.filters[reference.closest[i].closest].name, count(other.runs),
+                        number(other.difference, "%+.4g") + " ± " + number(other.difference_se, "%.2g"),
+                        other.significant() ? "yes" : "not significantly"});
+  if (paired.size() > 1)
+    out << "\nPaired against the closest to the reference run by run (dMS: this filter's mean squared distance to "
+           "m_ref minus the closest's, over the runs where both and the reference reached T; mean ± standard error; "
+           "worse: beyond 2 standard errors):\n"
+        << align(paired);
   return out.str();
+}
+
+// Which stepping the main table's figures are of (docs/guide/simulation.md, "How a job runs", 4):
+// refined splits a grid step the generated step() would take whole, so where it did, the table is
+// not quite the deployed code's; empty when no filter steps on the grid (sampled, delayed).
+std::string stepping_line(const MonteCarloResult& result) {
+  std::uint64_t refined = 0;
+  bool any = false;
+  for (const FilterStatistics& filter : result.filters)
+    if (filter.grid_stepped) {
+      any = true;
+      refined += filter.refined_steps;
+    }
+  if (!any) return "";
+  if (!result.refined_stepping)
+    return "Stepping: generated (one step() call per grid step, as the generated code runs)\n";
+  if (refined == 0)
+    return "Stepping: refined, no grid step split (these are the figures of the generated step() as it runs)\n";
+  return "Stepping: refined (grid steps split into sub-steps where P would change too fast, listed below; the "
+         "generated step() never splits one: --stepping generated measures it as it runs)\n";
 }
 
 }  // namespace
@@ -304,8 +383,10 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
       counts.push_back(std::move(row));
     }
     out << align(rows);
+    out << stepping_line(result);
     out << "\nRuns counted (truth and filter alive to the window's end, or at the report time):\n" << align(counts);
     out << precision_section(result, state_names);
+    out << consistency_section(result);
     // Which runs stopped, so that one can be looked at (--shown-run) and replayed.
     std::ostringstream stopped;
     for (const FilterStatistics& filter : result.filters)

@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <random>
 
@@ -138,13 +139,29 @@ void write_through(const std::string& path, const std::string& contents) {
 
 namespace {
 
-enum class Target { replace, write_through };
+enum class Target { replace, write_through, standard_output, standard_error };
+
+// Whether `target` is the file open as descriptor fd.
+bool is_open_as(const struct stat& target, int fd) {
+  struct stat open {};
+  return ::fstat(fd, &open) == 0 && open.st_dev == target.st_dev && open.st_ino == target.st_ino;
+}
+
+// Writes into this process's standard output or error where it stands, after whatever the process
+// printed there (flushed first, so that the order is the order of the calls).
+void write_into_stream(const std::string& path, int fd, const std::string& contents) {
+  std::fflush(fd == 1 ? stdout : stderr);
+  if (const int error = write_all(fd, contents))
+    throw AtomicWriteError(AtomicWriteError::Stage::write_through, path, "", error);
+}
 
 // How `path` is written, and the name to replace: a link to a regular file is resolved, so the
 // link stays.
 Target classify(std::string& path) {
   struct stat target {};
   if (::stat(path.c_str(), &target) == 0) {  // what the path names, links followed
+    if (is_open_as(target, 1)) return Target::standard_output;
+    if (is_open_as(target, 2)) return Target::standard_error;
     if (!S_ISREG(target.st_mode) && !S_ISDIR(target.st_mode)) return Target::write_through;
     struct stat entry {};
     if (S_ISREG(target.st_mode) && ::lstat(path.c_str(), &entry) == 0 && S_ISLNK(entry.st_mode)) {
@@ -165,8 +182,12 @@ Target classify(std::string& path) {
 
 void write_file_atomically(const std::string& path, const std::string& contents) {
   std::string target = path;
-  if (classify(target) == Target::write_through) return write_through(path, contents);
-  replace_file(target, contents);
+  switch (classify(target)) {
+    case Target::write_through: return write_through(path, contents);
+    case Target::standard_output: return write_into_stream(path, 1, contents);
+    case Target::standard_error: return write_into_stream(path, 2, contents);
+    case Target::replace: return replace_file(target, contents);
+  }
 }
 
 void write_files_together(const std::vector<std::pair<std::string, std::string>>& files) {
@@ -174,7 +195,7 @@ void write_files_together(const std::vector<std::pair<std::string, std::string>>
   for (const auto& [path, contents] : files) {
     std::string target = path;
     struct stat info {};
-    if (classify(target) == Target::write_through || (::stat(target.c_str(), &info) == 0 && S_ISDIR(info.st_mode)))
+    if (classify(target) != Target::replace || (::stat(target.c_str(), &info) == 0 && S_ISDIR(info.st_mode)))
       throw AtomicWriteError(AtomicWriteError::Stage::not_a_file, path, "", 0);
     targets.push_back(target);
   }

@@ -14,6 +14,11 @@ std::vector<GiNaC::numeric> exact(const Vector& values) {
   return out;
 }
 
+// The API's substeps 0: not given, each filter chooses (observations/sampled/substep_choice.hpp).
+std::optional<std::size_t> given_substeps(std::size_t substeps) {
+  return substeps == 0 ? std::nullopt : std::optional<std::size_t>(substeps);
+}
+
 }  // namespace
 
 struct ModelBuilder::Impl {
@@ -85,13 +90,13 @@ ModelBuilder& ModelBuilder::delayed_observation(double delay, const Exprs& A0, c
 
 ModelBuilder& ModelBuilder::sampled_observation(double period, const Exprs& C0, const ExprMatrix& C,
                                                 const ExprMatrix& Uv, std::size_t substeps) {
-  guarded([&] { impl_->builder.sampled_observation(exact(period), C0, C, Uv, substeps); });
+  guarded([&] { impl_->builder.sampled_observation(exact(period), C0, C, Uv, given_substeps(substeps)); });
   return *this;
 }
 
 ModelBuilder& ModelBuilder::sampled_polynomial_observation(double period, const Exprs& c, const ExprMatrix& Uv,
                                                           std::size_t substeps) {
-  guarded([&] { impl_->builder.sampled_polynomial_observation(exact(period), c, Uv, substeps); });
+  guarded([&] { impl_->builder.sampled_polynomial_observation(exact(period), c, Uv, given_substeps(substeps)); });
   return *this;
 }
 

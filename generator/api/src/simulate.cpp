@@ -41,6 +41,7 @@ cli::SimulateOptions command_options(const pfgen::Model& model, const Simulation
   out.batch = options.batch;
   out.cache_dir = options.cache_dir;
   out.compiler = options.compiler;
+  out.progress = options.progress ? cli::ProgressOutput::to(options.progress) : cli::ProgressOutput::none();
   out.assignments = assignment_texts(options.parameters);
   cli::SimulationOverrides& o = out.overrides;
   o.T = options.T;
@@ -117,6 +118,8 @@ SimulationResult Model::simulate(const SimulationOptions& options) const {
     out.series = csv_columns(out.csv, out.columns.size());
     out.runs = result.runs;
     out.steps = result.grid.steps;
+    out.shown_run = result.series.shown_run;
+    if (result.reference) out.reference_particles = result.reference->particles;
     for (const pfgen_runtime::FilterStatistics& filter : result.filters) {
       FilterSummary summary = summary_of(filter.name, filter.horizon);
       summary.diverged = filter.divergences.count();

@@ -53,11 +53,11 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
   if (const double terms = codegen_terms(eq); terms > options.max_equation_terms) {
     char text[400];
     std::snprintf(text, sizeof text,
-                  "filter '%s' of model %s has %.0f terms in its equations; code generation holds at most %.0f "
+                  "has %.0f terms in its equations; code generation holds at most %.0f "
                   "(about 0.2 kB each while it builds the code: this would need about %.1f GB); derive and eval "
                   "handle it, and a model with fewer states or a lower degree generates",
-                  eq.name.c_str(), model.name.c_str(), terms, options.max_equation_terms, terms * 0.2e3 / 1e9);
-    throw CodegenError(text);
+                  terms, options.max_equation_terms, terms * 0.2e3 / 1e9);
+    throw CodegenError(source_place(model) + "filter '" + eq.name + "' of model " + model.name + " " + text);
   }
   observation_code(eq.observation).check_size(model, eq);
   try {

@@ -24,21 +24,31 @@ std::set<std::string> parameters_and_time(const Model& model) {
   return names;
 }
 
+// The k-th spelling tried for `preferred` (k = 0, 1, ...): itself, then with '_', then with '_2',
+// '_3', ...: a name never gets a second '_' in a row, since C++ reserves every name holding '__'
+// (model names `shared` and `shared_` made the local `shared__`).
+std::string candidate(const std::string& preferred, std::size_t k) {
+  if (k == 0) return preferred;
+  return preferred + "_" + (k == 1 ? "" : std::to_string(k));
+}
+
 }  // namespace
 
-LocalNames::LocalNames(std::set<std::string> inputs) : taken_(std::move(inputs)), temporary_prefix_("tmp") {
+LocalNames::LocalNames(std::set<std::string> inputs) : taken_(std::move(inputs)) {
   auto clashes = [&] {
     return std::any_of(taken_.begin(), taken_.end(),
                        [&](const std::string& name) { return has_form(name, temporary_prefix_); });
   };
-  while (clashes()) temporary_prefix_ += "_";
+  // tmp, tmp_, tmp_2_, ...: a temporary is the prefix and digits, so a prefix after the first
+  // ends in '_' to keep its number apart.
+  for (std::size_t k = 0; k == 0 || clashes(); ++k) temporary_prefix_ = candidate("tmp", k) + (k < 2 ? "" : "_");
 }
 
 bool LocalNames::is_temporary(const std::string& name) const { return has_form(name, temporary_prefix_); }
 
 std::string LocalNames::take(const std::string& preferred) {
   std::string name = preferred;
-  while (taken_.count(name) || is_temporary(name)) name += "_";
+  for (std::size_t k = 1; taken_.count(name) || is_temporary(name); ++k) name = candidate(preferred, k);
   taken_.insert(name);
   return name;
 }

@@ -219,6 +219,7 @@ FilterEquations derive_named_filter(const Model& model, const std::string& name)
     FilterEquations eq = derive_named_filter(model, split->first);
     eq.name = name;
     eq.update.substeps = split->second;
+    eq.update.substeps_chosen = false;
     return eq;
   }
   for (const auto& filter : model.user_filters)

@@ -26,6 +26,8 @@ std::string filter_identifier(const std::string& name) {
   return out;
 }
 
+std::string source_place(const Model& model) { return model.source.empty() ? "" : model.source + ": "; }
+
 std::string SimulationSection::location_of(const std::string& field) const {
   std::string out = source.empty() ? std::string("<model>") : source;
   auto it = locations.find(field);

@@ -146,14 +146,14 @@ ModelBuilder& ModelBuilder::delayed_observation(const GiNaC::numeric& delay, con
 }
 
 ModelBuilder& ModelBuilder::sampled_observation(const GiNaC::numeric& period, const ExVector& C0, const ExMatrix& C,
-                                                const ExMatrix& Uv, std::size_t substeps) {
+                                                const ExMatrix& Uv, std::optional<std::size_t> substeps) {
   model_.observation = SampledObservation{period, exact_vector(C0), exact_matrix(C), exact_matrix(Uv), substeps, {}};
   has_observation_ = true;
   return *this;
 }
 
 ModelBuilder& ModelBuilder::sampled_polynomial_observation(const GiNaC::numeric& period, const ExVector& c,
-                                                          const ExMatrix& Uv, std::size_t substeps) {
+                                                          const ExMatrix& Uv, std::optional<std::size_t> substeps) {
   SampledObservation sampled{period, ExVector(c.size(), GiNaC::ex(0)),
                              ExMatrix(c.size(), ExVector(model_.states.size(), GiNaC::ex(0))), exact_matrix(Uv), substeps,
                              exact_vector(c)};

@@ -135,6 +135,7 @@ GiNaC::ex at_defaults(const Model& model, const GiNaC::ex& e) {
 void validate_names(const Model& model) {
   if (auto problem = identifier_problem(model.name)) throw ModelError("name", *problem);
   if (auto problem = namespace_name_problem(model.name)) throw ModelError("name", *problem);
+  if (auto problem = name_part_problem(model.name)) throw ModelError("name", *problem);
   if (model.states.empty()) throw ModelError("states", "at least one state is required");
   std::set<std::string> seen;
   const std::string time = model.time.get_name();
@@ -292,7 +293,7 @@ void validate_sampled_observation(const Model& model) {
   const SampledObservation& obs = model.observation.sampled();
   const std::string field = "observation.sampled";
   if (!(obs.period > 0)) throw ModelError(field + ".period", "must be positive, found " + to_text(obs.period));
-  if (obs.substeps < 1) throw ModelError(field + ".substeps", "must be at least 1 (1 sub-step: predict over the whole period)");
+  if (obs.substeps && *obs.substeps < 1) throw ModelError(field + ".substeps", "must be at least 1 (1 sub-step: predict over the whole period)");
   std::size_t r = obs.C.size();
   for (std::size_t i = 0; i < obs.c.size(); ++i) require_polynomial(model, obs.c[i], field + ".c", one_based(i), std::nullopt);
   if (r == 0) throw ModelError(field + ".C", "at least one observation row is required");
@@ -491,6 +492,7 @@ void validate_user_filters(const Model& model) {
         throw ModelError(field, "'" + filter.name + "' is a built-in filter kind; give the model's filter another name");
     const std::string identifier = filter_identifier(filter.name);
     if (auto problem = namespace_name_problem(identifier)) throw ModelError(field, *problem);
+    if (auto problem = name_part_problem(identifier)) throw ModelError(field, *problem);
     for (const auto& [taken, owner] : identifiers) {
       if (taken == identifier)
         throw ModelError(field, "its C++ identifier '" + identifier + "' is also that of filter '" + owner + "'");

@@ -19,6 +19,14 @@ std::optional<std::string> namespace_name_problem(const std::string& name) {
   return std::nullopt;
 }
 
+std::optional<std::string> name_part_problem(const std::string& name) {
+  if (!name.empty() && (name.front() == '_' || name.back() == '_'))
+    return "'" + name + "' " + (name.front() == '_' ? "starts" : "ends") +
+           " with '_', and the generated C code joins it to the other parts of its names with '_', making a "
+           "'__', which C++ reserves";
+  return std::nullopt;
+}
+
 std::optional<std::string> symbol_name_problem(const std::string& name) {
   if (auto problem = code_name_problem(name)) return problem;
   // m1, P12, m_1, P_1_2 are the filter's own variables; dm1, dP12, K1_1, dy1 and dt appear in
@@ -32,6 +40,11 @@ std::optional<std::string> symbol_name_problem(const std::string& name) {
   static const std::regex printed("^(d(m|P)_?[0-9][0-9_]*|K_?[0-9]+_[0-9]+|dy_?[0-9]+|dt)$");
   if (std::regex_match(name, printed))
     return "'" + name + "' is a name of the printed equations (dm1 = (...) dt + K1_1 (dy1 - ... dt), dP12)";
+  // PCt11 and Pyy11: a sampled update's P C^T and innovation covariance C P C^T + R (printed as
+  // S11 it read as a state S's).
+  static const std::regex update("^(PCt|Pyy)_?[0-9][0-9_]*$");
+  if (std::regex_match(name, update))
+    return "'" + name + "' is a name of the printed sampled update (PCt11 = (P C^T)11, Pyy11 = (C P C^T + R)11)";
   return std::nullopt;
 }
 

@@ -105,20 +105,17 @@ Breach check_filters(const Model& model, const SimulationSection& s) {
 
 // A sampled filter predicts in `substeps` sub-steps per period (the model's, or S of a KIND@S
 // name): (T / period) x substeps of them per run, under the same budget as the truth's steps.
+// Sub-steps the derivation chooses (the model gives none) are checked by the command once derived.
 Breach check_substeps(const Model& model, const SimulationSection& s) {
   if (!model.observation.is_sampled() || !s.T) return {};
-  const double samples = std::floor(*s.T / model.observation.sampled().period.to_double());
   const std::vector<std::string> names = s.filters ? *s.filters : default_filter_names(model);
   for (std::size_t k = 0; k < names.size(); ++k) {
     const auto split = split_substeps(names[k]);
-    const double substeps = static_cast<double>(split ? split->second : model.observation.sampled().substeps);
-    if (samples * substeps > kMaxStepsPerRun)
-      return breach(s.filters ? "filters" : "T",
-                    "filter '" + names[k] + "' would take " + number_text(samples * substeps) +
-                        " prediction sub-steps per run (" + number_text(samples) + " periods to T = " +
-                        number_text(*s.T) + ", " + number_text(substeps) +
-                        " sub-steps each); the budget of one run is 1e9 steps, the truth's and each filter's alike",
-                    s.filters ? std::optional<std::size_t>(k) : std::nullopt);
+    const std::optional<std::size_t> substeps = split ? split->second : model.observation.sampled().substeps;
+    if (!substeps) continue;
+    if (auto problem = substep_budget_problem(names[k], *s.T, model.observation.sampled().period.to_double(),
+                                              static_cast<double>(*substeps)))
+      return breach(s.filters ? "filters" : "T", *problem, s.filters ? std::optional<std::size_t>(k) : std::nullopt);
   }
   return {};
 }
@@ -172,6 +169,14 @@ Breach check_sampling_period(const Model& model, const SimulationSection& s) {
 }
 
 }  // namespace
+
+std::optional<std::string> substep_budget_problem(const std::string& filter, double T, double period, double substeps) {
+  const double samples = std::floor(T / period);
+  if (!(samples * substeps > kMaxStepsPerRun)) return std::nullopt;
+  return "filter '" + filter + "' would take " + number_text(samples * substeps) + " prediction sub-steps per run (" +
+         number_text(samples) + " periods to T = " + number_text(T) + ", " + number_text(substeps) +
+         " sub-steps each); the budget of one run is 1e9 steps, the truth's and each filter's alike";
+}
 
 std::optional<SimulationRuleBreach> check_simulation_settings(const Model& model, const SimulationSection& settings) {
   if (auto b = check_grid(settings)) return b;

@@ -292,7 +292,7 @@ class Loader {
     if (!period) throw ModelError(field + ".period", pfgen_support::quoted(period_text) + " is not a number");
     if (auto problem = double_range_problem(*period))
       throw ModelError(field + ".period", pfgen_support::quoted(period_text) + " " + *problem);
-    std::size_t substeps = 1;
+    std::optional<std::size_t> substeps;  // absent: each filter chooses (substep_choice.hpp)
     if (YAML::Node s = sampled["substeps"]; s && !s.IsNull())
       substeps = static_cast<std::size_t>(whole_number(s, field + ".substeps", 1000000));
     if (polynomial) {
@@ -601,9 +601,19 @@ void refuse_second_document(const std::string& text, const std::string& path) {
                   path, where);
 }
 
+// A model's text beyond the bound of a model file: the file read in memory (the API's from_yaml)
+// is refused as the file is, before its parse takes seconds per hundred megabytes.
+void refuse_oversized(const std::string& text, const std::string& path) {
+  if (text.size() > kMaxModelFileBytes)
+    throw located(
+        ModelError("", "the model file is larger than " + std::to_string(kMaxModelFileBytes >> 20) + " MiB: not a model file"),
+        path, {});
+}
+
 }  // namespace
 
 Model load_model_text(const std::string& text, const std::string& path) {
+  refuse_oversized(text, path);
   if (!is_text(text)) throw located(ModelError("", "not a model file: the file is binary, not UTF-8 text"), path, {});
   const YamlAliasExpansion expansion = expand_yaml_aliases(text);
   if (expansion.exceeded)
@@ -646,10 +656,7 @@ Model load_model_file(const std::string& path) {
   char piece[65536];
   while (in.read(piece, sizeof piece) || in.gcount() > 0) {
     text.append(piece, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > kMaxModelFileBytes)
-      throw located(ModelError("", "the model file is larger than " + std::to_string(kMaxModelFileBytes >> 20) +
-                                       " MiB: not a model file"),
-                    path, {});
+    refuse_oversized(text, path);
   }
   return load_model_text(text, path);
 }

@@ -1,6 +1,7 @@
 #include "pfgen/notation/number_format.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace pfgen {
@@ -23,6 +24,12 @@ std::string exact_decimal(const GiNaC::numeric& value) {
     digits.insert(digits.size() - places, ".");
   }
   return (value.is_negative() ? "-" : "") + digits;
+}
+
+std::string three_digits(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", value);
+  return buffer;
 }
 
 }  // namespace pfgen

@@ -36,7 +36,7 @@ std::string model_section(const Model& model) {
   // With Stratonovich noise f is the drift as written; the Ito drift follows the model (noise_report).
   const bool stratonovich = model.noise == NoiseCalculus::Stratonovich;
   out += std::string(".\n\\[ dx = f\\,dt + g") + (stratonovich ? " \\circ " : "\\,") +
-         "dW_1, \\qquad " + observation.equation_latex() + " \\]\n";
+         "dW_1, \\qquad " + observation.equation_latex(model) + " \\]\n";
   out += "\\begin{align*}\n" + matrix_lines(printer, "f", "f", column(stratonovich ? model.stated_drift : model.drift)) +
          " \\\\\n";
   if (model.diffusion.g) {

@@ -64,7 +64,8 @@ std::string mean_square_header_text(const Model& model, const FilterEquations& e
   out += observation_lines;
   if (eq.kind && uses_sigma_points(*eq.kind)) return out + sigma_point_header_text(eq, correction_words);
   out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
-                              : "dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion] - [" + correction_words + "]\n\n";
+                              : "dP terms: [" + moment_terms_text(eq) + "] + [diffusion] - [" + correction_words +
+                                    "]\n\n";
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "pfgen/printing/report_parts.hpp"
 
+#include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/notation/rich_text.hpp"
 
@@ -20,6 +21,11 @@ std::string join_parts(PolynomialWriter& writer, const std::vector<ReportPart>& 
   std::string out;
   append_parts(out, writer, parts);
   return out;
+}
+
+std::string moment_terms_text(const FilterEquations& eq) {
+  if (eq.kind && is_extended_kalman(*eq.kind)) return "J P + P J^T, J = df/dx at m";
+  return "E[(x-m)f^T] + E[f(x-m)^T]";
 }
 
 std::string exactness_text(const ExactnessReport& report) {

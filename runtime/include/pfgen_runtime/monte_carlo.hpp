@@ -262,12 +262,22 @@ struct ReferenceComparison {
 // runner-up beyond the Monte Carlo error: the paired difference of the runs' mean squared distances
 // (runner-up minus closest, over the runs where both and the reference reached T) and its standard
 // error. Indices into MonteCarloResult::filters; no runner-up with one filter.
+struct PairedDistance {
+  std::size_t filter = 0;  // index into MonteCarloResult::filters
+  std::size_t runs = 0;
+  double difference = std::numeric_limits<double>::quiet_NaN(), difference_se = std::numeric_limits<double>::quiet_NaN();
+  bool significant() const { return difference > 2 * difference_se; }
+};
 struct ClosestToReference {
   std::size_t closest = 0;
   std::optional<std::size_t> runner_up;
   std::size_t runs = 0;
   double difference = std::numeric_limits<double>::quiet_NaN(), difference_se = std::numeric_limits<double>::quiet_NaN();
   bool significant() const { return difference > 2 * difference_se; }
+  // Every other filter with a distance, nearest first (the runner-up first): its mean squared
+  // distance minus the closest's, paired run by run as above, so that the farthest is said to be
+  // worse only where that is beyond the Monte Carlo error.
+  std::vector<PairedDistance> others;
 };
 
 // The reference itself: its error x - m_ref over [t0, T] (horizon: the runs it reached T in), the
@@ -275,6 +285,12 @@ struct ClosestToReference {
 struct ReferenceStatistics {
   std::size_t particles = 0;
   WindowStatistics horizon;
+  // Its own Monte Carlo error per component: sqrt(mean over runs and grid points of
+  // (m_ref - m_ref')^2 / 2), m_ref' the mean of a second, independent set of N particles on the
+  // same run (so (m_ref - m_ref')^2 / 2 estimates the variance of m_ref about what an infinite set
+  // would give), over the `error_runs` runs where both sets reached T; NaN when none did.
+  std::size_t error_runs = 0;
+  std::vector<double> error;
   std::vector<ClosestToReference> closest;  // per state component
   EventSummary stopped;
   double mean_resamplings = 0;  // per run with a reference
@@ -288,6 +304,9 @@ struct FilterStatistics {
   std::vector<double> peak_median, peak_q95;  // of max_t |e| over completed runs, per component
   EventSummary divergences;  // m or P non-finite or beyond its bound (the guard's event time)
   EventSummary psd_losses;   // the first time P failed the PSD check, per run
+  // A continuous filter stepped on the grid (not sampled, not a delayed one's fixed step): its grid
+  // steps are refined or not as MonteCarloResult::refined_stepping says.
+  bool grid_stepped = false;
   std::uint64_t refined_steps = 0;  // grid steps taken in sub-steps (FilterStepper), all runs
   std::size_t refined_runs = 0;     // runs with at least one
   std::size_t too_stiff_runs = 0;   // runs stopped (and counted as diverged) for want of sub-steps
@@ -295,6 +314,11 @@ struct FilterStatistics {
   std::optional<SampledMetrics> sampled;  // sampled filters only
   std::optional<CriterionStatistics> criterion;  // when MonteCarloOptions::criterion is set
   std::optional<ReferenceComparison> reference;  // when MonteCarloOptions::reference is set
+  // The consistency of P, at each report time and at T (reports + 1 entries, T last): over the
+  // runs alive there whose P was positive definite (nees_runs), the mean NEES per state dimension
+  // e^T P^-1 e / n (NaN without such a run) and its two-sided 95 % band (nees_band).
+  std::vector<std::size_t> nees_runs;
+  std::vector<double> nees, nees_low, nees_high;
 };
 
 // Across runs at each record time, per component; NaN where no run is alive.
@@ -306,6 +330,11 @@ struct FilterSeries {
   Eigen::MatrixXd m, P_diagonal;  // records x n: the shown run; NaN where it had stopped
   SeriesStatistics error;         // e = x - m over the runs alive
   std::vector<std::size_t> alive;  // per record time
+  Eigen::MatrixXd error_rms;       // records x n: sqrt(mean e^2) over the runs alive
+  // records x 1: the mean over runs of the NEES per state dimension, e^T P^-1 e / n, over the
+  // runs alive whose P was positive definite (nees_runs of them; its 95 % band: nees_band).
+  Eigen::MatrixXd nees;
+  std::vector<std::size_t> nees_runs;
   // With the particle reference (else empty), records x n: the shown run's m - m_ref (NaN where
   // either had stopped) and, over the runs where both are alive, sqrt(mean (m - m_ref)^2).
   Eigen::MatrixXd reference_distance, reference_distance_rms;
@@ -358,6 +387,9 @@ struct MonteCarloResult {
   std::uint64_t seed = 0;
   std::string scheme;  // the truth scheme's name()
   bool x0_from_prior = false;  // each run's truth started from a draw of MonteCarloOptions::initial_prior
+  // filter_guards.stepping.adaptive: the grid-stepped filters' steps split where P would change
+  // too fast (FilterStepper), or, false, one step() per grid step as the generated code takes.
+  bool refined_stepping = true;
   std::size_t n = 0;   // state components
   std::vector<FilterStatistics> filters;
   std::optional<CriterionOptions> criterion;  // as asked (the writers say which L was used)

@@ -30,8 +30,8 @@
 // Random numbers: RandomStream(seed, run, substream::particle_reference), consumed in order (n
 // normals per particle for the prior, then per grid step q normals per particle in particle
 // order, dead ones included, and one uniform per resampling); an adaptive scheme's bridge draws
-// come from substream::particle_refinement. So the reference depends on (seed, run, N) only, never
-// on threads. Continuous undelayed or sampled observations and a truth with noise (q > 0) only:
+// come from substream::particle_refinement (a second set, `set` 1: substream::second_particle_*).
+// So the reference depends on (seed, run, N) only, never on threads. Continuous undelayed or sampled observations and a truth with noise (q > 0) only:
 // without process noise the particles never spread, and a delayed observation's likelihood
 // depends on the path h back.
 #include <cstddef>
@@ -87,14 +87,16 @@ class ParticleReference {
   // Runs the filter over the increments dy.col(0 .. truth_last - 1) of run `run` on `grid`,
   // writing the weighted mean at grid index j into mean.col(j) for j = 0 .. result.last (mean is
   // n x (grid.steps + 1), sized by the caller). truth_last < 0: nothing (last = -1).
+  // `set` 1 draws a second particle set, independent of set 0's (substream::second_particle_*):
+  // the spread of the two means estimates the Monte Carlo error of either.
   ParticleReferenceRun run(const TimeGrid& grid, const Eigen::MatrixXd& dy, std::ptrdiff_t truth_last,
-                           std::uint64_t seed, std::uint64_t run, Eigen::MatrixXd& mean);
+                           std::uint64_t seed, std::uint64_t run, Eigen::MatrixXd& mean, unsigned set = 0);
 
   // The same for sampled observations (the second constructor): the samples y_1 .. y_count in the
   // columns of `samples` (draw_samples' `noisy`), y_s at grid index s steps_per_sample.
   ParticleReferenceRun run_sampled(const TimeGrid& grid, std::size_t steps_per_sample, const Eigen::MatrixXd& samples,
                                    std::size_t count, std::ptrdiff_t truth_last, std::uint64_t seed, std::uint64_t run,
-                                   Eigen::MatrixXd& mean);
+                                   Eigen::MatrixXd& mean, unsigned set = 0);
 
   std::size_t particles() const { return N_; }
 
@@ -102,7 +104,7 @@ class ParticleReference {
   void initialise(const ParticleReferenceOptions& options);
   // A run's start for both observation kinds: the truth's scheme keyed for the run, the particles'
   // own stream, and the prior drawn from it.
-  RandomStream begin_run(std::uint64_t seed, std::uint64_t run);
+  RandomStream begin_run(std::uint64_t seed, std::uint64_t run, unsigned set);
   // `result` marked as stopped at t (every weight 0, or a covariance that is not positive definite).
   static ParticleReferenceRun stopped(ParticleReferenceRun result, double t);
   void draw_prior(RandomStream& stream);

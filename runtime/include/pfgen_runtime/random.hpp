@@ -75,6 +75,10 @@ inline constexpr std::uint64_t truth_refinement = 3;  // Brownian-bridge draws o
 // increments and the resampling uniforms, and its scheme's own bridge draws.
 inline constexpr std::uint64_t particle_reference = 4;
 inline constexpr std::uint64_t particle_refinement = 5;
+// The particle reference's second, independent set of particles (ParticleReference::run's `set`
+// 1), which only estimates the first one's Monte Carlo error.
+inline constexpr std::uint64_t second_particle_reference = 6;
+inline constexpr std::uint64_t second_particle_refinement = 7;
 }  // namespace substream
 
 class RandomStream {

@@ -213,6 +213,16 @@ ReferenceStatistics reference_statistics(const Plan& plan, const std::vector<Run
       if (run.reference.last == steps) squares.push_back(run.reference.mean_square[i]);
     horizon.rms_se.push_back(rms_standard_error(squares));
   }
+  // Its Monte Carlo error from the second particle set: E (m_ref - m_ref')^2 = 2 Var m_ref.
+  std::vector<double> spread(n, 0.0);
+  for (const RunResult& run : runs) {
+    const std::vector<double>& square = run.reference.spread_square;
+    if (square.size() != n || !std::isfinite(square[0])) continue;
+    ++out.error_runs;
+    for (std::size_t i = 0; i < n; ++i) spread[i] += square[i];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    out.error.push_back(out.error_runs > 0 ? std::sqrt(spread[i] / static_cast<double>(out.error_runs) / 2) : nan);
   out.mean_resamplings = referenced > 0 ? static_cast<double>(resamplings) / static_cast<double>(referenced) : nan;
   return out;
 }
@@ -276,16 +286,25 @@ std::vector<ClosestToReference> closest_to_reference(const Plan& plan, const std
       continue;
     }
     c.closest = order[0];
-    if (order.size() > 1) {
-      c.runner_up = order[1];
-      std::vector<double> differences;
+    std::vector<double> differences;
+    for (std::size_t k = 1; k < order.size(); ++k) {
+      PairedDistance paired;
+      paired.filter = order[k];
+      differences.clear();
       for (const RunResult& run : runs) {
-        const FilterRunResult &a = run.filters[c.closest], &b = run.filters[*c.runner_up];
+        const FilterRunResult &a = run.filters[c.closest], &b = run.filters[paired.filter];
         if (a.last != steps || b.last != steps || run.reference.last != steps) continue;
         differences.push_back(b.reference_square[i] - a.reference_square[i]);
       }
-      c.runs = differences.size();
-      std::tie(c.difference, c.difference_se) = mean_and_standard_error(differences);
+      paired.runs = differences.size();
+      std::tie(paired.difference, paired.difference_se) = mean_and_standard_error(differences);
+      c.others.push_back(paired);
+    }
+    if (!c.others.empty()) {
+      c.runner_up = c.others.front().filter;
+      c.runs = c.others.front().runs;
+      c.difference = c.others.front().difference;
+      c.difference_se = c.others.front().difference_se;
     }
     out.push_back(c);
   }
@@ -347,6 +366,30 @@ void report_pairs(const std::vector<RunResult>& runs, std::size_t f, std::size_t
   }
 }
 
+// The mean NEES per state dimension of filter f at each report time and at T, over the runs alive
+// there whose P was positive definite, with its 95 % band (Bar-Shalom, Li & Kirubarajan 2001).
+void nees_statistics(const std::vector<RunResult>& runs, std::size_t f, const Plan& plan, FilterStatistics& stats) {
+  const std::size_t points = plan.reports.size() + 1;
+  for (std::size_t q = 0; q < points; ++q) {
+    const std::size_t index = q < plan.reports.size() ? plan.reports[q] : plan.grid.steps;
+    std::size_t counted = 0;
+    double sum = 0;
+    for (const RunResult& run : runs) {
+      const FilterRunResult& filter = run.filters[f];
+      if (filter.last < static_cast<std::ptrdiff_t>(index) || filter.nees.size() != points ||
+          !std::isfinite(filter.nees[q]))
+        continue;
+      ++counted;
+      sum += filter.nees[q];
+    }
+    const NeesBand band = nees_band(counted, plan.n);
+    stats.nees_runs.push_back(counted);
+    stats.nees.push_back(counted > 0 ? sum / static_cast<double>(counted) / static_cast<double>(plan.n) : nan);
+    stats.nees_low.push_back(band.low);
+    stats.nees_high.push_back(band.high);
+  }
+}
+
 }  // namespace
 
 void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const std::vector<RunResult>& runs,
@@ -387,6 +430,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
   for (std::size_t f = 0; f < filters.size(); ++f) {
     FilterStatistics stats;
     stats.name = filters[f].name;
+    stats.grid_stepped = !filters[f].sampled() && !filters[f].fixed_step();
     // Window 0 is the horizon.
     for (std::size_t w = 0; w <= plan.windows.size(); ++w) {
       WindowStatistics window;
@@ -461,6 +505,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       stats.too_stiff_runs += filter.too_stiff;
       stats.undefined_runs += filter.undefined;
     }
+    nees_statistics(runs, f, plan, stats);
     if (filters[f].sampled()) stats.sampled = sampled_metrics(runs, f, steps, filters[f].p);
     if (options.criterion) stats.criterion = criterion_statistics(runs, f, plan.grid, options.criterion->epsilon,
                                                                  options.filter_guards.stop_on_psd_loss);
@@ -497,6 +542,9 @@ void start_series(const Plan& plan, std::size_t filters, bool reference, MonteCa
   for (FilterSeries& filter : series.filters) {
     filter.error = make_series_statistics(records, n);
     filter.alive.assign(records, 0);
+    filter.error_rms.resize(rows, cols);
+    filter.nees.resize(rows, 1);
+    filter.nees_runs.assign(records, 0);
     if (reference) filter.reference_distance_rms.resize(rows, cols);
   }
   if (reference) series.reference_error_rms.resize(rows, cols);
@@ -542,8 +590,27 @@ void fold_series(const Plan& plan, std::size_t filters, const std::vector<RunRow
              [f](const RunRows& run, std::size_t at) { return row_value(run.filters[f].error, at); });
       for (std::size_t r = r0; r < r1; ++r) {
         filter.alive[r] = column(r, 0).size();
-        for (std::size_t i = 0; i < n; ++i)
-          summarize(column(r, i), filter.error, static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(i));
+        for (std::size_t i = 0; i < n; ++i) {
+          const auto row = static_cast<Eigen::Index>(r), entry = static_cast<Eigen::Index>(i);
+          filter.error_rms(row, entry) = root_mean_square(column(r, i));  // before summarize reorders it
+          summarize(column(r, i), filter.error, row, entry);
+        }
+      }
+      // NEES per state dimension: one value a record, in the first state's column of the block.
+      for (auto& c : columns) c.clear();
+      for (const RunRows& run : runs)
+        for (std::size_t r = r0; r < r1; ++r)
+          if (run.filters[f].last >= static_cast<std::ptrdiff_t>(plan.records[r])) {
+            const double value = row_value(run.filters[f].nees, r - range.first);
+            if (std::isfinite(value)) column(r, 0).push_back(value);
+          }
+      for (std::size_t r = r0; r < r1; ++r) {
+        const std::vector<double>& values = column(r, 0);
+        double sum = 0;
+        for (double v : values) sum += v;  // in run order
+        filter.nees_runs[r] = values.size();
+        filter.nees(static_cast<Eigen::Index>(r), 0) =
+            values.empty() ? nan : sum / static_cast<double>(values.size()) / static_cast<double>(n);
       }
     }
     if (!reference) return;

@@ -13,11 +13,11 @@ namespace {
 // A new field of RunResult or FilterRunResult must be written and read below, or processes'
 // runs would lose it on the way: the sizes are checked where they are known, to make that loud.
 #if defined(__x86_64__) && defined(__GLIBCXX__)
-static_assert(sizeof(RunResult) == 200, "RunResult changed: encode the new field in run_codec.cpp");
-static_assert(sizeof(FilterRunResult) == 280, "FilterRunResult changed: encode the new field in run_codec.cpp");
+static_assert(sizeof(RunResult) == 224, "RunResult changed: encode the new field in run_codec.cpp");
+static_assert(sizeof(FilterRunResult) == 328, "FilterRunResult changed: encode the new field in run_codec.cpp");
 #endif
 
-constexpr char kMagic[8] = {'p', 'f', 'g', 'e', 'n', 'r', 'u', '2'};
+constexpr char kMagic[8] = {'p', 'f', 'g', 'e', 'n', 'r', 'u', '3'};
 
 // One function per type for both directions, so that what is written is what is read: Run is
 // const when encoding.
@@ -43,6 +43,8 @@ void filter_fields(IO& io, Run& f) {
   io.put_or_get(f.integral);
   io.put_or_get(f.reference_square);
   io.put_or_get(f.reference_record);
+  io.put_or_get(f.nees_record);
+  io.put_or_get(f.nees);
 }
 
 template <class IO, class Run>
@@ -67,6 +69,7 @@ void run_fields(IO& io, Run& r) {
   io.put_or_get(r.reference.mean_square);
   io.put_or_get(r.reference.error_record);
   io.put_or_get(r.reference.m_record);
+  io.put_or_get(r.reference.spread_square);
 }
 
 struct Encode {

@@ -39,6 +39,11 @@ struct FilterRunResult {
   // points (records x n; NaN where either had stopped).
   std::vector<double> reference_square;
   std::vector<double> reference_record;
+  // The normalised estimation error squared e^T P^-1 e (NaN where the filter had stopped or P was
+  // not positive definite): at the record points (records), and at the report times and T
+  // (reports + 1, T last).
+  std::vector<double> nees_record;
+  std::vector<double> nees;
 };
 
 // The particle reference's run (MonteCarloOptions::reference).
@@ -50,6 +55,9 @@ struct ReferenceRunResult {
   std::vector<double> mean_square;   // n: (x - m_ref)^2 over the horizon's grid points; NaN unless last == steps
   std::vector<double> error_record;  // records x n: x - m_ref; NaN where not reached
   std::vector<double> m_record;      // records x n, the shown run only
+  // n: (m_ref - m_ref')^2 over the horizon's grid points, m_ref' the mean of a second, independent
+  // particle set; NaN unless both reached T.
+  std::vector<double> spread_square;
 };
 
 struct RunResult {

@@ -10,8 +10,8 @@ namespace pfgen_runtime::monte_carlo_detail {
 
 namespace {
 
-constexpr char kSliceMagic[8] = {'p', 'f', 'g', 'e', 'n', 's', 'l', '1'};
-constexpr char kRowsMagic[8] = {'p', 'f', 'g', 'e', 'n', 's', 'r', '1'};
+constexpr char kSliceMagic[8] = {'p', 'f', 'g', 'e', 'n', 's', 'l', '2'};
+constexpr char kRowsMagic[8] = {'p', 'f', 'g', 'e', 'n', 's', 'r', '2'};
 
 // A run's rows of the range where they are in the bytes, or none (nullptr); none only where the
 // fold never reads them (`read`: the run reached a record time, so fold_series reads its rows there).
@@ -35,6 +35,8 @@ void statistics_matrices(Series& series, Visit visit) {
   for (auto& filter : series.filters) {
     statistics(filter.error);
     visit(filter.reference_distance_rms);
+    visit(filter.error_rms);
+    visit(filter.nees);
   }
   visit(series.reference_error_rms);
 }
@@ -42,7 +44,10 @@ void statistics_matrices(Series& series, Visit visit) {
 template <class Series, class Visit>
 void alive_counts(Series& series, Visit visit) {
   visit(series.truth_alive);
-  for (auto& filter : series.filters) visit(filter.alive);
+  for (auto& filter : series.filters) {
+    visit(filter.alive);
+    visit(filter.nees_runs);
+  }
 }
 
 }  // namespace
@@ -59,19 +64,20 @@ SeriesSlice series_slice(const std::vector<RunResult>& runs, RecordRange range, 
   std::vector<Rows> rows;
   const std::size_t filters = runs.empty() ? 0 : runs.front().filters.size();
   // A run's fields: truth_last, the filter count, each filter's last, the reference's last; then a
-  // length for the truth's rows, each filter's two and the reference's.
+  // length for the truth's rows, each filter's three and the reference's.
   heads.out.reserve(sizeof(kSliceMagic) + sizeof(std::uint64_t) +
-                    runs.size() * (5 + 3 * filters) * sizeof(std::uint64_t));
-  rows.reserve(runs.size() * (2 + 2 * filters));
-  // Rows `range` of a record vector (records x n, row-major), or nothing when the run has none.
-  const auto put_rows = [&](const std::vector<double>& values) {
+                    runs.size() * (5 + 4 * filters) * sizeof(std::uint64_t));
+  rows.reserve(runs.size() * (2 + 3 * filters));
+  // Rows `range` of a record vector (records x width, row-major), or nothing when the run has none.
+  const auto put_rows = [&](const std::vector<double>& values, std::size_t width) {
     if (values.empty()) {
       heads.put(std::uint64_t{0});
       return;
     }
-    if (values.size() < range.last * n) throw std::logic_error("monte carlo: a run's record series is shorter than its plan");
-    heads.put(static_cast<std::uint64_t>(range.size() * n));
-    rows.push_back({heads.out.size(), values.data() + range.first * n, range.size() * n});
+    if (values.size() < range.last * width)
+      throw std::logic_error("monte carlo: a run's record series is shorter than its plan");
+    heads.put(static_cast<std::uint64_t>(range.size() * width));
+    rows.push_back({heads.out.size(), values.data() + range.first * width, range.size() * width});
   };
   heads.put_magic(kSliceMagic);
   heads.put(static_cast<std::uint64_t>(runs.size()));
@@ -80,12 +86,13 @@ SeriesSlice series_slice(const std::vector<RunResult>& runs, RecordRange range, 
     heads.put(static_cast<std::uint64_t>(run.filters.size()));
     for (const FilterRunResult& filter : run.filters) heads.put(filter.last);
     heads.put(run.reference.last);
-    put_rows(run.truth_record);
+    put_rows(run.truth_record, n);
     for (const FilterRunResult& filter : run.filters) {
-      put_rows(filter.error_record);
-      put_rows(filter.reference_record);
+      put_rows(filter.error_record, n);
+      put_rows(filter.reference_record, n);
+      put_rows(filter.nees_record, 1);
     }
-    put_rows(run.reference.error_record);
+    put_rows(run.reference.error_record, n);
   }
   SeriesSlice slice;
   slice.heads = std::move(heads.out);  // from here on its bytes stay where they are
@@ -125,6 +132,7 @@ SliceRows read_series_slice(const std::vector<char>& bytes, std::size_t filters,
       FilterRows& filter = run_filter[f];
       filter.error = rows_in_place(reader, range, n, filter.last >= 0);
       filter.reference = rows_in_place(reader, range, n, filter.last >= 0 && run.reference_last >= 0);
+      filter.nees = rows_in_place(reader, range, 1, filter.last >= 0);
     }
     run.reference_error = rows_in_place(reader, range, n, run.reference_last >= 0);
   }

@@ -19,6 +19,7 @@ struct FilterRows {
   std::ptrdiff_t last = -1;
   const char* error = nullptr;      // error_record's rows; nullptr: the run has none
   const char* reference = nullptr;  // reference_record's rows; nullptr: none
+  const char* nees = nullptr;       // nees_record's rows (one value a record); nullptr: none
 };
 
 struct RunRows {

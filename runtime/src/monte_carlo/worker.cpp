@@ -5,6 +5,7 @@
 
 #include "clock.hpp"
 #include "pfgen_runtime/gaussian_draw.hpp"
+#include "pfgen_runtime/statistics.hpp"
 
 namespace pfgen_runtime::monte_carlo_detail {
 
@@ -44,6 +45,7 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
   std::size_t largest = 0;
   for (const FilterModel& filter : filters_) largest = std::max(largest, filter.state_size());
   state_.resize(largest);
+  nees_work_.resize(plan.n * (plan.n + 1) / 2 + plan.n);
   lane_before_.resize(largest);
   lane_increment_.resize(plan.p);
   active_.reserve(plan.windows.size());
@@ -65,7 +67,10 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
     const double bound = options.truth_guard.bound();
     reference_ = measurement ? std::make_unique<ParticleReference>(scheme, *measurement, *options.reference, bound)
                              : std::make_unique<ParticleReference>(scheme, observation, *options.reference, bound);
-    for (RunBuffers& lane : lanes_) lane.reference_mean.resize(n, points);
+    for (RunBuffers& lane : lanes_) {
+      lane.reference_mean.resize(n, points);
+      lane.second_mean.resize(n, points);
+    }
   }
 }
 
@@ -165,14 +170,30 @@ void Worker::run_reference(std::size_t run, bool shown, RunBuffers& lane, RunRes
       measurement_ ? reference_->run_sampled(plan_.grid, steps_per_sample_, lane.noisy, lane.samples, out.truth_last,
                                              options_.seed, run, lane.reference_mean)
                    : reference_->run(plan_.grid, lane.dy, out.truth_last, options_.seed, run, lane.reference_mean);
+  // The second set, on streams of its own, only for the spread of the two means.
+  const ParticleReferenceRun second =
+      measurement_ ? reference_->run_sampled(plan_.grid, steps_per_sample_, lane.noisy, lane.samples, out.truth_last,
+                                             options_.seed, run, lane.second_mean, 1)
+                   : reference_->run(plan_.grid, lane.dy, out.truth_last, options_.seed, run, lane.second_mean, 1);
   lane.reference_last = outcome.last;
-  reference_steps += outcome.particle_steps;
+  reference_steps += outcome.particle_steps + second.particle_steps;
   ReferenceRunResult& reference = out.reference;
   reference.last = outcome.last;
   reference.stopped = outcome.stopped;
   if (outcome.stopped) reference.stop_t = outcome.stop_t;
   reference.resamplings = outcome.resamplings;
   reference.mean_square.assign(n, nan);
+  reference.spread_square.assign(n, nan);
+  if (outcome.last == static_cast<std::ptrdiff_t>(steps) && second.last == outcome.last)
+    for (std::size_t i = 0; i < n; ++i) {
+      double sum = 0;
+      for (std::size_t j = 0; j <= steps; ++j) {
+        const auto row = static_cast<Eigen::Index>(i), column = static_cast<Eigen::Index>(j);
+        const double d = lane.reference_mean(row, column) - lane.second_mean(row, column);
+        sum += d * d;
+      }
+      reference.spread_square[i] = sum / static_cast<double>(steps + 1);
+    }
   reference.error_record.assign(plan_.records.size() * n, nan);
   if (shown) reference.m_record.assign(plan_.records.size() * n, nan);
   if (outcome.last == static_cast<std::ptrdiff_t>(steps)) {
@@ -212,6 +233,8 @@ bool Worker::start_pass(bool shown, const RunResult& run, FilterRunResult& out, 
     out.reference_square.assign(n, nan);
     out.reference_record.assign(plan_.records.size() * n, nan);
   }
+  out.nees_record.assign(plan_.records.size(), nan);
+  out.nees.assign(plan_.reports.size() + 1, nan);
   std::fill(pass.sums.begin(), pass.sums.end(), 0.0);
   std::fill(pass.distance_sums.begin(), pass.distance_sums.end(), 0.0);
   return run.truth_last >= 0;  // else no truth to compare with
@@ -395,11 +418,15 @@ void Worker::visit_rest(std::size_t j, const double* state, bool shown, const Ru
   const double* m_ref = referenced ? lane.reference_mean.data() + j * n : nullptr;
   if (referenced)
     for (std::size_t i = 0; i < n; ++i) pass.distance_sums[i] += (state[i] - m_ref[i]) * (state[i] - m_ref[i]);
+  // e^T P^-1 e where a record, a report time or T asks for it (P after m in the state).
+  const auto nees = [&] { return normalized_error_squared(error, state + n, n, nees_work_.data()); };
+  if (j == plan_.grid.steps) out.nees.back() = nees();
   for (std::size_t e = events_begin_; e < next_event_; ++e) {
     const Plan::Event& event = plan_.events[e];
     const std::size_t slot = event.slot;
     switch (event.kind) {
       case Plan::Kind::record:
+        out.nees_record[slot] = nees();
         for (std::size_t i = 0; i < n; ++i) out.error_record[slot * n + i] = error[i];
         if (shown)
           for (std::size_t i = 0; i < n; ++i) {
@@ -410,6 +437,7 @@ void Worker::visit_rest(std::size_t j, const double* state, bool shown, const Ru
           for (std::size_t i = 0; i < n; ++i) out.reference_record[slot * n + i] = state[i] - m_ref[i];
         break;
       case Plan::Kind::report:
+        out.nees[slot] = nees();
         for (std::size_t i = 0; i < n; ++i) out.report_error[slot * n + i] = error[i];
         break;
       case Plan::Kind::window_close: {

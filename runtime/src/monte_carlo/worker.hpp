@@ -31,6 +31,7 @@ struct RunBuffers {
   Eigen::MatrixXd clean, noisy;   // p x samples: C0 + C x(t_k) and y_k (sampled observations)
   std::size_t samples = 0;        // samples of the run
   Eigen::MatrixXd reference_mean; // n x (steps + 1): the particle reference's mean
+  Eigen::MatrixXd second_mean;    // and its second, independent particle set's (its error's estimate)
   std::ptrdiff_t reference_last = -1;
 };
 
@@ -148,6 +149,7 @@ class Worker {
   std::size_t steps_per_sample_ = 0;
   std::vector<double> zeros_, estimate_;
   std::vector<double> state_;
+  mutable std::vector<double> nees_work_;  // normalized_error_squared's Cholesky factor
   FilterStepper stepper_;
   // The plan's cursor of a pass: windows open at the current grid point, its events.
   std::vector<std::size_t> active_;

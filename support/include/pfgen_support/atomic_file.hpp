@@ -41,7 +41,11 @@ std::string unique_temporary_path(const std::string& target);
 // file or does not exist yet; a symbolic link to a regular file keeps the link, and its target is
 // replaced. Anything else that exists (a device such as /dev/null or /dev/stdout, a FIFO, a
 // socket, or a link to one) is opened and written into, never replaced; a write that fails there
-// (ENOSPC on /dev/full, a FIFO without a reader) is an error too. On failure the temporary is
+// (ENOSPC on /dev/full, a FIFO without a reader) is an error too. The process's own standard
+// output or error (the same file as descriptor 1 or 2: `-o /dev/stdout`, or a link to
+// /proc/self/fd/1, with the output redirected to a file) is written at that stream's position
+// after what the process has printed there, never replaced: a rename over the file standard output
+// goes to lost what was printed before and everything printed after. On failure the temporary is
 // removed, a replaced target is left as it was, and AtomicWriteError names the path and the
 // reason ("cannot write '<path>': <strerror>").
 void write_file_atomically(const std::string& path, const std::string& contents);

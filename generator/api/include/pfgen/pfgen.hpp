@@ -21,6 +21,7 @@
 // filter, which never changes after it is made.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -151,6 +152,11 @@ struct SimulationOptions {
   unsigned threads = 0;
   std::size_t batch = 8;  // runs a thread steps side by side, 1 to 1024 (`--batch`); results do not depend on it
   std::string cache_dir, compiler;
+  // The progress line the command draws on a terminal, given as its text: each draw is "\r" and
+  // the line ("simulate [###...] 12/50 runs, 3 s elapsed, ~9 s left "), from the first finished
+  // run on, at most five a second; the last text clears the line. Called from the simulation's
+  // threads, one call at a time, while pfgen's lock is held: it must not call pfgen. Empty: none.
+  std::function<void(const std::string& text)> progress;
 };
 
 // One filter's (or the particle reference's) statistics over the runs, per state component.
@@ -174,6 +180,8 @@ struct SimulationResult {
   std::vector<FilterSummary> filters;
   std::size_t runs = 0;
   std::size_t steps = 0;
+  std::size_t shown_run = 0;            // the run whose truth, estimates and errors the series show
+  std::size_t reference_particles = 0;  // the particle reference's N; 0 without one
 };
 
 // A model: loaded from a model file or YAML text, or built with ModelBuilder. Checked when made.
@@ -242,12 +250,13 @@ class ModelBuilder {
   ModelBuilder& delayed_observation(double delay, const Exprs& A0, const ExprMatrix& A, const ExprMatrix& B);
   // dy = h(x, t) dt + B dW2, each h_r a polynomial in the states
   ModelBuilder& polynomial_observation(const Exprs& h, const ExprMatrix& B);
-  // y_k = C0 + C x(k period) + Uv v_k
+  // y_k = C0 + C x(k period) + Uv v_k; substeps 0 (the default) as when a model file leaves them
+  // out: each filter takes as many prediction sub-steps per period as its rate at the prior needs
   ModelBuilder& sampled_observation(double period, const Exprs& C0, const ExprMatrix& C, const ExprMatrix& Uv,
-                                    std::size_t substeps = 1);
+                                    std::size_t substeps = 0);
   // y_k = c(x(k period)) + Uv v_k, each c_r a polynomial in the states (degree <= 1: as C0 + C x)
   ModelBuilder& sampled_polynomial_observation(double period, const Exprs& c, const ExprMatrix& Uv,
-                                               std::size_t substeps = 1);
+                                               std::size_t substeps = 0);
   // The filters' prior N(m0, P0) and the truth's x0 (empty: drawn from the prior in each run).
   ModelBuilder& initial(const Vector& m0, const Matrix& P0, const Vector& x0 = {});
   // dW read in Stratonovich's sense (the drift is converted to Ito's form).

@@ -155,6 +155,10 @@ using pfgen_support::filter_variable_names;
 // '-' becomes '_' ("ekf-additive" -> "ekf_additive", "ekf-printed" -> "ekf_printed").
 std::string filter_identifier(const std::string& name);
 
+// The start of a message about the model that has no line to point at: its file and ": " (a
+// model built in a program: "<api>: "), or nothing for a model without a source.
+std::string source_place(const Model& model);
+
 ExMatrix multiply_by_transpose(const ExMatrix& g);  // g g^T, expanded
 bool depends_on_states(const Model& model, const GiNaC::ex& e);
 

@@ -37,15 +37,16 @@ class ModelBuilder {
   // dy = (A0 + A x(t - delay)) dt + B dW2; delay >= 0 (the validator refuses a negative one).
   ModelBuilder& delayed_observation(const GiNaC::numeric& delay, const ExVector& A0, const ExMatrix& A,
                                     const ExMatrix& B);
-  // Samples y_k = C0 + C x(k T) + Uv v_k (SampledObservation); C0 may be zeros.
+  // Samples y_k = C0 + C x(k T) + Uv v_k (SampledObservation); C0 may be zeros. Without substeps
+  // each filter chooses its own (observations/sampled/substep_choice.hpp).
   ModelBuilder& sampled_observation(const GiNaC::numeric& period, const ExVector& C0, const ExMatrix& C,
-                                    const ExMatrix& Uv, std::size_t substeps = 1);
+                                    const ExMatrix& Uv, std::optional<std::size_t> substeps = std::nullopt);
   // dy = h(x, t) dt + B dW2, each h_r a polynomial in the states (PolynomialObservation).
   ModelBuilder& polynomial_observation(const ExVector& h, const ExMatrix& B);
   // Samples y_k = c(x(t_k)) + Uv v_k, c polynomial in the states; a c of degree <= 1 is written
   // C0 + C x by build(), so its filters are those of sampled_observation().
   ModelBuilder& sampled_polynomial_observation(const GiNaC::numeric& period, const ExVector& c, const ExMatrix& Uv,
-                                               std::size_t substeps);
+                                               std::optional<std::size_t> substeps);
   ModelBuilder& initial(const InitialConditions& initial);
 
   // The filter's own variables for user filters, once every state is declared: m1..mn,

@@ -31,13 +31,14 @@ struct ContinuousObservation {
 
 // Samples every `period` time units. The sampled filter kinds predict between samples in
 // `substeps` equal sub-steps of period / substeps (for cd-euler the sub-step is part of the
-// filter's definition: 1 sub-step is the discrete-discrete filter).
+// filter's definition: 1 sub-step is the discrete-discrete filter). Without them each filter takes
+// as many as its prediction's rate at the prior needs (observations/sampled/substep_choice.hpp).
 struct SampledObservation {
   GiNaC::numeric period;      // T > 0, exact
   ExVector C0;                // r entries, independent of the states (zeros when not given)
   ExMatrix C;                 // r x n
   ExMatrix Uv;                // r x q, with Uv Uv^T positive definite
-  std::size_t substeps = 1;   // prediction sub-steps per period, >= 1
+  std::optional<std::size_t> substeps;  // prediction sub-steps per period, >= 1; absent: chosen
   // Samples y_k = c(x(t_k)) + Uv v_k through r polynomials in the states of degree >= 2 (the model
   // file's `c:`); C0 and C are then zero, r x n. Empty for y_k = C0 + C x(t_k) + Uv v_k, which a
   // `c:` of degree <= 1 is written as when the model is built.

@@ -17,6 +17,11 @@ std::optional<std::string> code_name_problem(const std::string& name);
 // (std, Eigen), which a namespace of that name inside pfgen_models would hide.
 std::optional<std::string> namespace_name_problem(const std::string& name);
 
+// Why `name` (the model's, a filter's identifier) cannot be a part of the generated C code's names,
+// which join their parts with '_' (<namespace>_<model>_<filter>_step): a '_' at either end makes
+// a '__', which C++ reserves (the C headers serve C++ too); or nothing.
+std::optional<std::string> name_part_problem(const std::string& name);
+
 // Why `name` cannot name a symbol of the model's equations: code_name_problem, or a name the
 // printed equations use themselves (m1, P12, dm1, dP12, K1_1, dy1, dt), or nothing.
 std::optional<std::string> symbol_name_problem(const std::string& name);

@@ -29,6 +29,10 @@ struct SimulationRuleBreach {
 // fits the counters the runtime keeps exact.
 inline constexpr double kMaxStepsPerRun = 1e9;
 
+// Why a sampled filter's (T / period) x substeps prediction sub-steps are beyond kMaxStepsPerRun,
+// or nothing: the rule below for a model's own substeps, and simulate's for those a filter chose.
+std::optional<std::string> substep_budget_problem(const std::string& filter, double T, double period, double substeps);
+
 // The first rule the settings break, in a fixed order (T, dt, the observation delay against dt,
 // runs, record points, bound, shown run, scheme, filters, the sampled filters' sub-steps against
 // kMaxStepsPerRun, report times, windows), or nothing.

@@ -15,4 +15,8 @@ std::string exact_decimal(const GiNaC::numeric& value);
 // support library's (pfgen_support/shortest_double.hpp), shared with the runtime.
 using pfgen_support::shortest_double;
 
+// A measured or estimated double in three significant digits ("2.5", "0.0123", "1.7e+05"), for
+// messages and report lines that state a rate or a size, not a value to read back.
+std::string three_digits(double value);
+
 }  // namespace pfgen

@@ -32,7 +32,7 @@ class ObservationReport {
   // The standalone document (latex_document.hpp): the observation's equation in the model's display
   // beside dx's, its matrices as the last lines of the model's align* (no line break after the
   // last), and the notation paragraph before the filters.
-  virtual std::string equation_latex() const = 0;
+  virtual std::string equation_latex(const Model& model) const = 0;
   virtual std::string matrices_latex(const Model& model) const = 0;
   virtual std::string notation_latex() const = 0;
 

@@ -6,6 +6,7 @@
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/derivation/exactness.hpp"
+#include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/derivation/filter_variables.hpp"
 #include "pfgen/notation/polynomial_writer.hpp"
 #include "pfgen/printing/json_writer.hpp"
@@ -20,6 +21,10 @@ using ReportPart = SignedPolynomial;
 std::string join_parts(PolynomialWriter& writer, const std::vector<ReportPart>& parts);
 // The same, appended to `out` (a report of a large model is tens of megabytes: no copies).
 void append_parts(std::string& out, PolynomialWriter& writer, const std::vector<ReportPart>& parts);
+
+// What the first of dP's terms is, as the "dP terms:" lines say it: E[(x-m)f^T] + E[f(x-m)^T] for
+// the Gaussian closure, J P + P J^T with J the Jacobian of f at m for the extended filters.
+std::string moment_terms_text(const FilterEquations& eq);
 
 // The explanation, then one "\n  failed: ..." line per failed condition.
 std::string exactness_text(const ExactnessReport& report);

@@ -19,4 +19,8 @@ GeneratedFilter ContinuousCode::c_filter(const Model& model, const FilterEquatio
   return w.result;
 }
 
+std::vector<std::string> ContinuousCode::c_templates() const {
+  return {"c/filter.h.tmpl", "c/filter.c.tmpl"};
+}
+
 }  // namespace pfgen::codegen

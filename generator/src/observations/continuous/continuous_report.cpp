@@ -13,7 +13,7 @@ namespace {
 
 class ContinuousReport final : public RateReport {
  public:
-  std::string equation_latex() const override { return "dy = (A_0 + A x)\\,dt + B\\,dW_2"; }
+  std::string equation_latex(const Model&) const override { return "dy = (A_0 + A x)\\,dt + B\\,dW_2"; }
 
   std::string matrices_latex(const Model& model) const override {
     return rate_matrices_latex(model.observation.continuous(), std::nullopt);
@@ -22,7 +22,8 @@ class ContinuousReport final : public RateReport {
   std::string notation_latex() const override {
     return "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state, $P_{ij}$ the error covariance, "
            "$K$ the gain $P A^{T}(B B^{T})^{-1}$ and $dy_{r}$ the observation increments. Each $dP$ is written as "
-           "$E[(x-m)f^{T}] + E[f(x-m)^{T}]$, then the diffusion term, then $-P A^{T}(B B^{T})^{-1} A P$, "
+           "$E[(x-m)f^{T}] + E[f(x-m)^{T}]$ ($J P + P J^{T}$, $J$ the Jacobian of $f$ at $m$, for the extended "
+           "filters), then the diffusion term, then $-P A^{T}(B B^{T})^{-1} A P$, "
            "without merging like terms across the three parts.";
   }
 

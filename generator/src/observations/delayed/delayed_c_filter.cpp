@@ -95,4 +95,8 @@ GeneratedFilter DelayedCode::c_filter(const Model& model, const FilterEquations&
   return w.result;
 }
 
+std::vector<std::string> DelayedCode::c_templates() const {
+  return {"c/delayed_filter.h.tmpl", "c/delayed_filter.c.tmpl"};
+}
+
 }  // namespace pfgen::codegen

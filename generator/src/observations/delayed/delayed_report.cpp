@@ -118,7 +118,7 @@ void add_delayed_json(const FilterEquations& eq, Json& out) {
 
 class DelayedReport final : public RateReport {
  public:
-  std::string equation_latex() const override { return "dy = (A_0 + A x(t-h))\\,dt + B\\,dW_2"; }
+  std::string equation_latex(const Model&) const override { return "dy = (A_0 + A x(t-h))\\,dt + B\\,dW_2"; }
 
   std::string matrices_latex(const Model& model) const override {
     return rate_matrices_latex(model.observation.delayed().rate, model.observation.delay());
@@ -127,7 +127,8 @@ class DelayedReport final : public RateReport {
   std::string notation_latex() const override {
     return "\\paragraph{Notation.} $m_{i}$ is the estimate of the $i$-th state, $P_{ij}$ the error covariance, "
            "$K$ the gain and $dy_{r}$ the observation increments; the innovation compares $dy$ with the estimate "
-           "$m(t-h)$ of the delayed state. Each $dP$ is written as $E[(x-m)f^{T}] + E[f(x-m)^{T}]$, then the "
+           "$m(t-h)$ of the delayed state. Each $dP$ is written as $E[(x-m)f^{T}] + E[f(x-m)^{T}]$ "
+           "($J P + P J^{T}$, $J$ the Jacobian of $f$ at $m$, for the extended filters), then the "
            "diffusion term, then the correction $-K A \\Phi^{*} P$ (with $\\Phi^{*} = I$ for the filters without "
            "$\\Phi^{*}$), without merging like terms across the three parts.";
   }

@@ -18,4 +18,11 @@ GeneratedFilter PolynomialCode::c_filter(const Model& model, const FilterEquatio
   return w.result;
 }
 
+std::vector<std::string> PolynomialCode::c_templates() const {
+  // A linear h is written by the continuous module (polynomial_c_filter's delegation).
+  std::vector<std::string> names = continuous_observation_code().c_templates();
+  names.insert(names.end(), {"c/polynomial_filter.h.tmpl", "c/polynomial_filter.c.tmpl"});
+  return names;
+}
+
 }  // namespace pfgen::codegen

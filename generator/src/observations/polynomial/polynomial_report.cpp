@@ -13,7 +13,7 @@ namespace {
 
 class PolynomialReport final : public RateReport {
  public:
-  std::string equation_latex() const override { return "dy = h(x, t)\\,dt + B\\,dW_2"; }
+  std::string equation_latex(const Model&) const override { return "dy = h(x, t)\\,dt + B\\,dW_2"; }
 
   std::string matrices_latex(const Model& model) const override {
     const PolynomialObservation& observation = model.observation.polynomial();
@@ -29,7 +29,8 @@ class PolynomialReport final : public RateReport {
            "$K$ the gain $P E[J_h]^{T}(B B^{T})^{-1}$ ($J_h$ the Jacobian of $h$; at $m$ for the extended filter), "
            "$dy_{r}$ the observation increments and $L_{ij,r}$ the coefficient of $dy_{r} - E[h_{r}]\\,dt$ in "
            "$dP_{ij}$, $\\sum_k (P E[H_k] P)_{ij} (B B^{T})^{-1}_{kr}$ with $H_k$ the Hessian of $h_k$. Each $dP$ "
-           "is written as $E[(x-m)f^{T}] + E[f(x-m)^{T}]$, then the diffusion term, then "
+           "is written as $E[(x-m)f^{T}] + E[f(x-m)^{T}]$ ($J P + P J^{T}$, $J$ the Jacobian of $f$ at $m$, for "
+           "the extended filters), then the diffusion term, then "
            "$-P E[J_h]^{T}(B B^{T})^{-1} E[J_h] P$, without merging like terms across the three parts.";
   }
 

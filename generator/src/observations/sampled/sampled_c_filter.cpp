@@ -56,4 +56,9 @@ GeneratedFilter SampledCode::c_filter(const Model& model, const FilterEquations&
   return w.result;
 }
 
+std::vector<std::string> SampledCode::c_templates() const {
+  return {"c/sampled_filter.h.tmpl", "c/sampled_filter.c.tmpl", "c/partials/euler_square.h.tmpl",
+          "c/partials/euler_square.c.tmpl", "c/partials/predict_euler.c.tmpl", "c/partials/predict_heun.c.tmpl"};
+}
+
 }  // namespace pfgen::codegen

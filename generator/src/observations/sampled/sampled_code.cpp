@@ -6,7 +6,7 @@ namespace pfgen::codegen {
 
 void SampledCode::check_size(const Model& model, const FilterEquations& eq) const {
   if (eq.update.r() <= kMaxSampledOutputs) return;
-  throw CodegenError("filter '" + eq.name + "' of model " + model.name + " samples " + std::to_string(eq.update.r()) +
+  throw CodegenError(source_place(model) + "filter '" + eq.name + "' of model " + model.name + " samples " + std::to_string(eq.update.r()) +
                      " outputs; its generated update writes the Cholesky solve out for every output (O(r^3) "
                      "code: 1.2 MB of C++ at r = 64, 27 MB at r = 200, which a compiler takes minutes over), so "
                      "code generation takes at most " + std::to_string(kMaxSampledOutputs) +

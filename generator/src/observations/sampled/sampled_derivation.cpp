@@ -1,12 +1,14 @@
 // The sampled observation y_k = C0 + C x(t_k) + Uv v_k in the derivation: no observation term
 // between samples (the equations are the prediction), the Kalman update's polynomial parts at each
-// sample (sampled_update), and for cd-euler the dt^2 term of its Euler moment map.
+// sample (sampled_update), for cd-euler the dt^2 term of its Euler moment map, and the prediction's
+// sub-steps per period (substep_choice).
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_derivation.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/observations/sampled/sampled_exactness.hpp"
 #include "pfgen/observations/sampled/sampled_update.hpp"
+#include "pfgen/observations/sampled/substep_choice.hpp"
 
 namespace pfgen {
 namespace {
@@ -61,6 +63,7 @@ class SampledDerivation final : public ObservationDerivation {
     if (model.observation.sampled().is_polynomial() && is_extended_kalman(kind))
       eq.update = polynomial_sampled_update(model, eq.variables, true, eq.predicted_observation);
     if (uses_euler_map(kind)) eq.P_euler = euler_square_term(model, eq.variables);
+    set_prediction_substeps(model, eq);
   }
 
   // A sampled observation has no rate: its sample equation's C0 and C stand in the coefficient form.

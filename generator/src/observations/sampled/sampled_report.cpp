@@ -3,6 +3,7 @@
 // and its lines in the standalone document and the coefficient form.
 #include "pfgen/notation/latex_line_breaker.hpp"
 #include "pfgen/notation/latex_printer.hpp"
+#include "pfgen/notation/number_format.hpp"
 #include "pfgen/notation/rich_text.hpp"
 #include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/latex_matrix.hpp"
@@ -19,6 +20,17 @@ std::string index2(std::size_t i, std::size_t j) { return std::to_string(i + 1) 
 
 std::string substep_phrase(const SampledUpdate& u) {
   return std::to_string(u.substeps) + (u.substeps == 1 ? " sub-step" : " sub-steps");
+}
+
+// Why the prediction takes u.substeps (observations/sampled/substep_choice.hpp): chosen from the
+// prediction at the prior, or given and fewer than that rule asks for; empty otherwise.
+std::string substep_reason(const SampledUpdate& u) {
+  const std::string rule = "the prediction at the prior: rate " + three_digits(u.prior_rate) +
+                           " per unit of time, first period to 1 %";
+  if (u.substeps_chosen) return "chosen from " + rule + "; the model's substeps sets them";
+  if (u.advised_substeps > static_cast<double>(u.substeps))
+    return "fewer than the " + three_digits(u.advised_substeps) + " asked for by " + rule;
+  return {};
 }
 
 // How a polynomial c's update reads C and R (the Joseph form's, equal to P - K S K^T).
@@ -61,9 +73,10 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
     samples += ")";
   }
   out += "observation: sampled every T = " + printer.print(u.period) + ", y_k = " + samples + "; " +
-         substep_phrase(u) + " of dt = T/" + std::to_string(u.substeps) + " between samples\n\n";
+         substep_phrase(u) + " of dt = T/" + std::to_string(u.substeps) + " between samples" +
+         (substep_reason(u).empty() ? "" : " (" + substep_reason(u) + ")") + "\n\n";
   if (eq.P_euler.empty()) {
-    out += "prediction between samples (no observation term; dP terms: [E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion]):\n";
+    out += "prediction between samples (no observation term; dP terms: [" + moment_terms_text(eq) + "] + [diffusion]):\n";
     for (std::size_t i = 0; i < n; ++i)
       out += "dm" + std::to_string(i + 1) + " = (" + writer.print(eq.m_drift[i]) + ") dt\n";
     for (std::size_t i = 0; i < n; ++i)
@@ -71,8 +84,8 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
         out += "d" + vars.text_name(vars.P(i, j)) + " = (" + join_parts(writer, P_parts(eq, vars.upper_index(i, j))) +
                ") dt\n";
   } else {
-    out += "prediction over one sub-step dt (exact moments of x + f dt + g sqrt(dt) xi; dP terms: "
-           "[E[(x-m)f^T] + E[f(x-m)^T]] + [diffusion], then Cov(f)):\n";
+    out += "prediction over one sub-step dt (exact moments of x + f dt + g sqrt(dt) xi; dP terms: [" +
+           moment_terms_text(eq) + "] + [diffusion], then Cov(f)):\n";
     for (std::size_t i = 0; i < n; ++i) {
       const std::string m = vars.text_name(vars.m(i));
       out += m + "' = " + m + " + (" + writer.print(eq.m_drift[i]) + ") dt\n";
@@ -95,8 +108,8 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
       out += "PCt" + index2(i, a) + " = " + writer.print(u.PCt[i][a]) + "\n";
   for (std::size_t a = 0; a < r; ++a)
     for (std::size_t b = a; b < r; ++b)
-      out += "S" + index2(a, b) + " = " + writer.print(u.S[u.upper_index(a, b)]) + "\n";
-  out += "K = PCt S^-1\n";
+      out += "Pyy" + index2(a, b) + " = " + writer.print(u.S[u.upper_index(a, b)]) + "\n";
+  out += "K = PCt Pyy^-1\n";
   out += "m <- m + K (y - h)\n";
   out += "P <- (I - K C) P (I - K C)^T + K R K^T\n";
   out += "C = [";
@@ -129,9 +142,11 @@ std::string sampled_equations_latex(const FilterEquations& eq) {
   std::vector<std::string> prediction;
   const bool euler = !eq.P_euler.empty();
   out += euler ? "\\paragraph{Prediction over one sub-step $\\Delta = T/" + std::to_string(u.substeps) +
-                     "$} (exact moments of $x + f\\Delta + g\\sqrt{\\Delta}\\,\\xi$):\n"
+                     "$} (exact moments of $x + f\\Delta + g\\sqrt{\\Delta}\\,\\xi$" +
+                     (substep_reason(u).empty() ? "" : "; " + substep_reason(u)) + "):\n"
                : "\\paragraph{Prediction between samples} ($" + std::to_string(u.substeps) +
-                     "$ sub-steps per period $T = " + printer.print(u.period) + "$, no observation term):\n";
+                     "$ sub-steps per period $T = " + printer.print(u.period) + "$, no observation term" +
+                     (substep_reason(u).empty() ? "" : "; " + substep_reason(u)) + "):\n";
   for (std::size_t i = 0; i < n; ++i) {
     const std::string m = vars.latex_name(vars.m(i));
     prediction.push_back(euler ? latex_align_lines(m + "'", m + " + \\left(" + writer.print(eq.m_drift[i]) + "\\right)\\Delta")
@@ -240,6 +255,7 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   out.add("variables", variables);
   out.add("period", Json::string(printer.print(u.period)));
   out.add("substeps", Json::integer(u.substeps));
+  out.add("substeps_chosen", Json::boolean(u.substeps_chosen));
   out.add("prediction", prediction);
   out.add("update", update);
   return out;
@@ -255,9 +271,11 @@ class SampledReport final : public ObservationReport {
   std::string latex(const FilterEquations& eq) const override { return sampled_equations_latex(eq); }
   Json json(const Model& model, const FilterEquations& eq) const override { return sampled_equations_json(model, eq); }
 
-  // The document's display has read so since sampled observations came: dx's equation beside the
-  // continuous observation's, the sampled one's matrices below it.
-  std::string equation_latex() const override { return "dy = (A_0 + A x)\\,dt + B\\,dW_2"; }
+  // The samples' equation beside dx's, their matrices (or c) below it.
+  std::string equation_latex(const Model& model) const override {
+    return model.observation.sampled().is_polynomial() ? "y_k = c(x(t_k)) + U_v v_k"
+                                                       : "y_k = C_0 + C\\,x(t_k) + U_v v_k";
+  }
 
   std::string matrices_latex(const Model& model) const override {
     LatexPrinter printer;

@@ -16,7 +16,6 @@ SampledUpdate sampled_update(const SampledObservation& observation, const Filter
   auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
   SampledUpdate out;
   out.period = observation.period;
-  out.substeps = observation.substeps;
   out.C.assign(r, std::vector<Polynomial>(n));
   for (std::size_t a = 0; a < r; ++a)
     for (std::size_t k = 0; k < n; ++k) out.C[a][k] = Polynomial::constant(observation.C[a][k]);
@@ -74,7 +73,6 @@ SampledUpdate polynomial_sampled_update(const Model& model, const FilterVariable
 
   SampledUpdate out;
   out.period = observation.period;
-  out.substeps = observation.substeps;
   out.polynomial_samples = true;
   out.at_mean = at_mean;
   predicted.clear();

@@ -2,6 +2,7 @@
 
 #include <regex>
 
+#include "pfgen/codegen/backends/c/c_names.hpp"
 #include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
@@ -16,7 +17,11 @@ std::string c_symbol_prefix(const std::string& name_space, const std::string& mo
 }
 
 GeneratedFilter c_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
-  return observation_code(eq.observation).c_filter(model, eq, options);
+  try {
+    return observation_code(eq.observation).c_filter(model, eq, options);
+  } catch (const CPartNameError& e) {
+    throw CodegenError(source_place(model) + e.what());
+  }
 }
 
 }  // namespace pfgen::codegen

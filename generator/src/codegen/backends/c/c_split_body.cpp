@@ -6,6 +6,7 @@
 // arguments it does not read to void. Every operation is computed once, in the same order and with
 // the same temporaries' numbers as the unsplit body (split_plan), so results are bit-identical.
 #include "pfgen/codegen/backends/c/c_emitter.hpp"
+#include "pfgen/codegen/backends/c/c_names.hpp"
 
 namespace pfgen::codegen {
 
@@ -37,7 +38,7 @@ FunctionBody CEmitter::split_body(const ExpressionGraph& graph, const std::vecto
   if (passes) body.statements += "  " + scalar_type_ + " " + shared_array_ + "[" + std::to_string(plan.slots) + "];\n";
   std::size_t next = 0;
   for (std::size_t p = 0; p < plan.parts; ++p) {
-    const std::string part = symbol_prefix_ + "_" + signature.function + "_part" + std::to_string(p);
+    const std::string part = c_part_name(symbol_prefix_, signature.function, p);
     std::string reads, arithmetic, stores, writes;
     std::set<std::size_t> inputs;
     auto note_input = [&](std::size_t id) {
