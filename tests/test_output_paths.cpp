@@ -200,8 +200,10 @@ TEST_CASE("a model name too long for a file name is refused before any directory
     const auto codegen = run_pfgen({"codegen", dir.file("long.yaml"), "-o", dir.file("gen/sub"), "--language", language});
     CHECK(codegen.exit_code == 1);
     CHECK(count_lines(codegen.err) == 1);
-    CHECK(codegen.err.find("(300 characters) is longer than the file system takes (255 bytes a name); the model's name "
-                           "(300 characters) makes it: give the model a shorter name") != std::string::npos);
+    // C refuses the name before (its identifiers keep 63 significant characters); C++ for its files.
+    if (std::string(language) == "cpp")
+      CHECK(codegen.err.find("(300 characters) is longer than the file system takes (255 bytes a name); the model's "
+                             "name (300 characters) makes it: give the model a shorter name") != std::string::npos);
     CHECK(!std::filesystem::exists(dir.file("gen")));  // gen/sub was left behind
   }
   // A directory of -o too long for its file system, the model's name fine.
