@@ -34,7 +34,7 @@ const std::vector<BadModel>& bad_models() {
       {"syntax_double_operator.yaml", "drift", 1, 0, 4, "cannot parse 'x +* 2'"},
       {"syntax_in_diffusion_entry.yaml", "diffusion", 2, 1, 5, "cannot parse 'x1^'"},
       {"syntax_empty_expression.yaml", "drift", 1, 0, 4, "empty expression"},
-      {"syntax_unknown_function.yaml", "drift", 1, 0, 4, "no function \"frobnicate\""},
+      {"syntax_unknown_function.yaml", "drift", 1, 0, 4, "unknown function 'frobnicate'"},
       {"syntax_division_by_zero.yaml", "diffusion", 1, 1, 5, "division by zero"},
       {"complex_coefficient.yaml", "drift", 1, 0, 4, "is not real"},
       {"huge_exponent_literal.yaml", "drift", 1, 0, 4, "exponent of '1e99999999999' is too large"},

@@ -12,6 +12,7 @@
 #include "pfgen/model/expansion_bound.hpp"
 #include "pfgen/model/model_builder.hpp"
 #include "pfgen/model/model_error.hpp"
+#include "pfgen/model/yaml_model_loader.hpp"
 #include "support/dense_cubic_model.hpp"
 
 using namespace pfgen;
@@ -127,4 +128,85 @@ TEST_CASE("the derivation budget refuses what would run away and passes the dens
   for (std::size_t i = 0; i < 20; ++i)
     for (std::size_t j = i; j < 20; ++j) G_upper.push_back(Polynomial::from_ex(dense.diffusion.G[i][j], dense.states));
   CHECK_NOTHROW(check_derivation_budget(dense, DerivationInputs{true, f, J, G_upper, "diffusion", 20}));
+}
+
+namespace {
+
+// Two states x1, x2 observed through polynomial rows `h` (noise B), or sampled through `c`.
+Model observed_through(const std::vector<std::string>& rows, bool sampled, const std::string& B = "") {
+  std::string list;
+  for (const auto& row : rows) list += (list.empty() ? "\"" : ", \"") + row + "\"";
+  std::string noise = B;
+  if (noise.empty()) {
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      noise += r ? ", [" : "[";
+      for (std::size_t s = 0; s < rows.size(); ++s) noise += std::string(s ? ", " : "") + (r == s ? "\"1\"" : "\"0\"");
+      noise += "]";
+    }
+  }
+  const std::string observation =
+      sampled ? "observation:\n  sampled: {period: 0.1, c: [" + list + "], Uv: [" + noise + "]}\n"
+              : "observation:\n  h: [" + list + "]\n  B: [" + noise + "]\n";
+  return load_model_text("name: obs\nstates: [x1, x2]\ndrift: [\"-x1\", \"-x2\"]\n"
+                         "diffusion: [[\"1\", \"0\"], [\"0\", \"1\"]]\n" + observation, "obs.yaml");
+}
+
+// The field and the start of the message of what derive_filter refuses, or "derived".
+std::string refusal(const Model& model, FilterKind kind) {
+  try {
+    derive_filter(model, kind);
+    return "derived";
+  } catch (const ModelError& e) {
+    return e.field() + ": " + e.message();
+  }
+}
+
+}  // namespace
+
+TEST_CASE("the derivation budget counts a polynomial h and a sampled c as it counts the drift",
+          "[derivation_budget][integration]") {
+  // h = x1^20 x2^20 derived for more than 30 s; its correction's products are counted first.
+  const Model h20 = observed_through({"x1^20*x2^20"}, false);
+  for (FilterKind kind : {FilterKind::Optimal, FilterKind::Ukf})
+    CHECK(refusal(h20, kind).rfind("observation.h: with 2 states, the filter's gain and correction would take up to "
+                                   "8176740 products of terms, above the limit of 4000000", 0) == 0);
+  CHECK(refusal(h20, FilterKind::Ekf) == "derived");  // at m: J(m) has one term a row
+  // x1^50 x2^50 died with bad_alloc, x1^300 x2^300 reached 2.6 GB first: every filter's frame takes
+  // E[h], the extended kind's too.
+  CHECK(refusal(observed_through({"x1^50*x2^50"}, false), FilterKind::Optimal)
+            .rfind("observation.h: the Gaussian expectations of the observation up to this row", 0) == 0);
+  for (FilterKind kind : {FilterKind::Optimal, FilterKind::Ekf, FilterKind::Ukf}) {
+    INFO(filter_kind_name(kind));
+    CHECK(refusal(observed_through({"x1", "x1^300*x2^300"}, false), kind)
+              .rfind("observation.h: the Gaussian expectations of the observation up to this row", 0) == 0);
+  }
+  try {
+    derive_filter(observed_through({"x1", "x1^300*x2^300"}, false), FilterKind::Ekf);
+    FAIL("x1^300 x2^300 was derived");
+  } catch (const ModelError& e) {
+    CHECK(e.row() == 2);
+    CHECK(e.file() == "obs.yaml");
+  }
+  // A sampled c: its update takes E[c_a c_b] at every kind.
+  for (FilterKind kind : {FilterKind::CdOptimal, FilterKind::CdEkf})
+    CHECK(refusal(observed_through({"x1^50*x2^50"}, true), kind)
+              .rfind("observation.sampled.c: the Gaussian expectations of the observation", 0) == 0);
+  CHECK(refusal(observed_through({"x1^30*x2^30"}, true), FilterKind::CdOptimal)
+            .rfind("observation.sampled.c: with 2 states, the filter's update would take up to", 0) == 0);
+  // Inside: the examples' degrees and well beyond.
+  CHECK(refusal(observed_through({"x1^6*x2^6", "x1^2 + x2^2"}, false), FilterKind::Optimal) == "derived");
+  CHECK(refusal(observed_through({"x1^6*x2^6"}, true), FilterKind::CdOptimal) == "derived");
+
+  // The gain's R^-1 couples rows only where B B^T does: two rows of degree 14 pass with
+  // independent noises and are refused when one noise drives both.
+  const std::vector<std::string> two = {"x1^14*x2^14", "x1^14*x2^14 + x1"};
+  auto budget = [&](const std::string& B) {
+    const Model model = observed_through(two, false, B);
+    std::vector<Polynomial> rows;
+    for (const auto& h : model.observation.polynomial().h) rows.push_back(Polynomial::from_ex(h, model.states));
+    check_observation_budget(model, ObservationPolynomials{rows, "observation.h", false, model.observation.polynomial().B},
+                             true);
+  };
+  CHECK_NOTHROW(budget("[\"1\", \"0\"], [\"0\", \"1\"]"));
+  CHECK_THROWS_WITH(budget("[\"1\", \"0\"], [\"1\", \"1\"]"), Catch::Contains("above the limit of 4000000"));
 }

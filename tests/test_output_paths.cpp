@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "output_paths.hpp"
 #include "support/cli_helpers.hpp"
 
 using namespace pfgen_test;
@@ -186,6 +187,52 @@ TEST_CASE("codegen writes all of its headers or none", "[output_paths][integrati
   CHECK(std::vector<std::string>{"ekf.hpp"} ==
         std::vector<std::string>{
             std::filesystem::directory_iterator(dir.file("out/basin2006_quadratic"))->path().filename().string()});
+}
+
+TEST_CASE("a model name too long for a file name is refused before any directory is made",
+          "[output_paths][integration]") {
+  TempDir dir;
+  const std::string name(300, 'm');
+  write_file(dir.file("long.yaml"), "name: " + name + "\nstates: [x]\ndrift: [\"-x\"]\ndiffusion: [[\"1\"]]\n"
+                                    "observation: {A: [[\"1\"]], B: [[\"1\"]]}\ninitial: {x0: [1], m0: [0], P0: [[1]]}\n");
+  for (const char* language : {"cpp", "c"}) {
+    INFO(language);
+    const auto codegen = run_pfgen({"codegen", dir.file("long.yaml"), "-o", dir.file("gen/sub"), "--language", language});
+    CHECK(codegen.exit_code == 1);
+    CHECK(count_lines(codegen.err) == 1);
+    // C refuses the name before (its identifiers keep 63 significant characters); C++ for its files.
+    if (std::string(language) == "cpp")
+      CHECK(codegen.err.find("(300 characters) is longer than the file system takes (255 bytes a name); the model's "
+                             "name (300 characters) makes it: give the model a shorter name") != std::string::npos);
+    CHECK(!std::filesystem::exists(dir.file("gen")));  // gen/sub was left behind
+  }
+  // A directory of -o too long for its file system, the model's name fine.
+  const auto deep = run_pfgen({"codegen", example("basin2006_quadratic.yaml"), "-o", dir.file("gen/" + std::string(300, 'd'))});
+  CHECK(deep.exit_code == 1);
+  CHECK(deep.err.find("is longer than the file system takes (255 bytes a name)\n") != std::string::npos);
+  CHECK(!std::filesystem::exists(dir.file("gen")));
+  // simulate names no file after the model (its plugin's is a hash): the name runs, and no
+  // directory is made for an -o that has none.
+  const auto simulate = run_pfgen({"simulate", dir.file("long.yaml"), "--T", "0.02", "--dt", "0.01", "--runs", "1",
+                                   "--cache-dir", dir.file("cache"), "-q", "-o", dir.file("gen/sub/out.csv")});
+  CHECK(simulate.exit_code == 1);
+  CHECK(!std::filesystem::exists(dir.file("gen")));
+  CHECK(!std::filesystem::exists(dir.file("cache")));
+  CHECK(run_pfgen({"simulate", dir.file("long.yaml"), "--T", "0.02", "--dt", "0.01", "--runs", "1", "--cache-dir",
+                   dir.file("cache"), "-q"}).exit_code == 0);
+}
+
+TEST_CASE("creating -o's directories fails whole: what was made is removed", "[output_paths][unit]") {
+  TempDir dir;
+  std::filesystem::create_directories(dir.file("a"));
+  std::error_code error;
+  // x and y are made, then the last name is too long for the file system.
+  CHECK(!pfgen::cli::create_directories_or_none(dir.file("a/x/y/" + std::string(300, 'd')), error));
+  CHECK(error);
+  CHECK(!std::filesystem::exists(dir.file("a/x")));
+  CHECK(std::filesystem::is_directory(dir.file("a")));
+  CHECK(pfgen::cli::create_directories_or_none(dir.file("a/x/y"), error));
+  CHECK(std::filesystem::is_directory(dir.file("a/x/y")));
 }
 
 TEST_CASE("an output that is the process's own standard output is written after what it printed, not over it",

@@ -24,6 +24,7 @@
 #include "pfgen/printing/latex_document.hpp"
 #include "pfgen/printing/noise_report.hpp"
 #include "pfgen_support/atomic_file.hpp"
+#include "pfgen_support/quoted_text.hpp"
 
 namespace pfgen::cli {
 namespace {
@@ -116,6 +117,17 @@ void check_code_paths(const Model& model, const CodegenJob& job, const std::stri
   std::vector<NamedPath> read;
   if (!model_path.empty()) read.push_back({"the model file", model_path});
   check_distinct_outputs(read, written);
+  // A 300-character model name failed as "cannot create directory", after making the ones above.
+  for (const NamedPath& file : written)
+    if (auto name = too_long_name(file.path)) {
+      const bool from_model = name->name.find(model.name) != std::string::npos;
+      throw CliValueError(file.role + ": the name " + pfgen_support::quoted(name->name) +
+                          " is longer than the file system takes (" +
+                          std::to_string(name->limit) + " bytes a name)" +
+                          (from_model ? "; the model's name (" + std::to_string(model.name.size()) +
+                                            " characters) makes it: give the model a shorter name"
+                                      : ""));
+    }
 }
 
 std::vector<codegen::GeneratedFilter> generate_code(const Model& model, const CodegenJob& job) {
@@ -135,8 +147,8 @@ void write_code(const std::string& output_dir, const std::vector<codegen::Genera
   for (const auto& output : outputs) {  // one directory, DIR/<model>
     const std::filesystem::path directory = std::filesystem::path(output.first).parent_path();
     std::error_code error;
-    std::filesystem::create_directories(directory, error);
-    if (error) throw CliValueError("-o: cannot create directory '" + directory.string() + "'");
+    if (!create_directories_or_none(directory, error))
+      throw CliValueError("-o: cannot create directory '" + directory.string() + "': " + error.message());
   }
   try {
     pfgen_support::write_files_together(outputs);

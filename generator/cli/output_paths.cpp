@@ -1,6 +1,9 @@
 #include "output_paths.hpp"
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <vector>
 
 #include "cli_options.hpp"
 
@@ -65,6 +68,27 @@ void check_output_file(const NamedPath& output) {
   // removed an empty DIR.png (the stale-plot removal) before gnuplot failed on it.
   if (std::filesystem::is_directory(output.path))
     throw CliValueError(output.role + ": '" + output.path + "' is a directory, not a file");
+}
+
+std::optional<TooLongName> too_long_name(const std::string& path) {
+  fs::path existing = fs::path(path).parent_path();
+  std::error_code error;
+  while (!existing.empty() && !fs::is_directory(existing, error)) existing = existing.parent_path();
+  const long limit = pathconf(existing.empty() ? "." : existing.c_str(), _PC_NAME_MAX);
+  const std::size_t most = limit > 0 ? static_cast<std::size_t>(limit) : 255;
+  for (const fs::path& part : fs::path(path))
+    if (part.native().size() > most) return TooLongName{part.native(), most};
+  return std::nullopt;
+}
+
+bool create_directories_or_none(const fs::path& directory, std::error_code& error) {
+  // The directories this call would make, deepest last.
+  std::vector<fs::path> missing;
+  std::error_code ignored;
+  for (fs::path p = directory; !p.empty() && !fs::exists(p, ignored); p = p.parent_path()) missing.push_back(p);
+  if (fs::create_directories(directory, error) || !error) return true;
+  for (const fs::path& made : missing) fs::remove(made, ignored);  // deepest first; only empty ones go
+  return false;
 }
 
 }  // namespace pfgen::cli

@@ -5,7 +5,10 @@
 // run. Two spellings name the same file when they are the same existing file
 // (std::filesystem::equivalent: ./x, a/../x, symbolic and hard links), or, when not both exist,
 // when their weakly_canonical absolute paths are equal.
+#include <filesystem>
+#include <optional>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace pfgen::cli {
@@ -26,5 +29,17 @@ void check_distinct_outputs(const std::vector<NamedPath>& inputs, const std::vec
 // does not exist, or it is itself a directory. Checked before any work, so that no result is
 // printed and then lost.
 void check_output_file(const NamedPath& output);
+
+// A name in `path` longer than the file system takes (pathconf's NAME_MAX where the path would
+// go, 255 bytes on most), which no file or directory can have; or nothing.
+struct TooLongName {
+  std::string name;
+  std::size_t limit;  // bytes
+};
+std::optional<TooLongName> too_long_name(const std::string& path);
+
+// fs::create_directories, removing again what it made when it fails part way ("-o gen/sub" with a
+// name too long below it left gen/sub behind); false then, with `error` set.
+bool create_directories_or_none(const std::filesystem::path& directory, std::error_code& error);
 
 }  // namespace pfgen::cli

@@ -71,7 +71,12 @@ ex value_of(const ex& e, const GiNaC::exmap& values) {
       call.let_op(k) = value_of(e.op(k), values);
       numbers = numbers && GiNaC::is_a<numeric>(call.op(k));
     }
-    return numbers ? settled(call.eval()) : call;
+    if (!numbers) return call;
+    // lgamma is C's log|Gamma(x)|, which the generated code calls; GiNaC's is the complex
+    // log Gamma(x), not real where Gamma(x) < 0 (x in (-1, 0), (-3, -2), ...).
+    if (GiNaC::ex_to<GiNaC::function>(e).get_name() == "lgamma" && GiNaC::ex_to<numeric>(call.op(0)).is_real())
+      return settled(GiNaC::log(GiNaC::abs(GiNaC::tgamma(call.op(0)))));
+    return settled(call.eval());
   }
   if (GiNaC::is_a<GiNaC::constant>(e)) return e.evalf();
   return e.subs(values).evalf();  // nothing else reaches here from a model; kept total

@@ -11,8 +11,9 @@ namespace {
 const std::pair<Function, const char*> kFunctionNames[] = {
     {Function::Sin, "sin"},   {Function::Cos, "cos"},   {Function::Tan, "tan"},   {Function::Exp, "exp"},
     {Function::Log, "log"},   {Function::Sinh, "sinh"}, {Function::Cosh, "cosh"}, {Function::Tanh, "tanh"},
-    {Function::Asin, "asin"}, {Function::Acos, "acos"}, {Function::Atan, "atan"}, {Function::Abs, "abs"},
-    {Function::Sqrt, "sqrt"}, {Function::Pow, "pow"}};
+    {Function::Asin, "asin"}, {Function::Acos, "acos"}, {Function::Atan, "atan"}, {Function::Atan2, "atan2"},
+    {Function::Asinh, "asinh"}, {Function::Acosh, "acosh"}, {Function::Atanh, "atanh"}, {Function::Abs, "abs"},
+    {Function::Tgamma, "tgamma"}, {Function::Lgamma, "lgamma"}, {Function::Sqrt, "sqrt"}, {Function::Pow, "pow"}};
 }  // namespace
 
 const char* function_name(Function function) {

@@ -60,9 +60,17 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
     throw CodegenError(source_place(model) + "filter '" + eq.name + "' of model " + model.name + " " + text);
   }
   observation_code(eq.observation).check_size(model, eq);
-  switch (options.language) {
-    case Language::Cpp: return cpp_filter_code(model, eq, options);
-    case Language::C: return c_filter_code(model, eq, options);
+  try {
+    switch (options.language) {
+      case Language::Cpp: return cpp_filter_code(model, eq, options);
+      case Language::C: return c_filter_code(model, eq, options);
+    }
+  } catch (const CodegenError& e) {
+    // What the code of one equation refuses (a constant out of the scalar's range, ...) knows
+    // neither the filter nor the model: say which, as the checks above do.
+    const std::string what = e.what();
+    if (what.rfind("filter '", 0) == 0) throw;
+    throw CodegenError("filter '" + eq.name + "' of model " + model.name + " (" + model.source + "): " + what);
   }
   throw CodegenError("unknown output language");
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "pfgen/kinds/model_functions.hpp"
 #include "pfgen/notation/text_printer.hpp"
 
 namespace pfgen::codegen {
@@ -242,7 +243,7 @@ std::size_t GraphBuilder::expression(const GiNaC::ex& e) {
     // A model's functions of time and parameters; sqrt and pow are powers in GiNaC, never functions.
     const std::optional<Function> function = function_named(name);
     if (!function || *function == Function::Sqrt || *function == Function::Pow)
-      throw CodegenError("function '" + name + "' has no C++ counterpart in <cmath>");
+      throw CodegenError("function '" + name + "' is not one a model may call (" + model_function_list() + ")");
     std::vector<std::size_t> args;
     for (std::size_t k = 0; k < e.nops(); ++k) args.push_back(expression(e.op(k)));
     return graph_.call(*function, args);

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <set>
+#include <map>
 
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/model/model_error.hpp"
@@ -64,7 +64,8 @@ double count_pairings(const std::vector<std::uint32_t>& alpha) {
 // Work so far, and the monomials whose expectation the recursion would already hold.
 class ExpectationCount {
  public:
-  // Terms of E[p], adding those of the recursion's intermediate expectations to the total.
+  // Terms of E[p] not held before (the drift's bounds were set on this count), adding those of
+  // the recursion's intermediate expectations to the total.
   double add(const Polynomial& p) {
     double terms = 0;
     for (const auto& [monomial, coefficient] : p.terms()) {
@@ -78,17 +79,29 @@ class ExpectationCount {
     }
     return terms;
   }
+  // Terms of E[p] (at most: the sum of its monomials' expectations', held before or not), after
+  // add(p): what a product with E[p] multiplies.
+  double terms(const Polynomial& p) {
+    add(p);
+    double terms = 0;
+    for (const auto& [monomial, coefficient] : p.terms()) {
+      const auto held = held_.find(monomial);
+      if (held != held_.end()) terms += held->second;
+    }
+    return terms;
+  }
   double total() const { return total_; }
 
  private:
   // The terms of E[m], when the recursion would compute it now; 0 when it already holds it.
   double count(const Monomial& m) {
-    if (!held_.insert(m).second) return 0;
-    const double terms = gaussian_moment_terms(m, kMaxExpectationTerms - total_);
-    total_ += terms;
-    return terms;
+    const auto [it, added] = held_.emplace(m, 0.0);
+    if (!added) return 0;
+    it->second = gaussian_moment_terms(m, kMaxExpectationTerms - total_);
+    total_ += it->second;
+    return it->second;
   }
-  std::set<Monomial> held_;
+  std::map<Monomial, double> held_;  // each monomial's E[m] terms
   double total_ = 0;
 };
 
@@ -158,6 +171,82 @@ void check_derivation_budget(const Model& model, const DerivationInputs& inputs)
            "with " + std::to_string(n) + " states (" + std::to_string(inputs.observed_states) +
                " observed), the covariance equations would have up to " + count_text(equations) +
                " terms, above the limit of " + count_text(kMaxEquationTerms));
+}
+
+void check_observation_budget(const Model& model, const ObservationPolynomials& observation, bool gaussian) {
+  if (observation.rows.empty()) return;
+  const std::size_t n = model.n(), p = observation.rows.size();
+  auto refuse = [&](std::optional<int> row, const std::string& message) {
+    ModelError error(observation.field, message, row);
+    error.set_file(model.source);
+    throw error;
+  };
+  ExpectationCount E;
+  auto check = [&](std::size_t r) {
+    if (E.total() > kMaxExpectationTerms)
+      refuse(static_cast<int>(r + 1),
+             "the Gaussian expectations of the observation up to this row need more than " +
+                 count_text(kMaxExpectationTerms) + " terms in all (the expectation E[x^a] of every monomial on the "
+                 "way is kept); lower the degrees or the number of states multiplied together");
+  };
+  // The sampled update is Gaussian at every kind (the extended kind's is computed besides).
+  const bool expectations = gaussian || observation.sampled;
+  std::vector<double> predicted(p, 0.0), cross(p, 0.0), hessian(p, 0.0);
+  for (std::size_t r = 0; r < p; ++r) {
+    const Polynomial& row = observation.rows[r];
+    predicted[r] = E.terms(row);  // every filter's frame: E[h]
+    check(r);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Polynomial d = row.derivative(static_cast<std::uint32_t>(k));
+      // A cross-covariance entry sum_k P_ik E[J_rk] has their terms.
+      cross[r] += expectations ? E.terms(d) : static_cast<double>(d.terms().size());
+      check(r);
+      if (observation.sampled || !gaussian || row.degree() < 2) continue;
+      for (std::size_t b = 0; b < n; ++b) {
+        hessian[r] += E.terms(d.derivative(static_cast<std::uint32_t>(b)));
+        check(r);
+      }
+    }
+  }
+  double equations = 0;
+  const double upper = static_cast<double>(n) * static_cast<double>(n + 1) / 2;
+  if (observation.sampled) {
+    // S_ab = E[c_a c_b] - E[c_a] E[c_b] (+ C P C^T at the mean): products of whole rows.
+    for (std::size_t a = 0; a < p; ++a)
+      for (std::size_t b = a; b < p; ++b) {
+        const double product = static_cast<double>(observation.rows[a].terms().size()) *
+                               static_cast<double>(observation.rows[b].terms().size());
+        equations += predicted[a] * predicted[b] + cross[a] * cross[b] + product;
+        if (equations > kMaxObservationProducts) break;
+        E.add(observation.rows[a] * observation.rows[b]);
+        check(a);
+      }
+  } else {
+    // The correction K E[J] P, entry (i, j): sum_s gain_is cross_js, the gain entry gain_is a sum
+    // of cross_ir over the rows r that R^-1 = (B B^T)^-1 couples with s (those R links to s,
+    // directly or through others); dP's dy term P E[H_r] P for each such pair.
+    const ExMatrix R = multiply_by_transpose(observation.noise);
+    std::vector<std::size_t> group(p);
+    for (std::size_t r = 0; r < p; ++r) group[r] = r;
+    for (bool merged = true; merged;) {
+      merged = false;
+      for (std::size_t r = 0; r < p; ++r)
+        for (std::size_t s = 0; s < p; ++s)
+          if (!R[r][s].is_zero() && group[r] != group[s]) {
+            group[r] = group[s] = std::min(group[r], group[s]);
+            merged = true;
+          }
+    }
+    for (std::size_t s = 0; s < p; ++s)
+      for (std::size_t r = 0; r < p; ++r)
+        if (group[r] == group[s]) equations += upper * (cross[r] * cross[s] + hessian[r]);
+  }
+  if (equations > kMaxObservationProducts)
+    refuse(std::nullopt, "with " + std::to_string(n) + " states, the filter's " +
+                             (observation.sampled ? "update" : "gain and correction") + " would take up to " +
+                             count_text(equations) + " products of terms, above the limit of " +
+                             count_text(kMaxObservationProducts) + "; lower the degrees or the number of states multiplied "
+                             "together");
 }
 
 std::size_t observed_states(const ExMatrix& observation_matrix) {

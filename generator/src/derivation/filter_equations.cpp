@@ -144,6 +144,9 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
   if (auto reason = unsupported_reason(model, kind))
     throw std::invalid_argument("filter '" + filter_kind_name(kind) + "' " + *reason + " in the model");
   const std::size_t n = model.n();
+  // Before the frame, which takes the observation's first expectations.
+  check_observation_budget(model, observation_derivation(model.observation.kind()).budget_polynomials(model),
+                           !is_extended_kalman(kind));
   FilterEquations eq = equations_frame(model);
   eq.name = filter_kind_name(kind);
   eq.description = filter_kind_description(kind);
@@ -181,6 +184,8 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
 
 FilterEquations derive_user_filter(const Model& model, const UserFilter& filter) {
   const std::size_t n = model.n();
+  // Its frame takes the observation's expectations as a built-in kind's does.
+  check_observation_budget(model, observation_derivation(model.observation.kind()).budget_polynomials(model), false);
   FilterEquations eq = equations_frame(model);
   eq.name = filter.name;
   // The model file's words, printed as written (no math spans).

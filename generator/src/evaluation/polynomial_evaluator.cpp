@@ -34,6 +34,17 @@ GiNaC::ex PolynomialEvaluator::exact(const Polynomial& p) const {
   return sum;
 }
 
+double PolynomialEvaluator::operator()(const Polynomial& p, const std::string& what) const {
+  GiNaC::ex value;
+  try {
+    value = exact(p);
+  } catch (const std::exception&) {  // GiNaC's pole_error for 1/0 or tgamma(-1), CLN's overflow
+    throw EvaluationError(what + " cannot be computed at this point (a pole of a function, a division by zero or "
+                                 "an overflow)");
+  }
+  return rounded(value, what);
+}
+
 double PolynomialEvaluator::rounded(const GiNaC::ex& exact_value, const std::string& what) {
   GiNaC::ex value = exact_value.evalf();
   if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real())

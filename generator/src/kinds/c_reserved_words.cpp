@@ -1,5 +1,7 @@
 #include <set>
+#include <vector>
 
+#include "pfgen/kinds/model_functions.hpp"
 #include "pfgen/kinds/output_languages.hpp"
 
 namespace pfgen {
@@ -17,10 +19,11 @@ std::optional<std::string> c_reserved_name_problem(const std::string& name) {
     return "'" + name + "' is a keyword of C23 and of gcc's default C (gnu17), so the generated C code could not use it";
   static const std::set<std::string> functions = [] {
     std::set<std::string> names;
-    for (const char* f : {"sin", "cos", "tan", "exp", "log", "sinh", "cosh", "tanh", "asin", "acos", "atan", "fabs",
-                          "sqrt", "pow"}) {
+    std::vector<std::string> called = {"sqrt", "pow"};
+    for (const ModelFunction& f : model_functions()) called.push_back(f.c_name);
+    for (const std::string& f : called) {
       names.insert(f);
-      names.insert(std::string(f) + "f");
+      names.insert(f + "f");
     }
     return names;
   }();

@@ -2,6 +2,8 @@
 
 #include <cctype>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
 #include <sstream>
@@ -159,6 +161,23 @@ std::optional<std::string> double_range_problem(const GiNaC::numeric& value) {
   if (magnitude > GiNaC::numeric(std::numeric_limits<double>::max()))
     return "is beyond the largest double (about 1.8e308)";
   return std::nullopt;
+}
+
+std::string approximate_text(const GiNaC::numeric& value) {
+  std::ostringstream out;
+  out << GiNaC::ex(value).evalf();
+  const std::string text = out.str();
+  const auto exponent = text.find('E');
+  if (exponent == std::string::npos) return text;
+  // The mantissa, a double however far the exponent is out of double's range, rounded to three
+  // digits (9.9999999999999999999E-321 is 1.0E-320); its rounding may carry into the exponent.
+  char mantissa[32];
+  std::snprintf(mantissa, sizeof mantissa, "%.2e", std::strtod(text.substr(0, exponent).c_str(), nullptr));
+  std::string rounded = mantissa;
+  auto e = rounded.find('e');
+  while (rounded[e - 1] == '0' && rounded[e - 2] != '.') rounded.erase(--e, 1);  // 1.00 as GiNaC's 1.0
+  const long power = std::strtol(text.c_str() + exponent + 1, nullptr, 10) + std::strtol(rounded.c_str() + e + 1, nullptr, 10);
+  return rounded.substr(0, e) + "E" + std::to_string(power);
 }
 
 }  // namespace pfgen

@@ -12,6 +12,7 @@
 
 #include "pfgen/algebra/numeric_value.hpp"
 #include "pfgen/kinds/filter_kinds.hpp"
+#include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/model/expansion_bound.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/model/model_filters.hpp"
@@ -155,6 +156,25 @@ void validate_names(const Model& model) {
   for (std::size_t i = 0; i < model.state_names.size(); ++i)
     check(model.state_names[i], "states", one_based(i));
   for (const auto& p : model.parameters) check(p.name, "parameters." + p.name, std::nullopt);
+}
+
+// A number a double holds, as every number in an expression must be (expression_parser): 1e-310
+// would be 0 in eval, the generated code and simulate, 1e400 infinite.
+void require_double_range(const GiNaC::numeric& value, const std::string& field, std::optional<int> row = {},
+                          std::optional<int> column = {}) {
+  if (auto problem = double_range_problem(value))
+    throw ModelError(field, "the value, about " + approximate_text(value) + ", " + *problem, row, column);
+}
+
+void validate_numbers(const Model& model) {
+  for (const auto& p : model.parameters) require_double_range(p.default_value, "parameters." + p.name);
+  if (!model.initial) return;
+  const InitialConditions& init = *model.initial;
+  for (std::size_t i = 0; i < init.x0.size(); ++i) require_double_range(init.x0[i], "initial.x0", one_based(i));
+  for (std::size_t i = 0; i < init.m0.size(); ++i) require_double_range(init.m0[i], "initial.m0", one_based(i));
+  for (std::size_t i = 0; i < init.P0.size(); ++i)
+    for (std::size_t j = 0; j < init.P0[i].size(); ++j)
+      require_double_range(init.P0[i][j], "initial.P0", one_based(i), one_based(j));
 }
 
 void validate_diffusion(const Model& model, const Diffusion& d, const std::string& g_field,
@@ -545,6 +565,7 @@ std::optional<std::string> identifier_problem(const std::string& name) {
 
 void validate_model(const Model& model) {
   validate_names(model);
+  validate_numbers(model);
   std::size_t n = model.n();
   if (model.drift.size() != n)
     throw ModelError("drift", "expected " + std::to_string(n) + " entries (one per state), found " +

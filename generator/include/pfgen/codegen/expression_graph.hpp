@@ -29,7 +29,11 @@ enum class OpKind { Input, Constant, Add, Sub, Mul, Div, Neg, Call, ZeroWhereZer
 
 // The functions generated code calls: the model file's functions that every output language has,
 // and sqrt and pow for non-integer powers. Each backend spells them its own way.
-enum class Function { Sin, Cos, Tan, Exp, Log, Sinh, Cosh, Tanh, Asin, Acos, Atan, Abs, Sqrt, Pow };
+// Every function a model may call (kinds/model_functions.hpp), then the powers GiNaC holds as such.
+enum class Function {
+  Sin, Cos, Tan, Exp, Log, Sinh, Cosh, Tanh, Asin, Acos, Atan, Atan2, Asinh, Acosh, Atanh, Abs, Tgamma, Lgamma,
+  Sqrt, Pow
+};
 // "sin", ..., "sqrt", "pow": the function's name in a model file.
 const char* function_name(Function function);
 // The function of that name, if it has one (GiNaC's and the model file's names).

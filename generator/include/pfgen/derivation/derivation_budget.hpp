@@ -18,6 +18,9 @@ namespace pfgen {
 
 inline constexpr double kMaxExpectationTerms = 250000;  // terms of all E[x^a] the recursion holds
 inline constexpr double kMaxEquationTerms = 2000000;    // terms of the m and P equations
+// Products of two terms that a polynomial observation's correction or a sampled c's update take
+// (each a product of coefficients, about 1 us and 40 bytes: about 5 s and 150 MB at the limit).
+inline constexpr double kMaxObservationProducts = 4000000;
 
 // The number of terms of E[x^alpha] for x ~ N(m, P), as a polynomial in m and P: one per way to
 // pair some of alpha's factors (P_ij, P_ii for a pair within one state) and leave the rest as m's.
@@ -43,5 +46,22 @@ std::size_t observed_states(const std::vector<Polynomial>& observation, std::siz
 
 // Throws ModelError (file, field, row) when the derivation would go beyond either limit.
 void check_derivation_budget(const Model& model, const DerivationInputs& inputs);
+
+// An observation through polynomials in the states, whose expectations the derivation takes: a
+// polynomial h (dy = h dt + B dW2) or a sampled c (y_k = c(x(t_k)) + Uv v_k). Empty for a linear one.
+struct ObservationPolynomials {
+  std::vector<Polynomial> rows;  // h_1..h_p or c_1..c_r
+  std::string field;             // "observation.h", "observation.sampled.c"
+  bool sampled = false;          // c: every kind's update takes E[c_a c_b] (S = Cov(c)) and E[J_c]
+  ExMatrix noise;                // h's B: the gain's R^-1 = (B B^T)^-1 couples some rows; empty for c
+};
+
+// The same limits for what the observation adds, checked before any of it is computed (a filter's
+// frame takes E[h] first): the Gaussian expectations of the rows, of their derivatives (the gain
+// P E[J]^T) and second derivatives (dP's dy term P E[H] P) or of the products c_a c_b, and the
+// terms of the products that make the correction (K E[J] P) or S's C P C^T. `gaussian`: the
+// kind's observation terms are expectations (the extended kinds read h at m). Throws ModelError
+// naming `observation.field`.
+void check_observation_budget(const Model& model, const ObservationPolynomials& observation, bool gaussian);
 
 }  // namespace pfgen

@@ -4,6 +4,7 @@
 // and the exactness diagnostic call the model's part and never ask which kind it is.
 #include <cstddef>
 
+#include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/drift_coefficients.hpp"
 #include "pfgen/derivation/exactness.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
@@ -22,6 +23,9 @@ class ObservationDerivation {
   // The states the observation sees: its correction has one term per pair of them (the derivation
   // budget counts them before deriving).
   virtual std::size_t observed_states(const Model& model) const = 0;
+  // The polynomials whose expectations the observation's terms take, for the derivation budget
+  // (check_observation_budget): a polynomial h or sampled c; none for a linear observation.
+  virtual ObservationPolynomials budget_polynomials(const Model&) const { return {}; }
   // The exactness diagnostic of a Gaussian-closure kind (the risk-sensitive and unscented kinds
   // have their own, exactness.cpp).
   virtual ExactnessReport exactness(const Model& model, FilterKind kind) const = 0;

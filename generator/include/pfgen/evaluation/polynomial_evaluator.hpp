@@ -25,7 +25,7 @@ class PolynomialEvaluator {
   // The value before rounding: exact where the inputs are.
   GiNaC::ex exact(const Polynomial& p) const;
   // Rounded; EvaluationError naming `what` when it is not a real, finite number.
-  double operator()(const Polynomial& p, const std::string& what) const { return rounded(exact(p), what); }
+  double operator()(const Polynomial& p, const std::string& what) const;
   static double rounded(const GiNaC::ex& exact_value, const std::string& what);
 
  private:

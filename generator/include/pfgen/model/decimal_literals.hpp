@@ -20,4 +20,8 @@ std::optional<GiNaC::numeric> parse_exact_number(const std::string& text);
 // largest (about 1.8e308). The text begins with "is", for "'1e-400' is ...".
 std::optional<std::string> double_range_problem(const GiNaC::numeric& value);
 
+// A number's order of magnitude for a message: 1/10^400 as 1.0E-400, not as its 401 digits
+// (GiNaC's float, which has no range limit, not a double, which would print it as 0).
+std::string approximate_text(const GiNaC::numeric& value);
+
 }  // namespace pfgen

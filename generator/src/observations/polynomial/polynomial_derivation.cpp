@@ -41,6 +41,10 @@ class PolynomialDerivation final : public ObservationDerivation {
     return pfgen::observed_states(observation_polynomials(model), model.n());
   }
 
+  ObservationPolynomials budget_polynomials(const Model& model) const override {
+    return {observation_polynomials(model), "observation.h", false, model.observation.polynomial().B};
+  }
+
   // A linear h is the continuous observation, with its exactness conditions; a nonlinear one has
   // no finite-dimensional optimal filter in general (the cubic sensor is the classic case).
   ExactnessReport exactness(const Model& model, FilterKind kind) const override {

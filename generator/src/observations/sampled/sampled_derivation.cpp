@@ -47,6 +47,11 @@ class SampledDerivation final : public ObservationDerivation {
                                    : pfgen::observed_states(sampled.C);
   }
 
+  ObservationPolynomials budget_polynomials(const Model& model) const override {
+    if (!model.observation.sampled().is_polynomial()) return {};
+    return {sample_polynomials(model), "observation.sampled.c", true, {}};
+  }
+
   ExactnessReport exactness(const Model& model, FilterKind kind) const override {
     return sampled_exactness(model, kind);
   }

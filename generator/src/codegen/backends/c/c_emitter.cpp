@@ -1,6 +1,7 @@
 #include "pfgen/codegen/backends/c/c_emitter.hpp"
 
 #include "pfgen/codegen/codegen_error.hpp"
+#include "pfgen/kinds/model_functions.hpp"
 
 namespace pfgen::codegen {
 
@@ -12,7 +13,9 @@ CEmitter::CEmitter(ScalarMode mode, std::string temporary_prefix, std::string sy
 }
 
 std::string CEmitter::function_spelling(Function function) const {
-  const std::string name = function == Function::Abs ? "fabs" : function_name(function);
+  // <math.h>'s name (abs is fabs there); sqrt and pow are the same in both.
+  const ModelFunction* model = model_function(function_name(function));
+  const std::string name = model ? model->c_name : function_name(function);
   return mode_ == ScalarMode::Float ? name + "f" : name;
 }
 

@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "pfgen/codegen/codegen_error.hpp"
+#include "pfgen/model/decimal_literals.hpp"
 #include "pfgen/notation/number_format.hpp"
 
 namespace pfgen::codegen {
@@ -45,14 +46,19 @@ std::string scalar_mode_name(ScalarMode mode) {
 std::string CFamilyEmitter::literal(const GiNaC::numeric& value) const {
   const double d = value.to_double();
   // A constant beyond the scalar's range would print as `inf`, which is no literal.
-  if (!std::isfinite(d)) throw CodegenError("a constant is out of the range of double (above 1.8e308 in magnitude)");
+  if (!std::isfinite(d))
+    throw CodegenError("the constant, about " + approximate_text(value) +
+                       ", is beyond the largest double (about 1.8e308 in magnitude); a lower degree keeps the "
+                       "equations' numbers in range");
   if (mode_ == ScalarMode::Float && !std::isfinite(static_cast<float>(d)))
     throw CodegenError("the constant " + shortest_double(d) +
                        " is out of the range of float (above 3.4e38 in magnitude); use --scalar double or template");
-  // Nor may a nonzero constant become 0 unnoticed: below float's (or double's) smallest
-  // subnormal it would, which changes the equations rather than rounding them.
+  // Nor may a nonzero constant become 0 unnoticed: below float's (or double's) range it would,
+  // which changes the equations rather than rounding them. GiNaC gives no subnormal doubles
+  // (1e-310 becomes 0), so double's limit is the smallest normal one.
   if (!value.is_zero() && d == 0)
-    throw CodegenError("a nonzero constant is below the smallest positive double (4.9e-324 in magnitude) and would be 0");
+    throw CodegenError("the constant, about " + approximate_text(value) +
+                       ", is below the smallest normal double (about 2.2e-308 in magnitude) and would be 0");
   if (mode_ == ScalarMode::Float && d != 0 && static_cast<float>(d) == 0.0f)
     throw CodegenError("the constant " + shortest_double(d) +
                        " is below the smallest positive float (1.4e-45 in magnitude) and would be 0; use --scalar "
