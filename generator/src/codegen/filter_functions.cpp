@@ -139,7 +139,7 @@ class Expectations {
     return form_ ? form_->expectation(sources_->drift[j]) : builder_.polynomial(eq_.m_drift[j]);
   }
   std::size_t jacobian(std::size_t j, std::size_t k) {
-    return form_ ? form_->expectation(sources_->jacobian[j][k]) : builder_.polynomial(eq_.jacobian_term[j][k]);
+    return form_ ? form_->expectation(sources_->jacobian(j, k)) : builder_.polynomial(eq_.jacobian_term[j][k]);
   }
   // E[g g^T] at upper entry u.
   std::size_t diffusion(std::size_t u) {
