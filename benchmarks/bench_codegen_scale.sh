@@ -9,6 +9,10 @@
 #   benchmarks/bench_codegen_scale.sh [--pfgen build/generator/pfgen] [--baseline PFGEN]
 #       [--dense-cubic-yaml build/benchmarks/dense_cubic_yaml] [--sizes "10 16 20"] [--no-compile] [--work DIR]
 #
+# --dense-cubic-yaml names the program that writes the model of size n (its one argument);
+# benchmarks/dense_cubic_diagonal_yaml.py writes another dense cubic model, with other numbers
+# and diagonal noise.
+#
 # --baseline PFGEN also runs another pfgen build's codegen on the same model, right after this
 # one's (an older commit, for a before/after measured in one run); its wall seconds and peak memory
 # are columns of their own, with `ratio` = baseline wall / this wall. Its output is compared with
@@ -66,8 +70,9 @@ fi
 echo "$header"
 echo "$rule"
 for n in $sizes; do
-  name=dense_cubic_$n
-  "$yaml" "$n" > "$work/$name.yaml"
+  "$yaml" "$n" > "$work/model.yaml"
+  name=$(sed -n 's|^name: *||p' "$work/model.yaml")
+  mv "$work/model.yaml" "$work/$name.yaml"
   measure derive "$pfgen" derive "$work/$name.yaml" --filter optimal
   row="| $n"
   derive_cols=" $wall | $peak |"

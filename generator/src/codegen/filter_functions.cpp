@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "pfgen/codegen/correction_factor.hpp"
+#include "pfgen/codegen/expanded_counts.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/codegen/graph_builder.hpp"
 #include "pfgen/codegen/moment_form.hpp"
@@ -138,7 +139,7 @@ class Expectations {
     return form_ ? form_->expectation(sources_->drift[j]) : builder_.polynomial(eq_.m_drift[j]);
   }
   std::size_t jacobian(std::size_t j, std::size_t k) {
-    return form_ ? form_->expectation(sources_->jacobian[j][k]) : builder_.polynomial(eq_.jacobian_term[j][k]);
+    return form_ ? form_->expectation(sources_->jacobian(j, k)) : builder_.polynomial(eq_.jacobian_term[j][k]);
   }
   // E[g g^T] at upper entry u.
   std::size_t diffusion(std::size_t u) {
@@ -400,18 +401,13 @@ struct ExtraOutputs {
 std::unique_ptr<BuiltFunction> built_form(DerivativesForm form, const std::string& function, const Model& model,
                                           const FilterEquations& eq, const FunctionNames& names,
                                           const ExtraOutputs& extras) {
-  const std::size_t n = eq.n();
   switch (form) {
     case DerivativesForm::Expanded:
       // P's drift (upper triangle) is summed one entry at a time, as the graph takes it.
       return built_function(function, model, eq, names,
                             [&](GraphBuilder& builder, ExpressionGraph&, std::vector<std::size_t>& roots) {
-                              for (const Polynomial& p : eq.m_drift) roots.push_back(builder.polynomial(p));
-                              for (std::size_t i = 0; i < n; ++i)
-                                for (std::size_t j = i; j < n; ++j) roots.push_back(builder.polynomial(eq.P_drift(i, j)));
-                              // A delayed filter with Phi* integrates x* beside m and P: its drift
-                              // follows them in `out`.
-                              for (const Polynomial& p : eq.x_star_drift) roots.push_back(builder.polynomial(p));
+                              for_each_expanded_output(
+                                  eq, [&](const Polynomial& p) { roots.push_back(builder.polynomial(p)); });
                               extras.append(builder, roots, true);
                             });
     case DerivativesForm::Structured:
@@ -456,15 +452,16 @@ std::unique_ptr<BuiltFunction> built_form(DerivativesForm form, const std::strin
 FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                               const FunctionNames& names, const CFamilyEmitter& emitter, DerivativesForm* rates_form) {
   const std::size_t n = eq.n();
-  auto flat = built_form(DerivativesForm::Expanded, "derivatives", model, eq, names, {});
   DerivativesForm form = DerivativesForm::Expanded;
   if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty()) {
     if (rates_form) *rates_form = form;
+    auto flat = built_form(DerivativesForm::Expanded, "derivatives", model, eq, names, {});
     return written(*flat, names.out, names, emitter, options.eliminate_common_subexpressions);
   }
-  // The form with the fewest operations after sharing, the earlier on a tie.
-  std::unique_ptr<BuiltFunction> kept = std::move(flat);
-  const OpCounts naive = kept->stats.naive;  // the count of the expanded equations, whichever form is written
+  // The form with the fewest operations after sharing, the expanded first on a tie, then the
+  // others in the order below. The structured forms are built first: where the expanded one's count
+  // after sharing is bound to exceed theirs, its graph is never built (expanded_counts.hpp).
+  std::unique_ptr<BuiltFunction> kept;
   const bool moments = eq.expectation_sources && eq.expectation_sources->drift.size() == n;
   for (DerivativesForm candidate_form : {DerivativesForm::Structured, DerivativesForm::Moments,
                                          DerivativesForm::CollectedStructured, DerivativesForm::CollectedMoments}) {
@@ -475,9 +472,21 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
       continue;
     if (collected && !constant_jacobian_entry(eq)) continue;
     auto candidate = built_form(candidate_form, "derivatives", model, eq, names, {});
-    if (candidate->stats.cse.total() < kept->stats.cse.total()) {
+    if (!kept || candidate->stats.cse.total() < kept->stats.cse.total()) {
       kept = std::move(candidate);
       form = candidate_form;
+    }
+  }
+  const std::optional<ExpandedCounts> counted = expanded_counts(eq);
+  OpCounts naive;  // the count of the expanded equations, whichever form is written
+  if (counted && counted->shared_lower_bound > kept->stats.cse.total()) {
+    naive = counted->naive;
+  } else {
+    auto flat = built_form(DerivativesForm::Expanded, "derivatives", model, eq, names, {});
+    naive = flat->stats.naive;
+    if (flat->stats.cse.total() <= kept->stats.cse.total()) {
+      kept = std::move(flat);
+      form = DerivativesForm::Expanded;
     }
   }
   if (rates_form) *rates_form = form;

@@ -75,12 +75,12 @@ MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariab
 
   GaussianExpectation E(vars);
   MomentTerms out;
-  out.sources = ExpectationSources{f, J, G_upper};
   for (const auto& fi : f) out.drift.push_back(E.of(fi));
   out.jacobian.assign(n, std::vector<Polynomial>(n));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = 0; k < n; ++k) out.jacobian[i][k] = E.of(J[i][k]);
   for (const auto& g : G_upper) out.diffusion_upper.push_back(E.of(g));
+  out.sources = ExpectationSources{std::move(f), std::move(G_upper)};
   return out;
 }
 

@@ -37,12 +37,16 @@
 namespace pfgen {
 
 // The state polynomials whose Gaussian expectations a Gaussian-closure kind's equations are:
-// m_drift = E[drift], jacobian_term = E[jacobian], P_diffusion = E[diffusion_upper]. Over the
-// states: variable i is x_i, which has m_i's index in FilterVariables.
+// m_drift = E[drift], jacobian_term[j][k] = E[jacobian(j, k)], P_diffusion = E[diffusion_upper].
+// Over the states: variable i is x_i, which has m_i's index in FilterVariables. The Jacobian is
+// taken when asked, not held: every filter carries these, and at dense cubic n = 20 its n x n
+// entries were most of their 15 MB, which only code generation reads.
 struct ExpectationSources {
   std::vector<Polynomial> drift;                    // f, n
-  std::vector<std::vector<Polynomial>> jacobian;    // d_k f_j, n x n
   std::vector<Polynomial> diffusion_upper;          // G = g g^T (or the additive G), upper triangle
+  Polynomial jacobian(std::size_t j, std::size_t k) const {  // d_k f_j
+    return drift[j].derivative(static_cast<std::uint32_t>(k));
+  }
 };
 
 struct FilterEquations {
