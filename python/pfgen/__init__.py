@@ -407,7 +407,8 @@ class Simulation:
         #: column name -> numpy array, one value per recorded time (NaN where the CSV is empty)
         self.series = {name: _np.array(values, dtype=float) for name, values in zip(native.columns, native.series)}
         #: filter name -> dict of completed, diverged, psd_losses, rms, rms_se, peak_median,
-        #: peak_q95, reference_distance, reference_distance_se (per state: numpy arrays)
+        #: peak_q95, reference_distance, reference_distance_se, own_error (per state: numpy arrays;
+        #: own_error, the particle reference's own Monte Carlo error, in the "reference" entry only)
         self.summary = {}
         for f in native.filters:
             self.summary[f.name] = {
@@ -415,7 +416,8 @@ class Simulation:
                 "rms": _np.array(f.rms), "rms_se": _np.array(f.rms_se),
                 "peak_median": _np.array(f.peak_median), "peak_q95": _np.array(f.peak_q95),
                 "reference_distance": _np.array(f.reference_distance),
-                "reference_distance_se": _np.array(f.reference_distance_se)}
+                "reference_distance_se": _np.array(f.reference_distance_se),
+                "own_error": _np.array(f.own_error)}
 
     @property
     def t(self):

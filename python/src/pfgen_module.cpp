@@ -171,7 +171,8 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readonly("peak_median", &api::FilterSummary::peak_median)
       .def_readonly("peak_q95", &api::FilterSummary::peak_q95)
       .def_readonly("reference_distance", &api::FilterSummary::reference_distance)
-      .def_readonly("reference_distance_se", &api::FilterSummary::reference_distance_se);
+      .def_readonly("reference_distance_se", &api::FilterSummary::reference_distance_se)
+      .def_readonly("own_error", &api::FilterSummary::own_error);
 
   py::class_<api::SimulationResult>(m, "SimulationResult")
       .def_readonly("report", &api::SimulationResult::report)

@@ -46,6 +46,11 @@ def test_simulate_is_the_commands(pfgen_command, work_dir):
     row = next(line for line in result.report.splitlines() if line.split()[:2] == ["optimal", "x"])
     assert f"{optimal['rms'][0]:.4g}" == row.split()[2]
     assert optimal["reference_distance"].shape == (1,)
+    # The reference's own Monte Carlo error, as the table prints it (4 digits), in its entry only.
+    own = result.summary["reference"]["own_error"]
+    assert own.shape == (1,) and optimal["own_error"].shape == (0,)
+    reference_rows = [line.split() for line in result.report.splitlines() if line.split()[:2] == ["reference", "x"]]
+    assert any(f"{own[0]:.4g}" in row for row in reference_rows)
 
 
 def test_thread_count_does_not_change_the_result():

@@ -137,6 +137,7 @@ SimulationResult Model::simulate(const SimulationOptions& options) const {
     if (result.reference) {  // the particle reference itself, as a filter of the table
       FilterSummary summary = summary_of("reference", result.reference->horizon);
       summary.diverged = result.reference->stopped.count();
+      summary.own_error = result.reference->error;
       out.filters.push_back(std::move(summary));
     }
     return out;

@@ -172,6 +172,9 @@ struct FilterSummary {
   Vector peak_median, peak_q95;  // of max_t |x - m| over the completed runs
   // With the particle reference: RMS(m - m_ref) and its standard error (empty without).
   Vector reference_distance, reference_distance_se;
+  // The particle reference's own row only (empty in the others): its own Monte Carlo error per
+  // state, the table's "m_ref's own error" (NaN where no run had both particle sets reach T).
+  Vector own_error;
 };
 
 struct SimulationResult {
