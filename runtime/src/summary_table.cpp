@@ -23,6 +23,13 @@ std::string time(double t) { return number(t, "%.6g"); }
 
 std::string count(std::size_t value) { return std::to_string(value); }
 
+// A mean with its standard error, and a paired difference (signed) with its standard error: the
+// cells of every table below.
+std::string cell(double mean, double error) { return number(mean) + " ± " + number(error, "%.2g"); }
+std::string difference_cell(double mean, double error) {
+  return number(mean, "%+.4g") + " ± " + number(error, "%.2g");
+}
+
 // Rows of cells, first column left-aligned, the rest right-aligned, two spaces between.
 std::string align(const std::vector<std::vector<std::string>>& rows) {
   std::vector<std::size_t> width;
@@ -71,7 +78,6 @@ std::string run_list(const std::string& label, const EventSummary& events) {
 std::string sampled_section(const MonteCarloResult& result) {
   std::vector<std::vector<std::string>> rows{{"filter", "output", "runs", "samples", "AvRMSE clean", "AvMRAE clean",
                                               "AvRMSE noisy", "AvMRAE noisy"}};
-  auto cell = [](double mean, double error) { return number(mean) + " ± " + number(error, "%.2g"); };
   std::ostringstream failures;
   for (const FilterStatistics& filter : result.filters) {
     if (!filter.sampled) continue;
@@ -94,16 +100,15 @@ std::string sampled_section(const MonteCarloResult& result) {
   // difference, without the spread the runs share.
   std::vector<std::vector<std::string>> paired{{"filter", "output", "runs", "dAvRMSE clean", "dAvMRAE clean",
                                                 "dAvRMSE noisy", "dAvMRAE noisy"}};
-  auto diff = [](double mean, double error) { return number(mean, "%+.4g") + " ± " + number(error, "%.2g"); };
   for (const FilterStatistics& filter : result.filters) {
     if (!filter.sampled || filter.sampled->diff_rmse_clean.empty()) continue;
     const SampledMetrics& m = *filter.sampled;
     for (std::size_t i = 0; i < m.diff_rmse_clean.size(); ++i)
       paired.push_back({filter.name, "y" + std::to_string(i + 1), count(m.paired_runs),
-                        diff(m.diff_rmse_clean[i], m.diff_rmse_clean_se[i]),
-                        diff(m.diff_mrae_clean[i], m.diff_mrae_clean_se[i]),
-                        diff(m.diff_rmse_noisy[i], m.diff_rmse_noisy_se[i]),
-                        diff(m.diff_mrae_noisy[i], m.diff_mrae_noisy_se[i])});
+                        difference_cell(m.diff_rmse_clean[i], m.diff_rmse_clean_se[i]),
+                        difference_cell(m.diff_mrae_clean[i], m.diff_mrae_clean_se[i]),
+                        difference_cell(m.diff_rmse_noisy[i], m.diff_rmse_noisy_se[i]),
+                        difference_cell(m.diff_mrae_noisy[i], m.diff_mrae_noisy_se[i])});
   }
   if (paired.size() > 1)
     out += "\nPaired against " + result.filters.front().name +
@@ -121,8 +126,6 @@ std::string sampled_section(const MonteCarloResult& result) {
 // without the spread the runs share.
 std::string precision_section(const MonteCarloResult& result, const std::vector<std::string>& state_names) {
   const FilterStatistics& first = result.filters.front();
-  auto cell = [](double mean, double error) { return number(mean) + " ± " + number(error, "%.2g"); };
-  auto diff = [](double mean, double error) { return number(mean, "%+.4g") + " ± " + number(error, "%.2g"); };
   auto window_header = [](const char* what, const WindowStatistics& w) {
     return what + ("[" + time(w.a) + "," + time(w.b) + "]");
   };
@@ -144,11 +147,11 @@ std::string precision_section(const MonteCarloResult& result, const std::vector<
       errors.push_back(std::move(row));
       if (filter.horizon.paired_difference.empty()) continue;
       std::vector<std::string> pair{filter.name, state_names[i], count(filter.horizon.paired_runs),
-                                    diff(filter.horizon.paired_difference[i], filter.horizon.paired_difference_se[i])};
+                                    difference_cell(filter.horizon.paired_difference[i], filter.horizon.paired_difference_se[i])};
       for (const WindowStatistics& w : filter.windows)
-        pair.push_back(diff(w.paired_difference[i], w.paired_difference_se[i]));
+        pair.push_back(difference_cell(w.paired_difference[i], w.paired_difference_se[i]));
       for (const ReportStatistics& r : filter.reports)
-        pair.push_back(diff(r.paired_abs_difference[i], r.paired_abs_difference_se[i]));
+        pair.push_back(difference_cell(r.paired_abs_difference[i], r.paired_abs_difference_se[i]));
       paired.push_back(std::move(pair));
     }
   std::string out =
@@ -247,7 +250,6 @@ std::string reference_section(const MonteCarloResult& result, const std::vector<
   const ReferenceStatistics& reference = *result.reference;
   std::vector<std::vector<std::string>> rows{
       {"filter", "state", "runs", "RMS(m - m_ref)", "m_ref's own error", "RMS(x - m)", "RMS(x - m_ref)"}};
-  auto cell = [](double value, double error) { return number(value) + " ± " + number(error, "%.2g"); };
   const auto own_error = [&reference](std::size_t i) {
     return i < reference.error.size() ? number(reference.error[i]) : std::string("-");
   };
@@ -307,7 +309,7 @@ std::string reference_section(const MonteCarloResult& result, const std::vector<
     for (const PairedDistance& other : reference.closest[i].others)
       paired.push_back({result.filters[other.filter].name, state_names[i],
                         result.filters[reference.closest[i].closest].name, count(other.runs),
-                        number(other.difference, "%+.4g") + " ± " + number(other.difference_se, "%.2g"),
+                        difference_cell(other.difference, other.difference_se),
                         other.significant() ? "yes" : "not significantly"});
   if (paired.size() > 1)
     out << "\nPaired against the closest to the reference run by run (dMS: this filter's mean squared distance to "

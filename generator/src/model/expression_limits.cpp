@@ -1,20 +1,15 @@
 #include "pfgen/model/expression_limits.hpp"
 
+#include "pfgen/notation/number_format.hpp"
+
 #include <algorithm>
 #include <iterator>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 
 namespace pfgen {
 namespace {
-
-std::string number_text(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.3g", value);
-  return buffer;
-}
 
 // What the estimate knows of a subexpression: whether it is one number (and roughly which),
 // the digits of its numeric coefficients, and how many terms its expansion has.
@@ -52,7 +47,7 @@ class Estimator {
     if (failed_ || !(e.digits > kMaxConstantDigits)) return;
     std::string part = text_.substr(from, at_ - from);
     if (part.size() > 60) part = part.substr(0, 57) + "...";
-    problem_ = "'" + part + "' gives a number of " + (std::isfinite(e.digits) ? "about " + number_text(e.digits) : "more than 1e+308") +
+    problem_ = "'" + part + "' gives a number of " + (std::isfinite(e.digits) ? "about " + three_digits(e.digits) : "more than 1e+308") +
                " digits; numbers are limited to " + std::to_string(static_cast<long>(kMaxConstantDigits)) + " digits";
     failed_ = true;
   }

@@ -23,13 +23,14 @@ std::string substep_phrase(const SampledUpdate& u) {
 }
 
 // Why the prediction takes u.substeps (observations/sampled/substep_choice.hpp): chosen from the
-// prediction at the prior, or given and fewer than that rule asks for; empty otherwise.
-std::string substep_reason(const SampledUpdate& u) {
+// prediction at the prior, or given and fewer than that rule asks for, between `open` and `close`;
+// empty otherwise.
+std::string substep_reason(const SampledUpdate& u, const std::string& open, const std::string& close) {
   const std::string rule = "the prediction at the prior: rate " + three_digits(u.prior_rate) +
                            " per unit of time, first period to 1 %";
-  if (u.substeps_chosen) return "chosen from " + rule + "; the model's substeps sets them";
+  if (u.substeps_chosen) return open + "chosen from " + rule + "; the model's substeps sets them" + close;
   if (u.advised_substeps > static_cast<double>(u.substeps))
-    return "fewer than the " + three_digits(u.advised_substeps) + " asked for by " + rule;
+    return open + "fewer than the " + three_digits(u.advised_substeps) + " asked for by " + rule + close;
   return {};
 }
 
@@ -74,7 +75,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   }
   out += "observation: sampled every T = " + printer.print(u.period) + ", y_k = " + samples + "; " +
          substep_phrase(u) + " of dt = T/" + std::to_string(u.substeps) + " between samples" +
-         (substep_reason(u).empty() ? "" : " (" + substep_reason(u) + ")") + "\n\n";
+         substep_reason(u, " (", ")") + "\n\n";
   if (eq.P_euler.empty()) {
     out += "prediction between samples (no observation term; dP terms: [" + moment_terms_text(eq) + "] + [diffusion]):\n";
     for (std::size_t i = 0; i < n; ++i)
@@ -143,10 +144,10 @@ std::string sampled_equations_latex(const FilterEquations& eq) {
   const bool euler = !eq.P_euler.empty();
   out += euler ? "\\paragraph{Prediction over one sub-step $\\Delta = T/" + std::to_string(u.substeps) +
                      "$} (exact moments of $x + f\\Delta + g\\sqrt{\\Delta}\\,\\xi$" +
-                     (substep_reason(u).empty() ? "" : "; " + substep_reason(u)) + "):\n"
+                     substep_reason(u, "; ", "") + "):\n"
                : "\\paragraph{Prediction between samples} ($" + std::to_string(u.substeps) +
                      "$ sub-steps per period $T = " + printer.print(u.period) + "$, no observation term" +
-                     (substep_reason(u).empty() ? "" : "; " + substep_reason(u)) + "):\n";
+                     substep_reason(u, "; ", "") + "):\n";
   for (std::size_t i = 0; i < n; ++i) {
     const std::string m = vars.latex_name(vars.m(i));
     prediction.push_back(euler ? latex_align_lines(m + "'", m + " + \\left(" + writer.print(eq.m_drift[i]) + "\\right)\\Delta")
