@@ -10,6 +10,7 @@ main_job=(
   libginac-dev libcln-dev              # symbolic derivation
   libeigen3-dev                        # numerics in the validator and the simulation runtime
   libyaml-cpp-dev libcli11-dev         # model files, command line
+  libnlopt-dev                         # `pfgen fit`: the likelihood's maximisation
   texlive-latex-base                   # pdflatex for `pfgen latex` documents
   gnuplot-nox                          # `pfgen simulate --plot` (error plots, PNG via cairo or SVG)
 )
@@ -19,6 +20,7 @@ tests=(
   python3-dev pybind11-dev             # the Python module (python/), built with pybind11
   python3-numpy python3-sympy python3-pytest  # its arrays, Filter.to_sympy, and its tests
   python3-pandas python3-matplotlib    # its optional Simulation.to_pandas and Simulation.plot (tested)
+  python3-statsmodels                  # tests: exact Kalman likelihoods and fits to check `fit` against
   python3-yaml                         # benchmarks/bench_sympy_peer.py reads model files (SymPy peer)
   poppler-utils                        # pdftoppm: tests render LaTeX pages to check the layout
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # embedded proof:

@@ -16,6 +16,8 @@
 #include "commands.hpp"
 #include "huge_page_heap.hpp"
 #include "job_group.hpp"
+#include "estimate_command.hpp"
+#include "fit_command.hpp"
 #include "simulate_command.hpp"
 #ifdef PFGEN_WITH_MPI
 #include "mpi_runs.hpp"
@@ -255,6 +257,52 @@ int main(int argc, char** argv) {
       ->check(named_file);
   simulate_cmd->add_flag("-q,--quiet", simulate.quiet, "No plugin and timing lines on stderr");
 
+  // estimate: the filters over a record of observations (record_job.hpp).
+  EstimateOptions estimate;
+  RecordJobOptions& ro = estimate.record;
+  CLI::App* estimate_cmd = app.add_subcommand(
+      "estimate", "Run a model's filters over recorded observations: estimates, innovations and scores");
+  const auto add_record_options = [&](CLI::App* command, RecordJobOptions& r) {
+    command->add_option("MODEL", r.model_path, "Model file (YAML)")->required()->check(named_file);
+    command->add_option("--data", r.data_path, "Record: CSV with a header naming the time and observation columns")
+        ->required()
+        ->check(named_file);
+    command->add_option("--time-column", r.time_column, "The record's time column (default t)");
+    command->add_option("--columns", r.columns, "The observation columns in the model's order (default: all others)")
+        ->delimiter(',');
+    command->add_option("--data-form", r.data_form,
+                        "Continuous observations: increments (dy over each interval, default) or rates (dy/dt)");
+    command->add_option("--substeps", r.substeps, "Continuous observations: filter steps per data interval (default 1)");
+    command->add_option("--t0", r.t0, "Time of the prior m0, P0 (default: the first row's time)")->check(double_number);
+    command->add_option("--set", r.assignments, "Parameter value, name=value (repeatable)");
+    command->add_option("--cache-dir", r.cache_dir, "Compiled plugins (default as simulate's)")->check(named_file);
+    command->add_option("--compiler", r.compiler, "C++ compiler for the plugin (default: $CXX, else c++)");
+    command->add_flag("-q,--quiet", r.quiet, "No plugin lines on stderr");
+  };
+  add_record_options(estimate_cmd, ro);
+  estimate_cmd->add_option("--filters", ro.filters, "Filters, comma-separated (default: the model's defaults)")
+      ->delimiter(',');
+  estimate_cmd->add_option("-o,--output", estimate.csv_path, "CSV: per data time each filter's estimates and innovations")
+      ->check(named_file);
+  estimate_cmd->add_option("--plot", estimate.plot_path, "Plot of the estimates with 2-sigma bands, FILE.png or FILE.svg")
+      ->check(named_file);
+  estimate_cmd->add_flag("--full-covariance", estimate.full_covariance, "Write every entry of P to the CSV");
+
+  // fit: maximum likelihood of some parameters over a record (likelihood_fit.hpp).
+  FitOptions fit;
+  CLI::App* fit_cmd = app.add_subcommand("fit", "Fit a model's parameters to recorded observations by maximum likelihood");
+  add_record_options(fit_cmd, fit.record);
+  fit_cmd->add_option("--estimate", fit.estimate, "Parameters to estimate, comma-separated")
+      ->required()
+      ->delimiter(',');
+  fit_cmd->add_option("--bounds", fit.bounds, "Bounds name=low:high, comma-separated (an end may be empty)")
+      ->delimiter(',');
+  fit_cmd->add_option("--filter", fit.filter, "The filter whose likelihood is maximised (default: the model's first)");
+  fit_cmd->add_option("--starts", fit.starts, "Starting points: the model's values, then draws within the bounds");
+  fit_cmd->add_option("--seed", fit.seed, "Seed of the further starting points (default 1)");
+  fit_cmd->add_flag("--profile", fit.profile, "Profile-likelihood intervals too");
+  fit_cmd->add_option("-o,--output", fit.json_path, "The fit as JSON")->check(named_file);
+
   try {
     refuse_empty_equals_values(argc, argv);
     app.parse(argc, argv);
@@ -276,6 +324,8 @@ int main(int argc, char** argv) {
     }
     if (*latex_cmd) status = run_latex(latex);
     if (*eval_cmd) status = run_eval(eval);
+    if (*estimate_cmd) status = run_estimate(estimate);
+    if (*fit_cmd) status = run_fit(fit);
     if (*simulate_cmd) {
 #ifdef PFGEN_WITH_MPI
       // Started by mpirun: the ranks share the runs, rank 0 writes (mpi_runs.hpp).

@@ -19,6 +19,7 @@
 #include "memory_budget.hpp"
 #include "observation_command.hpp"
 #include "output_paths.hpp"
+#include "plugin_loading.hpp"
 #include "progress_bar.hpp"
 #include "redirected_stderr.hpp"
 #include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
@@ -283,31 +284,6 @@ std::string job_text(const PreparedJob& job) {
     for (double m : s.criterion->weight) number(m);
   }
   return text;
-}
-
-// Builds the plugin (a cache hit when another process or an earlier job built it) and loads it.
-pfgen_runtime::SimulationPlugin load_plugin(const std::string& source, const toolchain::PluginBuildOptions& options,
-                                            bool talk, toolchain::PluginBuild& build) {
-  build = toolchain::build_plugin(source, options);
-  if (talk) {
-    if (build.cache_hit)
-      std::cerr << "pfgen: plugin " << build.path << " (cached)\n";
-    else
-      std::cerr << "pfgen: plugin " << build.path << " (compiled in " << std::fixed << std::setprecision(1)
-                << build.compile_seconds << " s)\n" << std::defaultfloat;
-  }
-  try {
-    return pfgen_runtime::SimulationPlugin(build.path);
-  } catch (const pfgen_runtime::PluginLoadError&) {
-    if (!build.cache_hit) throw;
-    // A cached plugin that does not load (truncated by a full disk or a killed copy) failed
-    // every later run until deleted by hand: remove it and build it once more.
-    std::error_code ignored;
-    std::filesystem::remove(build.path, ignored);
-    build = toolchain::build_plugin(source, options);
-    if (talk) std::cerr << "pfgen: the cached plugin did not load; rebuilt " << build.path << "\n";
-    return pfgen_runtime::SimulationPlugin(build.path);
-  }
 }
 
 // Why the particle reference cannot run on this model (empty: it can). docs/theory.md §7.4.

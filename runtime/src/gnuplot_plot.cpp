@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
@@ -187,8 +188,8 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
 
 std::string gnuplot_script_path(const std::string& plot_path) { return plot_path + ".gp"; }
 
-void write_error_plot(const std::string& plot_path, const std::string& csv_path, const MonteCarloResult& result,
-                      const std::vector<std::string>& state_names, const std::string& title, double y_limit) {
+void write_gnuplot_plot(const std::string& plot_path,
+                        const std::function<std::string(const std::string& drawn_path)>& script_for) {
   // gnuplot draws into a temporary beside the plot (same extension, so the same terminal), run from
   // a script of its own; only a whole plot then reaches plot_path, through write_file_atomically,
   // which replaces a file and writes into a device without replacing it. The script kept for the
@@ -204,15 +205,14 @@ void write_error_plot(const std::string& plot_path, const std::string& csv_path,
       throw std::runtime_error("cannot write the " + what + ": " + e.what());
     }
   };
-  write(script_path, gnuplot_error_script(plot_path, csv_path, result, state_names, title, y_limit), "gnuplot script");
+  write(script_path, script_for(plot_path), "gnuplot script");
   struct Cleanup {
     std::vector<std::string> paths;
     ~Cleanup() {
       for (const auto& path : paths) std::remove(path.c_str());
     }
   } cleanup{{drawing_script, drawn}};
-  write(drawing_script, gnuplot_error_script(drawn, csv_path, result, state_names, title, y_limit),
-        "gnuplot script");
+  write(drawing_script, script_for(drawn), "gnuplot script");
   std::string errors;
   const int status = run_gnuplot(drawing_script, errors);
   std::ifstream in(drawn, std::ios::binary);
@@ -225,6 +225,19 @@ void write_error_plot(const std::string& plot_path, const std::string& csv_path,
     throw std::runtime_error(message.str());
   }
   write(plot_path, plot, "plot");
+}
+
+std::string gnuplot_terminal(const std::string& plot_path, int width, int height) {
+  return terminal_for(plot_path, width, height);
+}
+
+std::string gnuplot_string(const std::string& text) { return quoted(text); }
+
+void write_error_plot(const std::string& plot_path, const std::string& csv_path, const MonteCarloResult& result,
+                      const std::vector<std::string>& state_names, const std::string& title, double y_limit) {
+  write_gnuplot_plot(plot_path, [&](const std::string& drawn) {
+    return gnuplot_error_script(drawn, csv_path, result, state_names, title, y_limit);
+  });
 }
 
 }  // namespace pfgen_runtime

@@ -35,7 +35,9 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
     require(t.sampled_filter_count == 0 || t.sampled_filters, path, "the sampled filter table is missing");
     for (std::size_t k = 0; k < t.sampled_filter_count; ++k) {
       const pfgen_plugin_sampled_filter& f = t.sampled_filters[k];
-      require(f.name && f.initial_state && f.predict && f.update && f.substeps >= 1, path,
+      require(f.name && f.initial_state && f.predict && f.update && f.predict_at && f.update_at && f.innovation &&
+                  f.substeps >= 1,
+              path,
               "sampled filter " + std::to_string(k) + " lacks a name, function or sub-steps");
       require(f.n == t.n && f.p == t.p && f.state_size == filter_state_size(t.n), path,
               "filter " + std::string(f.name) + " has other dimensions than the model");
@@ -67,7 +69,16 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
     require((f.step_lanes != nullptr) == (f.lanes > 0) && (f.step_lanes == nullptr || f.extra_state_size == 0) &&
                 f.lanes <= 64,
             path, "filter " + std::string(f.name) + " has step_lanes without 1 to 64 lanes, or with extra state");
+    require((f.step_at != nullptr) == (f.predicted_observation != nullptr) &&
+                (f.step_at != nullptr) == (f.extra_state_size == 0),
+            path, "filter " + std::string(f.name) + " lacks step_at or predicted_observation, or has them with extra state");
   }
+  require(t.parameter_count == 0 || (t.parameter_names && t.parameter_defaults), path,
+          "the parameters' names or defaults are missing");
+  for (std::size_t k = 0; k < t.parameter_count; ++k)
+    require(t.parameter_names[k] != nullptr, path, "parameter " + std::to_string(k) + " has no name");
+  require((t.observation_noise != nullptr) == (!t.observation_is_sampled && t.delay == 0), path,
+          "observation_noise must be given exactly for continuous observations without a delay");
 }
 
 }  // namespace
@@ -184,6 +195,50 @@ Eigen::VectorXd SimulationPlugin::truth_initial_state() const {
   Eigen::VectorXd x0(table_->n);
   table_->truth_initial_state(x0.data());
   return x0;
+}
+
+std::vector<std::string> SimulationPlugin::parameter_names() const {
+  return {table_->parameter_names, table_->parameter_names + table_->parameter_count};
+}
+
+std::vector<double> SimulationPlugin::parameter_defaults() const {
+  return {table_->parameter_defaults, table_->parameter_defaults + table_->parameter_count};
+}
+
+std::vector<RecordFilter> SimulationPlugin::record_filters() const {
+  std::vector<RecordFilter> out;
+  for (std::size_t k = 0; k < table_->filter_count; ++k) {
+    const pfgen_plugin_filter& f = table_->filters[k];
+    if (!f.step_at) continue;  // a delayed filter
+    RecordFilter filter;
+    filter.library = library_;
+    filter.name = f.name;
+    filter.n = f.n;
+    filter.p = f.p;
+    filter.r = table_->r;
+    filter.initial_state = f.initial_state;
+    filter.step = f.step_at;
+    filter.predicted_observation = f.predicted_observation;
+    filter.observation_noise = table_->observation_noise;
+    out.push_back(std::move(filter));
+  }
+  for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {
+    const pfgen_plugin_sampled_filter& f = table_->sampled_filters[k];
+    RecordFilter filter;
+    filter.library = library_;
+    filter.name = f.name;
+    filter.n = f.n;
+    filter.p = f.p;
+    filter.r = table_->r;
+    filter.substeps = f.substeps;
+    filter.period = table_->period;
+    filter.initial_state = f.initial_state;
+    filter.predict = f.predict_at;
+    filter.update = f.update_at;
+    filter.innovation = f.innovation;
+    out.push_back(std::move(filter));
+  }
+  return out;
 }
 
 std::vector<FilterModel> SimulationPlugin::filters() const {

@@ -1,5 +1,6 @@
 #pragma once
 // The estimation errors of all filters against time, drawn by gnuplot from the results CSV.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,5 +34,16 @@ std::string gnuplot_script_path(const std::string& plot_path);
 // fails (with its error output), or when it leaves no plot file.
 void write_error_plot(const std::string& plot_path, const std::string& csv_path, const MonteCarloResult& result,
                       const std::vector<std::string>& state_names, const std::string& title, double y_limit = 0);
+
+// What write_error_plot does with any script: script_for(path) is the script that draws into path;
+// it is kept at gnuplot_script_path(plot_path) naming plot_path, and run on a temporary, so that
+// only a whole plot reaches plot_path. Same errors as write_error_plot.
+void write_gnuplot_plot(const std::string& plot_path,
+                        const std::function<std::string(const std::string& drawn_path)>& script_for);
+
+// The terminal line's text for plot_path (.png: pngcairo, .svg: svg; std::invalid_argument
+// otherwise), and a gnuplot single-quoted string.
+std::string gnuplot_terminal(const std::string& plot_path, int width, int height);
+std::string gnuplot_string(const std::string& text);
 
 }  // namespace pfgen_runtime

@@ -24,7 +24,7 @@
 extern "C" {
 #endif
 
-#define PFGEN_PLUGIN_ABI_VERSION 6u
+#define PFGEN_PLUGIN_ABI_VERSION 7u
 #define PFGEN_PLUGIN_ENTRY_NAME "pfgen_plugin_entry"
 
 /* One filter over its packed state [m (n entries), upper triangle of P row by row], followed by
@@ -46,6 +46,12 @@ typedef struct pfgen_plugin_filter {
    * bit for bit step()'s on state k. NULL, and lanes 0, for a filter with extra state. */
   void (*step_lanes)(double* state, double t, double dt, const double* dy);
   size_t lanes;
+  /* Version 7 on: step at parameter values given in the call (values: the plugin's
+   * parameter_count entries, in the model's order) rather than the model's defaults, and the
+   * predicted observation rate h (p entries: A0 + A m, or E[h(x)]) of the state at t. NULL for a
+   * delayed filter. What running a filter over recorded data and fitting parameters need. */
+  void (*step_at)(double* state, const double* values, double t, double dt, const double* dy);
+  void (*predicted_observation)(const double* state, const double* values, double t, double* h);
 } pfgen_plugin_filter;
 
 /* One filter for sampled observations (y_k = C0 + C x(t_k) + Uv v_k every `period`) over the
@@ -60,6 +66,13 @@ typedef struct pfgen_plugin_sampled_filter {
   void (*initial_state)(double* state);
   void (*predict)(double* state, double t, double dt);  /* one sub-step over [t, t+dt] */
   int (*update)(double* state, double t, const double* y); /* the sample y (p entries) taken at t */
+  /* Version 7 on: predict and update at parameter values given in the call (the plugin's
+   * parameter_count entries, in the model's order), and the sample's predicted value yhat (p) with
+   * its innovation covariance S = C P C^T + Uv Uv^T (p x p, row-major; for a polynomial c,
+   * Cov(c) + Uv Uv^T) before an update at t. */
+  void (*predict_at)(double* state, const double* values, double t, double dt);
+  int (*update_at)(double* state, const double* values, double t, const double* y);
+  void (*innovation)(const double* state, const double* values, double t, double* yhat, double* S);
 } pfgen_plugin_sampled_filter;
 
 typedef struct pfgen_plugin {
@@ -112,6 +125,13 @@ typedef struct pfgen_plugin {
   void (*drift_batch)(double t, size_t count, const double* x, double* f);
   void (*diffusion_batch)(double t, size_t count, const double* x, double* g);
   void (*observation_rate_batch)(double t, size_t count, const double* x, double* h);
+  /* Version 7 on: the model's parameters in its order (names and the default values every
+   * function above uses), and for continuous observations without a delay B(t) (p x r) at given
+   * parameter values (NULL otherwise): the observation noise dW2's factor, R = B B^T. */
+  size_t parameter_count;
+  const char* const* parameter_names;  /* parameter_count entries (NULL when 0) */
+  const double* parameter_defaults;    /* parameter_count entries (NULL when 0) */
+  void (*observation_noise)(const double* values, double t, double* B);
 } pfgen_plugin;
 
 /* The exported entry point: const pfgen_plugin* pfgen_plugin_entry(void). */

@@ -14,6 +14,7 @@
 
 #include "pfgen_runtime/observation.hpp"
 #include "pfgen_runtime/plugin_abi.h"
+#include "pfgen_runtime/record_filter.hpp"
 #include "pfgen_runtime/sde_system.hpp"
 #include "pfgen_runtime/simulation.hpp"
 #include "pfgen_support/error.hpp"
@@ -80,6 +81,13 @@ class SimulationPlugin {
   // The filters in the plugin's order, at the model's default parameters (for a sampled model
   // its sampled filters: FilterModel::sampled(); a delayed filter has extra_state and fixed_dt).
   std::vector<FilterModel> filters() const;
+
+  // The model's parameters in its order, and the defaults filters() and the truth use.
+  std::vector<std::string> parameter_names() const;
+  std::vector<double> parameter_defaults() const;
+  // The filters that can run over recorded data at any parameter values (all but delayed ones),
+  // in the plugin's order.
+  std::vector<RecordFilter> record_filters() const;
 
   // The raw table, valid while this object (or anything it returned) lives.
   const pfgen_plugin& table() const { return *table_; }

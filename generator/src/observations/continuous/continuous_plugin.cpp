@@ -12,6 +12,11 @@ void rate_truth_observation(const Model& model, const ContinuousObservation& obs
                                  !depends_on_time(model, observation.A) && !depends_on_time(model, observation.B);
   code.definitions +=
       matrices_function(model, names, "observation", {{"A0", ExMatrix{observation.A0}}, {"A", observation.A}, {"B", observation.B}});
+  code.definitions += observation_noise_function(model, names, observation.B);
+}
+
+std::string observation_noise_function(const Model& model, TruthNames& names, const ExMatrix& B) {
+  return parameterised_matrices_function(model, names, "observation_noise", {{"B", B}});
 }
 
 std::string rate_filter_table(const Model& model, const std::vector<std::string>& names,
@@ -45,7 +50,8 @@ void ContinuousCode::plugin_options(const Model&, std::optional<double>, Codegen
   options.scalar = ScalarMode::Template;
 }
 
-// The ABI's step and initial_state have no parameters argument: the model's defaults.
+// The ABI's step and initial_state have no parameters argument: the model's defaults; step_at and
+// predicted_observation read the parameters' values from their argument.
 std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                                             const std::vector<bool>& in_lanes) const {
   std::string out;
@@ -55,6 +61,11 @@ std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vecto
     out += "void " + name + "_initial_state(double* state) {\n" + alias + "  F::initial_state(state);\n}\n";
     out += "void " + name + "_step(double* state, double t, double dt, const double* dy) {\n" + alias +
            "  F::step(state, t, dt, dy, F::Params<double>{});\n}\n";
+    out += "void " + name + "_step_at(double* state, const double* values, double t, double dt, const double* dy) {\n" +
+           alias + "  F::step(state, t, dt, dy, ::pfgen_simulation::parameters::from<F::Params<double>>(values));\n}\n";
+    out += "void " + name + "_predicted_observation(const double* state, const double* values, double t, double* h) {\n" +
+           alias +
+           "  F::predicted_observation(t, state, ::pfgen_simulation::parameters::from<F::Params<double>>(values), h);\n}\n";
     if (!in_lanes[k]) {
       out += "\n";
       continue;
@@ -74,7 +85,10 @@ std::map<std::string, std::string> ContinuousCode::plugin_table(const Model& mod
                                                                 std::optional<double>,
                                                                 const std::vector<bool>& in_lanes) const {
   auto state_fields = [&](const std::string& item, const std::string& ns, std::size_t k) {
-    const std::string size = item + "state_size = " + ns + "::state_size;\n";
+    const std::string entry = item + "step_at = &pfgen_simulation::entry::" + names[k] + "_step_at;\n" + item +
+                              "predicted_observation = &pfgen_simulation::entry::" + names[k] +
+                              "_predicted_observation;\n";
+    const std::string size = entry + item + "state_size = " + ns + "::state_size;\n";
     if (!in_lanes[k]) return size;  // step_lanes NULL, lanes 0
     return size + item + "step_lanes = &pfgen_simulation::entry::" + names[k] + "_step_lanes;\n" + item +
            "lanes = pfgen_simulation::batch::kLanes;\n";
@@ -84,6 +98,7 @@ std::map<std::string, std::string> ContinuousCode::plugin_table(const Model& mod
       {"filter_count", std::to_string(names.size())},
       {"filters", names.empty() ? "nullptr" : "filters.data()"},
       {"observation", "&pfgen_simulation::truth::observation"},
+      {"observation_noise", "&pfgen_simulation::truth::observation_noise"},
   };
 }
 

@@ -22,6 +22,7 @@ void PolynomialCode::truth_observation(const Model& model, TruthNames& names, Tr
   const ExMatrix zero_A0{ExVector(p, GiNaC::ex(0))}, zero_A(p, ExVector(model.n(), GiNaC::ex(0)));
   code.definitions += matrices_function(model, names, "observation", {{"A0", zero_A0}, {"A", zero_A}, {"B", observation.B}});
   code.definitions += state_function(model, names, "observation_rate", "h", observation_polynomials(model));
+  code.definitions += observation_noise_function(model, names, observation.B);
 }
 
 void PolynomialCode::plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const {

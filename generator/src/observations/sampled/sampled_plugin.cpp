@@ -30,6 +30,9 @@ std::string sampled_filter_table(const Model& model, const std::vector<std::stri
     out += item + "initial_state = &pfgen_simulation::entry::" + names[k] + "_initial_state;\n";
     out += item + "predict = &pfgen_simulation::entry::" + names[k] + "_predict;\n";
     out += item + "update = &pfgen_simulation::entry::" + names[k] + "_update;\n";
+    out += item + "predict_at = &pfgen_simulation::entry::" + names[k] + "_predict_at;\n";
+    out += item + "update_at = &pfgen_simulation::entry::" + names[k] + "_update_at;\n";
+    out += item + "innovation = &pfgen_simulation::entry::" + names[k] + "_innovation;\n";
   }
   return out + "    return list;\n  }();\n";
 }
@@ -47,7 +50,9 @@ void SampledCode::truth_observation(const Model& model, TruthNames& names, Truth
   if (sampled.is_polynomial()) code.definitions += state_function(model, names, "observation_rate", "c", sample_polynomials(model));
 }
 
-// The ABI's predict and update have no parameters argument: the model's defaults.
+// The ABI's predict and update have no parameters argument: the model's defaults; predict_at,
+// update_at and innovation read the parameters' values from their argument. innovation unpacks
+// innovation_terms' upper triangle of S (after P C^T) into the ABI's full p x p matrix.
 std::string SampledCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                                         const std::vector<bool>&) const {
   std::string out;
@@ -57,7 +62,20 @@ std::string SampledCode::plugin_wrappers(const Model& model, const std::vector<s
     out += "void " + name + "_predict(double* state, double t, double dt) {\n" + alias +
            "  F::predict(state, t, dt, F::Params<double>{});\n}\n";
     out += "int " + name + "_update(double* state, double t, const double* y) {\n" + alias +
-           "  return F::update(state, t, y, F::Params<double>{}) ? 1 : 0;\n}\n\n";
+           "  return F::update(state, t, y, F::Params<double>{}) ? 1 : 0;\n}\n";
+    const std::string at = "  const auto params = ::pfgen_simulation::parameters::from<F::Params<double>>(values);\n";
+    out += "void " + name + "_predict_at(double* state, const double* values, double t, double dt) {\n" + alias + at +
+           "  F::predict(state, t, dt, params);\n}\n";
+    out += "int " + name + "_update_at(double* state, const double* values, double t, const double* y) {\n" + alias +
+           at + "  return F::update(state, t, y, params) ? 1 : 0;\n}\n";
+    out += "void " + name + "_innovation(const double* state, const double* values, double t, double* yhat, double* S) {\n" +
+           alias + at +
+           "  std::array<double, F::n * F::p + F::p * (F::p + 1) / 2> u;\n"
+           "  F::innovation_terms(t, state, params, u.data());\n"
+           "  F::predicted_observation(t, state, params, yhat);\n"
+           "  std::size_t k = F::n * F::p;\n"
+           "  for (std::size_t i = 0; i < F::p; ++i)\n"
+           "    for (std::size_t j = i; j < F::p; ++j) S[i * F::p + j] = S[j * F::p + i] = u[k++];\n}\n\n";
   }
   return out;
 }

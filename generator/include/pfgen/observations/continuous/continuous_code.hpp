@@ -53,8 +53,13 @@ std::string gain_meaning(const FilterEquations& eq);
 void add_rate_function_values(std::map<std::string, std::string>& values, const ContinuousFunctions& functions,
                               const FunctionNames& names, const FilterEquations& eq, bool split_parts);
 
+// The truth's observation_noise(values, t, B): B at the parameter values given in the call (the
+// ABI's observation_noise, what the likelihood of recorded data reads).
+std::string observation_noise_function(const Model& model, TruthNames& names, const ExMatrix& B);
+
 // The truth's observation(t, A0, A, B) of these rate terms (a delayed observation has the same;
-// the runtime applies them to x(t - h)), and TruthCode's r and observation_is_constant.
+// the runtime applies them to x(t - h)), and TruthCode's r and observation_is_constant; and
+// observation_noise.
 void rate_truth_observation(const Model& model, const ContinuousObservation& observation, TruthNames& names,
                             TruthCode& code);
 

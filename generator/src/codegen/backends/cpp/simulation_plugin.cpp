@@ -52,7 +52,26 @@ std::map<std::string, std::string> plugin_table_defaults() {
       {"delay", CppEmitter(ScalarMode::Double).literal(GiNaC::numeric(0))},
       {"delay_dt", "0.0"},
       {"delay_steps", "0"},
+      {"observation_noise", "nullptr"},
   };
+}
+
+// pfgen_simulation::parameters: from<P>(values), a Params (the truth's, or a filter's Params<double>)
+// with each parameter read from the ABI's array of values in the model's order, and the names and
+// defaults the table points to.
+std::string parameter_definitions(const Model& model) {
+  const CppEmitter emitter(ScalarMode::Double);
+  std::string from = "template <class P>\nP from(const double* values) {\n  P out;\n";
+  std::string names, defaults;
+  for (std::size_t k = 0; k < model.parameters.size(); ++k) {
+    const auto& parameter = model.parameters[k];
+    from += "  out." + parameter.name + " = values[" + std::to_string(k) + "];\n";
+    names += (k ? ", " : "") + plugin_c_string(parameter.name);
+    defaults += (k ? ", " : "") + emitter.literal(parameter.default_value);
+  }
+  if (model.parameters.empty()) return from + "  (void)values;\n  return out;\n}\n\n";
+  return from + "  return out;\n}\n\ninline const char* const names[] = {" + names +
+         "};\ninline const double defaults[] = {" + defaults + "};\n\n";
 }
 
 }  // namespace
@@ -111,6 +130,10 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
                      "`: a simulation plugin (truth, observation, filters). Do not edit: `pfgen simulate` rebuilds it."},
       {"abi_header", plugin_abi_header()},
       {"filter_sources", filter_sources},
+      {"parameter_definitions", parameter_definitions(model)},
+      {"parameter_count", std::to_string(model.parameters.size())},
+      {"parameter_names", model.parameters.empty() ? "nullptr" : "pfgen_simulation::parameters::names"},
+      {"parameter_defaults", model.parameters.empty() ? "nullptr" : "pfgen_simulation::parameters::defaults"},
       {"truth_definitions", truth.definitions},
       {"filter_wrappers", observation.plugin_wrappers(model, names, in_lanes)},
       {"model_name", plugin_c_string(model.name)},

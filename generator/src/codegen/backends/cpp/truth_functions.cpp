@@ -19,8 +19,13 @@ std::vector<Polynomial> in_states(const Model& model, const ExMatrix& rows) {
   return out;
 }
 
-std::string truth_function(const Model& model, TruthNames& names, const std::string& signature, bool reads_x,
-                           const std::vector<Polynomial>& outputs, const std::vector<std::string>& destinations) {
+namespace {
+
+// The body of a truth function; `values`: the argument holding the parameters' values, or empty
+// for the model's defaults.
+std::string truth_function_with(const Model& model, TruthNames& names, const std::string& signature, bool reads_x,
+                                const std::vector<Polynomial>& outputs, const std::vector<std::string>& destinations,
+                                const std::string& values) {
   ExpressionGraph graph;
   GraphBuilder builder(graph, model, model.state_names, names.x, names.params);
   std::vector<std::size_t> roots;
@@ -28,12 +33,45 @@ std::string truth_function(const Model& model, TruthNames& names, const std::str
   const CppEmitter emitter(ScalarMode::Double, names.temporary_prefix);
   const InputUse use = builder.uses(roots);
   std::string body;
-  if (use.parameters) body += "  const Params " + names.params + "{};\n";
+  if (use.parameters)
+    body += values.empty() ? "  const Params " + names.params + "{};\n"
+                           : "  const Params " + names.params + " = ::pfgen_simulation::parameters::from<Params>(" +
+                                 values + ");\n";
+  else if (!values.empty())
+    body += "  (void)" + values + ";\n";
   if (!use.time) body += "  (void)" + names.time + ";\n";
   if (reads_x && !use.variables) body += "  (void)" + names.x + ";\n";
   body += emitter.input_declarations(graph, roots, builder.declaration_order());
   body += emitter.shared_body(graph, roots, destinations);
   return "inline void " + signature + " {\n" + body + "}\n\n";
+}
+
+// `function_name`(VALUES, t, M1, M2, ...) when `parameterised` (VALUES the parameters' values), else
+// `function_name`(t, M1, M2, ...) at the defaults.
+std::string matrices_function_with(const Model& model, TruthNames& names, const std::string& function_name,
+                                   const std::vector<std::pair<std::string, ExMatrix>>& parts, bool parameterised) {
+  std::vector<Polynomial> outputs;
+  std::vector<std::string> destinations;
+  const std::string values = parameterised ? names.take("values") : "";
+  std::string signature = function_name + "(" + (parameterised ? "const double* " + values + ", " : "") + "double " +
+                          names.time;
+  for (const auto& [preferred, part] : parts) {
+    const std::string target = names.take(preferred);
+    signature += ", double* " + target;
+    const std::vector<Polynomial> entries = in_states(model, part);
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+      outputs.push_back(entries[k]);
+      destinations.push_back(target + "[" + std::to_string(k) + "]");
+    }
+  }
+  return truth_function_with(model, names, signature + ")", false, outputs, destinations, values);
+}
+
+}  // namespace
+
+std::string truth_function(const Model& model, TruthNames& names, const std::string& signature, bool reads_x,
+                           const std::vector<Polynomial>& outputs, const std::vector<std::string>& destinations) {
+  return truth_function_with(model, names, signature, reads_x, outputs, destinations, "");
 }
 
 std::string state_function(const Model& model, TruthNames& names, const std::string& function_name,
@@ -48,19 +86,12 @@ std::string state_function(const Model& model, TruthNames& names, const std::str
 
 std::string matrices_function(const Model& model, TruthNames& names, const std::string& function_name,
                               const std::vector<std::pair<std::string, ExMatrix>>& parts) {
-  std::vector<Polynomial> outputs;
-  std::vector<std::string> destinations;
-  std::string signature = function_name + "(double " + names.time;
-  for (const auto& [preferred, part] : parts) {
-    const std::string target = names.take(preferred);
-    signature += ", double* " + target;
-    const std::vector<Polynomial> entries = in_states(model, part);
-    for (std::size_t k = 0; k < entries.size(); ++k) {
-      outputs.push_back(entries[k]);
-      destinations.push_back(target + "[" + std::to_string(k) + "]");
-    }
-  }
-  return truth_function(model, names, signature + ")", false, outputs, destinations);
+  return matrices_function_with(model, names, function_name, parts, false);
+}
+
+std::string parameterised_matrices_function(const Model& model, TruthNames& names, const std::string& function_name,
+                                            const std::vector<std::pair<std::string, ExMatrix>>& parts) {
+  return matrices_function_with(model, names, function_name, parts, true);
 }
 
 bool depends_on_time(const Model& model, const ExMatrix& m) {

@@ -43,6 +43,11 @@ std::string state_function(const Model& model, TruthNames& names, const std::str
 std::string matrices_function(const Model& model, TruthNames& names, const std::string& function_name,
                               const std::vector<std::pair<std::string, ExMatrix>>& parts);
 
+// The same at parameter values given in the call, `function_name`(values, t, M1, M2, ...): values
+// holds the model's parameters in its order (the plugin's parameters::from reads them).
+std::string parameterised_matrices_function(const Model& model, TruthNames& names, const std::string& function_name,
+                                            const std::vector<std::pair<std::string, ExMatrix>>& parts);
+
 // Whether an entry of `m` reads the model's time.
 bool depends_on_time(const Model& model, const ExMatrix& m);
 

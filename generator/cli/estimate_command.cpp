@@ -1,0 +1,245 @@
+#include "estimate_command.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+
+#include "cli_options.hpp"
+#include "output_paths.hpp"
+#include "streamed_file.hpp"
+#include "pfgen_runtime/gnuplot_plot.hpp"
+#include "pfgen_support/shortest_double.hpp"
+
+namespace pfgen::cli {
+namespace {
+
+using pfgen_runtime::RecordFilter;
+using pfgen_runtime::RecordRun;
+
+// Each number as the shortest text that reads back to it (to_chars), a missing one as an empty cell.
+std::string number(double value) { return std::isnan(value) ? "" : pfgen_support::shortest_chars(value); }
+
+// Per observation entry, the state it measures directly (a row e_i of C or A with no offset), for
+// the plot; nothing for any other row. Sampled observations only: a continuous record's values
+// are increments or noisy rates.
+std::vector<std::optional<std::size_t>> directly_observed(const Model& model) {
+  std::vector<std::optional<std::size_t>> out(model.p());
+  if (!model.observation.is_sampled() || model.observation.sampled().is_polynomial()) return out;
+  const SampledObservation& sampled = model.observation.sampled();
+  for (std::size_t i = 0; i < model.p(); ++i) {
+    if (!sampled.C0.empty() && !sampled.C0[i].is_zero()) continue;
+    std::optional<std::size_t> state;
+    bool unit = true;
+    for (std::size_t j = 0; j < model.n() && unit; ++j) {
+      const GiNaC::ex& c = sampled.C[i][j];
+      if (c.is_zero()) continue;
+      if (c.is_equal(GiNaC::ex(1)) && !state)
+        state = j;
+      else
+        unit = false;
+    }
+    if (unit) out[i] = state;
+  }
+  return out;
+}
+
+std::vector<std::string> csv_columns(const RecordJob& job, const std::string& time, const std::vector<std::string>& observed,
+                                     bool full) {
+  std::vector<std::string> columns{time};
+  for (const auto& y : observed) columns.push_back(y);
+  const auto& states = job.model.state_names;
+  for (const RecordFilter& filter : job.filters) {
+    const std::string& f = filter.name;
+    for (const auto& x : states) columns.push_back(f + "_m_" + x);
+    for (const auto& x : states) columns.push_back(f + "_sd_" + x);
+    if (full)
+      for (std::size_t i = 0; i < states.size(); ++i)
+        for (std::size_t j = i; j < states.size(); ++j) columns.push_back(f + "_P_" + states[i] + "_" + states[j]);
+    for (const auto& y : observed) columns.push_back(f + "_predicted_" + y);
+    for (const auto& y : observed) columns.push_back(f + "_innovation_" + y);
+    for (const auto& y : observed) columns.push_back(f + "_normalized_" + y);
+  }
+  return columns;
+}
+
+void append_row(std::string& out, double t, const std::vector<double>& y, const std::vector<RecordRun>& runs,
+                std::size_t n, bool full) {
+  out += number(t);
+  for (double v : y) out += "," + number(v);
+  for (const RecordRun& run : runs) {
+    const std::vector<double>& s = run.state();
+    for (std::size_t i = 0; i < n; ++i) out += "," + number(s[i]);
+    // P's diagonal in the packed upper triangle: (i, i) at n + i n - i (i - 1) / 2.
+    for (std::size_t i = 0; i < n; ++i) out += "," + number(std::sqrt(std::max(0.0, s[n + i * n - i * (i - 1) / 2])));
+    if (full)
+      for (std::size_t k = n; k < s.size(); ++k) out += "," + number(s[k]);
+    for (double v : run.predicted()) out += "," + number(v);
+    for (double v : run.innovation()) out += "," + number(v);
+    for (double v : run.normalized()) out += "," + number(v);
+  }
+  out += "\n";
+}
+
+std::string plot_script(const std::string& plot_path, const std::string& csv_path, const RecordJob& job,
+                        const std::vector<std::string>& columns, const std::vector<std::string>& observed) {
+  const auto& states = job.model.state_names;
+  const auto direct = directly_observed(job.model);
+  auto column = [&](const std::string& name) {
+    return std::to_string(std::find(columns.begin(), columns.end(), name) - columns.begin() + 1);
+  };
+  const int height = 260 * static_cast<int>(states.size()) + 40;
+  std::string s = "set terminal " + pfgen_runtime::gnuplot_terminal(plot_path, 900, height) + "\nset output " +
+                  pfgen_runtime::gnuplot_string(plot_path) +
+                  "\nset datafile separator ','\nset datafile missing ''\nset key outside below\nset grid\n"
+                  "set multiplot layout " + std::to_string(states.size()) + ",1 title " +
+                  pfgen_runtime::gnuplot_string(job.model.name + ": estimates with 2-sigma bands") + "\n";
+  const char* const colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    s += "set xlabel 't'\nset ylabel " + pfgen_runtime::gnuplot_string(states[i]) + "\nplot ";
+    std::string parts;
+    for (std::size_t f = 0; f < job.filters.size(); ++f) {
+      const std::string& name = job.filters[f].name;
+      const std::string m = column(name + "_m_" + states[i]), sd = column(name + "_sd_" + states[i]);
+      const std::string colour = colours[f % 6];
+      parts += std::string(parts.empty() ? "" : ", ") + pfgen_runtime::gnuplot_string(csv_path) + " every ::1 using 1:($" +
+               m + "-2*$" + sd + "):($" + m + "+2*$" + sd + ") with filledcurves fc rgb '" + colour +
+               "' fs transparent solid 0.15 noborder notitle, " + pfgen_runtime::gnuplot_string(csv_path) +
+               " every ::1 using 1:" + m + " with lines lc rgb '" + colour + "' lw 1.5 title " +
+               pfgen_runtime::gnuplot_string(name);
+    }
+    for (std::size_t k = 0; k < observed.size(); ++k)
+      if (direct[k] == i)
+        parts += ", " + pfgen_runtime::gnuplot_string(csv_path) + " every ::1 using 1:" + column(observed[k]) +
+                 " with points pt 7 ps 0.5 lc rgb 'black' title " + pfgen_runtime::gnuplot_string(observed[k]);
+    s += parts + "\n";
+  }
+  return s + "unset multiplot\n";
+}
+
+std::string scores_table(const std::vector<FilterScores>& scores, bool continuous) {
+  std::string out;
+  char line[400];
+  std::snprintf(line, sizeof line, "%-16s %16s%s %11s %11s %18s %11s  %s\n", "filter", "log-likelihood",
+                continuous ? "  log-density (increments)" : "", "innovations", "mean square", "95 % band",
+                "Ljung-Box p", "verdict");
+  out += line;
+  for (const FilterScores& f : scores) {
+    const auto& s = f.summary;
+    double p_value = 1;
+    for (const auto& test : s.whiteness) p_value = std::min(p_value, test.p_value);
+    char band[64], density[40] = "", ljung[32];
+    std::snprintf(band, sizeof band, "[%.4g, %.4g]", s.band_low, s.band_high);
+    if (continuous) std::snprintf(density, sizeof density, " %25.6f", f.increment_log_density);
+    if (s.whiteness.empty())
+      std::snprintf(ljung, sizeof ljung, "-");
+    else
+      std::snprintf(ljung, sizeof ljung, "%.3g", p_value);
+    std::snprintf(line, sizeof line, "%-16s %16.6f%s %11zu %11.4g %18s %11s  %s\n", f.filter.c_str(), s.log_likelihood,
+                  density, s.count, s.mean_square, band, ljung, s.verdict().c_str());
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace
+
+EstimateOutcome estimate(const EstimateOptions& options) {
+  const RecordJobOptions& record = options.record;
+  std::vector<NamedPath> inputs{{"the model file", record.model_path}, {"--data", record.data_path}};
+  std::vector<NamedPath> outputs;
+  if (!options.csv_path.empty()) outputs.push_back({"-o", options.csv_path});
+  if (!options.plot_path.empty()) {
+    if (options.csv_path.empty()) throw CliValueError("--plot: the plot reads the CSV; give -o FILE.csv too");
+    outputs.push_back({"--plot", options.plot_path});
+    outputs.push_back({"--plot's gnuplot script", pfgen_runtime::gnuplot_script_path(options.plot_path)});
+    pfgen_runtime::gnuplot_terminal(options.plot_path, 1, 1);  // .png or .svg, before any work
+  }
+  if (record.model) inputs.erase(inputs.begin());
+  check_distinct_outputs(inputs, outputs);
+  for (const NamedPath& output : outputs) check_output_file(output);
+
+  RecordJob job = prepare_record_job(record);
+  pfgen_runtime::RecordReader reader = open_record(record, job);
+  const std::vector<std::string> observed = reader.observation_columns();
+  const bool sampled = job.model.observation.is_sampled();
+  const std::size_t n = job.model.n();
+
+  std::optional<StreamedFile> csv;
+  if (!options.csv_path.empty()) {
+    csv.emplace(options.csv_path);
+    std::string header;
+    for (const auto& c : csv_columns(job, reader.time_column(), observed, options.full_covariance)) header += (header.empty() ? "" : ",") + c;
+    csv->write(header + "\n");
+  }
+
+  std::vector<double> y(observed.size());
+  double t = 0, first = 0, last = 0;
+  std::size_t rows = 0;
+  std::vector<RecordRun> runs;
+  std::string buffer;
+  while (reader.next(t, y.data())) {
+    const bool first_row = rows++ == 0;
+    if (first_row) {
+      first = t;
+      const double t0 = prior_time(record, t, reader.path());
+      runs.reserve(job.filters.size());
+      for (const RecordFilter& filter : job.filters) runs.emplace_back(filter, job.values, t0, job.run_options);
+    }
+    // Continuous data: a first row at the prior's time starts the record (an increment needs an
+    // interval before it); its values are not used. A sample there updates the prior.
+    if (!(first_row && !sampled && t == runs.front().time()))
+      for (RecordRun& run : runs) {
+        const std::string where = reader.path() + ":" + std::to_string(reader.line()) + ": ";
+        bool ok = false;
+        try {
+          ok = run.advance(t, y.data());
+        } catch (const std::invalid_argument& e) {
+          throw CliValueError(where + e.what());
+        }
+        if (!ok) throw CliValueError(where + "the filter '" + run.filter_name() + "' failed: " + run.failure());
+      }
+    last = t;
+    if (csv) {
+      append_row(buffer, t, y, runs, n, options.full_covariance);
+      if (buffer.size() > (1u << 20)) {
+        csv->write(buffer);
+        buffer.clear();
+      }
+    }
+  }
+  if (rows == 0) throw CliValueError(record.data_path + ": the record has a header but no rows");
+  if (csv) {
+    csv->write(buffer);
+    csv->finish();
+  }
+  if (!options.plot_path.empty())
+    pfgen_runtime::write_gnuplot_plot(options.plot_path, [&](const std::string& drawn) {
+      return plot_script(drawn, options.csv_path, job, csv_columns(job, reader.time_column(), observed, options.full_covariance), observed);
+    });
+
+  EstimateOutcome outcome;
+  for (const RecordRun& run : runs)
+    outcome.scores.push_back({run.filter_name(), run.scores().summary(), run.increment_log_density()});
+  char line[300];
+  std::string values;
+  for (std::size_t k = 0; k < job.parameter_names.size(); ++k)
+    values += (k ? ", " : "") + job.parameter_names[k] + " = " + pfgen_support::shortest_chars(job.values[k]);
+  std::snprintf(line, sizeof line, "Record %s: %zu rows, t = %s to %s, %s observations", record.data_path.c_str(), rows,
+                pfgen_support::shortest_chars(first).c_str(), pfgen_support::shortest_chars(last).c_str(),
+                sampled ? "sampled" : record.data_form == "rates" ? "continuous (rates)" : "continuous (increments)");
+  outcome.report = "Model " + job.model.name + (values.empty() ? "" : " at " + values) + "\n" + line + "\n\n" +
+                   scores_table(outcome.scores, !sampled);
+  return outcome;
+}
+
+int run_estimate(const EstimateOptions& options) {
+  const EstimateOutcome outcome = estimate(options);
+  std::cout << outcome.report;
+  if (!options.csv_path.empty()) std::cout << "Wrote " << options.csv_path << "\n";
+  if (!options.plot_path.empty()) std::cout << "Wrote " << options.plot_path << "\n";
+  return 0;
+}
+
+}  // namespace pfgen::cli

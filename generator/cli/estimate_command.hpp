@@ -1,0 +1,36 @@
+#pragma once
+// `pfgen estimate MODEL --data FILE`: the model's filters run over a record of observations; per
+// data time each filter's m, standard deviations (or all of P), predicted observation, innovation
+// and normalised innovation as CSV (-o), a plot of the estimates with their 2-sigma bands (--plot),
+// and per filter the scores: the log-likelihood, the normalised innovations' mean square against
+// its 95 % band, their whiteness, and a verdict in words.
+#include <string>
+#include <vector>
+
+#include "pfgen_runtime/innovation_scores.hpp"
+#include "record_job.hpp"
+
+namespace pfgen::cli {
+
+struct EstimateOptions {
+  RecordJobOptions record;
+  std::string csv_path;   // -o
+  std::string plot_path;  // --plot FILE.png|svg
+  bool full_covariance = false;
+};
+
+struct FilterScores {
+  std::string filter;
+  pfgen_runtime::InnovationSummary summary;
+  double increment_log_density = 0;  // continuous data only
+};
+
+struct EstimateOutcome {
+  std::string report;  // what the command prints on stdout
+  std::vector<FilterScores> scores;
+};
+
+EstimateOutcome estimate(const EstimateOptions& options);
+int run_estimate(const EstimateOptions& options);
+
+}  // namespace pfgen::cli

@@ -1,0 +1,62 @@
+#pragma once
+// What `estimate` and `fit` share: the model, its filters compiled into the simulation plugin (the
+// same source and cache as `simulate`'s, the model's defaults compiled in, so that every parameter
+// value is a runtime argument and a new value needs no compiler), the parameter values of the job
+// (the model's defaults with --set's), and the record read in full or row by row.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pfgen/model/model.hpp"
+#include "pfgen/toolchain/plugin_compiler.hpp"
+#include "pfgen_runtime/record_filter.hpp"
+#include "pfgen_runtime/record_reader.hpp"
+#include "pfgen_runtime/record_run.hpp"
+#include "pfgen_runtime/simulation_plugin.hpp"
+
+namespace pfgen::cli {
+
+struct RecordJobOptions {
+  std::string model_path;
+  const Model* model = nullptr;  // the API's: a model already loaded
+  std::string data_path;
+  std::string time_column = "t";
+  std::vector<std::string> columns;       // observation columns in the model's order; empty: all others
+  std::vector<std::string> filters;       // empty: the model's defaults
+  std::string data_form = "increments";   // continuous data: increments | rates
+  std::size_t substeps = 1;               // continuous data: filter steps per data interval
+  std::optional<double> t0;               // where the prior holds; default: the first row's time
+  std::vector<std::string> assignments;   // --set name=value
+  std::string cache_dir, compiler;
+  bool quiet = false;
+};
+
+struct RecordJob {
+  Model model;
+  std::optional<pfgen_runtime::SimulationPlugin> plugin;
+  std::vector<pfgen_runtime::RecordFilter> filters;  // in the order asked for
+  std::vector<std::string> parameter_names;
+  std::vector<double> values;  // the job's parameter values, in the model's order
+  pfgen_runtime::RecordRunOptions run_options;
+};
+
+// Loads the model, derives the filters, builds or finds the plugin and loads it. CliValueError for
+// a model this cannot run on a record (delayed observations) or a bad option.
+RecordJob prepare_record_job(const RecordJobOptions& options);
+
+// The record's reader, its columns checked against the model.
+pfgen_runtime::RecordReader open_record(const RecordJobOptions& options, const RecordJob& job);
+
+// Every row of a record in memory (fit evaluates the likelihood many times over it).
+struct Record {
+  std::vector<double> times;
+  std::vector<double> values;  // row-major, p per row
+  std::vector<std::size_t> lines;
+  std::size_t p = 0;
+};
+Record read_record(const RecordJobOptions& options, const RecordJob& job);
+
+// The prior's time: --t0, else the first row's time (which must not come before it).
+double prior_time(const RecordJobOptions& options, double first_time, const std::string& data_path);
+
+}  // namespace pfgen::cli

@@ -1,0 +1,73 @@
+#pragma once
+// One filter run over a record, row by row, at given parameter values: the filter state after each
+// row, the row's innovation and its normalised form, and the scores over the record so far.
+//
+// Sampled observations: the filter predicts from its time to the row's time (sub-steps in
+// proportion to the model's: ceil(interval x substeps / period) of them) and absorbs the row's
+// sample; a row whose observation is missing (every entry NaN) is predicted to only. The term of
+// the log-likelihood is log N(y; yhat, S) with the predicted sample yhat and S before the update.
+//
+// Continuous observations: the row holds dy over (previous time, t], or the rate dy/dt there; the
+// filter steps over the interval in `substeps` equal steps (the increment split evenly). Two
+// log-likelihoods are kept: the filter's (Girsanov) one, sum h^T R^-1 dy - 1/2 h^T R^-1 h dt, the
+// log-density of the record relative to dy = B dW2 (no signal), and the discrete increments'
+// Gaussian log-density, sum log N(dy; h dt, R dt); they differ by a term of the data and R alone.
+// The innovation is dy - h dt, normalised by (R dt)^(1/2).
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "pfgen_runtime/innovation_scores.hpp"
+#include "pfgen_runtime/record_filter.hpp"
+
+namespace pfgen_runtime {
+
+enum class ContinuousData { Increments, Rates };
+
+struct RecordRunOptions {
+  ContinuousData continuous = ContinuousData::Increments;
+  std::size_t substeps = 1;  // continuous data: filter steps per data interval
+  std::size_t max_lags = 10;  // Ljung-Box
+};
+
+class RecordRun {
+ public:
+  // The filter from its initial state (the model's m0, P0, or `initial` when not empty: m then
+  // P's upper triangle) at t0, at the parameter values `values` (the plugin's order).
+  RecordRun(const RecordFilter& filter, std::vector<double> values, double t0, const RecordRunOptions& options,
+            const std::vector<double>& initial = {});
+  // To the row at t > time() (sampled data: t >= time(), a sample at the prior's time) with its observation (p entries; NaN: missing). false when the
+  // filter failed there (failure() says how); the run then stays failed. std::invalid_argument
+  // for a sampled row missing only some entries, or continuous data with a gap.
+  bool advance(double t, const double* observation);
+
+  const std::string& filter_name() const { return filter_.name; }
+  double time() const { return t_; }
+  const std::vector<double>& state() const { return state_; }
+  bool observed() const { return observed_; }  // whether the last row had an observation
+  const std::vector<double>& predicted() const { return yhat_; }  // yhat, or h dt
+  const std::vector<double>& innovation() const { return innovation_; }
+  const std::vector<double>& normalized() const { return normalized_; }
+  const InnovationScores& scores() const { return scores_; }
+  // Continuous data: the increments' Gaussian log-density (the discrete record's log-likelihood).
+  double increment_log_density() const { return increment_log_density_; }
+  const std::string& failure() const { return failure_; }
+  bool failed() const { return !failure_.empty(); }
+
+ private:
+  bool fail(const std::string& why);
+  bool sample(double t, const double* y);
+  bool increment(double t, const double* observation);
+  bool state_finite() const;
+  const RecordFilter& filter_;
+  std::vector<double> values_;
+  RecordRunOptions options_;
+  double t_;
+  std::vector<double> state_, yhat_, innovation_, normalized_, S_, B_, dy_, whitened_dy_;
+  InnovationScores scores_;
+  double increment_log_density_ = 0;
+  bool observed_ = false;
+  std::string failure_;
+};
+
+}  // namespace pfgen_runtime

@@ -1,0 +1,175 @@
+#include "pfgen_runtime/record_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace pfgen_runtime {
+namespace {
+
+constexpr double kLogTwoPi = 1.8378770664093454836;
+
+// S = L L^T in place (lower triangle, row-major p x p); false unless positive definite.
+bool cholesky(double* S, std::size_t p) {
+  for (std::size_t j = 0; j < p; ++j) {
+    double d = S[j * p + j];
+    for (std::size_t k = 0; k < j; ++k) d -= S[j * p + k] * S[j * p + k];
+    if (!(d > 0)) return false;
+    const double l = std::sqrt(d);
+    S[j * p + j] = l;
+    for (std::size_t i = j + 1; i < p; ++i) {
+      double s = S[i * p + j];
+      for (std::size_t k = 0; k < j; ++k) s -= S[i * p + k] * S[j * p + k];
+      S[i * p + j] = s / l;
+    }
+  }
+  return true;
+}
+
+// x = L^-1 b (forward substitution), L from cholesky().
+void forward(const double* L, std::size_t p, const double* b, double* x) {
+  for (std::size_t i = 0; i < p; ++i) {
+    double s = b[i];
+    for (std::size_t k = 0; k < i; ++k) s -= L[i * p + k] * x[k];
+    x[i] = s / L[i * p + i];
+  }
+}
+
+double log_determinant(const double* L, std::size_t p) {
+  double out = 0;
+  for (std::size_t i = 0; i < p; ++i) out += 2 * std::log(L[i * p + i]);
+  return out;
+}
+
+std::string at_time(double t) {
+  char text[40];
+  std::snprintf(text, sizeof text, "at t = %.10g", t);
+  return text;
+}
+
+}  // namespace
+
+RecordRun::RecordRun(const RecordFilter& filter, std::vector<double> values, double t0, const RecordRunOptions& options,
+                     const std::vector<double>& initial)
+    : filter_(filter),
+      values_(std::move(values)),
+      options_(options),
+      t_(t0),
+      state_(filter.state_size()),
+      yhat_(filter.p),
+      innovation_(filter.p),
+      normalized_(filter.p),
+      S_(filter.p * filter.p),
+      B_(filter.p * filter.r),
+      dy_(filter.p),
+      whitened_dy_(filter.p),
+      scores_(filter.p, options.max_lags) {
+  if (options_.substeps == 0) throw std::invalid_argument("substeps must be at least 1");
+  if (initial.empty())
+    filter.initial_state(state_.data());
+  else if (initial.size() == state_.size())
+    state_ = initial;
+  else
+    throw std::invalid_argument("the initial state has " + std::to_string(initial.size()) + " entries, the filter " +
+                                std::to_string(state_.size()));
+}
+
+bool RecordRun::fail(const std::string& why) {
+  failure_ = why;
+  return false;
+}
+
+bool RecordRun::state_finite() const {
+  for (double v : state_)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+bool RecordRun::advance(double t, const double* observation) {
+  if (failed()) return false;
+  if (!(t > t_ || (filter_.sampled() && t == t_))) throw std::invalid_argument("the time " + std::to_string(t) + " does not come after the filter's");
+  const bool ok = filter_.sampled() ? sample(t, observation) : increment(t, observation);
+  t_ = t;
+  if (ok && !state_finite()) return fail("the filter state is no longer finite " + at_time(t));
+  return ok;
+}
+
+bool RecordRun::sample(double t, const double* y) {
+  const std::size_t p = filter_.p;
+  std::size_t missing = 0;
+  for (std::size_t i = 0; i < p; ++i) missing += std::isnan(y[i]) ? 1 : 0;
+  if (missing > 0 && missing < p)
+    throw std::invalid_argument("a sample must be whole or missing: " + std::to_string(missing) + " of its " +
+                                std::to_string(p) + " entries are missing");
+  // Prediction sub-steps in proportion to the model's per period.
+  const double interval = t - t_;
+  const double share = interval * static_cast<double>(filter_.substeps) / filter_.period;
+  const double steps = std::max(1.0, std::ceil(share * (1 - 1e-12)));
+  if (steps > 1e9) return fail("the interval to t = " + std::to_string(t) + " needs more than 1e9 sub-steps");
+  const auto count = static_cast<std::size_t>(steps);
+  const double dt = interval / steps;
+  for (std::size_t k = 0; k < count && interval > 0; ++k)
+    filter_.predict(state_.data(), values_.data(), t_ + static_cast<double>(k) * dt, dt);
+  observed_ = missing == 0;
+  if (!observed_) {
+    for (std::size_t i = 0; i < p; ++i) innovation_[i] = normalized_[i] = yhat_[i] = std::nan("");
+    return true;
+  }
+  if (!state_finite()) return fail("the filter state is no longer finite " + at_time(t));
+  filter_.innovation(state_.data(), values_.data(), t, yhat_.data(), S_.data());
+  for (std::size_t i = 0; i < p; ++i) innovation_[i] = y[i] - yhat_[i];
+  if (!cholesky(S_.data(), p)) return fail("the innovation covariance S is not positive definite " + at_time(t));
+  forward(S_.data(), p, innovation_.data(), normalized_.data());
+  double square = 0;
+  for (double e : normalized_) square += e * e;
+  scores_.add(normalized_.data(), -0.5 * (static_cast<double>(p) * kLogTwoPi + log_determinant(S_.data(), p) + square));
+  if (!filter_.update(state_.data(), values_.data(), t, y))
+    return fail("the update found S not positive definite " + at_time(t));
+  return true;
+}
+
+bool RecordRun::increment(double t, const double* observation) {
+  const std::size_t p = filter_.p, r = filter_.r;
+  const double interval = t - t_;
+  for (std::size_t i = 0; i < p; ++i) {
+    if (std::isnan(observation[i]))
+      throw std::invalid_argument("continuous data cannot have a missing value: the filter has no step without dy");
+    dy_[i] = options_.continuous == ContinuousData::Rates ? observation[i] * interval : observation[i];
+  }
+  // h and R = B B^T where the interval starts (Ito).
+  filter_.predicted_observation(state_.data(), values_.data(), t_, yhat_.data());
+  filter_.observation_noise(values_.data(), t_, B_.data());
+  for (std::size_t i = 0; i < p; ++i)
+    for (std::size_t j = 0; j <= i; ++j) {
+      double s = 0;
+      for (std::size_t k = 0; k < r; ++k) s += B_[i * r + k] * B_[j * r + k];
+      S_[i * p + j] = S_[j * p + i] = s;
+    }
+  if (!cholesky(S_.data(), p)) return fail("the observation noise B B^T is not positive definite " + at_time(t_));
+  for (std::size_t i = 0; i < p; ++i) {
+    yhat_[i] *= interval;  // h dt
+    innovation_[i] = dy_[i] - yhat_[i];
+  }
+  forward(S_.data(), p, innovation_.data(), normalized_.data());
+  const double root = std::sqrt(interval);
+  double square = 0;
+  for (double& e : normalized_) {
+    square += e * e;  // of L^-1 (dy - h dt), before the division by sqrt(dt)
+    e /= root;
+  }
+  // Girsanov: h^T R^-1 dy - 1/2 h^T R^-1 h dt = (|L^-1 dy|^2 - |L^-1 (dy - h dt)|^2) / (2 dt).
+  forward(S_.data(), p, dy_.data(), whitened_dy_.data());
+  double dy_square = 0;
+  for (double z : whitened_dy_) dy_square += z * z;
+  scores_.add(normalized_.data(), (dy_square - square) / (2 * interval));
+  increment_log_density_ += -0.5 * (static_cast<double>(p) * (kLogTwoPi + std::log(interval)) +
+                                    log_determinant(S_.data(), p) + square / interval);
+  observed_ = true;
+  const double dt = interval / static_cast<double>(options_.substeps);
+  for (std::size_t i = 0; i < p; ++i) dy_[i] /= static_cast<double>(options_.substeps);
+  for (std::size_t k = 0; k < options_.substeps; ++k)
+    filter_.step(state_.data(), values_.data(), t_ + static_cast<double>(k) * dt, dt, dy_.data());
+  return true;
+}
+
+}  // namespace pfgen_runtime
