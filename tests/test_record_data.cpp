@@ -1,0 +1,140 @@
+// Recorded data: the record reader's errors (file, line, column), the innovation scores against a
+// direct computation, and estimate/fit's refusals of bad input.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "pfgen_runtime/innovation_scores.hpp"
+#include "pfgen_runtime/record_reader.hpp"
+#include "pfgen_runtime/statistics.hpp"
+#include "support/cli_helpers.hpp"
+
+using Catch::Matchers::Contains;
+using pfgen_test::TempDir;
+using pfgen_test::write_file;
+
+namespace {
+
+std::string reader_error(const std::string& contents, const std::string& time = "t", std::size_t expected = 1) {
+  TempDir dir;
+  const std::string path = dir.file("r.csv");
+  write_file(path, contents);
+  try {
+    pfgen_runtime::RecordReader reader(path, time, {}, expected);
+    double t = 0;
+    std::vector<double> y(expected);
+    while (reader.next(t, y.data())) {
+    }
+  } catch (const pfgen_runtime::RecordError& e) {
+    return std::string(e.what()).substr(path.size());  // the place after the path
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("the record reader names the line and column of every bad cell", "[record][unit]") {
+  CHECK(reader_error("") == ": the file is empty: a record needs a header line naming its columns");
+  CHECK_THAT(reader_error("time,y\n1,2\n"), Contains("the header has no time column 't' (its columns: time, y)"));
+  CHECK_THAT(reader_error("t,y,z\n1,2,3\n"), Contains("2 columns besides the time 't', the model observes 1"));
+  CHECK(reader_error("t,y\n0,1\n1,abc\n") == ":3: column 2 (y): 'abc' is not a number");
+  CHECK(reader_error("t,y\n0,1\n1,1e999\n") == ":3: column 2 (y): '1e999' is beyond the range of a double");
+  CHECK(reader_error("t,y\n0,1\n0,2\n") ==
+        ":3: column 1 (t): the time 0 does not come after the previous row's (line 2): times must increase");
+  CHECK(reader_error("t,y\n0,1\n1\n") == ":3: the row has 1 fields, the header 2");
+  CHECK(reader_error("t,y\n,1\n") == ":2: column 1 (t): the time is missing");
+  CHECK(reader_error("t,y\n0,\"1\"\n") == ":2: quoted fields are not read: write the cell without quotes");
+  CHECK(reader_error("t,t\n") == ":1: column 2: the header names 't' twice");
+  CHECK(reader_error(std::string("t,y\n0,") + std::string(pfgen_runtime::RecordReader::kMaxLineLength + 5, '1') + "\n") ==
+        ":2: the line is longer than 1048576 bytes");
+}
+
+TEST_CASE("the record reader reads missing cells as NaN, skips comments and blank lines, takes CRLF", "[record][unit]") {
+  TempDir dir;
+  const std::string path = dir.file("r.csv");
+  write_file(path, "# a comment\r\nt , y\r\n\r\n0, 1.5\r\n1,\r\n2,NaN\r\n3,+2");
+  pfgen_runtime::RecordReader reader(path, "t", {}, 1);
+  std::vector<double> times, values;
+  double t = 0, y = 0;
+  while (reader.next(t, &y)) times.push_back(t), values.push_back(y);
+  REQUIRE(times == std::vector<double>{0, 1, 2, 3});
+  CHECK(values[0] == 1.5);
+  CHECK(std::isnan(values[1]));
+  CHECK(std::isnan(values[2]));
+  CHECK(values[3] == 2);
+  CHECK(reader.line() == 7);
+}
+
+TEST_CASE("innovation scores: the mean square, its band and Ljung-Box as computed directly", "[record][unit]") {
+  std::mt19937_64 generator(3);
+  std::normal_distribution<double> normal;
+  std::vector<double> e(400);
+  double previous = 0;
+  for (double& v : e) v = previous = 0.3 * previous + normal(generator);  // mildly correlated
+  pfgen_runtime::InnovationScores scores(1, 10);
+  for (double v : e) scores.add(&v, -0.5 * v * v);
+  const auto s = scores.summary();
+  const double N = static_cast<double>(e.size());
+  double mean = 0, square = 0, ll = 0;
+  for (double v : e) mean += v / N, square += v * v / N, ll += -0.5 * v * v;
+  CHECK(s.mean_square == Approx(square).epsilon(1e-12));
+  CHECK(s.log_likelihood == Approx(ll).epsilon(1e-12));
+  CHECK(s.band_low == Approx(pfgen_runtime::chi_square_quantile(0.025, N) / N));
+  double centred = 0;
+  for (double v : e) centred += (v - mean) * (v - mean);
+  double Q = 0;
+  for (std::size_t l = 1; l <= 10; ++l) {
+    double c = 0;
+    for (std::size_t k = l; k < e.size(); ++k) c += (e[k] - mean) * (e[k - l] - mean);
+    Q += (c / centred) * (c / centred) / (N - static_cast<double>(l));
+  }
+  Q *= N * (N + 2);
+  REQUIRE(s.whiteness.size() == 1);
+  CHECK(s.whiteness[0].lags == 10);
+  CHECK(s.whiteness[0].statistic == Approx(Q).epsilon(1e-10));
+  CHECK(s.whiteness[0].p_value < 0.05);  // an AR(1) with 0.3 over 400 values is not white
+  CHECK_THAT(s.verdict(), Contains("fails whiteness"));
+}
+
+TEST_CASE("estimate and fit refuse bad options and data with one clear line", "[record][compiler]") {
+  TempDir dir;
+  const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.yaml";
+  const std::string data = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.csv";
+  const std::string cache = "--cache-dir=" + dir.file("cache");
+  auto fails_with = [&](std::vector<std::string> arguments, const std::string& message) {
+    arguments.push_back(cache);
+    arguments.push_back("-q");
+    const auto result = pfgen_test::run_pfgen(arguments);
+    CHECK(result.exit_code == 1);
+    CHECK_THAT(result.err, Contains(message));
+    CHECK(pfgen_test::count_lines(result.err) == 1);
+  };
+  fails_with({"fit", model, "--data", data, "--time-column", "year", "--estimate", "sigma"},
+             "--estimate: 'sigma' is not a parameter of");
+  fails_with({"fit", model, "--data", data, "--time-column", "year", "--estimate", "q,q"}, "'q' is named twice");
+  fails_with({"fit", model, "--data", data, "--time-column", "year", "--estimate", "q", "--bounds", "q=0:10"},
+             "--bounds: q's bounds exclude its start 1469.1");
+  fails_with({"fit", model, "--data", data, "--time-column", "year", "--estimate", "q", "--bounds", "h=0:10"},
+             "'h' is not among the estimated parameters");
+  fails_with({"fit", model, "--data", data, "--time-column", "year", "--estimate", "q", "--starts", "3"},
+             "give q both ends in --bounds");
+  fails_with({"estimate", model, "--data", data}, "the header has no time column 't' (its columns: year, volume)");
+  write_file(dir.file("bad.csv"), "year,volume\n1871,1120\n1872,abc\n");
+  fails_with({"estimate", model, "--data", dir.file("bad.csv"), "--time-column", "year"},
+             "bad.csv:3: column 2 (volume): 'abc' is not a number");
+  fails_with({"estimate", model, "--data", data, "--time-column", "year", "-o", model}, "-o");
+  fails_with({"estimate", model, "--data", data, "--time-column", "year", "--plot", dir.file("p.png")},
+             "--plot: the plot reads the CSV; give -o FILE.csv too");
+}
+
+TEST_CASE("estimate writes no CSV when the record fails part way", "[record][compiler]") {
+  TempDir dir;
+  const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.yaml";
+  write_file(dir.file("bad.csv"), "year,volume\n1871,1120\n1872,1160\n1873,x\n");
+  const auto result = pfgen_test::run_pfgen({"estimate", model, "--data", dir.file("bad.csv"), "--time-column", "year",
+                                             "-o", dir.file("out.csv"), "--cache-dir=" + dir.file("cache"), "-q"});
+  CHECK(result.exit_code == 1);
+  CHECK(dir.entries() == std::vector<std::string>{"bad.csv", "cache"});
+}
