@@ -165,8 +165,8 @@ FitOutcome fit(const FitOptions& options) {
                     p.at_bound ? "  (at its bound)" : "");
       out += line;
     }
-    std::snprintf(line, sizeof line, "\nlog-likelihood %.6f, AIC %.6f (%zu parameters estimated)\n", r.log_likelihood, aic,
-                  problem.names.size());
+    std::snprintf(line, sizeof line, "\nlog-likelihood %.6f, AIC %.6f (%zu parameter%s estimated)\n", r.log_likelihood,
+                  aic, problem.names.size(), problem.names.size() == 1 ? "" : "s");
     out += line;
     if (!r.information_note.empty()) out += r.information_note + "\n";
   }
