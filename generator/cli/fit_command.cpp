@@ -158,7 +158,8 @@ FitOutcome fit(const FitOptions& options) {
     out += line;
     for (const FittedParameter& p : r.parameters) {
       const std::string wald = "[" + cell(p.wald_low) + ", " + cell(p.wald_high) + "]";
-      const std::string profile = "[" + cell(p.profile_low) + ", " + cell(p.profile_high) + "]";
+      const std::string profile = "[" + cell(p.profile_low) + (p.profile_low_is_bound ? " (bound)" : "") + ", " +
+                                  cell(p.profile_high) + (p.profile_high_is_bound ? " (bound)" : "") + "]";
       std::snprintf(line, sizeof line, "%-12s %14s %14s %29s%s%s\n", p.name.c_str(), cell(p.estimate).c_str(),
                     cell(p.std_error).c_str(), wald.c_str(),
                     options.profile ? ("  " + std::string(29 - std::min<std::size_t>(29, profile.size()), ' ') + profile).c_str() : "",
@@ -183,7 +184,9 @@ FitOutcome fit(const FitOptions& options) {
     json += std::string(i ? "," : "") + "\n    {\"name\": " + json_quote(p.name) +
             ", \"estimate\": " + json_number(p.estimate) + ", \"std_error\": " + json_number(p.std_error) +
             ", \"wald\": [" + json_number(p.wald_low) + ", " + json_number(p.wald_high) + "], \"profile\": [" +
-            json_number(p.profile_low) + ", " + json_number(p.profile_high) + "], \"at_bound\": " +
+            json_number(p.profile_low) + ", " + json_number(p.profile_high) + "], \"profile_at_bound\": [" +
+            (p.profile_low_is_bound ? "true" : "false") + ", " + (p.profile_high_is_bound ? "true" : "false") +
+            "], \"at_bound\": " +
             (p.at_bound ? "true" : "false") + "}";
   }
   json += "\n  ]\n}\n";

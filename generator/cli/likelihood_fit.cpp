@@ -234,7 +234,14 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
         if (outside == lower[i] || outside == upper[i]) break;
         step *= 2;
       }
-      if (!found) continue;  // the interval reaches the bound: left NaN
+      if (!found) {  // the interval reaches the bound (NaN when that is infinite)
+        const double bound = (side < 0 ? lower[i] : upper[i]) * scaled.scale[i];
+        if (std::isfinite(bound)) {
+          (side < 0 ? out.parameters[i].profile_low : out.parameters[i].profile_high) = bound;
+          (side < 0 ? out.parameters[i].profile_low_is_bound : out.parameters[i].profile_high_is_bound) = true;
+        }
+        continue;
+      }
       for (int b = 0; b < 40; ++b) {
         const double mid = 0.5 * (inside + outside);
         (deficit(mid) > 0 ? outside : inside) = mid;

@@ -29,7 +29,8 @@ struct FittedParameter {
   double estimate = 0;
   double std_error = 0;          // NaN when the observed information is not positive definite
   double wald_low = 0, wald_high = 0;
-  double profile_low = 0, profile_high = 0;  // NaN unless asked, or not found within the bounds
+  double profile_low = 0, profile_high = 0;  // NaN unless asked; the bound where the interval reaches it
+  bool profile_low_is_bound = false, profile_high_is_bound = false;
   bool at_bound = false;
 };
 
