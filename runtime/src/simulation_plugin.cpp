@@ -70,15 +70,15 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
                 f.lanes <= 64,
             path, "filter " + std::string(f.name) + " has step_lanes without 1 to 64 lanes, or with extra state");
     require((f.step_at != nullptr) == (f.predicted_observation != nullptr) &&
-                (f.step_at != nullptr) == (f.extra_state_size == 0),
-            path, "filter " + std::string(f.name) + " lacks step_at or predicted_observation, or has them with extra state");
+                (f.step_at == nullptr || f.extra_state_size == 0),
+            path, "filter " + std::string(f.name) + " has only one of step_at and predicted_observation, or them with extra state");
   }
   require(t.parameter_count == 0 || (t.parameter_names && t.parameter_defaults), path,
           "the parameters' names or defaults are missing");
   for (std::size_t k = 0; k < t.parameter_count; ++k)
     require(t.parameter_names[k] != nullptr, path, "parameter " + std::to_string(k) + " has no name");
-  require((t.observation_noise != nullptr) == (!t.observation_is_sampled && t.delay == 0), path,
-          "observation_noise must be given exactly for continuous observations without a delay");
+  require(t.observation_noise == nullptr || (!t.observation_is_sampled && t.delay == 0), path,
+          "observation_noise is only for continuous observations without a delay");
 }
 
 }  // namespace
@@ -209,7 +209,7 @@ std::vector<RecordFilter> SimulationPlugin::record_filters() const {
   std::vector<RecordFilter> out;
   for (std::size_t k = 0; k < table_->filter_count; ++k) {
     const pfgen_plugin_filter& f = table_->filters[k];
-    if (!f.step_at) continue;  // a delayed filter
+    if (!f.step_at || !table_->observation_noise) continue;  // a delayed filter (or a plugin written without)
     RecordFilter filter;
     filter.library = library_;
     filter.name = f.name;

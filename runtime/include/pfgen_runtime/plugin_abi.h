@@ -48,8 +48,8 @@ typedef struct pfgen_plugin_filter {
   size_t lanes;
   /* Version 7 on: step at parameter values given in the call (values: the plugin's
    * parameter_count entries, in the model's order) rather than the model's defaults, and the
-   * predicted observation rate h (p entries: A0 + A m, or E[h(x)]) of the state at t. NULL for a
-   * delayed filter. What running a filter over recorded data and fitting parameters need. */
+   * predicted observation rate h (p entries: A0 + A m, or E[h(x)]) of the state at t. Both NULL,
+   * or both set (never for a filter with extra state): NULL for a delayed filter. What running a filter over recorded data and fitting parameters need. */
   void (*step_at)(double* state, const double* values, double t, double dt, const double* dy);
   void (*predicted_observation)(const double* state, const double* values, double t, double* h);
 } pfgen_plugin_filter;
@@ -127,7 +127,8 @@ typedef struct pfgen_plugin {
   void (*observation_rate_batch)(double t, size_t count, const double* x, double* h);
   /* Version 7 on: the model's parameters in its order (names and the default values every
    * function above uses), and for continuous observations without a delay B(t) (p x r) at given
-   * parameter values (NULL otherwise): the observation noise dW2's factor, R = B B^T. */
+   * parameter values: the observation noise dW2's factor, R = B B^T (NULL otherwise, or from a
+   * plugin whose continuous filters cannot run on records). */
   size_t parameter_count;
   const char* const* parameter_names;  /* parameter_count entries (NULL when 0) */
   const double* parameter_defaults;    /* parameter_count entries (NULL when 0) */

@@ -22,7 +22,16 @@ TruthCode generate_truth_code(const Model& model) {
   CppEmitter emitter(ScalarMode::Double);
   std::string& out = code.definitions;
   out += "using Scalar = double;\n\n// The model's parameters at their defaults.\nstruct Params {\n";
-  for (const auto& p : model.parameters) out += "  Scalar " + p.name + " = " + emitter.literal(p.default_value) + ";\n";
+  std::string initializers;
+  for (const auto& p : model.parameters) {
+    out += "  Scalar " + p.name + " = " + emitter.literal(p.default_value) + ";\n";
+    initializers += (initializers.empty() ? " : " : ", ") + p.name + "(values[" +
+                    std::to_string(&p - model.parameters.data()) + "])";
+  }
+  // Each parameter from values[k], in the model's order: the functions at parameter values given
+  // in the call (observation_noise). A constructor, so that no model name can clash with it.
+  out += "  Params() = default;\n  explicit Params(const double* values)" + initializers + " {" +
+         (initializers.empty() ? " (void)values; " : "") + "}\n";
   out += "};\n\n";
 
   TruthNames names(model);

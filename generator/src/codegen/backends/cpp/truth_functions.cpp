@@ -35,8 +35,7 @@ std::string truth_function_with(const Model& model, TruthNames& names, const std
   std::string body;
   if (use.parameters)
     body += values.empty() ? "  const Params " + names.params + "{};\n"
-                           : "  const Params " + names.params + " = ::pfgen_simulation::parameters::from<Params>(" +
-                                 values + ");\n";
+                           : "  const Params " + names.params + "(" + values + ");\n";
   else if (!values.empty())
     body += "  (void)" + values + ";\n";
   if (!use.time) body += "  (void)" + names.time + ";\n";

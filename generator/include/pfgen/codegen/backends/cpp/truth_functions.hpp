@@ -44,7 +44,7 @@ std::string matrices_function(const Model& model, TruthNames& names, const std::
                               const std::vector<std::pair<std::string, ExMatrix>>& parts);
 
 // The same at parameter values given in the call, `function_name`(values, t, M1, M2, ...): values
-// holds the model's parameters in its order (the plugin's parameters::from reads them).
+// holds the model's parameters in its order (read by the truth's Params(values) constructor).
 std::string parameterised_matrices_function(const Model& model, TruthNames& names, const std::string& function_name,
                                             const std::vector<std::pair<std::string, ExMatrix>>& parts);
 
