@@ -19,7 +19,8 @@
 // step() calls per increment, CSE count) plus step()'s own loops; the hand-written one by formula from
 // the matrix products it writes (handwritten_ops below), since Eigen computes every entry of them.
 //
-// Usage: bench_handwritten [--repeats 11] [--min-time-ms 100] [--no-float]
+// Usage: bench_handwritten [--repeats 11] [--min-time-ms 100] [--no-float] [--n N]
+// (--n: the one size N alone, to repeat a cell)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -152,6 +153,7 @@ void measure(const Options& options, const GeneratedFilter<Scalar>& generated, d
 
 template <int N>
 void run_case(const Options& options, const GeneratedFilter<double>& d, const GeneratedFilter<float>* f, double ops) {
+  if (options.only_n != 0 && options.only_n != N) return;
   measure<double, N>(options, d, ops, "double", 1e-12);
   if (options.with_float && f) measure<float, N>(options, *f, ops, "float", 1e-4);
 }
@@ -166,10 +168,12 @@ int main(int argc, char** argv) {
       options.repeats = std::atoi(argv[++k]);
     } else if (arg == "--min-time-ms" && k + 1 < argc) {
       options.min_time_ms = std::atof(argv[++k]);
+    } else if (arg == "--n" && k + 1 < argc) {
+      options.only_n = std::atoi(argv[++k]);
     } else if (arg == "--no-float") {
       options.with_float = false;
     } else {
-      std::fprintf(stderr, "usage: bench_handwritten [--repeats 11] [--min-time-ms 100] [--no-float]\n");
+      std::fprintf(stderr, "usage: bench_handwritten [--repeats 11] [--min-time-ms 100] [--no-float] [--n N]\n");
       return 2;
     }
   }

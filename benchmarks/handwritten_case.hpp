@@ -17,6 +17,7 @@ struct Options {
   int repeats = 11;
   double min_time_ms = 100;
   bool with_float = true;
+  int only_n = 0;  // --n: time this size alone (0: every size)
 };
 
 }  // namespace pfgen_bench

@@ -317,3 +317,27 @@ TEST_CASE("P's drift in loops and rates() agree with the exact equations in C++ 
     check_model(load_model_text(kLoopNamesTaken, "loop_names.yaml"), true);
   }
 }
+
+// The dense products' rows as a loop at n = 4 and written out from kRowsWrittenOutFrom, one column
+// loop per row (codegen/p_drift_loops.hpp says why, with the measurements): a later change of the
+// forms has to change this test too. Dense linear systems, whose E[J] and A are dense; C++ and C
+// are one text.
+TEST_CASE("the dense products' rows are a loop at n = 4 and written out from n = 5 to 7", "[unit]") {
+  for (const std::size_t n : {std::size_t(4), codegen::kRowsWrittenOutFrom, codegen::kFullCombineBelow - 1}) {
+    CAPTURE(n);
+    const Model model = load_model_text(dense_linear_yaml(dense_linear_system(n)), "dense_linear.yaml");
+    const FilterEquations eq = derive_named_filter(model, "optimal");
+    const std::string N = std::to_string(n), p = std::to_string(eq.p);
+    for (const codegen::Language language : {codegen::Language::Cpp, codegen::Language::C}) {
+      const std::string text = code(model, eq, language, language == codegen::Language::C ? 1 : 0);
+      const bool row_loop = n < codegen::kRowsWrittenOutFrom;
+      // E[J] P and A P: the row loop, or row 1's own column loop.
+      CHECK((text.find("  for (int i = 0; i < " + N + "; ++i)\n    for (int j = 0; j < " + N + "; ++j) JP[i * " + N +
+                       " + j] = ") != std::string::npos) == row_loop);
+      CHECK((text.find("  for (int i = 0; i < " + p + "; ++i)\n    for (int j = 0; j < " + N + "; ++j) H[i * " + N +
+                       " + j] = ") != std::string::npos) == row_loop);
+      CHECK((text.find("  for (int j = 0; j < " + N + "; ++j) JP[" + N + " + j] = ") != std::string::npos) == !row_loop);
+      CHECK((text.find("  for (int j = 0; j < " + N + "; ++j) H[" + N + " + j] = ") != std::string::npos) == !row_loop);
+    }
+  }
+}

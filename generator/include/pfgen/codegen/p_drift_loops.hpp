@@ -37,6 +37,16 @@ inline constexpr std::size_t kMinLoopDimensionAlone = 6;
 // rows kept a compiler from vectorising them (g++ -O3, n = 4: the whole step 1.6x faster in full;
 // no difference at n = 8 or 16, where the triangle saves (n^2 - n) / 2 entries' operations).
 inline constexpr std::size_t kFullCombineBelow = 8;
+// From this n up to kFullCombineBelow the dense products' rows are written out, one column loop
+// per row (CFamilyEmitter::p_drift_loops says why); below it, at n = 4, they are a loop over the
+// rows. Written out at n = 4, GCC 12 -O3 -march=native with 512-bit vectors preferred (its tuning
+// for Zen 4 and other AVX-512 machines) packed the four row loops into shuffled 512-bit vectors:
+// the step 1.27x hand-written Eigen in double, 1.11x with the row loop; 256-bit vectors 0.84x to
+// 0.82x (double) and 0.83x to 0.71x (float), -O3 float 1.18x to 1.12x, -O2 0.71x to 0.77x
+// (double) and 0.93x to 1.00x (float). At n = 6 the row loop was no better (-O3 double 0.89x to
+// 1.09x), so from 5 on the rows stay written out (docs/benchmarks.md, "Generated code against
+// hand-written code").
+inline constexpr std::size_t kRowsWrittenOutFrom = 5;
 
 struct PDriftLoops {
   std::size_t n = 0;
@@ -67,6 +77,7 @@ struct PDriftLoops {
   std::size_t work_size = 0;
 
   bool full_combine() const { return n < kFullCombineBelow; }
+  bool rows_written_out() const { return full_combine() && n >= kRowsWrittenOutFrom; }
   // Where the outputs go: m's drift at 0, P's drift at n, then K, then the tail.
   std::size_t gain_target() const { return n + n * (n + 1) / 2; }
   std::size_t tail_target() const { return gain_target() + (gain_out ? n * p : 0); }

@@ -34,14 +34,15 @@ std::string CFamilyEmitter::p_drift_loops(const PDriftLoops& loops, const PDrift
     return "for (int " + index + " = " + std::to_string(from) + "; " + index + " < " + std::to_string(to) + "; ++" +
            index + ")";
   };
-  // Below kFullCombineBelow the loops over rows are written out, one column loop per row with the
-  // row's offsets as numbers. g++ -O2 (GCC 12) vectorises the column loops but keeps the row loop,
-  // reading each row's coefficients back from the work array and broadcasting them; with the
-  // offsets known it takes E[J]'s and A's entries as the constants they often are. Dense linear
-  // n = 4, -O2, float: the step 1.40x to 1.14x hand-written Eigen with these rows alone, 0.93x with
-  // the step's loops written out too (heun_step_text.hpp); -O3 1.07x to 1.18x, where GCC had
-  // unrolled the row loop itself.
-  const bool rows_written_out = loops.full_combine();
+  // From kRowsWrittenOutFrom to kFullCombineBelow the loops over rows are written out, one column
+  // loop per row with the row's offsets as numbers. g++ -O2 (GCC 12) vectorises the column loops but
+  // keeps the row loop, reading each row's coefficients back from the work array and broadcasting
+  // them; with the offsets known it takes E[J]'s and A's entries as the constants they often are.
+  // Dense linear n = 4, -O2, float: the step 1.40x to 1.14x hand-written Eigen with these rows
+  // alone, 0.93x with the step's loops written out too (heun_step_text.hpp); -O3 1.07x to 1.18x,
+  // where GCC had unrolled the row loop itself. At n = 4 the rows are now a loop again: with 512-bit
+  // vectors GCC packed the written-out rows badly (p_drift_loops.hpp, kRowsWrittenOutFrom).
+  const bool rows_written_out = loops.rows_written_out();
   // dst (rows x n) = (the work array at `base`, rows x n, row-major) times the full P: dst_ij =
   // sum_k lhs_ik P_kj.
   auto times_P = [&](const std::string& dst, std::size_t rows, std::size_t base) {
