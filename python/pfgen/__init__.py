@@ -146,8 +146,8 @@ def _whole(value, option, maximum=_MAX_UINT64):
     return int(value)
 
 
-def _names(names, option):
-    """Filter names: a list, or one name as a string."""
+def _names(names, option, what="a filter's name"):
+    """Names (of filters, columns, parameters): a list, or one name as a string."""
     if names is None:
         return []
     if isinstance(names, str):
@@ -155,10 +155,10 @@ def _names(names, option):
     try:
         names = list(names)
     except TypeError:
-        raise Error(f"error: {option}: expected a filter's name or a list of them, got {_shown(names)}") from None
+        raise Error(f"error: {option}: expected {what} or a list of them, got {_shown(names)}") from None
     for name in names:
         if not isinstance(name, str):
-            raise Error(f"error: {option}: {name!r} is not a filter's name")
+            raise Error(f"error: {option}: {_shown(name)} is not {what}")
     return names
 
 
@@ -628,22 +628,6 @@ def _flag(value, option):
     return bool(value)
 
 
-def _column_names(names, option):
-    """Column or parameter names: a list of str, or one name as a str."""
-    if names is None:
-        return []
-    if isinstance(names, str):
-        return [names]
-    try:
-        names = list(names)
-    except TypeError:
-        raise Error(f"error: {option}: expected a name or a list of names, got {_shown(names)}") from None
-    for name in names:
-        if not isinstance(name, str):
-            raise Error(f"error: {option}: {_shown(name)} is not a name (a str)")
-    return names
-
-
 def _data_column(values, name, rows):
     """One column of in-memory data as floats (None, pandas' NA and NaN: missing)."""
     to_numpy = getattr(values, "to_numpy", None)
@@ -709,7 +693,7 @@ def _record_options(options, data, time, columns, data_form, substeps, t0, param
     time = _text(time, "--time-column", "t")
     _set_record(options, data, time)
     options.time_column = time
-    options.columns = _column_names(columns, "--columns")
+    options.columns = _names(columns, "--columns", "a column's name")
     options.data_form = _text(data_form, "--data-form", "increments")
     options.substeps = _whole(1 if substeps is None else substeps, "--substeps")
     options.t0 = _optional_number(t0, "--t0")
@@ -874,7 +858,7 @@ def fit(model, data, estimate, *, bounds=None, filter=None, starts=None, seed=No
     record = options.record
     _record_options(record, data, time, columns, data_form, substeps, t0, parameters, cache_dir, compiler)
     options.record = record
-    options.estimate = _column_names(estimate, "--estimate")
+    options.estimate = _names(estimate, "--estimate", "a parameter's name")
     options.bounds = _bounds(bounds)
     options.filter = _text(filter, "--filter", "")
     options.starts = _whole(1 if starts is None else starts, "--starts")

@@ -64,7 +64,7 @@ def test_fit_refuses_bad_arguments(pfgen_command):
         pfgen.fit(model, NILE_DATA, "sigma", time="year")
     assert str(refused.value) == pfgen_command.error_line("fit", NILE, "--data", NILE_DATA, "--time-column", "year",
                                                           "--estimate", "sigma", "-q")
-    with pytest.raises(pfgen.Error, match=r"^error: --estimate: 3 is not a name"):
+    with pytest.raises(pfgen.Error, match=r"^error: --estimate: 3 is not a parameter's name"):
         pfgen.fit(model, NILE_DATA, ["q", 3], time="year")
     with pytest.raises(pfgen.Error, match=r"^error: --bounds q: expected a pair \(low, high\)"):
         pfgen.fit(model, NILE_DATA, "q", bounds={"q": 0}, time="year")
