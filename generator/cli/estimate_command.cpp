@@ -147,7 +147,8 @@ std::string scores_table(const std::vector<FilterScores>& scores, bool continuou
 
 EstimateOutcome estimate(const EstimateOptions& options) {
   const RecordJobOptions& record = options.record;
-  std::vector<NamedPath> inputs{{"the model file", record.model_path}, {"--data", record.data_path}};
+  std::vector<NamedPath> inputs{{"the model file", record.model_path}};
+  if (!record.data_rows) inputs.push_back({"--data", record.data_path});
   std::vector<NamedPath> outputs;
   if (!options.csv_path.empty()) outputs.push_back({"-o", options.csv_path});
   if (!options.plot_path.empty()) {
@@ -161,17 +162,23 @@ EstimateOutcome estimate(const EstimateOptions& options) {
   for (const NamedPath& output : outputs) check_output_file(output);
 
   RecordJob job = prepare_record_job(record);
-  pfgen_runtime::RecordReader reader = open_record(record, job);
+  const std::unique_ptr<pfgen_runtime::RecordSource> source = open_record(record, job);
+  pfgen_runtime::RecordSource& reader = *source;
   const std::vector<std::string> observed = reader.observation_columns();
   const bool sampled = job.model.observation.is_sampled();
   const std::size_t n = job.model.n();
 
   std::optional<StreamedFile> csv;
-  if (!options.csv_path.empty()) {
-    csv.emplace(options.csv_path);
+  if (!options.csv_path.empty()) csv.emplace(options.csv_path);
+  const bool writes_csv = csv || options.csv_text;
+  const auto write_csv = [&](const std::string& text) {
+    if (csv) csv->write(text);
+    if (options.csv_text) *options.csv_text += text;
+  };
+  if (writes_csv) {
     std::string header;
     for (const auto& c : csv_columns(job, reader.time_column(), observed, options.full_covariance)) header += (header.empty() ? "" : ",") + c;
-    csv->write(header + "\n");
+    write_csv(header + "\n");
   }
 
   std::vector<double> y(observed.size());
@@ -191,7 +198,7 @@ EstimateOutcome estimate(const EstimateOptions& options) {
     // interval before it); its values are not used. A sample there updates the prior.
     if (!(first_row && !sampled && t == runs.front().time()))
       for (RecordRun& run : runs) {
-        const std::string where = reader.path() + ":" + std::to_string(reader.line()) + ": ";
+        const std::string where = reader.place() + ": ";
         bool ok = false;
         try {
           ok = run.advance(t, y.data());
@@ -201,25 +208,26 @@ EstimateOutcome estimate(const EstimateOptions& options) {
         if (!ok) throw CliValueError(where + "the filter '" + run.filter_name() + "' failed: " + run.failure());
       }
     last = t;
-    if (csv) {
+    if (writes_csv) {
       append_row(buffer, t, y, runs, n, options.full_covariance);
       if (buffer.size() > (1u << 20)) {
-        csv->write(buffer);
+        write_csv(buffer);
         buffer.clear();
       }
     }
   }
   if (rows == 0) throw CliValueError(record.data_path + ": the record has a header but no rows");
-  if (csv) {
-    csv->write(buffer);
-    csv->finish();
-  }
+  write_csv(buffer);
+  if (csv) csv->finish();
   if (!options.plot_path.empty())
     pfgen_runtime::write_gnuplot_plot(options.plot_path, [&](const std::string& drawn) {
       return plot_script(drawn, options.csv_path, job, csv_columns(job, reader.time_column(), observed, options.full_covariance), observed);
     });
 
   EstimateOutcome outcome;
+  outcome.time_column = reader.time_column();
+  outcome.observation_columns = observed;
+  outcome.columns = csv_columns(job, reader.time_column(), observed, options.full_covariance);
   for (const RecordRun& run : runs)
     outcome.scores.push_back({run.filter_name(), run.scores().summary(), run.increment_log_density()});
   char line[300];

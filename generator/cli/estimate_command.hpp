@@ -17,6 +17,8 @@ struct EstimateOptions {
   std::string csv_path;   // -o
   std::string plot_path;  // --plot FILE.png|svg
   bool full_covariance = false;
+  // The API's: the CSV kept here, as -o writes it (with or without -o).
+  std::string* csv_text = nullptr;
 };
 
 struct FilterScores {
@@ -28,6 +30,9 @@ struct FilterScores {
 struct EstimateOutcome {
   std::string report;  // what the command prints on stdout
   std::vector<FilterScores> scores;
+  std::string time_column;                       // the record's, as the CSV names it
+  std::vector<std::string> observation_columns;  // the record's, in the model's order
+  std::vector<std::string> columns;              // the CSV's header
 };
 
 EstimateOutcome estimate(const EstimateOptions& options);

@@ -45,10 +45,11 @@ double record_log_likelihood(const pfgen_runtime::RecordFilter& filter, const Re
     try {
       ok = run.advance(t, record.values.data() + row * record.p);
     } catch (const std::invalid_argument& e) {
-      throw CliValueError(job.model.source + ": --data line " + std::to_string(record.lines[row]) + ": " + e.what());
+      throw CliValueError(job.model.source + ": --data " + record.line_word + " " + std::to_string(record.lines[row]) +
+                          ": " + e.what());
     }
     if (!ok) {
-      why = "line " + std::to_string(record.lines[row]) + " of the record: " + run.failure();
+      why = record.line_word + " " + std::to_string(record.lines[row]) + " of the record: " + run.failure();
       return std::nan("");
     }
   }
@@ -140,7 +141,7 @@ FitOutcome fit(const FitOptions& options) {
   outcome.result = maximise_likelihood(problem, log_likelihood);
   const FitResult& r = outcome.result;
   const double k = static_cast<double>(problem.names.size());
-  const double aic = 2 * k - 2 * r.log_likelihood;
+  const double aic = outcome.aic = 2 * k - 2 * r.log_likelihood;
 
   std::string& out = outcome.report;
   out = "Fit of " + model.name + " by " + filter.name + " to " + record.data_path + " (" +

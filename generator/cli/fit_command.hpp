@@ -26,6 +26,7 @@ struct FitOutcome {
   std::string report;  // stdout
   std::string json;
   FitResult result;
+  double aic = 0;
 };
 
 FitOutcome fit(const FitOptions& options);

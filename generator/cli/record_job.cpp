@@ -8,6 +8,8 @@
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
+#include "pfgen_runtime/record_arrays.hpp"
+#include "pfgen_runtime/record_reader.hpp"
 
 namespace pfgen::cli {
 
@@ -51,8 +53,12 @@ RecordJob prepare_record_job(const RecordJobOptions& options) {
   return job;
 }
 
-pfgen_runtime::RecordReader open_record(const RecordJobOptions& options, const RecordJob& job) {
-  return pfgen_runtime::RecordReader(options.data_path, options.time_column, options.columns, job.model.p());
+std::unique_ptr<pfgen_runtime::RecordSource> open_record(const RecordJobOptions& options, const RecordJob& job) {
+  if (options.data_rows)
+    return std::make_unique<pfgen_runtime::RecordArrays>(options.data_path, *options.data_header, *options.data_rows,
+                                                         options.time_column, options.columns, job.model.p());
+  return std::make_unique<pfgen_runtime::RecordReader>(options.data_path, options.time_column, options.columns,
+                                                       job.model.p());
 }
 
 double prior_time(const RecordJobOptions& options, double first_time, const std::string& data_path) {
@@ -64,15 +70,16 @@ double prior_time(const RecordJobOptions& options, double first_time, const std:
 }
 
 Record read_record(const RecordJobOptions& options, const RecordJob& job) {
-  pfgen_runtime::RecordReader reader = open_record(options, job);
+  const std::unique_ptr<pfgen_runtime::RecordSource> source = open_record(options, job);
   Record record;
-  record.p = reader.observation_columns().size();
+  record.p = source->observation_columns().size();
+  record.line_word = source->line_word();
   std::vector<double> row(record.p);
   double t = 0;
-  while (reader.next(t, row.data())) {
+  while (source->next(t, row.data())) {
     record.times.push_back(t);
     record.values.insert(record.values.end(), row.begin(), row.end());
-    record.lines.push_back(reader.line());
+    record.lines.push_back(source->line());
   }
   if (record.times.empty()) throw CliValueError(options.data_path + ": the record has a header but no rows");
   return record;

@@ -3,6 +3,7 @@
 // same source and cache as `simulate`'s, the model's defaults compiled in, so that every parameter
 // value is a runtime argument and a new value needs no compiler), the parameter values of the job
 // (the model's defaults with --set's), and the record read in full or row by row.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,7 +11,7 @@
 #include "pfgen/model/model.hpp"
 #include "pfgen/toolchain/plugin_compiler.hpp"
 #include "pfgen_runtime/record_filter.hpp"
-#include "pfgen_runtime/record_reader.hpp"
+#include "pfgen_runtime/record_source.hpp"
 #include "pfgen_runtime/record_run.hpp"
 #include "pfgen_runtime/simulation_plugin.hpp"
 
@@ -20,6 +21,10 @@ struct RecordJobOptions {
   std::string model_path;
   const Model* model = nullptr;  // the API's: a model already loaded
   std::string data_path;
+  // The API's: the record in memory (a header naming the columns, and the rows), read instead of
+  // a file; data_path then names it in messages and reports. Read in place: they outlive the job.
+  const std::vector<std::string>* data_header = nullptr;
+  const std::vector<std::vector<double>>* data_rows = nullptr;
   std::string time_column = "t";
   std::vector<std::string> columns;       // observation columns in the model's order; empty: all others
   std::vector<std::string> filters;       // empty: the model's defaults
@@ -44,14 +49,15 @@ struct RecordJob {
 // a model this cannot run on a record (delayed observations) or a bad option.
 RecordJob prepare_record_job(const RecordJobOptions& options);
 
-// The record's reader, its columns checked against the model.
-pfgen_runtime::RecordReader open_record(const RecordJobOptions& options, const RecordJob& job);
+// The record's rows, from the file or from memory, its columns checked against the model.
+std::unique_ptr<pfgen_runtime::RecordSource> open_record(const RecordJobOptions& options, const RecordJob& job);
 
 // Every row of a record in memory (fit evaluates the likelihood many times over it).
 struct Record {
   std::vector<double> times;
   std::vector<double> values;  // row-major, p per row
-  std::vector<std::size_t> lines;
+  std::vector<std::size_t> lines;  // each row's line in the file, or its number among the rows in memory
+  std::string line_word = "line";  // what `lines` counts, in messages: "line" or "row"
   std::size_t p = 0;
 };
 Record read_record(const RecordJobOptions& options, const RecordJob& job);

@@ -11,6 +11,8 @@ matching command prints and fails with the same message (docs/guide/python.md).
     optimal.eval(0, [0.5], [[1]])  # pfgen eval: {"m_drift": array([0.125]), ...}
     result = pfgen.simulate(model, runs=100, T=1, reference=1000)
     print(result.report)         # pfgen simulate's table
+    run = pfgen.estimate(model, "record.csv")   # pfgen estimate --data record.csv
+    run.filters["optimal"].m     # the estimates at the data times, a numpy array
 """
 import importlib as _importlib
 import json as _json
@@ -47,7 +49,8 @@ try:
 except ImportError as _error:
     raise ImportError(_import_hint(_error)) from _error
 
-__all__ = ["Error", "Model", "Filter", "Simulation", "simulate", "__version__"]
+__all__ = ["Error", "Model", "Filter", "Simulation", "simulate", "Estimate", "FilterRun", "estimate", "Fit", "fit",
+           "__version__"]
 __version__ = _pfgen.version()
 
 #: The one exception pfgen raises for a bad model, option, point or file. Its message is the line
@@ -143,8 +146,8 @@ def _whole(value, option, maximum=_MAX_UINT64):
     return int(value)
 
 
-def _names(names, option):
-    """Filter names: a list, or one name as a string."""
+def _names(names, option, what="a filter's name"):
+    """Names (of filters, columns, parameters): a list, or one name as a string."""
     if names is None:
         return []
     if isinstance(names, str):
@@ -152,10 +155,10 @@ def _names(names, option):
     try:
         names = list(names)
     except TypeError:
-        raise Error(f"error: {option}: expected a filter's name or a list of them, got {_shown(names)}") from None
+        raise Error(f"error: {option}: expected {what} or a list of them, got {_shown(names)}") from None
     for name in names:
         if not isinstance(name, str):
-            raise Error(f"error: {option}: {name!r} is not a filter's name")
+            raise Error(f"error: {option}: {_shown(name)} is not {what}")
     return names
 
 
@@ -274,6 +277,11 @@ class Filter:
         values = _json.loads(native.json)
         return {key: _arrays(value) for key, value in values.items() if key not in ("model", "filter")}
 
+    def run(self, data, **settings):
+        """pfgen.estimate(model, data, filters=[this filter], ...): this filter over a record; its
+        arrays are ``run(...).filters[name]``."""
+        return estimate(self._model, data, filters=[self.name], **settings)
+
     def to_sympy(self):
         """The equations as SymPy matrices, equal to the printed ones:
 
@@ -387,6 +395,14 @@ class Model:
     def simulate(self, **settings):
         """pfgen.simulate(self, ...)."""
         return simulate(self, **settings)
+
+    def estimate(self, data, **settings):
+        """pfgen.estimate(self, data, ...)."""
+        return estimate(self, data, **settings)
+
+    def fit(self, data, estimate, **settings):
+        """pfgen.fit(self, data, estimate, ...)."""
+        return fit(self, data, estimate, **settings)
 
 
 class Simulation:
@@ -601,3 +617,251 @@ def _simulate_showing_progress(native_model, options, stream):
     finally:
         done.set()
         shower.join()
+
+
+def _flag(value, option):
+    """A switch (--profile, --full-covariance): True or False (None: False)."""
+    if value is None:
+        return False
+    if not isinstance(value, (bool, _np.bool_)):
+        raise Error(f"error: {option}: expected True or False, got {_shown(value)}")
+    return bool(value)
+
+
+def _data_column(values, name, rows):
+    """One column of in-memory data as floats (None, pandas' NA and NaN: missing)."""
+    to_numpy = getattr(values, "to_numpy", None)
+    try:
+        if to_numpy is not None:  # a pandas Series: its NA as NaN
+            array = to_numpy(dtype=float, na_value=_np.nan)
+        else:
+            array = _np.asarray(values, dtype=float)
+    except OverflowError:
+        raise _out_of_range(f"--data column {name!r}", values) from None
+    except (TypeError, ValueError):
+        raise Error(f"error: --data: column {name!r}: expected numbers (None or NaN where missing)") from None
+    if array.ndim != 1:
+        raise Error(f"error: --data: column {name!r}: expected a vector of numbers, got an array of shape {array.shape}")
+    if rows is not None and len(array) != rows:
+        raise Error(f"error: --data: column {name!r} has {len(array)} values, the first column {rows}")
+    return array
+
+
+def _set_record(options, data, time):
+    """The record of estimate and fit: a CSV file's path, or in memory a dict of columns, a pandas
+    DataFrame (its index too when it is named as `time` and no column is), or a pair (times,
+    values) whose columns are named y1..yp."""
+    if isinstance(data, (str, bytes, _os.PathLike)):
+        options.data_path = _path(data, "--data")
+        return
+    if isinstance(data, tuple) and len(data) == 2:
+        times, values = data
+        times = _data_column(times, time, None)
+        try:
+            values = _float_array(values, "--data")
+        except (TypeError, ValueError):
+            raise Error("error: --data: the values: expected an array of numbers (NaN where missing)") from None
+        if values.ndim == 1:
+            values = values.reshape(-1, 1)
+        if values.ndim != 2 or values.shape[0] != len(times):
+            raise Error(f"error: --data: {len(times)} times need values of shape ({len(times)}, p), "
+                        f"got {values.shape}")
+        columns = [time] + [f"y{i + 1}" for i in range(values.shape[1])]
+        options.set_data(columns, _np.column_stack([times, values]) if values.size else times.reshape(-1, 1))
+        return
+    items = getattr(data, "items", None)
+    if items is None:
+        raise Error("error: --data: expected a CSV file's path, a dict of columns, a pandas DataFrame or a pair "
+                    f"(times, values), got {type(data).__name__}")
+    columns = list(data.keys())
+    index = getattr(data, "index", None)
+    named_index = getattr(index, "name", None)
+    cells = []
+    if named_index is not None and named_index == time and time not in columns:
+        columns = [time] + columns
+        cells.append(_data_column(index, time, None))
+    for name in list(data.keys()):
+        if not isinstance(name, str):
+            raise Error(f"error: --data: a column's name must be a str, got {_shown(name)}")
+        cells.append(_data_column(data[name], name, len(cells[0]) if cells else None))
+    rows = len(cells[0]) if cells else 0
+    options.set_data(columns, _np.column_stack(cells) if cells else _np.zeros((rows, 0)))
+
+
+def _record_options(options, data, time, columns, data_form, substeps, t0, parameters, cache_dir, compiler):
+    """estimate's and fit's shared settings (their options of the same names)."""
+    time = _text(time, "--time-column", "t")
+    _set_record(options, data, time)
+    options.time_column = time
+    options.columns = _names(columns, "--columns", "a column's name")
+    options.data_form = _text(data_form, "--data-form", "increments")
+    options.substeps = _whole(1 if substeps is None else substeps, "--substeps")
+    options.t0 = _optional_number(t0, "--t0")
+    options.parameters = _parameters(parameters)
+    options.cache_dir = "" if cache_dir is None else _path(cache_dir, "--cache-dir")
+    options.compiler = "" if compiler is None else _path(compiler, "--compiler")
+
+
+def _check_model(model, call):
+    if not isinstance(model, Model):
+        raise TypeError(f"pfgen.{call}: expected a pfgen.Model (pfgen.Model.load(path)), got {type(model).__name__}")
+
+
+class FilterRun:
+    """One filter over a record, per data row: m and sd (N x n), P (N x n x n, with
+    full_covariance=True, else None), predicted, innovation and normalized (N x p)."""
+
+    def __init__(self, name, series, states, observed, full_covariance):
+        self.name = name
+        rows = len(series[next(iter(series))])
+
+        def stacked(kind, names):
+            return _np.column_stack([series[f"{name}_{kind}_{x}"] for x in names]) if names else _np.zeros((rows, 0))
+
+        self.m = stacked("m", states)
+        self.sd = stacked("sd", states)
+        self.P = None
+        if full_covariance:
+            n = len(states)
+            self.P = _np.empty((rows, n, n))
+            for i in range(n):
+                for j in range(i, n):
+                    self.P[:, i, j] = self.P[:, j, i] = series[f"{name}_P_{states[i]}_{states[j]}"]
+        self.predicted = stacked("predicted", observed)
+        self.innovation = stacked("innovation", observed)
+        self.normalized = stacked("normalized", observed)
+
+    def __repr__(self):
+        return f"<pfgen.FilterRun {self.name}: {len(self.m)} rows>"
+
+
+class Estimate:
+    """What ``pfgen estimate`` computes: the report (its table), the scores per filter, the CSV
+    ``-o`` writes and its columns as numpy arrays, and per filter a FilterRun of arrays."""
+
+    def __init__(self, native, model, full_covariance):
+        self.report = native.report  #: the command's standard output, before the paths of files
+        self.csv = native.csv        #: the CSV ``-o`` writes
+        self.time_column = native.time_column
+        self.observation_columns = list(native.observation_columns)
+        self.state_names = model.state_names
+        #: column name -> numpy array, a value per data row (NaN where the CSV is empty)
+        self.series = dict(zip(native.columns, native.series))
+        #: filter name -> dict of the scores: log_likelihood, increment_log_density (continuous data;
+        #: else NaN), count, mean_square, band (low, high), consistent, white, ljung_box (per
+        #: observation entry: lags, statistic, p_value), verdict
+        self.scores = {}
+        for f in native.filters:
+            self.scores[f.name] = {
+                "log_likelihood": f.log_likelihood, "increment_log_density": f.increment_log_density,
+                "count": f.count, "mean_square": f.mean_square, "band": (f.band_low, f.band_high),
+                "consistent": f.consistent, "white": f.white,
+                "ljung_box": [{"lags": lags, "statistic": q, "p_value": p}
+                              for lags, q, p in zip(f.ljung_box_lags, f.ljung_box_statistic, f.ljung_box_p)],
+                "verdict": f.verdict}
+        #: filter name -> FilterRun
+        self.filters = {name: FilterRun(name, self.series, self.state_names, self.observation_columns, full_covariance)
+                        for name in self.scores}
+
+    @property
+    def t(self):
+        """The data's times."""
+        return self.series[self.time_column]
+
+    @property
+    def data(self):
+        """The observations as read (N x p; NaN where missing)."""
+        return _np.column_stack([self.series[y] for y in self.observation_columns])
+
+    def __repr__(self):
+        return self.report
+
+
+def estimate(model, data, filters=None, *, time=None, columns=None, data_form=None, substeps=None, t0=None,
+             parameters=None, full_covariance=False, cache_dir=None, compiler=None):
+    """``pfgen estimate``: the model's filters (or ``filters``) over a record. ``data``: a CSV
+    file's path (--data), or in memory a dict of columns, a pandas DataFrame or a pair (times,
+    values) with NaN where an observation is missing. ``time`` is --time-column, ``columns``
+    --columns, ``parameters={"mu": 0.5}`` --set mu=0.5; the others are the options of the same
+    names. The GIL is released while it runs."""
+    _check_model(model, "estimate")
+    options = _pfgen.EstimateOptions()
+    record = options.record
+    _record_options(record, data, time, columns, data_form, substeps, t0, parameters, cache_dir, compiler)
+    options.record = record
+    options.filters = _names(filters, "--filters")
+    options.full_covariance = _flag(full_covariance, "--full-covariance")
+    options.series = True
+    return Estimate(model._native.estimate(options), model, options.full_covariance)
+
+
+class Fit:
+    """What ``pfgen fit`` computes: the report (its table), the JSON ``-o`` writes, and the
+    estimates with their standard errors and intervals."""
+
+    def __init__(self, native):
+        self.report = native.report        #: the command's standard output, before the path of its file
+        self.json = native.json            #: the JSON ``-o FILE.json`` writes
+        self.converged = native.converged  #: False: the optimiser stopped otherwise (stop_reason), no estimates
+        self.stop_reason = native.stop_reason
+        self.log_likelihood = native.log_likelihood
+        self.aic = native.aic
+        self.evaluations = native.evaluations
+        parameters = native.parameters
+        #: name -> estimate (without convergence: the last point)
+        self.estimates = {p.name: p.estimate for p in parameters}
+        #: name -> standard error (NaN where the observed information is not positive definite)
+        self.std_errors = {p.name: p.std_error for p in parameters}
+        #: name -> (low, high), the 95 % Wald interval
+        self.wald = {p.name: (p.wald_low, p.wald_high) for p in parameters}
+        #: name -> (low, high), the 95 % profile-likelihood interval (NaN unless profile=True)
+        self.profile = {p.name: (p.profile_low, p.profile_high) for p in parameters}
+        #: the estimated parameters at a bound
+        self.at_bound = [p.name for p in parameters if p.at_bound]
+
+    def __repr__(self):
+        return self.report
+
+
+def _bounds(bounds):
+    """--bounds as a dict name -> (low, high), an open end None (or an infinity)."""
+    if bounds is None:
+        return []
+    try:
+        items = list(bounds.items())
+    except (AttributeError, TypeError):
+        raise Error(f"error: --bounds: expected a dict of parameter names and (low, high) pairs, "
+                    f"got {type(bounds).__name__}") from None
+    out = []
+    for name, pair in items:
+        if not isinstance(name, str):
+            raise Error(f"error: --bounds: a parameter's name must be a str, got {_shown(name)}")
+        try:
+            low, high = pair
+        except (TypeError, ValueError):
+            raise Error(f"error: --bounds {name}: expected a pair (low, high), None for an open end, "
+                        f"got {_shown(pair)}") from None
+        low = -_np.inf if low is None else _number(low, f"--bounds {name}")
+        high = _np.inf if high is None else _number(high, f"--bounds {name}")
+        out.append(_pfgen.Bound(name, low, high))
+    return out
+
+
+def fit(model, data, estimate, *, bounds=None, filter=None, starts=None, seed=None, profile=False, time=None,
+        columns=None, data_form=None, substeps=None, t0=None, parameters=None, cache_dir=None, compiler=None):
+    """``pfgen fit``: the parameters named in ``estimate`` at the maximum of one filter's
+    log-likelihood over a record (``filter``: default the model's first). ``bounds``: a dict
+    name -> (low, high), None for an open end. ``data`` and the record's settings as estimate's.
+    A fit that does not converge is returned with converged False, as the command prints it."""
+    _check_model(model, "fit")
+    options = _pfgen.FitOptions()
+    record = options.record
+    _record_options(record, data, time, columns, data_form, substeps, t0, parameters, cache_dir, compiler)
+    options.record = record
+    options.estimate = _names(estimate, "--estimate", "a parameter's name")
+    options.bounds = _bounds(bounds)
+    options.filter = _text(filter, "--filter", "")
+    options.starts = _whole(1 if starts is None else starts, "--starts")
+    options.seed = _whole(1 if seed is None else seed, "--seed")
+    options.profile = _flag(profile, "--profile")
+    return Fit(model._native.fit(options))

@@ -2,6 +2,7 @@
 // (pfgen/__init__.py) makes it Pythonic (dicts, numpy arrays, SymPy, Jupyter's LaTeX).
 // Every call that does work releases the GIL: other Python threads run while pfgen derives,
 // generates or simulates (pfgen itself runs one call at a time; pfgen.hpp says why).
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -66,6 +67,23 @@ class ProgressText {
   std::mutex mutex_;
   std::string text_;
 };
+
+// Numbers as a numpy array (a copy), faster than a list of floats for a long series.
+py::array_t<double> numpy_vector(const api::Vector& values) {
+  return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
+}
+
+// A record in memory from its header and an N x K array (the package checks the shapes).
+api::RecordData record_data(const std::vector<std::string>& columns,
+                            const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
+  api::RecordData data;
+  data.columns = columns;
+  const auto cells = values.unchecked<2>();
+  data.rows.resize(static_cast<std::size_t>(cells.shape(0)));
+  for (py::ssize_t r = 0; r < cells.shape(0); ++r)
+    data.rows[static_cast<std::size_t>(r)].assign(cells.data(r, 0), cells.data(r, 0) + cells.shape(1));
+  return data;
+}
 
 }  // namespace
 
@@ -186,6 +204,90 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readonly("shown_run", &api::SimulationResult::shown_run)
       .def_readonly("reference_particles", &api::SimulationResult::reference_particles);
 
+  py::class_<api::RecordOptions>(m, "RecordOptions")
+      .def(py::init<>())
+      .def_readwrite("data_path", &api::RecordOptions::data_path)
+      .def("set_data", [](api::RecordOptions& options, const std::vector<std::string>& columns,
+                          const py::array_t<double, py::array::c_style | py::array::forcecast>& values) {
+        options.data = record_data(columns, values);
+      })
+      .def_readwrite("time_column", &api::RecordOptions::time_column)
+      .def_readwrite("columns", &api::RecordOptions::columns)
+      .def_readwrite("data_form", &api::RecordOptions::data_form)
+      .def_readwrite("substeps", &api::RecordOptions::substeps)
+      .def_readwrite("t0", &api::RecordOptions::t0)
+      .def_readwrite("parameters", &api::RecordOptions::parameters)
+      .def_readwrite("cache_dir", &api::RecordOptions::cache_dir)
+      .def_readwrite("compiler", &api::RecordOptions::compiler);
+
+  py::class_<api::EstimateOptions>(m, "EstimateOptions")
+      .def(py::init<>())
+      .def_readwrite("record", &api::EstimateOptions::record)
+      .def_readwrite("filters", &api::EstimateOptions::filters)
+      .def_readwrite("full_covariance", &api::EstimateOptions::full_covariance)
+      .def_readwrite("series", &api::EstimateOptions::series);
+
+  py::class_<api::RecordScores>(m, "RecordScores")
+      .def_readonly("name", &api::RecordScores::name)
+      .def_readonly("log_likelihood", &api::RecordScores::log_likelihood)
+      .def_readonly("increment_log_density", &api::RecordScores::increment_log_density)
+      .def_readonly("count", &api::RecordScores::count)
+      .def_readonly("mean_square", &api::RecordScores::mean_square)
+      .def_readonly("band_low", &api::RecordScores::band_low)
+      .def_readonly("band_high", &api::RecordScores::band_high)
+      .def_readonly("ljung_box_lags", &api::RecordScores::ljung_box_lags)
+      .def_readonly("ljung_box_statistic", &api::RecordScores::ljung_box_statistic)
+      .def_readonly("ljung_box_p", &api::RecordScores::ljung_box_p)
+      .def_readonly("consistent", &api::RecordScores::consistent)
+      .def_readonly("white", &api::RecordScores::white)
+      .def_readonly("verdict", &api::RecordScores::verdict);
+
+  py::class_<api::EstimateResult>(m, "EstimateResult")
+      .def_readonly("report", &api::EstimateResult::report)
+      .def_readonly("filters", &api::EstimateResult::filters)
+      .def_readonly("time_column", &api::EstimateResult::time_column)
+      .def_readonly("observation_columns", &api::EstimateResult::observation_columns)
+      .def_readonly("csv", &api::EstimateResult::csv)
+      .def_readonly("columns", &api::EstimateResult::columns)
+      .def_property_readonly("series", [](const api::EstimateResult& result) {
+        py::list out;
+        for (const api::Vector& column : result.series) out.append(numpy_vector(column));
+        return out;
+      });
+
+  py::class_<api::Bound>(m, "Bound")
+      .def(py::init([](const std::string& name, double low, double high) { return api::Bound{name, low, high}; }));
+
+  py::class_<api::FitOptions>(m, "FitOptions")
+      .def(py::init<>())
+      .def_readwrite("record", &api::FitOptions::record)
+      .def_readwrite("filter", &api::FitOptions::filter)
+      .def_readwrite("estimate", &api::FitOptions::estimate)
+      .def_readwrite("bounds", &api::FitOptions::bounds)
+      .def_readwrite("starts", &api::FitOptions::starts)
+      .def_readwrite("seed", &api::FitOptions::seed)
+      .def_readwrite("profile", &api::FitOptions::profile);
+
+  py::class_<api::FittedParameter>(m, "FittedParameter")
+      .def_readonly("name", &api::FittedParameter::name)
+      .def_readonly("estimate", &api::FittedParameter::estimate)
+      .def_readonly("std_error", &api::FittedParameter::std_error)
+      .def_readonly("wald_low", &api::FittedParameter::wald_low)
+      .def_readonly("wald_high", &api::FittedParameter::wald_high)
+      .def_readonly("profile_low", &api::FittedParameter::profile_low)
+      .def_readonly("profile_high", &api::FittedParameter::profile_high)
+      .def_readonly("at_bound", &api::FittedParameter::at_bound);
+
+  py::class_<api::FitResult>(m, "FitResult")
+      .def_readonly("report", &api::FitResult::report)
+      .def_readonly("json", &api::FitResult::json)
+      .def_readonly("converged", &api::FitResult::converged)
+      .def_readonly("stop_reason", &api::FitResult::stop_reason)
+      .def_readonly("parameters", &api::FitResult::parameters)
+      .def_readonly("log_likelihood", &api::FitResult::log_likelihood)
+      .def_readonly("aic", &api::FitResult::aic)
+      .def_readonly("evaluations", &api::FitResult::evaluations);
+
   py::class_<api::Model>(m, "Model")
       .def_static("load", &api::Model::load, Released())
       .def_static("from_yaml", &api::Model::from_yaml, Released())
@@ -202,5 +304,7 @@ PYBIND11_MODULE(_pfgen, m) {
       .def("codegen_to",
            py::overload_cast<const std::string&, const api::CodegenOptions&>(&api::Model::codegen, py::const_),
            Released())
-      .def("simulate", &api::Model::simulate, Released());
+      .def("simulate", &api::Model::simulate, Released())
+      .def("estimate", &api::Model::estimate, Released())
+      .def("fit", &api::Model::fit, Released());
 }

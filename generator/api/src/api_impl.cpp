@@ -1,5 +1,8 @@
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
 #include <vector>
 
 #include "api_impl.hpp"
@@ -63,6 +66,23 @@ void check_number_option(const std::string& option, double value) {
   if (!std::isfinite(value) || (value != 0 && std::fabs(value) < DBL_MIN))
     throw cli::CliValueError(option + ": " + pfgen_support::quoted(number_text(value)) +
                              " is outside the range of a double (magnitudes from about 2.2e-308 to 1.8e308)");
+}
+
+std::vector<Vector> csv_series(const std::string& csv, std::size_t columns) {
+  std::vector<Vector> out(columns);
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);  // the header
+  while (std::getline(lines, line)) {
+    std::size_t column = 0, start = 0;
+    while (column < columns) {
+      const std::size_t end = std::min(line.find(',', start), line.size());
+      const std::string cell = line.substr(start, end - start);
+      out[column++].push_back(cell.empty() ? std::nan("") : std::strtod(cell.c_str(), nullptr));
+      start = end + 1;
+    }
+  }
+  return out;
 }
 
 std::string version() { return PFGEN_VERSION; }

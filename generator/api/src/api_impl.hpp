@@ -89,4 +89,9 @@ void check_number_option(const std::string& option, double value);
 // A number as the text the command line reads back as that decimal (0.1 -> "0.1", exactly 1/10).
 std::string number_text(double value);
 
+// A CSV's data rows read back, per column (`columns` of them) its values down the rows: the
+// commands write numbers in shortest round-trip form, so strtod gives the very doubles; an empty
+// cell (a stopped run, a missing observation) is NaN.
+std::vector<Vector> csv_series(const std::string& csv, std::size_t columns);
+
 }  // namespace pfgen::api

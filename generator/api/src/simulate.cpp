@@ -1,6 +1,4 @@
 // pfgen::api::Model::simulate: `pfgen simulate` run in this process, its results kept in memory.
-#include <cmath>
-#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -71,25 +69,6 @@ cli::SimulateOptions command_options(const pfgen::Model& model, const Simulation
   return out;
 }
 
-// The CSV's data rows read back: the numbers are written in shortest round-trip form, so strtod
-// gives the very doubles; an empty cell (a stopped run) is NaN.
-std::vector<Vector> csv_columns(const std::string& csv, std::size_t columns) {
-  std::vector<Vector> out(columns);
-  std::istringstream lines(csv);
-  std::string line;
-  std::getline(lines, line);  // the header
-  while (std::getline(lines, line)) {
-    std::size_t column = 0, start = 0;
-    while (column < columns) {
-      const std::size_t end = std::min(line.find(',', start), line.size());
-      const std::string cell = line.substr(start, end - start);
-      out[column++].push_back(cell.empty() ? std::nan("") : std::strtod(cell.c_str(), nullptr));
-      start = end + 1;
-    }
-  }
-  return out;
-}
-
 FilterSummary summary_of(const std::string& name, const pfgen_runtime::WindowStatistics& horizon) {
   FilterSummary out;
   out.name = name;
@@ -117,7 +96,7 @@ SimulationResult Model::simulate(const SimulationOptions& options) const {
     out.notes = notes.str();
     out.csv = pfgen_runtime::format_results_csv(result, states);
     out.columns = pfgen_runtime::results_csv_columns(result, states);
-    out.series = csv_columns(out.csv, out.columns.size());
+    out.series = csv_series(out.csv, out.columns.size());
     out.runs = result.runs;
     out.steps = result.grid.steps;
     out.shown_run = result.series.shown_run;

@@ -10,16 +10,11 @@
 #include <string_view>
 #include <vector>
 
-#include "pfgen_support/error.hpp"
+#include "pfgen_runtime/record_source.hpp"
 
 namespace pfgen_runtime {
 
-class RecordError : public pfgen_support::Error {
- public:
-  using pfgen_support::Error::Error;
-};
-
-class RecordReader {
+class RecordReader : public RecordSource {
  public:
   // time_column: the header's name of the time; observation_columns: the observation's columns
   // in the model's order, or empty for every other column in the file's order (then there must be
@@ -27,12 +22,14 @@ class RecordReader {
   RecordReader(const std::string& path, const std::string& time_column, std::vector<std::string> observation_columns,
                std::size_t expected);
   // The next row: its time and observation values (NaN where missing). false at the end of the file.
-  bool next(double& t, double* values);
+  bool next(double& t, double* values) override;
   // 1-based line of the row next() read last.
-  std::size_t line() const { return line_; }
-  const std::string& path() const { return path_; }
-  const std::vector<std::string>& observation_columns() const { return names_; }
-  const std::string& time_column() const { return time_name_; }
+  std::size_t line() const override { return line_; }
+  const char* line_word() const override { return "line"; }
+  const std::string& path() const override { return path_; }
+  std::string place() const override { return path_ + ":" + std::to_string(line_); }
+  const std::vector<std::string>& observation_columns() const override { return names_; }
+  const std::string& time_column() const override { return time_name_; }
 
   static constexpr std::size_t kMaxLineLength = 1 << 20;
 

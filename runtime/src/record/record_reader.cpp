@@ -14,13 +14,7 @@ std::string_view trimmed(std::string_view text) {
   return text;
 }
 
-// A cell quoted in a message, cut short so that the message stays one line.
-std::string quoted(std::string_view cell) {
-  std::string out(cell.substr(0, 40));
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
-  return "'" + out + (cell.size() > 40 ? "...'" : "'");
-}
+std::string quoted(std::string_view cell) { return quoted_cell(std::string(cell)); }
 
 bool is_missing(std::string_view cell) { return cell.empty() || cell == "NaN" || cell == "nan" || cell == "NA"; }
 
@@ -31,38 +25,14 @@ RecordReader::RecordReader(const std::string& path, const std::string& time_colu
     : path_(path), time_name_(time_column), in_(path, std::ios::binary), buffer_(kMaxLineLength + 2) {
   if (!in_) fail("cannot open the file for reading");
   if (!read_line()) fail("the file is empty: a record needs a header line naming its columns");
-  for (std::size_t k = 0; k < fields_.size(); ++k) {
-    if (fields_[k].empty()) fail("the header's column " + std::to_string(k + 1) + " has no name", k + 1);
-    for (std::size_t j = 0; j < k; ++j)
-      if (header_[j] == fields_[k]) fail("the header names " + quoted(fields_[k]) + " twice", k + 1);
-    header_.emplace_back(fields_[k]);
-  }
-  auto column_of = [&](const std::string& name, const char* role) {
-    for (std::size_t k = 0; k < header_.size(); ++k)
-      if (header_[k] == name) return k;
-    std::string known;
-    for (const auto& h : header_) known += (known.empty() ? "" : ", ") + h;
-    fail(std::string("the header has no ") + role + " column " + quoted(name) + " (its columns: " + known + ")", 0);
-  };
-  time_index_ = column_of(time_name_, "time");
-  if (observation_columns.empty()) {
-    for (std::size_t k = 0; k < header_.size(); ++k)
-      if (k != time_index_) observation_columns.push_back(header_[k]);
-    if (expected > 0 && observation_columns.size() != expected)
-      fail("the header has " + std::to_string(observation_columns.size()) + " columns besides the time " +
-               quoted(time_name_) + ", the model observes " + std::to_string(expected) +
-               "; name the observation columns in the model's order",
-           0);
-  } else if (expected > 0 && observation_columns.size() != expected) {
-    fail(std::to_string(observation_columns.size()) + " observation columns named, the model observes " +
-         std::to_string(expected));
-  }
-  for (const auto& name : observation_columns) {
-    const std::size_t k = column_of(name, "observation");
-    if (k == time_index_) fail("the column " + quoted(name) + " is the time, not an observation", k + 1);
-    indices_.push_back(k);
-  }
-  names_ = std::move(observation_columns);
+  const RecordFail failing = [this](const std::string& what, std::size_t column) { fail(what, column); };
+  const std::vector<std::string> header(fields_.begin(), fields_.end());
+  check_record_header(header, failing);
+  header_ = header;
+  const RecordColumns chosen = choose_record_columns(header_, time_name_, std::move(observation_columns), expected, failing);
+  time_index_ = chosen.time_index;
+  indices_ = chosen.indices;
+  names_ = chosen.names;
 }
 
 void RecordReader::fail(const std::string& what, std::size_t column) const {

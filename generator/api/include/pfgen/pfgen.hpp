@@ -1,7 +1,7 @@
 #pragma once
 // pfgen's C++ API: the one header a program includes to load a polynomial model, derive its
-// filters, print them as text, LaTeX or JSON, evaluate them at a point, generate their code and
-// simulate them against a truth. Each call gives what the matching `pfgen` command prints, byte for
+// filters, print them as text, LaTeX or JSON, evaluate them at a point, generate their code,
+// simulate them against a truth and run them over a record of observations (estimate, fit). Each call gives what the matching `pfgen` command prints, byte for
 // byte, and fails with the same message (docs/guide/cpp-api.md).
 //
 //   #include <pfgen/pfgen.hpp>
@@ -19,6 +19,7 @@
 // Threads: GiNaC, the algebra underneath, is not thread-safe, so pfgen runs one call at a time
 // (a call from a second thread waits). The objects below are handles: copies share one model or
 // filter, which never changes after it is made.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -190,6 +191,112 @@ struct SimulationResult {
   std::size_t reference_particles = 0;  // the particle reference's N; 0 without one
 };
 
+// A record of observations in memory, as a CSV file would hold it (docs/guide/recorded-data.md):
+// a header naming each column (the time's among them) and the rows, a value per column, NaN for a
+// missing observation. from_arrays builds one from the times and an N x p array of observations,
+// the columns named "t" (or time_column) and y1..yp (or names).
+struct RecordData {
+  std::vector<std::string> columns;
+  Matrix rows;
+  static RecordData from_arrays(const Vector& times, const Matrix& values, const std::vector<std::string>& names = {},
+                                const std::string& time_column = "t");
+};
+
+// What `pfgen estimate` and `pfgen fit` read and how (their options of the same names). The record:
+// the CSV file data_path, or `data` (then data_path, if not empty, names it in the report and in
+// messages; empty: "<data>"). time_column: `--time-column`; columns: `--columns`, the observation
+// columns in the model's order (empty: every column but the time's); data_form: "increments" or
+// "rates" (continuous observations); substeps: continuous data's filter steps per data interval;
+// t0: the prior's time (unset: the first row's); parameters: `--set`; cache_dir, compiler: the
+// plugin's, as SimulationOptions'.
+struct RecordOptions {
+  std::string data_path;
+  std::optional<RecordData> data;
+  std::string time_column = "t";
+  std::vector<std::string> columns;
+  std::string data_form = "increments";
+  std::size_t substeps = 1;
+  std::optional<double> t0;
+  std::map<std::string, double> parameters;
+  std::string cache_dir, compiler;
+};
+
+// `pfgen estimate`: filters empty for the model's defaults; full_covariance: every entry of P in
+// the CSV (`--full-covariance`); series: keep the CSV (`-o`'s text) and its columns.
+struct EstimateOptions {
+  RecordOptions record;
+  std::vector<std::string> filters;
+  bool full_covariance = false;
+  bool series = false;
+};
+
+// One filter's scores over a record (docs/guide/recorded-data.md, "The scores"): a row of
+// estimate's table. increment_log_density: continuous data only (NaN for samples). Ljung-Box per
+// observation entry: its lags, statistic Q and p-value.
+struct RecordScores {
+  std::string name;
+  double log_likelihood = 0;
+  double increment_log_density = 0;
+  std::size_t count = 0;  // innovations: samples, or steps of continuous data
+  double mean_square = 0, band_low = 0, band_high = 0;
+  std::vector<std::size_t> ljung_box_lags;
+  Vector ljung_box_statistic, ljung_box_p;
+  bool consistent = false, white = false;
+  std::string verdict;
+};
+
+struct EstimateResult {
+  std::string report;  // what `pfgen estimate` prints before the paths of its files
+  std::vector<RecordScores> filters;
+  std::string time_column;                       // as the CSV names it
+  std::vector<std::string> observation_columns;  // in the model's order
+  // With EstimateOptions::series: the CSV `pfgen estimate -o FILE` writes, its header and, per
+  // column, its values down the rows (NaN for an empty cell); else empty.
+  std::string csv;
+  std::vector<std::string> columns;
+  std::vector<Vector> series;
+};
+
+// A bound of `pfgen fit --bounds name=low:high`: an infinite end is an open one.
+struct Bound {
+  std::string name;
+  double low = -HUGE_VAL, high = HUGE_VAL;
+};
+
+// `pfgen fit`: filter empty for the model's first default filter; estimate: the parameters'
+// names; starts, seed, profile: `--starts`, `--seed`, `--profile`.
+struct FitOptions {
+  RecordOptions record;
+  std::string filter;
+  std::vector<std::string> estimate;
+  std::vector<Bound> bounds;
+  std::size_t starts = 1;
+  std::uint64_t seed = 1;
+  bool profile = false;
+};
+
+// One estimated parameter: std_error NaN when the observed information is not positive definite;
+// the profile interval's ends NaN unless asked for, or where not found within the bounds.
+struct FittedParameter {
+  std::string name;
+  double estimate = 0, std_error = 0;
+  double wald_low = 0, wald_high = 0;
+  double profile_low = 0, profile_high = 0;
+  bool at_bound = false;
+};
+
+// A fit that did not converge is a result too (converged false, the last point in parameters), as
+// the command prints it before exiting with 1.
+struct FitResult {
+  std::string report;  // what `pfgen fit` prints before the path of its file
+  std::string json;    // what `pfgen fit -o FILE.json` writes
+  bool converged = false;
+  std::string stop_reason;
+  std::vector<FittedParameter> parameters;
+  double log_likelihood = 0, aic = 0;
+  std::size_t evaluations = 0;
+};
+
 // A model: loaded from a model file or YAML text, or built with ModelBuilder. Checked when made.
 class Model {
  public:
@@ -216,6 +323,10 @@ class Model {
   // `pfgen simulate`: compiles the filters with the truth into a cached plugin (the first time a
   // C++ compiler runs, as the command's does) and runs the Monte Carlo.
   SimulationResult simulate(const SimulationOptions& options = {}) const;
+  // `pfgen estimate` and `pfgen fit` over a record: the filters compiled into the same cached
+  // plugin as simulate's.
+  EstimateResult estimate(const EstimateOptions& options) const;
+  FitResult fit(const FitOptions& options) const;
 
  private:
   friend class Filter;
