@@ -11,7 +11,7 @@
 3. `pfgen fit` of the boarding-school influenza record (14 days, SIR model, beta and gamma), the
    plugin cached.
 
-Usage: bench_record.py --build BUILD_DIR [--work DIR] [--repeats R]
+Usage: bench_record.py --build BUILD_DIR [--bench BENCH_RECORD] [--work DIR] [--repeats R]
 Ratios are against pfgen's own time measured in the same run (these machines are noisy).
 """
 import argparse
@@ -49,10 +49,10 @@ def command_seconds(argv, repeats):
     return statistics.median(times)
 
 
-def nile(build, source, repeats):
+def nile(build, bench, source, repeats):
     model = os.path.join(source, "examples/records/nile.yaml")
     data = os.path.join(source, "examples/records/nile.csv")
-    out = subprocess.run([os.path.join(build, "benchmarks/bench_record"), model, data, "--time-column", "year",
+    out = subprocess.run([bench, model, data, "--time-column", "year",
                           "--filter", "cd-optimal", "--repeats", str(repeats)], check=True, capture_output=True,
                          text=True).stdout
     print("  pfgen (compiled filter):      " + out.strip())
@@ -120,7 +120,9 @@ def lorenz_record(path, steps):
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--build", default="build")
+    parser.add_argument("--build", default="build", help="the build with pfgen and the Python module")
+    parser.add_argument("--bench", help="bench_record (default: BUILD/benchmarks/bench_record; it needs "
+                                        "-DPFGEN_BUILD_BENCHMARKS=ON)")
     parser.add_argument("--work", default="build/bench_record")
     parser.add_argument("--repeats", type=int, default=7)
     parser.add_argument("--steps", type=int, default=1000000)
@@ -129,7 +131,7 @@ def main():
     pfgen = os.path.join(a.build, "generator/pfgen")
     os.makedirs(a.work, exist_ok=True)
     print("1. One log-likelihood evaluation of the Nile record (100 years):")
-    ok = nile(a.build, source, a.repeats)
+    ok = nile(a.build, a.bench or os.path.join(a.build, "benchmarks/bench_record"), source, a.repeats)
 
     record = os.path.join(a.work, "lorenz_%d.csv" % a.steps)
     lorenz_record(record, a.steps)

@@ -53,6 +53,7 @@ struct Run {
   std::vector<double> u;
   double value = -std::numeric_limits<double>::infinity();
   nlopt_result result = NLOPT_FAILURE;
+  bool polished = false;  // BOBYQA finished what L-BFGS could not
 };
 
 // One L-BFGS search from u0 in the scaled box, over the coordinates `free` (the others held).
@@ -115,6 +116,25 @@ Run search(Scaled& scaled, std::vector<double> u0, const std::vector<double>& lo
   double value = 0;
   run.result = nlopt_optimize(opt, x.data(), &value);
   nlopt_destroy(opt);
+  // L-BFGS's line search can fail near the maximum, where the differences' rounding makes the
+  // gradient disagree with the function (NLopt's generic failure, or rounding-limited). Then
+  // BOBYQA, which needs no gradient, polishes from where it stopped; its own convergence decides.
+  if (run.result == NLOPT_FAILURE || run.result == NLOPT_ROUNDOFF_LIMITED) {
+    nlopt_opt polish = nlopt_create(NLOPT_LN_BOBYQA, static_cast<unsigned>(k));
+    nlopt_set_lower_bounds(polish, lo.data());
+    nlopt_set_upper_bounds(polish, hi.data());
+    nlopt_set_max_objective(polish, sub_objective, &sub);
+    nlopt_set_ftol_rel(polish, 1e-12);
+    nlopt_set_xtol_rel(polish, 1e-9);
+    std::vector<double> step(k);
+    for (std::size_t i = 0; i < k; ++i)
+      step[i] = std::max(1e-12, std::min(1e-3 * std::max(1.0, std::abs(x[i])), 0.5 * (hi[i] - lo[i])));
+    nlopt_set_initial_step(polish, step.data());
+    nlopt_set_maxeval(polish, static_cast<int>(std::max<std::size_t>(1, max_evaluations)));
+    run.result = nlopt_optimize(polish, x.data(), &value);
+    nlopt_destroy(polish);
+    run.polished = true;
+  }
   run.u = u0;
   for (std::size_t i = 0; i < k; ++i) run.u[free[i]] = x[i];
   run.value = scaled.value(run.u.data());
@@ -158,7 +178,7 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
   }
   out.evaluations = scaled.evaluations;
   out.log_likelihood = best.value;
-  out.stop_reason = result_words(best.result);
+  out.stop_reason = result_words(best.result) + (best.polished ? " (by BOBYQA after L-BFGS's line search failed)" : "");
   out.converged = best.result >= NLOPT_SUCCESS && best.result <= NLOPT_XTOL_REACHED && std::isfinite(best.value);
 
   // The observed information -H in u, by central differences (step 1e-4 of each scaled value).

@@ -69,9 +69,9 @@ def nile(pfgen, source, work):
         fit = json.load(f)
     est = {p["name"]: p["estimate"] for p in fit["parameters"]}
     check(fit["converged"], "Nile fit converged")
-    check(abs(est["q"] - q_sm) < 2e-3 * q_sm and abs(est["h"] - h_sm) < 2e-3 * h_sm,
+    check(abs(est["q"] - q_sm) < 1e-5 * q_sm and abs(est["h"] - h_sm) < 1e-5 * h_sm,
           "Nile estimates q = %.2f, h = %.2f against statsmodels' %.2f, %.2f (same prior)" % (est["q"], est["h"], q_sm, h_sm))
-    check(abs(fit["log_likelihood"] - fitted.llf) < 1e-4,
+    check(abs(fit["log_likelihood"] - fitted.llf) < 1e-9,
           "Nile maximum log-likelihood %.6f against statsmodels' %.6f" % (fit["log_likelihood"], fitted.llf))
 
 
