@@ -138,3 +138,47 @@ TEST_CASE("estimate writes no CSV when the record fails part way", "[record][com
   CHECK(result.exit_code == 1);
   CHECK(dir.entries() == std::vector<std::string>{"bad.csv", "cache"});
 }
+
+TEST_CASE("the model file's bounds: reach fit, and bad ones are refused with their field", "[record][compiler]") {
+  TempDir dir;
+  const std::string data = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.csv";
+  const std::string base = "name: nile\nstates: [x]\nparameters: {q: 1469.1, h: 15099}\ndrift: [\"0\"]\n"
+                           "diffusion: [[\"sqrt(q)\"]]\nobservation:\n  sampled: {period: 1, C: [[\"1\"]], "
+                           "Uv: [[\"sqrt(h)\"]], substeps: 1}\ninitial: {x0: prior, m0: [0], P0: [[1e7]]}\n";
+  auto model_with = [&](const std::string& bounds) {
+    write_file(dir.file("m.yaml"), base + bounds);
+    return dir.file("m.yaml");
+  };
+  auto run = [&](const std::string& model, std::vector<std::string> more) {
+    std::vector<std::string> arguments{"fit", model, "--data", data, "--time-column", "year", "-q",
+                                       "--cache-dir=" + dir.file("cache")};
+    arguments.insert(arguments.end(), more.begin(), more.end());
+    return pfgen_test::run_pfgen(arguments);
+  };
+  // Three starts need finite bounds: the model file's give them, and the fit lands where
+  // --bounds would put it.
+  const auto from_file = run(model_with("bounds: {q: [1, 1e5], h: [1, 1e6]}\n"), {"--estimate", "q,h", "--starts", "3"});
+  REQUIRE(from_file.exit_code == 0);
+  CHECK_THAT(from_file.out, Contains("q                    1468.5"));
+  const auto without = run(model_with(""), {"--estimate", "q,h", "--starts", "3"});
+  CHECK(without.exit_code == 1);
+  CHECK_THAT(without.err, Contains("give q both ends in --bounds"));
+  // --bounds replaces the file's for its parameter: this one excludes the start.
+  CHECK_THAT(run(model_with("bounds: {q: [1, 1e5]}\n"), {"--estimate", "q", "--bounds", "q=0:10"}).err,
+             Contains("q's bounds exclude its start 1469.1"));
+  for (const auto& [bounds, message] : std::vector<std::pair<std::string, std::string>>{
+           {"bounds: {sigma: [0, 1]}\n", "field 'bounds.sigma': 'sigma' is not a parameter"},
+           {"bounds: {q: [5, 1]}\n", "field 'bounds.q': the low end is not below the high end"},
+           {"bounds: {q: [0, 100]}\n", "field 'bounds.q': the bounds exclude the parameter's value 1469.1"},
+           {"bounds: {q: [0]}\n", "field 'bounds.q': expected [low, high] (an end may be ~ for none)"},
+           {"bounds: {q: [0, abc]}\n", "'abc' is not a number"},
+           {"bounds: [q]\n", "field 'bounds': expected a mapping of parameters to [low, high]"}}) {
+    INFO(bounds);
+    const auto result = run(model_with(bounds), {"--estimate", "q"});
+    CHECK(result.exit_code == 1);
+    CHECK_THAT(result.err, Contains(message));
+    CHECK(pfgen_test::count_lines(result.err) == 1);
+  }
+  // An end given as ~ is open.
+  CHECK(run(model_with("bounds: {q: [0, ~]}\n"), {"--estimate", "q"}).exit_code == 0);
+}

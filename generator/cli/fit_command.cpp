@@ -1,5 +1,6 @@
 #include "fit_command.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -35,8 +36,9 @@ double bound_number(const std::string& entry, const std::string& text, double in
 // S); continuous, the increments' Gaussian log-density (which, unlike the Girsanov form, compares
 // values of B's parameters too).
 double record_log_likelihood(const pfgen_runtime::RecordFilter& filter, const RecordJob& job, const Record& record,
-                             double t0, std::vector<double> values, std::string& why) {
-  pfgen_runtime::RecordRun run(filter, std::move(values), t0, job.run_options);
+                             double t0, std::vector<double> values, const std::vector<double>& initial,
+                             std::string& why) {
+  pfgen_runtime::RecordRun run(filter, std::move(values), t0, job.run_options, initial);
   const bool sampled = filter.sampled();
   for (std::size_t row = 0; row < record.times.size(); ++row) {
     const double t = record.times[row];
@@ -84,21 +86,51 @@ FitOutcome fit(const FitOptions& options) {
     throw CliValueError("--starts: " + std::to_string(options.starts) + " is not between 1 and 1000");
 
   RecordJob job = prepare_record_job(record);
-  std::vector<std::size_t> index;
+  const pfgen_runtime::RecordFilter& filter = job.filters.front();
+  // The prior's state (m0, then P0's upper triangle) as the model gives it: m0.X estimates
+  // replace its entry X.
+  std::vector<double> prior(filter.state_size());
+  filter.initial_state(prior.data());
+  std::vector<std::size_t> index, parameter_of;  // parameters: theta position, and into job.values
+  std::vector<std::pair<std::size_t, std::size_t>> prior_means;  // m0.X: (theta position, state)
   FitProblem problem;
   for (const std::string& name : options.estimate) {
+    if (name.rfind("m0.", 0) == 0) {
+      const std::string state = name.substr(3);
+      const auto& states = job.model.state_names;
+      const auto at = std::find(states.begin(), states.end(), state);
+      if (at == states.end())
+        throw CliValueError("--estimate: " + quoted(name) + ": " + quoted(state) + " is not a state of " + model.source +
+                            " (its states: " + join(states, ", ") + ")");
+      const auto i = static_cast<std::size_t>(at - states.begin());
+      for (const auto& [position, seen] : prior_means)
+        if (seen == i) throw CliValueError("--estimate: " + quoted(name) + " is named twice");
+      prior_means.push_back({problem.names.size(), i});
+      problem.names.push_back(name);
+      problem.start.push_back(prior[i]);
+      problem.lower.push_back(-HUGE_VAL);
+      problem.upper.push_back(HUGE_VAL);
+      continue;
+    }
     std::size_t k = 0;
     while (k < job.parameter_names.size() && job.parameter_names[k] != name) ++k;
     if (k == job.parameter_names.size())
       throw CliValueError("--estimate: " + quoted(name) + " is not a parameter of " + model.source +
                           (job.parameter_names.empty() ? " (it has none)" : " (its parameters: " + join(job.parameter_names, ", ") + ")"));
-    for (std::size_t seen : index)
+    for (std::size_t seen : parameter_of)
       if (seen == k) throw CliValueError("--estimate: " + quoted(name) + " is named twice");
-    index.push_back(k);
+    index.push_back(problem.names.size());
+    parameter_of.push_back(k);
     problem.names.push_back(name);
     problem.start.push_back(job.values[k]);
     problem.lower.push_back(-HUGE_VAL);
     problem.upper.push_back(HUGE_VAL);
+    // The model file's bounds: first; --bounds replaces them.
+    for (const ParameterBound& bound : model.bounds)
+      if (bound.name == name) {
+        if (bound.low) problem.lower.back() = bound.low->to_double();
+        if (bound.high) problem.upper.back() = bound.high->to_double();
+      }
   }
   for (const std::string& entry : options.bounds) {
     const std::size_t equals = entry.find('='), colon = entry.find(':', equals == std::string::npos ? 0 : equals);
@@ -130,11 +162,12 @@ FitOutcome fit(const FitOptions& options) {
 
   const Record data = read_record(record, job);
   const double t0 = prior_time(record, data.times.front(), record.data_path);
-  const pfgen_runtime::RecordFilter& filter = job.filters.front();
   const LogLikelihood log_likelihood = [&](const std::vector<double>& theta, std::string& why) {
     std::vector<double> values = job.values;
-    for (std::size_t i = 0; i < index.size(); ++i) values[index[i]] = theta[i];
-    return record_log_likelihood(filter, job, data, t0, std::move(values), why);
+    for (std::size_t i = 0; i < index.size(); ++i) values[parameter_of[i]] = theta[index[i]];
+    std::vector<double> initial = prior;
+    for (const auto& [position, state] : prior_means) initial[state] = theta[position];
+    return record_log_likelihood(filter, job, data, t0, std::move(values), initial, why);
   };
 
   FitOutcome outcome;

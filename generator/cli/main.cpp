@@ -292,7 +292,7 @@ int main(int argc, char** argv) {
   FitOptions fit;
   CLI::App* fit_cmd = app.add_subcommand("fit", "Fit a model's parameters to recorded observations by maximum likelihood");
   add_record_options(fit_cmd, fit.record);
-  fit_cmd->add_option("--estimate", fit.estimate, "Parameters to estimate, comma-separated")
+  fit_cmd->add_option("--estimate", fit.estimate, "Parameters to estimate, comma-separated; m0.X: the prior mean of state X")
       ->required()
       ->delimiter(',');
   fit_cmd->add_option("--bounds", fit.bounds, "Bounds name=low:high, comma-separated (an end may be empty)")

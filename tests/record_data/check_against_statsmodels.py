@@ -105,6 +105,7 @@ def mean_reverting(pfgen, source, work):
         t = tk
         ys.append(x + rng.normal(0, u))
     ys[40] = float("nan")  # a missing sample: predicted over, not absorbed
+    mean_reverting.data = (times, ys, a, s, u)
     data_path = os.path.join(work, "mean_reverting.csv")
     with open(data_path, "w") as f:
         f.write("t,y\n")
@@ -145,11 +146,30 @@ def mean_reverting(pfgen, source, work):
           % (est["a"], est["s"]))
 
 
+def prior_mean(pfgen, work, times, ys, a, s, u):
+    """fit --estimate m0.x: the prior mean at the exact likelihood's maximum (by golden section)."""
+    json_path = os.path.join(work, "mean_reverting_m0.json")
+    run(pfgen, "fit", os.path.join(work, "mean_reverting_100.yaml"), "--data", os.path.join(work, "mean_reverting.csv"),
+        "--estimate", "m0.x", "-o", json_path)
+    with open(json_path) as f:
+        ours = json.load(f)["parameters"][0]["estimate"]
+    lo, hi, g = -5.0, 5.0, (math.sqrt(5) - 1) / 2
+    for _ in range(100):
+        c, d = hi - g * (hi - lo), lo + g * (hi - lo)
+        if exact_ou_log_likelihood(times, ys, a, s, u, m0=c) > exact_ou_log_likelihood(times, ys, a, s, u, m0=d):
+            hi = d
+        else:
+            lo = c
+    exact = 0.5 * (lo + hi)
+    check(abs(ours - exact) < 1e-3, "the prior mean m0.x fitted %.6f, the exact likelihood's maximum %.6f" % (ours, exact))
+
+
 def main():
     pfgen, source, work = sys.argv[1:4]
     os.makedirs(work, exist_ok=True)
     nile(pfgen, source, work)
     mean_reverting(pfgen, source, work)
+    prior_mean(pfgen, work, *mean_reverting.data)
     if failures:
         sys.exit("%d check(s) failed" % len(failures))
 

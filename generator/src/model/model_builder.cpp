@@ -227,6 +227,11 @@ ModelBuilder& ModelBuilder::risk_criterion(const GiNaC::ex& epsilon, const ExMat
   return *this;
 }
 
+ModelBuilder& ModelBuilder::parameter_bounds(const std::vector<ParameterBound>& bounds) {
+  model_.bounds = bounds;
+  return *this;
+}
+
 ModelBuilder& ModelBuilder::simulation(const SimulationSection& settings) {
   model_.simulation = settings;
   return *this;

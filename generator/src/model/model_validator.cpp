@@ -20,6 +20,7 @@
 #include "pfgen/model/reserved_names.hpp"
 #include "pfgen/model/simulation_rules.hpp"
 #include "pfgen/model/text_characters.hpp"
+#include "pfgen_support/shortest_double.hpp"
 #include "pfgen/notation/number_format.hpp"
 #include "pfgen/notation/text_printer.hpp"
 
@@ -563,6 +564,23 @@ std::optional<std::string> identifier_problem(const std::string& name) {
   return "'" + name + "' is not an identifier (" + rule + ")";
 }
 
+// bounds: each entry a parameter, once, with low < high and its default inside.
+void validate_bounds(const Model& model) {
+  std::set<std::string> seen;
+  for (const ParameterBound& bound : model.bounds) {
+    const std::string field = "bounds." + bound.name;
+    const auto parameter = std::find_if(model.parameters.begin(), model.parameters.end(),
+                                        [&](const Parameter& p) { return p.name == bound.name; });
+    if (parameter == model.parameters.end()) throw ModelError(field, "'" + bound.name + "' is not a parameter");
+    if (!seen.insert(bound.name).second) throw ModelError(field, "given twice");
+    if (bound.low && bound.high && !(*bound.low < *bound.high))
+      throw ModelError(field, "the low end is not below the high end");
+    const GiNaC::numeric& value = parameter->default_value;
+    if ((bound.low && value < *bound.low) || (bound.high && value > *bound.high))
+      throw ModelError(field, "the bounds exclude the parameter's value " + pfgen_support::shortest_chars(value.to_double()));
+  }
+}
+
 void validate_model(const Model& model) {
   validate_names(model);
   validate_numbers(model);
@@ -584,6 +602,7 @@ void validate_model(const Model& model) {
   validate_risk(model);
   validate_user_filters(model);
   validate_simulation(model);
+  validate_bounds(model);
 }
 
 }  // namespace pfgen

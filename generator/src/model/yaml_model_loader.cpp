@@ -28,7 +28,7 @@ namespace {
 const std::set<std::string> kTopLevelFields = {
     "name",      "states",      "parameters",         "time",
     "drift",     "diffusion",   "diffusion_covariance", "additive_diffusion",
-    "additive_diffusion_covariance", "noise", "observation", "initial", "risk", "filters", "simulation"};
+    "additive_diffusion_covariance", "noise", "observation", "initial", "risk", "filters", "simulation", "bounds"};
 
 const char* const kSampledFields = "period, C or c, Uv, C0, substeps";
 const char* const kUserFilterFields = "m_drift, P_drift, gain, define, description";
@@ -94,6 +94,7 @@ class Loader {
     read_observation(builder, parser);
     read_initial(builder);
     read_risk(builder, parser);
+    read_bounds(builder);
     read_filters(builder);
     read_simulation(builder);
     return builder.build();
@@ -349,6 +350,33 @@ class Loader {
     for (std::size_t i = 0; i < rows.size(); ++i)
       ic.P0.push_back(number_list(rows[i], "initial.P0", static_cast<int>(i + 1)));
     builder.initial(ic);
+  }
+
+  // bounds: {NAME: [low, high], ...}: where `pfgen fit` may look for each parameter; an end given
+  // as ~ (null) is unbounded. The validator checks the names and the order.
+  void read_bounds(ModelBuilder& builder) {
+    YAML::Node bounds = root_["bounds"];
+    if (!bounds || bounds.IsNull()) return;
+    if (!bounds.IsMap()) throw ModelError("bounds", "expected a mapping of parameters to [low, high]");
+    std::vector<ParameterBound> out;
+    for (const auto& entry : bounds) {
+      const std::string name = entry.first.IsScalar() ? entry.first.Scalar() : "?";
+      const std::string field = "bounds." + name;
+      index_.record(field, entry.first);
+      YAML::Node ends = entry.second;
+      if (!ends.IsSequence() || ends.size() != 2)
+        throw ModelError(field, "expected [low, high] (an end may be ~ for none)");
+      ParameterBound bound{name, std::nullopt, std::nullopt};
+      for (std::size_t k = 0; k < 2; ++k) {
+        if (ends[k].IsNull()) continue;
+        const std::string text = scalar(ends[k], field, std::nullopt, static_cast<int>(k + 1));
+        auto value = parse_exact_number(text);
+        if (!value) throw ModelError(field, "'" + text + "' is not a number", std::nullopt, static_cast<int>(k + 1));
+        (k == 0 ? bound.low : bound.high) = *value;
+      }
+      out.push_back(bound);
+    }
+    builder.parameter_bounds(out);
   }
 
   // risk: {epsilon: EXPR, weight: [[...]]}: the exponential criterion J (RiskCriterion).

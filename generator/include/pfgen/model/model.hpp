@@ -32,6 +32,13 @@ struct Diffusion {
   ExMatrix G;  // always set: g g^T when g is given
 };
 
+// The model file's `bounds:` entry of one parameter: where `pfgen fit` may look for it. An end
+// left empty (~) is unbounded.
+struct ParameterBound {
+  std::string name;
+  std::optional<GiNaC::numeric> low, high;
+};
+
 struct InitialConditions {
   std::vector<GiNaC::numeric> x0;  // may be empty when the model gives no truth initial state
   // `x0: prior`: each simulated run's truth starts from a draw of N(m0, P0), the filters' prior
@@ -140,6 +147,7 @@ struct Model {
   std::vector<UserFilter> user_filters;  // in file order
   SimulationSection simulation;
   std::optional<RiskCriterion> risk;       // the `risk:` section, when given
+  std::vector<ParameterBound> bounds;      // the `bounds:` section, in file order (pfgen fit's)
 
   std::size_t n() const { return states.size(); }
   std::size_t p() const { return observation.p(); }

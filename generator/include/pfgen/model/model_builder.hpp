@@ -67,6 +67,9 @@ class ModelBuilder {
   ModelBuilder& noise(NoiseCalculus calculus);
   // The model file's `risk:` section (RiskCriterion); an empty weight means the identity.
   ModelBuilder& risk_criterion(const GiNaC::ex& epsilon, const ExMatrix& weight = {});
+  // The model file's `bounds:` (ParameterBound; checked by build(): parameters, low < high, the
+  // default inside).
+  ModelBuilder& parameter_bounds(const std::vector<ParameterBound>& bounds);
   // The model file's `simulation:` defaults (checked by build()).
   ModelBuilder& simulation(const SimulationSection& settings);
 
