@@ -11,8 +11,9 @@
 // filter steps over the interval in `substeps` equal steps (the increment split evenly). Two
 // log-likelihoods are kept: the filter's (Girsanov) one, sum h^T R^-1 dy - 1/2 h^T R^-1 h dt, the
 // log-density of the record relative to dy = B dW2 (no signal), and the discrete increments'
-// Gaussian log-density, sum log N(dy; h dt, R dt); they differ by a term of the data and R alone.
-// The innovation is dy - h dt, normalised by (R dt)^(1/2).
+// Gaussian log-density, sum log N(dy; h dt, S) with S = R dt + E[J_h] P E[J_h]^T dt^2 (the
+// innovation's covariance over the interval to second order in dt). The innovation is dy - h dt,
+// normalised by S^(1/2).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -63,7 +64,7 @@ class RecordRun {
   std::vector<double> values_;
   RecordRunOptions options_;
   double t_;
-  std::vector<double> state_, yhat_, innovation_, normalized_, S_, B_, dy_, whitened_dy_;
+  std::vector<double> state_, yhat_, innovation_, normalized_, S_, B_, dy_, whitened_dy_, whitened_innovation_, R_, J_, h_up_, h_down_, shifted_;
   InnovationScores scores_;
   double increment_log_density_ = 0;
   bool observed_ = false;

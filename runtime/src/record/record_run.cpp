@@ -1,5 +1,6 @@
 #include "pfgen_runtime/record_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -63,6 +64,11 @@ RecordRun::RecordRun(const RecordFilter& filter, std::vector<double> values, dou
       B_(filter.p * filter.r),
       dy_(filter.p),
       whitened_dy_(filter.p),
+      whitened_innovation_(filter.p),
+      R_(filter.p * filter.p),
+      J_(filter.p * filter.n),
+      h_up_(filter.p),
+      h_down_(filter.p),
       scores_(filter.p, options.max_lags) {
   if (options_.substeps == 0) throw std::invalid_argument("substeps must be at least 1");
   if (initial.empty())
@@ -129,7 +135,7 @@ bool RecordRun::sample(double t, const double* y) {
 }
 
 bool RecordRun::increment(double t, const double* observation) {
-  const std::size_t p = filter_.p, r = filter_.r;
+  const std::size_t p = filter_.p, r = filter_.r, n = filter_.n;
   const double interval = t - t_;
   for (std::size_t i = 0; i < p; ++i) {
     if (std::isnan(observation[i]))
@@ -143,27 +149,54 @@ bool RecordRun::increment(double t, const double* observation) {
     for (std::size_t j = 0; j <= i; ++j) {
       double s = 0;
       for (std::size_t k = 0; k < r; ++k) s += B_[i * r + k] * B_[j * r + k];
-      S_[i * p + j] = S_[j * p + i] = s;
+      R_[i * p + j] = R_[j * p + i] = s;
     }
-  if (!cholesky(S_.data(), p)) return fail("the observation noise B B^T is not positive definite " + at_time(t_));
+  // The innovation dy - h dt over an interval has covariance R dt + Cov(h(x)) dt^2 + O(dt^3): the
+  // state's own uncertainty over the interval adds to the sensor's noise. Cov(h(x)) is taken as
+  // E[J_h] P E[J_h]^T, the linearisation the filters' gains use (exact for a linear h), with
+  // E[J_h] = d E[h] / dm (for Gaussian x) by central differences of the predicted observation.
+  // Without that term a long record's mean square drifts above 1 by about P/R dt, which 10^7
+  // steps detect.
+  shifted_ = state_;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double step = 1e-6 * std::max(1.0, std::abs(state_[j]));
+    shifted_[j] = state_[j] + step;
+    filter_.predicted_observation(shifted_.data(), values_.data(), t_, h_up_.data());
+    shifted_[j] = state_[j] - step;
+    filter_.predicted_observation(shifted_.data(), values_.data(), t_, h_down_.data());
+    shifted_[j] = state_[j];
+    for (std::size_t i = 0; i < p; ++i) J_[i * n + j] = (h_up_[i] - h_down_[i]) / (2 * step);
+  }
+  auto P = [&](std::size_t i, std::size_t j) {  // the packed upper triangle after m
+    if (i > j) std::swap(i, j);
+    return state_[n + i * n - i * (i - 1) / 2 + (j - i)];
+  };
+  for (std::size_t i = 0; i < p; ++i)
+    for (std::size_t j = 0; j <= i; ++j) {
+      double spread = 0;
+      for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t l = 0; l < n; ++l) spread += J_[i * n + k] * P(k, l) * J_[j * n + l];
+      S_[i * p + j] = S_[j * p + i] = R_[i * p + j] * interval + spread * interval * interval;
+    }
+  if (!cholesky(R_.data(), p)) return fail("the observation noise B B^T is not positive definite " + at_time(t_));
+  if (!cholesky(S_.data(), p)) return fail("the innovation covariance is not positive definite " + at_time(t_));
   for (std::size_t i = 0; i < p; ++i) {
     yhat_[i] *= interval;  // h dt
     innovation_[i] = dy_[i] - yhat_[i];
   }
   forward(S_.data(), p, innovation_.data(), normalized_.data());
-  const double root = std::sqrt(interval);
   double square = 0;
-  for (double& e : normalized_) {
-    square += e * e;  // of L^-1 (dy - h dt), before the division by sqrt(dt)
-    e /= root;
-  }
-  // Girsanov: h^T R^-1 dy - 1/2 h^T R^-1 h dt = (|L^-1 dy|^2 - |L^-1 (dy - h dt)|^2) / (2 dt).
-  forward(S_.data(), p, dy_.data(), whitened_dy_.data());
+  for (double e : normalized_) square += e * e;
+  increment_log_density_ +=
+      -0.5 * (static_cast<double>(p) * kLogTwoPi + log_determinant(S_.data(), p) + square);
+  // Girsanov: h^T R^-1 dy - 1/2 h^T R^-1 h dt = (|L^-1 dy|^2 - |L^-1 (dy - h dt)|^2) / (2 dt), R = L L^T.
+  forward(R_.data(), p, dy_.data(), whitened_dy_.data());
   double dy_square = 0;
   for (double z : whitened_dy_) dy_square += z * z;
-  scores_.add(normalized_.data(), (dy_square - square) / (2 * interval));
-  increment_log_density_ += -0.5 * (static_cast<double>(p) * (kLogTwoPi + std::log(interval)) +
-                                    log_determinant(S_.data(), p) + square / interval);
+  forward(R_.data(), p, innovation_.data(), whitened_innovation_.data());
+  double innovation_square = 0;
+  for (double z : whitened_innovation_) innovation_square += z * z;
+  scores_.add(normalized_.data(), (dy_square - innovation_square) / (2 * interval));
   observed_ = true;
   const double dt = interval / static_cast<double>(options_.substeps);
   for (std::size_t i = 0; i < p; ++i) dy_[i] /= static_cast<double>(options_.substeps);
