@@ -13,6 +13,10 @@
 // log-density of the record relative to dy = B dW2 (no signal), and the discrete increments'
 // Gaussian log-density, sum log N(dy; h dt, R dt); they differ by a term of the data and R alone.
 // The innovation is dy - h dt, normalised by (R dt)^(1/2).
+//
+// Delayed observations (a filter with a fixed grid step): the same, with h = A0 + A m(t - h) from
+// the filter's history; the rows must be substeps x fixed_dt apart (relative 1e-9), and the filter
+// steps on its own grid tau_k = k fixed_dt, counted from the prior (its pre-history: m = m0 before).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -43,7 +47,7 @@ class RecordRun {
 
   const std::string& filter_name() const { return filter_.name; }
   double time() const { return t_; }
-  const std::vector<double>& state() const { return state_; }
+  const std::vector<double>& state() const { return state_; }  // m, P's upper triangle, then any extra state
   bool observed() const { return observed_; }  // whether the last row had an observation
   const std::vector<double>& predicted() const { return yhat_; }  // yhat, or h dt
   const std::vector<double>& innovation() const { return innovation_; }
@@ -66,6 +70,7 @@ class RecordRun {
   std::vector<double> state_, yhat_, innovation_, normalized_, S_, B_, dy_, whitened_dy_;
   InnovationScores scores_;
   double increment_log_density_ = 0;
+  std::size_t steps_ = 0;  // a fixed-grid filter's steps so far: its grid index
   bool observed_ = false;
   std::string failure_;
 };
