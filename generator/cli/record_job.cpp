@@ -66,7 +66,7 @@ double delayed_grid_step(const RecordJobOptions& options, const RecordJob& job,
   if (!steps.problem.empty())
     throw CliValueError(source->place() + ": the record's step " + pfgen_support::shortest_double(interval) +
                         (options.substeps > 1 ? " over --substeps " + std::to_string(options.substeps) : "") +
-                        " is the delayed filters' grid step: " + steps.problem);
+                        " (the delayed filters' grid step): " + steps.problem);
   // The grid step is h / D exactly (the interval's decimals, 3.01 - 3, are not): so the same step
   // in any record gives the same plugin, and every interval is compared with it.
   const double dt =
