@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pfgen/pfgen.hpp"
+#include "pfgen_runtime/record_run.hpp"
 #include "support/cli_helpers.hpp"
 
 namespace api = pfgen::api;
@@ -50,7 +51,46 @@ api::RecordData linear_record() {
   return data;
 }
 
+// A stand-in for a delayed filter: it notes the times it is stepped and asked at, and that its
+// extra state is carried.
+std::vector<double> step_times, rate_times;
+std::size_t extra_seen = 0;
+
 }  // namespace
+
+TEST_CASE("RecordRun steps a fixed-grid filter on its own grid from the prior, with its extra state",
+          "[record][delayed][unit]") {
+  pfgen_runtime::RecordFilter filter;
+  filter.name = "fake";
+  filter.n = filter.p = filter.r = 1;
+  filter.extra_state_size = 2;
+  filter.fixed_dt = 0.1;
+  filter.initial_state = [](double* state) { state[0] = 0, state[1] = 1, state[2] = 7, state[3] = 8; };
+  filter.step = [](double* state, const double*, double t, double dt, const double*) {
+    step_times.push_back(t);
+    extra_seen += state[2] == 7 && state[3] == 8 && dt == 0.1;
+  };
+  filter.predicted_observation = [](const double*, const double*, double t, double* h) {
+    rate_times.push_back(t);
+    h[0] = 0;
+  };
+  filter.observation_noise = [](const double*, double, double* B) { B[0] = 1; };
+  step_times.clear(), rate_times.clear(), extra_seen = 0;
+  pfgen_runtime::RecordRunOptions options;
+  options.substeps = 2;
+  pfgen_runtime::RecordRun run(filter, {}, 5, options);
+  REQUIRE(run.state().size() == 4);
+  const double y = 0.1;
+  CHECK(run.advance(5.2, &y));
+  CHECK(run.advance(5.4 + 1e-12, &y));  // within the relative 1e-9
+  CHECK(step_times == std::vector<double>{0, 0.1, 0.2, 0.30000000000000004});
+  CHECK(rate_times == std::vector<double>{0, 0.2});
+  CHECK(extra_seen == 4);
+  CHECK_THROWS_WITH(run.advance(5.7, &y), Contains("delayed observations need equally spaced rows: the interval from "
+                                                   "t = 5.4 is 0.3, not the filters' step 0.2 (relative 1e-9)"));
+  CHECK_THROWS_WITH(pfgen_runtime::RecordRun(filter, {}, 0, options, {0, 1}),
+                    Contains("the filter 'fake' keeps a history and starts from the model's m0 and P0"));
+}
 
 TEST_CASE("delayed observations at h = 0 give the undelayed filters' scores and estimates on a record",
           "[record][delayed][compiler]") {
