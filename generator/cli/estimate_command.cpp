@@ -66,6 +66,7 @@ std::vector<std::string> csv_columns(const RecordJob& job, const std::string& ti
 
 void append_row(std::string& out, double t, const std::vector<double>& y, const std::vector<RecordRun>& runs,
                 std::size_t n, bool full) {
+  const std::size_t m_and_P = n + n * (n + 1) / 2;  // a delayed filter's x* and history follow
   out += number(t);
   for (double v : y) out += "," + number(v);
   for (const RecordRun& run : runs) {
@@ -74,7 +75,7 @@ void append_row(std::string& out, double t, const std::vector<double>& y, const 
     // P's diagonal in the packed upper triangle: (i, i) at n + i n - i (i - 1) / 2.
     for (std::size_t i = 0; i < n; ++i) out += "," + number(std::sqrt(std::max(0.0, s[n + i * n - i * (i - 1) / 2])));
     if (full)
-      for (std::size_t k = n; k < s.size(); ++k) out += "," + number(s[k]);
+      for (std::size_t k = n; k < m_and_P; ++k) out += "," + number(s[k]);
     for (double v : run.predicted()) out += "," + number(v);
     for (double v : run.innovation()) out += "," + number(v);
     for (double v : run.normalized()) out += "," + number(v);
@@ -234,10 +235,15 @@ EstimateOutcome estimate(const EstimateOptions& options) {
   std::string values;
   for (std::size_t k = 0; k < job.parameter_names.size(); ++k)
     values += (k ? ", " : "") + job.parameter_names[k] + " = " + pfgen_support::shortest_chars(job.values[k]);
+  // Delayed observations: the delay, and the grid step the filters were generated for.
+  const std::string delayed =
+      job.grid_step ? " delayed by h = " + pfgen_support::shortest_double(job.model.observation.delay().to_double()) +
+                          ", filter step " + pfgen_support::shortest_double(*job.grid_step)
+                    : "";
   std::snprintf(line, sizeof line, "Record %s: %zu rows, t = %s to %s, %s observations", record.data_path.c_str(), rows,
                 pfgen_support::shortest_chars(first).c_str(), pfgen_support::shortest_chars(last).c_str(),
                 sampled ? "sampled" : record.data_form == "rates" ? "continuous (rates)" : "continuous (increments)");
-  outcome.report = "Model " + job.model.name + (values.empty() ? "" : " at " + values) + "\n" + line + "\n\n" +
+  outcome.report = "Model " + job.model.name + (values.empty() ? "" : " at " + values) + "\n" + line + delayed + "\n\n" +
                    scores_table(outcome.scores, !sampled);
   return outcome;
 }

@@ -89,7 +89,7 @@ FitOutcome fit(const FitOptions& options) {
   const pfgen_runtime::RecordFilter& filter = job.filters.front();
   // The prior's state (m0, then P0's upper triangle) as the model gives it: m0.X estimates
   // replace its entry X.
-  std::vector<double> prior(filter.state_size());
+  std::vector<double> prior(filter.full_state_size());
   filter.initial_state(prior.data());
   std::vector<std::size_t> index, parameter_of;  // parameters: theta position, and into job.values
   std::vector<std::pair<std::size_t, std::size_t>> prior_means;  // m0.X: (theta position, state)
@@ -105,6 +105,9 @@ FitOutcome fit(const FitOptions& options) {
       const auto i = static_cast<std::size_t>(at - states.begin());
       for (const auto& [position, seen] : prior_means)
         if (seen == i) throw CliValueError("--estimate: " + quoted(name) + " is named twice");
+      if (filter.extra_state_size > 0)
+        throw CliValueError("--estimate: " + quoted(name) + ": the filter '" + filter.name +
+                            "' keeps a history that starts from the model's m0, so its prior mean is not estimated");
       prior_means.push_back({problem.names.size(), i});
       problem.names.push_back(name);
       problem.start.push_back(prior[i]);
@@ -165,7 +168,8 @@ FitOutcome fit(const FitOptions& options) {
   const LogLikelihood log_likelihood = [&](const std::vector<double>& theta, std::string& why) {
     std::vector<double> values = job.values;
     for (std::size_t i = 0; i < index.size(); ++i) values[parameter_of[i]] = theta[index[i]];
-    std::vector<double> initial = prior;
+    std::vector<double> initial;  // empty: the filter's own initial state
+    if (!prior_means.empty()) initial = prior;
     for (const auto& [position, state] : prior_means) initial[state] = theta[position];
     return record_log_likelihood(filter, job, data, t0, std::move(values), initial, why);
   };

@@ -6,19 +6,87 @@
 #include "plugin_loading.hpp"
 #include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/model/delay_grid.hpp"
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 #include "pfgen_runtime/record_arrays.hpp"
 #include "pfgen_runtime/record_reader.hpp"
+#include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::cli {
+namespace {
+
+bool has_time(const std::vector<Polynomial>& polynomials, const GiNaC::symbol& t) {
+  for (const Polynomial& polynomial : polynomials)
+    for (const auto& term : polynomial.terms())
+      if (term.second.has(t)) return true;
+  return false;
+}
+
+// Whether a filter's equations (or the observation noise B, which the scores read) depend on t.
+bool depends_on_time(const Model& model, const FilterEquations& eq) {
+  const GiNaC::symbol& t = model.time;
+  for (const auto* rows : {&eq.gain, &eq.P_gain})
+    for (const auto& row : *rows)
+      if (has_time(row, t)) return true;
+  for (const auto* part : {&eq.m_drift, &eq.predicted_observation, &eq.P_moment, &eq.P_diffusion, &eq.P_correction,
+                           &eq.P_euler, &eq.x_star_drift})
+    if (has_time(*part, t)) return true;
+  for (const FilterDefinition& definition : eq.definitions)
+    if (definition.value.has(t)) return true;
+  for (const auto& row : model.observation.rate().B)
+    for (const GiNaC::ex& entry : row)
+      if (entry.has(t)) return true;
+  return false;
+}
+
+// A delayed model's filters are generated for one grid step, the record's: its first interval
+// (from the prior's time to the first row, or between the first two rows) over --substeps. The
+// delay must be a whole number of such steps, and, since a delayed filter counts its own grid
+// from the prior (tau_k = k dt, its pre-history before), coefficients that depend on t need the
+// prior at t = 0. RecordRun checks that every later interval equals the first.
+double delayed_grid_step(const RecordJobOptions& options, const RecordJob& job,
+                         const std::vector<FilterEquations>& filters) {
+  const Model& model = job.model;
+  const std::unique_ptr<pfgen_runtime::RecordSource> source = open_record(options, job);
+  std::vector<double> row(source->observation_columns().size());
+  double first = 0, second = 0;
+  if (!source->next(first, row.data())) throw CliValueError(options.data_path + ": the record has a header but no rows");
+  const double t0 = prior_time(options, first, source->path());
+  double interval = first - t0;
+  if (!(interval > 0)) {
+    if (!source->next(second, row.data()))
+      throw CliValueError(source->place() +
+                          ": delayed observations need the record's step, and the record has one row, at the prior's "
+                          "time");
+    interval = second - first;
+  }
+  const double step = interval / static_cast<double>(options.substeps);
+  const DelaySteps steps = delay_steps(model.observation.delay(), step);
+  if (!steps.problem.empty())
+    throw CliValueError(source->place() + ": the record's step " + pfgen_support::shortest_double(interval) +
+                        (options.substeps > 1 ? " over --substeps " + std::to_string(options.substeps) : "") +
+                        " (the delayed filters' grid step): " + steps.problem);
+  // The grid step is h / D exactly (the interval's decimals, 3.01 - 3, are not): so the same step
+  // in any record gives the same plugin, and every interval is compared with it.
+  const double dt =
+      steps.steps > 0 ? (model.observation.delay() / GiNaC::numeric(static_cast<long>(steps.steps))).to_double() : step;
+  if (t0 != 0)
+    for (const FilterEquations& eq : filters)
+      if (depends_on_time(model, eq))
+        throw CliValueError(source_place(model) + "the filter '" + eq.name +
+                            "' depends on t, and a delayed filter counts its grid from the prior's time as t = 0: "
+                            "start the record at t = 0 (the prior's time is " +
+                            pfgen_support::shortest_double(t0) + (options.t0 ? ", --t0" : ", the first row's") + ")");
+  return dt;
+}
+
+}  // namespace
 
 RecordJob prepare_record_job(const RecordJobOptions& options) {
   RecordJob job;
   job.model = options.model ? *options.model : load_model_file(options.model_path);
   const Model& model = job.model;
-  if (model.observation.is_delayed())
-    throw CliValueError(model.source + ": observation.delay: a record is not read with delayed observations yet");
   if (options.data_form != "increments" && options.data_form != "rates")
     throw CliValueError("--data-form: '" + options.data_form + "' is neither increments nor rates");
   if (options.substeps < 1 || options.substeps > 1000000)
@@ -39,7 +107,8 @@ RecordJob prepare_record_job(const RecordJobOptions& options) {
   std::vector<FilterEquations> filters;
   for (const std::string& name : options.filters.empty() ? default_filter_names(model) : options.filters)
     filters.push_back(derive_named_filter(model, name));
-  const std::string source = codegen::generate_simulation_plugin(model, filters, std::nullopt);
+  if (model.observation.is_delayed()) job.grid_step = delayed_grid_step(options, job, filters);
+  const std::string source = codegen::generate_simulation_plugin(model, filters, job.grid_step);
   toolchain::PluginBuildOptions build_options;
   build_options.cache_dir = options.cache_dir;
   build_options.compiler = options.compiler;

@@ -43,10 +43,14 @@ struct RecordJob {
   std::vector<std::string> parameter_names;
   std::vector<double> values;  // the job's parameter values, in the model's order
   pfgen_runtime::RecordRunOptions run_options;
+  // Delayed observations: the grid step the filters were generated for (the record's first
+  // interval over --substeps); empty otherwise.
+  std::optional<double> grid_step;
 };
 
-// Loads the model, derives the filters, builds or finds the plugin and loads it. CliValueError for
-// a model this cannot run on a record (delayed observations) or a bad option.
+// Loads the model, derives the filters, builds or finds the plugin and loads it (for delayed
+// observations, generated for the record's step, read from its first rows). CliValueError for a
+// bad option, or a delayed model whose record's step does not divide the delay.
 RecordJob prepare_record_job(const RecordJobOptions& options);
 
 // The record's rows, from the file or from memory, its columns checked against the model.

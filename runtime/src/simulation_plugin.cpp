@@ -69,16 +69,15 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
     require((f.step_lanes != nullptr) == (f.lanes > 0) && (f.step_lanes == nullptr || f.extra_state_size == 0) &&
                 f.lanes <= 64,
             path, "filter " + std::string(f.name) + " has step_lanes without 1 to 64 lanes, or with extra state");
-    require((f.step_at != nullptr) == (f.predicted_observation != nullptr) &&
-                (f.step_at == nullptr || f.extra_state_size == 0),
-            path, "filter " + std::string(f.name) + " has only one of step_at and predicted_observation, or them with extra state");
+    require((f.step_at != nullptr) == (f.predicted_observation != nullptr), path,
+            "filter " + std::string(f.name) + " has only one of step_at and predicted_observation");
   }
   require(t.parameter_count == 0 || (t.parameter_names && t.parameter_defaults), path,
           "the parameters' names or defaults are missing");
   for (std::size_t k = 0; k < t.parameter_count; ++k)
     require(t.parameter_names[k] != nullptr, path, "parameter " + std::to_string(k) + " has no name");
-  require(t.observation_noise == nullptr || (!t.observation_is_sampled && t.delay == 0), path,
-          "observation_noise is only for continuous observations without a delay");
+  require(t.observation_noise == nullptr || !t.observation_is_sampled, path,
+          "observation_noise is only for continuous observations");
 }
 
 }  // namespace
@@ -209,13 +208,15 @@ std::vector<RecordFilter> SimulationPlugin::record_filters() const {
   std::vector<RecordFilter> out;
   for (std::size_t k = 0; k < table_->filter_count; ++k) {
     const pfgen_plugin_filter& f = table_->filters[k];
-    if (!f.step_at || !table_->observation_noise) continue;  // a delayed filter (or a plugin written without)
+    if (!f.step_at || !table_->observation_noise) continue;  // a plugin written without them
     RecordFilter filter;
     filter.library = library_;
     filter.name = f.name;
     filter.n = f.n;
     filter.p = f.p;
     filter.r = table_->r;
+    filter.extra_state_size = f.extra_state_size;
+    filter.fixed_dt = f.fixed_dt;
     filter.initial_state = f.initial_state;
     filter.step = f.step_at;
     filter.predicted_observation = f.predicted_observation;

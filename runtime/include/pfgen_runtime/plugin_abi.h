@@ -24,7 +24,7 @@
 extern "C" {
 #endif
 
-#define PFGEN_PLUGIN_ABI_VERSION 7u
+#define PFGEN_PLUGIN_ABI_VERSION 8u
 #define PFGEN_PLUGIN_ENTRY_NAME "pfgen_plugin_entry"
 
 /* One filter over its packed state [m (n entries), upper triangle of P row by row], followed by
@@ -49,7 +49,10 @@ typedef struct pfgen_plugin_filter {
   /* Version 7 on: step at parameter values given in the call (values: the plugin's
    * parameter_count entries, in the model's order) rather than the model's defaults, and the
    * predicted observation rate h (p entries: A0 + A m, or E[h(x)]) of the state at t. Both NULL,
-   * or both set (never for a filter with extra state): NULL for a delayed filter. What running a filter over recorded data and fitting parameters need. */
+   * or both set. What running a filter over recorded data and fitting parameters need. Version 8
+   * on, a delayed filter has them too: state is then the whole flat state (with its extra state)
+   * and t a time of its grid t_k = k fixed_dt, as for step; predicted_observation gives
+   * A0 + A m(t - h), m(t - h) from the filter's history (what step's predictor reads). */
   void (*step_at)(double* state, const double* values, double t, double dt, const double* dy);
   void (*predicted_observation)(const double* state, const double* values, double t, double* h);
 } pfgen_plugin_filter;
@@ -126,9 +129,9 @@ typedef struct pfgen_plugin {
   void (*diffusion_batch)(double t, size_t count, const double* x, double* g);
   void (*observation_rate_batch)(double t, size_t count, const double* x, double* h);
   /* Version 7 on: the model's parameters in its order (names and the default values every
-   * function above uses), and for continuous observations without a delay B(t) (p x r) at given
-   * parameter values: the observation noise dW2's factor, R = B B^T (NULL otherwise, or from a
-   * plugin whose continuous filters cannot run on records). */
+   * function above uses), and for continuous observations (version 8 on: with a delay too) B(t)
+   * (p x r) at given parameter values: the observation noise dW2's factor, R = B B^T (NULL
+   * otherwise, or from a plugin whose continuous filters cannot run on records). */
   size_t parameter_count;
   const char* const* parameter_names;  /* parameter_count entries (NULL when 0) */
   const double* parameter_defaults;    /* parameter_count entries (NULL when 0) */

@@ -17,6 +17,11 @@ struct RecordFilter {
   // Sampled filters: prediction sub-steps per model period, and the period; 0 for continuous.
   std::size_t substeps = 0;
   double period = 0;
+  // A delayed filter: the entries after m and P (x* and the history of its last h / fixed_dt grid
+  // values), and the only step it takes, on its own grid tau_k = k fixed_dt from the prior; 0 for
+  // others. step and predicted_observation then read the whole state and a time of that grid.
+  std::size_t extra_state_size = 0;
+  double fixed_dt = 0;
   void (*initial_state)(double* state) = nullptr;  // from the model's m0, P0
   // Continuous observations dy = h dt + B dW2: one step over [t, t + dt] with the increment dy,
   // the predicted rate h of a state, and B at t (p x r, row-major).
@@ -30,7 +35,8 @@ struct RecordFilter {
   void (*innovation)(const double* state, const double* values, double t, double* yhat, double* S) = nullptr;
 
   bool sampled() const { return substeps > 0; }
-  std::size_t state_size() const { return n + n * (n + 1) / 2; }
+  std::size_t state_size() const { return n + n * (n + 1) / 2; }  // m and P
+  std::size_t full_state_size() const { return state_size() + extra_state_size; }
 };
 
 }  // namespace pfgen_runtime

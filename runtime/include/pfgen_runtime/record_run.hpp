@@ -14,6 +14,11 @@
 // Gaussian log-density, sum log N(dy; h dt, S) with S = R dt + E[J_h] P E[J_h]^T dt^2 (the
 // innovation's covariance over the interval to second order in dt). The innovation is dy - h dt,
 // normalised by S^(1/2).
+//
+// Delayed observations (a filter with a fixed grid step): the same, with h = A0 + A m(t - h) from
+// the filter's history (which the current m does not move, so S is R dt); the rows must be
+// substeps x fixed_dt apart (relative 1e-9), and the filter steps on its own grid tau_k = k
+// fixed_dt, counted from the prior (its pre-history: m = m0 before).
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -34,17 +39,19 @@ struct RecordRunOptions {
 class RecordRun {
  public:
   // The filter from its initial state (the model's m0, P0, or `initial` when not empty: m then
-  // P's upper triangle) at t0, at the parameter values `values` (the plugin's order).
+  // P's upper triangle; std::invalid_argument for a filter with extra state, which starts from
+  // the model's) at t0, at the parameter values `values` (the plugin's order).
   RecordRun(const RecordFilter& filter, std::vector<double> values, double t0, const RecordRunOptions& options,
             const std::vector<double>& initial = {});
   // To the row at t > time() (sampled data: t >= time(), a sample at the prior's time) with its observation (p entries; NaN: missing). false when the
   // filter failed there (failure() says how); the run then stays failed. std::invalid_argument
-  // for a sampled row missing only some entries, or continuous data with a gap.
+  // for a sampled row missing only some entries, continuous data with a gap, or a fixed-grid
+  // filter's row other than substeps x fixed_dt after the last.
   bool advance(double t, const double* observation);
 
   const std::string& filter_name() const { return filter_.name; }
   double time() const { return t_; }
-  const std::vector<double>& state() const { return state_; }
+  const std::vector<double>& state() const { return state_; }  // m, P's upper triangle, then any extra state
   bool observed() const { return observed_; }  // whether the last row had an observation
   const std::vector<double>& predicted() const { return yhat_; }  // yhat, or h dt
   const std::vector<double>& innovation() const { return innovation_; }
@@ -67,6 +74,7 @@ class RecordRun {
   std::vector<double> state_, yhat_, innovation_, normalized_, S_, B_, dy_, whitened_dy_, whitened_innovation_, R_, J_, h_up_, h_down_, shifted_;
   InnovationScores scores_;
   double increment_log_density_ = 0;
+  std::size_t steps_ = 0;  // a fixed-grid filter's steps so far: its grid index
   bool observed_ = false;
   std::string failure_;
 };

@@ -85,8 +85,8 @@ class SimulationPlugin {
   // The model's parameters in its order, and the defaults filters() and the truth use.
   std::vector<std::string> parameter_names() const;
   std::vector<double> parameter_defaults() const;
-  // The filters that can run over recorded data at any parameter values (all but delayed ones),
-  // in the plugin's order.
+  // The filters that can run over recorded data at any parameter values, in the plugin's order
+  // (a delayed one with its extra state and fixed grid step).
   std::vector<RecordFilter> record_filters() const;
 
   // The raw table, valid while this object (or anything it returned) lives.

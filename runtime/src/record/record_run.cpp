@@ -56,7 +56,7 @@ RecordRun::RecordRun(const RecordFilter& filter, std::vector<double> values, dou
       values_(std::move(values)),
       options_(options),
       t_(t0),
-      state_(filter.state_size()),
+      state_(filter.full_state_size()),
       yhat_(filter.p),
       innovation_(filter.p),
       normalized_(filter.p),
@@ -73,6 +73,8 @@ RecordRun::RecordRun(const RecordFilter& filter, std::vector<double> values, dou
   if (options_.substeps == 0) throw std::invalid_argument("substeps must be at least 1");
   if (initial.empty())
     filter.initial_state(state_.data());
+  else if (filter.extra_state_size > 0)
+    throw std::invalid_argument("the filter '" + filter.name + "' keeps a history and starts from the model's m0 and P0");
   else if (initial.size() == state_.size())
     state_ = initial;
   else
@@ -136,14 +138,25 @@ bool RecordRun::sample(double t, const double* y) {
 
 bool RecordRun::increment(double t, const double* observation) {
   const std::size_t p = filter_.p, r = filter_.r, n = filter_.n;
-  const double interval = t - t_;
+  // A filter on a fixed grid (delayed observations) takes `substeps` steps of fixed_dt per row, on
+  // its own grid tau_k = k fixed_dt from the prior: the rows must be that far apart.
+  const bool on_grid = filter_.fixed_dt > 0;
+  const double grid_interval = filter_.fixed_dt * static_cast<double>(options_.substeps);
+  if (on_grid && !(std::abs((t - t_) - grid_interval) <= 1e-9 * grid_interval)) {
+    char text[200];
+    std::snprintf(text, sizeof text, "the interval from t = %.10g is %.10g, not the filters' step %.10g (relative 1e-9)",
+                  t_, t - t_, grid_interval);
+    throw std::invalid_argument(std::string("delayed observations need equally spaced rows: ") + text);
+  }
+  const double interval = on_grid ? grid_interval : t - t_;
+  const double tau = on_grid ? static_cast<double>(steps_) * filter_.fixed_dt : t_;
   for (std::size_t i = 0; i < p; ++i) {
     if (std::isnan(observation[i]))
       throw std::invalid_argument("continuous data cannot have a missing value: the filter has no step without dy");
     dy_[i] = options_.continuous == ContinuousData::Rates ? observation[i] * interval : observation[i];
   }
   // h and R = B B^T where the interval starts (Ito).
-  filter_.predicted_observation(state_.data(), values_.data(), t_, yhat_.data());
+  filter_.predicted_observation(state_.data(), values_.data(), tau, yhat_.data());
   filter_.observation_noise(values_.data(), t_, B_.data());
   for (std::size_t i = 0; i < p; ++i)
     for (std::size_t j = 0; j <= i; ++j) {
@@ -161,9 +174,9 @@ bool RecordRun::increment(double t, const double* observation) {
   for (std::size_t j = 0; j < n; ++j) {
     const double step = 1e-6 * std::max(1.0, std::abs(state_[j]));
     shifted_[j] = state_[j] + step;
-    filter_.predicted_observation(shifted_.data(), values_.data(), t_, h_up_.data());
+    filter_.predicted_observation(shifted_.data(), values_.data(), tau, h_up_.data());
     shifted_[j] = state_[j] - step;
-    filter_.predicted_observation(shifted_.data(), values_.data(), t_, h_down_.data());
+    filter_.predicted_observation(shifted_.data(), values_.data(), tau, h_down_.data());
     shifted_[j] = state_[j];
     for (std::size_t i = 0; i < p; ++i) J_[i * n + j] = (h_up_[i] - h_down_[i]) / (2 * step);
   }
@@ -201,7 +214,11 @@ bool RecordRun::increment(double t, const double* observation) {
   const double dt = interval / static_cast<double>(options_.substeps);
   for (std::size_t i = 0; i < p; ++i) dy_[i] /= static_cast<double>(options_.substeps);
   for (std::size_t k = 0; k < options_.substeps; ++k)
-    filter_.step(state_.data(), values_.data(), t_ + static_cast<double>(k) * dt, dt, dy_.data());
+    if (on_grid)
+      filter_.step(state_.data(), values_.data(), static_cast<double>(steps_++) * filter_.fixed_dt, filter_.fixed_dt,
+                   dy_.data());
+    else
+      filter_.step(state_.data(), values_.data(), t_ + static_cast<double>(k) * dt, dt, dy_.data());
   return true;
 }
 
