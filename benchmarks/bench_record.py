@@ -9,7 +9,10 @@
 2. `pfgen estimate` over a continuous record of 10^6 steps of a 3-state model (the Lorenz system
    with state-multiplicative noise, two states observed), the plugin cached;
 3. `pfgen fit` of the boarding-school influenza record (14 days, SIR model, beta and gamma), the
-   plugin cached.
+   plugin cached;
+4. `pfgen estimate` streaming a record of 10^7 steps of a one-state model
+   (benchmarks/models/ou_continuous.yaml, the record written here by numpy), its time and the
+   process's peak memory (the record is 254 MB; held whole it would need more than that).
 
 Usage: bench_record.py --build BUILD_DIR [--bench BENCH_RECORD] [--work DIR] [--repeats R]
 Ratios are against pfgen's own time measured in the same run (these machines are noisy).
@@ -118,6 +121,36 @@ def lorenz_record(path, steps):
         out.write("".join(lines))
 
 
+def stream(pfgen, source, work, rows, repeats):
+    import scipy.signal
+    path = os.path.join(work, "ou_%d.csv" % rows)
+    if not os.path.exists(path):
+        rng = np.random.default_rng(1)
+        dt, a, s, r = 1e-3, 1.0, 0.5, 0.1
+        phi = math.exp(-a * dt)
+        x = scipy.signal.lfilter([1.0], [1.0, -phi], rng.normal(0, s * math.sqrt((1 - phi * phi) / (2 * a)), rows))
+        dy = x * dt + r * math.sqrt(dt) * rng.normal(0, 1, rows)
+        with open(path, "w") as f:
+            f.write("t,dy\n0,\n")
+            np.savetxt(f, np.column_stack([np.arange(1, rows + 1) * dt, dy]), fmt=["%.3f", "%.9e"], delimiter=",")
+    argv = [pfgen, "estimate", os.path.join(source, "benchmarks/models/ou_continuous.yaml"), "--data", path,
+            "--filters", "optimal", "-q"]
+    seconds = command_seconds(argv, max(1, repeats // 2))
+    # The peak memory of one more run, that process's own (wait4's usage, in KiB). A child's peak
+    # counts what it held before exec, a copy of its parent: so a small interpreter starts it, not
+    # this one, which holds numpy's arrays and statsmodels.
+    starter = ("import os, sys\npid = os.fork()\nif pid == 0:\n    null = os.open(os.devnull, os.O_WRONLY)\n"
+               "    os.dup2(null, 1)\n    os.dup2(null, 2)\n    os.execv(sys.argv[1], sys.argv[1:])\n"
+               "_, status, usage = os.wait4(pid, 0)\nprint(os.waitstatus_to_exitcode(status), usage.ru_maxrss)\n")
+    done = subprocess.run([sys.executable, "-S", "-c", starter, *argv], capture_output=True, text=True, check=True)
+    status, peak_kib = done.stdout.split()
+    if status != "0":
+        sys.exit("pfgen estimate failed on the streamed record")
+    peak_mib = int(peak_kib) / 1024
+    print("4. pfgen estimate streaming %d continuous steps (%.0f MB record) of a one-state model: %.2f s, peak memory "
+          "%.0f MiB" % (rows, os.path.getsize(path) / 1e6, seconds, peak_mib))
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--build", default="build", help="the build with pfgen and the Python module")
@@ -126,6 +159,7 @@ def main():
     parser.add_argument("--work", default="build/bench_record")
     parser.add_argument("--repeats", type=int, default=7)
     parser.add_argument("--steps", type=int, default=1000000)
+    parser.add_argument("--stream-rows", type=int, default=10000000)
     a = parser.parse_args()
     source = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     pfgen = os.path.join(a.build, "generator/pfgen")
@@ -144,6 +178,7 @@ def main():
                                "--t0", "0", "--estimate", "beta,gamma", "--bounds", "beta=0.1:10,gamma=0.01:5", "-q"],
                               a.repeats)
     print("3. pfgen fit of the boarding-school record (14 days, SIR, beta and gamma): %.3f s" % seconds)
+    stream(pfgen, source, a.work, a.stream_rows, a.repeats)
     sys.exit(0 if ok else 1)
 
 
