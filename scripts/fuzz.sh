@@ -7,11 +7,21 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 seconds="${1:-60}"
+target="${2:-model}"  # model, or record: the record reader and RecordRun (fuzz/fuzz_record.cpp)
 build="${PFGEN_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 cmake -S "$root" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo "${launcher[@]}" \
   -DPFGEN_BUILD_FUZZERS=ON -DPFGEN_BUILD_TESTS=OFF >/dev/null
+if [ "$target" = record ]; then
+  # Seeds: the example records; findings go to build-fuzz/findings-record/.
+  cmake --build "$build" -j"$(nproc)" --target pfgen_fuzz_record
+  mkdir -p "$build/corpus-record" "$build/seeds-record" "$build/findings-record"
+  for f in "$root"/examples/records/*.csv; do head -c 4096 "$f" > "$build/seeds-record/$(basename "$f")"; done
+  exec env ASAN_OPTIONS=detect_leaks=0 "$build/fuzz/pfgen_fuzz_record" "$build/corpus-record" "$build/seeds-record" \
+    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
+    -artifact_prefix="$build/findings-record/" -print_final_stats=1
+fi
 cmake --build "$build" -j"$(nproc)" --target pfgen_fuzz_model
 mkdir -p "$build/corpus" "$build/seeds" "$build/findings"
 cp "$root"/examples/*.yaml "$root"/tests/data/bad/*.yaml "$build/seeds/"

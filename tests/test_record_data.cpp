@@ -182,3 +182,25 @@ TEST_CASE("the model file's bounds: reach fit, and bad ones are refused with the
   // An end given as ~ is open.
   CHECK(run(model_with("bounds: {q: [0, ~]}\n"), {"--estimate", "q"}).exit_code == 0);
 }
+
+TEST_CASE("fit refuses a parameter the filter's likelihood does not read", "[record][compiler]") {
+  TempDir dir;
+  std::string model = pfgen_test::read_file(std::string(PFGEN_SOURCE_DIR) + "/examples/van_der_pol.yaml");
+  // k: the additive kinds' noise, which the optimal filter never reads.
+  model.replace(model.find("parameters: {mu: 1, s: 0.5, r: 0.1}"), 35, "parameters: {mu: 1, s: 0.5, r: 0.1, k: 2}");
+  model.replace(model.find("additive_diffusion: [[\"0\"], [\"s\"]]"), 35, "additive_diffusion: [[\"0\"], [\"k\"]]");
+  write_file(dir.file("m.yaml"), model);
+  const std::string data = std::string(PFGEN_SOURCE_DIR) + "/examples/records/van_der_pol_increments.csv";
+  auto fit = [&](const std::string& filter) {
+    return pfgen_test::run_pfgen({"fit", dir.file("m.yaml"), "--data", data, "--estimate", "k", "--filter", filter, "-q",
+                                  "--cache-dir=" + dir.file("cache")});
+  };
+  const auto refused = fit("optimal");
+  CHECK(refused.exit_code == 1);
+  CHECK_THAT(refused.err, Contains("--estimate: 'k' does not change the log-likelihood of the filter 'optimal' on this "
+                                   "record (it does not enter that filter's equations)"));
+  // The additive filter reads it: fitted.
+  const auto fitted = fit("additive");
+  CHECK(fitted.exit_code == 0);
+  CHECK_THAT(fitted.out, Contains("converged"));
+}

@@ -22,18 +22,27 @@ using pfgen_runtime::RecordRun;
 std::string number(double value) { return std::isnan(value) ? "" : pfgen_support::shortest_chars(value); }
 
 // Per observation entry, the state it measures directly (a row e_i of C or A with no offset), for
-// the plot; nothing for any other row. Sampled observations only: a continuous record's values
-// are increments or noisy rates.
-std::vector<std::optional<std::size_t>> directly_observed(const Model& model) {
+// the plot; nothing for any other row. Samples, and continuous data given as rates (dy/dt, whose
+// noise is B/sqrt(dt) about the state); increments are in other units.
+std::vector<std::optional<std::size_t>> directly_observed(const Model& model, bool rates) {
   std::vector<std::optional<std::size_t>> out(model.p());
-  if (!model.observation.is_sampled() || model.observation.sampled().is_polynomial()) return out;
-  const SampledObservation& sampled = model.observation.sampled();
+  const ExVector* offset = nullptr;
+  const ExMatrix* rows = nullptr;
+  if (model.observation.is_sampled() && !model.observation.sampled().is_polynomial()) {
+    offset = &model.observation.sampled().C0;
+    rows = &model.observation.sampled().C;
+  } else if (rates && model.observation.kind() == ObservationKind::Continuous) {
+    offset = &model.observation.continuous().A0;
+    rows = &model.observation.continuous().A;
+  } else {
+    return out;
+  }
   for (std::size_t i = 0; i < model.p(); ++i) {
-    if (!sampled.C0.empty() && !sampled.C0[i].is_zero()) continue;
+    if (!offset->empty() && !(*offset)[i].is_zero()) continue;
     std::optional<std::size_t> state;
     bool unit = true;
     for (std::size_t j = 0; j < model.n() && unit; ++j) {
-      const GiNaC::ex& c = sampled.C[i][j];
+      const GiNaC::ex& c = (*rows)[i][j];
       if (c.is_zero()) continue;
       if (c.is_equal(GiNaC::ex(1)) && !state)
         state = j;
@@ -86,7 +95,7 @@ void append_row(std::string& out, double t, const std::vector<double>& y, const 
 std::string plot_script(const std::string& plot_path, const std::string& csv_path, const RecordJob& job,
                         const std::vector<std::string>& columns, const std::vector<std::string>& observed) {
   const auto& states = job.model.state_names;
-  const auto direct = directly_observed(job.model);
+  const auto direct = directly_observed(job.model, job.run_options.continuous == pfgen_runtime::ContinuousData::Rates);
   auto column = [&](const std::string& name) {
     return std::to_string(std::find(columns.begin(), columns.end(), name) - columns.begin() + 1);
   };

@@ -175,6 +175,21 @@ FitOutcome fit(const FitOptions& options) {
   };
 
   FitOutcome outcome;
+  // A parameter the filter's likelihood does not read (one of the additive kinds' noise for the
+  // optimal filter, the risk criterion's epsilon, a parameter of another filter's equations) would
+  // leave the fit flat in it: refused, each tried by a small step from the start.
+  {
+    std::string why;
+    const double at_start = log_likelihood(problem.start, why);
+    for (std::size_t i = 0; std::isfinite(at_start) && i < problem.names.size(); ++i) {
+      std::vector<double> moved = problem.start;
+      const double step = 1e-3 * std::max(1.0, std::abs(moved[i]));
+      moved[i] = moved[i] + step <= problem.upper[i] ? moved[i] + step : moved[i] - step;
+      if (log_likelihood(moved, why) == at_start)
+        throw CliValueError("--estimate: " + pfgen_support::quoted(problem.names[i]) + " does not change the log-likelihood of the filter '" +
+                            filter.name + "' on this record (it does not enter that filter's equations)");
+    }
+  }
   outcome.result = maximise_likelihood(problem, log_likelihood);
   const FitResult& r = outcome.result;
   const double k = static_cast<double>(problem.names.size());
