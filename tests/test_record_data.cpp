@@ -204,3 +204,16 @@ TEST_CASE("fit refuses a parameter the filter's likelihood does not read", "[rec
   CHECK(fitted.exit_code == 0);
   CHECK_THAT(fitted.out, Contains("converged"));
 }
+
+TEST_CASE("estimate refuses a gap between samples that would take more than 10^7 sub-steps", "[record][compiler]") {
+  // Found by fuzzing: a time of 118E6 after 7 asked for 7 x 10^8 prediction sub-steps, minutes of work.
+  TempDir dir;
+  const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.yaml";
+  write_file(dir.file("gap.csv"), "year,volume\n1871,1120\n1872,1160\n118E6,963\n");
+  const auto result = pfgen_test::run_pfgen({"estimate", model, "--data", dir.file("gap.csv"), "--time-column", "year",
+                                             "-q", "--cache-dir=" + dir.file("cache")});
+  CHECK(result.exit_code == 1);
+  CHECK_THAT(result.err, Contains("gap.csv:4: the interval from t = 1872 to 118000000 needs 1.18e+08 prediction "
+                                  "sub-steps (1 per period 1), more than 1e+07: check the time column"));
+  CHECK(pfgen_test::count_lines(result.err) == 1);
+}

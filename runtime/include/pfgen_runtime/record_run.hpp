@@ -43,10 +43,11 @@ class RecordRun {
   // the model's) at t0, at the parameter values `values` (the plugin's order).
   RecordRun(const RecordFilter& filter, std::vector<double> values, double t0, const RecordRunOptions& options,
             const std::vector<double>& initial = {});
-  // To the row at t > time() (sampled data: t >= time(), a sample at the prior's time) with its observation (p entries; NaN: missing). false when the
-  // filter failed there (failure() says how); the run then stays failed. std::invalid_argument
-  // for a sampled row missing only some entries, continuous data with a gap, or a fixed-grid
-  // filter's row other than substeps x fixed_dt after the last.
+  // To the row at t > time() (sampled data: t >= time(), a sample at the prior's time) with its
+  // observation (p entries; NaN: missing). false when the filter failed there (failure() says
+  // how); the run then stays failed. std::invalid_argument for a sampled row missing only some
+  // entries or more than 10^7 prediction sub-steps after the last, continuous data with a gap, or
+  // a fixed-grid filter's row other than substeps x fixed_dt after the last.
   bool advance(double t, const double* observation);
 
   const std::string& filter_name() const { return filter_.name; }

@@ -9,6 +9,7 @@ namespace pfgen_runtime {
 namespace {
 
 constexpr double kLogTwoPi = 1.8378770664093454836;
+constexpr double kMaxSubsteps = 1e7;  // prediction sub-steps between two rows
 
 // S = L L^T in place (lower triangle, row-major p x p); false unless positive definite.
 bool cholesky(double* S, std::size_t p) {
@@ -113,7 +114,16 @@ bool RecordRun::sample(double t, const double* y) {
   const double interval = t - t_;
   const double share = interval * static_cast<double>(filter_.substeps) / filter_.period;
   const double steps = std::max(1.0, std::ceil(share * (1 - 1e-12)));
-  if (steps > 1e9) return fail("the interval to t = " + std::to_string(t) + " needs more than 1e9 sub-steps");
+  // A gap that long is far more likely a wrong time (a year for a day) than a record: 10^7
+  // sub-steps take seconds, and 10^9 minutes.
+  if (steps > kMaxSubsteps) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "the interval from t = %.10g to %.10g needs %.3g prediction sub-steps (%zu per period %.10g), more "
+                  "than %.0e: check the time column",
+                  t_, t, steps, filter_.substeps, filter_.period, kMaxSubsteps);
+    throw std::invalid_argument(text);
+  }
   const auto count = static_cast<std::size_t>(steps);
   const double dt = interval / steps;
   for (std::size_t k = 0; k < count && interval > 0; ++k)
