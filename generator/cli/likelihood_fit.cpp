@@ -105,12 +105,17 @@ Run search(Scaled& scaled, std::vector<double> u0, const std::vector<double>& lo
     run.result = NLOPT_SUCCESS;
     return run;
   }
-  nlopt_opt opt = nlopt_create(NLOPT_LD_LBFGS, static_cast<unsigned>(k));
-  nlopt_set_lower_bounds(opt, lo.data());
-  nlopt_set_upper_bounds(opt, hi.data());
-  nlopt_set_max_objective(opt, sub_objective, &sub);
-  nlopt_set_ftol_rel(opt, 1e-12);
-  nlopt_set_xtol_rel(opt, 1e-9);
+  // Either algorithm within the box, maximising, to the same tolerances.
+  auto optimiser = [&](nlopt_algorithm algorithm) {
+    nlopt_opt opt = nlopt_create(algorithm, static_cast<unsigned>(k));
+    nlopt_set_lower_bounds(opt, lo.data());
+    nlopt_set_upper_bounds(opt, hi.data());
+    nlopt_set_max_objective(opt, sub_objective, &sub);
+    nlopt_set_ftol_rel(opt, 1e-12);
+    nlopt_set_xtol_rel(opt, 1e-9);
+    return opt;
+  };
+  nlopt_opt opt = optimiser(NLOPT_LD_LBFGS);
   // Each evaluation of the objective with its gradient costs 1 + 2k log-likelihoods.
   nlopt_set_maxeval(opt, static_cast<int>(std::max<std::size_t>(1, max_evaluations / (1 + 2 * k))));
   double value = 0;
@@ -120,12 +125,7 @@ Run search(Scaled& scaled, std::vector<double> u0, const std::vector<double>& lo
   // gradient disagree with the function (NLopt's generic failure, or rounding-limited). Then
   // BOBYQA, which needs no gradient, polishes from where it stopped; its own convergence decides.
   if (run.result == NLOPT_FAILURE || run.result == NLOPT_ROUNDOFF_LIMITED) {
-    nlopt_opt polish = nlopt_create(NLOPT_LN_BOBYQA, static_cast<unsigned>(k));
-    nlopt_set_lower_bounds(polish, lo.data());
-    nlopt_set_upper_bounds(polish, hi.data());
-    nlopt_set_max_objective(polish, sub_objective, &sub);
-    nlopt_set_ftol_rel(polish, 1e-12);
-    nlopt_set_xtol_rel(polish, 1e-9);
+    nlopt_opt polish = optimiser(NLOPT_LN_BOBYQA);
     std::vector<double> step(k);
     for (std::size_t i = 0; i < k; ++i)
       step[i] = std::max(1e-12, std::min(1e-3 * std::max(1.0, std::abs(x[i])), 0.5 * (hi[i] - lo[i])));

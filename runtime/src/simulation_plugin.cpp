@@ -205,16 +205,21 @@ std::vector<double> SimulationPlugin::parameter_defaults() const {
 }
 
 std::vector<RecordFilter> SimulationPlugin::record_filters() const {
+  // What every record filter has, continuous or sampled.
+  auto record_filter = [&](const char* name, std::size_t n, std::size_t p) {
+    RecordFilter filter;
+    filter.library = library_;
+    filter.name = name;
+    filter.n = n;
+    filter.p = p;
+    filter.r = table_->r;
+    return filter;
+  };
   std::vector<RecordFilter> out;
   for (std::size_t k = 0; k < table_->filter_count; ++k) {
     const pfgen_plugin_filter& f = table_->filters[k];
     if (!f.step_at || !table_->observation_noise) continue;  // a plugin written without them
-    RecordFilter filter;
-    filter.library = library_;
-    filter.name = f.name;
-    filter.n = f.n;
-    filter.p = f.p;
-    filter.r = table_->r;
+    RecordFilter filter = record_filter(f.name, f.n, f.p);
     filter.extra_state_size = f.extra_state_size;
     filter.fixed_dt = f.fixed_dt;
     filter.initial_state = f.initial_state;
@@ -225,12 +230,7 @@ std::vector<RecordFilter> SimulationPlugin::record_filters() const {
   }
   for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {
     const pfgen_plugin_sampled_filter& f = table_->sampled_filters[k];
-    RecordFilter filter;
-    filter.library = library_;
-    filter.name = f.name;
-    filter.n = f.n;
-    filter.p = f.p;
-    filter.r = table_->r;
+    RecordFilter filter = record_filter(f.name, f.n, f.p);
     filter.substeps = f.substeps;
     filter.period = table_->period;
     filter.initial_state = f.initial_state;
