@@ -45,10 +45,8 @@ int main(int argc, char** argv) {
     const pfgen_runtime::RecordFilter& filter = job.filters.front();
     auto evaluate = [&] {
       pfgen_runtime::RecordRun run(filter, job.values, t0, job.run_options);
-      for (std::size_t row = 0; row < record.times.size(); ++row) {
-        if (row == 0 && !filter.sampled() && record.times[row] == t0) continue;
+      for (std::size_t row = 0; row < record.times.size(); ++row)
         run.advance(record.times[row], record.values.data() + row * record.p);
-      }
       return filter.sampled() ? run.scores().log_likelihood() : run.increment_log_density();
     };
     const double value = evaluate();

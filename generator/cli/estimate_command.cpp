@@ -75,14 +75,14 @@ std::vector<std::string> csv_columns(const RecordJob& job, const std::string& ti
 
 void append_row(std::string& out, double t, const std::vector<double>& y, const std::vector<RecordRun>& runs,
                 std::size_t n, bool full) {
-  const std::size_t m_and_P = n + n * (n + 1) / 2;  // a delayed filter's x* and history follow
+  const std::size_t m_and_P = pfgen_runtime::filter_state_size(n);  // a delayed filter's x* and history follow
   out += number(t);
   for (double v : y) out += "," + number(v);
   for (const RecordRun& run : runs) {
     const std::vector<double>& s = run.state();
     for (std::size_t i = 0; i < n; ++i) out += "," + number(s[i]);
-    // P's diagonal in the packed upper triangle: (i, i) at n + i n - i (i - 1) / 2.
-    for (std::size_t i = 0; i < n; ++i) out += "," + number(std::sqrt(std::max(0.0, s[n + i * n - i * (i - 1) / 2])));
+    for (std::size_t i = 0; i < n; ++i)
+      out += "," + number(std::sqrt(std::max(0.0, s[n + pfgen_runtime::packed_diagonal(n, i)])));
     if (full)
       for (std::size_t k = n; k < m_and_P; ++k) out += "," + number(s[k]);
     for (double v : run.predicted()) out += "," + number(v);
@@ -185,9 +185,10 @@ EstimateOutcome estimate(const EstimateOptions& options) {
     if (csv) csv->write(text);
     if (options.csv_text) *options.csv_text += text;
   };
+  const std::vector<std::string> columns = csv_columns(job, reader.time_column(), observed, options.full_covariance);
   if (writes_csv) {
     std::string header;
-    for (const auto& c : csv_columns(job, reader.time_column(), observed, options.full_covariance)) header += (header.empty() ? "" : ",") + c;
+    for (const auto& c : columns) header += (header.empty() ? "" : ",") + c;
     write_csv(header + "\n");
   }
 
@@ -204,19 +205,16 @@ EstimateOutcome estimate(const EstimateOptions& options) {
       runs.reserve(job.filters.size());
       for (const RecordFilter& filter : job.filters) runs.emplace_back(filter, job.values, t0, job.run_options);
     }
-    // Continuous data: a first row at the prior's time starts the record (an increment needs an
-    // interval before it); its values are not used. A sample there updates the prior.
-    if (!(first_row && !sampled && t == runs.front().time()))
-      for (RecordRun& run : runs) {
-        const std::string where = reader.place() + ": ";
-        bool ok = false;
-        try {
-          ok = run.advance(t, y.data());
-        } catch (const std::invalid_argument& e) {
-          throw CliValueError(where + e.what());
-        }
-        if (!ok) throw CliValueError(where + "the filter '" + run.filter_name() + "' failed: " + run.failure());
+    for (RecordRun& run : runs) {
+      const std::string where = reader.place() + ": ";
+      bool ok = false;
+      try {
+        ok = run.advance(t, y.data());
+      } catch (const std::invalid_argument& e) {
+        throw CliValueError(where + e.what());
       }
+      if (!ok) throw CliValueError(where + "the filter '" + run.filter_name() + "' failed: " + run.failure());
+    }
     last = t;
     if (writes_csv) {
       append_row(buffer, t, y, runs, n, options.full_covariance);
@@ -231,13 +229,13 @@ EstimateOutcome estimate(const EstimateOptions& options) {
   if (csv) csv->finish();
   if (!options.plot_path.empty())
     pfgen_runtime::write_gnuplot_plot(options.plot_path, [&](const std::string& drawn) {
-      return plot_script(drawn, options.csv_path, job, csv_columns(job, reader.time_column(), observed, options.full_covariance), observed);
+      return plot_script(drawn, options.csv_path, job, columns, observed);
     });
 
   EstimateOutcome outcome;
   outcome.time_column = reader.time_column();
   outcome.observation_columns = observed;
-  outcome.columns = csv_columns(job, reader.time_column(), observed, options.full_covariance);
+  outcome.columns = columns;
   for (const RecordRun& run : runs)
     outcome.scores.push_back({run.filter_name(), run.scores().summary(), run.increment_log_density()});
   char line[300];

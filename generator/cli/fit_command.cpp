@@ -39,13 +39,10 @@ double record_log_likelihood(const pfgen_runtime::RecordFilter& filter, const Re
                              double t0, std::vector<double> values, const std::vector<double>& initial,
                              std::string& why) {
   pfgen_runtime::RecordRun run(filter, std::move(values), t0, job.run_options, initial);
-  const bool sampled = filter.sampled();
   for (std::size_t row = 0; row < record.times.size(); ++row) {
-    const double t = record.times[row];
-    if (row == 0 && !sampled && t == t0) continue;  // starts the record
     bool ok = false;
     try {
-      ok = run.advance(t, record.values.data() + row * record.p);
+      ok = run.advance(record.times[row], record.values.data() + row * record.p);
     } catch (const std::invalid_argument& e) {
       throw CliValueError(job.model.source + ": --data " + record.line_word + " " + std::to_string(record.lines[row]) +
                           ": " + e.what());
@@ -55,7 +52,7 @@ double record_log_likelihood(const pfgen_runtime::RecordFilter& filter, const Re
       return std::nan("");
     }
   }
-  return sampled ? run.scores().log_likelihood() : run.increment_log_density();
+  return filter.sampled() ? run.scores().log_likelihood() : run.increment_log_density();
 }
 
 std::string json_number(double value) {

@@ -68,17 +68,14 @@ Run search(Scaled& scaled, std::vector<double> u0, const std::vector<double>& lo
     std::vector<double> full;
     const std::vector<std::size_t>* free;
     std::vector<double> lo, hi;
+    double value(const double* y) {
+      for (std::size_t i = 0; i < free->size(); ++i) full[(*free)[i]] = y[i];
+      return scaled->value(full.data());
+    }
   } sub{&scaled, u0, &free, lo, hi};
   auto sub_objective = [](unsigned n, const double* y, double* gradient, void* data) -> double {
     Sub& s = *static_cast<Sub*>(data);
-    struct Embedded {
-      Sub* s;
-      double value(const double* y) {
-        for (std::size_t i = 0; i < s->free->size(); ++i) s->full[(*s->free)[i]] = y[i];
-        return s->scaled->value(s->full.data());
-      }
-    } e{&s};
-    const double f = e.value(y);
+    const double f = s.value(y);
     if (!std::isfinite(f)) {
       if (gradient) std::fill(gradient, gradient + n, 0.0);
       return -1e300;
@@ -89,9 +86,9 @@ Run search(Scaled& scaled, std::vector<double> u0, const std::vector<double>& lo
         const double h = 1e-6 * std::max(1.0, std::abs(y[i]));
         const double up = std::min(y[i] + h, s.hi[i]), down = std::max(y[i] - h, s.lo[i]);
         z[i] = up;
-        const double fu = e.value(z.data());
+        const double fu = s.value(z.data());
         z[i] = down;
-        const double fd = e.value(z.data());
+        const double fd = s.value(z.data());
         z[i] = y[i];
         gradient[i] = std::isfinite(fu) && std::isfinite(fd) && up > down ? (fu - fd) / (up - down) : 0.0;
       }
@@ -176,7 +173,6 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
       out.best_start = s;
     }
   }
-  out.evaluations = scaled.evaluations;
   out.log_likelihood = best.value;
   out.stop_reason = result_words(best.result) + (best.polished ? " (by BOBYQA after L-BFGS's line search failed)" : "");
   out.converged = best.result >= NLOPT_SUCCESS && best.result <= NLOPT_XTOL_REACHED && std::isfinite(best.value);

@@ -6,6 +6,8 @@
 #include <memory>
 #include <string>
 
+#include "pfgen_runtime/guards.hpp"
+
 namespace pfgen_runtime {
 
 struct RecordFilter {
@@ -35,7 +37,7 @@ struct RecordFilter {
   void (*innovation)(const double* state, const double* values, double t, double* yhat, double* S) = nullptr;
 
   bool sampled() const { return substeps > 0; }
-  std::size_t state_size() const { return n + n * (n + 1) / 2; }  // m and P
+  std::size_t state_size() const { return filter_state_size(n); }  // m and P
   std::size_t full_state_size() const { return state_size() + extra_state_size; }
 };
 

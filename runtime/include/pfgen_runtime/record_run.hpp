@@ -43,8 +43,9 @@ class RecordRun {
   // the model's) at t0, at the parameter values `values` (the plugin's order).
   RecordRun(const RecordFilter& filter, std::vector<double> values, double t0, const RecordRunOptions& options,
             const std::vector<double>& initial = {});
-  // To the row at t > time() (sampled data: t >= time(), a sample at the prior's time) with its
-  // observation (p entries; NaN: missing). false when the filter failed there (failure() says
+  // To the row at t > time() (or t == time() for the first row: a sample there updates the prior,
+  // a continuous row there only marks where the record starts) with its observation (p entries;
+  // NaN: missing). false when the filter failed there (failure() says
   // how); the run then stays failed. std::invalid_argument for a sampled row missing only some
   // entries or more than 10^7 prediction sub-steps after the last, continuous data with a gap, or
   // a fixed-grid filter's row other than substeps x fixed_dt after the last.
@@ -72,11 +73,12 @@ class RecordRun {
   std::vector<double> values_;
   RecordRunOptions options_;
   double t_;
-  std::vector<double> state_, yhat_, innovation_, normalized_, S_, B_, dy_, whitened_dy_, whitened_innovation_, R_, J_, h_up_, h_down_, shifted_;
+  std::vector<double> state_, yhat_, innovation_, normalized_, S_, B_, dy_, whitened_, R_, J_, h_up_, h_down_, shifted_;
   InnovationScores scores_;
   double increment_log_density_ = 0;
   std::size_t steps_ = 0;  // a fixed-grid filter's steps so far: its grid index
   bool observed_ = false;
+  bool begun_ = false;  // a row has been given
   std::string failure_;
 };
 

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "pfgen_runtime/guards.hpp"
+
 namespace pfgen_runtime {
 namespace {
 
@@ -37,6 +39,14 @@ void forward(const double* L, std::size_t p, const double* b, double* x) {
   }
 }
 
+// |L^-1 b|^2, L from cholesky(); L^-1 b is left in x.
+double whitened_square(const double* L, std::size_t p, const double* b, double* x) {
+  forward(L, p, b, x);
+  double square = 0;
+  for (std::size_t i = 0; i < p; ++i) square += x[i] * x[i];
+  return square;
+}
+
 double log_determinant(const double* L, std::size_t p) {
   double out = 0;
   for (std::size_t i = 0; i < p; ++i) out += 2 * std::log(L[i * p + i]);
@@ -64,8 +74,7 @@ RecordRun::RecordRun(const RecordFilter& filter, std::vector<double> values, dou
       S_(filter.p * filter.p),
       B_(filter.p * filter.r),
       dy_(filter.p),
-      whitened_dy_(filter.p),
-      whitened_innovation_(filter.p),
+      whitened_(filter.p),
       R_(filter.p * filter.p),
       J_(filter.p * filter.n),
       h_up_(filter.p),
@@ -96,7 +105,13 @@ bool RecordRun::state_finite() const {
 
 bool RecordRun::advance(double t, const double* observation) {
   if (failed()) return false;
-  if (!(t > t_ || (filter_.sampled() && t == t_))) throw std::invalid_argument("the time " + std::to_string(t) + " does not come after the filter's");
+  // A continuous record's first row at the prior's time marks where it starts: an increment needs
+  // an interval before it, so there is nothing to absorb. (A sample there updates the prior.)
+  const bool first = !begun_;
+  begun_ = true;
+  if (first && !filter_.sampled() && t == t_) return true;
+  if (!(t > t_ || (filter_.sampled() && t == t_)))
+    throw std::invalid_argument("the time " + std::to_string(t) + " does not come after the filter's");
   const bool ok = filter_.sampled() ? sample(t, observation) : increment(t, observation);
   t_ = t;
   if (ok && !state_finite()) return fail("the filter state is no longer finite " + at_time(t));
@@ -137,9 +152,7 @@ bool RecordRun::sample(double t, const double* y) {
   filter_.innovation(state_.data(), values_.data(), t, yhat_.data(), S_.data());
   for (std::size_t i = 0; i < p; ++i) innovation_[i] = y[i] - yhat_[i];
   if (!cholesky(S_.data(), p)) return fail("the innovation covariance S is not positive definite " + at_time(t));
-  forward(S_.data(), p, innovation_.data(), normalized_.data());
-  double square = 0;
-  for (double e : normalized_) square += e * e;
+  const double square = whitened_square(S_.data(), p, innovation_.data(), normalized_.data());
   scores_.add(normalized_.data(), -0.5 * (static_cast<double>(p) * kLogTwoPi + log_determinant(S_.data(), p) + square));
   if (!filter_.update(state_.data(), values_.data(), t, y))
     return fail("the update found S not positive definite " + at_time(t));
@@ -192,7 +205,7 @@ bool RecordRun::increment(double t, const double* observation) {
   }
   auto P = [&](std::size_t i, std::size_t j) {  // the packed upper triangle after m
     if (i > j) std::swap(i, j);
-    return state_[n + i * n - i * (i - 1) / 2 + (j - i)];
+    return state_[n + packed_diagonal(n, i) + (j - i)];
   };
   for (std::size_t i = 0; i < p; ++i)
     for (std::size_t j = 0; j <= i; ++j) {
@@ -207,18 +220,12 @@ bool RecordRun::increment(double t, const double* observation) {
     yhat_[i] *= interval;  // h dt
     innovation_[i] = dy_[i] - yhat_[i];
   }
-  forward(S_.data(), p, innovation_.data(), normalized_.data());
-  double square = 0;
-  for (double e : normalized_) square += e * e;
+  const double square = whitened_square(S_.data(), p, innovation_.data(), normalized_.data());
   increment_log_density_ +=
       -0.5 * (static_cast<double>(p) * kLogTwoPi + log_determinant(S_.data(), p) + square);
   // Girsanov: h^T R^-1 dy - 1/2 h^T R^-1 h dt = (|L^-1 dy|^2 - |L^-1 (dy - h dt)|^2) / (2 dt), R = L L^T.
-  forward(R_.data(), p, dy_.data(), whitened_dy_.data());
-  double dy_square = 0;
-  for (double z : whitened_dy_) dy_square += z * z;
-  forward(R_.data(), p, innovation_.data(), whitened_innovation_.data());
-  double innovation_square = 0;
-  for (double z : whitened_innovation_) innovation_square += z * z;
+  const double dy_square = whitened_square(R_.data(), p, dy_.data(), whitened_.data());
+  const double innovation_square = whitened_square(R_.data(), p, innovation_.data(), whitened_.data());
   scores_.add(normalized_.data(), (dy_square - innovation_square) / (2 * interval));
   observed_ = true;
   const double dt = interval / static_cast<double>(options_.substeps);
