@@ -10,6 +10,7 @@
 #include "pfgen_runtime/record_reader.hpp"
 #include "pfgen_runtime/statistics.hpp"
 #include "support/cli_helpers.hpp"
+#include "support/refusal.hpp"
 
 using Catch::Matchers::Contains;
 using pfgen_test::TempDir;
@@ -106,10 +107,7 @@ TEST_CASE("estimate and fit refuse bad options and data with one clear line", "[
   auto fails_with = [&](std::vector<std::string> arguments, const std::string& message) {
     arguments.push_back(cache);
     arguments.push_back("-q");
-    const auto result = pfgen_test::run_pfgen(arguments);
-    CHECK(result.exit_code == 1);
-    CHECK_THAT(result.err, Contains(message));
-    CHECK(pfgen_test::count_lines(result.err) == 1);
+    pfgen_test::check_refused_in_one_line(arguments, message);
   };
   fails_with({"fit", model, "--data", data, "--time-column", "year", "--estimate", "sigma"},
              "--estimate: 'sigma' is not a parameter of");
@@ -149,11 +147,14 @@ TEST_CASE("the model file's bounds: reach fit, and bad ones are refused with the
     write_file(dir.file("m.yaml"), base + bounds);
     return dir.file("m.yaml");
   };
-  auto run = [&](const std::string& model, std::vector<std::string> more) {
+  auto arguments_for = [&](const std::string& model, std::vector<std::string> more) {
     std::vector<std::string> arguments{"fit", model, "--data", data, "--time-column", "year", "-q",
                                        "--cache-dir=" + dir.file("cache")};
     arguments.insert(arguments.end(), more.begin(), more.end());
-    return pfgen_test::run_pfgen(arguments);
+    return arguments;
+  };
+  auto run = [&](const std::string& model, std::vector<std::string> more) {
+    return pfgen_test::run_pfgen(arguments_for(model, std::move(more)));
   };
   // Three starts need finite bounds: the model file's give them, and the fit lands where
   // --bounds would put it.
@@ -174,10 +175,7 @@ TEST_CASE("the model file's bounds: reach fit, and bad ones are refused with the
            {"bounds: {q: [0, abc]}\n", "'abc' is not a number"},
            {"bounds: [q]\n", "field 'bounds': expected a mapping of parameters to [low, high]"}}) {
     INFO(bounds);
-    const auto result = run(model_with(bounds), {"--estimate", "q"});
-    CHECK(result.exit_code == 1);
-    CHECK_THAT(result.err, Contains(message));
-    CHECK(pfgen_test::count_lines(result.err) == 1);
+    pfgen_test::check_refused_in_one_line(arguments_for(model_with(bounds), {"--estimate", "q"}), message);
   }
   // An end given as ~ is open.
   CHECK(run(model_with("bounds: {q: [0, ~]}\n"), {"--estimate", "q"}).exit_code == 0);
@@ -210,10 +208,8 @@ TEST_CASE("estimate refuses a gap between samples that would take more than 10^7
   TempDir dir;
   const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.yaml";
   write_file(dir.file("gap.csv"), "year,volume\n1871,1120\n1872,1160\n118E6,963\n");
-  const auto result = pfgen_test::run_pfgen({"estimate", model, "--data", dir.file("gap.csv"), "--time-column", "year",
-                                             "-q", "--cache-dir=" + dir.file("cache")});
-  CHECK(result.exit_code == 1);
-  CHECK_THAT(result.err, Contains("gap.csv:4: the interval from t = 1872 to 118000000 needs 1.18e+08 prediction "
-                                  "sub-steps (1 per period 1), more than 1e+07: check the time column"));
-  CHECK(pfgen_test::count_lines(result.err) == 1);
+  pfgen_test::check_refused_in_one_line(
+      {"estimate", model, "--data", dir.file("gap.csv"), "--time-column", "year", "-q", "--cache-dir=" + dir.file("cache")},
+      "gap.csv:4: the interval from t = 1872 to 118000000 needs 1.18e+08 prediction sub-steps (1 per period 1), more "
+      "than 1e+07: check the time column");
 }

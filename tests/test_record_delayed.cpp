@@ -13,6 +13,7 @@
 #include "pfgen/pfgen.hpp"
 #include "pfgen_runtime/record_run.hpp"
 #include "support/cli_helpers.hpp"
+#include "support/refusal.hpp"
 
 namespace api = pfgen::api;
 using Catch::Matchers::Contains;
@@ -133,10 +134,7 @@ TEST_CASE("estimate and fit refuse a record that does not fit the delay's grid w
   auto fails_with = [&](std::vector<std::string> arguments, const std::string& message) {
     arguments.push_back(cache);
     arguments.push_back("-q");
-    const auto result = pfgen_test::run_pfgen(arguments);
-    CHECK(result.exit_code == 1);
-    CHECK_THAT(result.err, Contains(message));
-    CHECK(pfgen_test::count_lines(result.err) == 1);
+    pfgen_test::check_refused_in_one_line(arguments, message);
   };
   // A step that does not divide h = 0.5.
   write_file(dir.file("coarse.csv"), "t,y\n0,\n0.03,0.01\n0.06,0.02\n");
