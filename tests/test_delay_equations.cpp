@@ -54,7 +54,7 @@ void check_equal(const Polynomial& derived, const GiNaC::ex& expected, const std
 
 TEST_CASE("delay kinds: gain and correction are the matrix products with Phi* on both sides", "[unit][delay]") {
   const Model model = three_state_delayed_model();
-  const ContinuousObservation& obs = model.observation.rate();
+  const AffineRate& obs = *model.observation.rate().affine();
   const GiNaC::matrix A = to_matrix(obs.A);
   const GiNaC::matrix R = to_matrix(obs.B).mul(to_matrix(obs.B).transpose());
   const GiNaC::matrix At_Rinv = A.transpose().mul(R.inverse());

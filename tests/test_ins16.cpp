@@ -54,7 +54,7 @@ TEST_CASE("ins16: the ekf P drift is F P + P F^T + g g^T - P A^T R^-1 A P with F
   GiNaC::matrix gm(n, g[0].size());
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = 0; k < g[i].size(); ++k) gm(i, k) = g[i][k].subs(at_m);
-  const ContinuousObservation& obs = model.observation.rate();
+  const AffineRate& obs = *model.observation.rate().affine();
   const std::size_t p = obs.A.size();
   GiNaC::matrix A(p, n), B(p, obs.B[0].size());
   for (std::size_t r = 0; r < p; ++r) {

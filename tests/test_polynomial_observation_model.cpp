@@ -20,16 +20,15 @@ namespace {
 
 // The model with its observation A0 + A x written as h = A0 + A x.
 Model written_polynomial(const Model& model) {
-  const ContinuousObservation& linear = model.observation.continuous();
-  PolynomialObservation polynomial;
-  polynomial.B = linear.B;
+  const AffineRate& linear = *model.observation.rate().affine();
+  ExVector h;
   for (std::size_t r = 0; r < linear.A.size(); ++r) {
-    GiNaC::ex h = linear.A0[r];
-    for (std::size_t k = 0; k < model.n(); ++k) h += linear.A[r][k] * model.states[k];
-    polynomial.h.push_back(h);
+    GiNaC::ex row = linear.A0[r];
+    for (std::size_t k = 0; k < model.n(); ++k) row += linear.A[r][k] * model.states[k];
+    h.push_back(row);
   }
   Model out = model;
-  out.observation = polynomial;
+  out.observation = ObservationModel(ObservationRate::of_rows(h, linear.B, model.states), std::nullopt, std::nullopt);
   return out;
 }
 

@@ -64,7 +64,7 @@ void check_closed_form(const Model& model) {
       hess_div(i, k) = div_f.diff(model.states[i]).diff(model.states[k]).subs(at_m);
     }
   }
-  const ContinuousObservation& obs = model.observation.rate();
+  const AffineRate& obs = *model.observation.rate().affine();
   const GiNaC::matrix A = to_matrix(obs.A), R = to_matrix(multiply_by_transpose(obs.B));
   const GiNaC::matrix At_Rinv = A.transpose().mul(R.inverse());
   const GiNaC::matrix M = to_matrix(model.risk->weight);

@@ -34,7 +34,7 @@ bool depends_on_time(const Model& model, const FilterEquations& eq) {
     if (has_time(*part, t)) return true;
   for (const FilterDefinition& definition : eq.definitions)
     if (definition.value.has(t)) return true;
-  for (const auto& row : model.observation.rate().B)
+  for (const auto& row : model.observation.rate().noise())
     for (const GiNaC::ex& entry : row)
       if (entry.has(t)) return true;
   return false;

@@ -86,7 +86,7 @@ class Construction {
 RiskSensitiveTerms risk_sensitive_terms(const Model& model, const FilterVariables& vars) {
   const std::size_t n = model.n(), p = model.p();
   const RiskCriterion& risk = *model.risk;
-  const ContinuousObservation& observation = model.observation.rate();
+  const AffineRate& observation = *model.observation.rate().affine();
   const ObservationTerms obs = observation_terms(observation);
   const Construction c(model, vars);
   auto u = [&](std::size_t k) { return Polynomial::variable(c.u(k)); };

@@ -154,16 +154,15 @@ ModelBuilder& ModelBuilder::sampled_observation(const GiNaC::numeric& period, co
 
 ModelBuilder& ModelBuilder::sampled_polynomial_observation(const GiNaC::numeric& period, const ExVector& c,
                                                           const ExMatrix& Uv, std::optional<std::size_t> substeps) {
-  SampledObservation sampled{period, ExVector(c.size(), GiNaC::ex(0)),
-                             ExMatrix(c.size(), ExVector(model_.states.size(), GiNaC::ex(0))), exact_matrix(Uv), substeps,
-                             exact_vector(c)};
-  model_.observation = sampled;
+  model_.observation = ObservationModel(ObservationRate::of_rows(exact_vector(c), exact_matrix(Uv), model_.states),
+                                        SampleTimes{period, substeps}, std::nullopt);
   has_observation_ = true;
   return *this;
 }
 
 ModelBuilder& ModelBuilder::polynomial_observation(const ExVector& h, const ExMatrix& B) {
-  model_.observation = PolynomialObservation{exact_vector(h), exact_matrix(B)};
+  model_.observation =
+      ObservationModel(ObservationRate::of_rows(exact_vector(h), exact_matrix(B), model_.states), std::nullopt, std::nullopt);
   has_observation_ = true;
   return *this;
 }
@@ -239,15 +238,16 @@ ModelBuilder& ModelBuilder::simulation(const SimulationSection& settings) {
 
 namespace {
 
-// A sampled c of degree <= 1 is C0 + C x: written so, every room sees the linear observation.
-void write_linear_samples(Model& model) {
-  SampledObservation sampled = model.observation.sampled();
-  std::optional<AffineRows> linear = affine_rows(sampled.c, model.states);
-  if (!linear) return;
-  sampled.C0 = std::move(linear->constant);
-  sampled.C = std::move(linear->linear);
-  sampled.c.clear();
-  model.observation = sampled;
+// Rows h (or a sampled c) read against every declared state, now that all are (the rate's affine
+// view is found here, once); a sampled c of degree <= 1 is written C0 + C x, so every room sees
+// the linear samples, as the model file's C0 and C would give them.
+void read_rows_against_states(Model& model) {
+  const ObservationModel& observation = model.observation;
+  if (observation.rate().written_affine()) return;
+  ObservationRate rate = ObservationRate::of_rows(observation.rate().rows(), observation.rate().noise(), model.states);
+  if (observation.samples() && rate.affine())
+    rate = ObservationRate::of_affine(rate.affine()->A0, rate.affine()->A, rate.noise());
+  model.observation = ObservationModel(std::move(rate), observation.samples(), observation.delay_h());
 }
 
 }  // namespace
@@ -259,8 +259,7 @@ Model ModelBuilder::build() const {
   if (!has_observation_) throw ModelError("observation", "missing required field");
   validate_model(model_);
   Model model = model_;
-  if (model.observation.is_sampled() && model.observation.sampled().is_polynomial())
-    write_linear_samples(model);
+  read_rows_against_states(model);
   if (model.noise == NoiseCalculus::Stratonovich) {
     // The model as written is valid (and has g: validate_model checked); the filters and the
     // truth use its Ito form, which is validated again: the kinds it offers follow its drift.

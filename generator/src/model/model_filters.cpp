@@ -87,8 +87,7 @@ std::optional<std::string> filter_name_problem(const Model& model, const std::st
       // A delay kind on a model without a delay: `delay: 0` (or none) is the undelayed model.
       const auto& observations = filter_kind_info(*kind).observations;
       const bool delay_kind = observations.size() == 1 && observations.front() == ObservationKind::Delayed;
-      if (delay_kind && !model.observation.is_delayed() && !model.observation.is_sampled() &&
-          !model.observation.is_polynomial())
+      if (delay_kind && model.observation.kind() == ObservationKind::Continuous)
         message += " (the delay kinds need observation.delay h > 0; delay: 0, or none, is the undelayed model)";
       std::string known;
       for (const auto& filter : available) known += (known.empty() ? "" : ", ") + filter;

@@ -267,68 +267,75 @@ void require_positive_definite_noise(const Model& model, const ExMatrix& N, cons
                          " at the parameter defaults and t = 0); every observation needs its own noise");
 }
 
-void validate_continuous_observation(const Model& model) {
-  const ContinuousObservation& obs = model.observation.rate();
-  if (model.observation.delay() < 0)  // h of a delayed observation; 0 for a continuous one
-    throw ModelError("observation.delay", "must be 0 or more (the delay h of dy = (A0 + A x(t - h)) dt + B dW2), found " +
-                                              to_text(model.observation.delay()));
-  std::size_t p = obs.A.size();
-  if (p == 0) throw ModelError("observation.A", "at least one observation row is required");
-  require_shape(obs.A, p, model.n(), "observation.A", "p x n with n = number of states");
-  if (obs.A0.size() != p)
-    throw ModelError("observation.A0", "expected " + std::to_string(p) +
-                                           " entries (one per row of A), found " +
-                                           std::to_string(obs.A0.size()));
-  require_shape(obs.B, p, std::nullopt, "observation.B", "one per observation, as in A");
+// The model file's names of the rate's fields, which depend on the timing: dy's A0, A, h and B,
+// or the samples' C0, C, c and Uv (and `p x n` or `r x n` in the shape's words).
+struct RateFields {
+  std::string constant, linear, rows, noise, noise_name, count;
+};
+
+RateFields rate_fields(bool sampled) {
+  if (sampled)
+    return {"observation.sampled.C0", "observation.sampled.C", "observation.sampled.c", "observation.sampled.Uv", "Uv", "r"};
+  return {"observation.A0", "observation.A", "observation.h", "observation.B", "B", "p"};
+}
+
+// The last name of a field: "C" of "observation.sampled.C".
+std::string short_name(const std::string& field) { return field.substr(field.rfind('.') + 1); }
+
+void require_state_free_noise(const Model& model, const ExMatrix& noise, const RateFields& fields, std::size_t i) {
+  for (std::size_t j = 0; j < noise[i].size(); ++j)
+    require_state_free(model, noise[i][j], fields.noise, one_based(i), one_based(j));
+}
+
+// A rate written as rows h_r(x, t) (a sample's c): polynomials in the states.
+void validate_rate_rows(const Model& model, const ObservationRate& rate, const RateFields& fields, bool sampled) {
+  const std::size_t p = rate.p();
+  if (!sampled && p == 0) throw ModelError(fields.rows, "at least one observation is required");
+  for (std::size_t i = 0; i < p; ++i) require_polynomial(model, rate.rows()[i], fields.rows, one_based(i), std::nullopt);
+  if (p == 0) throw ModelError(fields.linear, "at least one observation row is required");
+  require_shape(rate.noise(), p, std::nullopt, fields.noise, "one per observation, as in " + short_name(fields.rows));
+  for (std::size_t i = 0; i < rate.noise().size(); ++i) require_state_free_noise(model, rate.noise(), fields, i);
+}
+
+// A rate written A0 + A x (a sample's C0 + C x): coefficients free of the states.
+void validate_rate_affine(const Model& model, const ObservationRate& rate, const RateFields& fields) {
+  const AffineRate& affine = *rate.affine();
+  const std::size_t p = affine.A.size();
+  const std::string linear = short_name(fields.linear);
+  if (p == 0) throw ModelError(fields.linear, "at least one observation row is required");
+  require_shape(affine.A, p, model.n(), fields.linear, fields.count + " x n with n = number of states");
+  if (affine.A0.size() != p)
+    throw ModelError(fields.constant, "expected " + std::to_string(p) + " entries (one per row of " + linear +
+                                          "), found " + std::to_string(affine.A0.size()));
+  require_shape(rate.noise(), p, std::nullopt, fields.noise, "one per observation, as in " + linear);
   for (std::size_t i = 0; i < p; ++i) {
-    require_state_free(model, obs.A0[i], "observation.A0", one_based(i), std::nullopt);
-    for (std::size_t j = 0; j < obs.A[i].size(); ++j)
-      require_state_free(model, obs.A[i][j], "observation.A", one_based(i), one_based(j));
-    for (std::size_t j = 0; j < obs.B[i].size(); ++j)
-      require_state_free(model, obs.B[i][j], "observation.B", one_based(i), one_based(j));
+    require_state_free(model, affine.A0[i], fields.constant, one_based(i), std::nullopt);
+    for (std::size_t j = 0; j < affine.A[i].size(); ++j)
+      require_state_free(model, affine.A[i][j], fields.linear, one_based(i), one_based(j));
+    require_state_free_noise(model, rate.noise(), fields, i);
   }
-  require_positive_definite_noise(model, obs.B, "observation.B", "B");
 }
 
-void validate_sampled_observation(const Model& model) {
-  const SampledObservation& obs = model.observation.sampled();
+void validate_sample_times(const SampleTimes& samples) {
   const std::string field = "observation.sampled";
-  if (!(obs.period > 0)) throw ModelError(field + ".period", "must be positive, found " + to_text(obs.period));
-  if (obs.substeps && *obs.substeps < 1) throw ModelError(field + ".substeps", "must be at least 1 (1 sub-step: predict over the whole period)");
-  std::size_t r = obs.C.size();
-  for (std::size_t i = 0; i < obs.c.size(); ++i) require_polynomial(model, obs.c[i], field + ".c", one_based(i), std::nullopt);
-  if (r == 0) throw ModelError(field + ".C", "at least one observation row is required");
-  require_shape(obs.C, r, model.n(), field + ".C", "r x n with n = number of states");
-  if (obs.C0.size() != r)
-    throw ModelError(field + ".C0", "expected " + std::to_string(r) + " entries (one per row of C), found " +
-                                        std::to_string(obs.C0.size()));
-  require_shape(obs.Uv, r, std::nullopt, field + ".Uv", obs.is_polynomial() ? "one per observation, as in c" : "one per observation, as in C");
-  for (std::size_t i = 0; i < r; ++i) {
-    require_state_free(model, obs.C0[i], field + ".C0", one_based(i), std::nullopt);
-    for (std::size_t j = 0; j < obs.C[i].size(); ++j)
-      require_state_free(model, obs.C[i][j], field + ".C", one_based(i), one_based(j));
-    for (std::size_t j = 0; j < obs.Uv[i].size(); ++j)
-      require_state_free(model, obs.Uv[i][j], field + ".Uv", one_based(i), one_based(j));
-  }
-  require_positive_definite_noise(model, obs.Uv, field + ".Uv", "Uv");
+  if (!(samples.period > 0)) throw ModelError(field + ".period", "must be positive, found " + to_text(samples.period));
+  if (samples.substeps && *samples.substeps < 1)
+    throw ModelError(field + ".substeps", "must be at least 1 (1 sub-step: predict over the whole period)");
 }
 
-void validate_polynomial_observation(const Model& model) {
-  const PolynomialObservation& obs = model.observation.polynomial();
-  const std::size_t p = obs.h.size();
-  if (p == 0) throw ModelError("observation.h", "at least one observation is required");
-  for (std::size_t i = 0; i < p; ++i) require_polynomial(model, obs.h[i], "observation.h", one_based(i), std::nullopt);
-  require_shape(obs.B, p, std::nullopt, "observation.B", "one per observation, as in h");
-  for (std::size_t i = 0; i < obs.B.size(); ++i)
-    for (std::size_t j = 0; j < obs.B[i].size(); ++j)
-      require_state_free(model, obs.B[i][j], "observation.B", one_based(i), one_based(j));
-  require_positive_definite_noise(model, obs.B, "observation.B", "B");
-}
-
+// Each axis checked once: the timing's period, the delay, then the rate in the timing's names.
 void validate_observation(const Model& model) {
-  if (model.observation.is_sampled()) return validate_sampled_observation(model);
-  if (model.observation.is_polynomial()) return validate_polynomial_observation(model);
-  validate_continuous_observation(model);
+  const ObservationModel& observation = model.observation;
+  if (observation.samples()) validate_sample_times(*observation.samples());
+  if (observation.delay() < 0)
+    throw ModelError("observation.delay", "must be 0 or more (the delay h of dy = (A0 + A x(t - h)) dt + B dW2), found " +
+                                              to_text(observation.delay()));
+  const RateFields fields = rate_fields(observation.samples().has_value());
+  if (observation.rate().written_affine())
+    validate_rate_affine(model, observation.rate(), fields);
+  else
+    validate_rate_rows(model, observation.rate(), fields, observation.samples().has_value());
+  require_positive_definite_noise(model, observation.rate().noise(), fields.noise, fields.noise_name);
 }
 
 // A symmetric matrix of numbers (P0, the risk weight) with no eigenvalue below -1e-12 of its scale.
@@ -480,7 +487,7 @@ void validate_user_filters(const Model& model) {
     throw ModelError("filters." + model.user_filters.front().name,
                      "a filter given by its equations is a continuous-observation filter (dm = ... + gain (dy - ...)); "
                      "this model's observation is sampled");
-  if (model.observation.is_polynomial() && !model.user_filters.empty())
+  if (!model.observation.rate().written_affine() && !model.user_filters.empty())
     throw ModelError("filters." + model.user_filters.front().name,
                      "a filter given by its equations has no dy term in dP, which a polynomial observation's "
                      "filters have; write the observation as A0 + A x, or drop filters:");

@@ -1,68 +1,155 @@
 #include "pfgen/model/observation_model.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "pfgen/algebra/polynomial.hpp"
+#include "pfgen/model/polynomial_shape.hpp"
 
 namespace pfgen {
 
-std::optional<AffineRows> affine_rows(const ExVector& rows, const std::vector<GiNaC::symbol>& states) {
+namespace {
+
+// Rows written A0 + A x when every one is a polynomial of degree <= 1 in the states.
+std::optional<AffineRate> affine_rows(const ExVector& rows, const ExMatrix& noise, const std::vector<GiNaC::symbol>& states) {
   std::vector<Polynomial> polynomials;
   for (const GiNaC::ex& row : rows) {
+    // Polynomial::from_ex reads polynomials only: a row that is none (refused by the validator)
+    // or has a degree above 1 in some state is not affine.
+    const PolynomialShape shape = polynomial_shape(row, states, 1);
+    if (!shape.polynomial || std::any_of(shape.degrees.begin(), shape.degrees.end(), [](std::int64_t d) { return d > 1; }))
+      return std::nullopt;
     polynomials.push_back(Polynomial::from_ex(row, states));
     if (polynomials.back().degree() > 1) return std::nullopt;
   }
-  AffineRows out{ExVector(rows.size(), GiNaC::ex(0)), ExMatrix(rows.size(), ExVector(states.size(), GiNaC::ex(0)))};
+  AffineRate out{ExVector(rows.size(), GiNaC::ex(0)), ExMatrix(rows.size(), ExVector(states.size(), GiNaC::ex(0))), noise};
   for (std::size_t r = 0; r < polynomials.size(); ++r)
     for (const auto& [monomial, coefficient] : polynomials[r].terms()) {
       if (monomial.is_one())
-        out.constant[r] = coefficient;
+        out.A0[r] = coefficient;
       else
-        out.linear[r][monomial.factors().front().first] = coefficient;
+        out.A[r][monomial.factors().front().first] = coefficient;
     }
   return out;
 }
 
-ObservationKind ObservationModel::kind() const {
-  // One alternative per kind, in the order of ObservationKind.
-  return static_cast<ObservationKind>(form_.index());
+}  // namespace
+
+ObservationRate ObservationRate::of_affine(ExVector constant, ExMatrix linear, ExMatrix noise) {
+  ObservationRate out;
+  out.written_affine_ = true;
+  out.n_ = linear.empty() ? 0 : linear.front().size();
+  out.noise_ = noise;
+  out.affine_ = AffineRate{std::move(constant), std::move(linear), std::move(noise)};
+  return out;
 }
 
-std::size_t ObservationModel::p() const {
-  if (const auto* s = std::get_if<SampledObservation>(&form_)) return s->C.size();
-  if (const auto* h = std::get_if<PolynomialObservation>(&form_)) return h->h.size();
-  return rate().A.size();
+ObservationRate ObservationRate::of_rows(ExVector rows, ExMatrix noise, const std::vector<GiNaC::symbol>& states) {
+  ObservationRate out;
+  out.written_affine_ = false;
+  out.n_ = states.size();
+  out.affine_ = affine_rows(rows, noise, states);
+  out.rows_ = std::move(rows);
+  out.noise_ = std::move(noise);
+  return out;
 }
+
+std::size_t ObservationRate::p() const { return written_affine_ ? affine_->A.size() : rows_.size(); }
+
+std::vector<Polynomial> ObservationRate::polynomials(const std::vector<GiNaC::symbol>& states) const {
+  std::vector<Polynomial> out;
+  if (!written_affine_) {
+    for (const GiNaC::ex& row : rows_) out.push_back(Polynomial::from_ex(row, states));
+    return out;
+  }
+  for (std::size_t r = 0; r < affine_->A.size(); ++r) {
+    Polynomial row = Polynomial::constant(affine_->A0[r]);
+    for (std::size_t k = 0; k < affine_->A[r].size(); ++k)
+      row.add_term(Monomial::variable(static_cast<std::uint32_t>(k)), affine_->A[r][k]);
+    out.push_back(std::move(row));
+  }
+  return out;
+}
+
+unsigned ObservationRate::degree(const std::vector<GiNaC::symbol>& states) const {
+  unsigned out = 0;
+  for (const Polynomial& row : polynomials(states)) out = std::max(out, row.degree());
+  return out;
+}
+
+ObservationModel::ObservationModel(ObservationRate rate, std::optional<SampleTimes> samples,
+                                   std::optional<GiNaC::numeric> delay)
+    : rate_(std::move(rate)), samples_(std::move(samples)), delay_(std::move(delay)) {
+  switch (kind()) {
+    case ObservationKind::Continuous:
+      view_ = *rate_.affine();
+      break;
+    case ObservationKind::Delayed:
+      view_ = DelayedObservation{*delay_, *rate_.affine()};
+      break;
+    case ObservationKind::Polynomial:
+      view_ = PolynomialObservation{rate_.rows(), rate_.noise()};
+      break;
+    case ObservationKind::Sampled: {
+      SampledObservation sampled{samples_->period, {}, {}, rate_.noise(), samples_->substeps, {}};
+      if (rate_.written_affine()) {
+        sampled.C0 = rate_.affine()->A0;
+        sampled.C = rate_.affine()->A;
+      } else {
+        sampled.c = rate_.rows();  // C0 and C are then zero, r x n
+        sampled.C0.assign(sampled.c.size(), GiNaC::ex(0));
+        sampled.C.assign(sampled.c.size(), ExVector(rate_.n(), GiNaC::ex(0)));
+      }
+      view_ = std::move(sampled);
+      break;
+    }
+  }
+}
+
+ObservationModel::ObservationModel(const ContinuousObservation& continuous)
+    : ObservationModel(ObservationRate::of_affine(continuous.A0, continuous.A, continuous.B), std::nullopt, std::nullopt) {}
+
+ObservationModel::ObservationModel(const DelayedObservation& delayed)
+    : ObservationModel(ObservationRate::of_affine(delayed.rate.A0, delayed.rate.A, delayed.rate.B), std::nullopt,
+                       delayed.delay) {}
+
+ObservationModel::ObservationModel(const SampledObservation& sampled)
+    : ObservationModel(ObservationRate::of_affine(sampled.C0, sampled.C, sampled.Uv),
+                       SampleTimes{sampled.period, sampled.substeps}, std::nullopt) {
+  if (sampled.is_polynomial())
+    throw std::logic_error("samples through rows c are made with the states: ObservationRate::polynomial");
+}
+
+ObservationKind ObservationModel::kind() const {
+  if (samples_) return ObservationKind::Sampled;
+  if (delay_) return ObservationKind::Delayed;
+  return rate_.written_affine() ? ObservationKind::Continuous : ObservationKind::Polynomial;
+}
+
+namespace {
+
+template <class View, class Variant>
+const View& view_of(const Variant& view, ObservationKind kind, const char* wanted) {
+  if (const auto* v = std::get_if<View>(&view)) return *v;
+  throw std::logic_error("the model's observation is " + observation_kind_info(kind).name + ", not " + wanted);
+}
+
+}  // namespace
 
 const ContinuousObservation& ObservationModel::continuous() const {
-  if (const auto* c = std::get_if<ContinuousObservation>(&form_)) return *c;
-  throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ", not continuous");
+  return view_of<ContinuousObservation>(view_, kind(), "continuous");
 }
 
 const SampledObservation& ObservationModel::sampled() const {
-  if (const auto* s = std::get_if<SampledObservation>(&form_)) return *s;
-  throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ", not sampled");
+  return view_of<SampledObservation>(view_, kind(), "sampled");
 }
 
 const DelayedObservation& ObservationModel::delayed() const {
-  if (const auto* d = std::get_if<DelayedObservation>(&form_)) return *d;
-  throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ", not delayed");
+  return view_of<DelayedObservation>(view_, kind(), "delayed");
 }
 
 const PolynomialObservation& ObservationModel::polynomial() const {
-  if (const auto* h = std::get_if<PolynomialObservation>(&form_)) return *h;
-  throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ", not polynomial");
-}
-
-const ContinuousObservation& ObservationModel::rate() const {
-  if (const auto* c = std::get_if<ContinuousObservation>(&form_)) return *c;
-  if (const auto* d = std::get_if<DelayedObservation>(&form_)) return d->rate;
-  throw std::logic_error("the model's observation is " + observation_kind_info(kind()).name + ": it has no A0, A, B");
-}
-
-GiNaC::numeric ObservationModel::delay() const {
-  if (const auto* d = std::get_if<DelayedObservation>(&form_)) return d->delay;
-  return 0;
+  return view_of<PolynomialObservation>(view_, kind(), "polynomial");
 }
 
 }  // namespace pfgen

@@ -107,13 +107,14 @@ Breach check_filters(const Model& model, const SimulationSection& s) {
 // name): (T / period) x substeps of them per run, under the same budget as the truth's steps.
 // Sub-steps the derivation chooses (the model gives none) are checked by the command once derived.
 Breach check_substeps(const Model& model, const SimulationSection& s) {
-  if (!model.observation.is_sampled() || !s.T) return {};
+  const std::optional<SampleTimes>& samples = model.observation.samples();
+  if (!samples || !s.T) return {};
   const std::vector<std::string> names = s.filters ? *s.filters : default_filter_names(model);
   for (std::size_t k = 0; k < names.size(); ++k) {
     const auto split = split_substeps(names[k]);
-    const std::optional<std::size_t> substeps = split ? split->second : model.observation.sampled().substeps;
+    const std::optional<std::size_t> substeps = split ? split->second : samples->substeps;
     if (!substeps) continue;
-    if (auto problem = substep_budget_problem(names[k], *s.T, model.observation.sampled().period.to_double(),
+    if (auto problem = substep_budget_problem(names[k], *s.T, samples->period.to_double(),
                                               static_cast<double>(*substeps)))
       return breach(s.filters ? "filters" : "T", *problem, s.filters ? std::optional<std::size_t>(k) : std::nullopt);
   }
@@ -156,8 +157,9 @@ Breach check_times(const SimulationSection& s) {
 // are written in full (%.17g), not in the other rules' shortest form: the message has read so
 // since before the rules were gathered here.
 Breach check_sampling_period(const Model& model, const SimulationSection& s) {
-  if (!model.observation.is_sampled() || !s.dt) return {};
-  const double period = model.observation.sampled().period.to_double(), dt = *s.dt;
+  const std::optional<SampleTimes>& samples = model.observation.samples();
+  if (!samples || !s.dt) return {};
+  const double period = samples->period.to_double(), dt = *s.dt;
   const std::optional<double> steps = pfgen_support::whole_steps(period, dt);
   if (steps && *steps >= 1) return {};
   char text[200];

@@ -1,10 +1,12 @@
 #pragma once
-// How the states are observed. The model file's `observation:` section chooses the kind when it
-// is read (kinds/observation_kinds.hpp lists them); the rooms above reach what the kind means to
-// them through its module (observations/<kind>/, found by kind()), which reads the alternative it
-// is for, instead of assuming one observation equation. A new kind is one more alternative of the
-// variant below: continuous, dy = (A0 + A x) dt + B dW2, or sampled, y_k = C0 + C x(t_k) + Uv v_k
-// at t_k = k T, or delayed, dy = (A0 + A x(t - h)) dt + B dW2, or polynomial, dy = h(x, t) dt + B dW2.
+// How the states are observed, as three independent axes (docs/theory.md §2, DESIGN.md):
+//   timing: continuously, dy = rate dt + noise dW2, or at samples t_k = k T, y_k = rate + noise v_k;
+//   delay:  none, or h, the rate read at x(t - h);
+//   rate:   rows h_r(x, t) polynomial in the states with their noise matrix (B, or a sample's Uv),
+//           with A0 + A x, the affine case, found once when the rate is made.
+// The kind printed in messages and listed by the filter kinds' registry (kinds/observation_kinds)
+// is a name derived from the axes, kind(); the rooms above reach what the observation means to
+// them through the module of that name (observations/<kind>/).
 #include <cstddef>
 #include <optional>
 #include <variant>
@@ -15,49 +17,82 @@
 
 namespace pfgen {
 
-// Rows polynomial in the states (a polynomial observation's h, a sampled c) written C0 + C x:
-// the constant of each row and its coefficient of each state, or nothing when a row has degree > 1.
-struct AffineRows {
-  ExVector constant;  // one per row
-  ExMatrix linear;    // rows x states
-};
-std::optional<AffineRows> affine_rows(const ExVector& rows, const std::vector<GiNaC::symbol>& states);
+class Polynomial;
 
-struct ContinuousObservation {
+// The affine case of a rate: A0 + A x with its noise B (a sample's C0 + C x and Uv).
+struct AffineRate {
   ExVector A0;  // p entries, independent of the states
   ExMatrix A;   // p x n
   ExMatrix B;   // p x r, with B B^T positive definite
 };
 
-// Samples every `period` time units. The sampled filter kinds predict between samples in
-// `substeps` equal sub-steps of period / substeps (for cd-euler the sub-step is part of the
-// filter's definition: 1 sub-step is the discrete-discrete filter). Without them each filter takes
-// as many as its prediction's rate at the prior needs (observations/sampled/substep_choice.hpp).
+// The rate axis: what each observation row measures, and its noise.
+class ObservationRate {
+ public:
+  ObservationRate() = default;
+  // Written A0 + A x: the model file's A0 and A (a sample's C0 and C), noise B (or Uv).
+  static ObservationRate of_affine(ExVector constant, ExMatrix linear, ExMatrix noise);
+  // Written as rows h_r(x, t) (the model file's h, a sample's c): affine() is found here, once,
+  // present when every row is a polynomial of degree <= 1 in `states` (a row that is no
+  // polynomial is left for the validator to refuse).
+  static ObservationRate of_rows(ExVector rows, ExMatrix noise, const std::vector<GiNaC::symbol>& states);
+
+  std::size_t p() const;                   // observations per time or per sample
+  const ExMatrix& noise() const { return noise_; }  // p x r: B of dW2, or Uv of the samples' v_k
+  // How the model wrote it, which the reports and the messages repeat: A0 + A x, or rows.
+  bool written_affine() const { return written_affine_; }
+  const ExVector& rows() const { return rows_; }  // as written; empty when written_affine()
+  // The affine case, A0 + A x: the observation's own when written so, else found from rows() when
+  // every row has degree <= 1 in the states; a property the derivation and the code may use.
+  const std::optional<AffineRate>& affine() const { return affine_; }
+  // h_r as polynomials in the states, however written (A0 + A x gives its rows term by term).
+  std::vector<Polynomial> polynomials(const std::vector<GiNaC::symbol>& states) const;
+  unsigned degree(const std::vector<GiNaC::symbol>& states) const;  // of the highest row
+  std::size_t n() const { return n_; }  // the states the rate is written in (the columns of A)
+
+ private:
+  bool written_affine_ = true;
+  std::size_t n_ = 0;
+  ExVector rows_;
+  ExMatrix noise_;
+  std::optional<AffineRate> affine_;
+};
+
+// The timing axis' sampled value: samples every `period` time units. The sampled filter kinds
+// predict between samples in `substeps` equal sub-steps of period / substeps (for cd-euler the
+// sub-step is part of the filter's definition: 1 sub-step is the discrete-discrete filter).
+// Without them each filter takes as many as its prediction's rate at the prior needs
+// (observations/sampled/substep_choice.hpp).
+struct SampleTimes {
+  GiNaC::numeric period;                // T > 0, exact
+  std::optional<std::size_t> substeps;  // prediction sub-steps per period, >= 1; absent: chosen
+};
+
+// The ways the observation is written by the C++ API, ModelBuilder and the tests; each makes the
+// axes. Kept as views for the code-generation and plugin parts until they move to the axes.
+using ContinuousObservation = AffineRate;  // dy = (A0 + A x) dt + B dW2
+
 struct SampledObservation {
   GiNaC::numeric period;      // T > 0, exact
   ExVector C0;                // r entries, independent of the states (zeros when not given)
   ExMatrix C;                 // r x n
   ExMatrix Uv;                // r x q, with Uv Uv^T positive definite
   std::optional<std::size_t> substeps;  // prediction sub-steps per period, >= 1; absent: chosen
-  // Samples y_k = c(x(t_k)) + Uv v_k through r polynomials in the states of degree >= 2 (the model
-  // file's `c:`); C0 and C are then zero, r x n. Empty for y_k = C0 + C x(t_k) + Uv v_k, which a
-  // `c:` of degree <= 1 is written as when the model is built.
+  // Samples y_k = c(x(t_k)) + Uv v_k through r polynomials of degree >= 2 (C0 and C then zero);
+  // empty for y_k = C0 + C x(t_k) + Uv v_k.
   ExVector c;
   bool is_polynomial() const { return !c.empty(); }
 };
 
 // Continuous observations of the state h time units ago (paper 004): the sensor reports late.
 // Before t = h the observation sees the pre-history x(s) = x(0), s < 0 (docs/theory.md §2.6).
-// The model file's `delay: 0` is an ordinary ContinuousObservation; h = 0 here (C++ API) keeps the
-// delayed kinds' equations, which then reduce to the undelayed ones.
+// The model file's `delay: 0` is an ordinary continuous observation; h = 0 here (C++ API) keeps
+// the delayed kinds' equations, which then reduce to the undelayed ones.
 struct DelayedObservation {
-  GiNaC::numeric delay;  // h >= 0, exact
+  GiNaC::numeric delay;        // h >= 0, exact
   ContinuousObservation rate;  // A0, A, B of dy = (A0 + A x(t - h)) dt + B dW2
 };
 
-// A polynomial observation: each h_r a polynomial in the states (of any degree), with parameters
-// and functions of t in its coefficients; linear h is the continuous observation's model written
-// otherwise (its filters are the same, docs/theory.md).
 struct PolynomialObservation {
   ExVector h;  // p entries
   ExMatrix B;  // p x r, with B B^T positive definite
@@ -66,31 +101,40 @@ struct PolynomialObservation {
 class ObservationModel {
  public:
   ObservationModel() = default;  // continuous with no rows: ModelBuilder requires a real one
-  ObservationModel(ContinuousObservation continuous) : form_(std::move(continuous)) {}  // NOLINT: implicit by design
-  ObservationModel(SampledObservation sampled) : form_(std::move(sampled)) {}  // NOLINT: implicit by design
-  ObservationModel(DelayedObservation delayed) : form_(std::move(delayed)) {}  // NOLINT: implicit by design
-  ObservationModel(PolynomialObservation polynomial) : form_(std::move(polynomial)) {}  // NOLINT: implicit by design
+  ObservationModel(ObservationRate rate, std::optional<SampleTimes> samples, std::optional<GiNaC::numeric> delay);
+  ObservationModel(const ContinuousObservation& continuous);  // NOLINT: implicit by design
+  ObservationModel(const DelayedObservation& delayed);        // NOLINT: implicit by design
+  // C0 + C x only: samples through rows c are made with the rate's states (ModelBuilder).
+  ObservationModel(const SampledObservation& sampled);  // NOLINT: implicit by design
 
+  // The axes.
+  const ObservationRate& rate() const { return rate_; }
+  const std::optional<SampleTimes>& samples() const { return samples_; }  // nothing: continuous
+  const std::optional<GiNaC::numeric>& delay_h() const { return delay_; }  // nothing: undelayed
+
+  // The name derived from the axes (kinds/observation_kinds.hpp): sampled, delayed, continuous
+  // when written A0 + A x, polynomial when written as rows.
   ObservationKind kind() const;
-  std::size_t p() const;  // observations per time or per sample (rows of A or of C)
-  // The alternative of that kind; std::logic_error when the model's observation is of another
-  // kind (its module is the one that reads it; the model room checks kind() first).
+  std::size_t p() const { return rate_.p(); }
+  // h of a delayed observation, 0 for the others.
+  GiNaC::numeric delay() const { return delay_ ? *delay_ : GiNaC::numeric(0); }
+  bool is_sampled() const { return samples_.has_value(); }
+  bool is_delayed() const { return delay_.has_value(); }
+
+  // Kept for the code-generation and plugin parts until they move to the axes: the axes as the
+  // written form of that kind (std::logic_error for another kind).
   const ContinuousObservation& continuous() const;
   const SampledObservation& sampled() const;
   const DelayedObservation& delayed() const;
   const PolynomialObservation& polynomial() const;
-  // For the model room, below the modules, where its own rules differ by kind (DESIGN.md).
-  bool is_sampled() const { return kind() == ObservationKind::Sampled; }
-  bool is_delayed() const { return kind() == ObservationKind::Delayed; }
   bool is_polynomial() const { return kind() == ObservationKind::Polynomial; }
-  // A0, A and B of a continuous or delayed observation (the rate terms of dy); std::logic_error
-  // for sampled ones. For rooms that handle the delay themselves (or need only the coefficients).
-  const ContinuousObservation& rate() const;
-  // h of a delayed observation, 0 for the others.
-  GiNaC::numeric delay() const;
 
  private:
-  std::variant<ContinuousObservation, SampledObservation, DelayedObservation, PolynomialObservation> form_;
+  ObservationRate rate_;
+  std::optional<SampleTimes> samples_;
+  std::optional<GiNaC::numeric> delay_;
+  // The written form of kind(), built from the axes once, for the views above.
+  std::variant<ContinuousObservation, SampledObservation, DelayedObservation, PolynomialObservation> view_;
 };
 
 }  // namespace pfgen

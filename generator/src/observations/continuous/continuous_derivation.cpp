@@ -8,8 +8,8 @@
 namespace pfgen {
 namespace {
 
-// The model's observation, the alternative this module is for.
-const ContinuousObservation& rate_of(const Model& model) { return model.observation.continuous(); }
+// The model's rate, written A0 + A x for the observation this module is for.
+const AffineRate& rate_of(const Model& model) { return *model.observation.rate().affine(); }
 
 class ContinuousDerivation final : public ObservationDerivation {
  public:

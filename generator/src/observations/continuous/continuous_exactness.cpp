@@ -32,7 +32,7 @@ std::string square_invertible_A(const Model& model) {
            std::to_string(model.p()) + " \\times " + std::to_string(model.n()) + "$, not square";
   std::vector<std::size_t> all(model.n());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-  if (determinant(model.observation.rate().A, all, all).is_zero()) return "$A|A$ is singular";
+  if (determinant(model.observation.rate().affine()->A, all, all).is_zero()) return "$A|A$ is singular";
   return {};
 }
 
@@ -68,7 +68,7 @@ std::string partially_measured_split(const ExactnessFacts& facts) {
   if (x2.empty()) return "no components with their own linear dynamics to leave unmeasured";
   if (std::string noise = facts.state_dependent_noise(); !noise.empty()) return noise;
 
-  const ExMatrix& A = model.observation.rate().A;
+  const ExMatrix& A = model.observation.rate().affine()->A;
   std::vector<std::size_t> rows1, rows2;
   for (std::size_t r = 0; r < model.p(); ++r) {
     bool sees_x1 = false, sees_x2 = false;
@@ -83,7 +83,7 @@ std::string partially_measured_split(const ExactnessFacts& facts) {
     return "the nonlinear components (" + join_indices(x1, model) + ") are seen by " + std::to_string(rows1.size()) +
            " observation rows, so $A1|A_1$ is not square";
   if (determinant(A, rows1, x1).is_zero()) return "the block $A1|A_1$ measuring (" + join_indices(x1, model) + ") is singular";
-  ExMatrix R = multiply_by_transpose(model.observation.rate().B);
+  ExMatrix R = multiply_by_transpose(model.observation.rate().affine()->B);
   for (std::size_t a : rows1)
     for (std::size_t b : rows2)
       if (!R[a][b].is_zero()) return "observation noises of $y1|y_1$ and $y2|y_2$ are correlated ($B B^T|B B^{T}$ not block-diagonal)";

@@ -16,7 +16,7 @@ class ContinuousReport final : public RateReport {
   std::string equation_latex(const Model&) const override { return "dy = (A_0 + A x)\\,dt + B\\,dW_2"; }
 
   std::string matrices_latex(const Model& model) const override {
-    return rate_matrices_latex(model.observation.continuous(), std::nullopt);
+    return rate_matrices_latex(*model.observation.rate().affine(), std::nullopt);
   }
 
   std::string notation_latex() const override {

@@ -17,12 +17,12 @@ class DelayedDerivation final : public ObservationDerivation {
 
   // The innovation compares dy with the prediction of x(t - h), m(t - h).
   void frame(const Model& model, FilterEquations& eq) const override {
-    eq.predicted_observation = predicted_observation(model.observation.delayed().rate, eq.variables, true);
+    eq.predicted_observation = predicted_observation(*model.observation.rate().affine(), eq.variables, true);
     eq.delay = model.observation.delay();
   }
 
   std::size_t observed_states(const Model& model) const override {
-    return pfgen::observed_states(model.observation.delayed().rate.A);
+    return pfgen::observed_states(model.observation.rate().affine()->A);
   }
 
   ExactnessReport exactness(const Model& model, FilterKind kind) const override {
@@ -32,7 +32,7 @@ class DelayedDerivation final : public ObservationDerivation {
   void observation_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
     const bool transition = uses_transition_gain(kind);
     const FilterVariables& vars = eq.variables;
-    ObservationCorrection correction = observation_correction(model.observation.delayed().rate, vars, transition);
+    ObservationCorrection correction = observation_correction(*model.observation.rate().affine(), vars, transition);
     eq.gain = std::move(correction.gain);
     eq.P_correction = std::move(correction.P_correction);
     if (!transition) return;
@@ -44,8 +44,8 @@ class DelayedDerivation final : public ObservationDerivation {
 
   ObservationCoefficients coefficients(const Model& model) const override {
     ObservationCoefficients out;
-    out.E = model.observation.delayed().rate.A0;
-    out.E1 = model.observation.delayed().rate.A;
+    out.E = model.observation.rate().affine()->A0;
+    out.E1 = model.observation.rate().affine()->A;
     return out;
   }
 };

@@ -121,7 +121,7 @@ class DelayedReport final : public RateReport {
   std::string equation_latex(const Model&) const override { return "dy = (A_0 + A x(t-h))\\,dt + B\\,dW_2"; }
 
   std::string matrices_latex(const Model& model) const override {
-    return rate_matrices_latex(model.observation.delayed().rate, model.observation.delay());
+    return rate_matrices_latex(*model.observation.rate().affine(), model.observation.delay_h());
   }
 
   std::string notation_latex() const override {

@@ -16,15 +16,15 @@ namespace {
 // The ukf's observation terms (Sarkka 2007): sum_i w_i h(X_i), C = sum_i w_i (X_i - m) h(X_i)^T,
 // gain C R^-1 and correction C R^-1 C^T; its P has no dy term.
 PolynomialObservationTerms sigma_point_terms(const Model& model, const FilterEquations& eq) {
-  const PolynomialObservation& observation = model.observation.polynomial();
+  const ObservationRate& rate = model.observation.rate();
   std::vector<Polynomial> predicted;
-  std::vector<std::vector<Polynomial>> cross(model.n(), std::vector<Polynomial>(observation.h.size()));
-  for (std::size_t r = 0; r < observation.h.size(); ++r) {
-    SigmaPointMoments moments = sigma_point_moments(observation.h[r], model, eq.definitions);
+  std::vector<std::vector<Polynomial>> cross(model.n(), std::vector<Polynomial>(rate.p()));
+  for (std::size_t r = 0; r < rate.p(); ++r) {
+    SigmaPointMoments moments = sigma_point_moments(rate.rows()[r], model, eq.definitions);
     predicted.push_back(std::move(moments.mean));
     for (std::size_t a = 0; a < model.n(); ++a) cross[a][r] = std::move(moments.cross[a]);
   }
-  return observation_terms_from_moments(std::move(predicted), cross, observation.B);
+  return observation_terms_from_moments(std::move(predicted), cross, rate.noise());
 }
 
 class PolynomialDerivation final : public ObservationDerivation {
@@ -42,17 +42,13 @@ class PolynomialDerivation final : public ObservationDerivation {
   }
 
   ObservationPolynomials budget_polynomials(const Model& model) const override {
-    return {observation_polynomials(model), "observation.h", false, model.observation.polynomial().B};
+    return {observation_polynomials(model), "observation.h", false, model.observation.rate().noise()};
   }
 
   // A linear h is the continuous observation, with its exactness conditions; a nonlinear one has
   // no finite-dimensional optimal filter in general (the cubic sensor is the classic case).
   ExactnessReport exactness(const Model& model, FilterKind kind) const override {
-    if (std::optional<ContinuousObservation> linear = linear_form(model)) {
-      Model written_linear = model;
-      written_linear.observation = *linear;
-      return continuous_exactness(written_linear, kind);
-    }
+    if (model.observation.rate().affine()) return continuous_exactness(model, kind);
     ExactnessReport out;
     out.condition = "none";
     const std::string unknown = "for a nonlinear observation (h has degree " + std::to_string(observation_degree(model)) +
@@ -66,24 +62,25 @@ class PolynomialDerivation final : public ObservationDerivation {
   }
 
   void observation_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
-    const PolynomialObservation& observation = model.observation.polynomial();
+    const ObservationRate& rate = model.observation.rate();
+    const bool nonlinear = !rate.affine();
     // The ukf sends a nonlinear h through its sigma points (a linear h's terms are the exact ones).
     PolynomialObservationTerms terms =
-        uses_sigma_points(kind) && observation_degree(model) > 1
+        uses_sigma_points(kind) && nonlinear
             ? sigma_point_terms(model, eq)
-            : polynomial_observation_terms(observation_polynomials(model), observation.B, eq.variables,
+            : polynomial_observation_terms(observation_polynomials(model), rate.noise(), eq.variables,
                                            is_extended_kalman(kind));
     eq.predicted_observation = std::move(terms.predicted_observation);
     eq.gain = std::move(terms.gain);
     eq.P_correction = std::move(terms.P_correction);
     // Only where dP has a dy term: a linear h's filters are the continuous observation's, field
     // for field, and the extended kinds have none.
-    if (!is_extended_kalman(kind) && !uses_sigma_points(kind) && observation_degree(model) > 1)
+    if (!is_extended_kalman(kind) && !uses_sigma_points(kind) && nonlinear)
       eq.P_gain = std::move(terms.P_gain);
   }
 
   ObservationCoefficients coefficients(const Model& model) const override {
-    const std::optional<ContinuousObservation> linear = linear_form(model);
+    const std::optional<AffineRate>& linear = model.observation.rate().affine();
     if (!linear) {
       ModelError error("observation.h", "the coefficient form's observation is linear, E + E1 x; h has degree " +
                                             std::to_string(observation_degree(model)));

@@ -16,12 +16,12 @@ class PolynomialReport final : public RateReport {
   std::string equation_latex(const Model&) const override { return "dy = h(x, t)\\,dt + B\\,dW_2"; }
 
   std::string matrices_latex(const Model& model) const override {
-    const PolynomialObservation& observation = model.observation.polynomial();
+    const ObservationRate& rate = model.observation.rate();
     LatexPrinter printer;
-    const std::string line = bmatrix(printer, column(observation.h)) + ", \\quad B = " + bmatrix(printer, observation.B);
+    const std::string line = bmatrix(printer, column(rate.rows())) + ", \\quad B = " + bmatrix(printer, rate.noise());
     if (latex_width("h = " + line) <= kLatexLineWidth) return "h &= " + line;
-    return matrix_lines(printer, "h", "h", column(observation.h)) + " \\\\\n" +
-           matrix_lines(printer, "B", "B", observation.B);
+    return matrix_lines(printer, "h", "h", column(rate.rows())) + " \\\\\n" +
+           matrix_lines(printer, "B", "B", rate.noise());
   }
 
   std::string notation_latex() const override {

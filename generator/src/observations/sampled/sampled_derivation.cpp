@@ -28,28 +28,31 @@ std::vector<Polynomial> euler_square_term(const Model& model, const FilterVariab
   return out;
 }
 
+// The samples' rate: C0 + C x when affine (the model room writes a c of degree <= 1 so), else the
+// rows c, whose update takes their expectations.
 class SampledDerivation final : public ObservationDerivation {
  public:
   FilterVariables variables(std::size_t n) const override { return FilterVariables(n); }
 
   void frame(const Model& model, FilterEquations& eq) const override {
-    if (model.observation.sampled().is_polynomial()) {
+    const std::optional<AffineRate>& affine = model.observation.rate().affine();
+    if (!affine) {
       eq.update = polynomial_sampled_update(model, eq.variables, false, eq.predicted_observation);
       return;
     }
-    eq.predicted_observation = predicted_sample(model.observation.sampled(), eq.variables);
-    eq.update = sampled_update(model.observation.sampled(), eq.variables);
+    eq.predicted_observation = predicted_sample(*affine, eq.variables);
+    eq.update = sampled_update(*model.observation.samples(), *affine, eq.variables);
   }
 
   std::size_t observed_states(const Model& model) const override {
-    const SampledObservation& sampled = model.observation.sampled();
-    return sampled.is_polynomial() ? pfgen::observed_states(sample_polynomials(model), model.n())
-                                   : pfgen::observed_states(sampled.C);
+    const ObservationRate& rate = model.observation.rate();
+    return rate.affine() ? pfgen::observed_states(rate.affine()->A)
+                         : pfgen::observed_states(rate.polynomials(model.states), model.n());
   }
 
   ObservationPolynomials budget_polynomials(const Model& model) const override {
-    if (!model.observation.sampled().is_polynomial()) return {};
-    return {sample_polynomials(model), "observation.sampled.c", true, {}};
+    if (model.observation.rate().affine()) return {};
+    return {model.observation.rate().polynomials(model.states), "observation.sampled.c", true, {}};
   }
 
   ExactnessReport exactness(const Model& model, FilterKind kind) const override {
@@ -60,7 +63,7 @@ class SampledDerivation final : public ObservationDerivation {
   void observation_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
     eq.P_correction.assign(eq.P_moment.size(), Polynomial());
     // The extended kind's update of a polynomial c reads c(m) and J_c(m) (frame gave E[c]'s).
-    if (model.observation.sampled().is_polynomial() && is_extended_kalman(kind))
+    if (!model.observation.rate().affine() && is_extended_kalman(kind))
       eq.update = polynomial_sampled_update(model, eq.variables, true, eq.predicted_observation);
     if (uses_euler_map(kind)) eq.P_euler = euler_square_term(model, eq.variables);
     set_prediction_substeps(model, eq);
@@ -68,14 +71,15 @@ class SampledDerivation final : public ObservationDerivation {
 
   // A sampled observation has no rate: its sample equation's C0 and C stand in the coefficient form.
   ObservationCoefficients coefficients(const Model& model) const override {
-    if (model.observation.sampled().is_polynomial()) {
+    const std::optional<AffineRate>& affine = model.observation.rate().affine();
+    if (!affine) {
       ModelError error("observation.sampled.c", "the coefficient form's observation is linear, E + E1 x; c is not");
       error.set_file(model.source);
       throw error;
     }
     ObservationCoefficients out;
-    out.E = model.observation.sampled().C0;
-    out.E1 = model.observation.sampled().C;
+    out.E = affine->A0;
+    out.E1 = affine->A;
     return out;
   }
 };

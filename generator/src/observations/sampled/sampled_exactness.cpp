@@ -14,7 +14,7 @@ ExactnessReport sampled_exactness(const Model& model, FilterKind kind) {
   const std::string multiplicative = facts.state_dependent_noise();
   // A polynomial c of degree >= 2: x given the samples is not Gaussian even for a linear system.
   const std::string nonlinear_samples =
-      model.observation.sampled().is_polynomial() ? "the samples' c is not linear in the states" : "";
+      !model.observation.rate().affine() ? "the samples' c is not linear in the states" : "";
   const std::string failure = !nonaffine.empty() ? nonaffine : !multiplicative.empty() ? multiplicative : nonlinear_samples;
   if (failure.empty()) {
     report.exact = true;

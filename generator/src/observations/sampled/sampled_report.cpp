@@ -69,8 +69,8 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   std::string samples = "C0 + C x(t_k) + Uv v_k";
   if (u.polynomial_samples) {
     samples = "c(x(t_k)) + Uv v_k, c = (";
-    for (std::size_t a = 0; a < model.observation.sampled().c.size(); ++a)
-      samples += (a ? ", " : "") + printer.print(model.observation.sampled().c[a]);
+    for (std::size_t a = 0; a < model.observation.rate().rows().size(); ++a)
+      samples += (a ? ", " : "") + printer.print(model.observation.rate().rows()[a]);
     samples += ")";
   }
   out += "observation: sampled every T = " + printer.print(u.period) + ", y_k = " + samples + "; " +
@@ -242,7 +242,7 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   update.add("R", full(u.R, r, S_index));
   if (u.polynomial_samples) {
     Json c = Json::array();
-    for (const GiNaC::ex& entry : model.observation.sampled().c) c.push(Json::string(printer.print(entry)));
+    for (const GiNaC::ex& entry : model.observation.rate().rows()) c.push(Json::string(printer.print(entry)));
     update.add("c", c);
     update.add("form", Json::string(moment_matching_text(u)));
   }
@@ -274,23 +274,24 @@ class SampledReport final : public ObservationReport {
 
   // The samples' equation beside dx's, their matrices (or c) below it.
   std::string equation_latex(const Model& model) const override {
-    return model.observation.sampled().is_polynomial() ? "y_k = c(x(t_k)) + U_v v_k"
-                                                       : "y_k = C_0 + C\\,x(t_k) + U_v v_k";
+    return model.observation.rate().written_affine() ? "y_k = C_0 + C\\,x(t_k) + U_v v_k" : "y_k = c(x(t_k)) + U_v v_k";
   }
 
   std::string matrices_latex(const Model& model) const override {
     LatexPrinter printer;
-    const SampledObservation& sampled = model.observation.sampled();
-    if (sampled.is_polynomial())
-      return matrix_lines(printer, "c", "c", column(sampled.c)) + " \\\\\n" +
-             matrix_lines(printer, "U_v", "U_v", sampled.Uv) + " \\\\\nT &= " + printer.print(sampled.period);
-    const std::string observation_line = bmatrix(printer, column(sampled.C0)) + ", \\quad C = " +
-                                         bmatrix(printer, sampled.C) + ", \\quad U_v = " + bmatrix(printer, sampled.Uv) +
-                                         ", \\quad T = " + printer.print(sampled.period);
+    const ObservationRate& rate = model.observation.rate();
+    const GiNaC::numeric& period = model.observation.samples()->period;
+    if (!rate.written_affine())
+      return matrix_lines(printer, "c", "c", column(rate.rows())) + " \\\\\n" +
+             matrix_lines(printer, "U_v", "U_v", rate.noise()) + " \\\\\nT &= " + printer.print(period);
+    const AffineRate& sampled = *rate.affine();
+    const std::string observation_line = bmatrix(printer, column(sampled.A0)) + ", \\quad C = " +
+                                         bmatrix(printer, sampled.A) + ", \\quad U_v = " + bmatrix(printer, sampled.B) +
+                                         ", \\quad T = " + printer.print(period);
     if (latex_width("C_0 = " + observation_line) <= kLatexLineWidth) return "C_0 &= " + observation_line;
-    return matrix_lines(printer, "C_0", "C_0", column(sampled.C0)) + " \\\\\n" +
-           matrix_lines(printer, "C", "C", sampled.C) + " \\\\\n" + matrix_lines(printer, "U_v", "U_v", sampled.Uv) +
-           " \\\\\nT &= " + printer.print(sampled.period);
+    return matrix_lines(printer, "C_0", "C_0", column(sampled.A0)) + " \\\\\n" +
+           matrix_lines(printer, "C", "C", sampled.A) + " \\\\\n" + matrix_lines(printer, "U_v", "U_v", sampled.B) +
+           " \\\\\nT &= " + printer.print(period);
   }
 
   std::string notation_latex() const override {

@@ -128,7 +128,7 @@ SubstepAdvice advise_substeps(const Model& model, const FilterEquations& eq) {
     const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(J, false).eigenvalues();
     for (Eigen::Index k = 0; k < lambda.size(); ++k) advice.rate = std::max(advice.rate, std::abs(lambda[k]));
   }
-  const double period = model.observation.sampled().period.to_double();
+  const double period = model.observation.samples()->period.to_double();
   advice.substeps = std::max(1.0, std::ceil(period * advice.rate / kSubstepRateProduct));
   // Then the first period itself, from the prior: doubled until k sub-steps and 2k agree to
   // kSubstepTolerance (the forcing, E[g g^T], can bend the solution where the rate does not say).
@@ -143,7 +143,7 @@ SubstepAdvice advise_substeps(const Model& model, const FilterEquations& eq) {
 }
 
 void set_prediction_substeps(const Model& model, FilterEquations& eq) {
-  const SampledObservation& sampled = model.observation.sampled();
+  const SampleTimes& sampled = *model.observation.samples();
   const SubstepAdvice advice = advise_substeps(model, eq);
   eq.update.prior_rate = advice.rate;
   eq.update.advised_substeps = advice.substeps;

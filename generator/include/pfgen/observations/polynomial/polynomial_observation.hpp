@@ -1,7 +1,7 @@
 #pragma once
 // The polynomial observation dy = h(x, t) dt + B dW2 as the module's rooms read it: h as
-// polynomials in the states, and, when every h_r has degree <= 1, the same observation written
-// A0 + A x (whose filters and exactness conditions are the continuous observation's).
+// polynomials in the states (the rate's rows, model/observation_model.hpp), whose affine case
+// A0 + A x the rate found when the model was built.
 #include <optional>
 #include <vector>
 
@@ -11,9 +11,11 @@
 
 namespace pfgen {
 
+// The rate's rows h_r as polynomials in the states.
 std::vector<Polynomial> observation_polynomials(const Model& model);
 
-// A0 + A x when h is linear in the states, nothing otherwise.
+// The rate's affine case, A0 + A x, when h is linear in the states: kept for the code-generation
+// and plugin parts until they move to the axes (model.observation.rate().affine()).
 std::optional<ContinuousObservation> linear_form(const Model& model);
 
 // The highest total degree of an h_r in the states.

@@ -43,15 +43,17 @@ struct SampledUpdate {
   std::size_t upper_index(std::size_t a, std::size_t b) const;
 };
 
-SampledUpdate sampled_update(const SampledObservation& observation, const FilterVariables& vars);
+// The update of samples through C0 + C x (the rate's affine case, `rate`, taken every `times.period`).
+SampledUpdate sampled_update(const SampleTimes& times, const AffineRate& rate, const FilterVariables& vars);
 
 // C0 + C m, one polynomial per observation row, in the filter's variables.
-std::vector<Polynomial> predicted_sample(const SampledObservation& observation, const FilterVariables& vars);
+std::vector<Polynomial> predicted_sample(const AffineRate& rate, const FilterVariables& vars);
 
-// The samples' c as polynomials in the states (empty for C0 + C x).
+// The samples' c as polynomials in the states (the rate's rows; empty for C0 + C x). Kept for the
+// plugin part until it moves to the axes (model.observation.rate().polynomials).
 std::vector<Polynomial> sample_polynomials(const Model& model);
 
-// For a polynomial c (SampledObservation::is_polynomial): the update above with E[c] (c(m)
+// For a rate that is not affine, c: the update above with E[c] (c(m)
 // `at_mean`, the extended kind) as the predicted sample, which it returns in `predicted`.
 SampledUpdate polynomial_sampled_update(const Model& model, const FilterVariables& vars, bool at_mean,
                                         std::vector<Polynomial>& predicted);
