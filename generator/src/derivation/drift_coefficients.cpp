@@ -95,7 +95,7 @@ DriftCoefficients extract_drift_coefficients(const Model& model) {
 }
 
 ObservationCoefficients extract_observation_coefficients(const Model& model) {
-  ObservationCoefficients out = observation_derivation(model.observation.kind()).coefficients(model);
+  ObservationCoefficients out = observation_derivation(model.observation).coefficients(model);
   out.kind = model.observation.kind();
   return out;
 }

@@ -60,7 +60,7 @@ ExactnessReport assess_exactness(const Model& model, FilterKind kind) {
   if (is_risk_sensitive(kind)) return risk_sensitive_exactness(ExactnessFacts(model, kind));
   if (uses_sigma_points(kind)) return unscented_exactness(ExactnessFacts(model, kind));
   // The Gaussian-closure kinds: exact under conditions that depend on how the states are observed.
-  return observation_derivation(model.observation.kind()).exactness(model, kind);
+  return observation_derivation(model.observation).exactness(model, kind);
 }
 
 }  // namespace pfgen

@@ -55,7 +55,7 @@ std::string diffusion_field(const Diffusion& diffusion, bool additive) {
 void check_model_terms_budget(const Model& model, bool gaussian, const std::vector<Polynomial>& f, const PolyMatrix& J) {
   check_derivation_budget(model, DerivationInputs{gaussian, f, J, upper_polynomials(model.diffusion.G, model),
                                                   diffusion_field(model.diffusion, false),
-                                                  observation_derivation(model.observation.kind()).observed_states(model)});
+                                                  observation_derivation(model.observation).observed_states(model)});
 }
 
 MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariables& vars) {
@@ -67,7 +67,7 @@ MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariab
   std::vector<Polynomial> G_upper = upper_polynomials(diffusion.G, model);
   check_derivation_budget(model, DerivationInputs{!is_extended_kalman(kind), f, J, G_upper,
                                                   diffusion_field(diffusion, additive),
-                                                  observation_derivation(model.observation.kind()).observed_states(model)});
+                                                  observation_derivation(model.observation).observed_states(model)});
 
   // State x_i and mean m_i share variable index i (FilterVariables), so the
   // extended filter's f(m), J(m), G(m) are the x-polynomials read as they are.
@@ -88,7 +88,7 @@ MomentTerms moment_terms(const Model& model, FilterKind kind, const FilterVariab
 // observation module puts in every filter (the predicted observation its innovation subtracts,
 // the model's own, for user filters too).
 FilterEquations equations_frame(const Model& model) {
-  const ObservationDerivation& observation = observation_derivation(model.observation.kind());
+  const ObservationDerivation& observation = observation_derivation(model.observation);
   FilterEquations eq;
   eq.observation = model.observation.kind();
   eq.variables = observation.variables(model.n());
@@ -129,7 +129,7 @@ FilterEquations unscented_filter(const Model& model, FilterEquations eq) {
   eq.m_drift = std::move(terms.m_drift);
   eq.P_moment = std::move(terms.P_moment);
   eq.P_diffusion = std::move(terms.P_diffusion);
-  observation_derivation(model.observation.kind()).observation_terms(model, FilterKind::Ukf, eq);
+  observation_derivation(model.observation).observation_terms(model, FilterKind::Ukf, eq);
   return eq;
 }
 
@@ -145,7 +145,7 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
     throw std::invalid_argument("filter '" + filter_kind_name(kind) + "' " + *reason + " in the model");
   const std::size_t n = model.n();
   // Before the frame, which takes the observation's first expectations.
-  check_observation_budget(model, observation_derivation(model.observation.kind()).budget_polynomials(model),
+  check_observation_budget(model, observation_derivation(model.observation).budget_polynomials(model),
                            !is_extended_kalman(kind));
   FilterEquations eq = equations_frame(model);
   eq.name = filter_kind_name(kind);
@@ -178,14 +178,14 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
     }
   eq.jacobian_term = std::move(terms.jacobian);
 
-  observation_derivation(model.observation.kind()).observation_terms(model, kind, eq);
+  observation_derivation(model.observation).observation_terms(model, kind, eq);
   return eq;
 }
 
 FilterEquations derive_user_filter(const Model& model, const UserFilter& filter) {
   const std::size_t n = model.n();
   // Its frame takes the observation's expectations as a built-in kind's does.
-  check_observation_budget(model, observation_derivation(model.observation.kind()).budget_polynomials(model), false);
+  check_observation_budget(model, observation_derivation(model.observation).budget_polynomials(model), false);
   FilterEquations eq = equations_frame(model);
   eq.name = filter.name;
   // The model file's words, printed as written (no math spans).

@@ -132,7 +132,8 @@ ModelBuilder& ModelBuilder::additive_diffusion_covariance(const ExMatrix& G) {
 }
 
 ModelBuilder& ModelBuilder::observation(const ExVector& A0, const ExMatrix& A, const ExMatrix& B) {
-  model_.observation = ContinuousObservation{exact_vector(A0), exact_matrix(A), exact_matrix(B)};
+  model_.observation =
+      ObservationModel(ObservationRate::of_affine(exact_vector(A0), exact_matrix(A), exact_matrix(B)), std::nullopt, std::nullopt);
   has_observation_ = true;
   return *this;
 }
@@ -140,14 +141,15 @@ ModelBuilder& ModelBuilder::observation(const ExVector& A0, const ExMatrix& A, c
 ModelBuilder& ModelBuilder::delayed_observation(const GiNaC::numeric& delay, const ExVector& A0, const ExMatrix& A,
                                                 const ExMatrix& B) {
   model_.observation =
-      DelayedObservation{delay, ContinuousObservation{exact_vector(A0), exact_matrix(A), exact_matrix(B)}};
+      ObservationModel(ObservationRate::of_affine(exact_vector(A0), exact_matrix(A), exact_matrix(B)), std::nullopt, delay);
   has_observation_ = true;
   return *this;
 }
 
 ModelBuilder& ModelBuilder::sampled_observation(const GiNaC::numeric& period, const ExVector& C0, const ExMatrix& C,
                                                 const ExMatrix& Uv, std::optional<std::size_t> substeps) {
-  model_.observation = SampledObservation{period, exact_vector(C0), exact_matrix(C), exact_matrix(Uv), substeps, {}};
+  model_.observation = ObservationModel(ObservationRate::of_affine(exact_vector(C0), exact_matrix(C), exact_matrix(Uv)),
+                                        SampleTimes{period, substeps}, std::nullopt);
   has_observation_ = true;
   return *this;
 }

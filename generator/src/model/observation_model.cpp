@@ -54,7 +54,10 @@ ObservationRate ObservationRate::of_rows(ExVector rows, ExMatrix noise, const st
   return out;
 }
 
-std::size_t ObservationRate::p() const { return written_affine_ ? affine_->A.size() : rows_.size(); }
+std::size_t ObservationRate::p() const {
+  if (!written_affine_) return rows_.size();
+  return affine_ ? affine_->A.size() : 0;  // a default rate has no rows yet
+}
 
 std::vector<Polynomial> ObservationRate::polynomials(const std::vector<GiNaC::symbol>& states) const {
   std::vector<Polynomial> out;
@@ -62,6 +65,7 @@ std::vector<Polynomial> ObservationRate::polynomials(const std::vector<GiNaC::sy
     for (const GiNaC::ex& row : rows_) out.push_back(Polynomial::from_ex(row, states));
     return out;
   }
+  if (!affine_) return out;
   for (std::size_t r = 0; r < affine_->A.size(); ++r) {
     Polynomial row = Polynomial::constant(affine_->A0[r]);
     for (std::size_t k = 0; k < affine_->A[r].size(); ++k)

@@ -1,7 +1,10 @@
 #pragma once
-// What the derivation needs of an observation model: its part of every filter's equations. Each
-// module in observations/ implements it (observations/<kind>/<kind>_derivation); derive_filter
-// and the exactness diagnostic call the model's part and never ask which kind it is.
+// What the derivation needs of an observation model: its part of every filter's equations. One
+// implementation per value of the axes that change the equations (observations/<kind>/
+// <kind>_derivation): samples (with either rate), a delay (of an affine rate), and for the
+// undelayed continuous timing one per rate, A0 + A x's exact terms or a polynomial h's
+// expectations. observation_derivation() composes them from the axes once; derive_filter and the
+// exactness diagnostic call the part it gives and never ask the axes themselves.
 #include <cstddef>
 
 #include "pfgen/derivation/derivation_budget.hpp"
@@ -37,11 +40,11 @@ class ObservationDerivation {
   virtual ObservationCoefficients coefficients(const Model& model) const = 0;
 };
 
-// The modules' parts (observations/<kind>/<kind>_derivation.cpp), and the model's, by kind.
-const ObservationDerivation& continuous_observation_derivation();
-const ObservationDerivation& sampled_observation_derivation();
-const ObservationDerivation& delayed_observation_derivation();
-const ObservationDerivation& polynomial_observation_derivation();
-const ObservationDerivation& observation_derivation(ObservationKind kind);
+// The parts (observations/<kind>/<kind>_derivation.cpp), and the model's, from its axes.
+const ObservationDerivation& continuous_observation_derivation();  // continuous timing, affine rate
+const ObservationDerivation& polynomial_observation_derivation();  // continuous timing, nonlinear rate
+const ObservationDerivation& sampled_observation_derivation(const ObservationRate& rate);  // samples
+const ObservationDerivation& delayed_observation_derivation();     // continuous timing, a delay
+const ObservationDerivation& observation_derivation(const ObservationModel& observation);
 
 }  // namespace pfgen

@@ -1,8 +1,8 @@
 #pragma once
 // The observation models pfgen knows, as plain names: the kind registry says which of them each
 // filter kind supports, and the model room's ObservationModel (model/observation_model.hpp)
-// holds one of them. What each model means for the rooms above is its module in observations/
-// (DESIGN.md, "A new observation model").
+// derives one from its axes (timing, delay, rate; ObservationModel::kind()). What each name
+// means for the rooms above is its module in observations/ (DESIGN.md, "A new observation model").
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -13,7 +13,7 @@ enum class ObservationKind {
   Continuous,  // dy = (A0 + A x) dt + B dW2
   Sampled,     // y_k = C0 + C x(t_k) + Uv v_k at t_k = k T, v_k ~ N(0, I)
   Delayed,     // dy = (A0 + A x(t - h)) dt + B dW2, h >= 0 (h = 0 only through the C++ API)
-  Polynomial,  // dy = h(x, t) dt + B dW2, h polynomial in the states
+  Polynomial,  // dy = h(x, t) dt + B dW2, h polynomial in the states, written as rows
 };
 
 struct ObservationKindInfo {

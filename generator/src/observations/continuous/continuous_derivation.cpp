@@ -1,4 +1,5 @@
-// The continuous observation dy = (A0 + A x) dt + B dW2 in the derivation: the innovation
+// The continuous observation dy = (A0 + A x) dt + B dW2 in the derivation, the undelayed
+// continuous timing with an affine rate (written so, or a linear h): the innovation
 // dy - (A0 + A m) dt, the gain P A^T R^-1 and the correction P A^T R^-1 A P (observation_terms).
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/observation_derivation.hpp"

@@ -1,12 +1,12 @@
-// The polynomial observation dy = h(x, t) dt + B dW2 in the derivation: the innovation
-// dy - E[h] dt, the gain P E[J]^T R^-1, the correction and the covariance's own innovation term
-// (polynomial_observation_terms), or for the extended kinds h(m) and J(m) without that term.
+// The polynomial observation dy = h(x, t) dt + B dW2 of a nonlinear h in the derivation: the
+// innovation dy - E[h] dt, the gain P E[J]^T R^-1, the correction and the covariance's own
+// innovation term (polynomial_observation_terms), or for the extended kinds h(m) and J(m) without
+// that term. A linear h is the affine rate's, the continuous module's (observation_derivation).
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_derivation.hpp"
 #include "pfgen/derivation/unscented.hpp"
 #include "pfgen/model/model_error.hpp"
-#include "pfgen/observations/continuous/continuous_exactness.hpp"
 #include "pfgen/observations/polynomial/polynomial_observation.hpp"
 #include "pfgen/observations/polynomial/polynomial_observation_terms.hpp"
 
@@ -45,10 +45,9 @@ class PolynomialDerivation final : public ObservationDerivation {
     return {observation_polynomials(model), "observation.h", false, model.observation.rate().noise()};
   }
 
-  // A linear h is the continuous observation, with its exactness conditions; a nonlinear one has
-  // no finite-dimensional optimal filter in general (the cubic sensor is the classic case).
+  // A nonlinear h has no finite-dimensional optimal filter in general (the cubic sensor is the
+  // classic case).
   ExactnessReport exactness(const Model& model, FilterKind kind) const override {
-    if (model.observation.rate().affine()) return continuous_exactness(model, kind);
     ExactnessReport out;
     out.condition = "none";
     const std::string unknown = "for a nonlinear observation (h has degree " + std::to_string(observation_degree(model)) +
@@ -63,34 +62,26 @@ class PolynomialDerivation final : public ObservationDerivation {
 
   void observation_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
     const ObservationRate& rate = model.observation.rate();
-    const bool nonlinear = !rate.affine();
-    // The ukf sends a nonlinear h through its sigma points (a linear h's terms are the exact ones).
+    // The ukf sends h through its sigma points.
     PolynomialObservationTerms terms =
-        uses_sigma_points(kind) && nonlinear
+        uses_sigma_points(kind)
             ? sigma_point_terms(model, eq)
             : polynomial_observation_terms(observation_polynomials(model), rate.noise(), eq.variables,
                                            is_extended_kalman(kind));
     eq.predicted_observation = std::move(terms.predicted_observation);
     eq.gain = std::move(terms.gain);
     eq.P_correction = std::move(terms.P_correction);
-    // Only where dP has a dy term: a linear h's filters are the continuous observation's, field
-    // for field, and the extended kinds have none.
-    if (!is_extended_kalman(kind) && !uses_sigma_points(kind) && nonlinear)
+    // Only where dP has a dy term: the extended kinds and the ukf have none.
+    if (!is_extended_kalman(kind) && !uses_sigma_points(kind))
       eq.P_gain = std::move(terms.P_gain);
   }
 
+  // The coefficient form's observation is linear: a linear h is the continuous module's part.
   ObservationCoefficients coefficients(const Model& model) const override {
-    const std::optional<AffineRate>& linear = model.observation.rate().affine();
-    if (!linear) {
-      ModelError error("observation.h", "the coefficient form's observation is linear, E + E1 x; h has degree " +
-                                            std::to_string(observation_degree(model)));
-      error.set_file(model.source);
-      throw error;
-    }
-    ObservationCoefficients out;
-    out.E = linear->A0;
-    out.E1 = linear->A;
-    return out;
+    ModelError error("observation.h", "the coefficient form's observation is linear, E + E1 x; h has degree " +
+                                          std::to_string(observation_degree(model)));
+    error.set_file(model.source);
+    throw error;
   }
 };
 

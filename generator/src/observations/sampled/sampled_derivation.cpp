@@ -1,7 +1,9 @@
-// The sampled observation y_k = C0 + C x(t_k) + Uv v_k in the derivation: no observation term
-// between samples (the equations are the prediction), the Kalman update's polynomial parts at each
-// sample (sampled_update), for cd-euler the dt^2 term of its Euler moment map, and the prediction's
-// sub-steps per period (substep_choice).
+// Sampled observations y_k = c(x(t_k)) + Uv v_k in the derivation: no observation term between
+// samples (the equations are the prediction), for cd-euler the dt^2 term of its Euler moment map,
+// the prediction's sub-steps per period (substep_choice), and at each sample the update of the
+// rate: the Kalman update's polynomial parts for C0 + C x (sampled_update), or the moment-matching
+// update of a polynomial c (polynomial_sampled_update). One class per rate, chosen once
+// (sampled_observation_derivation).
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_derivation.hpp"
@@ -28,32 +30,11 @@ std::vector<Polynomial> euler_square_term(const Model& model, const FilterVariab
   return out;
 }
 
-// The samples' rate: C0 + C x when affine (the model room writes a c of degree <= 1 so), else the
-// rows c, whose update takes their expectations.
-class SampledDerivation final : public ObservationDerivation {
+// What samples mean whatever their rate: no observation term between samples, the prediction's
+// Euler term and sub-steps. The update is the rate's part (the two classes below).
+class SampledTiming : public ObservationDerivation {
  public:
   FilterVariables variables(std::size_t n) const override { return FilterVariables(n); }
-
-  void frame(const Model& model, FilterEquations& eq) const override {
-    const std::optional<AffineRate>& affine = model.observation.rate().affine();
-    if (!affine) {
-      eq.update = polynomial_sampled_update(model, eq.variables, false, eq.predicted_observation);
-      return;
-    }
-    eq.predicted_observation = predicted_sample(*affine, eq.variables);
-    eq.update = sampled_update(*model.observation.samples(), *affine, eq.variables);
-  }
-
-  std::size_t observed_states(const Model& model) const override {
-    const ObservationRate& rate = model.observation.rate();
-    return rate.affine() ? pfgen::observed_states(rate.affine()->A)
-                         : pfgen::observed_states(rate.polynomials(model.states), model.n());
-  }
-
-  ObservationPolynomials budget_polynomials(const Model& model) const override {
-    if (model.observation.rate().affine()) return {};
-    return {model.observation.rate().polynomials(model.states), "observation.sampled.c", true, {}};
-  }
 
   ExactnessReport exactness(const Model& model, FilterKind kind) const override {
     return sampled_exactness(model, kind);
@@ -62,33 +43,73 @@ class SampledDerivation final : public ObservationDerivation {
   // Between samples there is no observation term; the update is eq.update (frame).
   void observation_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
     eq.P_correction.assign(eq.P_moment.size(), Polynomial());
-    // The extended kind's update of a polynomial c reads c(m) and J_c(m) (frame gave E[c]'s).
-    if (!model.observation.rate().affine() && is_extended_kalman(kind))
-      eq.update = polynomial_sampled_update(model, eq.variables, true, eq.predicted_observation);
+    update_terms(model, kind, eq);
     if (uses_euler_map(kind)) eq.P_euler = euler_square_term(model, eq.variables);
     set_prediction_substeps(model, eq);
   }
 
+ protected:
+  // What a built-in kind changes in the update frame() made.
+  virtual void update_terms(const Model&, FilterKind, FilterEquations&) const {}
+};
+
+// Samples through C0 + C x (a c of degree <= 1 is written so when the model is built).
+class AffineSamples final : public SampledTiming {
+ public:
+  void frame(const Model& model, FilterEquations& eq) const override {
+    const AffineRate& rate = *model.observation.rate().affine();
+    eq.predicted_observation = predicted_sample(rate, eq.variables);
+    eq.update = sampled_update(*model.observation.samples(), rate, eq.variables);
+  }
+
+  std::size_t observed_states(const Model& model) const override {
+    return pfgen::observed_states(model.observation.rate().affine()->A);
+  }
+
   // A sampled observation has no rate: its sample equation's C0 and C stand in the coefficient form.
   ObservationCoefficients coefficients(const Model& model) const override {
-    const std::optional<AffineRate>& affine = model.observation.rate().affine();
-    if (!affine) {
-      ModelError error("observation.sampled.c", "the coefficient form's observation is linear, E + E1 x; c is not");
-      error.set_file(model.source);
-      throw error;
-    }
     ObservationCoefficients out;
-    out.E = affine->A0;
-    out.E1 = affine->A;
+    out.E = model.observation.rate().affine()->A0;
+    out.E1 = model.observation.rate().affine()->A;
     return out;
+  }
+};
+
+// Samples through polynomials c of degree >= 2: the update takes their expectations.
+class PolynomialSamples final : public SampledTiming {
+ public:
+  void frame(const Model& model, FilterEquations& eq) const override {
+    eq.update = polynomial_sampled_update(model, eq.variables, false, eq.predicted_observation);
+  }
+
+  std::size_t observed_states(const Model& model) const override {
+    return pfgen::observed_states(model.observation.rate().polynomials(model.states), model.n());
+  }
+
+  ObservationPolynomials budget_polynomials(const Model& model) const override {
+    return {model.observation.rate().polynomials(model.states), "observation.sampled.c", true, {}};
+  }
+
+  ObservationCoefficients coefficients(const Model& model) const override {
+    ModelError error("observation.sampled.c", "the coefficient form's observation is linear, E + E1 x; c is not");
+    error.set_file(model.source);
+    throw error;
+  }
+
+ protected:
+  // The extended kind's update reads c(m) and J_c(m) (frame gave E[c]'s).
+  void update_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
+    if (is_extended_kalman(kind)) eq.update = polynomial_sampled_update(model, eq.variables, true, eq.predicted_observation);
   }
 };
 
 }  // namespace
 
-const ObservationDerivation& sampled_observation_derivation() {
-  static const SampledDerivation part;
-  return part;
+const ObservationDerivation& sampled_observation_derivation(const ObservationRate& rate) {
+  static const AffineSamples affine;
+  static const PolynomialSamples polynomial;
+  if (rate.affine()) return affine;
+  return polynomial;
 }
 
 }  // namespace pfgen
