@@ -45,7 +45,7 @@ class ContinuousReport final : public RateReport {
 
 }  // namespace
 
-std::string rate_matrices_latex(const ContinuousObservation& observation, const std::optional<GiNaC::numeric>& delay) {
+std::string rate_matrices_latex(const AffineRate& observation, const std::optional<GiNaC::numeric>& delay) {
   LatexPrinter printer;
   const std::string h = delay ? ", \\quad h = " + printer.print(*delay) : "";
   const std::string observation_line = bmatrix(printer, column(observation.A0)) + ", \\quad A = " +

@@ -21,7 +21,7 @@ ExMatrix from_matrix(const GiNaC::matrix& m) {
 
 }  // namespace
 
-ObservationTerms observation_terms(const ContinuousObservation& observation) {
+ObservationTerms observation_terms(const AffineRate& observation) {
   GiNaC::matrix A = to_matrix(observation.A);
   GiNaC::matrix R = to_matrix(multiply_by_transpose(observation.B));
   GiNaC::matrix At_Rinv = A.transpose().mul(R.inverse());
@@ -29,7 +29,7 @@ ObservationTerms observation_terms(const ContinuousObservation& observation) {
   return ObservationTerms{from_matrix(At_Rinv), from_matrix(At_Rinv_A)};
 }
 
-std::vector<Polynomial> predicted_observation(const ContinuousObservation& observation, const FilterVariables& vars,
+std::vector<Polynomial> predicted_observation(const AffineRate& observation, const FilterVariables& vars,
                                               bool delayed) {
   std::vector<Polynomial> out;
   for (std::size_t r = 0; r < observation.A.size(); ++r) {
@@ -41,7 +41,7 @@ std::vector<Polynomial> predicted_observation(const ContinuousObservation& obser
   return out;
 }
 
-ObservationCorrection observation_correction(const ContinuousObservation& observation, const FilterVariables& vars,
+ObservationCorrection observation_correction(const AffineRate& observation, const FilterVariables& vars,
                                              bool transition) {
   const std::size_t n = vars.n(), p = observation.A.size();
   // P_ik, times phi_k for the Phi* gain: (P Phi)_ik, and (Phi P)_lj = phi_l P_lj = (P Phi)_jl by

@@ -37,7 +37,7 @@ class SampledTiming : public ObservationDerivation {
   FilterVariables variables(std::size_t n) const override { return FilterVariables(n); }
 
   ExactnessReport exactness(const Model& model, FilterKind kind) const override {
-    return sampled_exactness(model, kind);
+    return sampled_exactness(model, kind, nonlinear_samples());
   }
 
   // Between samples there is no observation term; the update is eq.update (frame).
@@ -51,6 +51,8 @@ class SampledTiming : public ObservationDerivation {
  protected:
   // What a built-in kind changes in the update frame() made.
   virtual void update_terms(const Model&, FilterKind, FilterEquations&) const {}
+  // Why the rate keeps the samples from being exact, empty when it does not.
+  virtual std::string nonlinear_samples() const { return {}; }
 };
 
 // Samples through C0 + C x (a c of degree <= 1 is written so when the model is built).
@@ -97,6 +99,8 @@ class PolynomialSamples final : public SampledTiming {
   }
 
  protected:
+  // A polynomial c of degree >= 2: x given the samples is not Gaussian even for a linear system.
+  std::string nonlinear_samples() const override { return "the samples' c is not linear in the states"; }
   // The extended kind's update reads c(m) and J_c(m) (frame gave E[c]'s).
   void update_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
     if (is_extended_kalman(kind)) eq.update = polynomial_sampled_update(model, eq.variables, true, eq.predicted_observation);

@@ -7,14 +7,11 @@ namespace pfgen {
 // Sampled observations: the update is the Kalman update, optimal when x given the past samples
 // is Gaussian. That holds when f is affine and g does not depend on x (the model sampled is then
 // linear Gaussian); cd-euler is then the Kalman filter of the Euler-discretised model.
-ExactnessReport sampled_exactness(const Model& model, FilterKind kind) {
+ExactnessReport sampled_exactness(const Model& model, FilterKind kind, const std::string& nonlinear_samples) {
   const ExactnessFacts facts(model, kind);
   ExactnessReport report;
   const std::string nonaffine = facts.nonaffine_drift();
   const std::string multiplicative = facts.state_dependent_noise();
-  // A polynomial c of degree >= 2: x given the samples is not Gaussian even for a linear system.
-  const std::string nonlinear_samples =
-      !model.observation.rate().affine() ? "the samples' c is not linear in the states" : "";
   const std::string failure = !nonaffine.empty() ? nonaffine : !multiplicative.empty() ? multiplicative : nonlinear_samples;
   if (failure.empty()) {
     report.exact = true;

@@ -12,6 +12,6 @@ namespace pfgen {
 
 // A0, A and B as the standalone document's model lines: "A_0 &= [...], \quad A = [...], \quad B = [...]"
 // when that fits a line, else each matrix in lines of its own; a delayed observation's h after them.
-std::string rate_matrices_latex(const ContinuousObservation& observation, const std::optional<GiNaC::numeric>& delay);
+std::string rate_matrices_latex(const AffineRate& observation, const std::optional<GiNaC::numeric>& delay);
 
 }  // namespace pfgen

@@ -1,7 +1,8 @@
 #pragma once
-// What a continuous observation dy = (A0 + A x) dt + B dW2 contributes to a filter, R = B B^T:
-// the gain P A^T R^-1, the correction P A^T R^-1 A P subtracted from the P drift, and the
-// predicted observation rate A0 + A m. Each observation kind has such a part of its own.
+// What an affine rate dy = (A0 + A x) dt + B dW2 contributes to a filter, R = B B^T: the gain
+// P A^T R^-1, the correction P A^T R^-1 A P subtracted from the P drift, and the predicted
+// observation rate A0 + A m. The continuous and delayed modules' (and a linear h's), and the
+// risk-sensitive kind's; a nonlinear h has its own (polynomial_observation_terms).
 #include <vector>
 
 #include "pfgen/algebra/polynomial.hpp"
@@ -15,11 +16,11 @@ struct ObservationTerms {
   ExMatrix At_Rinv_A;   // n x n, symmetric
 };
 
-ObservationTerms observation_terms(const ContinuousObservation& observation);
+ObservationTerms observation_terms(const AffineRate& observation);
 
 // A0 + A m, one polynomial per observation row, in the filter's variables; with `delayed`,
 // A0 + A md, md = m(t - h) (FilterVariables::m_delayed).
-std::vector<Polynomial> predicted_observation(const ContinuousObservation& observation, const FilterVariables& vars,
+std::vector<Polynomial> predicted_observation(const AffineRate& observation, const FilterVariables& vars,
                                               bool delayed = false);
 
 // The gain (n x p) and the correction (upper triangle) of a derived filter.
@@ -29,7 +30,7 @@ struct ObservationCorrection {
 };
 // With `transition`, paper 004's gain P Phi A^T R^-1 and correction P Phi A^T R^-1 A Phi P,
 // Phi = diag(phi_1..phi_n) (FilterVariables::phi; a delayed filter's variables).
-ObservationCorrection observation_correction(const ContinuousObservation& observation, const FilterVariables& vars,
+ObservationCorrection observation_correction(const AffineRate& observation, const FilterVariables& vars,
                                              bool transition = false);
 
 }  // namespace pfgen

@@ -5,6 +5,8 @@
 
 namespace pfgen {
 
-ExactnessReport sampled_exactness(const Model& model, FilterKind kind);
+// `nonlinear_samples`: why the samples' rate is not linear in the states, empty when it is (the
+// rate's part says, sampled_derivation).
+ExactnessReport sampled_exactness(const Model& model, FilterKind kind, const std::string& nonlinear_samples);
 
 }  // namespace pfgen
