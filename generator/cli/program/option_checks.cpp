@@ -23,7 +23,8 @@ std::string check_double_number(std::string& text) {
   const double value = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size()) return pfgen_support::quoted(text) + " is not a number";
   if (errno == ERANGE || !std::isfinite(value))
-    return pfgen_support::quoted(text) + " is outside the range of a double (magnitudes from about 2.2e-308 to 1.8e308)";
+    return pfgen_support::quoted(text) +
+           " is outside the range of a double (magnitudes from about 2.2e-308 to 1.8e308)";
   return std::string();
 }
 

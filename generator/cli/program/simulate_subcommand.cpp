@@ -87,7 +87,7 @@ Subcommand add_simulate_subcommand(CLI::App& app, const OptionChecks& checks, [[
   simulate_cmd->add_flag("-q,--quiet", simulate->quiet, "No plugin and timing lines on stderr");
 #ifdef PFGEN_WITH_MPI
   // Started by mpirun: the ranks share the runs, rank 0 writes (mpi_runs.hpp).
-  return {simulate_cmd, [simulate, argc, argv] {
+  return {simulate_cmd, [simulate, argc, argv]() mutable {  // MPI_Init may change argc, argv
             if (!launched_by_mpi()) return run_simulate(*simulate);
             MpiJob job(argc, argv);
             return run_simulate(*simulate, job);
