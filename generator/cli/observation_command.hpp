@@ -1,20 +1,17 @@
 #pragma once
-// What the command line needs of an observation model: how `pfgen eval` lays out its filters'
-// values, what `pfgen codegen --eigen` writes for them, and how `pfgen simulate` draws and feeds
-// its observations to the filters and what it says of them. Each module in observations/
-// implements it (observations/<kind>/<kind>_command.cpp, compiled into the program with the cli:
-// it meets the runtime); the commands call the model's part and never ask which kind it is.
+// What the command line says of an observation model: how `pfgen eval` lays out its filters'
+// values, what `pfgen codegen --eigen` writes for them, and what `pfgen simulate` says of its
+// observations. Text only: how the observations are drawn and fed to the filters is the
+// simulation plugin's (the runtime's). Each observation model has its part in the commands room,
+// cli/observations/<kind>_command.cpp; the commands call the model's part and never ask which
+// kind it is.
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/printing/json_writer.hpp"
 #include "pfgen_runtime/monte_carlo.hpp"
-#include "pfgen_runtime/schemes.hpp"
-#include "pfgen_runtime/simulation_plugin.hpp"
 
 namespace pfgen::cli {
 
@@ -31,13 +28,9 @@ class ObservationCommand {
 
   // pfgen simulate: what the header line says of the observation after the model's name (empty
   // by default); why the particle reference cannot weigh these observations (empty: it can);
-  // the runs, with the observations drawn and fed to the filters as this observation is made;
   // and what is printed after the summary table (nothing by default).
   virtual std::string header_note(const Model& model, double dt) const;
   virtual std::string reference_obstacle(const Model& model) const;
-  virtual pfgen_runtime::MonteCarloResult run(const pfgen_runtime::TruthScheme& scheme,
-                                              const pfgen_runtime::SimulationPlugin& plugin, const Eigen::VectorXd& x0,
-                                              const pfgen_runtime::MonteCarloOptions& options) const = 0;
   virtual std::string after_table(const pfgen_runtime::MonteCarloResult& result,
                                   const std::vector<std::string>& state_names) const;
 };
@@ -49,7 +42,7 @@ void add_rate_eval_json(const EvaluatedFilter& value, Json& out);
 Json values_json(const std::vector<double>& values);
 Json values_json(const std::vector<std::vector<double>>& values);
 
-// The modules' parts (observations/<kind>/<kind>_command.cpp), and the model's, by kind.
+// The observation models' parts (cli/observations/<kind>_command.cpp), and the model's, by kind.
 const ObservationCommand& continuous_observation_command();
 const ObservationCommand& sampled_observation_command();
 const ObservationCommand& delayed_observation_command();
