@@ -1,7 +1,7 @@
 #pragma once
 // What the command line needs of an observation model: how `pfgen eval` lays out its filters'
-// values, what `pfgen codegen --eigen` writes for them, and how `pfgen simulate` draws and feeds
-// its observations to the filters and what it says of them. Each module in observations/
+// values, what `pfgen codegen --eigen` writes for them, and what `pfgen simulate` says of its
+// observations (the runs themselves take the plugin's one runtime Observation, whatever the model). Each module in observations/
 // implements it (observations/<kind>/<kind>_command.cpp, compiled into the program with the cli:
 // it meets the runtime); the commands call the model's part and never ask which kind it is.
 #include <string>
@@ -31,13 +31,9 @@ class ObservationCommand {
 
   // pfgen simulate: what the header line says of the observation after the model's name (empty
   // by default); why the particle reference cannot weigh these observations (empty: it can);
-  // the runs, with the observations drawn and fed to the filters as this observation is made;
   // and what is printed after the summary table (nothing by default).
   virtual std::string header_note(const Model& model, double dt) const;
   virtual std::string reference_obstacle(const Model& model) const;
-  virtual pfgen_runtime::MonteCarloResult run(const pfgen_runtime::TruthScheme& scheme,
-                                              const pfgen_runtime::SimulationPlugin& plugin, const Eigen::VectorXd& x0,
-                                              const pfgen_runtime::MonteCarloOptions& options) const = 0;
   virtual std::string after_table(const pfgen_runtime::MonteCarloResult& result,
                                   const std::vector<std::string>& state_names) const;
 };

@@ -421,8 +421,9 @@ SimulationOutcome simulate(const SimulateOptions& options, JobGroup& group) {
 
     // With --x0 prior each run draws its own x0; the fixed one is then only a placeholder.
     const Eigen::VectorXd x0 = mc.initial_prior ? mc.initial_prior->mean : plugin.truth_initial_state();
-    // The observations drawn and fed to the filters as the model's are made (its observation module).
-    folded = observation_command(model.observation.kind()).run(*scheme, plugin, x0, mc);
+    // The plugin's one observation (its rate, noise and timing) makes the runs' observations and
+    // the filters' families take them: increments, or samples.
+    folded = pfgen_runtime::run_monte_carlo(*scheme, plugin.observation(), x0, plugin.filters(), mc);
   });
   progress.finish();
   SimulationOutcome outcome{std::move(job->model), job->settings, build, job->derive_seconds, start, std::nullopt};

@@ -1,5 +1,4 @@
-// The continuous observation on the command line: eval's values flat, and simulate's runs on the
-// truth's observation increments dy, which every filter steps on.
+// The continuous observation on the command line: eval's values flat.
 #include "observation_command.hpp"
 
 namespace pfgen::cli {
@@ -9,12 +8,6 @@ class ContinuousCommand final : public ObservationCommand {
  public:
   void add_eval_json(const FilterEquations&, const EvaluatedFilter& value, Json& out) const override {
     add_rate_eval_json(value, out);
-  }
-
-  pfgen_runtime::MonteCarloResult run(const pfgen_runtime::TruthScheme& scheme,
-                                      const pfgen_runtime::SimulationPlugin& plugin, const Eigen::VectorXd& x0,
-                                      const pfgen_runtime::MonteCarloOptions& options) const override {
-    return pfgen_runtime::run_monte_carlo(scheme, plugin.observation(), x0, plugin.filters(), options);
   }
 };
 

@@ -1,7 +1,6 @@
 // The delayed observation on the command line: eval's values with the predicted observation, the
 // delayed inputs as used and x*'s drift; codegen's note that --eigen writes no wrappers; simulate's
-// header note on h in grid steps, the particle reference skipped, the runs on the truth's dy of
-// x(t - h) (the plugin's observation reads the path D steps back), and the signed errors at the
+// header note on h in grid steps, the particle reference skipped, and the signed errors at the
 // report times after the table.
 #include <cmath>
 
@@ -45,12 +44,6 @@ class DelayedCommand final : public ObservationCommand {
 
   std::string reference_obstacle(const Model&) const override {
     return "the observations are delayed, and the reference weighs undelayed ones only";
-  }
-
-  pfgen_runtime::MonteCarloResult run(const pfgen_runtime::TruthScheme& scheme,
-                                      const pfgen_runtime::SimulationPlugin& plugin, const Eigen::VectorXd& x0,
-                                      const pfgen_runtime::MonteCarloOptions& options) const override {
-    return pfgen_runtime::run_monte_carlo(scheme, plugin.observation(), x0, plugin.filters(), options);
   }
 
   // The printed estimates of Basin, Rodriguez-Gonzalez & Martinez-Zuniga 2004 are compared through

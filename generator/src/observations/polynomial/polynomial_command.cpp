@@ -1,7 +1,5 @@
 // The polynomial observation on the command line: eval's values (the rate filters' and the
-// predicted observation and dP's dy coefficients); simulate's runs on the truth's increments
-// dy = h(x, t) dt + B dW2 (the plugin's observation rate), which every filter steps on, as the
-// continuous observation's.
+// predicted observation and dP's dy coefficients).
 #include "observation_command.hpp"
 #include "pfgen/observations/polynomial/polynomial_observation.hpp"
 
@@ -18,12 +16,6 @@ class PolynomialCommand final : public ObservationCommand {
     Json P_gain = Json::array();
     for (const auto& L : value.P_gain) P_gain.push(values_json(L));
     out.add("P_gain", P_gain);
-  }
-
-  pfgen_runtime::MonteCarloResult run(const pfgen_runtime::TruthScheme& scheme,
-                                      const pfgen_runtime::SimulationPlugin& plugin, const Eigen::VectorXd& x0,
-                                      const pfgen_runtime::MonteCarloOptions& options) const override {
-    return pfgen_runtime::run_monte_carlo(scheme, plugin.observation(), x0, plugin.filters(), options);
   }
 };
 

@@ -1,6 +1,5 @@
 // The sampled observation on the command line: eval's values as the prediction and the update, as
-// derive shows them; simulate's runs with samples drawn after each run's truth (the runtime's
-// SampledMeasurement), on which the filters predict and update.
+// derive shows them.
 #include "observation_command.hpp"
 
 namespace pfgen::cli {
@@ -18,12 +17,6 @@ class SampledCommand final : public ObservationCommand {
     update.add("gain", values_json(value.gain));
     out.add("prediction", prediction);
     out.add("update", update);
-  }
-
-  pfgen_runtime::MonteCarloResult run(const pfgen_runtime::TruthScheme& scheme,
-                                      const pfgen_runtime::SimulationPlugin& plugin, const Eigen::VectorXd& x0,
-                                      const pfgen_runtime::MonteCarloOptions& options) const override {
-    return pfgen_runtime::run_monte_carlo(scheme, plugin.measurement(), x0, plugin.filters(), options);
   }
 };
 
