@@ -44,17 +44,19 @@ void AffineRate::value(double t, const double* x, double* h) {
   }
 }
 
+// Entry by entry over the lanes, plain loops the compiler packs: per lane A0, then + A_ij x_j in
+// j's order, value()'s sum. (The particle reference calls it on blocks of 32 lanes every step.)
 void AffineRate::lanes(double t, std::size_t count, const double* x, double* h) {
-  namespace lp = lane_pack;
   evaluate(t);
-  for (std::size_t i = 0; i < p(); ++i) {
-    const auto row = static_cast<Eigen::Index>(i);
-    lp::for_lanes(count, [&](std::size_t k, auto lanes) {
-      auto rate = lp::splat(A0_[row], lanes);
-      for (std::size_t j = 0; j < n(); ++j)
-        rate = rate + lp::splat(A_(row, static_cast<Eigen::Index>(j)), lanes) * lp::load(x + j * count + k, lanes);
-      lp::store(h + i * count + k, rate, lanes);
-    });
+  for (std::size_t a = 0; a < p(); ++a) {
+    double* __restrict out = h + a * count;
+    const double offset = A0_[static_cast<Eigen::Index>(a)];
+    for (std::size_t k = 0; k < count; ++k) out[k] = offset;
+    for (std::size_t j = 0; j < n(); ++j) {
+      const double coefficient = A_(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(j));
+      const double* __restrict xj = x + j * count;
+      for (std::size_t k = 0; k < count; ++k) out[k] += coefficient * xj[k];
+    }
   }
 }
 
