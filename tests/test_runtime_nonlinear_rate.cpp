@@ -81,6 +81,12 @@ TEST_CASE("observation axes: a delay composes with any rate, not with samples", 
                                                                           Eigen::MatrixXd::Identity(1, 1)),
                                              ObservationNoise(Eigen::MatrixXd::Identity(1, 1)), 0.5);
   CHECK_THROWS_WITH(samples.set_delay(0.1), Catch::Contains("a delay needs continuous observations"));
+  // Each timing answers for itself: samples draw no increment noise in the truth's loop, and
+  // increments have no samples.
+  CHECK(samples.increment_noise() == 0);
+  CHECK(samples.steps_per_sample(0.1) == 5);
+  CHECK(line.increment_noise() == 1);
+  CHECK_THROWS_WITH(line.steps_per_sample(0.1), Catch::Contains("no samples"));
 }
 
 TEST_CASE("nonlinear observation rate: A0 + A x as a function gives the linear truth and particle reference bit for bit",

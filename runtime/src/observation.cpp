@@ -1,36 +1,9 @@
 #include "pfgen_runtime/observation.hpp"
 
-#include <cmath>
-#include <cstdio>
-#include <optional>
 #include <stdexcept>
 #include <utility>
 
-#include "pfgen_runtime/lane_pack.hpp"
-#include "pfgen_support/whole_steps.hpp"
-
 namespace pfgen_runtime {
-
-ObservationNoise::ObservationNoise(Eigen::MatrixXd factor) : factor_(std::move(factor)), evaluated_(true) {
-  if (factor_.rows() == 0 || factor_.cols() == 0)
-    throw std::invalid_argument("observation: the noise factor must be p x r with p, r >= 1");
-}
-
-ObservationNoise::ObservationNoise(std::size_t p, std::size_t r, Factor factor)
-    : fill_(std::move(factor)), factor_(Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(p), static_cast<Eigen::Index>(r))) {
-  if (p == 0 || r == 0) throw std::invalid_argument("observation: the noise factor must be p x r with p, r >= 1");
-  if (!fill_) throw std::invalid_argument("observation: the noise callback is missing");
-}
-
-const Eigen::MatrixXd& ObservationNoise::at(double t) {
-  if (!fill_ || (evaluated_ && t == evaluated_t_)) return factor_;
-  const Eigen::Index p = factor_.rows(), r = factor_.cols();
-  fill_(t, factor_);
-  if (factor_.rows() != p || factor_.cols() != r) throw std::logic_error("observation: the noise callback resized its factor");
-  evaluated_t_ = t;
-  evaluated_ = true;
-  return factor_;
-}
 
 namespace {
 
@@ -59,28 +32,27 @@ const Callback& present(const Callback& callback) {
 
 }  // namespace
 
-Observation::Observation(std::unique_ptr<ObservationRate> rate, ObservationNoise noise, double period, double delay)
-    : rate_(std::move(rate)), noise_(std::move(noise)), period_(period) {
+Observation::Observation(std::unique_ptr<ObservationRate> rate, ObservationNoise noise,
+                         std::unique_ptr<ObservationTiming> timing)
+    : rate_(std::move(rate)), noise_(std::move(noise)), timing_(std::move(timing)) {
   if (!rate_) throw std::invalid_argument("observation: the rate is missing");
   if (noise_.p() != rate_->p()) throw std::invalid_argument("observation: the noise factor must have p rows");
-  if (period != 0 && (!(period > 0) || !std::isfinite(period)))
-    throw std::invalid_argument("observation: the sampling period must be finite and > 0");
-  set_delay(delay);
 }
 
 Observation::Observation(Eigen::VectorXd A0, Eigen::MatrixXd A, Eigen::MatrixXd B)
-    : Observation(std::make_unique<AffineRate>(std::move(A0), std::move(A)), ObservationNoise(std::move(B)), 0, 0) {}
+    : Observation(std::make_unique<AffineRate>(std::move(A0), std::move(A)), ObservationNoise(std::move(B)),
+                  std::make_unique<Increments>()) {}
 
 Observation::Observation(std::size_t p, std::size_t n, std::size_t r, Coefficients coefficients)
-    : Observation(affine_part(p, n, r, present(coefficients)), noise_part(p, n, r, coefficients), 0, 0) {}
+    : Observation(affine_part(p, n, r, present(coefficients)), noise_part(p, n, r, coefficients),
+                  std::make_unique<Increments>()) {}
 
 Observation Observation::continuous(std::unique_ptr<ObservationRate> rate, ObservationNoise noise, double delay) {
-  return Observation(std::move(rate), std::move(noise), 0, delay);
+  return Observation(std::move(rate), std::move(noise), std::make_unique<Increments>(delay));
 }
 
 Observation Observation::sampled(std::unique_ptr<ObservationRate> rate, ObservationNoise noise, double period) {
-  if (!(period > 0)) throw std::invalid_argument("observation: the sampling period must be finite and > 0");
-  return Observation(std::move(rate), std::move(noise), period, 0);
+  return Observation(std::move(rate), std::move(noise), std::make_unique<Samples>(period));
 }
 
 Observation Observation::sampled(std::size_t p, std::size_t n, std::size_t q, double period,
@@ -104,81 +76,21 @@ Observation Observation::sampled(std::size_t p, std::size_t n, std::size_t q, do
 }
 
 Observation::Observation(const Observation& other)
-    : rate_(other.rate_->clone()), noise_(other.noise_), period_(other.period_), delay_(other.delay_) {}
+    : rate_(other.rate_->clone()), noise_(other.noise_), timing_(other.timing_->clone()) {}
 
 Observation& Observation::operator=(const Observation& other) {
   if (this != &other) *this = Observation(other);
   return *this;
 }
 
-void Observation::set_delay(double h) {
-  if (!(h >= 0) || !std::isfinite(h)) throw std::invalid_argument("observation: the delay h must be finite and >= 0");
-  if (h > 0 && sampled()) throw std::invalid_argument("observation: a delay needs continuous observations, not samples");
-  delay_ = h;
-}
-
-std::size_t Observation::delay_steps(double dt) const {
-  if (delay_ == 0) return 0;
-  const double ratio = delay_ / dt, whole = std::round(ratio);
-  char text[240];
-  if (!(whole <= static_cast<double>(max_delay_steps))) {
-    std::snprintf(text, sizeof text, "the observation delay h = %.17g is more than %zu steps dt = %.17g (h/dt = %.17g)",
-                  delay_, max_delay_steps, dt, ratio);
-    throw std::invalid_argument(text);
-  }
-  const std::optional<double> steps = pfgen_support::whole_steps(delay_, dt);
-  if (!steps || *steps < 1) {
-    std::snprintf(text, sizeof text, "the observation delay h = %.17g is not a whole number of steps dt = %.17g (h/dt = %.17g)",
-                  delay_, dt, ratio);
-    throw std::invalid_argument(text);
-  }
-  return static_cast<std::size_t>(*steps);
-}
-
 void Observation::increment(double t, double dt, const Eigen::Ref<const Eigen::VectorXd>& x_start,
                             const Eigen::Ref<const Eigen::VectorXd>& x_end, const Eigen::Ref<const Eigen::VectorXd>& dW2,
                             Eigen::Ref<Eigen::VectorXd> dy) {
-  if (sampled()) return;
   if (x_start.size() != static_cast<Eigen::Index>(n()) || x_end.size() != static_cast<Eigen::Index>(n()) ||
-      dW2.size() != static_cast<Eigen::Index>(r()) || dy.size() != static_cast<Eigen::Index>(p()))
+      dW2.size() != static_cast<Eigen::Index>(increment_noise()) || dy.size() != static_cast<Eigen::Index>(p()))
     throw std::invalid_argument("observation: x must have n entries, dW2 r and dy p");
-  rate_->trapezoid(t, dt, x_start.data(), x_end.data(), dy.data());
-  const Eigen::MatrixXd& B = noise_.at(t);
-  const auto p = static_cast<Eigen::Index>(this->p()), r = static_cast<Eigen::Index>(this->r());
-  for (Eigen::Index i = 0; i < p; ++i) {
-    double value = dy[i];
-    for (Eigen::Index j = 0; j < r; ++j) value += B(i, j) * dW2[j];
-    dy[i] = value;
-  }
-}
-
-void Observation::increment_lanes(double t, double dt, std::size_t count, const double* x_start, const double* x_end,
-                                  const double* dW2, double* dy) {
-  namespace lp = lane_pack;
-  if (sampled()) return;
-  rate_->trapezoid_lanes(t, dt, count, x_start, x_end, dy);
-  const Eigen::MatrixXd& B = noise_.at(t);
-  for (std::size_t i = 0; i < p(); ++i)
-    lp::for_lanes(count, [&](std::size_t k, auto lanes) {
-      auto increment = lp::load(dy + i * count + k, lanes);
-      for (std::size_t j = 0; j < r(); ++j)
-        increment = increment + lp::splat(B(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)), lanes) *
-                                    lp::load(dW2 + j * count + k, lanes);
-      lp::store(dy + i * count + k, increment, lanes);
-    });
-}
-
-std::size_t Observation::steps_per_sample(double dt) const {
-  const std::optional<double> whole = sampled() ? pfgen_support::whole_steps(period_, dt) : std::nullopt;
-  // A precondition of the API: `pfgen simulate` refuses such a dt before, naming the model's
-  // period and the option to change, so this short message is for library users only.
-  if (!whole || *whole < 1) {
-    char text[120];
-    std::snprintf(text, sizeof text, "steps_per_sample: period / dt = %.17g is not a whole number of steps >= 1",
-                  period_ / dt);
-    throw std::invalid_argument(text);
-  }
-  return static_cast<std::size_t>(*whole);
+  // A Ref to a const vector has unit stride: data() is x.
+  timing_->increment(*rate_, noise_, t, dt, x_start.data(), x_end.data(), dW2.data(), dy.data());
 }
 
 void Observation::sample(double t, const double* x, const double* v, double* clean, double* noisy) {
