@@ -7,7 +7,7 @@
 #
 # whole_s: median wall-clock seconds of `pfgen derive MODEL --format F >/dev/null` over RUNS runs
 # (after one warm-up run), as users run it (glibc's default 4 kB heap pages); whole_thp_s: the same
-# with PFGEN_HUGE_PAGES=1 (the transparent-huge-page heap, generator/cli/huge_page_heap.hpp), the
+# with PFGEN_HUGE_PAGES=1 (the transparent-huge-page heap, generator/cli/program/huge_page_heap.hpp), the
 # runs of the two interleaved, and xthp their ratio whole_thp_s / whole_s (below 1: huge pages pay
 # on this machine); derive_s: bench_derive's median for the same n in this session, with 4 kB
 # pages, and derive_thp_s the same with the huge-page heap; out_MB: the size of the output;

@@ -1,8 +1,8 @@
 // With PFGEN_HUGE_PAGES=1, pfgen executes itself once with glibc's transparent-huge-page tunable
-// (cli/huge_page_heap.hpp). What a user can rely on: the output does not change by a byte, nothing
-// happens without the opt-in, a user's own GLIBC_TUNABLES are kept, and where the machine can give
-// huge pages the tunable reaches the process (seen through the environment pfgen hands to the
-// plugin compiler).
+// (cli/program/huge_page_heap.hpp). What a user can rely on: the output does not change by a byte,
+// nothing happens without the opt-in, a user's own GLIBC_TUNABLES are kept, and where the machine
+// can give huge pages the tunable reaches the process (seen through the environment pfgen hands to
+// the plugin compiler).
 #include <catch2/catch.hpp>
 
 #include <fstream>

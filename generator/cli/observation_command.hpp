@@ -1,20 +1,17 @@
 #pragma once
-// What the command line needs of an observation model: how `pfgen eval` lays out its filters'
+// What the command line says of an observation model: how `pfgen eval` lays out its filters'
 // values, what `pfgen codegen --eigen` writes for them, and what `pfgen simulate` says of its
-// observations (the runs themselves take the plugin's one runtime Observation, whatever the model). Each module in observations/
-// implements it (observations/<kind>/<kind>_command.cpp, compiled into the program with the cli:
-// it meets the runtime); the commands call the model's part and never ask which kind it is.
+// observations. Text only: how the observations are drawn and fed to the filters is the
+// simulation plugin's (the runtime's). Each observation model has its part in the commands room,
+// cli/observations/<kind>_command.cpp; the commands call the model's part and never ask which
+// kind it is.
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/printing/json_writer.hpp"
 #include "pfgen_runtime/monte_carlo.hpp"
-#include "pfgen_runtime/schemes.hpp"
-#include "pfgen_runtime/simulation_plugin.hpp"
 
 namespace pfgen::cli {
 
@@ -45,7 +42,7 @@ void add_rate_eval_json(const EvaluatedFilter& value, Json& out);
 Json values_json(const std::vector<double>& values);
 Json values_json(const std::vector<std::vector<double>>& values);
 
-// The modules' parts (observations/<kind>/<kind>_command.cpp), and the model's, by kind.
+// The observation models' parts (cli/observations/<kind>_command.cpp), and the model's, by kind.
 const ObservationCommand& continuous_observation_command();
 const ObservationCommand& sampled_observation_command();
 const ObservationCommand& delayed_observation_command();

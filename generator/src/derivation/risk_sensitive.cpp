@@ -2,7 +2,7 @@
 
 #include <map>
 
-#include "pfgen/observations/continuous/observation_terms.hpp"
+#include "pfgen/derivation/affine_rate_terms.hpp"
 
 namespace pfgen {
 namespace {

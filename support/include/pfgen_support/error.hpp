@@ -1,7 +1,7 @@
 #pragma once
 // The one base of the errors pfgen reports to a user: a bad model file, a bad option, a filter
 // that cannot be evaluated or generated, a compiler or plugin that fails, a file that cannot be
-// written. The command line prints any of them as one line (generator/cli/main.cpp has one catch
+// written. The command line prints any of them as one line (generator/cli/program/main.cpp has one catch
 // for them); a program using pfgen as a library catches this one type. Each error says what is
 // wrong and, where it has one, where: the file and its line and column, the model file's field and
 // the row and column of a matrix entry.

@@ -29,10 +29,10 @@
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/derivation/exactness.hpp"
 #include "pfgen/derivation/filter_variables.hpp"
+#include "pfgen/derivation/sampled_update_parts.hpp"
 #include "pfgen/kinds/filter_kinds.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/model_filters.hpp"
-#include "pfgen/observations/sampled/sampled_update.hpp"
 
 namespace pfgen {
 

@@ -5,12 +5,6 @@
 
 namespace pfgen {
 
-std::size_t SampledUpdate::upper_index(std::size_t a, std::size_t b) const {
-  if (a > b) std::swap(a, b);
-  const std::size_t rows = r();
-  return a * rows - a * (a - 1) / 2 + (b - a);
-}
-
 SampledUpdate sampled_update(const SampledObservation& observation, const FilterVariables& vars) {
   const std::size_t n = vars.n(), r = observation.C.size();
   auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };

@@ -1,21 +1,16 @@
 #pragma once
 // What a continuous observation dy = (A0 + A x) dt + B dW2 contributes to a filter, R = B B^T:
-// the gain P A^T R^-1, the correction P A^T R^-1 A P subtracted from the P drift, and the
-// predicted observation rate A0 + A m. Each observation kind has such a part of its own.
+// the gain P A^T R^-1, the correction P A^T R^-1 A P subtracted from the P drift (from
+// derivation/affine_rate_terms.hpp's A^T R^-1 and A^T R^-1 A), and the predicted observation rate
+// A0 + A m. Each observation kind has such a part of its own.
 #include <vector>
 
 #include "pfgen/algebra/polynomial.hpp"
+#include "pfgen/derivation/affine_rate_terms.hpp"
 #include "pfgen/derivation/filter_variables.hpp"
 #include "pfgen/model/model.hpp"
 
 namespace pfgen {
-
-struct ObservationTerms {
-  ExMatrix At_Rinv;     // n x p
-  ExMatrix At_Rinv_A;   // n x n, symmetric
-};
-
-ObservationTerms observation_terms(const ContinuousObservation& observation);
 
 // A0 + A m, one polynomial per observation row, in the filter's variables; with `delayed`,
 // A0 + A md, md = m(t - h) (FilterVariables::m_delayed).

@@ -19,29 +19,10 @@
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/derivation/filter_variables.hpp"
+#include "pfgen/derivation/sampled_update_parts.hpp"
 #include "pfgen/model/model.hpp"
 
 namespace pfgen {
-
-struct SampledUpdate {
-  GiNaC::numeric period;                          // T
-  std::size_t substeps = 1;                       // prediction sub-steps per period
-  // How substeps came about (substep_choice.hpp): chosen by the rule when the model leaves them
-  // out, else the model's or a KIND@S name's. The rule's rho at the prior and its count
-  // (ceil(T rho / 0.25), possibly beyond any count) are kept for the reports; 0 when not assessed.
-  bool substeps_chosen = false;
-  double prior_rate = 0;
-  double advised_substeps = 0;
-  std::vector<std::vector<Polynomial>> PCt;       // n x r: P C^T, linear in P
-  std::vector<Polynomial> S;                      // r(r+1)/2, upper triangle row by row: C P C^T + R
-  std::vector<std::vector<Polynomial>> C;         // r x n: C (constants), or E[J_c] (polynomials in m, P)
-  std::vector<Polynomial> R;                      // r(r+1)/2, upper triangle: Uv Uv^T, or R_c = S - C P C^T
-  // A polynomial c: C and R as above, read by the reports; `at_mean` for the extended kind's.
-  bool polynomial_samples = false, at_mean = false;
-  std::size_t r() const { return C.size(); }
-  // Index of S_ab (or R_ab), a and b in either order, in the packed upper triangle.
-  std::size_t upper_index(std::size_t a, std::size_t b) const;
-};
 
 SampledUpdate sampled_update(const SampledObservation& observation, const FilterVariables& vars);
 
