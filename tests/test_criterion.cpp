@@ -132,7 +132,7 @@ TEST_CASE("criterion: a constant error e over [0, T] gives J = e^T M e T for any
         const MonteCarloResult result =
             how == "sampled"
                 ? run_monte_carlo(*scheme,
-                                  SampledMeasurement(1, 2, 1, 0.1,
+                                  Observation::sampled(1, 2, 1, 0.1,
                                                      [](double, double* C0, double* C, double* Uv) {
                                                        C0[0] = 0;
                                                        C[0] = 1;
@@ -141,7 +141,7 @@ TEST_CASE("criterion: a constant error e over [0, T] gives J = e^T M e T for any
                                                      }),
                                   x0, filters, options)
                 : run_monte_carlo(*scheme,
-                                  LinearObservation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Identity(1, 2),
+                                  Observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Identity(1, 2),
                                                     Eigen::MatrixXd::Identity(1, 1)),
                                   x0, filters, options);
         REQUIRE(result.filters.front().criterion);

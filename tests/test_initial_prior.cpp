@@ -39,7 +39,7 @@ FilterModel idle_filter() {
 
 MonteCarloResult run(const InitialPrior& prior, std::size_t runs, unsigned threads) {
   const auto scheme = make_scheme(SchemeKind::rk4, still(2));
-  const LinearObservation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 2),
+  const Observation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 2),
                                       Eigen::MatrixXd::Constant(1, 1, 1.0));
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 0.1, 0.05);

@@ -88,7 +88,7 @@ TEST_CASE("particle reference: its distance from Kalman-Bucy shrinks like 1/sqrt
   model.m0 = 0.5;
   model.P0 = 0.8;
   EulerMaruyama scheme(scalar_linear_system(model));
-  const LinearObservation observation = scalar_observation(model.r);
+  const Observation observation = scalar_observation(model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.2);
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 3.0, 0.005);
@@ -127,8 +127,8 @@ TEST_CASE("particle reference: its distance from Kalman-Bucy shrinks like 1/sqrt
 }
 
 // Samples y_k = x(t_k) + r v_k every `period` of the scalar OU truth.
-SampledMeasurement scalar_samples(double period, double r) {
-  return SampledMeasurement(1, 1, 1, period, [r](double, double* C0, double* C, double* Uv) {
+Observation scalar_samples(double period, double r) {
+  return Observation::sampled(1, 1, 1, period, [r](double, double* C0, double* C, double* Uv) {
     C0[0] = 0;
     C[0] = 1;
     Uv[0] = r;
@@ -172,7 +172,7 @@ TEST_CASE("particle reference: with sampled observations it approaches the exact
   model.P0 = 0.8;
   const double r = 0.4, dt = 0.01;
   EulerMaruyama scheme(scalar_linear_system(model));
-  const SampledMeasurement samples = scalar_samples(0.1, r);
+  const Observation samples = scalar_samples(0.1, r);
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 3.0, dt);
   options.runs = 40;
@@ -201,7 +201,7 @@ TEST_CASE("particle reference: identical for 1, 2 and 3 threads and after travel
           "[particles][runtime][unit]") {
   ScalarLinear model;
   EulerMaruyama scheme(scalar_linear_system(model));
-  const LinearObservation observation = scalar_observation(model.r);
+  const Observation observation = scalar_observation(model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 2.0, 0.01);
@@ -258,7 +258,7 @@ TEST_CASE("particle reference: a run's reference depends on (seed, run, N) only,
           "[particles][runtime][unit]") {
   ScalarLinear model;
   EulerMaruyama scheme(scalar_linear_system(model));
-  LinearObservation observation = scalar_observation(model.r);
+  Observation observation = scalar_observation(model.r);
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 1.0, 0.01);
   TruthRun truth = simulate_truth(scheme, observation, Eigen::VectorXd::Constant(1, 0.3), grid, 11, 2);
   REQUIRE(truth.completed_steps == grid.steps);
@@ -301,7 +301,7 @@ TEST_CASE("particle reference: particles beyond the bound die, and when all have
   model.m0 = 5.0;
   model.P0 = 0.01;
   EulerMaruyama scheme(scalar_linear_system(model));
-  const LinearObservation observation = scalar_observation(model.r);
+  const Observation observation = scalar_observation(model.r);
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 1.0, 0.01);
   options.runs = 3;
@@ -325,7 +325,7 @@ TEST_CASE("particle reference: refused where it cannot run, and absent the outpu
           "[particles][runtime][unit]") {
   ScalarLinear model;
   EulerMaruyama scheme(scalar_linear_system(model));
-  LinearObservation observation = scalar_observation(model.r);
+  Observation observation = scalar_observation(model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 1.0, 0.01);
@@ -340,7 +340,7 @@ TEST_CASE("particle reference: refused where it cannot run, and absent the outpu
   CHECK(format_stops_csv(without) == "source,event,run,t\n");
 
   auto refused = [&](const ParticleReferenceOptions& reference, const TruthScheme& truth,
-                     const LinearObservation& obs) {
+                     const Observation& obs) {
     MonteCarloOptions bad = options;
     bad.reference = reference;
     CHECK_THROWS_AS(run_monte_carlo(truth, obs, x0, filters, bad), std::invalid_argument);
@@ -360,7 +360,7 @@ TEST_CASE("particle reference: refused where it cannot run, and absent the outpu
   RungeKutta4 ode(deterministic);
   CHECK_THROWS_WITH(ParticleReference(ode, observation, prior(model, 10), 1e8), Catch::Contains("no process noise"));
   // Delayed observations.
-  LinearObservation delayed = observation;
+  Observation delayed = observation;
   delayed.set_delay(0.1);
   CHECK_THROWS_WITH(ParticleReference(scheme, delayed, prior(model, 10), 1e8), Catch::Contains("delayed"));
 }
@@ -369,7 +369,7 @@ TEST_CASE("particle reference: every filter is paired against the closest, and t
           "[particles][runtime][statistical]") {
   ScalarLinear model;
   EulerMaruyama scheme(scalar_linear_system(model));
-  const LinearObservation observation = scalar_observation(model.r);
+  const Observation observation = scalar_observation(model.r);
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 2.0, 0.01);
   options.runs = 30;

@@ -40,7 +40,7 @@ TEST_CASE("report errors: the signed mean error and the standard errors match th
   system.q = 0;  // a deterministic truth (rk4): x stays 1
   system.drift = [](double, const double*, double* f) { f[0] = 0.0; };
   RungeKutta4 scheme(system);
-  const LinearObservation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Ones(1, 1));
+  const Observation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Ones(1, 1));
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 4.0, 0.01);
   options.runs = 4000;

@@ -199,7 +199,7 @@ TEST_CASE("batch stepping: the particle reference is the same whether its scheme
   for (const int p : {1, 2}) {
     Eigen::VectorXd A0 = Eigen::VectorXd::Zero(p);
     Eigen::MatrixXd A = Eigen::MatrixXd::Identity(p, 2), B = 0.5 * Eigen::MatrixXd::Identity(p, p);
-    LinearObservation observation(A0, A, B);
+    Observation observation(A0, A, B);
     AdaptiveEuler truth_scheme(coupled(true));
     const TruthRun truth = simulate_truth(truth_scheme, observation, Eigen::Vector2d(0.5, -0.2), grid, 8, 1);
     REQUIRE(truth.completed_steps == grid.steps);
@@ -267,7 +267,7 @@ TEST_CASE("batch stepping: a linear observation's increment over lanes is increm
   std::mt19937_64 random(5);
   std::normal_distribution<double> normal;
   // Time-varying coefficients (with a -0.0 in A0), and constant ones.
-  const LinearObservation varying(p, n, r, [](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
+  const Observation varying(p, n, r, [](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
     A0 << -0.0, std::sin(t);
     A << 1.0, -2.0 * t, 0.5, 0.0, 3.0, -1.0 + t;
     B << 1.0, 0.25 * t, 0.0, 2.0;
@@ -275,9 +275,9 @@ TEST_CASE("batch stepping: a linear observation's increment over lanes is increm
   Eigen::MatrixXd A(p, n), B(p, r);
   A << 0.3, -1.0, 2.0, 0.0, 1.5, -0.7;
   B << 0.9, 0.0, 0.1, 1.1;
-  const LinearObservation constant(Eigen::Vector2d(0.2, -0.4), A, B);
-  for (const LinearObservation* model : {&varying, &constant}) {
-    LinearObservation lanes_model = *model, one_model = *model;
+  const Observation constant(Eigen::Vector2d(0.2, -0.4), A, B);
+  for (const Observation* model : {&varying, &constant}) {
+    Observation lanes_model = *model, one_model = *model;
     for (const std::size_t count : {1, 2, 5, 8}) {
       std::vector<double> x_start(n * count), x_end(n * count), dW2(r * count), dy(p * count);
       for (double& v : x_start) v = normal(random);

@@ -104,7 +104,7 @@ TEST_CASE("consistency: Kalman-Bucy's NEES lies in its band, 10 P and P / 10 are
           "[montecarlo][runtime][statistical]") {
   const ScalarLinear model;
   EulerMaruyama scheme(scalar_linear_system(model));
-  const LinearObservation observation = scalar_observation(model.r);
+  const Observation observation = scalar_observation(model.r);
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 4.0, 2e-3);
   options.runs = 400;
@@ -163,7 +163,7 @@ TEST_CASE("consistency: Kalman-Bucy's NEES lies in its band, 10 P and P / 10 are
 TEST_CASE("consistency: the series' RMS error is the RMS over the runs alive, bit for bit", "[montecarlo][runtime][unit]") {
   const ScalarLinear model;
   EulerMaruyama scheme(scalar_linear_system(model));
-  const LinearObservation observation = scalar_observation(model.r);
+  const Observation observation = scalar_observation(model.r);
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 1.0, 1e-2);
   options.runs = 5;

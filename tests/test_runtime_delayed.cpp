@@ -32,8 +32,8 @@ SdeSystem constant_drift() {
 
 // dy = (t + 3 x(t - h)) dt + 0.5 dW2: A0 depends on t, so the test also sees that the
 // coefficients are taken at t, not t - h.
-LinearObservation delayed_observation(double h) {
-  LinearObservation observation(1, 1, 1, [](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
+Observation delayed_observation(double h) {
+  Observation observation(1, 1, 1, [](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
     A0 << t;
     A << 3.0;
     B << 0.5;
@@ -90,7 +90,7 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 
 TEST_CASE("runtime delayed: dy reads x(t - h) on the grid, x(0) before t = 0", "[runtime][delayed][unit]") {
   const double h = 0.05, dt = 0.01;  // D = 5
-  LinearObservation observation = delayed_observation(h);
+  Observation observation = delayed_observation(h);
   REQUIRE(observation.delay_steps(dt) == 5);
   EulerMaruyama scheme(constant_drift());
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 0.2, dt);
@@ -115,7 +115,7 @@ TEST_CASE("runtime delayed: dy reads x(t - h) on the grid, x(0) before t = 0", "
   CHECK(run.dy(0, 0) == Approx(0.5 * (0.0 + dt) * dt + 3.0 * dt + 0.5 * dW2[0]).margin(1e-15));
 
   // The same run without a delay draws the same noise: the difference is A (x(t - h) - x(t)) only.
-  LinearObservation undelayed = delayed_observation(0.0);
+  Observation undelayed = delayed_observation(0.0);
   EulerMaruyama scheme0(constant_drift());
   const TruthRun run0 = simulate_truth(scheme0, undelayed, Eigen::VectorXd::Ones(1), grid, 9, 3);
   CHECK(same_bits(run0.x, run.x));
@@ -128,7 +128,7 @@ TEST_CASE("runtime delayed: dy reads x(t - h) on the grid, x(0) before t = 0", "
 }
 
 TEST_CASE("runtime delayed: h must be a whole number of steps, at most 10^7 of them", "[runtime][delayed][unit]") {
-  LinearObservation observation = delayed_observation(0.3);
+  Observation observation = delayed_observation(0.3);
   CHECK(observation.delay_steps(0.1) == 3);  // 0.3 / 0.1 = 2.9999999999999996: within 1e-9
   CHECK(observation.delay_steps(0.3) == 1);
   CHECK_THROWS_WITH(observation.delay_steps(0.07),
@@ -149,7 +149,7 @@ TEST_CASE("runtime delayed: h must be a whole number of steps, at most 10^7 of t
 }
 
 TEST_CASE("runtime delayed: a fixed-step filter with extra state is stepped once per grid step, on its grid only", "[runtime][delayed][unit]") {
-  LinearObservation observation = delayed_observation(kD * kDt);
+  Observation observation = delayed_observation(kD * kDt);
   EulerMaruyama scheme(constant_drift());
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 0.5, kDt);
   const TruthRun truth = simulate_truth(scheme, observation, Eigen::VectorXd::Ones(1), grid, 4, 1);
@@ -184,7 +184,7 @@ TEST_CASE("runtime delayed: a fixed-step filter with extra state is stepped once
 }
 
 TEST_CASE("runtime delayed: Monte Carlo runs equal run_filter's, bitwise, on 1 and 2 threads", "[runtime][delayed][montecarlo][unit]") {
-  LinearObservation observation = delayed_observation(kD * kDt);
+  Observation observation = delayed_observation(kD * kDt);
   SdeSystem system = constant_drift();
   system.q = 1;
   system.diffusion = [](double, const double*, double* g) { g[0] = 0.3; };
@@ -239,7 +239,7 @@ TEST_CASE("runtime delayed: a generated delayed filter plugs in and steps as its
   system.drift = [](double, const double* x, double* f) { f[0] = -0.5 * x[0]; };
   system.diffusion = [](double, const double*, double* g) { g[0] = 0.3; };
   EulerMaruyama scheme(system);
-  LinearObservation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1),
+  Observation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1),
                                 Eigen::MatrixXd::Constant(1, 1, 0.2));
   observation.set_delay(F::delay<double>());
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 2.0, F::dt<double>());

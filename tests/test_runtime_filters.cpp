@@ -56,7 +56,7 @@ TruthRun quiet_truth(double T, double dt) {
   system.q = 0;
   system.drift = [](double, const double*, double* f) { f[0] = 0.0; };
   EulerMaruyama scheme(system);
-  LinearObservation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Ones(1, 1));
+  Observation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Ones(1, 1));
   return simulate_truth(scheme, observation, Eigen::VectorXd::Zero(1), TimeGrid::to_horizon(0.0, T, dt), 1, 0);
 }
 
@@ -70,7 +70,7 @@ TEST_CASE("runtime: observations dy = (A0 + A x) dt + B dW2 on the truth's grid"
   system.q = 0;
   system.drift = [](double, const double* x, double* f) { f[0] = x[0]; };
   AdaptiveEuler scheme(system, AdaptiveEuler::Options{1e-4, 1.0, 40});  // accurate: x = e^t to ~1e-4
-  LinearObservation observation(2, 1, 2, [](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
+  Observation observation(2, 1, 2, [](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
     A0 << 1.0, t;
     A << 2.0, -1.0;
     B << 0.5, 0.0, 0.1 * t, 1.0;
@@ -99,7 +99,7 @@ TEST_CASE("runtime: a Kalman-Bucy filter stepped on simulated observations has e
   const FilterModel filter = make_filter_model("kalman-bucy", 1, 1, &kalman_bucy_initial, &kalman_bucy_step, model);
   CHECK(filter.state_size() == 2);
   EulerMaruyama scheme(scalar_linear_system(model));
-  LinearObservation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1),
+  Observation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1),
                                 Eigen::MatrixXd::Constant(1, 1, model.r));
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 3.0, 1e-3);
   const int runs = 2000;
@@ -179,7 +179,7 @@ TEST_CASE("runtime: a generated filter plugs in and paper 001's singular P0 is l
     f[1] = 0.1 * x[1];
   };
   AdaptiveEuler scheme(system);
-  LinearObservation observation(Eigen::VectorXd::Zero(1), (Eigen::MatrixXd(1, 2) << 1, 0).finished(),
+  Observation observation(Eigen::VectorXd::Zero(1), (Eigen::MatrixXd(1, 2) << 1, 0).finished(),
                                 Eigen::MatrixXd::Ones(1, 1));
   Eigen::VectorXd x0(2);
   x0 << 1.1, 1.1;

@@ -14,10 +14,10 @@ using namespace pfgen_runtime;
 
 namespace {
 
-LinearObservation observe_first(std::size_t n) {
+Observation observe_first(std::size_t n) {
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(1, static_cast<Eigen::Index>(n));
   A(0, 0) = 1;
-  return LinearObservation(Eigen::VectorXd::Zero(1), A, Eigen::MatrixXd::Ones(1, 1));
+  return Observation(Eigen::VectorXd::Zero(1), A, Eigen::MatrixXd::Ones(1, 1));
 }
 
 // Paper 000's noise-free state x' = 0.1 x^2, exactly 1 / (1/x0 - 0.1 t): infinite at t = 1/0.11.
@@ -83,7 +83,7 @@ TEST_CASE("runtime: a NaN in the truth stops the run at the grid time it appears
   };
   system.diffusion = [](double, const double*, double* g) { g[0] = 0.1; };
   EulerMaruyama scheme(system);
-  LinearObservation observation = observe_first(1);
+  Observation observation = observe_first(1);
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 1.0, 0.01);
   const TruthRun run = simulate_truth(scheme, observation, Eigen::VectorXd::Ones(1), grid, 3, 0);
   REQUIRE(run.diverged());
@@ -105,7 +105,7 @@ TEST_CASE("runtime: a NaN in the truth stops the run at the grid time it appears
 
 TEST_CASE("runtime: paper 000's noise-free state blows up at t = 1/0.11", "[runtime][guards][unit]") {
   const double blow_up = 1.0 / 0.11;  // 9.0909...
-  LinearObservation observation = observe_first(1);
+  Observation observation = observe_first(1);
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 9.2, 1e-4);
   // x exceeds 1e6 at t = 10 (1/1.1 - 1e-6), 1e-5 before the pole.
   for (SchemeKind kind : {SchemeKind::euler_maruyama, SchemeKind::adaptive_euler}) {
@@ -126,7 +126,7 @@ TEST_CASE("runtime: paper 000's noise-free state blows up at t = 1/0.11", "[runt
 }
 
 TEST_CASE("runtime: paper 001's truth x2 = 1.1 e^{0.1 t} and x1 blows up near t = 7.01", "[runtime][guards][unit]") {
-  LinearObservation observation = observe_first(2);
+  Observation observation = observe_first(2);
   const TimeGrid grid = TimeGrid::to_horizon(0.0, 8.0, 1e-4);
   Eigen::VectorXd x0(2);
   x0 << 1.1, 1.1;
@@ -236,7 +236,7 @@ TEST_CASE("a state-dependent diffusion covariance that loses definiteness stops 
   }
 
   EulerMaruyama scheme(system);
-  LinearObservation observation = observe_first(1);
+  Observation observation = observe_first(1);
   const TimeGrid grid = TimeGrid::to_horizon(0, 5, 0.01);
   const TruthRun run = simulate_truth(scheme, observation, Eigen::VectorXd::Zero(1), grid, 7, 0);
   REQUIRE(run.diverged());

@@ -231,7 +231,7 @@ std::string read_file(const std::string& path) {
 TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   EulerMaruyama scheme(scalar_linear_system(scenario.model));
-  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Observation observation = scalar_observation(scenario.model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
 
   Outputs reference;
@@ -299,7 +299,7 @@ TEST_CASE("monte carlo: results are bitwise identical for any batch, filters ste
   tight.tolerance = 0.02;
   const EulerMaruyama euler(system);
   const AdaptiveEuler adaptive(system, tight);
-  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Observation observation = scalar_observation(scenario.model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
   // Every filter in lanes of 4 (the worker then keeps the truths only interleaved), or with one
   // of another width and one without lanes beside them (which read each run's own buffers).
@@ -363,7 +363,7 @@ TEST_CASE("monte carlo: results are bitwise identical for any batch, filters ste
 TEST_CASE("monte carlo: runs shared among processes fold to the single process's result bit for bit", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   EulerMaruyama scheme(scalar_linear_system(scenario.model));
-  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Observation observation = scalar_observation(scenario.model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
   scenario.options.criterion = CriterionOptions{};  // the runs' integrals travel too
   scenario.options.threads = 2;
@@ -580,7 +580,7 @@ TEST_CASE("monte carlo: runs shared among processes fold to the single process's
 TEST_CASE("monte carlo: corrupted shares are folded or refused, never read out of bounds", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   EulerMaruyama scheme(scalar_linear_system(scenario.model));
-  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Observation observation = scalar_observation(scenario.model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
   scenario.options.runs = 5;
   scenario.options.shown_run = 1;
@@ -632,7 +632,7 @@ TEST_CASE("monte carlo: each run equals simulate_truth + run_filter bit for bit"
   ScalarLinear& model = scenario.model;
   // The adaptive scheme draws from a stream of its own (start_run): the engine must reseed it.
   AdaptiveEuler scheme(scalar_linear_system(model), AdaptiveEuler::Options{0.02, 0.1, 20});
-  LinearObservation observation = scalar_observation(model.r);
+  Observation observation = scalar_observation(model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, -0.2);
   MonteCarloOptions& options = scenario.options;
   options.threads = 2;
@@ -702,7 +702,7 @@ TEST_CASE("monte carlo: each run equals simulate_truth + run_filter bit for bit"
 TEST_CASE("monte carlo: Kalman-Bucy RMS error is sqrt(P_inf); wrong filters are reported with times", "[montecarlo][runtime][statistical]") {
   const ScalarLinear model;
   EulerMaruyama scheme(scalar_linear_system(model));
-  const LinearObservation observation = scalar_observation(model.r);
+  const Observation observation = scalar_observation(model.r);
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 10.0, 2e-3);
   options.runs = 1000;
@@ -835,7 +835,7 @@ TEST_CASE("monte carlo: a truth that blows up is reported near t = 1 and nothing
 TEST_CASE("monte carlo: the table and CSV are byte-identical across calls and the CSV is well-formed", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   EulerMaruyama scheme(scalar_linear_system(scenario.model));
-  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Observation observation = scalar_observation(scenario.model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 0.3);
   scenario.options.threads = 2;
   const MonteCarloResult first = run_monte_carlo(scheme, observation, x0, scenario.filters, scenario.options);
@@ -1064,7 +1064,7 @@ TEST_CASE("monte carlo: gnuplot draws the error plot as SVG and PNG", "[montecar
 TEST_CASE("monte carlo: inconsistent inputs are rejected and a worker's exception reaches the caller", "[montecarlo][runtime][unit]") {
   Scenario scenario;
   EulerMaruyama scheme(scalar_linear_system(scenario.model));
-  const LinearObservation observation = scalar_observation(scenario.model.r);
+  const Observation observation = scalar_observation(scenario.model.r);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Zero(1);
   auto rejects = [&](auto change) {
     Scenario copy = scenario;

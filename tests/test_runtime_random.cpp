@@ -116,8 +116,8 @@ SdeSystem test_system() {
   return system;
 }
 
-LinearObservation test_observation() {
-  return LinearObservation(1, 2, 1, [](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
+Observation test_observation() {
+  return Observation(1, 2, 1, [](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A, Eigen::MatrixXd& B) {
     A0 << 0.1 * t;
     A << 1.0, 0.5;
     B << 1.0;
@@ -138,13 +138,13 @@ TEST_CASE("runtime: runs are identical whatever order or thread generates them",
 
   for (SchemeKind kind : {SchemeKind::euler_maruyama, SchemeKind::adaptive_euler}) {
     INFO("scheme " << to_string(kind));
-    auto simulate = [&](TruthScheme& scheme, LinearObservation& observation, int run) {
+    auto simulate = [&](TruthScheme& scheme, Observation& observation, int run) {
       return simulate_truth(scheme, observation, x0, grid, 99, static_cast<std::uint64_t>(run));
     };
     std::vector<TruthRun> forward(runs), backward(runs), threaded(runs);
     {
       auto scheme = make_scheme(kind, test_system());
-      LinearObservation observation = test_observation();
+      Observation observation = test_observation();
       for (int r = 0; r < runs; ++r) forward[r] = simulate(*scheme, observation, r);
       for (int r = runs - 1; r >= 0; --r) backward[r] = simulate(*scheme, observation, r);
     }
@@ -152,7 +152,7 @@ TEST_CASE("runtime: runs are identical whatever order or thread generates them",
       // Two threads, each with its own scheme and observation, taking runs alternately.
       auto worker = [&](int first) {
         auto scheme = make_scheme(kind, test_system());
-        LinearObservation observation = test_observation();
+        Observation observation = test_observation();
         for (int r = first; r < runs; r += 2) threaded[r] = simulate(*scheme, observation, r);
       };
       std::thread one(worker, 1), two(worker, 0);

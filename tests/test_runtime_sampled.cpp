@@ -1,4 +1,4 @@
-// The Monte Carlo engine with sampled observations (run_monte_carlo with a SampledMeasurement):
+// The Monte Carlo engine with sampled observations (run_monte_carlo with a Observation):
 // sample times exact, every period gets exactly `substeps` predictions at the right times
 // whatever the grid, the samples are C0 + C x(t_k) + Uv v_k from the run's observation stream,
 // results are the same for any thread count, and the metrics of paper 003 are the defined ones.
@@ -29,8 +29,8 @@ SdeSystem constant_system() {
   return system;
 }
 
-SampledMeasurement measurement(double period) {
-  return SampledMeasurement(1, 1, 1, period, [](double, double* C0, double* C, double* Uv) {
+Observation measurement(double period) {
+  return Observation::sampled(1, 1, 1, period, [](double, double* C0, double* C, double* Uv) {
     C0[0] = 1.0;
     C[0] = 3.0;
     Uv[0] = 0.5;

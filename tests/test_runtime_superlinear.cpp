@@ -38,7 +38,7 @@ struct Sample {
 // Runs through simulate_truth, observation dy = x dt + dW2 included, guard bound 1e8.
 Sample simulate_x(SchemeKind kind, double dt, int runs, std::uint64_t seed) {
   auto scheme = make_scheme(kind, paper000_ito());
-  LinearObservation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Ones(1, 1));
+  Observation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Ones(1, 1));
   const TimeGrid grid = TimeGrid::to_horizon(0.0, T, dt);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, x0_value);
   Sample sample;

@@ -153,7 +153,7 @@ TEST_CASE("simulate delayed: with h = 0 the plugin's delay filters step as the u
   };
   const pfgen_runtime::SimulationPlugin delayed = load(build(true), {"delay-optimal", "delay-uncorrected", "delay-ekf"});
   const pfgen_runtime::SimulationPlugin plain = load(build(false), {"optimal", "ekf"});
-  CHECK(delayed.delay() == 0.0);
+  CHECK(delayed.observation().delay() == 0.0);
   delayed.check_grid_step(dt);
   CHECK_THROWS_WITH(delayed.check_grid_step(0.02), Catch::Contains("generated for the grid step dt = 0.01"));
 
@@ -161,7 +161,7 @@ TEST_CASE("simulate delayed: with h = 0 the plugin's delay filters step as the u
   REQUIRE(delayed_filters.size() == 3);
   CHECK(delayed_filters[0].fixed_dt == dt);
   auto scheme = pfgen_runtime::make_scheme(pfgen_runtime::SchemeKind::euler_maruyama, plain.system());
-  pfgen_runtime::LinearObservation observation = plain.observation();
+  pfgen_runtime::Observation observation = plain.observation();
   const pfgen_runtime::TimeGrid grid = pfgen_runtime::TimeGrid::to_horizon(0.0, 3.0, dt);
   const pfgen_runtime::TruthRun truth =
       pfgen_runtime::simulate_truth(*scheme, observation, plain.truth_initial_state(), grid, 5, 0);

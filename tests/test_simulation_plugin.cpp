@@ -222,13 +222,14 @@ void check_observation(const pfgen::Model& model, const SimulationPlugin& plugin
   const std::size_t n = model.n(), p = model.p(), r = model.observation.continuous().B.front().size();
   REQUIRE(plugin.p() == p);
   REQUIRE(plugin.r() == r);
-  pfgen_runtime::LinearObservation observation = plugin.observation();
+  pfgen_runtime::Observation observation = plugin.observation();
   for (double t : {0.0, 0.7, 2.5}) {
     // The rate A0 + A x at unit vectors x = e_j gives A0 and each column of A.
     const std::vector<double> none(n, 0.0);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
     std::vector<double> A0(p), A0_expected;
-    Eigen::VectorXd h0 = observation.rate(t, x);
+    Eigen::VectorXd h0(static_cast<Eigen::Index>(p));
+    observation.rate().value(t, x.data(), h0.data());
     for (std::size_t i = 0; i < p; ++i) {
       A0[i] = h0[static_cast<Eigen::Index>(i)];
       A0_expected.push_back(evaluate(model, model.observation.continuous().A0[i], t, none));
@@ -237,7 +238,8 @@ void check_observation(const pfgen::Model& model, const SimulationPlugin& plugin
     for (std::size_t j = 0; j < n; ++j) {
       x.setZero();
       x[static_cast<Eigen::Index>(j)] = 1;
-      Eigen::VectorXd h = observation.rate(t, x);
+      Eigen::VectorXd h(static_cast<Eigen::Index>(p));
+      observation.rate().value(t, x.data(), h.data());
       std::vector<double> column, expected;
       for (std::size_t i = 0; i < p; ++i) {
         column.push_back(h[static_cast<Eigen::Index>(i)] - h0[static_cast<Eigen::Index>(i)]);
@@ -245,7 +247,7 @@ void check_observation(const pfgen::Model& model, const SimulationPlugin& plugin
       }
       check_close(column, expected, 1e-14, "A column");
     }
-    // B through the raw table (LinearObservation does not expose it).
+    // B through the raw table (Observation does not expose it).
     std::vector<double> raw_A0(p), raw_A(p * n), B(p * r), B_expected;
     plugin.table().observation(t, raw_A0.data(), raw_A.data(), B.data());
     for (std::size_t i = 0; i < p; ++i)
@@ -484,17 +486,15 @@ TEST_CASE("plugin: a polynomial observation's truth observes h(x), with B from o
   REQUIRE(plugin.table().observation_rate != nullptr);
   check_batches(plugin);
   CHECK(plugin.observation_is_constant());
-  pfgen_runtime::LinearObservation observation = plugin.observation();
-  CHECK_FALSE(observation.is_linear());
-  Eigen::VectorXd x(2);
+  pfgen_runtime::Observation observation = plugin.observation();
+  CHECK_FALSE(observation.rate().affine());
+  CHECK_FALSE(observation.sampled());
+  Eigen::VectorXd x(2), h(1);
   x << 1.25, -0.5;
-  CHECK(observation.rate(0.0, x)[0] == 1.25 * 1.25 + 0.25);
-  Eigen::VectorXd A0(1), dy(1), dW2(1);
-  Eigen::MatrixXd A(1, 2), B(1, 1);
-  observation.coefficients(0.0, A0, A, B);
-  CHECK(B(0, 0) == 0.5);  // r
-  CHECK(A0.isZero());
-  CHECK(A.isZero());
+  observation.rate().value(0.0, x.data(), h.data());
+  CHECK(h[0] == 1.25 * 1.25 + 0.25);
+  Eigen::VectorXd dy(1), dW2(1);
+  CHECK(observation.noise(0.0)(0, 0) == 0.5);  // r
   dW2 << 0.125;
   observation.increment(0.0, 0.1, x, x, dW2, dy);
   CHECK(dy[0] == Approx(1.8125 * 0.1 + 0.5 * 0.125).epsilon(1e-15));
@@ -505,11 +505,11 @@ TEST_CASE("plugin: samples through a polynomial c are c(x) + Uv v", "[plugin][co
   const pfgen::Model model = pfgen::load_model_file(pfgen_test::example("polynomial/range_squared_sampled.yaml"));
   const SimulationPlugin plugin(
       built("range squared sampled", model, {pfgen::derive_filter(model, pfgen::FilterKind::CdOptimal)}).build.path);
-  REQUIRE(plugin.is_sampled());
   REQUIRE(plugin.table().observation_rate != nullptr);
   check_batches(plugin);
-  pfgen_runtime::SampledMeasurement measurement = plugin.measurement();
-  CHECK_FALSE(measurement.is_linear());
+  pfgen_runtime::Observation measurement = plugin.observation();
+  REQUIRE(measurement.sampled());
+  CHECK_FALSE(measurement.rate().affine());
   const double x[2] = {1.25, -0.5}, v[1] = {0.5};
   double clean[1], noisy[1];
   measurement.sample(0.1, x, v, clean, noisy);

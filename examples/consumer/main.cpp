@@ -27,7 +27,7 @@ int main() {
   system.drift = [](double, const double* x, double* f) { f[0] = 0.1 * x[0] * x[0]; };
   system.diffusion = [](double, const double* x, double* g) { g[0] = 0.1 * x[0] * x[0]; };
   const rt::AdaptiveEuler truth(system);  // superlinear coefficients: see runtime/README.md
-  const rt::LinearObservation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Identity(1, 1),
+  const rt::Observation observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Identity(1, 1),
                                           Eigen::MatrixXd::Identity(1, 1));
   const Eigen::VectorXd x0 = Eigen::VectorXd::Constant(1, 1.1);
 

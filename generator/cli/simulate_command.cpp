@@ -298,16 +298,6 @@ std::string reference_obstacle(const Model& model, const pfgen_runtime::Simulati
   return {};
 }
 
-// The runs: the truths, the observations drawn and fed to the filters as the plugin's are made,
-// samples at the period or a rate's increments dy (the runtime's two engines).
-pfgen_runtime::MonteCarloResult run_runs(const pfgen_runtime::TruthScheme& scheme,
-                                         const pfgen_runtime::SimulationPlugin& plugin, const Eigen::VectorXd& x0,
-                                         const pfgen_runtime::MonteCarloOptions& options) {
-  if (plugin.is_sampled())
-    return pfgen_runtime::run_monte_carlo(scheme, plugin.measurement(), x0, plugin.filters(), options);
-  return pfgen_runtime::run_monte_carlo(scheme, plugin.observation(), x0, plugin.filters(), options);
-}
-
 // The reference's settings: N, and the filters' prior N(m0, P0) from the model.
 // The filters' prior N(m0, P0) as numbers: where the particle reference starts, and what --x0
 // prior draws each run's truth from.
@@ -431,7 +421,9 @@ SimulationOutcome simulate(const SimulateOptions& options, JobGroup& group) {
 
     // With --x0 prior each run draws its own x0; the fixed one is then only a placeholder.
     const Eigen::VectorXd x0 = mc.initial_prior ? mc.initial_prior->mean : plugin.truth_initial_state();
-    folded = run_runs(*scheme, plugin, x0, mc);
+    // The plugin's one observation (its rate, noise and timing) makes the runs' observations and
+    // the filters' families take them: increments, or samples.
+    folded = pfgen_runtime::run_monte_carlo(*scheme, plugin.observation(), x0, plugin.filters(), mc);
   });
   progress.finish();
   SimulationOutcome outcome{std::move(job->model), job->settings, build, job->derive_seconds, start, std::nullopt};

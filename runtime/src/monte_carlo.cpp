@@ -36,11 +36,11 @@ namespace {
 
 using namespace monte_carlo_detail;
 
-void validate(const TruthScheme& scheme, const LinearObservation& observation, const SampledMeasurement* measurement,
-              const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters, const MonteCarloOptions& options) {
+void validate(const TruthScheme& scheme, const Observation& observation, const Eigen::VectorXd& x0,
+              const std::vector<FilterModel>& filters, const MonteCarloOptions& options) {
   const std::size_t n = scheme.system().n;
-  const std::size_t p = measurement ? measurement->p() : observation.p();
-  if (static_cast<std::size_t>(x0.size()) != n || observation.n() != n || (measurement && measurement->n() != n))
+  const std::size_t p = observation.p();
+  if (static_cast<std::size_t>(x0.size()) != n || observation.n() != n)
     throw std::invalid_argument("monte carlo: x0 and the observation must have the truth's n states");
   if (options.initial_prior &&
       (static_cast<std::size_t>(options.initial_prior->mean.size()) != n ||
@@ -71,7 +71,9 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
   for (const FilterModel& filter : filters) {
     if (filter.name.empty() || !names.insert(filter.name).second)
       throw std::invalid_argument("monte carlo: filter names must be non-empty and distinct ('" + filter.name + "')");
-    if (!filter.initial_state || (measurement ? !filter.sampled() || !filter.predict || !filter.update : !filter.step))
+    // A filter of the observation's timing: on samples it predicts and updates, on increments it steps.
+    const bool stepped = filter.sampled() ? filter.predict && filter.update : static_cast<bool>(filter.step);
+    if (!filter.initial_state || filter.sampled() != observation.sampled() || !stepped)
       throw std::invalid_argument("monte carlo: filter '" + filter.name + "' lacks initial_state or step " +
                                   "(predict and update for sampled observations)");
     if (filter.n != n || filter.p != p)
@@ -85,19 +87,11 @@ void validate(const TruthScheme& scheme, const LinearObservation& observation, c
     const std::string problem = criterion_weight_problem(options.criterion->weight, n);
     if (!problem.empty()) throw std::invalid_argument("monte carlo: " + problem);
   }
-  if (options.reference) {  // its checks
-    if (measurement)
-      (void)ParticleReference(scheme, *measurement, *options.reference, options.truth_guard.bound());
-    else
-      (void)ParticleReference(scheme, observation, *options.reference, options.truth_guard.bound());
-  }
-  if (measurement) (void)measurement->steps_per_sample(options.grid);  // throws unless whole
+  if (options.reference)  // its checks
+    (void)ParticleReference(scheme, observation, *options.reference, options.truth_guard.bound());
+  if (observation.sampled()) (void)observation.steps_per_sample(options.grid.dt);  // throws unless whole
   (void)observation.delay_steps(options.grid.dt);  // throws unless h is a whole number of steps
 }
-
-MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observation,
-                     const SampledMeasurement* measurement, const Eigen::VectorXd& x0,
-                     const std::vector<FilterModel>& filters, const MonteCarloOptions& options);
 
 }  // namespace
 
@@ -120,23 +114,6 @@ double EventSummary::median() const {
   return quantile(std::move(times), 0.5);
 }
 
-MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const LinearObservation& observation,
-                                 const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters,
-                                 const MonteCarloOptions& options) {
-  return run(scheme, observation, nullptr, x0, filters, options);
-}
-
-MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const SampledMeasurement& measurement,
-                                 const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters,
-                                 const MonteCarloOptions& options) {
-  // The truth loop (simulate_truth_into) also makes continuous increments; a zero observation
-  // stands in, and its increments are never read. The samples come from their own stream.
-  const std::size_t n = measurement.n();
-  const LinearObservation placeholder(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Zero(1, static_cast<Eigen::Index>(n)),
-                                      Eigen::MatrixXd::Zero(1, 1));
-  return run(scheme, placeholder, &measurement, x0, filters, options);
-}
-
 namespace {
 
 // The most runs a worker carries at once: each keeps its truth path and increments (and, in the
@@ -148,12 +125,13 @@ std::size_t batch_limit(const Plan& plan) {
   return static_cast<std::size_t>(std::max(1.0, std::floor(static_cast<double>(kBatchBytes) / per_run)));
 }
 
-MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observation,
-                     const SampledMeasurement* measurement, const Eigen::VectorXd& x0,
-                     const std::vector<FilterModel>& filters, const MonteCarloOptions& options) {
+}  // namespace
+
+MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const Observation& observation, const Eigen::VectorXd& x0,
+                                 const std::vector<FilterModel>& filters, const MonteCarloOptions& options) {
   const Clock::time_point wall_start = Clock::now();
-  validate(scheme, observation, measurement, x0, filters, options);
-  const Plan plan = make_plan(scheme.system().n, measurement ? measurement->p() : observation.p(), options);
+  validate(scheme, observation, x0, filters, options);
+  const Plan plan = make_plan(scheme.system().n, observation.p(), options);
 
   // This process's runs: all of them, or its share (a block, or chunks dealt or handed out to it).
   const RunShare* share = options.share ? &*options.share : nullptr;
@@ -171,7 +149,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   };
   const auto make_worker = [&](std::size_t batch) {
     return [&, batch](unsigned thread) {
-      workers[thread] = std::make_unique<Worker>(scheme, observation, measurement, filters, x0, plan, options, batch);
+      workers[thread] = std::make_unique<Worker>(scheme, observation, filters, x0, plan, options, batch);
       return workers[thread].get();
     };
   };
@@ -224,7 +202,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
     zero.filter_seconds.assign(filters.size(), 0.0);
     zero.filter_cpu_seconds.assign(filters.size(), 0.0);
     zero.filter_steps.assign(filters.size(), 0);
-    if (measurement) zero.filter_samples.assign(filters.size(), 0);
+    if (observation.sampled()) zero.filter_samples.assign(filters.size(), 0);
     return zero;
   };
   MonteCarloResult result;
@@ -242,7 +220,7 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
       timing.filter_seconds[f] += worker->filter_seconds[f];
       timing.filter_cpu_seconds[f] += worker->filter_cpu_seconds[f];
       timing.filter_steps[f] += worker->filter_steps[f];
-      if (measurement) timing.filter_samples[f] += worker->filter_samples[f];
+      if (observation.sampled()) timing.filter_samples[f] += worker->filter_samples[f];
     }
   }
 
@@ -310,13 +288,11 @@ MonteCarloResult run(const TruthScheme& scheme, const LinearObservation& observa
   result.criterion = options.criterion;
   aggregate(plan, filters, runs, options, result);
   for (FilterStatistics& filter : result.filters)
-    if (filter.sampled) filter.sampled->nonlinear = measurement && !measurement->is_linear();
+    if (filter.sampled) filter.sampled->nonlinear = !observation.rate().affine();
   timing.series_seconds = series_seconds;
   timing.aggregation_seconds = series_seconds + seconds_since(summaries_start);
   timing.wall_seconds = seconds_since(wall_start);
   return result;
 }
-
-}  // namespace
 
 }  // namespace pfgen_runtime

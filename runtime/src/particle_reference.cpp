@@ -20,36 +20,23 @@ std::uint64_t living(const LaneFlag* alive) { return lanes_set(alive, kParticleB
 
 }  // namespace
 
-ParticleReference::ParticleReference(const TruthScheme& scheme, const LinearObservation& observation,
+ParticleReference::ParticleReference(const TruthScheme& scheme, const Observation& observation,
                                      const ParticleReferenceOptions& options, double bound)
     : scheme_(scheme.clone()), observation_(observation), N_(options.particles), n_(scheme.system().n),
       q_(scheme.system().q), p_(observation.p()), m0_(options.m0), bound_(bound) {
   if (observation.delay() != 0) throw std::invalid_argument("particle reference: delayed observations are not supported");
   if (observation.n() != n_) throw std::invalid_argument("particle reference: the observation must have the truth's n states");
   initialise(options);
-  const auto n = static_cast<Eigen::Index>(n_), p = static_cast<Eigen::Index>(p_);
+  const auto p = static_cast<Eigen::Index>(p_);
   rate_start_.assign(blocks_ * p_ * kParticleBlock, 0.0);
   rate_spare_.assign(rate_start_.size(), 0.0);
   rate_end_.assign(p_ * kParticleBlock, 0.0);
-  A0_.resize(p);
-  A_.resize(p, n);
-  B_.resize(p, static_cast<Eigen::Index>(observation.r()));
   R_inv_.resize(p, p);
   R_inv_dy_.resize(p);
   h_.resize(p);
   R_inv_h_.resize(p);
-}
-
-ParticleReference::ParticleReference(const TruthScheme& scheme, const SampledMeasurement& measurement,
-                                     const ParticleReferenceOptions& options, double bound)
-    : scheme_(scheme.clone()), measurement_(measurement), N_(options.particles), n_(scheme.system().n),
-      q_(scheme.system().q), p_(measurement.p()), m0_(options.m0), bound_(bound) {
-  if (measurement.n() != n_) throw std::invalid_argument("particle reference: the samples must have the truth's n states");
-  initialise(options);
-  C0_.resize(p_);
-  C_.resize(p_ * n_);
-  Uv_.resize(p_ * measurement.q());
-  innovation_.resize(static_cast<Eigen::Index>(p_));
+  Uv_.resize(p_ * observation.r());
+  innovation_.resize(p);
   predicted_.resize(p_);
 }
 
@@ -81,21 +68,10 @@ void ParticleReference::initialise(const ParticleReferenceOptions& options) {
   z_.resize(static_cast<Eigen::Index>(n_));
 }
 
-// A0 + A x of every lane with the coefficients last fetched (plain loops, summed as the one-state
-// rate was: p and n are small), or the observation's nonlinear h(t, x) in one batched call. Dead
-// lanes are computed too, and never read.
+// The observation's rate of every lane in one call over the block (each lane what the truth's
+// one-state rate gives). Dead lanes are computed too, and never read.
 void ParticleReference::block_rate(double t, std::size_t b, double* rate) {
-  const double* x = block(particles_, n_, b);
-  if (!observation_->is_linear()) return observation_->nonlinear_rate_batch(t, kParticleBlock, x, rate);
-  for (std::size_t a = 0; a < p_; ++a) {
-    double* out = rate + a * kParticleBlock;
-    for (std::size_t k = 0; k < kParticleBlock; ++k) out[k] = A0_[static_cast<Eigen::Index>(a)];
-    for (std::size_t j = 0; j < n_; ++j) {
-      const double coefficient = A_(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(j));
-      const double* xj = x + j * kParticleBlock;
-      for (std::size_t k = 0; k < kParticleBlock; ++k) out[k] += coefficient * xj[k];
-    }
-  }
+  observation_.rate().lanes(t, kParticleBlock, block(particles_, n_, b), rate);
 }
 
 // log w_i += h_i^T R^-1 dy - 1/2 dt h_i^T R^-1 h_i with h_i the trapezoid 1/2 (start + end), for
@@ -196,12 +172,12 @@ bool ParticleReference::weigh_and_resample(Eigen::Ref<Eigen::VectorXd> out, Rand
     while (cumulative <= point && i + 1 < N_) cumulative += weight_[++i];
     while (weight_[i] == 0 && i + 1 < N_) cumulative += weight_[++i];  // round-off at the end: never a dead one
     for (std::size_t e = 0; e < n_; ++e) spare_[at(n_, j, e)] = particles_[at(n_, i, e)];
-    if (observation_)
-      for (std::size_t a = 0; a < p_; ++a) rate_spare_[at(p_, j, a)] = rate_start_[at(p_, i, a)];
+    // The rates at the step's left end (read only for increments) go with their particles.
+    for (std::size_t a = 0; a < p_; ++a) rate_spare_[at(p_, j, a)] = rate_start_[at(p_, i, a)];
     alive_spare_[j] = alive_[i];
   }
   particles_.swap(spare_);
-  if (observation_) rate_start_.swap(rate_spare_);
+  rate_start_.swap(rate_spare_);
   alive_.swap(alive_spare_);
   std::fill(log_weight_.begin(), log_weight_.end(), 0.0);
   weights_current_ = false;
@@ -268,17 +244,26 @@ ParticleReferenceRun ParticleReference::stopped(ParticleReferenceRun result, dou
   return result;
 }
 
-ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::MatrixXd& dy, std::ptrdiff_t truth_last,
-                                            std::uint64_t seed, std::uint64_t run, Eigen::MatrixXd& mean,
-                                            unsigned set) {
-  if (!observation_) throw std::logic_error("particle reference: made for sampled observations, run with increments");
-  ParticleReferenceRun result;
-  if (truth_last < 0) return result;
+ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const ObservedRun& observed,
+                                            std::ptrdiff_t truth_last, std::uint64_t seed, std::uint64_t run,
+                                            Eigen::MatrixXd& mean, unsigned set) {
+  if (truth_last < 0) return ParticleReferenceRun{};
   RandomStream stream = begin_run(seed, run, set);
+  if (observation_.sampled()) {
+    if (!observed.samples) throw std::invalid_argument("particle reference: the run's samples are missing");
+    return run_samples(grid, *observed.samples, observed.sample_count, truth_last, stream, mean);
+  }
+  if (!observed.dy) throw std::invalid_argument("particle reference: the run's increments are missing");
+  return run_increments(grid, *observed.dy, truth_last, stream, mean);
+}
+
+ParticleReferenceRun ParticleReference::run_increments(const TimeGrid& grid, const Eigen::MatrixXd& dy,
+                                                       std::ptrdiff_t truth_last, RandomStream& stream,
+                                                       Eigen::MatrixXd& mean) {
+  ParticleReferenceRun result;
   const auto p = static_cast<Eigen::Index>(p_);
 
   // Every particle's rate at t0.
-  observation_->coefficients(grid.t0, A0_, A_, B_);
   for (std::size_t b = 0; b < blocks_; ++b) block_rate(grid.t0, b, block(rate_start_, p_, b));
   if (!weigh_and_resample(mean.col(0), stream, result.resamplings)) return stopped(result, grid.time(0));
   result.last = 0;
@@ -286,14 +271,12 @@ ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::M
   for (std::size_t k = 0; static_cast<std::ptrdiff_t>(k) < truth_last; ++k) {
     const double t = grid.time(k), t_end = grid.time(k + 1);
     // R = B B^T at the step's left end, as the truth's noise term.
-    observation_->coefficients(t, A0_, A_, B_);
-    const Eigen::LLT<Eigen::MatrixXd> R(B_ * B_.transpose());
+    const Eigen::MatrixXd& B = observation_.noise(t);
+    const Eigen::LLT<Eigen::MatrixXd> R(B * B.transpose());
     if (R.info() != Eigen::Success) return stopped(result, t);
     R_inv_ = R.solve(Eigen::MatrixXd::Identity(p, p));
     R_inv_dy_.noalias() = R_inv_ * dy.col(static_cast<Eigen::Index>(k));
-    // The rates at the step's right end take A0 and A there.
-    observation_->coefficients(t_end, A0_, A_, B_);
-    propagate(t, grid.dt, t_end, stream, result, true);
+    propagate(t, grid.dt, t_end, stream, result, true);  // the rates at the step's right end
     if (!weigh_and_resample(mean.col(static_cast<Eigen::Index>(k + 1)), stream, result.resamplings))
       return stopped(result, t_end);
     result.last = static_cast<std::ptrdiff_t>(k + 1);
@@ -301,15 +284,11 @@ ParticleReferenceRun ParticleReference::run(const TimeGrid& grid, const Eigen::M
   return result;
 }
 
-ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::size_t steps_per_sample,
-                                                    const Eigen::MatrixXd& samples, std::size_t count,
-                                                    std::ptrdiff_t truth_last, std::uint64_t seed, std::uint64_t run,
-                                                    Eigen::MatrixXd& mean, unsigned set) {
-  if (!measurement_) throw std::logic_error("particle reference: made for increments dy, run with samples");
+ParticleReferenceRun ParticleReference::run_samples(const TimeGrid& grid, const Eigen::MatrixXd& samples,
+                                                    std::size_t count, std::ptrdiff_t truth_last, RandomStream& stream,
+                                                    Eigen::MatrixXd& mean) {
   ParticleReferenceRun result;
-  if (truth_last < 0) return result;
-  RandomStream stream = begin_run(seed, run, set);
-  const std::size_t q = measurement_->q();
+  const std::size_t steps_per_sample = observation_.steps_per_sample(grid.dt), q = observation_.r();
   if (!weigh_and_resample(mean.col(0), stream, result.resamplings)) return stopped(result, grid.time(0));
   result.last = 0;
 
@@ -317,10 +296,13 @@ ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::s
     propagate(grid.time(k), grid.dt, grid.time(k + 1), stream, result, false);
     const std::size_t sample = (k + 1) / steps_per_sample;
     if ((k + 1) % steps_per_sample == 0 && sample >= 1 && sample <= count) {
-      // y_s ~ N(C0 + C x, Uv Uv^T) at t_s = t0 + s T, the time draw_samples used.
-      measurement_->evaluate(grid.t0 + static_cast<double>(sample) * measurement_->period(), C0_.data(), C_.data(),
-                             Uv_.data());
+      // y_s ~ N(h(t_s, x), Uv Uv^T) at t_s = t0 + s T, the time draw_samples used; Uv row-major,
+      // the product's operands as they have always been laid out.
+      const double t_s = grid.t0 + static_cast<double>(sample) * observation_.period();
+      const Eigen::MatrixXd& noise = observation_.noise(t_s);
       const auto p = static_cast<Eigen::Index>(p_);
+      for (Eigen::Index a = 0; a < p; ++a)
+        for (std::size_t j = 0; j < q; ++j) Uv_[static_cast<std::size_t>(a) * q + j] = noise(a, static_cast<Eigen::Index>(j));
       const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> Uv(
           Uv_.data(), p, static_cast<Eigen::Index>(q));
       const Eigen::LLT<Eigen::MatrixXd> S(Uv * Uv.transpose());
@@ -330,8 +312,7 @@ ParticleReferenceRun ParticleReference::run_sampled(const TimeGrid& grid, std::s
       for (std::size_t i = 0; i < N_; ++i) {
         if (!alive_[i]) continue;
         for (std::size_t e = 0; e < n_; ++e) x_[static_cast<Eigen::Index>(e)] = particles_[at(n_, i, e)];
-        measurement_->noise_free(grid.t0 + static_cast<double>(sample) * measurement_->period(), C0_.data(), C_.data(),
-                                 x_.data(), predicted_.data());
+        observation_.rate().value(t_s, x_.data(), predicted_.data());
         for (Eigen::Index a = 0; a < p; ++a) innovation_[a] = y[a] - predicted_[a];
         S.matrixL().solveInPlace(innovation_);  // L^-1 e: |L^-1 e|^2 = e^T S^-1 e
         log_weight_[i] += -0.5 * innovation_.squaredNorm();

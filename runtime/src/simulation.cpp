@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "pfgen_runtime/random.hpp"
-#include "pfgen_support/whole_steps.hpp"
 
 namespace pfgen_runtime {
 
@@ -20,7 +19,7 @@ TimeGrid TimeGrid::to_horizon(double t0, double T, double dt) {
   return grid;
 }
 
-TruthRun simulate_truth(TruthScheme& scheme, LinearObservation& observation, const Eigen::VectorXd& x0,
+TruthRun simulate_truth(TruthScheme& scheme, Observation& observation, const Eigen::VectorXd& x0,
                         const TimeGrid& grid, std::uint64_t seed, std::uint64_t run, const DivergenceGuard& guard) {
   const SdeSystem& system = scheme.system();
   if (x0.size() != static_cast<Eigen::Index>(system.n) || observation.n() != system.n)
@@ -30,7 +29,7 @@ TruthRun simulate_truth(TruthScheme& scheme, LinearObservation& observation, con
   TruthRun result;
   result.grid = grid;
   result.x.resize(static_cast<Eigen::Index>(system.n), static_cast<Eigen::Index>(grid.steps + 1));
-  result.dy.resize(static_cast<Eigen::Index>(observation.p()), static_cast<Eigen::Index>(grid.steps));
+  result.dy.setZero(static_cast<Eigen::Index>(observation.p()), static_cast<Eigen::Index>(grid.steps));
   const std::ptrdiff_t last =
       simulate_truth_into(scheme, observation, x0, grid, seed, run, guard, result.x, result.dy, result.divergence);
   result.completed_steps = last > 0 ? static_cast<std::size_t>(last) : 0;
@@ -51,7 +50,7 @@ std::optional<DivergenceEvent> take_truth_step(TruthScheme& scheme, double t, Ei
   return std::nullopt;
 }
 
-std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& observation, const Eigen::VectorXd& x0,
+std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, Observation& observation, const Eigen::VectorXd& x0,
                                    const TimeGrid& grid, std::uint64_t seed, std::uint64_t run,
                                    const DivergenceGuard& guard, Eigen::MatrixXd& path,
                                    Eigen::MatrixXd& dy, std::optional<DivergenceEvent>& divergence) {
@@ -60,11 +59,11 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
   RandomStream truth_noise(seed, run, substream::truth_noise);
   RandomStream observation_noise(seed, run, substream::observation_noise);
   WienerIncrements truth_increments(truth_noise, scheme.system().q, grid.dt);
-  WienerIncrements observation_increments(observation_noise, observation.r(), grid.dt);
+  WienerIncrements observation_increments(observation_noise, observation.increment_noise(), grid.dt);
   Eigen::VectorXd x = x0;
   using Increment = Eigen::Map<const Eigen::VectorXd>;
-  // The delay in grid steps: dy over step k reads the path at k - D and k + 1 - D (both stored
-  // when D >= 1), clamped at 0 for the pre-history x(s) = x(0), s < 0.
+  // The delay in grid steps: dy over step k reads the path at k - D and k + 1 - D (stored before
+  // the increment is taken), clamped at 0 for the pre-history x(s) = x(0), s < 0.
   const std::size_t D = observation.delay_steps(grid.dt);
 
   divergence = guard.check(grid.t0, x);
@@ -83,75 +82,26 @@ std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& obser
       return static_cast<std::ptrdiff_t>(k);
     }
     const auto column = static_cast<Eigen::Index>(k);
-    if (D == 0) {
-      observation.increment(t, grid.dt, path.col(column), x, dW2, dy.col(column));
-    } else {
-      const auto start = static_cast<Eigen::Index>(k >= D ? k - D : 0);
-      const auto end = static_cast<Eigen::Index>(k + 1 >= D ? k + 1 - D : 0);
-      observation.increment(t, grid.dt, path.col(start), path.col(end), dW2, dy.col(column));
-    }
     path.col(column + 1) = x;
+    const auto start = static_cast<Eigen::Index>(k >= D ? k - D : 0);
+    const auto end = static_cast<Eigen::Index>(k + 1 >= D ? k + 1 - D : 0);
+    observation.increment(t, grid.dt, path.col(start), path.col(end), dW2, dy.col(column));
   }
   return static_cast<std::ptrdiff_t>(grid.steps);
 }
 
-SampledMeasurement::SampledMeasurement(std::size_t p, std::size_t n, std::size_t q, double period,
-                                       Coefficients coefficients)
-    : p_(p), n_(n), q_(q), period_(period), coefficients_(std::move(coefficients)), C0_(p), C_(p * n), Uv_(p * q) {
-  if (p == 0 || n == 0 || q == 0) throw std::invalid_argument("sampled measurement: p, n and q must be at least 1");
-  if (!(period > 0) || !std::isfinite(period)) throw std::invalid_argument("sampled measurement: the period must be > 0");
-  if (!coefficients_) throw std::invalid_argument("sampled measurement: the coefficient callback is missing");
-}
-
-std::size_t SampledMeasurement::steps_per_sample(const TimeGrid& grid) const {
-  const std::optional<double> whole = pfgen_support::whole_steps(period_, grid.dt);
-  // A precondition of the API: `pfgen simulate` refuses such a dt before, naming the model's
-  // period and the option to change, so this short message is for library users only.
-  if (!whole || *whole < 1) {
-    char text[120];
-    std::snprintf(text, sizeof text, "steps_per_sample: period / dt = %.17g is not a whole number of steps >= 1",
-                  period_ / grid.dt);
-    throw std::invalid_argument(text);
-  }
-  return static_cast<std::size_t>(*whole);
-}
-
-void SampledMeasurement::set_function(Function c) {
-  if (!c) throw std::invalid_argument("sampled measurement: the sample function is missing");
-  function_ = std::move(c);
-}
-
-void SampledMeasurement::noise_free(double t, const double* C0, const double* C, const double* x, double* clean) const {
-  if (function_) return function_(t, x, clean);
-  for (std::size_t i = 0; i < p_; ++i) {
-    double value = C0[i];
-    for (std::size_t j = 0; j < n_; ++j) value += C[i * n_ + j] * x[j];
-    clean[i] = value;
-  }
-}
-
-void SampledMeasurement::sample(double t, const double* x, const double* v, double* clean, double* noisy) {
-  coefficients_(t, C0_.data(), C_.data(), Uv_.data());
-  noise_free(t, C0_.data(), C_.data(), x, clean);
-  for (std::size_t i = 0; i < p_; ++i) {
-    double value = clean[i];
-    for (std::size_t j = 0; j < q_; ++j) value += Uv_[i * q_ + j] * v[j];
-    noisy[i] = value;
-  }
-}
-
-std::size_t draw_samples(SampledMeasurement& measurement, const TimeGrid& grid, std::size_t steps_per_sample,
+std::size_t draw_samples(Observation& observation, const TimeGrid& grid, std::size_t steps_per_sample,
                          const Eigen::MatrixXd& path, std::ptrdiff_t last, std::uint64_t seed, std::uint64_t run,
                          Eigen::MatrixXd& clean, Eigen::MatrixXd& noisy) {
-  if (last < 0) return 0;
+  if (last < 0 || !observation.sampled()) return 0;  // continuous increments: no samples
   const std::size_t samples = static_cast<std::size_t>(last) / steps_per_sample;
   RandomStream noise(seed, run, substream::observation_noise);
-  Eigen::VectorXd v(static_cast<Eigen::Index>(measurement.q()));
+  Eigen::VectorXd v(static_cast<Eigen::Index>(observation.r()));
   for (std::size_t k = 1; k <= samples; ++k) {
     for (Eigen::Index j = 0; j < v.size(); ++j) v[j] = noise.normal();
     const auto column = static_cast<Eigen::Index>(k - 1);
     // t_k = t0 + k T exactly, not the grid's t0 + (k N) dt (the same point up to rounding).
-    measurement.sample(grid.t0 + static_cast<double>(k) * measurement.period(),
+    observation.sample(grid.t0 + static_cast<double>(k) * observation.period(),
                        path.col(static_cast<Eigen::Index>(k * steps_per_sample)).data(), v.data(),
                        clean.col(column).data(), noisy.col(column).data());
   }

@@ -130,24 +130,14 @@ SdeSystem SimulationPlugin::system() const {
   return system;
 }
 
-SampledMeasurement SimulationPlugin::measurement() const {
-  if (!is_sampled()) throw PluginLoadError("model " + model_name() + " has continuous observations, not samples");
-  const std::shared_ptr<void> library = library_;
-  SampledMeasurement measurement(table_->p, table_->n, table_->r, table_->period,
-                                 [library, fill = table_->sampled_observation](double t, double* C0, double* C, double* Uv) {
-                                   fill(t, C0, C, Uv);
-                                 });
-  if (table_->observation_rate)
-    measurement.set_function([library, c = table_->observation_rate](double t, const double* x, double* out) { c(t, x, out); });
-  return measurement;
-}
-
-LinearObservation SimulationPlugin::observation() const {
-  if (is_sampled()) throw PluginLoadError("model " + model_name() + " has sampled observations: use measurement()");
+Observation SimulationPlugin::observation() const {
   const std::size_t n = table_->n, p = table_->p, r = table_->r;
   const std::shared_ptr<void> library = library_;
-  // The ABI's matrices are row-major, Eigen's column-major: copy through row-major buffers.
-  auto coefficients = [library, fill = table_->observation, A0_rows = Eigen::VectorXd(p), A_rows = RowMajor(p, n),
+  const bool sampled = table_->observation_is_sampled != 0;
+  // The coefficients (A0, A, B, or a sample's C0, C, Uv): row-major in the ABI, column-major in
+  // Eigen, copied through row-major buffers.
+  auto coefficients = [library, fill = sampled ? table_->sampled_observation : table_->observation,
+                       A0_rows = Eigen::VectorXd(p), A_rows = RowMajor(p, n),
                        B_rows = RowMajor(p, r)](double t, Eigen::VectorXd& A0, Eigen::MatrixXd& A,
                                                 Eigen::MatrixXd& B) mutable {
     fill(t, A0_rows.data(), A_rows.data(), B_rows.data());
@@ -155,19 +145,32 @@ LinearObservation SimulationPlugin::observation() const {
     A = A_rows;
     B = B_rows;
   };
-  LinearObservation observation = [&] {
-    if (!table_->observation_is_constant) return LinearObservation(p, n, r, coefficients);
-    Eigen::VectorXd A0(p);
-    Eigen::MatrixXd A(p, n), B(p, r);
-    coefficients(0.0, A0, A, B);
-    return LinearObservation(A0, A, B);
-  }();
-  observation.set_delay(table_->delay);
+  Eigen::VectorXd A0(p);
+  Eigen::MatrixXd A(p, n), B(p, r);
+  const bool constant = table_->observation_is_constant != 0;
+  if (constant) coefficients(0.0, A0, A, B);
+  // The rate: the plugin's function, or A0 + A x.
+  std::unique_ptr<ObservationRate> rate;
   if (table_->observation_rate)
-    observation.set_rate([library, rate = table_->observation_rate](double t, const double* x, double* h) { rate(t, x, h); },
-                         [library, rate = table_->observation_rate_batch](double t, std::size_t count, const double* x,
-                                                                          double* h) { rate(t, count, x, h); });
-  return observation;
+    rate = std::make_unique<FunctionRate>(
+        p, n, [library, h = table_->observation_rate](double t, const double* x, double* out) { h(t, x, out); },
+        [library, h = table_->observation_rate_batch](double t, std::size_t count, const double* x, double* out) {
+          h(t, count, x, out);
+        });
+  else if (constant)
+    rate = std::make_unique<AffineRate>(A0, A);
+  else
+    rate = std::make_unique<AffineRate>(p, n, [coefficients, B](double t, Eigen::VectorXd& a0, Eigen::MatrixXd& a) mutable {
+      coefficients(t, a0, a, B);
+    });
+  // The noise factor, from the same coefficients.
+  ObservationNoise noise = constant ? ObservationNoise(B)
+                                    : ObservationNoise(p, r, [coefficients, A0, A](double t, Eigen::MatrixXd& b) mutable {
+                                        coefficients(t, A0, A, b);
+                                      });
+  // The timing.
+  if (sampled) return Observation::sampled(std::move(rate), std::move(noise), table_->period);
+  return Observation::continuous(std::move(rate), std::move(noise), table_->delay);
 }
 
 void SimulationPlugin::check_grid_step(double dt) const {

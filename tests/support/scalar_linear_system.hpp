@@ -27,8 +27,8 @@ inline pfgen_runtime::SdeSystem scalar_linear_system(const ScalarLinear& model) 
 }
 
 // dy = x dt + r dW2.
-inline pfgen_runtime::LinearObservation scalar_observation(double r) {
-  return pfgen_runtime::LinearObservation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1),
+inline pfgen_runtime::Observation scalar_observation(double r) {
+  return pfgen_runtime::Observation(Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Ones(1, 1),
                                           Eigen::MatrixXd::Constant(1, 1, r));
 }
 

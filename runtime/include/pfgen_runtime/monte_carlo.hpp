@@ -218,8 +218,8 @@ struct EventSummary {
 // noise-free C0 + C x(t_k) (clean) and the sample y_k itself (noisy). Av* is the mean over runs,
 // *_se its standard error (sample standard deviation / sqrt(runs)); NaN when runs < 1 (se: < 2).
 struct SampledMetrics {
-  // Samples through a nonlinear c (SampledMeasurement::set_function): Yhat = c(m(t_k|t_k)) and the
-  // clean Y = c(x(t_k)) instead of C0 + C m and C0 + C x.
+  // Samples through a rate that is not affine (a polynomial c, FunctionRate): Yhat = c(m(t_k|t_k))
+  // and the clean Y = c(x(t_k)) instead of C0 + C m and C0 + C x.
   bool nonlinear = false;
   std::size_t runs = 0;
   std::size_t samples = 0;  // K
@@ -405,19 +405,15 @@ struct MonteCarloResult {
 // each. Each thread works on its own clone of the scheme and copies of the observation and of
 // the filters. Run r reproduces simulate_truth(scheme, observation, x0, grid, seed, r,
 // truth_guard) and run_filter(filter, truth, filter_guards) bit for bit. Filters must have the
-// truth's n states and the observation's p, distinct non-empty names. std::invalid_argument for
-// inconsistent inputs or options; an exception thrown by a callback in a worker stops the other
-// workers and is rethrown here.
-MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const LinearObservation& observation,
-                                 const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters,
-                                 const MonteCarloOptions& options);
-
-// The same for sampled observations: the truth on its grid as above (its steps and truth stream
-// unchanged), samples drawn at t_k = t0 + k T (draw_samples), and sampled filters (FilterModel::
-// sampled(), p = measurement.p()) predicting between samples and updating at each. The period
-// must be a whole number of grid steps (std::invalid_argument otherwise). Thread-count
-// independent like the continuous engine; each FilterStatistics has `sampled` set.
-MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const SampledMeasurement& measurement,
+// truth's n states and the observation's p, distinct non-empty names, and the observation's
+// timing: continuous filters (step) on increments, sampled ones (FilterModel::sampled(): predict
+// and update) on samples. With samples the truth is stepped on its grid as above (its steps and
+// truth stream unchanged), the samples drawn at t_k = t0 + k T (draw_samples; the period must be
+// a whole number of grid steps, std::invalid_argument otherwise), the filters predicting between
+// samples and updating at each, and each FilterStatistics has `sampled` set.
+// std::invalid_argument for inconsistent inputs or options; an exception thrown by a callback in a
+// worker stops the other workers and is rethrown here.
+MonteCarloResult run_monte_carlo(const TruthScheme& scheme, const Observation& observation,
                                  const Eigen::VectorXd& x0, const std::vector<FilterModel>& filters,
                                  const MonteCarloOptions& options);
 

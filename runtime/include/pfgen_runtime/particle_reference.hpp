@@ -11,7 +11,7 @@
 //   nonlinear rate): per grid step the Girsanov log-likelihood increment
 //     log w_i += h_i^T R^-1 dy - 1/2 h_i^T R^-1 h_i dt,
 //   with h_i = 1/2 [h(t, x_i(t)) + h(t + dt, x_i(t + dt))], the trapezoid the truth's dy uses
-//   (LinearObservation::increment), and R at the step's left end as its noise term. Normalised
+//   (Observation::increment), and R at the step's left end as its noise term. Normalised
 //   with the largest log-weight subtracted.
 // - Sampled observations y_k = C0 + C x(t_k) + Uv v_k (or c(x(t_k)) + Uv v_k) instead: the weights
 //   change only at the samples, by log w_i += -1/2 (y_k - C0 - C x_i)^T (Uv Uv^T)^-1 (y_k - C0 - C x_i),
@@ -72,45 +72,55 @@ struct ParticleReferenceRun {
   std::uint64_t particle_steps = 0;  // scheme steps taken, for the timing line
 };
 
+// One run's observations as the truth made them: its increments dy (p x steps) for continuous
+// observations, or its samples y_1 .. y_count (the columns of `samples`, draw_samples' noisy, y_s
+// at grid index s steps_per_sample) for sampled ones. Only the observation's own kind is read.
+struct ObservedRun {
+  const Eigen::MatrixXd* dy = nullptr;
+  const Eigen::MatrixXd* samples = nullptr;
+  std::size_t sample_count = 0;
+};
+
 class ParticleReference {
  public:
   // std::invalid_argument: N outside 1 .. kMaxParticles, m0 or P0 not the truth's n, P0 not
   // symmetric positive semi-definite, an observation with a delay or of other n, or q == 0.
   // `bound`: the divergence bound of the truth (DivergenceGuard) that ends a particle.
-  ParticleReference(const TruthScheme& scheme, const LinearObservation& observation,
-                    const ParticleReferenceOptions& options, double bound);
-  // For sampled observations y_k = C0 + C x(t_k) + Uv v_k: weights change only at the samples,
-  // by the Gaussian likelihood log w_i += -1/2 (y_k - C0 - C x_i)^T (Uv Uv^T)^-1 (y_k - C0 - C x_i).
-  ParticleReference(const TruthScheme& scheme, const SampledMeasurement& measurement,
-                    const ParticleReferenceOptions& options, double bound);
+  ParticleReference(const TruthScheme& scheme, const Observation& observation, const ParticleReferenceOptions& options,
+                    double bound);
 
-  // Runs the filter over the increments dy.col(0 .. truth_last - 1) of run `run` on `grid`,
-  // writing the weighted mean at grid index j into mean.col(j) for j = 0 .. result.last (mean is
+  // Runs the filter over run `run`'s observations up to grid index truth_last on `grid`, writing
+  // the weighted mean at grid index j into mean.col(j) for j = 0 .. result.last (mean is
   // n x (grid.steps + 1), sized by the caller). truth_last < 0: nothing (last = -1).
   // `set` 1 draws a second particle set, independent of set 0's (substream::second_particle_*):
   // the spread of the two means estimates the Monte Carlo error of either.
-  ParticleReferenceRun run(const TimeGrid& grid, const Eigen::MatrixXd& dy, std::ptrdiff_t truth_last,
+  ParticleReferenceRun run(const TimeGrid& grid, const ObservedRun& observed, std::ptrdiff_t truth_last,
                            std::uint64_t seed, std::uint64_t run, Eigen::MatrixXd& mean, unsigned set = 0);
-
-  // The same for sampled observations (the second constructor): the samples y_1 .. y_count in the
-  // columns of `samples` (draw_samples' `noisy`), y_s at grid index s steps_per_sample.
-  ParticleReferenceRun run_sampled(const TimeGrid& grid, std::size_t steps_per_sample, const Eigen::MatrixXd& samples,
-                                   std::size_t count, std::ptrdiff_t truth_last, std::uint64_t seed, std::uint64_t run,
-                                   Eigen::MatrixXd& mean, unsigned set = 0);
+  // The same on continuous increments dy.col(0 .. truth_last - 1).
+  ParticleReferenceRun run(const TimeGrid& grid, const Eigen::MatrixXd& dy, std::ptrdiff_t truth_last,
+                           std::uint64_t seed, std::uint64_t run, Eigen::MatrixXd& mean, unsigned set = 0) {
+    return this->run(grid, ObservedRun{&dy, nullptr, 0}, truth_last, seed, run, mean, set);
+  }
 
   std::size_t particles() const { return N_; }
 
  private:
   void initialise(const ParticleReferenceOptions& options);
-  // A run's start for both observation kinds: the truth's scheme keyed for the run, the particles'
+  // run()'s weighting by the timing: Girsanov's per grid step on increments, the Gaussian
+  // likelihood at the samples.
+  ParticleReferenceRun run_increments(const TimeGrid& grid, const Eigen::MatrixXd& dy, std::ptrdiff_t truth_last,
+                                      RandomStream& stream, Eigen::MatrixXd& mean);
+  ParticleReferenceRun run_samples(const TimeGrid& grid, const Eigen::MatrixXd& samples, std::size_t count,
+                                   std::ptrdiff_t truth_last, RandomStream& stream, Eigen::MatrixXd& mean);
+  // A run's start for both timings: the truth's scheme keyed for the run, the particles'
   // own stream, and the prior drawn from it.
   RandomStream begin_run(std::uint64_t seed, std::uint64_t run, unsigned set);
   // `result` marked as stopped at t (every weight 0, or a covariance that is not positive definite).
   static ParticleReferenceRun stopped(ParticleReferenceRun result, double t);
   void draw_prior(RandomStream& stream);
   // Every living particle over [t, t + dt], block by block; with continuous observations
-  // (`weigh`) each block's weights then take the step's likelihood (R_inv_, R_inv_dy_, and A0_
-  // and A_ at t_end = the grid's t + dt, already set).
+  // (`weigh`) each block's weights then take the step's likelihood (R_inv_ and R_inv_dy_ already
+  // set; the rates at t_end = the grid's t + dt).
   void propagate(double t, double dt, double t_end, RandomStream& stream, ParticleReferenceRun& result, bool weigh);
   // Block b's observation rate at t into `rate` (p x kParticleBlock, entry-major).
   void block_rate(double t, std::size_t b, double* rate);
@@ -128,8 +138,7 @@ class ParticleReference {
   }
 
   std::unique_ptr<TruthScheme> scheme_;
-  std::optional<LinearObservation> observation_;    // continuous observations
-  std::optional<SampledMeasurement> measurement_;  // or sampled ones
+  Observation observation_;
   std::size_t N_, n_, q_, p_;
   std::size_t blocks_;  // ceil(N / kParticleBlock); the last block's lanes beyond N are dead
   Eigen::VectorXd m0_;
@@ -146,10 +155,10 @@ class ParticleReference {
   bool weights_current_ = false;
   double weight_sum_ = 0, weight_squares_ = 0;
   std::vector<LaneFlag> alive_, alive_spare_;    // blocks_ * kParticleBlock lanes
-  Eigen::VectorXd x_, z_, A0_, R_inv_dy_, h_, R_inv_h_;
-  Eigen::MatrixXd A_, B_, R_inv_;
-  std::vector<double> C0_, C_, Uv_;  // a sample's coefficients, row-major
-  std::vector<double> predicted_;    // C0 + C x_i, or c(x_i)
+  Eigen::VectorXd x_, z_, R_inv_dy_, h_, R_inv_h_;
+  Eigen::MatrixXd R_inv_;
+  std::vector<double> Uv_;         // a sample's noise factor, row-major
+  std::vector<double> predicted_;  // h(t_k, x_i)
   Eigen::VectorXd innovation_;
 };
 

@@ -42,12 +42,13 @@ struct TruthRun {
 };
 
 // Steps `scheme` from x0 over `grid` with Wiener increments from the run's truth stream, and
-// generates dy from its observation stream (with the observation's delay h = D dt, dy over step k
+// generates dy from its observation stream (continuous observations; for samples dy is zero and
+// draw_samples takes them after the truth) (with the observation's delay h = D dt, dy over step k
 // from the path at k - D and k + 1 - D, x(s) = x(0) for s < 0; std::invalid_argument unless h is
 // a whole number of steps). The run stops at the first grid time whose state
 // the guard rejects (that state is not stored; the event has its time). The scheme and
 // observation are used, not copied: give each thread its own.
-TruthRun simulate_truth(TruthScheme& scheme, LinearObservation& observation, const Eigen::VectorXd& x0,
+TruthRun simulate_truth(TruthScheme& scheme, Observation& observation, const Eigen::VectorXd& x0,
                         const TimeGrid& grid, std::uint64_t seed, std::uint64_t run,
                         const DivergenceGuard& guard = DivergenceGuard());
 
@@ -62,53 +63,17 @@ std::optional<DivergenceEvent> take_truth_step(TruthScheme& scheme, double t, Ei
 // by the caller. Returns the last grid index whose state is stored in path (-1 when the guard
 // rejects x0); `divergence` is the guard's event when it stopped the run. No argument checks:
 // simulate_truth makes them.
-std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, LinearObservation& observation, const Eigen::VectorXd& x0,
+std::ptrdiff_t simulate_truth_into(TruthScheme& scheme, Observation& observation, const Eigen::VectorXd& x0,
                                    const TimeGrid& grid, std::uint64_t seed, std::uint64_t run,
                                    const DivergenceGuard& guard, Eigen::MatrixXd& path,
                                    Eigen::MatrixXd& dy, std::optional<DivergenceEvent>& divergence);
 
-// Samples y_k = C0 + C x(t_k) + Uv v_k (v_k standard normal, q entries) of the truth at
-// t_k = t0 + k period, k >= 1. The coefficients are evaluated at each sample time (row-major
-// C0: p, C: p x n, Uv: p x q); period must be a whole number of the grid's steps.
-class SampledMeasurement {
- public:
-  using Coefficients = std::function<void(double t, double* C0, double* C, double* Uv)>;
-  // std::invalid_argument unless p, n, q >= 1, period > 0 and the callback is set.
-  SampledMeasurement(std::size_t p, std::size_t n, std::size_t q, double period, Coefficients coefficients);
-  std::size_t p() const { return p_; }
-  std::size_t n() const { return n_; }
-  std::size_t q() const { return q_; }
-  double period() const { return period_; }
-  // Grid steps per period: round(period / dt); std::invalid_argument when period / dt is not a
-  // whole number (relative tolerance 1e-9) or the period is shorter than dt.
-  std::size_t steps_per_sample(const TimeGrid& grid) const;
-  // Fills C0 (p), C (p x n) and Uv (p x q), row-major, at time t. Not thread-safe: copy per thread.
-  void evaluate(double t, double* C0, double* C, double* Uv) const { coefficients_(t, C0, C, Uv); }
-  // Samples c(t, x) + Uv v through any function c (a polynomial c, docs/theory.md §2.5) in place
-  // of C0 + C x; the coefficients then give Uv only. std::invalid_argument for an empty function.
-  using Function = std::function<void(double t, const double* x, double* c)>;
-  void set_function(Function c);
-  bool is_linear() const { return !function_; }
-  // The noise-free value C0 + C x (or c(t, x)) and the sample, plus Uv v, at t, into clean and
-  // noisy (p).
-  void sample(double t, const double* x, const double* v, double* clean, double* noisy);
-  // The noise-free value alone, with the coefficients evaluate() last gave for a linear one (so a
-  // caller weighing many states at one t fetches them once): C0 + C x from C0 and C, or c(t, x).
-  void noise_free(double t, const double* C0, const double* C, const double* x, double* clean) const;
-
- private:
-  std::size_t p_, n_, q_;
-  double period_;
-  Coefficients coefficients_;
-  Function function_;  // empty: C0 + C x
-  std::vector<double> C0_, C_, Uv_;
-};
-
-// The samples of one truth path: for k = 1 .. K with k * steps_per_sample <= last (the last
-// stored grid index), column k - 1 of `clean` is C0 + C x(t_k) and of `noisy` the sample y_k, the
-// noise drawn from RandomStream(seed, run, substream::observation_noise), q normals per sample in
-// sample order. Returns K. The matrices are p x (at least K), sized by the caller.
-std::size_t draw_samples(SampledMeasurement& measurement, const TimeGrid& grid, std::size_t steps_per_sample,
+// The samples of one truth path (an observation with samples): for k = 1 .. K with
+// k * steps_per_sample <= last (the last stored grid index), column k - 1 of `clean` is h(t_k,
+// x(t_k)) and of `noisy` the sample y_k, the noise drawn from RandomStream(seed, run,
+// substream::observation_noise), r() normals per sample in sample order. Returns K. The matrices
+// are p x (at least K), sized by the caller. 0 for continuous increments.
+std::size_t draw_samples(Observation& observation, const TimeGrid& grid, std::size_t steps_per_sample,
                          const Eigen::MatrixXd& path, std::ptrdiff_t last, std::uint64_t seed, std::uint64_t run,
                          Eigen::MatrixXd& clean, Eigen::MatrixXd& noisy);
 

@@ -1,6 +1,6 @@
 #pragma once
 // A compiled simulation plugin (plugin_abi.h) loaded with dlopen: a model's truth, observation
-// and filters as the runtime's own types. Every SdeSystem, LinearObservation and FilterModel
+// and filters as the runtime's own types. Every SdeSystem, Observation and FilterModel
 // it returns holds a reference to the loaded library, so they stay valid after the
 // SimulationPlugin itself is gone; the library is closed with the last of them.
 #include <cstddef>
@@ -63,19 +63,14 @@ class SimulationPlugin {
   // The truth SDE. A model giving only G = g g^T gets g from diffusion_from_covariance (q = n,
   // no Jacobian).
   SdeSystem system() const;
-  // Samples y_k = C0 + C x(t_k) + Uv v_k every period() (r() = columns of Uv).
-  bool is_sampled() const { return table_->observation_is_sampled != 0; }
-  double period() const { return table_->period; }
-  // dy = (A0 + A x(t - h)) dt + B dW2: constant coefficients when they do not depend on t, the
-  // delay h (0 but for delayed observations) set; or dy = h(x, t) dt + B dW2 with the plugin's
-  // nonlinear rate set (a polynomial observation). PluginLoadError for a sampled model.
-  LinearObservation observation() const;
-  double delay() const { return table_->delay; }
+  // The observation, built from the table's axes: its rate (the plugin's observation_rate, or
+  // A0 + A x from its coefficients), its noise factor (B, or a sample's Uv: r() columns) and its
+  // timing (samples every period, or continuous increments with the delay h, 0 but for delayed
+  // observations). Coefficients that do not depend on t are evaluated once.
+  Observation observation() const;
   // PluginLoadError unless every filter accepts the grid step dt: a delayed filter (fixed_dt)
   // runs only on the grid it was generated for, and so does the delay's step count.
   void check_grid_step(double dt) const;
-  // The samples of a sampled model; PluginLoadError for a continuous one.
-  SampledMeasurement measurement() const;
   // The model's initial.x0; PluginLoadError (std::runtime_error) when the model gives none.
   Eigen::VectorXd truth_initial_state() const;
   // The filters in the plugin's order, at the model's default parameters (for a sampled model

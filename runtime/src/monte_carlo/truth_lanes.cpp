@@ -15,7 +15,7 @@ namespace pfgen_runtime::monte_carlo_detail {
 void Worker::simulate_truths_lanes(std::size_t first, std::size_t count, RunResult* out) {
   const TimeGrid& grid = plan_.grid;
   const DivergenceGuard& guard = options_.truth_guard;
-  const std::size_t n = plan_.n, q = scheme_->system().q, r = observation_.r(), p = observation_.p();
+  const std::size_t n = plan_.n, q = scheme_->system().q, r = observation_.increment_noise(), p = observation_.p();
   const std::size_t W = count;
   while (truth_lanes_.size() < count) {
     truth_lanes_.push_back(std::make_unique<TruthLane>());

@@ -9,8 +9,7 @@
 
 namespace pfgen_runtime::monte_carlo_detail {
 
-Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, const SampledMeasurement* measurement,
-               const std::vector<FilterModel>& filters, const Eigen::VectorXd& x0, const Plan& plan,
+Worker::Worker(const TruthScheme& scheme, const Observation& observation, const std::vector<FilterModel>& filters, const Eigen::VectorXd& x0, const Plan& plan,
                const MonteCarloOptions& options, std::size_t batch)
     : scheme_(scheme.clone()), observation_(observation), filters_(filters), plan_(plan), options_(options),
       lanes_(std::max<std::size_t>(batch, 1)), passes_(lanes_.size()),
@@ -30,17 +29,15 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
     pass.error.resize(plan.n);
     pass.distance_sums.resize(plan.n);
   }
-  if (measurement) {
-    measurement_ = *measurement;
-    steps_per_sample_ = measurement->steps_per_sample(plan.grid);
-    const auto p = static_cast<Eigen::Index>(measurement->p());
+  if (observation.sampled()) {  // the samples' buffers
+    steps_per_sample_ = observation.steps_per_sample(plan.grid.dt);
+    const auto p = static_cast<Eigen::Index>(observation.p());
     const auto samples = static_cast<Eigen::Index>(plan.grid.steps / steps_per_sample_);
     for (RunBuffers& lane : lanes_) {
       lane.clean.resize(p, samples);
       lane.noisy.resize(p, samples);
     }
-    zeros_.assign(measurement->q(), 0.0);
-    estimate_.assign(2 * measurement->p(), 0.0);
+    estimate_.assign(observation.p(), 0.0);
   }
   std::size_t largest = 0;
   for (const FilterModel& filter : filters_) largest = std::max(largest, filter.state_size());
@@ -61,12 +58,11 @@ Worker::Worker(const TruthScheme& scheme, const LinearObservation& observation, 
   for (const FilterModel& filter : filters_)
     if (steps_in_lanes(filter) && width_ == 0) width_ = filter.lanes;
   for (const FilterModel& filter : filters_) in_lanes_.push_back(steps_in_lanes(filter) && filter.lanes == width_);
-  lanes_only_ = width_ >= 2 && !measurement && !options.reference &&
+  lanes_only_ = width_ >= 2 && !options.reference &&
                 std::all_of(in_lanes_.begin(), in_lanes_.end(), [](bool in) { return in; });
   if (options.reference) {
     const double bound = options.truth_guard.bound();
-    reference_ = measurement ? std::make_unique<ParticleReference>(scheme, *measurement, *options.reference, bound)
-                             : std::make_unique<ParticleReference>(scheme, observation, *options.reference, bound);
+    reference_ = std::make_unique<ParticleReference>(scheme, observation, *options.reference, bound);
     for (RunBuffers& lane : lanes_) {
       lane.reference_mean.resize(n, points);
       lane.second_mean.resize(n, points);
@@ -150,9 +146,8 @@ void Worker::finish_truth(std::size_t run, std::size_t k, RunResult& out,
   truth_steps += static_cast<std::uint64_t>(std::max<std::ptrdiff_t>(out.truth_last, 0)) +
                  (divergence && out.truth_last >= 0 ? 1 : 0);
   const std::size_t n = plan_.n;
-  if (measurement_)
-    lane.samples = draw_samples(*measurement_, plan_.grid, steps_per_sample_, lane.path, out.truth_last, options_.seed,
-                                run, lane.clean, lane.noisy);
+  lane.samples = draw_samples(observation_, plan_.grid, steps_per_sample_, lane.path, out.truth_last, options_.seed,
+                              run, lane.clean, lane.noisy);
   out.truth_record.assign(plan_.records.size() * n, nan);
   for (std::size_t r = 0; r < plan_.records.size(); ++r)
     if (static_cast<std::ptrdiff_t>(plan_.records[r]) <= out.truth_last)
@@ -166,15 +161,12 @@ void Worker::finish_truth(std::size_t run, std::size_t k, RunResult& out,
 // The particle reference on the run's increments (or samples), and its own error x - m_ref.
 void Worker::run_reference(std::size_t run, bool shown, RunBuffers& lane, RunResult& out) {
   const std::size_t n = plan_.n, steps = plan_.grid.steps;
+  const ObservedRun observed{&lane.dy, &lane.noisy, lane.samples};
   const ParticleReferenceRun outcome =
-      measurement_ ? reference_->run_sampled(plan_.grid, steps_per_sample_, lane.noisy, lane.samples, out.truth_last,
-                                             options_.seed, run, lane.reference_mean)
-                   : reference_->run(plan_.grid, lane.dy, out.truth_last, options_.seed, run, lane.reference_mean);
+      reference_->run(plan_.grid, observed, out.truth_last, options_.seed, run, lane.reference_mean);
   // The second set, on streams of its own, only for the spread of the two means.
   const ParticleReferenceRun second =
-      measurement_ ? reference_->run_sampled(plan_.grid, steps_per_sample_, lane.noisy, lane.samples, out.truth_last,
-                                             options_.seed, run, lane.second_mean, 1)
-                   : reference_->run(plan_.grid, lane.dy, out.truth_last, options_.seed, run, lane.second_mean, 1);
+      reference_->run(plan_.grid, observed, out.truth_last, options_.seed, run, lane.second_mean, 1);
   lane.reference_last = outcome.last;
   reference_steps += outcome.particle_steps + second.particle_steps;
   ReferenceRunResult& reference = out.reference;
@@ -333,8 +325,8 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, RunBuf
 void Worker::step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth_last, RunBuffers& lane,
                                  FilterRunResult& out, PassSums& pass, bool shown, std::uint64_t& steps) {
   const TimeGrid& grid = plan_.grid;
-  const std::size_t N = steps_per_sample_, substeps = filter.substeps, p = measurement_->p();
-  const double period = measurement_->period(), delta = period / static_cast<double>(substeps);
+  const std::size_t N = steps_per_sample_, substeps = filter.substeps, p = observation_.p();
+  const double period = observation_.period(), delta = period / static_cast<double>(substeps);
   double* state = state_.data();
   out.sample_sums.assign(4 * p, 0.0);
   for (std::size_t k = 0; static_cast<std::ptrdiff_t>(k) < truth_last; ++k) {
@@ -352,7 +344,7 @@ void Worker::step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth
       }
       ++out.samples;
       double* hat = estimate_.data();
-      measurement_->sample(t, state, zeros_.data(), hat, hat + p);  // C0 + C m(t_k|t_k)
+      observation_.rate().value(t, state, hat);  // C0 + C m(t_k|t_k), or c(m(t_k|t_k))
       for (std::size_t i = 0; i < p; ++i) {
         const double Y[2] = {lane.clean(static_cast<Eigen::Index>(i), column), lane.noisy(static_cast<Eigen::Index>(i), column)};
         for (int reading = 0; reading < 2; ++reading) {

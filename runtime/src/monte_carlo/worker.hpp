@@ -28,7 +28,7 @@ struct RunBuffers {
   Eigen::VectorXd x0;             // the truth's initial state: fixed, or the run's draw
   Eigen::MatrixXd path;           // n x (steps + 1): x at the grid times
   Eigen::MatrixXd dy;             // p x steps
-  Eigen::MatrixXd clean, noisy;   // p x samples: C0 + C x(t_k) and y_k (sampled observations)
+  Eigen::MatrixXd clean, noisy;   // p x samples: h(t_k, x(t_k)) and y_k (sampled observations)
   std::size_t samples = 0;        // samples of the run
   Eigen::MatrixXd reference_mean; // n x (steps + 1): the particle reference's mean
   Eigen::MatrixXd second_mean;    // and its second, independent particle set's (its error's estimate)
@@ -50,11 +50,9 @@ bool steps_in_lanes(const FilterModel& filter);
 class Worker {
  public:
   // Keeps references to plan and options: both must outlive the worker.
-  // measurement: the samples of a model with sampled observations (then `observation` is only
-  // the truth loop's placeholder and every filter is sampled); nullptr for continuous ones.
-  // batch: the most runs one call of run() carries side by side (>= 1).
-  Worker(const TruthScheme& scheme, const LinearObservation& observation, const SampledMeasurement* measurement,
-         const std::vector<FilterModel>& filters, const Eigen::VectorXd& x0, const Plan& plan,
+  // observation: continuous increments (every filter steps on dy) or samples (every filter is
+  // sampled). batch: the most runs one call of run() carries side by side (>= 1).
+  Worker(const TruthScheme& scheme, const Observation& observation, const std::vector<FilterModel>& filters, const Eigen::VectorXd& x0, const Plan& plan,
          const MonteCarloOptions& options, std::size_t batch);
 
   // Runs first .. first + count - 1 (count <= batch; each run's random streams depend on its
@@ -138,16 +136,15 @@ class Worker {
   std::vector<double> truth_x_, truth_start_, truth_dW_, truth_dW2_, truth_dy_;  // entry-major
   std::vector<LaneFlag> truth_live_, truth_take_, truth_bounded_;
   Eigen::VectorXd truth_lane_x_, truth_lane_dW_;
-  LinearObservation observation_;
+  Observation observation_;
   std::vector<FilterModel> filters_;
   Eigen::MatrixXd prior_root_;  // MonteCarloOptions::initial_prior's covariance square root
   const Plan& plan_;
   const MonteCarloOptions& options_;
   std::vector<RunBuffers> lanes_;  // batch entries, reused run after run
   std::vector<PassSums> passes_;   // likewise
-  std::optional<SampledMeasurement> measurement_;
-  std::size_t steps_per_sample_ = 0;
-  std::vector<double> zeros_, estimate_;
+  std::size_t steps_per_sample_ = 0;  // samples only
+  std::vector<double> estimate_;       // a sampled filter's h(t_k, m(t_k|t_k))
   std::vector<double> state_;
   mutable std::vector<double> nees_work_;  // normalized_error_squared's Cholesky factor
   FilterStepper stepper_;
