@@ -43,7 +43,7 @@ struct CodegenOptions {
   // model's simulation dt). Ignored by the other filters.
   std::optional<double> grid_step;
   // A generated function with more operations (after CSE) than this is written in parts of at most
-  // this many, each its own function (CFamilyEmitter::split_above): g++ -O2 needs minutes and
+  // this many, each its own function (StatementEmitter::split_above): g++ -O2 needs minutes and
   // gigabytes for one function of tens of thousands of operations. Every example but ins16 is far
   // below. 0: never split (tests lower it to compare split and unsplit code on a small model).
   std::size_t max_function_ops = 500;

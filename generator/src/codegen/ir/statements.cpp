@@ -103,9 +103,9 @@ Statement declare_array(const std::string& name, Type type, std::size_t size) {
   return s;
 }
 
-Statement view(const std::string& name, const std::string& array, Expr offset, bool writable) {
+Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable) {
   Statement s = statement(Statement::Kind::View);
-  s.view = {name, array, std::move(offset), writable};
+  s.view = {name, array, std::move(offset), std::move(size), writable};
   return s;
 }
 

@@ -84,11 +84,12 @@ struct Declaration {
   std::optional<std::size_t> size;  // an array of this many entries
 };
 
-// A view of an array from an offset on (C: a pointer into it), read-only unless `writable`.
+// A view of `size` entries of an array from `offset` on (C: a pointer into it; Rust: a slice),
+// read-only unless `writable`.
 struct View {
   std::string name;
   std::string array;
-  Expr offset;
+  Expr offset, size;
   bool writable = false;
 };
 
@@ -158,7 +159,7 @@ struct Statement {
 
 Statement declare(const std::string& name, Type type, Expr value);          // a constant
 Statement declare_array(const std::string& name, Type type, std::size_t size);
-Statement view(const std::string& name, const std::string& array, Expr offset, bool writable);
+Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable);
 Statement assign(Expr target, Expr value);
 Statement assign_all(std::vector<Expr> targets, Expr value);
 Statement accumulate(Expr target, Expr value);

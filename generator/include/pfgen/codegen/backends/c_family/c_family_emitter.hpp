@@ -12,7 +12,6 @@
 
 #include "pfgen/codegen/expression_graph.hpp"
 #include "pfgen/codegen/ir/statement_emitter.hpp"
-#include "pfgen/codegen/p_drift_loops.hpp"
 #include "pfgen/codegen/scalar_mode.hpp"
 
 namespace pfgen::codegen {
@@ -57,14 +56,6 @@ class CFamilyEmitter : public StatementEmitter {
   std::string return_statement(const ir::Return& node, const std::string& indent) const override;
   std::string comment(const ir::Comment& node, const std::string& indent) const override;
   std::string unused(const ir::Unused& node, const std::string& indent) const override;
-
-  // The loops of `loops` (p_drift_loops.hpp): P's drift into names.out from the work array the
-  // graph filled and the full P (full_P's), and m's drift copied from the work array. Indented by
-  // two.
-  std::string p_drift_loops(const PDriftLoops& loops, const PDriftLoopNames& names) const;
-  // names.full_P, the n x n P, unpacked from the state's triangle; it opens the function, before
-  // the graph's statements, so that its stores are done when the loops read its rows.
-  std::string full_P(const PDriftLoops& loops, const PDriftLoopNames& names) const;
 
  protected:
   // "." (C++: a reference) or "->" (C: a pointer): how a field of the parameter record is read.
