@@ -77,20 +77,27 @@ Block unused_arguments(const ExpressionGraph& graph, const std::set<std::size_t>
   return block;
 }
 
-Block shared_statements(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
-                        const std::vector<Expr>& destinations, const std::string& temporary_prefix) {
+void shared_statements(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                       const std::vector<Expr>& destinations, const std::string& temporary_prefix,
+                       const StatementSink& sink) {
   std::map<std::size_t, std::string> names;
   auto spell = [&](std::size_t id) { return graph.is_leaf(id) ? leaf(graph.node(id)) : name(names.at(id)); };
-  Block block;
   for (std::size_t id : graph.needed_operations(outputs)) {
     const Node& node = graph.node(id);
     std::vector<Expr> operands;
     for (std::size_t arg : node.args) operands.push_back(spell(arg));
     std::string temporary = temporary_prefix + std::to_string(names.size());
-    block.push_back(declare(temporary, Type::Scalar, operation(node, std::move(operands))));
+    sink(declare(temporary, Type::Scalar, operation(node, std::move(operands))));
     names[id] = std::move(temporary);
   }
-  for (std::size_t k = 0; k < outputs.size(); ++k) block.push_back(assign(destinations.at(k), spell(outputs[k])));
+  for (std::size_t k = 0; k < outputs.size(); ++k) sink(assign(destinations.at(k), spell(outputs[k])));
+}
+
+Block shared_statements(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                        const std::vector<Expr>& destinations, const std::string& temporary_prefix) {
+  Block block;
+  shared_statements(graph, outputs, destinations, temporary_prefix,
+                    [&](Statement&& s) { block.push_back(std::move(s)); });
   return block;
 }
 
@@ -142,8 +149,16 @@ SplitBody split_statements(const ExpressionGraph& graph, const std::vector<std::
                            const std::vector<Expr>& destinations, const std::string& temporary_prefix,
                            std::size_t max_ops, const std::string& shared_array) {
   SplitBody body;
-  body.plan = split_plan(graph, outputs, max_ops);
-  const SplitPlan& plan = body.plan;
+  body.plan = split_statements(graph, outputs, destinations, temporary_prefix, max_ops, shared_array,
+                               [&](const SplitPlan&, SplitPart&& part) { body.parts.push_back(std::move(part)); });
+  return body;
+}
+
+SplitPlan split_statements(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                           const std::vector<Expr>& destinations, const std::string& temporary_prefix,
+                           std::size_t max_ops, const std::string& shared_array,
+                           const std::function<void(const SplitPlan& plan, SplitPart&& part)>& each) {
+  SplitPlan plan = split_plan(graph, outputs, max_ops);
   auto spell = [&](std::size_t id) {
     return graph.is_leaf(id) ? leaf(graph.node(id)) : name(temporary_prefix + std::to_string(plan.number.at(id)));
   };
@@ -170,9 +185,9 @@ SplitBody split_statements(const ExpressionGraph& graph, const std::vector<std::
         note_input(part, outputs[k]);
         part.writes.push_back(assign(destinations.at(k), spell(outputs[k])));
       }
-    body.parts.push_back(std::move(part));
+    each(plan, std::move(part));
   }
-  return body;
+  return plan;
 }
 
 }  // namespace pfgen::codegen::ir

@@ -32,15 +32,15 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
 std::string StatementEmitter::statement(const ir::Statement& s, const std::string& indent) const {
   using Kind = ir::Statement::Kind;
   switch (s.kind) {
-    case Kind::Declaration: return declaration(s.declaration, indent);
-    case Kind::View: return view(s.view, indent);
-    case Kind::Assignment: return assignment(s.assignment, indent);
-    case Kind::Loop: return loop(s.loop, indent);
-    case Kind::Call: return call_statement(s.call, indent);
-    case Kind::Conditional: return conditional(s.conditional, indent);
-    case Kind::Return: return return_statement(s.result, indent);
-    case Kind::Comment: return comment(s.comment, indent);
-    case Kind::Unused: return unused(s.unused, indent);
+    case Kind::Declaration: return declaration(s.declaration(), indent);
+    case Kind::View: return view(s.view(), indent);
+    case Kind::Assignment: return assignment(s.assignment(), indent);
+    case Kind::Loop: return loop(s.loop(), indent);
+    case Kind::Call: return call_statement(s.call(), indent);
+    case Kind::Conditional: return conditional(s.conditional(), indent);
+    case Kind::Return: return return_statement(s.result(), indent);
+    case Kind::Comment: return comment(s.comment(), indent);
+    case Kind::Unused: return unused(s.unused(), indent);
   }
   return "";
 }
@@ -85,12 +85,16 @@ FunctionBody StatementEmitter::function_body(const ExpressionGraph& graph, const
     return split_body(graph, outputs, signature, order);
   const std::set<std::size_t> inputs = ir::inputs_read(graph, outputs);
   const std::vector<ir::Expr> targets = ir::indexed(signature.target, outputs.size());
-  ir::Block body = ir::unused_arguments(graph, inputs, signature);
-  for (ir::Statement& s : ir::input_declarations(graph, inputs, order)) body.push_back(std::move(s));
-  for (ir::Statement& s : shared ? ir::shared_statements(graph, outputs, targets, temporary_prefix_)
-                                 : ir::tree_statements(graph, outputs, targets))
-    body.push_back(std::move(s));
-  return {"", block(body)};
+  std::string text =
+      block(ir::unused_arguments(graph, inputs, signature)) + block(ir::input_declarations(graph, inputs, order));
+  // Each statement written as it is made: a function's statements are not all held at once.
+  const std::string indent = "  ";
+  if (shared)
+    ir::shared_statements(graph, outputs, targets, temporary_prefix_,
+                          [&](ir::Statement&& s) { text += indent + statement(s, indent) + "\n"; });
+  else
+    text += block(ir::tree_statements(graph, outputs, targets));
+  return {"", text};
 }
 
 void StatementEmitter::split_above(std::size_t max_ops, std::string shared_array) {

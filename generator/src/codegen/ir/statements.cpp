@@ -93,19 +93,19 @@ Expr sum(std::vector<Expr> terms) {
 
 Statement declare(const std::string& name, Type type, Expr value) {
   Statement s = statement(Statement::Kind::Declaration);
-  s.declaration = {name, type, std::move(value), std::nullopt};
+  s.node = Declaration{name, type, std::move(value), std::nullopt};
   return s;
 }
 
 Statement declare_array(const std::string& name, Type type, std::size_t size) {
   Statement s = statement(Statement::Kind::Declaration);
-  s.declaration = {name, type, std::nullopt, size};
+  s.node = Declaration{name, type, std::nullopt, size};
   return s;
 }
 
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable) {
   Statement s = statement(Statement::Kind::View);
-  s.view = {name, array, std::move(offset), std::move(size), writable};
+  s.node = std::make_shared<const View>(View{name, array, std::move(offset), std::move(size), writable});
   return s;
 }
 
@@ -113,50 +113,51 @@ Statement assign(Expr target, Expr value) { return assign_all({std::move(target)
 
 Statement assign_all(std::vector<Expr> targets, Expr value) {
   Statement s = statement(Statement::Kind::Assignment);
-  s.assignment = {std::move(targets), std::move(value), false};
+  s.node = Assignment{std::move(targets), std::move(value), false};
   return s;
 }
 
 Statement accumulate(Expr target, Expr value) {
   Statement s = statement(Statement::Kind::Assignment);
-  s.assignment = {{std::move(target)}, std::move(value), true};
+  s.node = Assignment{{std::move(target)}, std::move(value), true};
   return s;
 }
 
 Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Block body,
                std::optional<Loop::Follower> declares, const std::string& steps) {
   Statement s = statement(Statement::Kind::Loop);
-  s.loop = {index, counter, std::move(begin), std::move(end), std::move(declares), steps, std::move(body)};
+  s.node = std::make_shared<const Loop>(
+      Loop{index, counter, std::move(begin), std::move(end), std::move(declares), steps, std::move(body)});
   return s;
 }
 
 Statement call_statement(const std::string& function, std::vector<Expr> arguments) {
   Statement s = statement(Statement::Kind::Call);
-  s.call = {function, std::move(arguments)};
+  s.node = std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments)});
   return s;
 }
 
 Statement conditional(Expr condition, Block then) {
   Statement s = statement(Statement::Kind::Conditional);
-  s.conditional = {std::move(condition), std::move(then)};
+  s.node = std::make_shared<const Conditional>(Conditional{std::move(condition), std::move(then)});
   return s;
 }
 
 Statement return_value(std::optional<Expr> value) {
   Statement s = statement(Statement::Kind::Return);
-  s.result = {std::move(value)};
+  s.node = Return{std::move(value)};
   return s;
 }
 
 Statement comment(const std::string& text) {
   Statement s = statement(Statement::Kind::Comment);
-  s.comment = {text};
+  s.node = Comment{text};
   return s;
 }
 
 Statement unused(const std::string& name) {
   Statement s = statement(Statement::Kind::Unused);
-  s.unused = {name};
+  s.node = Unused{name};
   return s;
 }
 

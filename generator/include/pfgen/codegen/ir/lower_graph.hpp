@@ -5,6 +5,7 @@
 // output as one expression tree. And the plan by which a body too large for one function is cut
 // into parts (split_plan), which each language writes by its own means.
 #include <cstddef>
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -51,7 +52,13 @@ Block input_declarations(const ExpressionGraph& graph, const std::set<std::size_
 // the functions of a filter share one signature.
 Block unused_arguments(const ExpressionGraph& graph, const std::set<std::size_t>& inputs,
                        const FunctionSignature& signature);
-// Every needed operation once, as the temporary prefix + its number, then destinations[k] = output k.
+// Every needed operation once, as the temporary prefix + its number, then destinations[k] = output k:
+// each statement handed to `sink` as it is made (a large function is written without holding all
+// its statements), or collected.
+using StatementSink = std::function<void(Statement&&)>;
+void shared_statements(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                       const std::vector<Expr>& destinations, const std::string& temporary_prefix,
+                       const StatementSink& sink);
 Block shared_statements(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                         const std::vector<Expr>& destinations, const std::string& temporary_prefix);
 // destinations[k] = output k as one expression tree, each operation but a call grouped.
@@ -88,6 +95,11 @@ struct SplitBody {
   SplitPlan plan;
   std::vector<SplitPart> parts;
 };
+// Each part handed to `each` in order as it is made, with the plan (made first), which is returned.
+SplitPlan split_statements(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                           const std::vector<Expr>& destinations, const std::string& temporary_prefix,
+                           std::size_t max_ops, const std::string& shared_array,
+                           const std::function<void(const SplitPlan& plan, SplitPart&& part)>& each);
 SplitBody split_statements(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                            const std::vector<Expr>& destinations, const std::string& temporary_prefix,
                            std::size_t max_ops, const std::string& shared_array);

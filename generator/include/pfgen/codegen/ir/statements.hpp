@@ -11,8 +11,10 @@
 // is needed, so that every language's text has the same operations in the same order (and a
 // C-family emitter's text is byte for byte what it always was).
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <ginac/ginac.h>
@@ -142,19 +144,25 @@ struct Unused {
   std::string name;
 };
 
+// One statement: its kind and its node. The frequent nodes (declarations, assignments) are held in
+// place and the others behind a shared pointer, so that a function of a hundred thousand
+// operations stays small in memory while it is written.
 struct Statement {
   enum class Kind { Declaration, View, Assignment, Loop, Call, Conditional, Return, Comment, Unused };
   Kind kind = Kind::Comment;
-  // The node of `kind`; the others stay empty.
-  Declaration declaration;
-  View view;
-  Assignment assignment;
-  Loop loop;
-  CallStatement call;
-  Conditional conditional;
-  Return result;
-  Comment comment;
-  Unused unused;
+  std::variant<Comment, Declaration, Assignment, Unused, Return, std::shared_ptr<const View>,
+               std::shared_ptr<const Loop>, std::shared_ptr<const CallStatement>, std::shared_ptr<const Conditional>>
+      node;
+
+  const Declaration& declaration() const { return std::get<Declaration>(node); }
+  const Assignment& assignment() const { return std::get<Assignment>(node); }
+  const Comment& comment() const { return std::get<Comment>(node); }
+  const Unused& unused() const { return std::get<Unused>(node); }
+  const Return& result() const { return std::get<Return>(node); }
+  const View& view() const { return *std::get<std::shared_ptr<const View>>(node); }
+  const Loop& loop() const { return *std::get<std::shared_ptr<const Loop>>(node); }
+  const CallStatement& call() const { return *std::get<std::shared_ptr<const CallStatement>>(node); }
+  const Conditional& conditional() const { return *std::get<std::shared_ptr<const Conditional>>(node); }
 };
 
 Statement declare(const std::string& name, Type type, Expr value);          // a constant

@@ -18,23 +18,25 @@ namespace pfgen::codegen {
 
 FunctionBody CppEmitter::split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                                     const FunctionSignature& signature, const std::vector<std::size_t>& order) const {
-  const ir::SplitBody split = ir::split_statements(graph, outputs, ir::indexed(signature.target, outputs.size()),
-                                                   temporary_prefix_, max_ops_, shared_array_);
+  // The parts are written as they are made, after the head, which needs the plan's counts.
+  std::string parts;
+  const ir::SplitPlan plan = ir::split_statements(
+      graph, outputs, ir::indexed(signature.target, outputs.size()), temporary_prefix_, max_ops_, shared_array_,
+      [&](const ir::SplitPlan&, ir::SplitPart&& part) {
+        parts += "  [&]() PFGEN_NOINLINE {\n";
+        for (const ir::Block* statements : {&part.reads, &part.arithmetic, &part.stores, &part.writes})
+          parts += block(*statements, "    ");
+        parts += "  }();\n";
+      });
   std::string body = unused_arguments(graph, outputs, signature) + input_declarations(graph, outputs, order);
-  body += "  // " + std::to_string(split.plan.operations.size()) + " operations in " + std::to_string(split.plan.parts) +
+  body += "  // " + std::to_string(plan.operations.size()) + " operations in " + std::to_string(plan.parts) +
           " parts of at most " + std::to_string(max_ops_) +
           ", each its own function: one function this large takes g++ minutes to compile.\n";
   body +=
       "#ifndef PFGEN_NOINLINE\n#if defined(__GNUC__)\n#define PFGEN_NOINLINE __attribute__((noinline))\n#else\n"
       "#define PFGEN_NOINLINE\n#endif\n#endif\n";
-  if (split.plan.slots != 0) body += block({ir::declare_array(shared_array_, ir::Type::Scalar, split.plan.slots)});
-  for (const ir::SplitPart& part : split.parts) {
-    body += "  [&]() PFGEN_NOINLINE {\n";
-    for (const ir::Block* statements : {&part.reads, &part.arithmetic, &part.stores, &part.writes})
-      body += block(*statements, "    ");
-    body += "  }();\n";
-  }
-  return {"", body};
+  if (plan.slots != 0) body += block({ir::declare_array(shared_array_, ir::Type::Scalar, plan.slots)});
+  return {"", body + parts};
 }
 
 }  // namespace pfgen::codegen
