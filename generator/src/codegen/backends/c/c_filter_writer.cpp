@@ -1,6 +1,6 @@
 #include "pfgen/codegen/backends/c/c_filter_writer.hpp"
 
-#include "pfgen/codegen/backends/c/c_filter_code.hpp"
+#include "pfgen/codegen/backends/c/c_backend.hpp"
 #include "pfgen/codegen/backends/c_family/file_banner.hpp"
 #include "pfgen/codegen/template_text.hpp"
 
@@ -22,13 +22,6 @@ std::string params_defaults(const Model& model, const CEmitter& emitter) {
 }
 
 }  // namespace
-
-std::string c_initial_body(const std::vector<GiNaC::numeric>& values, const CEmitter& emitter) {
-  std::string body;
-  for (std::size_t v = 0; v < values.size(); ++v)
-    body += "  state[" + std::to_string(v) + "] = " + emitter.literal(values[v]) + ";\n";
-  return body;
-}
 
 CFilterWriter::CFilterWriter(const Model& m, const FilterEquations& e, const CodegenOptions& o)
     : model(m),
