@@ -74,16 +74,21 @@ CodegenJob codegen_job(const CodegenCliOptions& options, const Model& model) {
                         "implementation in the global namespace, and C at file scope");
   CodegenJob job;
   codegen::CodegenOptions& codegen_options = job.options;
-  codegen_options.language = options.language == "c" ? codegen::Language::C : codegen::Language::Cpp;
+  codegen_options.language = options.language == "c"      ? codegen::Language::C
+                              : options.language == "rust" ? codegen::Language::Rust
+                                                           : codegen::Language::Cpp;
   const bool c = codegen_options.language == codegen::Language::C;
-  if (c && options.scalar_given && options.scalar == "template")
-    throw CliValueError("--scalar template: C has no templates; give float or double");
-  // C's scalar defaults to double: the default `template` is C++'s.
-  codegen_options.scalar = options.scalar == "float"         ? codegen::ScalarMode::Float
-                           : options.scalar == "double" || c ? codegen::ScalarMode::Double
-                                                             : codegen::ScalarMode::Template;
+  const bool cpp = codegen_options.language == codegen::Language::Cpp;
+  const std::string& title = output_language_info(codegen_options.language).title;
+  if (!cpp && options.scalar_given && options.scalar == "template")
+    throw CliValueError("--scalar template: " + title + " has no templates; give float or double");
+  // C's and Rust's scalar defaults to double: the default `template` is C++'s.
+  codegen_options.scalar = options.scalar == "float"            ? codegen::ScalarMode::Float
+                           : options.scalar == "double" || !cpp ? codegen::ScalarMode::Double
+                                                                : codegen::ScalarMode::Template;
   if (c) codegen::check_c_names(model, options.name_space);
-  if (c && options.eigen) throw CliValueError("--eigen: the Eigen wrappers are C++; drop --eigen for --language c");
+  if (!cpp && options.eigen)
+    throw CliValueError("--eigen: the Eigen wrappers are C++; drop --eigen for --language " + options.language);
   codegen_options.name_space = options.name_space;
   codegen_options.eliminate_common_subexpressions = !options.no_cse;
   if (options.max_function_ops) codegen_options.max_function_ops = static_cast<std::size_t>(*options.max_function_ops);

@@ -154,7 +154,7 @@ int main(int argc, char** argv) {
       ->check(named_filters);
   std::vector<std::string> language_names;
   for (const auto& language : pfgen::output_languages()) language_names.push_back(language.name);
-  codegen_cmd->add_option("--language", codegen.language, "cpp | c: header-only C++, or C99 .h/.c pairs")
+  codegen_cmd->add_option("--language", codegen.language, "cpp | c | rust: header-only C++, C99 .h/.c pairs, or no_std Rust modules")
       ->check(CLI::IsMember(language_names))
       ->capture_default_str();
   CLI::Option* scalar_option = codegen_cmd->add_option("--scalar", codegen.scalar, "float | double | template (C: float | double, default double)")

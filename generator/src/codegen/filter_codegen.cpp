@@ -4,6 +4,7 @@
 
 #include "pfgen/codegen/backends/c/c_filter_code.hpp"
 #include "pfgen/codegen/backends/cpp/cpp_filter_code.hpp"
+#include "pfgen/codegen/backends/rust/rust_filter_code.hpp"
 #include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
@@ -13,6 +14,7 @@ std::vector<std::string> filter_file_paths(const std::string& model_name, const 
   switch (options.language) {
     case Language::Cpp: return cpp_filter_paths(model_name, filter_name, options.eigen_wrapper);
     case Language::C: return c_filter_paths(model_name, filter_name);
+    case Language::Rust: return rust_filter_paths(model_name, filter_name);
   }
   return {};
 }
@@ -64,6 +66,7 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
     switch (options.language) {
       case Language::Cpp: return cpp_filter_code(model, eq, options);
       case Language::C: return c_filter_code(model, eq, options);
+      case Language::Rust: return rust_filter_code(model, eq, options);
     }
   } catch (const CodegenError& e) {
     // What the code of one equation refuses (a constant out of the scalar's range, ...) knows

@@ -8,6 +8,7 @@ const std::vector<OutputLanguageInfo>& output_languages() {
   static const std::vector<OutputLanguageInfo> languages = {
       {OutputLanguage::Cpp, "cpp", "C++", &cpp_reserved_name_problem},
       {OutputLanguage::C, "c", "C", &c_reserved_name_problem},
+      {OutputLanguage::Rust, "rust", "Rust", &rust_reserved_name_problem},
   };
   return languages;
 }

@@ -10,7 +10,7 @@
 
 namespace pfgen {
 
-enum class OutputLanguage { Cpp, C };
+enum class OutputLanguage { Cpp, C, Rust };
 
 struct OutputLanguageInfo {
   OutputLanguage language;
@@ -26,8 +26,10 @@ struct OutputLanguageInfo {
 const std::vector<OutputLanguageInfo>& output_languages();
 const OutputLanguageInfo& output_language_info(OutputLanguage language);
 
-// Each language's own reserved words (kinds/cpp_reserved_words.cpp, kinds/c_reserved_words.cpp).
+// Each language's own reserved words (kinds/cpp_reserved_words.cpp, kinds/c_reserved_words.cpp,
+// kinds/rust_reserved_words.cpp).
 std::optional<std::string> cpp_reserved_name_problem(const std::string& name);
 std::optional<std::string> c_reserved_name_problem(const std::string& name);
+std::optional<std::string> rust_reserved_name_problem(const std::string& name);
 
 }  // namespace pfgen

@@ -126,10 +126,10 @@ std::string CFamilyEmitter::unused_arguments_of(const ExpressionGraph& graph, co
     }
   }
   std::string text;
-  if (!time) text += "  (void)" + signature.time + ";\n";
+  if (!time) text += "  " + ignored(signature.time) + "\n";
   for (const std::string& array : signature.arrays)
-    if (!arrays.count(array)) text += "  (void)" + array + ";\n";
-  if (!params) text += "  (void)" + signature.params + ";\n";
+    if (!arrays.count(array)) text += "  " + ignored(array) + "\n";
+  if (!params) text += "  " + ignored(signature.params) + "\n";
   return text;
 }
 

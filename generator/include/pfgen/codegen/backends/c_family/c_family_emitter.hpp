@@ -118,10 +118,13 @@ class CFamilyEmitter : public Emitter {
                               const std::vector<std::size_t>& order) const;
   std::string unused_arguments_of(const ExpressionGraph& graph, const std::set<std::size_t>& inputs,
                                   const FunctionSignature& signature) const;
-  // `const <scalar> name = value;`
-  std::string declaration(const std::string& name, const std::string& value) const {
+  // `const <scalar> name = value;` (a language with other statements spells it its own way).
+  virtual std::string declaration(const std::string& name, const std::string& value) const {
     return "const " + scalar_type_ + " " + name + " = " + value + ";";
   }
+  // The statement that marks an argument as read, for the compiler's unused-argument warning:
+  // `(void)name;`.
+  virtual std::string ignored(const std::string& argument) const { return "(void)" + argument + ";"; }
   // How a split body is cut: the needed operations in topological order, cut into parts of at
   // most max_ops_ consecutive ones; a value a later part reads is stored once in a slot of the
   // shared array.
