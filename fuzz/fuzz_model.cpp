@@ -43,7 +43,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       pfgen::codegen::CodegenOptions options;
       if (equations.observation == pfgen::ObservationKind::Delayed) options.grid_step = model.simulation.dt;
       (void)pfgen::codegen::generate_filter_code(model, equations, options);
-      options.language = pfgen::codegen::Language::C;  // the C99 backend, on the same equations
+      options.language = "c";  // the C99 backend, on the same equations
       options.scalar = pfgen::codegen::ScalarMode::Float;
       (void)pfgen::codegen::generate_filter_code(model, equations, options);
     } catch (const std::exception&) {

@@ -171,7 +171,7 @@ TEST_CASE("sampled polynomial c: the generated update (C++ and C) is the moment-
     for (int k = 0; k < 5; ++k) CHECK(updated[k] == Approx(expected[k]).epsilon(1e-12));
 
     // The C backend's update: the same numbers.
-    options.language = codegen::Language::C;
+    options.language = "c";
     for (const auto& file : codegen::generate_filter_code(model, eq, options).files)
       write_file(dir.file(file.relative_path), file.contents);
     const std::string prefix = "pfgen_models_range_squared_sampled_" + id + "_";

@@ -11,7 +11,7 @@
 #include "cli_options.hpp"
 #include "observation_command.hpp"
 #include "output_paths.hpp"
-#include "pfgen/codegen/backends/c/c_names.hpp"
+#include "pfgen/codegen/backend.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/derivation/drift_coefficients.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
@@ -74,21 +74,20 @@ CodegenJob codegen_job(const CodegenCliOptions& options, const Model& model) {
                         "implementation in the global namespace, and C at file scope");
   CodegenJob job;
   codegen::CodegenOptions& codegen_options = job.options;
-  codegen_options.language = options.language == "c"      ? codegen::Language::C
-                              : options.language == "rust" ? codegen::Language::Rust
-                                                           : codegen::Language::Cpp;
-  const bool c = codegen_options.language == codegen::Language::C;
-  const bool cpp = codegen_options.language == codegen::Language::Cpp;
-  const std::string& title = output_language_info(codegen_options.language).title;
-  if (!cpp && options.scalar_given && options.scalar == "template")
-    throw CliValueError("--scalar template: " + title + " has no templates; give float or double");
-  // C's and Rust's scalar defaults to double: the default `template` is C++'s.
-  codegen_options.scalar = options.scalar == "float"            ? codegen::ScalarMode::Float
-                           : options.scalar == "double" || !cpp ? codegen::ScalarMode::Double
-                                                                : codegen::ScalarMode::Template;
-  if (c) codegen::check_c_names(model, options.name_space);
-  if (!cpp && options.eigen)
-    throw CliValueError("--eigen: the Eigen wrappers are C++; drop --eigen for --language " + options.language);
+  // Everything that depends on the language is its backend's (codegen/backend.hpp).
+  const codegen::Backend& backend = codegen::backend(options.language);
+  codegen_options.language = backend.name();
+  // --scalar's default `template` is C++'s: without --scalar each language has its own.
+  codegen_options.scalar = options.scalar == "float"    ? codegen::ScalarMode::Float
+                           : options.scalar == "double" ? codegen::ScalarMode::Double
+                           : options.scalar_given       ? codegen::ScalarMode::Template
+                                                        : backend.default_scalar();
+  if (options.scalar_given)
+    if (auto problem = backend.scalar_problem(codegen_options.scalar))
+      throw CliValueError("--scalar " + options.scalar + ": " + *problem);
+  backend.check_model(model, options.name_space);
+  if (options.eigen)
+    if (auto problem = backend.eigen_problem()) throw CliValueError("--eigen: " + *problem);
   codegen_options.name_space = options.name_space;
   codegen_options.eliminate_common_subexpressions = !options.no_cse;
   if (options.max_function_ops) codegen_options.max_function_ops = static_cast<std::size_t>(*options.max_function_ops);
@@ -111,12 +110,12 @@ void check_code_paths(const Model& model, const CodegenJob& job, const std::stri
   // they are checked before any derivation: a file must not replace the model file, nor one
   // filter's file another's (a user filter `optimal-eigen` and optimal's Eigen wrapper are both
   // optimal_eigen.hpp).
-  const bool c = job.options.language == codegen::Language::C;
+  const codegen::Backend& backend = codegen::backend(job.options.language);
   std::vector<NamedPath> written;
   for (const std::string& name : job.names) {
     const std::vector<std::string> paths = codegen::filter_file_paths(model.name, name, job.options);
     for (std::size_t k = 0; k < paths.size(); ++k)
-      written.push_back({"-o (filter " + name + (k == 0 || c ? ")" : ", --eigen)"),
+      written.push_back({"-o (filter " + name + backend.file_role(k) + ")",
                          (std::filesystem::path(output_dir) / paths[k]).string()});
   }
   std::vector<NamedPath> read;

@@ -24,7 +24,7 @@
 #endif
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/kinds/filter_kinds.hpp"
-#include "pfgen/kinds/output_languages.hpp"
+#include "pfgen/codegen/backend.hpp"
 #include "pfgen/model/model.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen_support/quoted_text.hpp"
@@ -152,9 +152,16 @@ int main(int argc, char** argv) {
       ->check(named_file);
   codegen_cmd->add_option("--filter", codegen.filters, "Comma-separated filters: built-in kinds or the model's own (default: every kind the model supports except the opt-in ukf, then its own)")
       ->check(named_filters);
+  // --language's names and help from the registry of backends: "cpp | c: header-only C++, or C99 .h/.c pairs".
   std::vector<std::string> language_names;
-  for (const auto& language : pfgen::output_languages()) language_names.push_back(language.name);
-  codegen_cmd->add_option("--language", codegen.language, "cpp | c | rust: header-only C++, C99 .h/.c pairs, or no_std Rust modules")
+  std::string language_names_text, language_summaries;
+  const auto& backends = pfgen::codegen::backends();
+  for (std::size_t k = 0; k < backends.size(); ++k) {
+    language_names.push_back(backends[k]->name());
+    language_names_text += (k ? " | " : "") + backends[k]->name();
+    language_summaries += std::string(k == 0 ? "" : k + 1 < backends.size() ? ", " : ", or ") + backends[k]->summary();
+  }
+  codegen_cmd->add_option("--language", codegen.language, language_names_text + ": " + language_summaries)
       ->check(CLI::IsMember(language_names))
       ->capture_default_str();
   CLI::Option* scalar_option = codegen_cmd->add_option("--scalar", codegen.scalar, "float | double | template (C: float | double, default double)")

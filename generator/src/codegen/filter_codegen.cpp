@@ -2,21 +2,14 @@
 
 #include <cstdio>
 
-#include "pfgen/codegen/backends/c/c_filter_code.hpp"
-#include "pfgen/codegen/backends/cpp/cpp_filter_code.hpp"
-#include "pfgen/codegen/backends/rust/rust_filter_code.hpp"
+#include "pfgen/codegen/backend.hpp"
 #include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
 
 std::vector<std::string> filter_file_paths(const std::string& model_name, const std::string& filter_name,
                                            const CodegenOptions& options) {
-  switch (options.language) {
-    case Language::Cpp: return cpp_filter_paths(model_name, filter_name, options.eigen_wrapper);
-    case Language::C: return c_filter_paths(model_name, filter_name);
-    case Language::Rust: return rust_filter_paths(model_name, filter_name);
-  }
-  return {};
+  return backend(options.language).filter_paths(model_name, filter_name, options);
 }
 
 OpCounts GeneratedFilter::naive_total() const {
@@ -63,11 +56,7 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
   }
   observation_code(eq.observation).check_size(model, eq);
   try {
-    switch (options.language) {
-      case Language::Cpp: return cpp_filter_code(model, eq, options);
-      case Language::C: return c_filter_code(model, eq, options);
-      case Language::Rust: return rust_filter_code(model, eq, options);
-    }
+    return backend(options.language).filter_code(model, eq, options);
   } catch (const CodegenError& e) {
     // What the code of one equation refuses (a constant out of the scalar's range, ...) knows
     // neither the filter nor the model: say which, as the checks above do.
@@ -75,7 +64,6 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
     if (what.rfind("filter '", 0) == 0) throw;
     throw CodegenError("filter '" + eq.name + "' of model " + model.name + " (" + model.source + "): " + what);
   }
-  throw CodegenError("unknown output language");
 }
 
 }  // namespace pfgen::codegen

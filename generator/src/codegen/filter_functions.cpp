@@ -107,7 +107,7 @@ PDriftLoopNames loop_names(const FunctionNames& names) {
 }
 
 FunctionCode written(const BuiltFunction& built, const std::string& target, const FunctionNames& names,
-                     const CFamilyEmitter& emitter, bool shared) {
+                     const StatementEmitter& emitter, bool shared) {
   FunctionCode code;
   code.stats = built.stats;
   if (!built.loops) {
@@ -120,9 +120,9 @@ FunctionCode written(const BuiltFunction& built, const std::string& target, cons
                                     signature(built.function, names, built.layout, names.work),
                                     built.declaration_order, shared);
   const PDriftLoopNames loop = loop_names(names);
-  code.body.statements = emitter.full_P(*built.loops, loop) + "  " + emitter.scalar_type() + " " + names.work + "[" +
-                         std::to_string(built.loops->work_size) + "];\n" + code.body.statements +
-                         emitter.p_drift_loops(*built.loops, loop);
+  code.body.statements = emitter.block(full_P_statements(*built.loops, loop)) +
+                         emitter.block({ir::declare_array(names.work, ir::Type::Scalar, built.loops->work_size)}) +
+                         code.body.statements + emitter.block(p_drift_statements(*built.loops, loop));
   return code;
 }
 
@@ -348,7 +348,7 @@ PDriftLoops build_loops(const FilterEquations& eq, bool moments, GraphBuilder& b
 
 FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
                            const std::string& target, const Model& model, const FilterEquations& eq,
-                           const CodegenOptions& options, const FunctionNames& names, const CFamilyEmitter& emitter) {
+                           const CodegenOptions& options, const FunctionNames& names, const StatementEmitter& emitter) {
   const auto built = built_function(function, model, eq, names,
                                     [&](GraphBuilder& builder, ExpressionGraph&, std::vector<std::size_t>& roots) {
                                       for (const Polynomial& p : outputs) roots.push_back(builder.polynomial(p));
@@ -450,7 +450,7 @@ std::unique_ptr<BuiltFunction> built_form(DerivativesForm form, const std::strin
 }  // namespace
 
 FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                              const FunctionNames& names, const CFamilyEmitter& emitter, DerivativesForm* rates_form) {
+                              const FunctionNames& names, const StatementEmitter& emitter, DerivativesForm* rates_form) {
   const std::size_t n = eq.n();
   DerivativesForm form = DerivativesForm::Expanded;
   if (!options.eliminate_common_subexpressions || eq.jacobian_term.empty()) {
@@ -513,7 +513,7 @@ FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, con
 }
 
 FunctionCode rates_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                        const FunctionNames& names, const CFamilyEmitter& emitter, DerivativesForm form,
+                        const FunctionNames& names, const StatementEmitter& emitter, DerivativesForm form,
                         const OpCounts& naive) {
   auto built = built_form(form, "rates", model, eq, names, ExtraOutputs{&eq});
   built->stats.naive = naive;

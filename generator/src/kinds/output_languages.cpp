@@ -6,17 +6,16 @@ namespace pfgen {
 
 const std::vector<OutputLanguageInfo>& output_languages() {
   static const std::vector<OutputLanguageInfo> languages = {
-      {OutputLanguage::Cpp, "cpp", "C++", &cpp_reserved_name_problem},
-      {OutputLanguage::C, "c", "C", &c_reserved_name_problem},
-      {OutputLanguage::Rust, "rust", "Rust", &rust_reserved_name_problem},
+      {"cpp", "C++", &cpp_reserved_name_problem},
+      {"c", "C", &c_reserved_name_problem},
   };
   return languages;
 }
 
-const OutputLanguageInfo& output_language_info(OutputLanguage language) {
+const OutputLanguageInfo& output_language_info(const std::string& name) {
   for (const auto& info : output_languages())
-    if (info.language == language) return info;
-  throw std::logic_error("output language missing from the registry");
+    if (info.name == name) return info;
+  throw std::logic_error("output language '" + name + "' missing from the registry");
 }
 
 }  // namespace pfgen

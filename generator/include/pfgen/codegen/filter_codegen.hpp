@@ -1,12 +1,12 @@
 #pragma once
 // Generates the code of one filter (a built-in kind or a user filter of the model file) in an
 // output language: the language-neutral functions (filter_functions.hpp) written by that
-// language's backend (codegen/backends/<language>/) into its templates (templates/<language>/).
-//   C++ (cpp_filter_code.hpp): a header-only file per filter, namespace <NS>::<model>::<filter>
+// language's backend (backend.hpp, codegen/backends/<language>/) into its templates.
+//   C++ (backends/cpp/cpp_backend.hpp): a header-only file per filter, namespace <NS>::<model>::<filter>
 //     (the filter's name with '-' written '_'): n, p, state_size; Params<Scalar>; derivatives();
 //     gain(); predicted_observation(); initial_state(); step(); with
 //     CodegenOptions::eigen_wrapper also <filter>_eigen.hpp.
-//   C99 (c_filter_code.hpp): a .h/.c pair per filter, every name prefixed <NS>_<model>_<filter>_.
+//   C99 (backends/c/c_backend.hpp): a .h/.c pair per filter, every name prefixed <NS>_<model>_<filter>_.
 // Each backend writes a filter through its observation module (observation_code.hpp), whose
 // templates it fills. A filter for delayed observations steps on a fixed grid dt and keeps its
 // own fixed-size history: CodegenOptions::grid_step must give that dt, and the delay must be a
@@ -19,12 +19,11 @@
 #include "pfgen/codegen/filter_functions.hpp"
 #include "pfgen/codegen/scalar_mode.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
-#include "pfgen/kinds/output_languages.hpp"
 
 namespace pfgen::codegen {
 
-// The output languages are the kind registry's (kinds/output_languages.hpp); each has a backend.
-using Language = OutputLanguage;
+// An output language by its name in the registry of backends (backend.hpp): "cpp", "c".
+using Language = std::string;
 
 // Code generation holds a graph of every expanded equation beside the structured form it may
 // emit instead, about 0.2 kB per equation term with the derivation's own: the dense cubic models'
@@ -35,7 +34,7 @@ using Language = OutputLanguage;
 inline constexpr double kMaxCodegenTerms = 10000000;
 
 struct CodegenOptions {
-  Language language = Language::Cpp;
+  Language language = "cpp";
   ScalarMode scalar = ScalarMode::Template;     // C: Float or Double
   std::string name_space = "pfgen_models";      // C: the names' prefix, `::` written `_`
   bool eliminate_common_subexpressions = true;  // false only for the benchmark's baseline
@@ -44,7 +43,7 @@ struct CodegenOptions {
   // model's simulation dt). Ignored by the other filters.
   std::optional<double> grid_step;
   // A generated function with more operations (after CSE) than this is written in parts of at most
-  // this many, each its own function (CFamilyEmitter::split_above): g++ -O2 needs minutes and
+  // this many, each its own function (StatementEmitter::split_above): g++ -O2 needs minutes and
   // gigabytes for one function of tens of thousands of operations. Every example but ins16 is far
   // below. 0: never split (tests lower it to compare split and unsplit code on a small model).
   std::size_t max_function_ops = 500;
@@ -69,9 +68,8 @@ struct GeneratedFilter {
 
 // Where a filter's files go, relative to `pfgen codegen -o DIR`, in the order of
 // GeneratedFilter::files: "<model>/<identifier>.hpp" (and "_eigen.hpp"), or ".h" and ".c";
-// identifier = filter_identifier(filter_name). The one place these names are made: the backends
-// name their files by it, and the command line checks the paths it will write before anything is
-// derived.
+// identifier = filter_identifier(filter_name): the language's backend's (Backend::filter_paths),
+// by which the command line checks the paths it will write before anything is derived.
 std::vector<std::string> filter_file_paths(const std::string& model_name, const std::string& filter_name,
                                            const CodegenOptions& options);
 

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "pfgen/codegen/backends/c_family/c_family_emitter.hpp"
+#include "pfgen/codegen/ir/statement_emitter.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 
 namespace pfgen::codegen {
@@ -54,7 +54,7 @@ struct FunctionCode {
 // definitions computed first.
 FunctionCode function_code(const std::string& function, const std::vector<Polynomial>& outputs,
                            const std::string& target, const Model& model, const FilterEquations& eq,
-                           const CodegenOptions& options, const FunctionNames& names, const CFamilyEmitter& emitter);
+                           const CodegenOptions& options, const FunctionNames& names, const StatementEmitter& emitter);
 // The forms derivatives() may be written in: the expanded polynomials; the derivation's structure
 // (P E[J]^T + E[J] P, each E[J] entry once; the correction as K (A P)), its expectations as the
 // derivation's polynomials or over shared Gaussian moments (moment_form.hpp), each also with the
@@ -68,13 +68,13 @@ enum class DerivativesForm { Expanded, Structured, Moments, Loops, MomentLoops, 
 // receives the form rates() takes: the same, but in loops from n = kMinLoopDimension, where they
 // pay with the gain shared.
 FunctionCode derivatives_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                              const FunctionNames& names, const CFamilyEmitter& emitter,
+                              const FunctionNames& names, const StatementEmitter& emitter,
                               DerivativesForm* rates_form = nullptr);
 // rates(): derivatives' outputs, then the gain (n x p, row-major) and the predicted observation,
 // to `out`, in one body in `form` (derivatives_code's rates_form): what derivatives() and gain()
 // have in common (K, and with it P's correction) is computed once. `naive`: the three functions' naive count.
 FunctionCode rates_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                        const FunctionNames& names, const CFamilyEmitter& emitter, DerivativesForm form,
+                        const FunctionNames& names, const StatementEmitter& emitter, DerivativesForm form,
                         const OpCounts& naive);
 
 // The placeholders a template has for each of its functions, under its key: `<key>_ops` (the ops

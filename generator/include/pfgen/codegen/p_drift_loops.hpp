@@ -16,12 +16,13 @@
 // The graph computes the blocks' entries into a local work array (`work` below): m's drift first,
 // then the blocks at the offsets recorded here, then the rest of P's drift per upper entry (E[g g^T],
 // or E[g g^T] minus the correction where it is not factored), then the tail (rates(): what the loops
-// do not give). A backend writes the loops (CFamilyEmitter::p_drift_loops).
+// do not give). The loops are statements (p_drift_statements), which every backend writes.
 #include <cstddef>
 #include <string>
 #include <vector>
 
 #include "pfgen/codegen/expression_graph.hpp"
+#include "pfgen/codegen/ir/statements.hpp"
 
 namespace pfgen::codegen {
 
@@ -38,7 +39,7 @@ inline constexpr std::size_t kMinLoopDimensionAlone = 6;
 // no difference at n = 8 or 16, where the triangle saves (n^2 - n) / 2 entries' operations).
 inline constexpr std::size_t kFullCombineBelow = 8;
 // From this n up to kFullCombineBelow the dense products' rows are written out, one column loop
-// per row (CFamilyEmitter::p_drift_loops says why); below it, at n = 4, they are a loop over the
+// per row (p_drift_statements.cpp says why); below it, at n = 4, they are a loop over the
 // rows. Written out at n = 4, GCC 12 -O3 -march=native with 512-bit vectors preferred (its tuning
 // for Zen 4 and other AVX-512 machines) packed the four row loops into shuffled 512-bit vectors:
 // the step 1.27x hand-written Eigen in double, 1.11x with the row loop; 256-bit vectors 0.84x to
@@ -95,5 +96,12 @@ struct PDriftLoopNames {
   std::string i, j, u;              // loop indices: row, column, upper entry
   std::string JP_T;                 // local array: E[J] P transposed (full_combine)
 };
+
+// The loops of `loops`: P's drift into names.out from the work array the graph filled and the full
+// P (full_P_statements'), and m's drift copied from the work array.
+ir::Block p_drift_statements(const PDriftLoops& loops, const PDriftLoopNames& names);
+// names.full_P, the n x n P, unpacked from the state's triangle; it opens the function, before
+// the graph's statements, so that its stores are done when the loops read its rows.
+ir::Block full_P_statements(const PDriftLoops& loops, const PDriftLoopNames& names);
 
 }  // namespace pfgen::codegen

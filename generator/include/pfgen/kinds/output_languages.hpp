@@ -1,19 +1,19 @@
 #pragma once
-// The languages pfgen writes filters in, as plain facts: each one's name on the command line and
-// the names its generated code cannot declare. A model file is valid for every language, so the
-// model room refuses a name that any of them reserves, at its line and column, when the file is
-// read (model/reserved_names.hpp); the backends (codegen/backends/<language>/) write the code.
-// A new language is one row here, its reserved words in their own file, and its backend.
+// The languages pfgen writes filters in, as plain facts: each one's name on the command line, its
+// title in messages, and the names its generated code cannot declare. A model file is valid for
+// every language, so the model room refuses a name that any of them reserves, at its line and
+// column, when the file is read (model/reserved_names.hpp). The model room stands below code
+// generation, so these facts are a table of their own here rather than the backends' (codegen/
+// backend.hpp, one folder codegen/backends/<language>/ each, which write the code and name their
+// row here): a new language is its backend's folder, which holds its reserved words (defined there,
+// declared below), and one row here.
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace pfgen {
 
-enum class OutputLanguage { Cpp, C, Rust };
-
 struct OutputLanguageInfo {
-  OutputLanguage language;
   std::string name;   // as `pfgen codegen --language` takes it: "cpp"
   std::string title;  // as messages name it: "C++"
   // Why the language's generated code cannot declare `name` as a local (a keyword, a macro of the
@@ -24,12 +24,12 @@ struct OutputLanguageInfo {
 // Every output language, in a fixed order (C++ first: its words were checked first historically,
 // and the first problem found is the one reported).
 const std::vector<OutputLanguageInfo>& output_languages();
-const OutputLanguageInfo& output_language_info(OutputLanguage language);
+// The row of that name; std::logic_error for another.
+const OutputLanguageInfo& output_language_info(const std::string& name);
 
-// Each language's own reserved words (kinds/cpp_reserved_words.cpp, kinds/c_reserved_words.cpp,
-// kinds/rust_reserved_words.cpp).
+// Each language's own reserved words (codegen/backends/cpp/cpp_reserved_words.cpp,
+// codegen/backends/c/c_reserved_words.cpp).
 std::optional<std::string> cpp_reserved_name_problem(const std::string& name);
 std::optional<std::string> c_reserved_name_problem(const std::string& name);
-std::optional<std::string> rust_reserved_name_problem(const std::string& name);
 
 }  // namespace pfgen

@@ -1,7 +1,7 @@
 // A filter for continuous observations in C99 (its templates/c/filter.h.tmpl and filter.c.tmpl).
 #include "pfgen/codegen/backends/c/c_filter_writer.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
-#include "pfgen/observations/continuous/heun_step_text.hpp"
+#include "pfgen/observations/continuous/heun_step.hpp"
 
 namespace pfgen::codegen {
 
@@ -12,7 +12,9 @@ GeneratedFilter ContinuousCode::c_filter(const Model& model, const FilterEquatio
   w.result.functions = {f.derivatives.stats, f.gain.stats, f.observation.stats, f.rates->stats};
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count());
   add_rate_function_values(values, f, w.names, eq, true);
-  add_heun_step_loops(values, {"size_t", w.prefix + "_n", w.prefix + "_p", w.prefix + "_state_size", w.emitter.literal(2)},
+  add_heun_step_loops(values, w.emitter,
+                      {ir::name(w.prefix + "_n"), ir::name(w.prefix + "_p"), ir::name(w.prefix + "_state_size"),
+                       ir::number(2)},
                       eq.n(), eq.p, eq.variables.count());
   values.emplace("initial_body", c_initial_body(initial_values(model, eq.variables), w.emitter));
   w.write("filter", values, {}, {});

@@ -4,7 +4,7 @@
 namespace pfgen::codegen {
 
 ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                         const FunctionNames& names, const CFamilyEmitter& emitter, bool with_rates) {
+                                         const FunctionNames& names, const StatementEmitter& emitter, bool with_rates) {
   std::vector<Polynomial> gain_outputs;
   for (const auto& row : eq.gain) gain_outputs.insert(gain_outputs.end(), row.begin(), row.end());
   ContinuousFunctions f;

@@ -4,7 +4,7 @@
 #include "pfgen/codegen/backends/cpp/cpp_filter_parts.hpp"
 #include "pfgen/codegen/template_text.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
-#include "pfgen/observations/continuous/heun_step_text.hpp"
+#include "pfgen/observations/continuous/heun_step.hpp"
 
 namespace pfgen::codegen {
 
@@ -27,7 +27,8 @@ GeneratedFilter ContinuousCode::cpp_filter(const Model& model, const FilterEquat
       {"initial_body", cpp_initial_body(initial_values(model, vars), emitter)},
   });
   add_rate_function_values(values, functions, names, eq, false);
-  add_heun_step_loops(values, {"std::size_t", "n", "p", "state_size", "Scalar(2)"}, eq.n(), eq.p, vars.count());
+  add_heun_step_loops(values, emitter, {ir::name("n"), ir::name("p"), ir::name("state_size"), ir::name("Scalar(2)")},
+                      eq.n(), eq.p, vars.count());
   result.files.at(0).contents = fill_template("cpp/filter.hpp.tmpl", embedded_template("cpp/filter.hpp.tmpl"), values);
   add_eigen_layer(result, "cpp/filter_eigen.hpp.tmpl", model, eq, options, values);
   return result;

@@ -2,7 +2,7 @@
 // §2.6): the functions read m(t - h) and Phi* from a second array, x* follows m and P in the state,
 // and the step keeps the history on the fixed grid the filter is generated for.
 #include "pfgen/codegen/backends/c_family/file_banner.hpp"
-#include "pfgen/codegen/backends/cpp/cpp_filter_code.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_backend.hpp"
 #include "pfgen/codegen/backends/cpp/cpp_filter_parts.hpp"
 #include "pfgen/codegen/template_text.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"

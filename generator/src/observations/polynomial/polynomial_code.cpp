@@ -10,7 +10,7 @@ namespace pfgen::codegen {
 bool written_linear(const Model& model) { return observation_degree(model) <= 1; }
 
 PolynomialFunctions polynomial_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                         const FunctionNames& names, const CFamilyEmitter& emitter) {
+                                         const FunctionNames& names, const StatementEmitter& emitter) {
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n(), p = eq.p, count = vars.count();
   // sigma, one row per filter variable: K's rows for m, L's (zero for the extended and sigma-point

@@ -1,48 +1,63 @@
 #include "pfgen/observations/sampled/cholesky_solve.hpp"
 
+#include <string>
+#include <vector>
+
 namespace pfgen::codegen {
 namespace {
 
-std::string L(std::size_t a, std::size_t b) { return "L" + std::to_string(a) + "_" + std::to_string(b); }
+ir::Expr L(std::size_t a, std::size_t b) { return ir::name("L" + std::to_string(a) + "_" + std::to_string(b)); }
 
-std::string packed(std::size_t a, std::size_t b, std::size_t r) {
-  return std::to_string(a * r - a * (a + 1) / 2 + b);  // a <= b
+std::size_t packed(std::size_t a, std::size_t b, std::size_t r) {
+  return a * r - a * (a + 1) / 2 + b;  // a <= b
+}
+
+// first - terms[0] - terms[1] - ..., left to right.
+ir::Expr minus(ir::Expr first, std::vector<ir::Expr> terms) {
+  for (ir::Expr& term : terms) first = ir::sub(std::move(first), std::move(term));
+  return first;
 }
 
 }  // namespace
 
-std::string cholesky_gain_body(std::size_t r, const CFamilyEmitter& emitter, const CholeskySpelling& spelling) {
-  const std::string& scalar = emitter.scalar_type();
-  std::string body;
+ir::Block cholesky_gain_statements(std::size_t r, const CholeskyNames& names) {
+  using ir::Type;
+  ir::Block body;
   // S = L L^T, column by column: L_jj = sqrt(S_jj - sum_k L_jk^2), L_ij = (S_ji - sum_k L_ik L_jk) / L_jj.
   for (std::size_t j = 0; j < r; ++j) {
-    std::string pivot = "S[" + packed(j, j, r) + "]";
-    for (std::size_t k = 0; k < j; ++k) pivot += " - " + L(j, k) + " * " + L(j, k);
+    std::vector<ir::Expr> squares;
+    for (std::size_t k = 0; k < j; ++k) squares.push_back(ir::mul(L(j, k), L(j, k)));
     const std::string d = "d" + std::to_string(j);
-    body += "  const " + scalar + " " + d + " = " + pivot + ";\n";
-    body += "  if (!(" + d + " > " + spelling.zero + ")) return " + spelling.failure + ";\n";
-    body += "  const " + scalar + " " + L(j, j) + " = " + emitter.call(Function::Sqrt, {d}) + ";\n";
+    body.push_back(ir::declare(d, Type::Scalar, minus(ir::element("S", packed(j, j, r)), std::move(squares))));
+    body.push_back(ir::conditional(ir::logical_not(ir::grouped(ir::greater(ir::name(d), names.zero))),
+                                   {ir::return_value(ir::boolean(false))}));
+    body.push_back(ir::declare(L(j, j).name, Type::Scalar, ir::call(Function::Sqrt, {ir::name(d)})));
     for (std::size_t i = j + 1; i < r; ++i) {
-      std::string entry = "S[" + packed(j, i, r) + "]";
-      for (std::size_t k = 0; k < j; ++k) entry += " - " + L(i, k) + " * " + L(j, k);
-      body += "  const " + scalar + " " + L(i, j) + " = (" + entry + ") / " + L(j, j) + ";\n";
+      std::vector<ir::Expr> products;
+      for (std::size_t k = 0; k < j; ++k) products.push_back(ir::mul(L(i, k), L(j, k)));
+      body.push_back(ir::declare(
+          L(i, j).name, Type::Scalar,
+          ir::div(ir::grouped(minus(ir::element("S", packed(j, i, r)), std::move(products))), L(j, j))));
     }
   }
   // Each row k of K solves S k = b (b the row of PCt): L z = b, then L^T k = z.
-  body += "  for (" + spelling.size_type + " i = 0; i < " + spelling.n + "; ++i) {\n";
-  body += "    const " + scalar + "* b = PCt + i * " + spelling.p + ";\n";
-  body += "    " + scalar + "* k = K + i * " + spelling.p + ";\n";
+  const ir::Expr i = ir::name("i");
+  ir::Block row = {ir::view("b", "PCt", ir::mul(i, names.p), names.p, false),
+                   ir::view("k", "K", ir::mul(i, names.p), names.p, true)};
   for (std::size_t a = 0; a < r; ++a) {
-    std::string z = "b[" + std::to_string(a) + "]";
-    for (std::size_t c = 0; c < a; ++c) z += " - " + L(a, c) + " * z" + std::to_string(c);
-    body += "    const " + scalar + " z" + std::to_string(a) + " = (" + z + ") / " + L(a, a) + ";\n";
+    std::vector<ir::Expr> known;
+    for (std::size_t c = 0; c < a; ++c) known.push_back(ir::mul(L(a, c), ir::name("z" + std::to_string(c))));
+    row.push_back(ir::declare("z" + std::to_string(a), Type::Scalar,
+                              ir::div(ir::grouped(minus(ir::element("b", a), std::move(known))), L(a, a))));
   }
   for (std::size_t a = r; a-- > 0;) {
-    std::string x = "z" + std::to_string(a);
-    for (std::size_t c = a + 1; c < r; ++c) x += " - " + L(c, a) + " * k[" + std::to_string(c) + "]";
-    body += "    k[" + std::to_string(a) + "] = (" + x + ") / " + L(a, a) + ";\n";
+    std::vector<ir::Expr> known;
+    for (std::size_t c = a + 1; c < r; ++c) known.push_back(ir::mul(L(c, a), ir::element("k", c)));
+    row.push_back(ir::assign(ir::element("k", a),
+                             ir::div(ir::grouped(minus(ir::name("z" + std::to_string(a)), std::move(known))), L(a, a))));
   }
-  body += "  }\n  return " + spelling.success + ";\n";
+  body.push_back(ir::loop("i", Type::Size, ir::integer(0), names.n, std::move(row)));
+  body.push_back(ir::return_value(ir::boolean(true)));
   return body;
 }
 

@@ -48,8 +48,8 @@ GeneratedFilter SampledCode::c_filter(const Model& model, const FilterEquations&
           {{"period", w.emitter.literal(eq.update.period)},
            {"euler_function", euler_function},
            {"initial_body", c_initial_body(initial_values(model, eq.variables), w.emitter)},
-           {"solve_body", cholesky_gain_body(r, w.emitter,
-                                             {"size_t", w.prefix + "_n", w.prefix + "_p", w.emitter.literal(0), "0", "1"})},
+           {"solve_body", w.emitter.block(cholesky_gain_statements(
+                              r, {ir::name(w.prefix + "_n"), ir::name(w.prefix + "_p"), ir::number(0)}))},
            {"predict_function", predict_function},
            {"one", w.emitter.literal(1)},
            {"zero", w.emitter.literal(0)}});

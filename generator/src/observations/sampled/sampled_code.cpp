@@ -14,7 +14,7 @@ void SampledCode::check_size(const Model& model, const FilterEquations& eq) cons
 }
 
 SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                   const FunctionNames& names, const CFamilyEmitter& emitter) {
+                                   const FunctionNames& names, const StatementEmitter& emitter) {
   const SampledUpdate& u = eq.update;
   SampledFunctions f;
   f.derivatives = derivatives_code(model, eq, options, names, emitter);

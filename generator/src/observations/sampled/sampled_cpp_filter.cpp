@@ -68,7 +68,7 @@ GeneratedFilter SampledCode::cpp_filter(const Model& model, const FilterEquation
       {"observation_ops", ops_comment(functions.observation.stats)},
       {"observation_body", functions.observation.body.statements},
       {"initial_body", cpp_initial_body(initial_values(model, vars), emitter)},
-      {"solve_body", cholesky_gain_body(r, emitter, {"std::size_t", "n", "p", "Scalar(0)", "false", "true"})},
+      {"solve_body", emitter.block(cholesky_gain_statements(r, {ir::name("n"), ir::name("p"), ir::name("Scalar(0)")}))},
       {"predict_function", predict_function},
   });
   add_sample_meanings(values, u);

@@ -39,7 +39,7 @@ struct ContinuousFunctions {
   std::optional<FunctionCode> rates;
 };
 ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                         const FunctionNames& names, const CFamilyEmitter& emitter,
+                                         const FunctionNames& names, const StatementEmitter& emitter,
                                          bool with_rates = false);
 
 // What gain() computes, for the templates' comment.

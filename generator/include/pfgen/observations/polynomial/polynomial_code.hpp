@@ -37,7 +37,7 @@ struct PolynomialFunctions {
   FunctionCode derivatives, gain, covariance_gain, observation, correction;
 };
 PolynomialFunctions polynomial_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                         const FunctionNames& names, const CFamilyEmitter& emitter);
+                                         const FunctionNames& names, const StatementEmitter& emitter);
 
 // The placeholders of the module's templates for these functions (`<key>_ops`, `<key>_body`, and
 // with `split_parts` `<key>_helpers`) and the output arrays' names K, L, h, c.

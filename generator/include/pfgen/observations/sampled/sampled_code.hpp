@@ -43,7 +43,7 @@ struct SampledFunctions {
   FunctionCode innovation, matrices, observation;
 };
 SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                   const FunctionNames& names, const CFamilyEmitter& emitter);
+                                   const FunctionNames& names, const StatementEmitter& emitter);
 
 // What the templates' comments say observation_matrices(), predicted_observation() and the
 // innovation are (matrices_meaning, sample_meaning, innovation_meaning): C0 + C m's, or a

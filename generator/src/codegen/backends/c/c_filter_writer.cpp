@@ -1,6 +1,6 @@
 #include "pfgen/codegen/backends/c/c_filter_writer.hpp"
 
-#include "pfgen/codegen/backends/c/c_filter_code.hpp"
+#include "pfgen/codegen/backends/c/c_backend.hpp"
 #include "pfgen/codegen/backends/c_family/file_banner.hpp"
 #include "pfgen/codegen/template_text.hpp"
 

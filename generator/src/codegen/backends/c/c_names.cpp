@@ -5,7 +5,7 @@
 #include <map>
 #include <regex>
 
-#include "pfgen/codegen/backends/c/c_filter_code.hpp"
+#include "pfgen/codegen/backends/c/c_backend.hpp"
 #include "pfgen/codegen/codegen_error.hpp"
 #include "pfgen/codegen/observation_code.hpp"
 #include "pfgen/codegen/template_text.hpp"

@@ -12,7 +12,7 @@ namespace pfgen::codegen {
 
 FunctionBody CEmitter::split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                                   const FunctionSignature& signature, const std::vector<std::size_t>& order) const {
-  const SplitPlan plan = split_plan(graph, outputs);
+  const ir::SplitPlan plan = ir::split_plan(graph, outputs, max_ops_);
   const std::vector<std::string> destinations = indexed(signature.target, outputs.size());
   auto spell = [&](std::size_t id) {
     return graph.is_leaf(id) ? expression(graph.node(id), {}) : temporary(plan.number.at(id));
@@ -54,7 +54,7 @@ FunctionBody CEmitter::split_body(const ExpressionGraph& graph, const std::vecto
         operands.push_back(spell(arg));
       }
       arithmetic += "  " + declaration(spell(id), expression(graph.node(id), operands)) + "\n";
-      if (plan.slot[id] != SplitPlan::kNone)
+      if (plan.slot[id] != ir::SplitPlan::kNone)
         stores += "  " + shared_array_ + "[" + std::to_string(plan.slot[id]) + "] = " + spell(id) + ";\n";
     }
     for (std::size_t k = 0; k < outputs.size(); ++k)

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 
 #include "pfgen/codegen/codegen_error.hpp"
 #include "pfgen/model/decimal_literals.hpp"
@@ -80,149 +79,76 @@ std::string CFamilyEmitter::zero_where_zero(const std::string& guard, const std:
   return "(" + guard + " == " + zero + " ? " + zero + " : " + value + ")";
 }
 
-std::string CFamilyEmitter::input_source(const Node& node) const {
-  switch (node.source().kind) {
-    case InputSource::Kind::Argument: return node.name();
-    case InputSource::Kind::Element: return node.source().container + "[" + std::to_string(node.source().index) + "]";
-    case InputSource::Kind::Field: return node.source().container + field_access() + node.name();
+std::string CFamilyEmitter::type(ir::Type t) const {
+  switch (t) {
+    case ir::Type::Scalar: return scalar_type_;
+    case ir::Type::Size: return size_type();
+    case ir::Type::Int: return "int";
   }
   return "?";
 }
 
-std::set<std::size_t> CFamilyEmitter::inputs_read(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs) {
-  const std::vector<bool> needed = graph.needed(outputs);
-  std::set<std::size_t> inputs;
-  for (std::size_t id = 0; id < graph.size(); ++id)
-    if (needed[id] && graph.node(id).kind == OpKind::Input) inputs.insert(id);
-  return inputs;
+std::string CFamilyEmitter::declaration(const ir::Declaration& node, const std::string&) const {
+  if (node.size) return type(node.type) + " " + node.name + "[" + std::to_string(*node.size) + "];";
+  return "const " + type(node.type) + " " + node.name + " = " + expression(*node.value) + ";";
+}
+
+std::string CFamilyEmitter::view(const ir::View& node, const std::string&) const {
+  return std::string(node.writable ? "" : "const ") + scalar_type_ + "* " + node.name + " = " + node.array + " + " +
+         expression(node.offset) + ";";
+}
+
+std::string CFamilyEmitter::assignment(const ir::Assignment& node, const std::string&) const {
+  std::string text;
+  for (const ir::Expr& target : node.targets) text += expression(target) + (node.accumulate ? " += " : " = ");
+  return text + expression(node.value) + ";";
+}
+
+std::string CFamilyEmitter::with_block(const std::string& header, const ir::Block& body,
+                                       const std::string& indent) const {
+  const std::string inner = indent + "  ";
+  if (body.size() == 1 && body[0].kind == ir::Statement::Kind::Loop)
+    return header + "\n" + inner + statement(body[0], inner);
+  if (body.size() == 1) return header + " " + statement(body[0], indent);
+  return header + " {\n" + block(body, inner) + indent + "}";
+}
+
+std::string CFamilyEmitter::loop(const ir::Loop& node, const std::string& indent) const {
+  std::string header = "for (" + type(node.counter) + " " + node.index + " = " + expression(node.begin);
+  if (node.declares) header += ", " + node.declares->name + " = " + expression(node.declares->start);
+  header += "; " + node.index + " < " + expression(node.end) + "; ++" + node.index;
+  if (!node.steps.empty()) header += ", ++" + node.steps;
+  return with_block(header + ")", node.body, indent);
+}
+
+std::string CFamilyEmitter::call_statement(const ir::CallStatement& node, const std::string&) const {
+  std::string text = node.function + "(";
+  for (std::size_t k = 0; k < node.arguments.size(); ++k) text += (k ? ", " : "") + expression(node.arguments[k]);
+  return text + ");";
+}
+
+std::string CFamilyEmitter::conditional(const ir::Conditional& node, const std::string& indent) const {
+  return with_block("if (" + expression(node.condition) + ")", node.then, indent);
+}
+
+std::string CFamilyEmitter::return_statement(const ir::Return& node, const std::string&) const {
+  return node.value ? "return " + expression(*node.value) + ";" : "return;";
+}
+
+std::string CFamilyEmitter::comment(const ir::Comment& node, const std::string&) const { return "// " + node.text; }
+
+std::string CFamilyEmitter::unused(const ir::Unused& node, const std::string&) const {
+  return "(void)" + node.name + ";";
 }
 
 std::string CFamilyEmitter::declarations_of(const ExpressionGraph& graph, const std::set<std::size_t>& inputs,
                                             const std::vector<std::size_t>& order) const {
-  std::string text;
-  for (std::size_t id : order) {
-    const Node& node = graph.node(id);
-    if (inputs.count(id) && node.source().kind != InputSource::Kind::Argument)
-      text += "  " + declaration(node.name(), input_source(node)) + "\n";
-  }
-  return text;
-}
-
-std::string CFamilyEmitter::input_declarations(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
-                                               const std::vector<std::size_t>& order) const {
-  return declarations_of(graph, inputs_read(graph, outputs), order);
+  return block(ir::input_declarations(graph, inputs, order));
 }
 
 std::string CFamilyEmitter::unused_arguments_of(const ExpressionGraph& graph, const std::set<std::size_t>& inputs,
                                                 const FunctionSignature& signature) const {
-  bool time = false, params = false;
-  std::set<std::string> arrays;
-  for (std::size_t id : inputs) {
-    const Node& node = graph.node(id);
-    switch (node.source().kind) {
-      case InputSource::Kind::Argument: time = time || node.name() == signature.time; break;
-      case InputSource::Kind::Element: arrays.insert(node.source().container); break;
-      case InputSource::Kind::Field: params = true; break;
-    }
-  }
-  std::string text;
-  if (!time) text += "  " + ignored(signature.time) + "\n";
-  for (const std::string& array : signature.arrays)
-    if (!arrays.count(array)) text += "  " + ignored(array) + "\n";
-  if (!params) text += "  " + ignored(signature.params) + "\n";
-  return text;
-}
-
-std::string CFamilyEmitter::unused_arguments(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
-                                             const FunctionSignature& signature) const {
-  return unused_arguments_of(graph, inputs_read(graph, outputs), signature);
-}
-
-std::string CFamilyEmitter::shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
-                                        const std::string& target) const {
-  return shared_body(graph, outputs, indexed(target, outputs.size()));
-}
-
-std::string CFamilyEmitter::shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
-                                        const std::vector<std::string>& destinations) const {
-  std::map<std::size_t, std::string> names;
-  auto spell = [&](std::size_t id) {
-    if (graph.is_leaf(id)) return expression(graph.node(id), {});
-    return names.at(id);
-  };
-  std::string body;
-  for (std::size_t id : graph.needed_operations(outputs)) {
-    const Node& node = graph.node(id);
-    std::vector<std::string> operands;
-    for (std::size_t arg : node.args) operands.push_back(spell(arg));
-    std::string name = temporary(names.size());
-    body += "  " + declaration(name, expression(node, operands)) + "\n";
-    names[id] = name;
-  }
-  for (std::size_t k = 0; k < outputs.size(); ++k)
-    body += "  " + destinations.at(k) + " = " + spell(outputs[k]) + ";\n";
-  return body;
-}
-
-std::string CFamilyEmitter::tree_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
-                                      const std::string& target) const {
-  std::function<std::string(std::size_t)> spell = [&](std::size_t id) -> std::string {
-    const Node& node = graph.node(id);
-    if (graph.is_leaf(id)) return expression(node, {});
-    std::vector<std::string> operands;
-    for (std::size_t arg : node.args) operands.push_back(spell(arg));
-    std::string text = expression(node, operands);
-    return node.kind == OpKind::Call ? text : "(" + text + ")";
-  };
-  std::string body;
-  const std::vector<std::string> destinations = indexed(target, outputs.size());
-  for (std::size_t k = 0; k < outputs.size(); ++k) body += "  " + destinations[k] + " = " + spell(outputs[k]) + ";\n";
-  return body;
-}
-
-FunctionBody CFamilyEmitter::function_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
-                                           const FunctionSignature& signature, const std::vector<std::size_t>& order,
-                                           bool shared) const {
-  if (shared && max_ops_ != 0 && graph.needed_operations(outputs).size() > max_ops_)
-    return split_body(graph, outputs, signature, order);
-  FunctionBody body;
-  body.statements = unused_arguments(graph, outputs, signature) + input_declarations(graph, outputs, order) +
-                    (shared ? shared_body(graph, outputs, signature.target) : tree_body(graph, outputs, signature.target));
-  return body;
-}
-
-void CFamilyEmitter::split_above(std::size_t max_ops, std::string shared_array) {
-  max_ops_ = max_ops;
-  shared_array_ = std::move(shared_array);
-}
-
-std::size_t CFamilyEmitter::SplitPlan::writer(const ExpressionGraph& graph, std::size_t root) const {
-  return graph.is_leaf(root) ? parts - 1 : part.at(root);
-}
-
-CFamilyEmitter::SplitPlan CFamilyEmitter::split_plan(const ExpressionGraph& graph,
-                                                     const std::vector<std::size_t>& outputs) const {
-  SplitPlan plan;
-  plan.operations = graph.needed_operations(outputs);
-  plan.parts = (plan.operations.size() + max_ops_ - 1) / max_ops_;
-  plan.part.assign(graph.size(), SplitPlan::kNone);
-  plan.number.assign(graph.size(), SplitPlan::kNone);
-  plan.slot.assign(graph.size(), SplitPlan::kNone);
-  for (std::size_t k = 0; k < plan.operations.size(); ++k) {
-    plan.part[plan.operations[k]] = k / max_ops_;
-    plan.number[plan.operations[k]] = k;
-  }
-  plan.reads.resize(plan.parts);
-  for (std::size_t id : plan.operations)
-    for (std::size_t arg : graph.node(id).args)
-      if (!graph.is_leaf(arg) && plan.part[arg] != plan.part[id]) plan.reads[plan.part[id]].insert(arg);
-  // Slots in the order of the values' node numbers.
-  std::vector<bool> stored(graph.size(), false);
-  for (const auto& part : plan.reads)
-    for (std::size_t id : part) stored[id] = true;
-  for (std::size_t id = 0; id < graph.size(); ++id)
-    if (stored[id]) plan.slot[id] = plan.slots++;
-  return plan;
+  return block(ir::unused_arguments(graph, inputs, signature));
 }
 
 }  // namespace pfgen::codegen

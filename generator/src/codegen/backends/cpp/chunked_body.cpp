@@ -18,7 +18,7 @@ namespace pfgen::codegen {
 
 FunctionBody CppEmitter::split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                                     const FunctionSignature& signature, const std::vector<std::size_t>& order) const {
-  const SplitPlan plan = split_plan(graph, outputs);
+  const ir::SplitPlan plan = ir::split_plan(graph, outputs, max_ops_);
   const std::vector<std::string> destinations = indexed(signature.target, outputs.size());
   auto spell = [&](std::size_t id) {
     return graph.is_leaf(id) ? expression(graph.node(id), {}) : temporary(plan.number.at(id));
@@ -42,7 +42,7 @@ FunctionBody CppEmitter::split_body(const ExpressionGraph& graph, const std::vec
       std::vector<std::string> operands;
       for (std::size_t arg : graph.node(id).args) operands.push_back(spell(arg));
       body += "    " + declaration(spell(id), expression(graph.node(id), operands)) + "\n";
-      if (plan.slot[id] != SplitPlan::kNone)
+      if (plan.slot[id] != ir::SplitPlan::kNone)
         stores += "    " + shared_array_ + "[" + std::to_string(plan.slot[id]) + "] = " + spell(id) + ";\n";
     }
     body += stores;

@@ -1,6 +1,6 @@
 #include "pfgen/codegen/backends/cpp/cpp_filter_parts.hpp"
 
-#include "pfgen/codegen/backends/cpp/cpp_filter_code.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_backend.hpp"
 #include "pfgen/codegen/template_text.hpp"
 
 namespace pfgen::codegen {

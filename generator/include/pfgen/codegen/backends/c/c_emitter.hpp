@@ -19,9 +19,11 @@ class CEmitter : public CFamilyEmitter {
   std::string call(Function function, const std::vector<std::string>& args) const override;
   // The <math.h> name of a function for this scalar type: "sin" or "sinf", "fabs" for abs.
   std::string function_spelling(Function function) const;
+  std::string boolean(bool value) const override { return value ? "1" : "0"; }
 
  protected:
   std::string field_access() const override { return "->"; }
+  std::string size_type() const override { return "size_t"; }
   FunctionBody split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                           const FunctionSignature& signature, const std::vector<std::size_t>& order) const override;
 

@@ -16,9 +16,11 @@ class CppEmitter : public CFamilyEmitter {
       : CFamilyEmitter(mode, "Scalar", std::move(temporary_prefix)) {}
 
   std::string call(Function function, const std::vector<std::string>& args) const override;
+  std::string boolean(bool value) const override { return value ? "true" : "false"; }
 
  protected:
   std::string field_access() const override { return "."; }
+  std::string size_type() const override { return "std::size_t"; }
   FunctionBody split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                           const FunctionSignature& signature, const std::vector<std::size_t>& order) const override;
 };

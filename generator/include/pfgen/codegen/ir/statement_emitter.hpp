@@ -1,0 +1,102 @@
+#pragma once
+// What an output language supplies to write the statement IR (statements.hpp): one method per
+// expression node (Emitter's, for the node kinds of an ExpressionGraph, and the IR's own) and one per
+// statement node, as wrenfold's emitters have one per AST node. block() dispatches each statement to
+// its method, expression() each Expr, so the code that builds statements never writes a language.
+//
+// A generated function's body from its graph is written here once for every language
+// (function_body): the arguments it does not read, its inputs named once, then every operation once
+// (or, without CSE, each output as one expression), each lowered to statements (lower_graph.hpp).
+// A body of more operations than split_above() allows is written in parts by the language's own
+// means (split_body: C++ lambdas, C static functions).
+#include <cstddef>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "pfgen/codegen/emitter.hpp"
+#include "pfgen/codegen/ir/lower_graph.hpp"
+#include "pfgen/codegen/ir/statements.hpp"
+
+namespace pfgen::codegen {
+
+// A function's body, and the functions it calls that must precede it (C's parts of a split body).
+struct FunctionBody {
+  std::string helpers;
+  std::string statements;
+};
+
+class StatementEmitter : public Emitter {
+ public:
+  // Temporaries are named temporary_prefix + 0, 1, ... (LocalNames::temporary_prefix keeps them
+  // apart from the model's names).
+  explicit StatementEmitter(std::string temporary_prefix) : temporary_prefix_(std::move(temporary_prefix)) {}
+
+  // Expressions, beyond Emitter's node kinds (each given its operands' text).
+  virtual std::string name(const std::string& name) const { return name; }
+  virtual std::string integer(std::size_t value) const { return std::to_string(value); }
+  virtual std::string boolean(bool value) const = 0;
+  virtual std::string element(const std::string& array, const std::string& index) const = 0;
+  virtual std::string field(const std::string& record, const std::string& field) const = 0;
+  virtual std::string greater(const std::string& a, const std::string& b) const = 0;
+  virtual std::string logical_not(const std::string& a) const = 0;
+  virtual std::string grouped(const std::string& a) const { return "(" + a + ")"; }
+  using Emitter::expression;
+  std::string expression(const ir::Expr& expr) const;
+
+  // Statements: each method writes its node from its first character to its last, without the
+  // line's indentation and end; a statement of several lines indents the lines after its first
+  // from `indent`, its own depth. block() writes each statement on its own line(s) at `indent`.
+  virtual std::string declaration(const ir::Declaration& node, const std::string& indent) const = 0;
+  virtual std::string view(const ir::View& node, const std::string& indent) const = 0;
+  virtual std::string assignment(const ir::Assignment& node, const std::string& indent) const = 0;
+  virtual std::string loop(const ir::Loop& node, const std::string& indent) const = 0;
+  virtual std::string call_statement(const ir::CallStatement& node, const std::string& indent) const = 0;
+  virtual std::string conditional(const ir::Conditional& node, const std::string& indent) const = 0;
+  virtual std::string return_statement(const ir::Return& node, const std::string& indent) const = 0;
+  virtual std::string comment(const ir::Comment& node, const std::string& indent) const = 0;
+  virtual std::string unused(const ir::Unused& node, const std::string& indent) const = 0;
+  std::string statement(const ir::Statement& statement, const std::string& indent) const;
+  std::string block(const ir::Block& block, const std::string& indent = "  ") const;
+
+  // The lowerings of lower_graph.hpp written out (indented by two): the top of a function for the
+  // inputs `outputs` read, in `order`; the shared body to `target[k]` or to `destinations[k]` (each
+  // as the language writes it); the tree body; an input's source.
+  std::string input_declarations(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                                 const std::vector<std::size_t>& order) const;
+  std::string unused_arguments(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                               const FunctionSignature& signature) const;
+  std::string shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                          const std::string& target) const;
+  std::string shared_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                          const std::vector<std::string>& destinations) const;
+  std::string tree_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                        const std::string& target) const;
+  std::string input_source(const Node& node) const { return expression(ir::input_source(node)); }
+
+  // The whole body of a generated function writing `outputs` to signature.target: unused
+  // arguments, input declarations in `order`, then the shared body (with `shared`; split when it
+  // is too large) or the tree body (lower_graph.hpp).
+  FunctionBody function_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                             const FunctionSignature& signature, const std::vector<std::size_t>& order,
+                             bool shared) const;
+  // From now on function_body() splits a body of more than `max_ops` operations into parts of at
+  // most `max_ops`; `shared_array` names the local array through which the parts pass the values
+  // later parts read, a name clear of the function's others. 0: never split.
+  void split_above(std::size_t max_ops, std::string shared_array);
+  const std::string& temporary_prefix() const { return temporary_prefix_; }
+
+ protected:
+  // A body of more than max_ops_ operations in parts (the part of function_body after its
+  // argument checks; ir::split_plan() says which operation goes where).
+  virtual FunctionBody split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                                  const FunctionSignature& signature,
+                                  const std::vector<std::size_t>& order) const = 0;
+  std::string temporary(std::size_t number) const { return temporary_prefix_ + std::to_string(number); }
+
+  std::string temporary_prefix_;
+  std::size_t max_ops_ = 0;
+  std::string shared_array_;
+};
+
+}  // namespace pfgen::codegen

@@ -1,0 +1,196 @@
+#pragma once
+// The statements generated code is written in, in no language's syntax: what a filter's functions
+// do (declare, assign, loop over a block, call, test, return), for every backend to spell with one
+// method per node (ir/statement_emitter.hpp), as wrenfold lowers its expression graph to an AST
+// that each language's emitter prints. An ExpressionGraph's operations become declarations of
+// temporaries whose values are Expr trees of the graph's node kinds (lower_graph.hpp); the loops,
+// the solves and the steps around them are built from the same nodes.
+//
+// An Expr is printed as it is built: operators take their operands' text as it comes, and only a
+// `grouped` expression is put in parentheses. The builders (not the emitters) say where grouping
+// is needed, so that every language's text has the same operations in the same order (and a
+// C-family emitter's text is byte for byte what it always was).
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <ginac/ginac.h>
+
+#include "pfgen/codegen/expression_graph.hpp"
+
+namespace pfgen::codegen::ir {
+
+struct Expr {
+  enum class Kind {
+    Name,           // a local, an argument or a constant of the file: `name`
+    Integer,        // an index or a size: `integer`
+    Number,         // a number of the scalar type: `number`
+    Boolean,        // true or false: `integer` != 0
+    Element,        // the array `name` at operands[0]
+    Field,          // the field `name` of the parameter record operands[0] (a Name)
+    Add, Sub, Mul, Div,  // operands[0] op operands[1]
+    Neg,            // -operands[0]
+    Call,           // `function` of the operands, in the scalar type
+    ZeroWhereZero,  // 0 where operands[0] is 0, else operands[1]
+    Greater,        // operands[0] > operands[1]
+    Not,            // not operands[0]
+  };
+  Kind kind = Kind::Name;
+  std::string name;
+  std::size_t integer = 0;
+  GiNaC::numeric number;
+  Function function = Function::Sqrt;
+  std::vector<Expr> operands;
+  bool grouped = false;  // written in parentheses
+};
+
+// Builders.
+Expr name(const std::string& name);
+Expr integer(std::size_t value);
+Expr number(const GiNaC::numeric& value);
+Expr boolean(bool value);
+Expr element(const std::string& array, Expr index);
+Expr element(const std::string& array, std::size_t index);
+Expr field(const std::string& record, const std::string& field);
+Expr add(Expr a, Expr b);
+Expr sub(Expr a, Expr b);
+Expr mul(Expr a, Expr b);
+Expr div(Expr a, Expr b);
+Expr neg(Expr a);
+Expr call(Function function, std::vector<Expr> arguments);
+Expr zero_where_zero(Expr guard, Expr value);
+Expr greater(Expr a, Expr b);
+Expr logical_not(Expr a);
+Expr grouped(Expr a);
+// a_0 + a_1 + ... (left to right); a single term as it is.
+Expr sum(std::vector<Expr> terms);
+
+// The types of what a statement declares.
+enum class Type {
+  Scalar,  // the filter's scalar (float, double, C++'s template parameter)
+  Size,    // a size or an index of the filter's arrays (C's size_t)
+  Int,     // a plain integer loop counter (C's int)
+};
+
+struct Statement;
+using Block = std::vector<Statement>;
+
+// `name` of `type`: a constant with its value, or an array of `size` entries, uninitialised.
+struct Declaration {
+  std::string name;
+  Type type = Type::Scalar;
+  std::optional<Expr> value;        // a constant initialised with it
+  std::optional<std::size_t> size;  // an array of this many entries
+};
+
+// A view of `size` entries of an array from `offset` on (C: a pointer into it; Rust: a slice),
+// read-only unless `writable`.
+struct View {
+  std::string name;
+  std::string array;
+  Expr offset, size;
+  bool writable = false;
+};
+
+// targets[0] = targets[1] = ... = value (each target a Name or an Element), or with `accumulate`
+// targets[0] += value.
+struct Assignment {
+  std::vector<Expr> targets;
+  Expr value;
+  bool accumulate = false;
+};
+
+// for index in [begin, end): body. A second counter of a loop nest (the P drift's packed upper
+// index u, which counts the inner loop's iterations over the whole nest) is declared with an outer
+// loop's index (`declares`, from its start) and stepped with an inner one's (`steps`).
+struct Loop {
+  std::string index;
+  Type counter = Type::Size;
+  Expr begin, end;
+  struct Follower {
+    std::string name;
+    Expr start;
+  };
+  std::optional<Follower> declares;
+  std::string steps;  // empty: none
+  Block body;
+};
+
+// A call of a function of the generated file as a statement: `function(arguments)`.
+struct CallStatement {
+  std::string function;
+  std::vector<Expr> arguments;
+};
+
+// if condition: then.
+struct Conditional {
+  Expr condition;
+  Block then;
+};
+
+struct Return {
+  std::optional<Expr> value;
+};
+
+struct Comment {
+  std::string text;  // one line
+};
+
+// An argument the function does not read (C: `(void)name;`, so that -Wunused-parameter stays quiet).
+struct Unused {
+  std::string name;
+};
+
+struct Statement {
+  enum class Kind { Declaration, View, Assignment, Loop, Call, Conditional, Return, Comment, Unused };
+  Kind kind = Kind::Comment;
+  // The node of `kind`; the others stay empty.
+  Declaration declaration;
+  View view;
+  Assignment assignment;
+  Loop loop;
+  CallStatement call;
+  Conditional conditional;
+  Return result;
+  Comment comment;
+  Unused unused;
+};
+
+Statement declare(const std::string& name, Type type, Expr value);          // a constant
+Statement declare_array(const std::string& name, Type type, std::size_t size);
+Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable);
+Statement assign(Expr target, Expr value);
+Statement assign_all(std::vector<Expr> targets, Expr value);
+Statement accumulate(Expr target, Expr value);
+Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Block body,
+               std::optional<Loop::Follower> declares = std::nullopt, const std::string& steps = "");
+Statement call_statement(const std::string& function, std::vector<Expr> arguments);
+Statement conditional(Expr condition, Block then);
+Statement return_value(std::optional<Expr> value);
+Statement comment(const std::string& text);
+Statement unused(const std::string& name);
+
+// A function's parameters, by role: what a backend needs to spell each one's type.
+struct Parameter {
+  enum class Role {
+    Time,         // a scalar argument
+    Scalar,       // another scalar argument (dt)
+    InputArray,   // an array of scalars read (the state, a delayed filter's `delayed`)
+    OutputArray,  // an array of scalars written (out, K, h)
+    Params,       // the parameter record
+  };
+  std::string name;
+  Role role;
+};
+
+// A generated function: its name (as the language's file layout prefixes it), parameters, whether
+// it returns a truth value (success) or nothing, and its body.
+struct FunctionDefinition {
+  std::string name;
+  std::vector<Parameter> parameters;
+  bool returns_boolean = false;
+  Block body;
+};
+
+}  // namespace pfgen::codegen::ir

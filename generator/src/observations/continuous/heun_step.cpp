@@ -1,0 +1,75 @@
+#include "pfgen/observations/continuous/heun_step.hpp"
+
+#include <functional>
+
+namespace pfgen::codegen {
+namespace {
+
+using ir::Expr;
+
+Expr at(const std::string& array, const Expr& index) { return ir::element(array, index); }
+
+// for index < count: body(index), or below kStepWrittenOutBelow states the statements body(0),
+// body(1), ... one per line.
+class StepLoops {
+ public:
+  explicit StepLoops(bool written_out) : written_out_(written_out) {}
+
+  void loop(ir::Block& block, const std::string& index, const Expr& count_name, std::size_t count,
+            const std::function<ir::Statement(const Expr&)>& body) const {
+    if (!written_out_) {
+      block.push_back(ir::loop(index, ir::Type::Size, ir::integer(0), count_name, {body(ir::name(index))}));
+      return;
+    }
+    for (std::size_t k = 0; k < count; ++k) block.push_back(body(ir::integer(k)));
+  }
+
+  // delta[i] += K[i p + r] innovation[r] for each i < n and r < p.
+  void correction(ir::Block& block, const HeunStepNames& names, std::size_t n, std::size_t p) const {
+    auto statement = [](const Expr& i, const Expr& gain_entry, const Expr& r) {
+      return ir::accumulate(at("delta", i), ir::mul(at("K", gain_entry), at("innovation", r)));
+    };
+    if (!written_out_) {
+      const Expr i = ir::name("i"), r = ir::name("r");
+      block.push_back(ir::loop("i", ir::Type::Size, ir::integer(0), names.n,
+                               {ir::loop("r", ir::Type::Size, ir::integer(0), names.p,
+                                         {statement(i, ir::add(ir::mul(i, names.p), r), r)})}));
+      return;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t r = 0; r < p; ++r)
+        block.push_back(statement(ir::integer(i), ir::integer(i * p + r), ir::integer(r)));
+  }
+
+ private:
+  bool written_out_;
+};
+
+}  // namespace
+
+HeunStepLoops heun_step_loops(const HeunStepNames& names, std::size_t n, std::size_t p, std::size_t state_size) {
+  const StepLoops loops(n < kStepWrittenOutBelow);
+  HeunStepLoops step;
+  loops.loop(step.increment, "r", names.p, p, [](const Expr& r) {
+    return ir::assign(at("innovation", r), ir::sub(at("dy", r), ir::mul(at("innovation", r), ir::name("dt"))));
+  });
+  loops.loop(step.increment, "i", names.state_size, state_size,
+             [](const Expr& i) { return ir::assign(at("delta", i), ir::mul(at("all", i), ir::name("dt"))); });
+  loops.correction(step.increment, names, n, p);
+  loops.loop(step.predicted, "i", names.state_size, state_size,
+             [](const Expr& i) { return ir::assign(at("predicted", i), ir::add(at("state", i), at("first", i))); });
+  loops.loop(step.average, "i", names.state_size, state_size, [&](const Expr& i) {
+    return ir::accumulate(at("state", i), ir::div(ir::grouped(ir::add(at("first", i), at("second", i))), names.two));
+  });
+  return step;
+}
+
+void add_heun_step_loops(std::map<std::string, std::string>& values, const StatementEmitter& emitter,
+                         const HeunStepNames& names, std::size_t n, std::size_t p, std::size_t state_size) {
+  const HeunStepLoops step = heun_step_loops(names, n, p, state_size);
+  values.emplace("increment_loops", emitter.block(step.increment));
+  values.emplace("predicted_loop", emitter.block(step.predicted));
+  values.emplace("average_loop", emitter.block(step.average));
+}
+
+}  // namespace pfgen::codegen
