@@ -138,4 +138,41 @@ SplitPlan split_plan(const ExpressionGraph& graph, const std::vector<std::size_t
   return plan;
 }
 
+SplitBody split_statements(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                           const std::vector<Expr>& destinations, const std::string& temporary_prefix,
+                           std::size_t max_ops, const std::string& shared_array) {
+  SplitBody body;
+  body.plan = split_plan(graph, outputs, max_ops);
+  const SplitPlan& plan = body.plan;
+  auto spell = [&](std::size_t id) {
+    return graph.is_leaf(id) ? leaf(graph.node(id)) : name(temporary_prefix + std::to_string(plan.number.at(id)));
+  };
+  auto note_input = [&](SplitPart& part, std::size_t id) {
+    if (graph.node(id).kind == OpKind::Input) part.inputs.insert(id);
+  };
+  std::size_t next = 0;
+  for (std::size_t p = 0; p < plan.parts; ++p) {
+    SplitPart part;
+    for (std::size_t id : plan.reads[p])
+      part.reads.push_back(declare(spell(id).name, Type::Scalar, element(shared_array, plan.slot.at(id))));
+    for (; next < plan.operations.size() && plan.part.at(plan.operations[next]) == p; ++next) {
+      const std::size_t id = plan.operations[next];
+      std::vector<Expr> operands;
+      for (std::size_t arg : graph.node(id).args) {
+        note_input(part, arg);
+        operands.push_back(spell(arg));
+      }
+      part.arithmetic.push_back(declare(spell(id).name, Type::Scalar, operation(graph.node(id), std::move(operands))));
+      if (plan.slot[id] != SplitPlan::kNone) part.stores.push_back(assign(element(shared_array, plan.slot[id]), spell(id)));
+    }
+    for (std::size_t k = 0; k < outputs.size(); ++k)
+      if (plan.writer(graph, outputs[k]) == p) {
+        note_input(part, outputs[k]);
+        part.writes.push_back(assign(destinations.at(k), spell(outputs[k])));
+      }
+    body.parts.push_back(std::move(part));
+  }
+  return body;
+}
+
 }  // namespace pfgen::codegen::ir

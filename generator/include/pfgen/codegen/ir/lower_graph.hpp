@@ -76,4 +76,20 @@ struct SplitPlan {
 };
 SplitPlan split_plan(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs, std::size_t max_ops);
 
+// A body cut by its split plan, as statements: each part's reads of earlier parts' values from the
+// shared array, its operations (temporaries numbered as the unsplit body numbers them), its stores
+// of the values later parts read, and the outputs it writes; and the inputs it reads, which a
+// language whose parts are functions of their own (C) declares in each part.
+struct SplitPart {
+  std::set<std::size_t> inputs;
+  Block reads, arithmetic, stores, writes;
+};
+struct SplitBody {
+  SplitPlan plan;
+  std::vector<SplitPart> parts;
+};
+SplitBody split_statements(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
+                           const std::vector<Expr>& destinations, const std::string& temporary_prefix,
+                           std::size_t max_ops, const std::string& shared_array);
+
 }  // namespace pfgen::codegen::ir

@@ -12,63 +12,42 @@ namespace pfgen::codegen {
 
 FunctionBody CEmitter::split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                                   const FunctionSignature& signature, const std::vector<std::size_t>& order) const {
-  const ir::SplitPlan plan = ir::split_plan(graph, outputs, max_ops_);
-  const std::vector<std::string> destinations = indexed(signature.target, outputs.size());
-  auto spell = [&](std::size_t id) {
-    return graph.is_leaf(id) ? expression(graph.node(id), {}) : temporary(plan.number.at(id));
-  };
-  const bool passes = plan.slots != 0;
+  const ir::SplitBody split = ir::split_statements(graph, outputs, ir::indexed(signature.target, outputs.size()),
+                                                   temporary_prefix_, max_ops_, shared_array_);
+  const bool passes = split.plan.slots != 0;
   std::string parameters = scalar_type_ + " " + signature.time;
-  std::string arguments = signature.time;
+  std::vector<ir::Expr> arguments = {ir::name(signature.time)};
   for (const std::string& array : signature.arrays) {
     parameters += ", const " + scalar_type_ + "* " + array;
-    arguments += ", " + array;
+    arguments.push_back(ir::name(array));
   }
   parameters += ", const " + params_type_ + "* " + signature.params + ", " + scalar_type_ + "* " + signature.target;
-  arguments += ", " + signature.params + ", " + signature.target;
+  arguments.push_back(ir::name(signature.params));
+  arguments.push_back(ir::name(signature.target));
   if (passes) {
     parameters += ", " + scalar_type_ + "* " + shared_array_;
-    arguments += ", " + shared_array_;
+    arguments.push_back(ir::name(shared_array_));
   }
 
   FunctionBody body;
-  body.statements = "  // " + std::to_string(plan.operations.size()) + " operations in " + std::to_string(plan.parts) +
-                    " parts of at most " + std::to_string(max_ops_) +
-                    ", each its own function: one function this large takes a compiler minutes.\n";
-  if (passes) body.statements += "  " + scalar_type_ + " " + shared_array_ + "[" + std::to_string(plan.slots) + "];\n";
-  std::size_t next = 0;
-  for (std::size_t p = 0; p < plan.parts; ++p) {
-    const std::string part = c_part_name(symbol_prefix_, signature.function, p);
-    std::string reads, arithmetic, stores, writes;
-    std::set<std::size_t> inputs;
-    auto note_input = [&](std::size_t id) {
-      if (graph.node(id).kind == OpKind::Input) inputs.insert(id);
-    };
-    for (std::size_t id : plan.reads[p])
-      reads += "  " + declaration(spell(id), shared_array_ + "[" + std::to_string(plan.slot.at(id)) + "]") + "\n";
-    for (; next < plan.operations.size() && plan.part.at(plan.operations[next]) == p; ++next) {
-      const std::size_t id = plan.operations[next];
-      std::vector<std::string> operands;
-      for (std::size_t arg : graph.node(id).args) {
-        note_input(arg);
-        operands.push_back(spell(arg));
-      }
-      arithmetic += "  " + declaration(spell(id), expression(graph.node(id), operands)) + "\n";
-      if (plan.slot[id] != ir::SplitPlan::kNone)
-        stores += "  " + shared_array_ + "[" + std::to_string(plan.slot[id]) + "] = " + spell(id) + ";\n";
-    }
-    for (std::size_t k = 0; k < outputs.size(); ++k)
-      if (plan.writer(graph, outputs[k]) == p) {
-        note_input(outputs[k]);
-        writes += "  " + destinations.at(k) + " = " + spell(outputs[k]) + ";\n";
-      }
-    std::string top = unused_arguments_of(graph, inputs, signature);
-    if (writes.empty()) top += "  (void)" + signature.target + ";\n";
-    if (passes && reads.empty() && stores.empty()) top += "  (void)" + shared_array_ + ";\n";
-    body.helpers += "static void " + part + "(" + parameters + ") {\n" + top +
-                    declarations_of(graph, inputs, order) + reads + arithmetic + stores + writes + "}\n\n";
-    body.statements += "  " + part + "(" + arguments + ");\n";
+  ir::Block calls = {ir::comment(std::to_string(split.plan.operations.size()) + " operations in " +
+                                 std::to_string(split.plan.parts) + " parts of at most " + std::to_string(max_ops_) +
+                                 ", each its own function: one function this large takes a compiler minutes.")};
+  if (passes) calls.push_back(ir::declare_array(shared_array_, ir::Type::Scalar, split.plan.slots));
+  for (std::size_t p = 0; p < split.parts.size(); ++p) {
+    const ir::SplitPart& part = split.parts[p];
+    const std::string name = c_part_name(symbol_prefix_, signature.function, p);
+    ir::Block top = ir::unused_arguments(graph, part.inputs, signature);
+    if (part.writes.empty()) top.push_back(ir::unused(signature.target));
+    if (passes && part.reads.empty() && part.stores.empty()) top.push_back(ir::unused(shared_array_));
+    for (ir::Statement& s : ir::input_declarations(graph, part.inputs, order)) top.push_back(std::move(s));
+    body.helpers += "static void " + name + "(" + parameters + ") {\n" + block(top);
+    for (const ir::Block* statements : {&part.reads, &part.arithmetic, &part.stores, &part.writes})
+      body.helpers += block(*statements);
+    body.helpers += "}\n\n";
+    calls.push_back(ir::call_statement(name, arguments));
   }
+  body.statements = block(calls);
   return body;
 }
 

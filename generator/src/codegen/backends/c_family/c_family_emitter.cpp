@@ -27,12 +27,6 @@ std::string shortest_float(float value) {
 
 }  // namespace
 
-std::vector<std::string> indexed(const std::string& target, std::size_t count) {
-  std::vector<std::string> out;
-  for (std::size_t k = 0; k < count; ++k) out.push_back(target + "[" + std::to_string(k) + "]");
-  return out;
-}
-
 std::string scalar_mode_name(ScalarMode mode) {
   switch (mode) {
     case ScalarMode::Template: return "template";
@@ -139,16 +133,6 @@ std::string CFamilyEmitter::comment(const ir::Comment& node, const std::string&)
 
 std::string CFamilyEmitter::unused(const ir::Unused& node, const std::string&) const {
   return "(void)" + node.name + ";";
-}
-
-std::string CFamilyEmitter::declarations_of(const ExpressionGraph& graph, const std::set<std::size_t>& inputs,
-                                            const std::vector<std::size_t>& order) const {
-  return block(ir::input_declarations(graph, inputs, order));
-}
-
-std::string CFamilyEmitter::unused_arguments_of(const ExpressionGraph& graph, const std::set<std::size_t>& inputs,
-                                                const FunctionSignature& signature) const {
-  return block(ir::unused_arguments(graph, inputs, signature));
 }
 
 }  // namespace pfgen::codegen

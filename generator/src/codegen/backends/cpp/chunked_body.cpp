@@ -18,36 +18,20 @@ namespace pfgen::codegen {
 
 FunctionBody CppEmitter::split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                                     const FunctionSignature& signature, const std::vector<std::size_t>& order) const {
-  const ir::SplitPlan plan = ir::split_plan(graph, outputs, max_ops_);
-  const std::vector<std::string> destinations = indexed(signature.target, outputs.size());
-  auto spell = [&](std::size_t id) {
-    return graph.is_leaf(id) ? expression(graph.node(id), {}) : temporary(plan.number.at(id));
-  };
+  const ir::SplitBody split = ir::split_statements(graph, outputs, ir::indexed(signature.target, outputs.size()),
+                                                   temporary_prefix_, max_ops_, shared_array_);
   std::string body = unused_arguments(graph, outputs, signature) + input_declarations(graph, outputs, order);
-  body += "  // " + std::to_string(plan.operations.size()) + " operations in " + std::to_string(plan.parts) +
+  body += "  // " + std::to_string(split.plan.operations.size()) + " operations in " + std::to_string(split.plan.parts) +
           " parts of at most " + std::to_string(max_ops_) +
           ", each its own function: one function this large takes g++ minutes to compile.\n";
   body +=
       "#ifndef PFGEN_NOINLINE\n#if defined(__GNUC__)\n#define PFGEN_NOINLINE __attribute__((noinline))\n#else\n"
       "#define PFGEN_NOINLINE\n#endif\n#endif\n";
-  if (plan.slots != 0) body += "  Scalar " + shared_array_ + "[" + std::to_string(plan.slots) + "];\n";
-  std::size_t next = 0;
-  for (std::size_t p = 0; p < plan.parts; ++p) {
+  if (split.plan.slots != 0) body += block({ir::declare_array(shared_array_, ir::Type::Scalar, split.plan.slots)});
+  for (const ir::SplitPart& part : split.parts) {
     body += "  [&]() PFGEN_NOINLINE {\n";
-    std::string stores;  // after the part's arithmetic (see above)
-    for (std::size_t id : plan.reads[p])
-      body += "    " + declaration(spell(id), shared_array_ + "[" + std::to_string(plan.slot.at(id)) + "]") + "\n";
-    for (; next < plan.operations.size() && plan.part.at(plan.operations[next]) == p; ++next) {
-      const std::size_t id = plan.operations[next];
-      std::vector<std::string> operands;
-      for (std::size_t arg : graph.node(id).args) operands.push_back(spell(arg));
-      body += "    " + declaration(spell(id), expression(graph.node(id), operands)) + "\n";
-      if (plan.slot[id] != ir::SplitPlan::kNone)
-        stores += "    " + shared_array_ + "[" + std::to_string(plan.slot[id]) + "] = " + spell(id) + ";\n";
-    }
-    body += stores;
-    for (std::size_t k = 0; k < outputs.size(); ++k)
-      if (plan.writer(graph, outputs[k]) == p) body += "    " + destinations.at(k) + " = " + spell(outputs[k]) + ";\n";
+    for (const ir::Block* statements : {&part.reads, &part.arithmetic, &part.stores, &part.writes})
+      body += block(*statements, "    ");
     body += "  }();\n";
   }
   return {"", body};

@@ -5,7 +5,6 @@
 // argument a function does not read. A body too large for one function is written in parts by
 // each language's own means (split_body: C++ lambdas, C static functions). The C++ and C backends
 // derive from this.
-#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -66,21 +65,9 @@ class CFamilyEmitter : public StatementEmitter {
   // A loop's or a conditional's header followed by its block: one statement on the header's line
   // (a nested loop on the next, indented), several in braces.
   std::string with_block(const std::string& header, const ir::Block& body, const std::string& indent) const;
-  // What a split body's parts write (indented by two): the declarations of `inputs` in `order`,
-  // `(void)` for the arguments they do not read, and `const <scalar> name = value;`.
-  std::string declarations_of(const ExpressionGraph& graph, const std::set<std::size_t>& inputs,
-                              const std::vector<std::size_t>& order) const;
-  std::string unused_arguments_of(const ExpressionGraph& graph, const std::set<std::size_t>& inputs,
-                                  const FunctionSignature& signature) const;
-  std::string declaration(const std::string& name, const std::string& value) const {
-    return "const " + scalar_type_ + " " + name + " = " + value + ";";
-  }
 
   ScalarMode mode_;
   std::string scalar_type_;
 };
-
-// target[0], target[1], ... as text.
-std::vector<std::string> indexed(const std::string& target, std::size_t count);
 
 }  // namespace pfgen::codegen
