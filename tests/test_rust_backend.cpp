@@ -18,7 +18,7 @@
 #include <map>
 #include <sstream>
 
-#include "pfgen/codegen/backends/c/c_filter_code.hpp"
+#include "pfgen/codegen/backends/c/c_backend.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/model/model_filters.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
@@ -238,9 +238,9 @@ TEST_CASE("the Rust backend's modules compile with warnings denied and equal the
         options.scalar = scalar == "f32" ? codegen::ScalarMode::Float : codegen::ScalarMode::Double;
         options.grid_step = model.simulation.dt;  // a delayed filter's grid, as `pfgen codegen` takes it
         options.name_space = "c_side";
-        options.language = codegen::Language::C;
+        options.language = "c";
         const codegen::GeneratedFilter c = codegen::generate_filter_code(model, eq, options);
-        options.language = codegen::Language::Rust;
+        options.language = "rust";
         const codegen::GeneratedFilter rust = codegen::generate_filter_code(model, eq, options);
         // The same graphs: the same operation counts, function by function.
         REQUIRE(rust.functions.size() == c.functions.size());

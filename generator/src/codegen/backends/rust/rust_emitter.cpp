@@ -4,6 +4,21 @@
 #include "pfgen/kinds/model_functions.hpp"
 
 namespace pfgen::codegen {
+namespace {
+
+// The bodies declare the module's alias `Scalar`, defined as rust_scalar(mode), which refuses a
+// mode Rust has no type for.
+std::string scalar_alias(ScalarMode mode) {
+  RustEmitter::rust_scalar(mode);
+  return "Scalar";
+}
+
+// `{` ... `}` around a block, each statement on its own line one level in.
+std::string braced(const std::string& header, const std::string& body, const std::string& indent) {
+  return header + " {\n" + body + indent + "}";
+}
+
+}  // namespace
 
 std::string rust_indent(const std::string& text) {
   std::string out;
@@ -25,20 +40,8 @@ std::string rust_indent(const std::string& text) {
   return out;
 }
 
-namespace {
-
-// The bodies declare the module's alias `Scalar`, defined as rust_scalar(mode), which refuses
-// a mode Rust has no type for.
-std::string scalar_alias(ScalarMode mode) {
-  RustEmitter::rust_scalar(mode);
-  return "Scalar";
-}
-
-}  // namespace
-
 RustEmitter::RustEmitter(ScalarMode mode, std::string temporary_prefix, std::string params_type)
-    : CFamilyEmitter(mode, scalar_alias(mode), std::move(temporary_prefix)),
-      params_type_(std::move(params_type)) {}
+    : CFamilyEmitter(mode, scalar_alias(mode), std::move(temporary_prefix)), params_type_(std::move(params_type)) {}
 
 std::string RustEmitter::rust_scalar(ScalarMode mode) {
   switch (mode) {
@@ -90,79 +93,99 @@ std::string RustEmitter::math_declarations() const {
     declared.insert(line + ") -> " + s + ";\n");
   }
   for (const std::string& line : declared) text += line;
-  return text + "    }\n}\n";
+  return text + "    }\n}\n\n";
 }
 
-std::string RustEmitter::declaration(const std::string& name, const std::string& value) const {
-  return "let " + name + ": " + scalar_type_ + " = " + value + ";";
+std::string RustEmitter::declaration(const ir::Declaration& node, const std::string&) const {
+  const std::string t = node.type == ir::Type::Int ? "usize" : type(node.type);  // Rust indexes with usize
+  if (node.size) {
+    const std::string zero = node.type == ir::Type::Scalar ? constant(GiNaC::numeric(0)) : "0";
+    const std::string size = std::to_string(*node.size);
+    return "let mut " + node.name + ": [" + t + "; " + size + "] = [" + zero + "; " + size + "];";
+  }
+  return "let " + node.name + ": " + t + " = " + expression(*node.value) + ";";
 }
 
-// A straight-line body too large for one function, in parts, as C's split body (c_split_body.cpp
-// says why): each part a private function <function>_part<k> taking the function's arguments as
-// slices and, when parts pass values on, the local array through which they do. Every operation is
-// computed once, in the same order and with the same temporaries as the unsplit body.
+std::string RustEmitter::view(const ir::View& node, const std::string&) const {
+  const std::string offset = expression(node.offset);
+  return "let " + node.name + " = &" + (node.writable ? "mut " : "") + node.array + "[" + offset + ".." + offset +
+         " + " + expression(node.size) + "];";
+}
+
+std::string RustEmitter::assignment(const ir::Assignment& node, const std::string& indent) const {
+  // Rust has no chained assignment: the last target takes the value, each one before it the next's.
+  const std::string op = node.accumulate ? " += " : " = ";
+  std::string text = expression(node.targets.back()) + op + expression(node.value) + ";";
+  for (std::size_t k = node.targets.size() - 1; k-- > 0;)
+    text += "\n" + indent + expression(node.targets[k]) + " = " + expression(node.targets[k + 1]) + ";";
+  return text;
+}
+
+std::string RustEmitter::loop(const ir::Loop& node, const std::string& indent) const {
+  const std::string inner = indent + "  ";
+  std::string body = block(node.body, inner);
+  if (!node.steps.empty()) body += inner + node.steps + " += 1;\n";
+  std::string text = braced("for " + node.index + " in " + expression(node.begin) + ".." + expression(node.end), body,
+                            indent);
+  // A counter that runs over the whole nest: declared before the loop whose iterations start it.
+  if (node.declares)
+    text = "let mut " + node.declares->name + ": usize = " + expression(node.declares->start) + ";\n" + indent + text;
+  return text;
+}
+
+std::string RustEmitter::call_statement(const ir::CallStatement& node, const std::string&) const {
+  // The IR's calls pass names as they are: scalars, and arrays that are already references.
+  std::string text = node.function + "(";
+  for (std::size_t k = 0; k < node.arguments.size(); ++k) text += (k ? ", " : "") + expression(node.arguments[k]);
+  return text + ");";
+}
+
+std::string RustEmitter::conditional(const ir::Conditional& node, const std::string& indent) const {
+  return braced("if " + expression(node.condition), block(node.then, indent + "  "), indent);
+}
+
+std::string RustEmitter::unused(const ir::Unused& node, const std::string&) const { return "let _ = " + node.name + ";"; }
+
+// A straight-line body too large for one function, in parts (ir::split_statements), as C's split
+// body (c_split_body.cpp says why): each part a private function <function>_part<k> taking the
+// function's arguments as slices and, when parts pass values on, the local array through which
+// they do. Every operation is computed once, in the same order and with the same temporaries as
+// the unsplit body.
 FunctionBody RustEmitter::split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                                      const FunctionSignature& signature, const std::vector<std::size_t>& order) const {
-  const SplitPlan plan = split_plan(graph, outputs);
-  const std::vector<std::string> destinations = indexed(signature.target, outputs.size());
-  auto spell = [&](std::size_t id) {
-    return graph.is_leaf(id) ? expression(graph.node(id), {}) : temporary(plan.number.at(id));
-  };
-  const bool passes = plan.slots != 0;
-  const std::string& s = scalar_type_;
-  std::string parameters = signature.time + ": " + s;
+  const ir::SplitBody split = ir::split_statements(graph, outputs, ir::indexed(signature.target, outputs.size()),
+                                                   temporary_prefix_, max_ops_, shared_array_);
+  const bool passes = split.plan.slots != 0;
+  std::string parameters = signature.time + ": " + scalar_type_;
   std::string arguments = signature.time;
   for (const std::string& array : signature.arrays) {
-    parameters += ", " + array + ": &[" + s + "]";
+    parameters += ", " + array + ": &[" + scalar_type_ + "]";
     arguments += ", " + array;
   }
-  parameters += ", " + signature.params + ": &" + params_type_ + ", " + signature.target + ": &mut [" + s + "]";
+  parameters += ", " + signature.params + ": &" + params_type_ + ", " + signature.target + ": &mut [" + scalar_type_ + "]";
   arguments += ", " + signature.params + ", " + signature.target;
   if (passes) {
-    parameters += ", " + shared_array_ + ": &mut [" + s + "]";
+    parameters += ", " + shared_array_ + ": &mut [" + scalar_type_ + "]";
     arguments += ", &mut " + shared_array_;
   }
-
+  ir::Block top = {ir::comment(std::to_string(split.plan.operations.size()) + " operations in " +
+                               std::to_string(split.plan.parts) + " parts of at most " + std::to_string(max_ops_) +
+                               ", each its own function: one function this large takes a compiler long.")};
+  if (passes) top.push_back(ir::declare_array(shared_array_, ir::Type::Scalar, split.plan.slots));
   FunctionBody body;
-  // Statements in the C family's two-space indentation, as the unsplit body's (rust_indent doubles it).
-  body.statements = "  // " + std::to_string(plan.operations.size()) + " operations in " +
-                    std::to_string(plan.parts) + " parts of at most " + std::to_string(max_ops_) +
-                    ", each its own function: one function this large takes a compiler long.\n";
-  if (passes)
-    body.statements += "  let mut " + shared_array_ + ": [" + s + "; " + std::to_string(plan.slots) + "] = [" +
-                       constant(GiNaC::numeric(0)) + "; " + std::to_string(plan.slots) + "];\n";
-  std::size_t next = 0;
-  for (std::size_t p = 0; p < plan.parts; ++p) {
-    const std::string part = signature.function + "_part" + std::to_string(p);
-    std::string reads, arithmetic, stores, writes;
-    std::set<std::size_t> inputs;
-    auto note_input = [&](std::size_t id) {
-      if (graph.node(id).kind == OpKind::Input) inputs.insert(id);
-    };
-    for (std::size_t id : plan.reads[p])
-      reads += "    " + declaration(spell(id), shared_array_ + "[" + std::to_string(plan.slot.at(id)) + "]") + "\n";
-    for (; next < plan.operations.size() && plan.part.at(plan.operations[next]) == p; ++next) {
-      const std::size_t id = plan.operations[next];
-      std::vector<std::string> operands;
-      for (std::size_t arg : graph.node(id).args) {
-        note_input(arg);
-        operands.push_back(spell(arg));
-      }
-      arithmetic += "    " + declaration(spell(id), expression(graph.node(id), operands)) + "\n";
-      if (plan.slot[id] != SplitPlan::kNone)
-        stores += "    " + shared_array_ + "[" + std::to_string(plan.slot[id]) + "] = " + spell(id) + ";\n";
-    }
-    for (std::size_t k = 0; k < outputs.size(); ++k)
-      if (plan.writer(graph, outputs[k]) == p) {
-        note_input(outputs[k]);
-        writes += "    " + destinations.at(k) + " = " + spell(outputs[k]) + ";\n";
-      }
-    std::string top = rust_indent(unused_arguments_of(graph, inputs, signature));
-    if (writes.empty()) top += "    " + ignored(signature.target) + "\n";
-    if (passes && reads.empty() && stores.empty()) top += "    " + ignored(shared_array_) + "\n";
-    body.helpers += "fn " + part + "(" + parameters + ") {\n" + top + rust_indent(declarations_of(graph, inputs, order)) +
-                    reads + arithmetic + stores + writes + "}\n\n";
-    body.statements += "  " + part + "(" + arguments + ");\n";
+  body.statements = block(top);
+  for (std::size_t p = 0; p < split.parts.size(); ++p) {
+    const ir::SplitPart& part = split.parts[p];
+    const std::string name = signature.function + "_part" + std::to_string(p);
+    ir::Block head = ir::unused_arguments(graph, part.inputs, signature);
+    if (part.writes.empty()) head.push_back(ir::unused(signature.target));
+    if (passes && part.reads.empty() && part.stores.empty()) head.push_back(ir::unused(shared_array_));
+    for (ir::Statement& s : ir::input_declarations(graph, part.inputs, order)) head.push_back(std::move(s));
+    body.helpers += "fn " + name + "(" + parameters + ") {\n" + block(head, "    ");
+    for (const ir::Block* statements : {&part.reads, &part.arithmetic, &part.stores, &part.writes})
+      body.helpers += block(*statements, "    ");
+    body.helpers += "}\n\n";
+    body.statements += "  " + name + "(" + arguments + ");\n";
   }
   return body;
 }

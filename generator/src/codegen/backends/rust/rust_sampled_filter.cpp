@@ -3,53 +3,11 @@
 #include "pfgen/codegen/backends/rust/rust_filter_code.hpp"
 #include "pfgen/codegen/backends/rust/rust_filter_writer.hpp"
 #include "pfgen/codegen/template_text.hpp"
+#include "pfgen/observations/sampled/cholesky_solve.hpp"
 #include "pfgen/observations/sampled/sampled_code.hpp"
 
 namespace pfgen::codegen {
 namespace {
-
-std::string L(std::size_t a, std::size_t b) { return "L" + std::to_string(a) + "_" + std::to_string(b); }
-
-std::string packed(std::size_t a, std::size_t b, std::size_t r) {
-  return std::to_string(a * r - a * (a + 1) / 2 + b);  // a <= b
-}
-
-// solve_gain's body: the C backend's Cholesky solve (observations/sampled/cholesky_solve.cpp),
-// the same operations in the same order, in Rust.
-std::string cholesky_gain_body(std::size_t r, const RustEmitter& emitter) {
-  const std::string& scalar = emitter.scalar_type();
-  const std::string zero = emitter.literal_text(0);
-  std::string body;
-  for (std::size_t j = 0; j < r; ++j) {
-    std::string pivot = "S[" + packed(j, j, r) + "]";
-    for (std::size_t k = 0; k < j; ++k) pivot += " - " + L(j, k) + " * " + L(j, k);
-    const std::string d = "d" + std::to_string(j);
-    body += "    let " + d + ": " + scalar + " = " + pivot + ";\n";
-    body += "    if !(" + d + " > " + zero + ") {\n        return false;\n    }\n";
-    body += "    let " + L(j, j) + ": " + scalar + " = " + emitter.call(Function::Sqrt, {d}) + ";\n";
-    for (std::size_t i = j + 1; i < r; ++i) {
-      std::string entry = "S[" + packed(j, i, r) + "]";
-      for (std::size_t k = 0; k < j; ++k) entry += " - " + L(i, k) + " * " + L(j, k);
-      body += "    let " + L(i, j) + ": " + scalar + " = (" + entry + ") / " + L(j, j) + ";\n";
-    }
-  }
-  // Each row k of K solves S k = b (b the row of PCt): L z = b, then L^T k = z.
-  body += "    for i in 0..STATES {\n";
-  body += "        let b = &PCt[i * OBSERVATIONS..(i + 1) * OBSERVATIONS];\n";
-  body += "        let k = &mut K[i * OBSERVATIONS..(i + 1) * OBSERVATIONS];\n";
-  for (std::size_t a = 0; a < r; ++a) {
-    std::string z = "b[" + std::to_string(a) + "]";
-    for (std::size_t c = 0; c < a; ++c) z += " - " + L(a, c) + " * z" + std::to_string(c);
-    body += "        let z" + std::to_string(a) + ": " + scalar + " = (" + z + ") / " + L(a, a) + ";\n";
-  }
-  for (std::size_t a = r; a-- > 0;) {
-    std::string x = "z" + std::to_string(a);
-    for (std::size_t c = a + 1; c < r; ++c) x += " - " + L(c, a) + " * k[" + std::to_string(c) + "]";
-    body += "        k[" + std::to_string(a) + "] = (" + x + ") / " + L(a, a) + ";\n";
-  }
-  body += "    }\n    true\n";
-  return body;
-}
 
 std::string filled_partial(const std::string& name, const std::map<std::string, std::string>& values) {
   const std::string text = expanded_template(name);
@@ -89,7 +47,8 @@ GeneratedFilter rust_sampled_filter(const Model& model, const FilterEquations& e
                  {"euler_function", euler_function},
                  {"predict_function", filled_partial(predict, values)},
                  {"initial_body", rust_initial_body(initial_values(model, eq.variables), w.emitter)},
-                 {"solve_body", cholesky_gain_body(r, w.emitter)},
+                 {"solve_body", rust_indent(w.emitter.block(cholesky_gain_statements(
+                                    r, {ir::name("STATES"), ir::name("OBSERVATIONS"), ir::number(0)})))},
                  {"one", w.emitter.literal_text(1)}});
   w.write("sampled_filter", values);
   return w.result;

@@ -1,16 +1,19 @@
 #pragma once
-// The Rust backend's emitter: the expression graph in Rust 2021 that rustc 1.63 (Debian 12's)
-// compiles in a `#![no_std]` crate with warnings denied. Literals of f32 or f64 that read back to
-// the same value (no suffix: every one sits where its type is known), `let name: Scalar = value;`
-// (the module's alias of f32 or f64),
-// `let _ = name;` for an argument a body does not read, the parameters as a record borrowed by
-// reference (`params.a`), and a body too large for one function split into private functions.
+// The Rust backend's emitter: the statement IR (ir/statement_emitter.hpp) in Rust 2021 that rustc
+// 1.63 (Debian 12's) compiles in a `#![no_std]` crate with warnings denied. C's operators and
+// element, field and comparison spelling (c_family_emitter.hpp), and Rust's own: `let name: Scalar
+// = value;`, arrays initialised (`let mut a: [Scalar; 4] = [0.0; 4];`), slices for views, `for i in
+// a..b { }`, `if c { }`, `let _ = name;` for an argument a body does not read, literals of f32 or
+// f64 that read back to the same value with no suffix (each sits where its type is known) and no
+// parentheses (Rust's unary minus binds tighter than any binary operator, and a parenthesised
+// operand where none is needed would be linted), the parameters borrowed (`params.a`), and a body
+// too large for one function split into private functions taking slices.
 //
-// Functions of the model (sin, exp, ...) and sqrt are C's <math.h> ones, declared `extern "C"`
-// in a private module `c_math` and called in `unsafe` blocks: core has no sin or exp without std,
-// and the C library's functions (libm; newlib on a microcontroller) give the same numbers as the
-// C backend, bit for bit, with no dependency beyond core. functions_called() lists the ones a
-// file's bodies call, for the declarations (an unused one would be dead code).
+// Functions of the model (sin, exp, ...) and sqrt are C's <math.h> ones, declared `extern "C"` in
+// a private module `c_math` and called in `unsafe` blocks: core has no sin or sqrt without std,
+// and the C library's functions (libm; newlib on a microcontroller) give the C backend's numbers,
+// bit for bit, with no dependency beyond core. functions_called() lists the ones a file's bodies
+// call, for the declarations (an unused one would be dead code).
 #include <set>
 #include <string>
 #include <vector>
@@ -19,8 +22,7 @@
 
 namespace pfgen::codegen {
 
-// The text with each line's leading spaces doubled: the C-family bodies' two-space indentation
-// made Rust's four.
+// The text with each line's leading spaces doubled: the IR's two-space blocks made Rust's four.
 std::string rust_indent(const std::string& text);
 
 class RustEmitter : public CFamilyEmitter {
@@ -29,28 +31,32 @@ class RustEmitter : public CFamilyEmitter {
   // `params_type`: the parameter record's type, which a split body's parts take by reference.
   RustEmitter(ScalarMode mode, std::string temporary_prefix, std::string params_type);
 
-  // A literal of the scalar type: C's digits (the shortest that read back to the value, range
-  // checked), without C's `f` suffix and without parentheses around a negative one (Rust's unary
-  // minus binds tighter than any binary operator, and a parenthesised operand would be linted).
+  // "f64" or "f32"; CodegenError for Template.
+  static std::string rust_scalar(ScalarMode mode);
+
   std::string constant(const GiNaC::numeric& value) const override;
   std::string literal_text(const GiNaC::numeric& value) const { return constant(value); }
   std::string call(Function function, const std::vector<std::string>& args) const override;
   std::string zero_where_zero(const std::string& guard, const std::string& value) const override;
+  std::string boolean(bool value) const override { return value ? "true" : "false"; }
+
+  std::string declaration(const ir::Declaration& node, const std::string& indent) const override;
+  std::string view(const ir::View& node, const std::string& indent) const override;
+  std::string assignment(const ir::Assignment& node, const std::string& indent) const override;
+  std::string loop(const ir::Loop& node, const std::string& indent) const override;
+  std::string call_statement(const ir::CallStatement& node, const std::string& indent) const override;
+  std::string conditional(const ir::Conditional& node, const std::string& indent) const override;
+  std::string unused(const ir::Unused& node, const std::string& indent) const override;
 
   // The <math.h> name of a function for this scalar type: "sin" or "sinf", "fabs" for abs.
   std::string function_spelling(Function function) const;
-  // The <math.h> names the bodies written so far call, for the module's declarations.
-  const std::set<Function>& functions_called() const { return called_; }
-  // `mod c_math { extern "C" { pub fn sin(x: f64) -> f64; ... } }` for functions_called(), or "".
+  // `mod c_math { extern "C" { pub fn sin(x: f64) -> f64; ... } }` for the functions the bodies
+  // written so far call, followed by a blank line; "" when they call none.
   std::string math_declarations() const;
-
-  // "f64" or "f32".
-  static std::string rust_scalar(ScalarMode mode);
 
  protected:
   std::string field_access() const override { return "."; }
-  std::string declaration(const std::string& name, const std::string& value) const override;
-  std::string ignored(const std::string& argument) const override { return "let _ = " + argument + ";"; }
+  std::string size_type() const override { return "usize"; }
   FunctionBody split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                           const FunctionSignature& signature, const std::vector<std::size_t>& order) const override;
 
