@@ -263,7 +263,8 @@ TEST_CASE("the Rust backend's modules compile with warnings denied and equal the
         const std::string krate = "filter" + std::to_string(filters);
         const std::filesystem::path rlib = dir / ("lib" + krate + ".rlib");
         makefile += " " + rlib.string();
-        rules += rlib.string() + ": " + module.string() + "\n\t" + rustc +
+        // MAKEFLAGS and MFLAGS unset: rustc would try make's jobserver, whose descriptors are not passed on.
+        rules += rlib.string() + ": " + module.string() + "\n\tenv -u MAKEFLAGS -u MFLAGS " + rustc +
                  " --edition 2021 -D warnings --crate-type lib --crate-name " + krate + " " + q(module) + " -o " +
                  q(rlib) + "\n";
         externs += " --extern " + krate + "=" + q(rlib);

@@ -67,7 +67,7 @@ TEST_CASE("rust emitter: let declarations, <math.h> through extern declarations,
         "// The C library's <math.h> functions the bodies call (libm; newlib on a microcontroller): core\n"
         "// has none without std, and these give the C backend's numbers bit for bit.\n"
         "mod c_math {\n    extern \"C\" {\n        pub fn fabsf(x: f32) -> f32;\n        pub fn sinf(x: f32) -> f32;\n"
-        "    }\n}\n");
+        "    }\n}\n\n");
   // An argument the body does not read is bound to `_`.
   const FunctionBody unused = emitter.function_body(graph, {roots[0]}, signature, builder.declaration_order(), true);
   CHECK(unused.statements.rfind("  let _ = t;\n", 0) == 0);

@@ -3,6 +3,7 @@
 #include "pfgen/codegen/backends/rust/rust_filter_code.hpp"
 #include "pfgen/codegen/backends/rust/rust_filter_writer.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
+#include "pfgen/observations/continuous/heun_step.hpp"
 #include "pfgen/observations/polynomial/polynomial_code.hpp"
 
 namespace pfgen::codegen {
@@ -18,6 +19,12 @@ GeneratedFilter rust_continuous_filter(const Model& model, const FilterEquations
   RustFilterWriter::add_function(values, "rates", *f.rates);
   values.insert({{"K", w.names.K}, {"h", w.names.h}, {"gain_meaning", gain_meaning(eq)}});
   values.emplace("initial_body", rust_initial_body(initial_values(model, eq.variables), w.emitter));
+  // The step's loops as the continuous module describes them (heun_step.hpp).
+  std::map<std::string, std::string> loops;
+  add_heun_step_loops(loops, w.emitter,
+                      {ir::name("STATES"), ir::name("OBSERVATIONS"), ir::name("STATE_SIZE"), ir::number(2)}, eq.n(),
+                      eq.p, eq.variables.count());
+  for (const auto& [key, text] : loops) values.emplace(key, rust_indent(text));
   w.write("filter", values);
   return w.result;
 }
