@@ -120,7 +120,7 @@ TEST_CASE("the C backend's results are bit-identical to the C++ backend's on eve
         options.scalar = scalar == "float" ? codegen::ScalarMode::Float : codegen::ScalarMode::Double;
         options.grid_step = model.simulation.dt;  // a delayed filter's grid, as `pfgen codegen` takes it
         std::vector<std::pair<std::size_t, std::size_t>> cpp_counts;
-        for (const auto language : {std::string("cpp"), std::string("c")}) {
+        for (const std::string language : {"cpp", "c"}) {
           options.language = language;
           const bool c = language == "c";
           options.name_space = c ? "c_side" : "cpp_side";

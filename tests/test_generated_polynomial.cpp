@@ -198,7 +198,7 @@ TEST_CASE("generated polynomial-observation filters: functions against the evalu
             states.push_back(moved);
           }
       }
-      for (codegen::Language language : {std::string("cpp"), std::string("c")}) {
+      for (const codegen::Language language : {"cpp", "c"}) {
         INFO(file << " " << eq.name << (language == "c" ? " (C)" : " (C++)"));
         const std::vector<Values> values = run_functions(model, eq, language, states);
         const std::size_t stride = 1 + 2 * size;
@@ -241,7 +241,7 @@ TEST_CASE("generated polynomial-observation step: first order to the Ito filter 
   const Model model = load_model_file(example("polynomial/cubic_sensor.yaml"));
   const FilterEquations eq = derive_filter(model, FilterKind::Optimal);
   TempDir dir;
-  const std::string header = write_filter(dir, model, eq, std::string("cpp"));
+  const std::string header = write_filter(dir, model, eq, "cpp");
   // One path of x (a = 1, sigma = rho = 0.5, x0 = 0.8) and its dy on 2^16 steps of [0, 1]; the
   // generated step at 2^8, 2^10, 2^12, 2^16 steps, and the same Heun step without the correction.
   const std::string program = "#include <cmath>\n#include <cstdio>\n#include <random>\n#include <vector>\n#include \"" +
@@ -357,7 +357,7 @@ TEST_CASE("a linear h generates the A0 + A x model's code byte for byte", "[code
   written.replace(at, observation.size(), "observation:\n  h: [\"x1\"]\n");
   const Model polynomial = load_model_text(written, example("van_der_pol.yaml"));
   for (FilterKind kind : supported_filter_kinds(linear))
-    for (codegen::Language language : {std::string("cpp"), std::string("c")}) {
+    for (const codegen::Language language : {"cpp", "c"}) {
       codegen::CodegenOptions options;
       options.language = language;
       options.scalar = codegen::ScalarMode::Double;

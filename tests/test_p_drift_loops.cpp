@@ -205,7 +205,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 void check_model(const Model& model, bool full_combine) {
   const FilterEquations eq = derive_named_filter(model, "optimal");
   const std::size_t n = eq.n(), p = eq.p, size = eq.variables.count();
-  const std::string header = code(model, eq, std::string("cpp"), 0);
+  const std::string header = code(model, eq, "cpp", 0);
   // The loops are what is written, in the expected variant, and step() calls rates().
   REQUIRE(header.find("P's drift from dense blocks") != std::string::npos);
   // n x n local blocks: P in full and E[J] P, and below n = 8 E[J] P transposed and the full sum,
@@ -234,8 +234,8 @@ void check_model(const Model& model, bool full_combine) {
   const std::string prefix = "loops_" + model.name + "_optimal";
   write_file(dir.file("filter.hpp"), header);
   write_file(dir.file("check.cpp"), replaced(program(states, false), "MODEL", model.name));
-  write_file(dir.file("optimal.h"), code(model, eq, std::string("c"), 0));
-  write_file(dir.file("filter.c"), code(model, eq, std::string("c"), 1));
+  write_file(dir.file("optimal.h"), code(model, eq, "c", 0));
+  write_file(dir.file("filter.c"), code(model, eq, "c", 1));
   write_file(dir.file("check.c"), replaced(replaced(replaced(program(states, true), "MODEL", model.name), "PREFIX",
                                                     prefix),
                                            "PARAMS", prefix + "_params"));
@@ -328,7 +328,7 @@ TEST_CASE("the dense products' rows are a loop at n = 4 and written out from n =
     const Model model = load_model_text(dense_linear_yaml(dense_linear_system(n)), "dense_linear.yaml");
     const FilterEquations eq = derive_named_filter(model, "optimal");
     const std::string N = std::to_string(n), p = std::to_string(eq.p);
-    for (const codegen::Language language : {std::string("cpp"), std::string("c")}) {
+    for (const codegen::Language language : {"cpp", "c"}) {
       const std::string text = code(model, eq, language, language == "c" ? 1 : 0);
       const bool row_loop = n < codegen::kRowsWrittenOutFrom;
       // E[J] P and A P: the row loop, or row 1's own column loop.

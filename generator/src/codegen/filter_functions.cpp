@@ -580,4 +580,10 @@ std::vector<GiNaC::numeric> initial_values(const Model& model, const FilterVaria
   return values;
 }
 
+ir::Block initial_state_statements(const std::vector<GiNaC::numeric>& values) {
+  ir::Block body;
+  for (std::size_t v = 0; v < values.size(); ++v) body.push_back(ir::assign(ir::element("state", v), ir::number(values[v])));
+  return body;
+}
+
 }  // namespace pfgen::codegen

@@ -86,5 +86,7 @@ void add_function_values(std::map<std::string, std::string>& values,
 // The filter state at t = 0: m0 and P0's upper triangle (zeros without an initial section); with
 // `x_star`, x*(0) = m0 after them (a delayed filter's noise-free solution).
 std::vector<GiNaC::numeric> initial_values(const Model& model, const FilterVariables& vars, bool x_star = false);
+// initial_state()'s body: state[v] = values[v] for each.
+ir::Block initial_state_statements(const std::vector<GiNaC::numeric>& values);
 
 }  // namespace pfgen::codegen

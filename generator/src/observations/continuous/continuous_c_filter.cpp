@@ -16,7 +16,7 @@ GeneratedFilter ContinuousCode::c_filter(const Model& model, const FilterEquatio
                       {ir::name(w.prefix + "_n"), ir::name(w.prefix + "_p"), ir::name(w.prefix + "_state_size"),
                        ir::number(2)},
                       eq.n(), eq.p, eq.variables.count());
-  values.emplace("initial_body", c_initial_body(initial_values(model, eq.variables), w.emitter));
+  values.emplace("initial_body", w.emitter.block(initial_state_statements(initial_values(model, eq.variables))));
   w.write("filter", values, {}, {});
   return w.result;
 }

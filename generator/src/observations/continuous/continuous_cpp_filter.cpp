@@ -24,7 +24,7 @@ GeneratedFilter ContinuousCode::cpp_filter(const Model& model, const FilterEquat
                                                                   eq.p, vars.count(), names, emitter);
   values.insert({
       {"banner", filter_banner(model, eq, options, result, "pfgen codegen")},
-      {"initial_body", cpp_initial_body(initial_values(model, vars), emitter)},
+      {"initial_body", emitter.block(initial_state_statements(initial_values(model, vars)))},
   });
   add_rate_function_values(values, functions, names, eq, false);
   add_heun_step_loops(values, emitter, {ir::name("n"), ir::name("p"), ir::name("state_size"), ir::name("Scalar(2)")},

@@ -88,7 +88,7 @@ GeneratedFilter DelayedCode::c_filter(const Model& model, const FilterEquations&
            {"delayed_size", std::to_string(x_star ? 2 * n : n)}},
           {{"delay", w.emitter.literal(GiNaC::numeric(eq.delay.to_double()))},
            {"dt", w.emitter.literal(GiNaC::numeric(*options.grid_step))},
-           {"initial_body", c_initial_body(initial_values(model, eq.variables, x_star), w.emitter)},
+           {"initial_body", w.emitter.block(initial_state_statements(initial_values(model, eq.variables, x_star)))},
            {"initial_history_body", parts.initial_history},
            {"delayed_inputs_body", parts.delayed_inputs},
            {"history_store", parts.history_store}});

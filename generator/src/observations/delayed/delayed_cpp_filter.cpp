@@ -48,7 +48,7 @@ GeneratedFilter DelayedCode::cpp_filter(const Model& model, const FilterEquation
       {"out_x_star", x_star ? ", x* drift f(x*, t)" : ""},
       {"initial_x_star", x_star ? ", and x*(0) = m0" : ""},
       {"delayed", names.delayed},
-      {"initial_body", cpp_initial_body(initial_values(model, vars, x_star), emitter)},
+      {"initial_body", emitter.block(initial_state_statements(initial_values(model, vars, x_star)))},
   });
   add_rate_function_values(values, functions, names, eq, false);
   result.files.at(0).contents =

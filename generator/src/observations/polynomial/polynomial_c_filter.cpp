@@ -13,7 +13,7 @@ GeneratedFilter PolynomialCode::c_filter(const Model& model, const FilterEquatio
                         f.correction.stats};
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count());
   add_polynomial_function_values(values, f, w.names, true);
-  values.emplace("initial_body", c_initial_body(initial_values(model, eq.variables), w.emitter));
+  values.emplace("initial_body", w.emitter.block(initial_state_statements(initial_values(model, eq.variables))));
   w.write("polynomial_filter", values, {}, {});
   return w.result;
 }

@@ -23,7 +23,7 @@ GeneratedFilter PolynomialCode::cpp_filter(const Model& model, const FilterEquat
                                                                   eq.p, eq.variables.count(), names, emitter);
   values.insert({
       {"banner", filter_banner(model, eq, options, result, "pfgen codegen")},
-      {"initial_body", cpp_initial_body(initial_values(model, eq.variables), emitter)},
+      {"initial_body", emitter.block(initial_state_statements(initial_values(model, eq.variables)))},
   });
   add_polynomial_function_values(values, functions, names, false);
   const std::string name = "cpp/polynomial_filter.hpp.tmpl";

@@ -47,7 +47,7 @@ GeneratedFilter SampledCode::c_filter(const Model& model, const FilterEquations&
            {"predict_meaning", euler ? "cd-euler's exact moments of one Euler step." : "Heun's scheme on the prediction ODEs."}},
           {{"period", w.emitter.literal(eq.update.period)},
            {"euler_function", euler_function},
-           {"initial_body", c_initial_body(initial_values(model, eq.variables), w.emitter)},
+           {"initial_body", w.emitter.block(initial_state_statements(initial_values(model, eq.variables)))},
            {"solve_body", w.emitter.block(cholesky_gain_statements(
                               r, {ir::name(w.prefix + "_n"), ir::name(w.prefix + "_p"), ir::number(0)}))},
            {"predict_function", predict_function},

@@ -67,7 +67,7 @@ GeneratedFilter SampledCode::cpp_filter(const Model& model, const FilterEquation
       {"matrices_body", functions.matrices.body.statements},
       {"observation_ops", ops_comment(functions.observation.stats)},
       {"observation_body", functions.observation.body.statements},
-      {"initial_body", cpp_initial_body(initial_values(model, vars), emitter)},
+      {"initial_body", emitter.block(initial_state_statements(initial_values(model, vars)))},
       {"solve_body", emitter.block(cholesky_gain_statements(r, {ir::name("n"), ir::name("p"), ir::name("Scalar(0)")}))},
       {"predict_function", predict_function},
   });

@@ -23,13 +23,6 @@ std::string params_defaults(const Model& model, const CEmitter& emitter) {
 
 }  // namespace
 
-std::string c_initial_body(const std::vector<GiNaC::numeric>& values, const CEmitter& emitter) {
-  std::string body;
-  for (std::size_t v = 0; v < values.size(); ++v)
-    body += "  state[" + std::to_string(v) + "] = " + emitter.literal(values[v]) + ";\n";
-  return body;
-}
-
 CFilterWriter::CFilterWriter(const Model& m, const FilterEquations& e, const CodegenOptions& o)
     : model(m),
       eq(e),

@@ -21,13 +21,6 @@ std::string params_members(const Model& model, const CppEmitter& emitter) {
 
 }  // namespace
 
-std::string cpp_initial_body(const std::vector<GiNaC::numeric>& values, const CppEmitter& emitter) {
-  std::string body;
-  for (std::size_t v = 0; v < values.size(); ++v)
-    body += "  state[" + std::to_string(v) + "] = " + emitter.literal(values[v]) + ";\n";
-  return body;
-}
-
 std::map<std::string, std::string> cpp_template_values(const Model& model, const std::string& identifier,
                                                        const CodegenOptions& options, std::size_t n, std::size_t p,
                                                        std::size_t state_size, const FunctionNames& names,

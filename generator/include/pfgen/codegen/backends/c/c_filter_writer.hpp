@@ -11,9 +11,6 @@
 
 namespace pfgen::codegen {
 
-// "  state[0] = 0.5f;\n" for each initial value.
-std::string c_initial_body(const std::vector<GiNaC::numeric>& values, const CEmitter& emitter);
-
 // What a C filter's .h and .c share: the writer of both files. Constructing it refuses (CodegenError)
 // a model whose parameter or time names C cannot declare.
 struct CFilterWriter {

@@ -10,9 +10,6 @@
 
 namespace pfgen::codegen {
 
-// "  state[0] = 0.5;\n" for each initial value.
-std::string cpp_initial_body(const std::vector<GiNaC::numeric>& values, const CppEmitter& emitter);
-
 // The placeholders every filter template has (filter.hpp, sampled_filter.hpp, delayed_filter.hpp):
 // the namespace, the dimensions, the scalar, the parameters and the names of the functions'
 // arguments. Each observation adds its own to these.
