@@ -90,7 +90,7 @@ GeneratedFilter rust_delayed_filter(const Model& model, const FilterEquations& e
                  {"delayed_size", std::to_string(x_star ? 2 * n : n)},
                  {"delay", w.emitter.literal_text(GiNaC::numeric(eq.delay.to_double()))},
                  {"dt", w.emitter.literal_text(GiNaC::numeric(*options.grid_step))},
-                 {"initial_body", rust_initial_body(initial_values(model, eq.variables, x_star), w.emitter)},
+                 {"initial_body", w.body(initial_state_statements(initial_values(model, eq.variables, x_star)))},
                  {"initial_history_body", parts.initial_history},
                  {"delayed_inputs_body", parts.delayed_inputs},
                  {"history_store", parts.history_store}});

@@ -158,12 +158,14 @@ FunctionBody RustEmitter::split_body(const ExpressionGraph& graph, const std::ve
   const bool passes = split.plan.slots != 0;
   std::string parameters = signature.time + ": " + scalar_type_;
   std::string arguments = signature.time;
+  // Each array passed as a whole slice: an argument (a reference to an array) or a local array
+  // (derivatives()' work array when P's drift is in loops) alike.
   for (const std::string& array : signature.arrays) {
     parameters += ", " + array + ": &[" + scalar_type_ + "]";
-    arguments += ", " + array;
+    arguments += ", &" + array + "[..]";
   }
   parameters += ", " + signature.params + ": &" + params_type_ + ", " + signature.target + ": &mut [" + scalar_type_ + "]";
-  arguments += ", " + signature.params + ", " + signature.target;
+  arguments += ", " + signature.params + ", &mut " + signature.target + "[..]";
   if (passes) {
     parameters += ", " + shared_array_ + ": &mut [" + scalar_type_ + "]";
     arguments += ", &mut " + shared_array_;

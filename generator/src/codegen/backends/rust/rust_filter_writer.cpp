@@ -21,13 +21,6 @@ std::string params_defaults(const Model& model, const RustEmitter& emitter) {
 
 }  // namespace
 
-std::string rust_initial_body(const std::vector<GiNaC::numeric>& values, const RustEmitter& emitter) {
-  std::string body;
-  for (std::size_t v = 0; v < values.size(); ++v)
-    body += "    state[" + std::to_string(v) + "] = " + emitter.literal_text(values[v]) + ";\n";
-  return body;
-}
-
 RustFilterWriter::RustFilterWriter(const Model& m, const FilterEquations& e, const CodegenOptions& o)
     : model(m), eq(e), options(o), names(function_names(m)), emitter(o.scalar, names.temporary_prefix, "Params") {
   emitter.split_above(options.max_function_ops, names.shared);

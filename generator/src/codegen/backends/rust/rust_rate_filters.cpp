@@ -18,7 +18,7 @@ GeneratedFilter rust_continuous_filter(const Model& model, const FilterEquations
   RustFilterWriter::add_function(values, "observation", f.observation);
   RustFilterWriter::add_function(values, "rates", *f.rates);
   values.insert({{"K", w.names.K}, {"h", w.names.h}, {"gain_meaning", gain_meaning(eq)}});
-  values.emplace("initial_body", rust_initial_body(initial_values(model, eq.variables), w.emitter));
+  values.emplace("initial_body", w.body(initial_state_statements(initial_values(model, eq.variables))));
   // The step's loops as the continuous module describes them (heun_step.hpp).
   std::map<std::string, std::string> loops;
   add_heun_step_loops(loops, w.emitter,
@@ -42,7 +42,7 @@ GeneratedFilter rust_polynomial_filter(const Model& model, const FilterEquations
   RustFilterWriter::add_function(values, "observation", f.observation);
   RustFilterWriter::add_function(values, "correction", f.correction);
   values.insert({{"K", w.names.K}, {"L", w.names.L}, {"h", w.names.h}, {"c", w.names.c}});
-  values.emplace("initial_body", rust_initial_body(initial_values(model, eq.variables), w.emitter));
+  values.emplace("initial_body", w.body(initial_state_statements(initial_values(model, eq.variables))));
   w.write("polynomial_filter", values);
   return w.result;
 }

@@ -46,9 +46,9 @@ GeneratedFilter rust_sampled_filter(const Model& model, const FilterEquations& e
   values.insert({{"period", w.emitter.literal_text(eq.update.period)},
                  {"euler_function", euler_function},
                  {"predict_function", filled_partial(predict, values)},
-                 {"initial_body", rust_initial_body(initial_values(model, eq.variables), w.emitter)},
-                 {"solve_body", rust_indent(w.emitter.block(cholesky_gain_statements(
-                                    r, {ir::name("STATES"), ir::name("OBSERVATIONS"), ir::number(0)})))},
+                 {"initial_body", w.body(initial_state_statements(initial_values(model, eq.variables)))},
+                 {"solve_body", w.body(cholesky_gain_statements(
+                                    r, {ir::name("STATES"), ir::name("OBSERVATIONS"), ir::number(0)}))},
                  {"one", w.emitter.literal_text(1)}});
   w.write("sampled_filter", values);
   return w.result;
