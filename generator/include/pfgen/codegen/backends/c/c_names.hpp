@@ -38,7 +38,7 @@ CNameSuffixes c_name_suffixes(const std::vector<std::string>& templates);
 void check_c_names(const Model& model, const std::string& name_space);
 
 // A static part of a split function: `<prefix>_<function>_part<k>`, refused (CPartNameError, which
-// c_filter_code gives the model file's name) when it would be longer than
+// the C backend gives the model file's name) when it would be longer than
 // kCSignificantInternalCharacters, since parts differ only in k.
 class CPartNameError : public CodegenError {
  public:
