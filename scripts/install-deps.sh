@@ -26,6 +26,9 @@ tests=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi libstdc++-arm-none-eabi-newlib  # embedded proof:
   qemu-system-arm                      # Cortex-M4F cross-compiler and emulator (embedded-check.sh)
 )
+# The Rust backend's tests compile its output with rustc: Debian's (1.63, the oldest the generated
+# code keeps to) unless one is on PATH already (rustup's, for instance).
+if ! command -v rustc >/dev/null 2>&1; then tests+=(rustc); fi
 case "${1:-all}" in
   main) packages=("${main_job[@]}") ;;
   all) packages=("${main_job[@]}" "${tests[@]}") ;;

@@ -673,7 +673,7 @@ TEST_CASE("command-line parse errors exit 1 with one line naming the option", "[
     std::vector<std::string> args;
     std::string message;
   } cases[] = {
-      {{"codegen", model, "--language", "fortran"}, "--language: fortran not in {cpp,c}"},  // CLI11: 105
+      {{"codegen", model, "--language", "fortran"}, "--language: fortran not in {cpp,c,rust}"},  // CLI11: 105
       {{"codegen", model, "-o", ""}, "--output: the file name is empty"},                  // 105
       {{"eval", model, "--filter", "optimal", "--P", "1"}, "--m is required"},               // 106
       {{"derive", model, "--no-such-option"}, "--no-such-option"},                           // 109

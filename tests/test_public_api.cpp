@@ -62,7 +62,7 @@ TEST_CASE("public API: one exception type, with the command's line", "[api][unit
   CHECK_THROWS_AS(api::Model::from_yaml("name: x\n"), api::Error);
   api::CodegenOptions c;
   c.language = "fortran";
-  CHECK_THROWS_WITH(model.codegen(c), "--language: fortran not in {cpp,c}");
+  CHECK_THROWS_WITH(model.codegen(c), "--language: fortran not in {cpp,c,rust}");
 }
 
 TEST_CASE("public API: a filter outlives its model's handle", "[api][unit]") {

@@ -52,7 +52,7 @@ def test_bad_codegen_options(pfgen_command, work_dir):
         "codegen", QUADRATIC, "--namespace", "a::2b", "-o", out)
     assert refused(lambda: model.codegen(out, kinds=["optimal", "nope"])) == pfgen_command.error_line(
         "codegen", QUADRATIC, "--filter", "optimal,nope", "-o", out)
-    assert refused(lambda: model.codegen(language="fortran")).startswith("error: --language: fortran not in {cpp,c}")
+    assert refused(lambda: model.codegen(language="fortran")).startswith("error: --language: fortran not in {cpp,c,rust}")
 
 
 def test_bad_simulation_settings(pfgen_command):

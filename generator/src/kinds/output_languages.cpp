@@ -8,6 +8,7 @@ const std::vector<OutputLanguageInfo>& output_languages() {
   static const std::vector<OutputLanguageInfo> languages = {
       {"cpp", "C++", &cpp_reserved_name_problem},
       {"c", "C", &c_reserved_name_problem},
+      {"rust", "Rust", &rust_reserved_name_problem},
   };
   return languages;
 }

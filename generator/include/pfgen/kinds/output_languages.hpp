@@ -28,8 +28,9 @@ const std::vector<OutputLanguageInfo>& output_languages();
 const OutputLanguageInfo& output_language_info(const std::string& name);
 
 // Each language's own reserved words (codegen/backends/cpp/cpp_reserved_words.cpp,
-// codegen/backends/c/c_reserved_words.cpp).
+// codegen/backends/c/c_reserved_words.cpp, codegen/backends/rust/rust_reserved_words.cpp).
 std::optional<std::string> cpp_reserved_name_problem(const std::string& name);
 std::optional<std::string> c_reserved_name_problem(const std::string& name);
+std::optional<std::string> rust_reserved_name_problem(const std::string& name);
 
 }  // namespace pfgen

@@ -9,9 +9,10 @@ namespace pfgen::codegen {
 
 const Backend& cpp_backend();  // backends/cpp/cpp_backend.cpp
 const Backend& c_backend();    // backends/c/c_backend.cpp
+const Backend& rust_backend();  // backends/rust/rust_backend.cpp
 
 const std::vector<const Backend*>& backends() {
-  static const std::vector<const Backend*> rows = {&cpp_backend(), &c_backend()};
+  static const std::vector<const Backend*> rows = {&cpp_backend(), &c_backend(), &rust_backend()};
   return rows;
 }
 

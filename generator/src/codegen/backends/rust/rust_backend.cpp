@@ -1,0 +1,50 @@
+// The Rust backend's config: its name, file layout and scalar modes; a filter's module by its
+// observation (rust_filter_code.hpp).
+#include "pfgen/codegen/backend.hpp"
+#include "pfgen/codegen/backends/rust/rust_filter_code.hpp"
+
+namespace pfgen::codegen {
+namespace {
+
+class RustBackend final : public Backend {
+ public:
+  std::string name() const override { return "rust"; }
+  std::string summary() const override { return "no_std Rust modules"; }
+  std::vector<std::string> filter_paths(const std::string& model_name, const std::string& filter_name,
+                                        const CodegenOptions&) const override {
+    return rust_filter_paths(model_name, filter_name);
+  }
+  ScalarMode default_scalar() const override { return ScalarMode::Double; }
+  std::optional<std::string> scalar_problem(ScalarMode mode) const override {
+    if (mode == ScalarMode::Template) return "Rust has no templates; give float or double";
+    return std::nullopt;
+  }
+  std::optional<std::string> eigen_problem() const override {
+    return "the Eigen wrappers are C++; drop --eigen for --language rust";
+  }
+  GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
+                              const CodegenOptions& options) const override {
+    // Until each observation module describes its filter's whole file in the IR, the backend
+    // writes each observation's module from the functions the observation module builds.
+    switch (eq.observation) {
+      case ObservationKind::Continuous: return rust_continuous_filter(model, eq, options);
+      case ObservationKind::Sampled: return rust_sampled_filter(model, eq, options);
+      case ObservationKind::Delayed: return rust_delayed_filter(model, eq, options);
+      case ObservationKind::Polynomial: return rust_polynomial_filter(model, eq, options);
+    }
+    throw CodegenError("unknown observation kind");
+  }
+};
+
+}  // namespace
+
+std::vector<std::string> rust_filter_paths(const std::string& model_name, const std::string& filter_name) {
+  return {model_name + "/" + filter_identifier(filter_name) + ".rs"};
+}
+
+const Backend& rust_backend() {
+  static const RustBackend backend;
+  return backend;
+}
+
+}  // namespace pfgen::codegen
