@@ -30,6 +30,8 @@ class ObservationCode {
   // (a .h/.c pair).
   virtual GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const = 0;
   virtual GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const = 0;
+  // rust/ (a no_std module, templates/rust/), written with codegen/backends/rust/rust_filter_writer.hpp.
+  virtual GeneratedFilter rust_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const = 0;
   // Every C template c_filter fills, partials included: the names its files declare after the
   // filter's prefix are read from them (backends/c/c_names.hpp).
   virtual std::vector<std::string> c_templates() const = 0;

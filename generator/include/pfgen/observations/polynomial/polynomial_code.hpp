@@ -17,6 +17,7 @@ class PolynomialCode final : public ObservationCode {
  public:
   GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
   GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
+  GeneratedFilter rust_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
   std::vector<std::string> c_templates() const override;
   void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;

@@ -23,6 +23,7 @@ class SampledCode final : public ObservationCode {
   void check_size(const Model& model, const FilterEquations& eq) const override;  // kMaxSampledOutputs
   GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
   GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
+  GeneratedFilter rust_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
   std::vector<std::string> c_templates() const override;
   void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,

@@ -1,7 +1,8 @@
 // The Rust backend's config: its name, file layout and scalar modes; a filter's module by its
-// observation (rust_filter_code.hpp).
+// observation module (ObservationCode::rust_filter).
 #include "pfgen/codegen/backend.hpp"
 #include "pfgen/codegen/backends/rust/rust_filter_code.hpp"
+#include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
 namespace {
@@ -24,15 +25,9 @@ class RustBackend final : public Backend {
   }
   GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
                               const CodegenOptions& options) const override {
-    // Until each observation module describes its filter's whole file in the IR, the backend
-    // writes each observation's module from the functions the observation module builds.
-    switch (eq.observation) {
-      case ObservationKind::Continuous: return rust_continuous_filter(model, eq, options);
-      case ObservationKind::Sampled: return rust_sampled_filter(model, eq, options);
-      case ObservationKind::Delayed: return rust_delayed_filter(model, eq, options);
-      case ObservationKind::Polynomial: return rust_polynomial_filter(model, eq, options);
-    }
-    throw CodegenError("unknown observation kind");
+    // Each observation module writes its filter's module (<kind>_rust_filter.cpp), as it does in C
+    // and C++, until the modules describe their filters' whole files in the IR.
+    return observation_code(eq.observation).rust_filter(model, eq, options);
   }
 };
 

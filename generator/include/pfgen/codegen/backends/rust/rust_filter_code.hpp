@@ -14,12 +14,4 @@ namespace pfgen::codegen {
 
 std::vector<std::string> rust_filter_paths(const std::string& model_name, const std::string& filter_name);
 
-// The filter's module, by its observation (rust_rate_filters.cpp: continuous and polynomial;
-// rust_sampled_filter.cpp; rust_delayed_filter.cpp), each filling its templates/rust/ template
-// with the functions its observation module builds (observations/<kind>/<kind>_code.hpp).
-GeneratedFilter rust_continuous_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
-GeneratedFilter rust_polynomial_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
-GeneratedFilter rust_sampled_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
-GeneratedFilter rust_delayed_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
-
 }  // namespace pfgen::codegen

@@ -1,6 +1,5 @@
 // A filter for sampled observations in Rust (templates/rust/sampled_filter.rs.tmpl, with the
 // partials of cd-euler's dt^2 term and of the prediction sub-step).
-#include "pfgen/codegen/backends/rust/rust_filter_code.hpp"
 #include "pfgen/codegen/backends/rust/rust_filter_writer.hpp"
 #include "pfgen/codegen/template_text.hpp"
 #include "pfgen/observations/sampled/cholesky_solve.hpp"
@@ -19,7 +18,8 @@ std::string filled_partial(const std::string& name, const std::map<std::string, 
 
 }  // namespace
 
-GeneratedFilter rust_sampled_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
+GeneratedFilter SampledCode::rust_filter(const Model& model, const FilterEquations& eq,
+                                              const CodegenOptions& options) const {
   RustFilterWriter w(model, eq, options);
   const SampledFunctions f = sampled_functions(model, eq, options, w.names, w.emitter);
   const bool euler = f.euler_square.has_value();

@@ -1,7 +1,6 @@
 // A filter for delayed observations in Rust (templates/rust/delayed_filter.rs.tmpl): its history
 // an array the caller owns, the parts that depend on the delay in steps and on x* written for the
 // values this filter has, as the C backend's (observations/delayed/delayed_c_filter.cpp).
-#include "pfgen/codegen/backends/rust/rust_filter_code.hpp"
 #include "pfgen/codegen/backends/rust/rust_filter_writer.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
 #include "pfgen/observations/delayed/delayed_code.hpp"
@@ -59,7 +58,8 @@ DelayedParts delayed_parts(std::size_t delay_steps, bool x_star, const RustEmitt
 
 }  // namespace
 
-GeneratedFilter rust_delayed_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) {
+GeneratedFilter DelayedCode::rust_filter(const Model& model, const FilterEquations& eq,
+                                              const CodegenOptions& options) const {
   const DelaySteps steps = filter_delay_steps(eq, options);
   RustFilterWriter w(model, eq, options);
   const std::size_t n = eq.n();
