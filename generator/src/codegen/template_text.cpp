@@ -63,4 +63,13 @@ std::string fill_template(const std::string& name, const std::string& raw_text,
   return out;
 }
 
+std::map<std::string, std::string> values_in_template(const std::string& relative_path,
+                                                      const std::map<std::string, std::string>& values) {
+  const std::string text = expanded_template(relative_path);
+  std::map<std::string, std::string> used;
+  for (const auto& [key, value] : values)
+    if (text.find("{{" + key + "}}") != std::string::npos) used.emplace(key, value);
+  return used;
+}
+
 }  // namespace pfgen::codegen

@@ -14,6 +14,12 @@ std::string fill_template(const std::string& name, const std::string& text,
 // The embedded template with its partials in place, placeholders unfilled.
 std::string expanded_template(const std::string& relative_path);
 
+// Of `values`, those the embedded template `relative_path` (partials in place) has a placeholder
+// for: a writer that shares one set of values among several templates hands each its own, and
+// fill_template still refuses a placeholder without a value.
+std::map<std::string, std::string> values_in_template(const std::string& relative_path,
+                                                      const std::map<std::string, std::string>& values);
+
 // The template files of templates/, compiled into pfgen (see generator/CMakeLists.txt), and
 // "pfgen_runtime/plugin_abi.h", the runtime's plugin ABI header (see simulation_plugin.hpp).
 const std::string& embedded_template(const std::string& relative_path);

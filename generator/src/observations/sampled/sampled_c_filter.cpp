@@ -40,7 +40,7 @@ GeneratedFilter SampledCode::c_filter(const Model& model, const FilterEquations&
   const std::string predict_partial = euler ? "c/partials/predict_euler.c.tmpl" : "c/partials/predict_heun.c.tmpl";
   std::string predict_function = fill_template(
       predict_partial, embedded_template(predict_partial),
-      CFilterWriter::keep_used(predict_partial, {{"prefix", w.prefix}, {"scalar", w.emitter.scalar_type()}, {"two", w.emitter.literal(2)}}));
+      values_in_template(predict_partial, {{"prefix", w.prefix}, {"scalar", w.emitter.scalar_type()}, {"two", w.emitter.literal(2)}}));
   predict_function.pop_back();  // its last newline: the template's line after {{predict_function}} ends it
   w.write("sampled_filter", values,
           {{"euler_declaration", euler_declaration},

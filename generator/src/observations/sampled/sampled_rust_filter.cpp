@@ -9,11 +9,7 @@ namespace pfgen::codegen {
 namespace {
 
 std::string filled_partial(const std::string& name, const std::map<std::string, std::string>& values) {
-  const std::string text = expanded_template(name);
-  std::map<std::string, std::string> used;
-  for (const auto& [key, value] : values)
-    if (text.find("{{" + key + "}}") != std::string::npos) used.emplace(key, value);
-  return fill_template(name, embedded_template(name), used);
+  return fill_template(name, embedded_template(name), values_in_template(name, values));
 }
 
 }  // namespace

@@ -71,17 +71,8 @@ void CFilterWriter::write(const std::string& kind, std::map<std::string, std::st
   header_values.insert(header_only.begin(), header_only.end());
   source_values.insert(source_only.begin(), source_only.end());
   const std::string h = "c/" + kind + ".h.tmpl", c = "c/" + kind + ".c.tmpl";
-  result.files.at(0).contents = fill_template(h, embedded_template(h), keep_used(h, header_values));
-  result.files.at(1).contents = fill_template(c, embedded_template(c), keep_used(c, source_values));
-}
-
-std::map<std::string, std::string> CFilterWriter::keep_used(const std::string& name,
-                                                            const std::map<std::string, std::string>& values) {
-  std::map<std::string, std::string> used;
-  const std::string text = expanded_template(name);
-  for (const auto& [key, value] : values)
-    if (text.find("{{" + key + "}}") != std::string::npos) used.emplace(key, value);
-  return used;
+  result.files.at(0).contents = fill_template(h, embedded_template(h), values_in_template(h, header_values));
+  result.files.at(1).contents = fill_template(c, embedded_template(c), values_in_template(c, source_values));
 }
 
 }  // namespace pfgen::codegen

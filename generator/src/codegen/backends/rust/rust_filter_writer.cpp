@@ -60,11 +60,7 @@ void RustFilterWriter::add_function(std::map<std::string, std::string>& values, 
 void RustFilterWriter::write(const std::string& kind, std::map<std::string, std::string> values) {
   const std::string name = "rust/" + kind + ".rs.tmpl";
   values["math"] = emitter.math_declarations();
-  const std::string text = expanded_template(name);
-  std::map<std::string, std::string> used;
-  for (const auto& [key, value] : values)
-    if (text.find("{{" + key + "}}") != std::string::npos) used.emplace(key, value);
-  result.files.at(0).contents = fill_template(name, embedded_template(name), used);
+  result.files.at(0).contents = fill_template(name, embedded_template(name), values_in_template(name, values));
 }
 
 }  // namespace pfgen::codegen

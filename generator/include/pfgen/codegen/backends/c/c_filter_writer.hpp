@@ -36,9 +36,6 @@ struct CFilterWriter {
   void write(const std::string& kind, std::map<std::string, std::string> values,
              const std::map<std::string, std::string>& header_only, const std::map<std::string, std::string>& source_only);
 
-  // The values whose placeholders the template (with its partials) has: the .h and .c share one
-  // map, each using part of it.
-  static std::map<std::string, std::string> keep_used(const std::string& name, const std::map<std::string, std::string>& values);
 };
 
 }  // namespace pfgen::codegen
