@@ -9,7 +9,7 @@ GeneratedFilter ContinuousCode::c_filter(const Model& model, const FilterEquatio
                                          const CodegenOptions& options) const {
   CFilterWriter w(model, eq, options);
   const ContinuousFunctions f = continuous_functions(model, eq, options, w.names, w.emitter, true);
-  w.result.functions = {f.derivatives.stats, f.gain.stats, f.observation.stats, f.rates->stats};
+  w.result.functions = f.stats();
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count());
   add_rate_function_values(values, f, w.names, eq, true);
   add_heun_step_loops(values, w.emitter,

@@ -3,6 +3,12 @@
 
 namespace pfgen::codegen {
 
+std::vector<FunctionStats> ContinuousFunctions::stats() const {
+  std::vector<FunctionStats> all = {derivatives.stats, gain.stats, observation.stats};
+  if (rates) all.push_back(rates->stats);
+  return all;
+}
+
 ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                          const FunctionNames& names, const StatementEmitter& emitter, bool with_rates) {
   std::vector<Polynomial> gain_outputs;

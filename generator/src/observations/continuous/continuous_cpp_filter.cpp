@@ -17,8 +17,7 @@ GeneratedFilter ContinuousCode::cpp_filter(const Model& model, const FilterEquat
   const ContinuousFunctions functions = continuous_functions(model, eq, options, names, emitter, true);
 
   GeneratedFilter result = cpp_filter_result(model, eq, options);
-  result.functions = {functions.derivatives.stats, functions.gain.stats, functions.observation.stats,
-                      functions.rates->stats};
+  result.functions = functions.stats();
 
   std::map<std::string, std::string> values = cpp_template_values(model, filter_identifier(eq.name), options, eq.n(),
                                                                   eq.p, vars.count(), names, emitter);

@@ -10,7 +10,7 @@ GeneratedFilter ContinuousCode::rust_filter(const Model& model, const FilterEqua
                                             const CodegenOptions& options) const {
   RustFilterWriter w(model, eq, options);
   const ContinuousFunctions f = continuous_functions(model, eq, options, w.names, w.emitter, true);
-  w.result.functions = {f.derivatives.stats, f.gain.stats, f.observation.stats, f.rates->stats};
+  w.result.functions = f.stats();
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count());
   RustFilterWriter::add_function(values, "derivatives", f.derivatives);
   RustFilterWriter::add_function(values, "gain", f.gain);

@@ -66,7 +66,7 @@ GeneratedFilter DelayedCode::c_filter(const Model& model, const FilterEquations&
   const std::size_t n = eq.n();
   const bool x_star = eq.uses_x_star();
   const ContinuousFunctions f = continuous_functions(model, eq, options, w.names, w.emitter);
-  w.result.functions = {f.derivatives.stats, f.gain.stats, f.observation.stats};
+  w.result.functions = f.stats();
   const std::string extra = delay_banner_line(eq, steps, *options.grid_step);
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count() + (x_star ? n : 0), extra);
   add_rate_function_values(values, f, w.names, eq, true);

@@ -26,7 +26,7 @@ GeneratedFilter DelayedCode::cpp_filter(const Model& model, const FilterEquation
   GeneratedFilter result;
   result.name = eq.name;
   result.files.push_back({cpp_filter_paths(model.name, eq.name, false).at(0), ""});
-  result.functions = {functions.derivatives.stats, functions.gain.stats, functions.observation.stats};
+  result.functions = functions.stats();
 
   const bool templated = options.scalar == ScalarMode::Template;
   const std::string extra = delay_banner_line(eq, steps, *options.grid_step);

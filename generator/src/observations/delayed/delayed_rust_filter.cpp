@@ -65,7 +65,7 @@ GeneratedFilter DelayedCode::rust_filter(const Model& model, const FilterEquatio
   const std::size_t n = eq.n();
   const bool x_star = eq.uses_x_star();
   const ContinuousFunctions f = continuous_functions(model, eq, options, w.names, w.emitter);
-  w.result.functions = {f.derivatives.stats, f.gain.stats, f.observation.stats};
+  w.result.functions = f.stats();
   const std::string extra = delay_banner_line(eq, steps, *options.grid_step);
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count() + (x_star ? n : 0), extra);
   RustFilterWriter::add_function(values, "derivatives", f.derivatives);

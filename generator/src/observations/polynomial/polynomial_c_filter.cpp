@@ -9,8 +9,7 @@ GeneratedFilter PolynomialCode::c_filter(const Model& model, const FilterEquatio
   if (written_linear(model)) return continuous_observation_code().c_filter(model, eq, options);
   CFilterWriter w(model, eq, options);
   const PolynomialFunctions f = polynomial_functions(model, eq, options, w.names, w.emitter);
-  w.result.functions = {f.derivatives.stats, f.gain.stats, f.covariance_gain.stats, f.observation.stats,
-                        f.correction.stats};
+  w.result.functions = f.stats();
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count());
   add_polynomial_function_values(values, f, w.names, true);
   values.emplace("initial_body", w.emitter.block(initial_state_statements(initial_values(model, eq.variables))));

@@ -9,6 +9,10 @@ namespace pfgen::codegen {
 
 bool written_linear(const Model& model) { return observation_degree(model) <= 1; }
 
+std::vector<FunctionStats> PolynomialFunctions::stats() const {
+  return {derivatives.stats, gain.stats, covariance_gain.stats, observation.stats, correction.stats};
+}
+
 PolynomialFunctions polynomial_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                          const FunctionNames& names, const StatementEmitter& emitter) {
   const FilterVariables& vars = eq.variables;

@@ -17,8 +17,7 @@ GeneratedFilter PolynomialCode::cpp_filter(const Model& model, const FilterEquat
   const PolynomialFunctions functions = polynomial_functions(model, eq, options, names, emitter);
 
   GeneratedFilter result = cpp_filter_result(model, eq, options);
-  result.functions = {functions.derivatives.stats, functions.gain.stats, functions.covariance_gain.stats,
-                      functions.observation.stats, functions.correction.stats};
+  result.functions = functions.stats();
   std::map<std::string, std::string> values = cpp_template_values(model, filter_identifier(eq.name), options, eq.n(),
                                                                   eq.p, eq.variables.count(), names, emitter);
   values.insert({

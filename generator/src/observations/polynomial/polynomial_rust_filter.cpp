@@ -10,8 +10,7 @@ GeneratedFilter PolynomialCode::rust_filter(const Model& model, const FilterEqua
   if (written_linear(model)) return continuous_observation_code().rust_filter(model, eq, options);
   RustFilterWriter w(model, eq, options);
   const PolynomialFunctions f = polynomial_functions(model, eq, options, w.names, w.emitter);
-  w.result.functions = {f.derivatives.stats, f.gain.stats, f.covariance_gain.stats, f.observation.stats,
-                        f.correction.stats};
+  w.result.functions = f.stats();
   std::map<std::string, std::string> values = w.common_values(eq.p, eq.variables.count());
   RustFilterWriter::add_function(values, "derivatives", f.derivatives);
   RustFilterWriter::add_function(values, "gain", f.gain);

@@ -13,6 +13,13 @@ void SampledCode::check_size(const Model& model, const FilterEquations& eq) cons
                      " outputs; derive and eval take any");
 }
 
+std::vector<FunctionStats> SampledFunctions::stats() const {
+  std::vector<FunctionStats> all = {derivatives.stats};
+  if (euler_square) all.push_back(euler_square->stats);
+  for (const FunctionCode* code : {&innovation, &matrices, &observation}) all.push_back(code->stats);
+  return all;
+}
+
 SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                    const FunctionNames& names, const StatementEmitter& emitter) {
   const SampledUpdate& u = eq.update;

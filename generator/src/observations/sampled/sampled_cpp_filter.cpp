@@ -23,11 +23,7 @@ GeneratedFilter SampledCode::cpp_filter(const Model& model, const FilterEquation
   const bool euler = functions.euler_square.has_value();
 
   GeneratedFilter result = cpp_filter_result(model, eq, options);
-  result.functions = {functions.derivatives.stats};
-  if (euler) result.functions.push_back(functions.euler_square->stats);
-  result.functions.push_back(functions.innovation.stats);
-  result.functions.push_back(functions.matrices.stats);
-  result.functions.push_back(functions.observation.stats);
+  result.functions = functions.stats();
 
   const bool templated = options.scalar == ScalarMode::Template;
   // A sampled model has no filters of its own (the validator refuses them): no user-filter line.

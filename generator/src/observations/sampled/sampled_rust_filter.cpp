@@ -19,11 +19,7 @@ GeneratedFilter SampledCode::rust_filter(const Model& model, const FilterEquatio
   RustFilterWriter w(model, eq, options);
   const SampledFunctions f = sampled_functions(model, eq, options, w.names, w.emitter);
   const bool euler = f.euler_square.has_value();
-  w.result.functions = {f.derivatives.stats};
-  if (euler) w.result.functions.push_back(f.euler_square->stats);
-  w.result.functions.push_back(f.innovation.stats);
-  w.result.functions.push_back(f.matrices.stats);
-  w.result.functions.push_back(f.observation.stats);
+  w.result.functions = f.stats();
   const std::size_t r = eq.update.r();
   std::map<std::string, std::string> values = w.common_values(r, eq.variables.count());
   RustFilterWriter::add_function(values, "derivatives", f.derivatives);

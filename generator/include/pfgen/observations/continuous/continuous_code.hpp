@@ -38,6 +38,8 @@ class ContinuousCode final : public ObservationCode {
 struct ContinuousFunctions {
   FunctionCode derivatives, gain, observation;
   std::optional<FunctionCode> rates;
+  // Their statistics in the order of the file's banner and --stats (rates() last, when built).
+  std::vector<FunctionStats> stats() const;
 };
 ContinuousFunctions continuous_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                          const FunctionNames& names, const StatementEmitter& emitter,

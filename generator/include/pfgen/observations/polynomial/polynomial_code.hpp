@@ -36,6 +36,8 @@ class PolynomialCode final : public ObservationCode {
 // so that Heun's scheme, which holds dy fixed across a step, converges to the Ito filter.
 struct PolynomialFunctions {
   FunctionCode derivatives, gain, covariance_gain, observation, correction;
+  // Their statistics in the order of the file's banner and --stats.
+  std::vector<FunctionStats> stats() const;
 };
 PolynomialFunctions polynomial_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                          const FunctionNames& names, const StatementEmitter& emitter);

@@ -42,6 +42,9 @@ struct SampledFunctions {
   FunctionCode derivatives;
   std::optional<FunctionCode> euler_square;
   FunctionCode innovation, matrices, observation;
+  // Their statistics in the order of the file's banner and --stats (euler_square() after
+  // derivatives(), for cd-euler).
+  std::vector<FunctionStats> stats() const;
 };
 SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                    const FunctionNames& names, const StatementEmitter& emitter);
