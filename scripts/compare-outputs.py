@@ -10,7 +10,7 @@ binary before and after it and diffing the two directories:
 
 What it runs, for every example model under examples/ and every filter kind the model supports
 (plus the opt-in ukf): derive in text, LaTeX and JSON; eval at one point; latex; codegen in C++
-(template, float, double, with the Eigen layers and --stats) and C (float, double); then simulate
+(template, float, double, with the Eigen layers and --stats), C and Rust (float, double); then simulate
 (seeded, small) on a set of models with CSVs, stops and the particle reference, and the recorded-data
 commands (estimate's CSV and report, fit's report and JSON) on the records of examples/records/.
 Each command's stdout, stderr (with the binary's own path and timings removed) and exit code are kept.
@@ -137,6 +137,8 @@ def main():
         for scalar in ("float", "double"):
             run(pfgen, ["codegen", "--language", "c", "--scalar", scalar, "-o", "code", source],
                 out_dir, f"{stem}/codegen/c-{scalar}")
+            run(pfgen, ["codegen", "--language", "rust", "--scalar", scalar, "-o", "code", source],
+                out_dir, f"{stem}/codegen/rust-{scalar}")
         print(f"compare-outputs: {model}: {len(kinds)} kinds", file=sys.stderr)
 
     if options.skip_simulate:
