@@ -182,6 +182,8 @@ struct FilterRun {
 
 // Steps the filter from its initial state over every increment of the truth run (or until a
 // guard stops it); t = 0's state is checked too, so an indefinite P0 is reported at t0.
+// std::invalid_argument for a filter of samples (SampledSteps): a TruthRun holds increments only
+// (run_monte_carlo runs sampled filters on the samples it draws).
 FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const FilterGuardOptions& options = {});
 
 }  // namespace pfgen_runtime
