@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
       pfgen_runtime::RecordRun run(filter, job.values, t0, job.run_options);
       for (std::size_t row = 0; row < record.times.size(); ++row)
         run.advance(record.times[row], record.values.data() + row * record.p);
-      return filter.sampled() ? run.scores().log_likelihood() : run.increment_log_density();
+      return run.log_likelihood();
     };
     const double value = evaluate();
     std::vector<double> seconds;

@@ -71,17 +71,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       filter.n = 1;
       filter.p = filter.r = columns;
       filter.initial_state = &initial;
-      if (sampled) {
-        filter.substeps = 3;
-        filter.period = 0.5;
-        filter.predict = &predict;
-        filter.update = &update;
-        filter.innovation = &innovation;
-      } else {
-        filter.step = &step;
-        filter.predicted_observation = &rate;
-        filter.observation_noise = &noise;
-      }
+      if (sampled)
+        filter.timing = std::make_shared<pfgen_runtime::RecordSamples>(3, 0.5, &predict, &update, &innovation);
+      else
+        filter.timing = std::make_shared<pfgen_runtime::RecordIncrements>(&step, &rate, &noise);
       std::vector<double> y(columns);
       double t = 0;
       std::vector<pfgen_runtime::RecordRun> runs;

@@ -55,14 +55,14 @@ FilterModel constant_filter(const std::vector<double>& m0, std::size_t p, const 
       state[n + packed_diagonal(n, i)] = 1;
     }
   };
-  if (how == "sampled") {
-    filter.substeps = 2;
-    filter.predict = [](double*, double, double) {};
-    filter.update = [](double*, double, const double*) { return true; };
-  } else {
-    filter.step = [](double*, double, double, const double*) {};
-    if (how == "fixed-step") filter.fixed_dt = dt;
-  }
+  const FilterStepFunction still = [](double*, double, double, const double*) {};
+  if (how == "sampled")
+    filter.timing = std::make_unique<SampledSteps>(
+        2, [](double*, double, double) {}, [](double*, double, const double*) { return true; });
+  else if (how == "fixed-step")
+    filter.timing = std::make_unique<FixedSteps>(still, dt, 0);
+  else
+    filter.timing = std::make_unique<GridSteps>(still);
   return filter;
 }
 
@@ -91,12 +91,12 @@ FilterModel kalman_bucy(const ScalarLinear& model, const std::string& name, doub
     state[0] = model.m0;
     state[1] = model.P0;
   };
-  filter.step = [model, gain_sign](double* state, double, double dt, const double* dy) {
+  filter.timing = std::make_unique<GridSteps>([model, gain_sign](double* state, double, double dt, const double* dy) {
     const double m = state[0], P = state[1];
     const double K = gain_sign > 0 ? P / (model.r * model.r) : -10.0;
     state[0] = m - model.a * m * dt + K * (dy[0] - m * dt);
     state[1] = P + (-2 * model.a * P + model.s * model.s - P * P / (model.r * model.r)) * dt;
-  };
+  });
   return filter;
 }
 

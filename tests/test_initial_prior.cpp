@@ -33,7 +33,7 @@ FilterModel idle_filter() {
   filter.initial_state = [](double* state) {
     for (std::size_t i = 0; i < filter_state_size(2); ++i) state[i] = 0;
   };
-  filter.step = [](double*, double, double, const double*) {};
+  filter.timing = std::make_unique<GridSteps>([](double*, double, double, const double*) {});
   return filter;
 }
 

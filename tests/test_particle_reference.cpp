@@ -42,11 +42,11 @@ FilterModel kalman_bucy(const ScalarLinear& model) {
     state[0] = model.m0;
     state[1] = model.P0;
   };
-  filter.step = [model](double* state, double, double dt, const double* dy) {
+  filter.timing = std::make_unique<GridSteps>([model](double* state, double, double dt, const double* dy) {
     const double m = state[0], P = state[1], K = P / (model.r * model.r);
     state[0] = m - model.a * m * dt + K * (dy[0] - m * dt);
     state[1] = P + (-2 * model.a * P + model.s * model.s - P * P / (model.r * model.r)) * dt;
-  };
+  });
   return filter;
 }
 
@@ -144,24 +144,25 @@ FilterModel sampled_kalman(const ScalarLinear& model, double h, double r, std::s
   filter.name = "kalman";
   filter.n = 1;
   filter.p = 1;
-  filter.substeps = steps_per_sample;
   filter.initial_state = [model](double* state) {
     state[0] = model.m0;
     state[1] = model.P0;
   };
-  filter.predict = [model, h](double* state, double, double dt) {
-    const long steps = std::lround(dt / h);
-    for (long k = 0; k < steps; ++k) {
-      state[0] *= 1 - model.a * h;
-      state[1] = (1 - model.a * h) * (1 - model.a * h) * state[1] + model.s * model.s * h;
-    }
-  };
-  filter.update = [r](double* state, double, const double* y) {
-    const double S = state[1] + r * r, K = state[1] / S;
-    state[0] += K * (y[0] - state[0]);
-    state[1] *= 1 - K;
-    return true;
-  };
+  filter.timing = std::make_unique<SampledSteps>(
+      steps_per_sample,
+      [model, h](double* state, double, double dt) {
+        const long steps = std::lround(dt / h);
+        for (long k = 0; k < steps; ++k) {
+          state[0] *= 1 - model.a * h;
+          state[1] = (1 - model.a * h) * (1 - model.a * h) * state[1] + model.s * model.s * h;
+        }
+      },
+      [r](double* state, double, const double* y) {
+        const double S = state[1] + r * r, K = state[1] / S;
+        state[0] += K * (y[0] - state[0]);
+        state[1] *= 1 - K;
+        return true;
+      });
   return filter;
 }
 
@@ -381,11 +382,11 @@ TEST_CASE("particle reference: every filter is paired against the closest, and t
   auto off_gain = [&model](const std::string& name, double factor) {
     FilterModel filter = kalman_bucy(model);
     filter.name = name;
-    filter.step = [model, factor](double* state, double, double dt, const double* dy) {
+    filter.timing = std::make_unique<GridSteps>([model, factor](double* state, double, double dt, const double* dy) {
       const double m = state[0], P = state[1], K = factor * P / (model.r * model.r);
       state[0] = m - model.a * m * dt + K * (dy[0] - m * dt);
       state[1] = P + (-2 * model.a * P + model.s * model.s - P * P / (model.r * model.r)) * dt;
-    };
+    });
     return filter;
   };
   const std::vector<FilterModel> filters{off_gain("far", 3.0), kalman_bucy(model), off_gain("near", 1.2)};

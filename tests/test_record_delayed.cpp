@@ -64,18 +64,17 @@ TEST_CASE("RecordRun steps a fixed-grid filter on its own grid from the prior, w
   pfgen_runtime::RecordFilter filter;
   filter.name = "fake";
   filter.n = filter.p = filter.r = 1;
-  filter.extra_state_size = 2;
-  filter.fixed_dt = 0.1;
   filter.initial_state = [](double* state) { state[0] = 0, state[1] = 1, state[2] = 7, state[3] = 8; };
-  filter.step = [](double* state, const double*, double t, double dt, const double*) {
-    step_times.push_back(t);
-    extra_seen += state[2] == 7 && state[3] == 8 && dt == 0.1;
-  };
-  filter.predicted_observation = [](const double*, const double*, double t, double* h) {
-    rate_times.push_back(t);
-    h[0] = 0;
-  };
-  filter.observation_noise = [](const double*, double, double* B) { B[0] = 1; };
+  filter.timing = std::make_shared<pfgen_runtime::RecordFixedIncrements>(
+      [](double* state, const double*, double t, double dt, const double*) {
+        step_times.push_back(t);
+        extra_seen += state[2] == 7 && state[3] == 8 && dt == 0.1;
+      },
+      [](const double*, const double*, double t, double* h) {
+        rate_times.push_back(t);
+        h[0] = 0;
+      },
+      [](const double*, double, double* B) { B[0] = 1; }, 0.1, 2);
   step_times.clear(), rate_times.clear(), extra_seen = 0;
   pfgen_runtime::RecordRunOptions options;
   options.substeps = 2;

@@ -28,7 +28,7 @@ FilterModel integrating_filter() {
     state[0] = 0.0;
     state[1] = 1.0;
   };
-  filter.step = [](double* state, double, double, const double* dy) { state[0] += dy[0]; };
+  filter.timing = std::make_unique<GridSteps>([](double* state, double, double, const double* dy) { state[0] += dy[0]; });
   return filter;
 }
 

@@ -37,11 +37,11 @@ FilterModel scaled_kalman_bucy(const ScalarLinear& model, const std::string& nam
     state[0] = model.m0;
     state[1] = factor * model.P0;
   };
-  filter.step = [model, factor](double* state, double, double dt, const double* dy) {
+  filter.timing = std::make_unique<GridSteps>([model, factor](double* state, double, double dt, const double* dy) {
     const double m = state[0], P = state[1] / factor, K = P / (model.r * model.r);
     state[0] = m - model.a * m * dt + K * (dy[0] - m * dt);
     state[1] = factor * (P + (-2 * model.a * P + model.s * model.s - P * P / (model.r * model.r)) * dt);
-  };
+  });
   return filter;
 }
 

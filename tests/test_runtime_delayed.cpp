@@ -55,15 +55,13 @@ FilterModel ring_filter(double fixed_dt = kDt) {
   filter.name = "ring";
   filter.n = 1;
   filter.p = 1;
-  filter.extra_state = 1 + kD;
-  filter.fixed_dt = fixed_dt;
   filter.initial_state = [](double* state) {
     state[0] = kM0;
     state[1] = 4.0;
     state[2] = 0.0;
     for (std::size_t j = 0; j < kD; ++j) state[3 + j] = kM0;
   };
-  filter.step = [](double* state, double t, double dt, const double* dy) {
+  const FilterStepFunction step = [](double* state, double t, double dt, const double* dy) {
     const double k = std::round(t / kDt);
     if (state[2] != k || dt != kDt) state[0] = std::numeric_limits<double>::quiet_NaN();
     double* ring = state + 3;
@@ -74,6 +72,7 @@ FilterModel ring_filter(double fixed_dt = kDt) {
     state[1] *= 0.5;
     state[2] += 1.0;
   };
+  filter.timing = std::make_unique<FixedSteps>(step, fixed_dt, 1 + kD);
   return filter;
 }
 
@@ -174,9 +173,8 @@ TEST_CASE("runtime delayed: a fixed-step filter with extra state is stepped once
   }
   CHECK(result.state(0, 50) == Approx(m).epsilon(1e-12));
 
-  FilterModel unfixed = ring_filter();
-  unfixed.fixed_dt = 0;
-  CHECK_THROWS_WITH(run_filter(unfixed, truth), Catch::Contains("extra state needs a fixed grid step"));
+  // Extra state belongs to a fixed step (FixedSteps), which needs a grid step.
+  CHECK_THROWS_WITH(ring_filter(0.0), Catch::Contains("a fixed-step filter needs a finite grid step > 0"));
   CHECK_THROWS_WITH(run_filter(ring_filter(0.02), truth), Catch::Contains("was generated for the grid"));
   TruthRun shifted = truth;
   shifted.grid.t0 = 1.0;
@@ -231,7 +229,7 @@ TEST_CASE("runtime delayed: a generated delayed filter plugs in and steps as its
   const FilterModel filter =
       make_delayed_filter_model("delay-optimal", F::n, F::p, F::state_size, F::history_size, F::dt<double>(),
                                 &F::initial_state<double>, &F::initial_history<double>, &F::step<double>);
-  CHECK(filter.fixed_dt == 0.01);
+  CHECK(dynamic_cast<const FixedSteps&>(*filter.timing).fixed_dt() == 0.01);
   CHECK(filter.state_size() == F::state_size + F::history_size);
   SdeSystem system;
   system.n = 1;

@@ -59,12 +59,12 @@ FilterModel kalman_bucy(const ScalarLinear& model, const std::string& name, doub
     state[0] = model.m0;
     state[1] = model.P0;
   };
-  filter.step = [model, gain_sign, gain](double* state, double, double dt, const double* dy) {
+  filter.timing = std::make_unique<GridSteps>([model, gain_sign, gain](double* state, double, double dt, const double* dy) {
     const double m = state[0], P = state[1];
     const double K = gain > 0 ? gain : P / (model.r * model.r);
     state[0] = m - model.a * m * dt + gain_sign * K * (dy[0] - m * dt);
     state[1] = P + (-2 * model.a * P + model.s * model.s - P * P / (model.r * model.r)) * dt;
-  };
+  });
   return filter;
 }
 
@@ -78,7 +78,7 @@ FilterModel shrinking() {
     state[0] = 0.0;
     state[1] = 0.5;
   };
-  filter.step = [](double* state, double, double dt, const double*) { state[1] -= dt; };
+  filter.timing = std::make_unique<GridSteps>([](double* state, double, double dt, const double*) { state[1] -= dt; });
   return filter;
 }
 
@@ -257,9 +257,9 @@ TEST_CASE("monte carlo: results are bitwise identical for 1, 2 and 3 threads", "
 // A filter's lanes form as a loop over its one-state step: the engine's lanes machinery (packed
 // checks and sums, the refinement and guards of a lane alone) is then what the test exercises.
 FilterModel in_lanes(FilterModel filter, std::size_t width) {
-  filter.lanes = width;
-  filter.step_lanes = [step = filter.step, width, size = filter.state_size(), p = filter.p](
-                          double* states, double t, double dt, const double* dy) {
+  const FilterStepFunction step = dynamic_cast<const GridSteps&>(*filter.timing).step();
+  FilterStepFunction step_lanes = [step, width, size = filter.state_size(), p = filter.p](
+                                      double* states, double t, double dt, const double* dy) {
     std::vector<double> state(size), increment(p);
     for (std::size_t k = 0; k < width; ++k) {
       for (std::size_t i = 0; i < size; ++i) state[i] = states[i * width + k];
@@ -268,6 +268,7 @@ FilterModel in_lanes(FilterModel filter, std::size_t width) {
       for (std::size_t i = 0; i < size; ++i) states[i * width + k] = state[i];
     }
   };
+  filter.timing = std::make_unique<GridSteps>(step, std::move(step_lanes), width);
   return filter;
 }
 
@@ -1083,10 +1084,10 @@ TEST_CASE("monte carlo: inconsistent inputs are rejected and a worker's exceptio
 
   Scenario failing = scenario;
   failing.options.threads = 3;
-  failing.filters[0].step = [](double* state, double t, double, const double*) {
+  failing.filters[0].timing = std::make_unique<GridSteps>([](double* state, double t, double, const double*) {
     if (t > 1.0) throw std::runtime_error("filter failed on purpose");
     state[0] += 0.0;
-  };
+  });
   CHECK_THROWS_WITH(run_monte_carlo(scheme, observation, x0, failing.filters, failing.options),
                     "filter failed on purpose");
 }

@@ -49,21 +49,22 @@ FilterModel logging_filter(Log& log, std::size_t substeps) {
   filter.name = "log";
   filter.n = 1;
   filter.p = 1;
-  filter.substeps = substeps;
   filter.initial_state = [](double* state) {
     state[0] = 2.0;
     state[1] = 1.0;
   };
-  filter.predict = [&log](double*, double t, double dt) {
-    std::lock_guard<std::mutex> lock(log.mutex);
-    log.predictions.push_back({t, dt});
-  };
-  filter.update = [&log](double*, double t, const double* y) {
-    std::lock_guard<std::mutex> lock(log.mutex);
-    log.update_times.push_back(t);
-    log.samples.push_back(y[0]);
-    return true;
-  };
+  filter.timing = std::make_unique<SampledSteps>(
+      substeps,
+      [&log](double*, double t, double dt) {
+        std::lock_guard<std::mutex> lock(log.mutex);
+        log.predictions.push_back({t, dt});
+      },
+      [&log](double*, double t, const double* y) {
+        std::lock_guard<std::mutex> lock(log.mutex);
+        log.update_times.push_back(t);
+        log.samples.push_back(y[0]);
+        return true;
+      });
   return filter;
 }
 
@@ -129,22 +130,23 @@ TEST_CASE("sampled Monte Carlo: bitwise the same for 1 and 3 threads", "[runtime
   FilterModel kalman;
   kalman.name = "kalman";
   kalman.n = kalman.p = 1;
-  kalman.substeps = 2;
   kalman.initial_state = [](double* s) {
     s[0] = 0.0;
     s[1] = 1.0;
   };
-  kalman.predict = [](double* s, double, double dt) {
-    const double e = std::exp(-0.5 * dt);
-    s[0] *= e;
-    s[1] = e * e * s[1] + (1 - e * e);
-  };
-  kalman.update = [](double* s, double, const double* y) {
-    const double S = 9 * s[1] + 0.25, K = 3 * s[1] / S;
-    s[0] += K * (y[0] - 1 - 3 * s[0]);
-    s[1] = (1 - 3 * K) * (1 - 3 * K) * s[1] + K * K * 0.25;
-    return true;
-  };
+  kalman.timing = std::make_unique<SampledSteps>(
+      2,
+      [](double* s, double, double dt) {
+        const double e = std::exp(-0.5 * dt);
+        s[0] *= e;
+        s[1] = e * e * s[1] + (1 - e * e);
+      },
+      [](double* s, double, const double* y) {
+        const double S = 9 * s[1] + 0.25, K = 3 * s[1] / S;
+        s[0] += K * (y[0] - 1 - 3 * s[0]);
+        s[1] = (1 - 3 * K) * (1 - 3 * K) * s[1] + K * K * 0.25;
+        return true;
+      });
   auto run = [&](unsigned threads) {
     MonteCarloOptions options;
     options.grid = TimeGrid::to_horizon(0.0, 20.0, 0.05);
@@ -164,7 +166,8 @@ TEST_CASE("sampled Monte Carlo: an update with S not positive definite stops the
   Log log;
   FilterModel filter = logging_filter(log, 2);
   // The third update fails (as a generated update() does when S is not positive definite).
-  filter.update = [count = 0](double*, double, const double*) mutable { return ++count < 3; };
+  filter.timing = std::make_unique<SampledSteps>(
+      2, [](double*, double, double) {}, [count = 0](double*, double, const double*) mutable { return ++count < 3; });
   MonteCarloOptions options;
   options.grid = TimeGrid::to_horizon(0.0, 10.0, 0.5);
   options.runs = 1;

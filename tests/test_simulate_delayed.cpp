@@ -159,7 +159,7 @@ TEST_CASE("simulate delayed: with h = 0 the plugin's delay filters step as the u
 
   const auto delayed_filters = delayed.filters(), plain_filters = plain.filters();
   REQUIRE(delayed_filters.size() == 3);
-  CHECK(delayed_filters[0].fixed_dt == dt);
+  CHECK(dynamic_cast<const pfgen_runtime::FixedSteps&>(*delayed_filters[0].timing).fixed_dt() == dt);
   auto scheme = pfgen_runtime::make_scheme(pfgen_runtime::SchemeKind::euler_maruyama, plain.system());
   pfgen_runtime::Observation observation = plain.observation();
   const pfgen_runtime::TimeGrid grid = pfgen_runtime::TimeGrid::to_horizon(0.0, 3.0, dt);

@@ -340,13 +340,15 @@ void check_filters(const pfgen::Model& model, const std::vector<pfgen::FilterEqu
       for (std::size_t j = i; j < model.n(); ++j)
         expected_initial.push_back(model.initial ? model.initial->P0[i][j].to_double() : 0);
     CHECK(initial == expected_initial);
+    // A continuous model's filters step on the grid (GridSteps).
+    const auto& grid_steps = dynamic_cast<const pfgen_runtime::GridSteps&>(*filter.timing);
 
     for (int sample = 0; sample < 5; ++sample) {
       const std::vector<double> state = random_state(rng, model.n());
       const double t = random_vector(rng, 1, 0, 2)[0], dt = 0.01;
       const std::vector<double> dy = random_vector(rng, model.p(), -0.1, 0.1);
       std::vector<double> stepped = state;
-      filter.step(stepped.data(), t, dt, dy.data());
+      grid_steps.step()(stepped.data(), t, dt, dy.data());
       check_close(stepped, heun_step(model, equations[k], t, state, dt, dy), 1e-12, "step against Heun by hand");
       auto header = headers.find(filter.name);
       if (header != headers.end()) {
@@ -358,8 +360,8 @@ void check_filters(const pfgen::Model& model, const std::vector<pfgen::FilterEqu
     // step_lanes: each lane bit for bit step() on its own state and increment (the generated step
     // on the plugin's lane type). A filter whose code calls a function (the ukf's square roots, a
     // sin(t) of the model) has none.
-    if (!filter.step_lanes) continue;
-    const std::size_t width = filter.lanes, size = filter.state_size(), p = model.p();
+    if (!grid_steps.lanes()) continue;
+    const std::size_t width = grid_steps.width(), size = filter.state_size(), p = model.p();
     CHECK(width >= 2);
     const double t = random_vector(rng, 1, 0, 2)[0], dt = 0.01;
     std::vector<double> states(size * width), increments(p * width);
@@ -369,9 +371,9 @@ void check_filters(const pfgen::Model& model, const std::vector<pfgen::FilterEqu
       const std::vector<double> dy = random_vector(rng, p, -0.1, 0.1);
       for (std::size_t i = 0; i < size; ++i) states[i * width + lane] = alone[lane][i];
       for (std::size_t r = 0; r < p; ++r) increments[r * width + lane] = dy[r];
-      filter.step(alone[lane].data(), t, dt, dy.data());
+      grid_steps.step()(alone[lane].data(), t, dt, dy.data());
     }
-    filter.step_lanes(states.data(), t, dt, increments.data());
+    grid_steps.step_lanes()(states.data(), t, dt, increments.data());
     for (std::size_t lane = 0; lane < width; ++lane)
       for (std::size_t i = 0; i < size; ++i) {
         INFO("step_lanes: lane " << lane << ", entry " << i);
@@ -416,8 +418,9 @@ TEST_CASE("plugin: paper 000's model compiles, loads and agrees with the model a
   for (const pfgen_runtime::FilterModel& filter : plugin.filters()) {
     INFO(filter.name);
     // Arithmetic alone, each steps runs side by side; but the ukf, which takes square roots.
-    CHECK(static_cast<bool>(filter.step_lanes) == (filter.name != "ukf"));
-    CHECK(filter.lanes == (filter.name != "ukf" ? 8u : 0u));
+    const pfgen_runtime::GridSteps* lanes = filter.timing->lanes();
+    CHECK((lanes != nullptr) == (filter.name != "ukf"));
+    CHECK((lanes ? lanes->width() : 0u) == (filter.name != "ukf" ? 8u : 0u));
   }
   namespace gen = pfgen_models::basin2006_quadratic;
   check_filters(model, filters, plugin,
@@ -531,7 +534,7 @@ TEST_CASE("plugin: what the runtime gets outlives the SimulationPlugin and simul
   std::vector<double> state(filters.at(0).state_size());
   filters[0].initial_state(state.data());
   const double dy = 0.01;
-  filters[0].step(state.data(), 0, 0.01, &dy);
+  dynamic_cast<const pfgen_runtime::GridSteps&>(*filters[0].timing).step()(state.data(), 0, 0.01, &dy);
   CHECK(std::isfinite(state[0]));
   double f = 0;
   const double x = 2;
@@ -711,7 +714,9 @@ TEST_CASE("plugin: the cache", "[plugin][compiler]") {
                         Catch::Contains("is inconsistent") && Catch::Contains("filter f has step_lanes without 1 to 64 lanes"));
     }
     const auto fine = pfgen::toolchain::build_plugin(source("  filter.step_lanes = &step; filter.lanes = 8;\n"), w.options());
-    CHECK(SimulationPlugin(fine.path).filters().at(0).lanes == 8);
+    const pfgen_runtime::GridSteps* lanes = SimulationPlugin(fine.path).filters().at(0).timing->lanes();
+    REQUIRE(lanes != nullptr);
+    CHECK(lanes->width() == 8);
   }
 }
 

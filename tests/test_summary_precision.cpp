@@ -30,12 +30,12 @@ FilterModel scaled_gain_filter(const ScalarLinear& model, const std::string& nam
     state[0] = model.m0;
     state[1] = model.P0;
   };
-  filter.step = [model, gain](double* state, double, double dt, const double* dy) {
+  filter.timing = std::make_unique<GridSteps>([model, gain](double* state, double, double dt, const double* dy) {
     const double m = state[0], P = state[1];
     const double K = gain * P / (model.r * model.r);
     state[0] = m - model.a * m * dt + K * (dy[0] - m * dt);
     state[1] = P + (-2 * model.a * P + model.s * model.s - P * P / (model.r * model.r)) * dt;
-  };
+  });
   return filter;
 }
 
@@ -140,11 +140,11 @@ TEST_CASE("summary: a filter whose equations are not finite at its state is repo
     state[0] = 0.5;
     state[1] = 1;
   };
-  undefined.step = [](double* state, double, double dt, const double*) {
+  undefined.timing = std::make_unique<GridSteps>([](double* state, double, double dt, const double*) {
     const double r = 1 / (state[0] - 0.5);  // a definition that cannot be computed at m = 0.5
     state[0] += r * dt;
     state[1] += r * dt;
-  };
+  });
   const MonteCarloResult result = run(3, 5, {scaled_gain_filter(model, "kb", 1.0), undefined});
   const FilterStatistics& stats = result.filters[1];
   CHECK(stats.undefined_runs == 5);

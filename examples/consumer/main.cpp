@@ -36,7 +36,7 @@ int main() {
       rt::make_filter_model("optimal", filter::n, filter::p, &filter::initial_state, &filter::step);
   rt::FilterModel prior = optimal;
   prior.name = "prior";
-  prior.step = [](double*, double, double, const double*) {};
+  prior.timing = std::make_unique<rt::GridSteps>([](double*, double, double, const double*) {});
 
   rt::MonteCarloOptions options;
   options.grid = rt::TimeGrid::to_horizon(0.0, 4.0, 1e-3);

@@ -52,7 +52,7 @@ double record_log_likelihood(const pfgen_runtime::RecordFilter& filter, const Re
       return std::nan("");
     }
   }
-  return filter.sampled() ? run.scores().log_likelihood() : run.increment_log_density();
+  return run.log_likelihood();
 }
 
 std::string json_number(double value) {
@@ -102,7 +102,7 @@ FitOutcome fit(const FitOptions& options) {
       const auto i = static_cast<std::size_t>(at - states.begin());
       for (const auto& [position, seen] : prior_means)
         if (seen == i) throw CliValueError("--estimate: " + quoted(name) + " is named twice");
-      if (filter.extra_state_size > 0)
+      if (filter.timing->extra_state() > 0)
         throw CliValueError("--estimate: " + quoted(name) + ": the filter '" + filter.name +
                             "' keeps a history that starts from the model's m0, so its prior mean is not estimated");
       prior_means.push_back({problem.names.size(), i});

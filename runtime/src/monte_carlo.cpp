@@ -72,8 +72,8 @@ void validate(const TruthScheme& scheme, const Observation& observation, const E
     if (filter.name.empty() || !names.insert(filter.name).second)
       throw std::invalid_argument("monte carlo: filter names must be non-empty and distinct ('" + filter.name + "')");
     // A filter of the observation's timing: on samples it predicts and updates, on increments it steps.
-    const bool stepped = filter.sampled() ? filter.predict && filter.update : static_cast<bool>(filter.step);
-    if (!filter.initial_state || filter.sampled() != observation.sampled() || !stepped)
+    if (!filter.initial_state || !filter.timing || !filter.timing->complete() ||
+        filter.timing->takes_samples() != observation.sampled())
       throw std::invalid_argument("monte carlo: filter '" + filter.name + "' lacks initial_state or step " +
                                   "(predict and update for sampled observations)");
     if (filter.n != n || filter.p != p)

@@ -8,17 +8,6 @@
 
 namespace pfgen_runtime {
 
-TimeGrid TimeGrid::to_horizon(double t0, double T, double dt) {
-  if (!(dt > 0) || !(T > t0) || !std::isfinite(T) || !std::isfinite(t0))
-    throw std::invalid_argument("time grid: need dt > 0 and a finite T > t0");
-  TimeGrid grid;
-  grid.t0 = t0;
-  grid.dt = dt;
-  grid.steps = static_cast<std::size_t>(std::llround((T - t0) / dt));
-  if (grid.steps == 0) grid.steps = 1;
-  return grid;
-}
-
 TruthRun simulate_truth(TruthScheme& scheme, Observation& observation, const Eigen::VectorXd& x0,
                         const TimeGrid& grid, std::uint64_t seed, std::uint64_t run, const DivergenceGuard& guard) {
   const SdeSystem& system = scheme.system();
@@ -109,19 +98,13 @@ std::size_t draw_samples(Observation& observation, const TimeGrid& grid, std::si
 }
 
 void check_filter_grid(const FilterModel& filter, const TimeGrid& grid) {
-  if (filter.extra_state > 0 && !filter.fixed_step())
-    throw std::invalid_argument("filter '" + filter.name + "': extra state needs a fixed grid step");
-  if (!filter.fixed_step()) return;
-  if (std::abs(grid.dt - filter.fixed_dt) > 1e-9 * filter.fixed_dt || grid.t0 != 0) {
-    char text[200];
-    std::snprintf(text, sizeof text, "was generated for the grid t_k = k dt, dt = %.17g; this one has dt = %.17g%s",
-                  filter.fixed_dt, grid.dt, grid.t0 != 0 ? " and starts after 0" : "");
-    throw std::invalid_argument("filter '" + filter.name + "' " + text);
-  }
+  if (filter.timing) filter.timing->check_grid(filter.name, grid);
 }
 
 FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const FilterGuardOptions& options) {
-  if (!filter.step || !filter.initial_state || filter.n == 0)
+  // The truth run holds increments: a filter of samples has nothing to absorb.
+  if (!filter.timing || !filter.timing->complete() || filter.timing->takes_samples() || !filter.initial_state ||
+      filter.n == 0)
     throw std::invalid_argument("run_filter: filter '" + filter.name + "' lacks n, initial_state or step");
   if (truth.dy.rows() != static_cast<Eigen::Index>(filter.p))
     throw std::invalid_argument("run_filter: filter '" + filter.name + "' expects p observations");
@@ -156,13 +139,12 @@ FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const Fil
   bool going = guard(grid.t0);
   const bool initial_ok = !result.divergence;  // a PSD loss at t0 keeps P0 on record
   if (initial_ok) result.state.col(0) = state.head(recorded);
+  const FilterInput input{grid, filter.p, truth.dy.data()};
   for (std::size_t k = 0; going && k < truth.completed_steps; ++k) {
-    const double* dy = truth.dy.col(static_cast<Eigen::Index>(k)).data();
-    if (filter.fixed_step()) {
-      filter.step(state.data(), grid.time(k), grid.dt, dy);  // once per grid step, never refined
-    } else if (stepper.advance(filter.step, state.data(), grid.time(k), grid.dt, dy) == 0) {
-      const bool defined = stepper.equations_finite_at_start(filter.step, grid.time(k));
-      result.divergence = DivergenceEvent{grid.time(k), 0, 0.0,
+    const FilterStepOutcome outcome = filter.timing->advance(stepper, state.data(), input, k);
+    if (outcome.stop != FilterStepOutcome::Stop::none) {  // given up mid-step
+      const bool defined = outcome.stop == FilterStepOutcome::Stop::too_stiff;
+      result.divergence = DivergenceEvent{outcome.t, 0, 0.0,
                                           defined ? DivergenceKind::too_stiff : DivergenceKind::equations_undefined};
       going = false;
       break;

@@ -223,64 +223,56 @@ std::vector<RecordFilter> SimulationPlugin::record_filters() const {
     const pfgen_plugin_filter& f = table_->filters[k];
     if (!f.step_at || !table_->observation_noise) continue;  // a plugin written without them
     RecordFilter filter = record_filter(f.name, f.n, f.p);
-    filter.extra_state_size = f.extra_state_size;
-    filter.fixed_dt = f.fixed_dt;
     filter.initial_state = f.initial_state;
-    filter.step = f.step_at;
-    filter.predicted_observation = f.predicted_observation;
-    filter.observation_noise = table_->observation_noise;
+    if (f.fixed_dt > 0)
+      filter.timing = std::make_shared<RecordFixedIncrements>(f.step_at, f.predicted_observation,
+                                                              table_->observation_noise, f.fixed_dt, f.extra_state_size);
+    else
+      filter.timing = std::make_shared<RecordIncrements>(f.step_at, f.predicted_observation, table_->observation_noise);
     out.push_back(std::move(filter));
   }
   for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {
     const pfgen_plugin_sampled_filter& f = table_->sampled_filters[k];
     RecordFilter filter = record_filter(f.name, f.n, f.p);
-    filter.substeps = f.substeps;
-    filter.period = table_->period;
     filter.initial_state = f.initial_state;
-    filter.predict = f.predict_at;
-    filter.update = f.update_at;
-    filter.innovation = f.innovation;
+    filter.timing = std::make_shared<RecordSamples>(f.substeps, table_->period, f.predict_at, f.update_at, f.innovation);
     out.push_back(std::move(filter));
   }
   return out;
 }
 
 std::vector<FilterModel> SimulationPlugin::filters() const {
+  // Each table entry's timing, built once here: a continuous filter's grid steps (with its lanes
+  // form), a delayed one's fixed step, a sampled one's predictions and update. Every function keeps
+  // the library loaded.
   std::vector<FilterModel> out;
   const std::shared_ptr<void> library = library_;
   for (std::size_t k = 0; k < table_->filter_count; ++k) {
     const pfgen_plugin_filter& f = table_->filters[k];
-    FilterModel model;
-    model.name = f.name;
-    model.n = f.n;
-    model.p = f.p;
-    model.initial_state = [library, init = f.initial_state](double* state) { init(state); };
-    model.step = [library, step = f.step](double* state, double t, double dt, const double* dy) {
+    FilterStepFunction step = [library, step = f.step](double* state, double t, double dt, const double* dy) {
       step(state, t, dt, dy);
     };
-    model.extra_state = f.extra_state_size;
-    model.fixed_dt = f.fixed_dt;
-    if (f.step_lanes) {
-      model.lanes = f.lanes;
-      model.step_lanes = [library, step = f.step_lanes](double* state, double t, double dt, const double* dy) {
-        step(state, t, dt, dy);
-      };
+    std::unique_ptr<FilterTiming> timing;
+    if (f.fixed_dt > 0) {
+      timing = std::make_unique<FixedSteps>(std::move(step), f.fixed_dt, f.extra_state_size);
+    } else {
+      FilterStepFunction step_lanes;
+      if (f.step_lanes)
+        step_lanes = [library, step = f.step_lanes](double* state, double t, double dt, const double* dy) {
+          step(state, t, dt, dy);
+        };
+      timing = std::make_unique<GridSteps>(std::move(step), std::move(step_lanes), f.lanes);
     }
-    out.push_back(std::move(model));
+    out.emplace_back(f.name, f.n, f.p, [library, init = f.initial_state](double* state) { init(state); },
+                     std::move(timing));
   }
   for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {
     const pfgen_plugin_sampled_filter& f = table_->sampled_filters[k];
-    FilterModel model;
-    model.name = f.name;
-    model.n = f.n;
-    model.p = f.p;
-    model.substeps = f.substeps;
-    model.initial_state = [library, init = f.initial_state](double* state) { init(state); };
-    model.predict = [library, predict = f.predict](double* state, double t, double dt) { predict(state, t, dt); };
-    model.update = [library, update = f.update](double* state, double t, const double* y) {
-      return update(state, t, y) != 0;
-    };
-    out.push_back(std::move(model));
+    out.emplace_back(
+        f.name, f.n, f.p, [library, init = f.initial_state](double* state) { init(state); },
+        std::make_unique<SampledSteps>(
+            f.substeps, [library, predict = f.predict](double* state, double t, double dt) { predict(state, t, dt); },
+            [library, update = f.update](double* state, double t, const double* y) { return update(state, t, y) != 0; }));
   }
   return out;
 }

@@ -134,7 +134,7 @@ struct MonteCarloOptions {
   std::uint64_t seed = 1;
   unsigned threads = 1;              // >= 1; more threads than runs are not started
   // Runs a thread carries side by side (>= 1): their truths are stepped together, and so are the
-  // filters with a lanes form (FilterModel::step_lanes). Fewer when the runs' paths would take
+  // filters with a lanes form (GridSteps::step_lanes). Fewer when the runs' paths would take
   // more than kBatchBytes, or when there would not be a batch for every thread. Every result is
   // the same for any batch, as for any thread count.
   std::size_t batch = 8;
@@ -406,8 +406,8 @@ struct MonteCarloResult {
 // the filters. Run r reproduces simulate_truth(scheme, observation, x0, grid, seed, r,
 // truth_guard) and run_filter(filter, truth, filter_guards) bit for bit. Filters must have the
 // truth's n states and the observation's p, distinct non-empty names, and the observation's
-// timing: continuous filters (step) on increments, sampled ones (FilterModel::sampled(): predict
-// and update) on samples. With samples the truth is stepped on its grid as above (its steps and
+// timing: continuous filters (GridSteps, FixedSteps) on increments, sampled ones (SampledSteps:
+// predict and update) on samples. With samples the truth is stepped on its grid as above (its steps and
 // truth stream unchanged), the samples drawn at t_k = t0 + k T (draw_samples; the period must be
 // a whole number of grid steps, std::invalid_argument otherwise), the filters predicting between
 // samples and updating at each, and each FilterStatistics has `sampled` set.

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -15,22 +16,13 @@
 #include <Eigen/Core>
 
 #include "pfgen_runtime/filter_stepping.hpp"
+#include "pfgen_runtime/filter_timing.hpp"
 #include "pfgen_runtime/guards.hpp"
 #include "pfgen_runtime/observation.hpp"
 #include "pfgen_runtime/schemes.hpp"
+#include "pfgen_runtime/time_grid.hpp"
 
 namespace pfgen_runtime {
-
-struct TimeGrid {
-  double t0 = 0;
-  double dt = 0;
-  std::size_t steps = 0;
-  // Grid times are t0 + k dt (no accumulated round-off).
-  double time(std::size_t k) const { return t0 + static_cast<double>(k) * dt; }
-  double end() const { return time(steps); }
-  // round((T - t0) / dt) steps; std::invalid_argument unless dt > 0 and T > t0.
-  static TimeGrid to_horizon(double t0, double T, double dt);
-};
 
 struct TruthRun {
   TimeGrid grid;
@@ -77,39 +69,40 @@ std::size_t draw_samples(Observation& observation, const TimeGrid& grid, std::si
                          const Eigen::MatrixXd& path, std::ptrdiff_t last, std::uint64_t seed, std::uint64_t run,
                          Eigen::MatrixXd& clean, Eigen::MatrixXd& noisy);
 
-// A filter as plain functions over its packed state [m (n), P upper triangle], the calling
-// convention of generated headers. `step` advances the state over [t, t + dt] given dy (p).
-// A filter for sampled observations has substeps >= 1 and predict/update instead of step:
-// between samples `substeps` predictions of dt = period / substeps, at each sample the update
-// (false when C P C^T + Uv Uv^T is not positive definite).
-// A filter of delayed observations keeps more state after m and P (x* and the history of its
-// last D grid values, `extra_state` entries) and was generated for one grid step `fixed_dt`:
-// it is stepped exactly once per grid step, never refined (FilterStepper's sub-steps would leave
-// the history's grid), and only on a grid t_k = k fixed_dt.
+// A filter as plain functions over its packed state [m (n), P upper triangle, any extra state], the
+// calling convention of generated headers: its initial state and its timing (filter_timing.hpp),
+// GridSteps (a continuous filter's step over [t, t + dt] given dy, p entries), FixedSteps (a
+// delayed filter's, once per grid step of the one grid it was generated for) or SampledSteps
+// (prediction sub-steps between samples, the update at each). Copies are independent (the timing
+// is cloned): each thread steps its own.
 struct FilterModel {
   std::string name;
   std::size_t n = 0;
   std::size_t p = 0;
   std::function<void(double* state)> initial_state;
-  std::function<void(double* state, double t, double dt, const double* dy)> step;
-  std::size_t substeps = 0;  // 0: a continuous filter
-  std::function<void(double* state, double t, double dt)> predict;
-  std::function<bool(double* state, double t, const double* y)> update;
-  std::size_t extra_state = 0;  // entries after m and P; guards and records never read them
-  double fixed_dt = 0;          // 0: any grid step (refined where unstable); else the only one
-  // Optional: `lanes` states stepped at once, entry-major (state[e * lanes + k], dy[r * lanes + k]),
-  // each lane bit for bit what `step` makes of it; the Monte Carlo engine then steps that many runs
-  // of a continuous filter side by side. Empty, and lanes 0, when the filter has none.
-  std::function<void(double* state, double t, double dt, const double* dy)> step_lanes;
-  std::size_t lanes = 0;
-  // m, P and the extra state: what initial_state and step read and write.
-  std::size_t state_size() const { return filter_state_size(n) + extra_state; }
-  bool sampled() const { return substeps > 0; }
-  bool fixed_step() const { return fixed_dt > 0; }
+  std::unique_ptr<FilterTiming> timing;
+
+  FilterModel() = default;
+  FilterModel(std::string name, std::size_t n, std::size_t p, std::function<void(double* state)> initial_state,
+              std::unique_ptr<FilterTiming> timing)
+      : name(std::move(name)), n(n), p(p), initial_state(std::move(initial_state)), timing(std::move(timing)) {}
+  FilterModel(const FilterModel& other)
+      : name(other.name), n(other.n), p(other.p), initial_state(other.initial_state),
+        timing(other.timing ? other.timing->clone() : nullptr) {}
+  FilterModel& operator=(const FilterModel& other) {
+    if (this != &other) *this = FilterModel(other);
+    return *this;
+  }
+  FilterModel(FilterModel&&) noexcept = default;
+  FilterModel& operator=(FilterModel&&) noexcept = default;
+  ~FilterModel() = default;
+
+  // m, P and the extra state: what initial_state and the timing's steps read and write.
+  std::size_t state_size() const { return filter_state_size(n) + (timing ? timing->extra_state() : 0); }
 };
 
-// std::invalid_argument unless the filter can run on `grid`: a fixed-step filter needs
-// grid.dt == fixed_dt (relative tolerance 1e-9) and t0 = 0; extra state needs a fixed step.
+// std::invalid_argument unless the filter can run on `grid` (FilterTiming::check_grid: a fixed-step
+// filter needs grid.dt == fixed_dt, relative tolerance 1e-9, and t0 = 0).
 void check_filter_grid(const FilterModel& filter, const TimeGrid& grid);
 
 // Adapts a generated header: for namespace F,
@@ -119,21 +112,17 @@ template <class Params>
 FilterModel make_filter_model(std::string name, std::size_t n, std::size_t p, void (*initial_state)(double*),
                               void (*step)(double*, double, double, const double*, const Params&),
                               Params params = Params{}) {
-  FilterModel model;
-  model.name = std::move(name);
-  model.n = n;
-  model.p = p;
-  model.initial_state = initial_state;
-  model.step = [step, params = std::move(params)](double* state, double t, double dt, const double* dy) {
-    step(state, t, dt, dy, params);
-  };
-  return model;
+  return FilterModel(std::move(name), n, p, initial_state,
+                     std::make_unique<GridSteps>([step, params = std::move(params)](double* state, double t, double dt,
+                                                                                    const double* dy) {
+                       step(state, t, dt, dy, params);
+                     }));
 }
 
 // Adapts a generated delayed filter's header (generator/src/observations/delayed/templates/cpp/delayed_filter.hpp.tmpl): for namespace F,
 //   make_delayed_filter_model("delay-optimal", F::n, F::p, F::state_size, F::history_size, F::dt<double>(),
 //                             &F::initial_state<double>, &F::initial_history<double>, &F::step<double>)
-// The FilterModel's state is [F's state, history]; step(state, t, dt, dy) calls
+// The FilterModel's state is [F's state, history]; its FixedSteps' step(state, t, dt, dy) calls
 // F::step(state, history, k, dy, params) with k = round(t / dt).
 template <class Params>
 FilterModel make_delayed_filter_model(std::string name, std::size_t n, std::size_t p, std::size_t state_size,
@@ -141,20 +130,15 @@ FilterModel make_delayed_filter_model(std::string name, std::size_t n, std::size
                                       void (*initial_history)(const double*, double*),
                                       void (*step)(double*, double*, std::size_t, const double*, const Params&),
                                       Params params = Params{}) {
-  FilterModel model;
-  model.name = std::move(name);
-  model.n = n;
-  model.p = p;
-  model.extra_state = state_size + history_size - filter_state_size(n);
-  model.fixed_dt = dt;
-  model.initial_state = [initial_state, initial_history, state_size](double* state) {
+  auto initial = [initial_state, initial_history, state_size](double* state) {
     initial_state(state);
     initial_history(state, state + state_size);
   };
-  model.step = [step, state_size, dt, params = std::move(params)](double* state, double t, double, const double* dy) {
+  auto fixed_step = [step, state_size, dt, params = std::move(params)](double* state, double t, double, const double* dy) {
     step(state, state + state_size, static_cast<std::size_t>(std::llround(t / dt)), dy, params);
   };
-  return model;
+  return FilterModel(std::move(name), n, p, initial,
+                     std::make_unique<FixedSteps>(fixed_step, dt, state_size + history_size - filter_state_size(n)));
 }
 
 struct FilterGuardOptions {
@@ -198,6 +182,8 @@ struct FilterRun {
 
 // Steps the filter from its initial state over every increment of the truth run (or until a
 // guard stops it); t = 0's state is checked too, so an indefinite P0 is reported at t0.
+// std::invalid_argument for a filter of samples (SampledSteps): a TruthRun holds increments only
+// (run_monte_carlo runs sampled filters on the samples it draws).
 FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const FilterGuardOptions& options = {});
 
 }  // namespace pfgen_runtime

@@ -73,8 +73,9 @@ class SimulationPlugin {
   void check_grid_step(double dt) const;
   // The model's initial.x0; PluginLoadError (std::runtime_error) when the model gives none.
   Eigen::VectorXd truth_initial_state() const;
-  // The filters in the plugin's order, at the model's default parameters (for a sampled model
-  // its sampled filters: FilterModel::sampled(); a delayed filter has extra_state and fixed_dt).
+  // The filters in the plugin's order, at the model's default parameters, each with its timing
+  // (filter_timing.hpp): GridSteps for a continuous filter (with its lanes form), FixedSteps for a
+  // delayed one (its extra state and grid step), SampledSteps for a sampled model's filters.
   std::vector<FilterModel> filters() const;
 
   // The model's parameters in its order, and the defaults filters() and the truth use.

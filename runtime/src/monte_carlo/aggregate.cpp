@@ -430,7 +430,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
   for (std::size_t f = 0; f < filters.size(); ++f) {
     FilterStatistics stats;
     stats.name = filters[f].name;
-    stats.grid_stepped = !filters[f].sampled() && !filters[f].fixed_step();
+    stats.grid_stepped = filters[f].timing->refines_steps();
     // Window 0 is the horizon.
     for (std::size_t w = 0; w <= plan.windows.size(); ++w) {
       WindowStatistics window;
@@ -506,7 +506,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       stats.undefined_runs += filter.undefined;
     }
     nees_statistics(runs, f, plan, stats);
-    if (filters[f].sampled()) stats.sampled = sampled_metrics(runs, f, steps, filters[f].p);
+    if (filters[f].timing->takes_samples()) stats.sampled = sampled_metrics(runs, f, steps, filters[f].p);
     if (options.criterion) stats.criterion = criterion_statistics(runs, f, plan.grid, options.criterion->epsilon,
                                                                  options.filter_guards.stop_on_psd_loss);
     if (options.reference) stats.reference = reference_comparison(plan, runs, f);

@@ -38,6 +38,7 @@ Worker::Worker(const TruthScheme& scheme, const Observation& observation, const 
       lane.noisy.resize(p, samples);
     }
     estimate_.assign(observation.p(), 0.0);
+    sample_sums_size_ = 4 * observation.p();
   }
   std::size_t largest = 0;
   for (const FilterModel& filter : filters_) largest = std::max(largest, filter.state_size());
@@ -56,8 +57,8 @@ Worker::Worker(const TruthScheme& scheme, const Observation& observation, const 
   // The lanes' width: that of the first continuous filter with a lanes form of a width the engine
   // steps (steps_in_lanes); filters of another width go one run at a time.
   for (const FilterModel& filter : filters_)
-    if (steps_in_lanes(filter) && width_ == 0) width_ = filter.lanes;
-  for (const FilterModel& filter : filters_) in_lanes_.push_back(steps_in_lanes(filter) && filter.lanes == width_);
+    if (width_ == 0) width_ = lane_width(filter);
+  for (const FilterModel& filter : filters_) in_lanes_.push_back(width_ > 0 && lane_width(filter) == width_);
   lanes_only_ = width_ >= 2 && !options.reference &&
                 std::all_of(in_lanes_.begin(), in_lanes_.end(), [](bool in) { return in; });
   if (options.reference) {
@@ -227,6 +228,7 @@ bool Worker::start_pass(bool shown, const RunResult& run, FilterRunResult& out, 
   }
   out.nees_record.assign(plan_.records.size(), nan);
   out.nees.assign(plan_.reports.size() + 1, nan);
+  out.sample_sums.assign(sample_sums_size_, 0.0);
   std::fill(pass.sums.begin(), pass.sums.end(), 0.0);
   std::fill(pass.distance_sums.begin(), pass.distance_sums.end(), 0.0);
   return run.truth_last >= 0;  // else no truth to compare with
@@ -282,25 +284,21 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, RunBuf
   leave();
   out.last = 0;
   std::uint64_t steps = 0;
-  if (filter.sampled()) {
-    if (going) step_sampled_filter(filter, run.truth_last, lane, out, pass, shown, steps);
-    filter_steps[f] += steps;
-    filter_samples[f] += out.samples;
-    finish_pass(out, pass, lane);
-    return;
-  }
   const std::uint64_t refined_before = stepper_.refined_steps();
-  const double* dy = lane.dy.data();
-  const bool fixed_step = filter.fixed_step();  // a delayed filter: once per grid step, as run_filter
+  const FilterInput input{grid, plan_.p, lane.dy.data(), lane.noisy.data(), steps_per_sample_, observation_.period()};
   for (std::size_t k = 0; going && static_cast<std::ptrdiff_t>(k) < run.truth_last; ++k) {
-    if (fixed_step) {
-      filter.step(state, grid.time(k), grid.dt, dy + k * plan_.p);
-    } else if (stepper_.advance(filter.step, state, grid.time(k), grid.dt, dy + k * plan_.p) == 0) {
-      out.diverged = true;  // mid-step: the state is not stored
-      (stepper_.equations_finite_at_start(filter.step, grid.time(k)) ? out.too_stiff : out.undefined) = true;
-      out.divergence_t = grid.time(k);
+    const FilterStepOutcome outcome = filter.timing->advance(stepper_, state, input, k);
+    if (outcome.stop != FilterStepOutcome::Stop::none) {
+      out.diverged = true;  // mid-step, or predicted to a failed update: the state is not stored
+      switch (outcome.stop) {
+        case FilterStepOutcome::Stop::too_stiff: out.too_stiff = true; break;
+        case FilterStepOutcome::Stop::equations_undefined: out.undefined = true; break;
+        default: out.update_failed = true; break;
+      }
+      out.divergence_t = outcome.t;
       break;
     }
+    if (outcome.sample >= 0) absorb_sample(outcome.t, outcome.sample, state, lane, out);
     ++steps;
     going = guard(grid.time(k + 1), state, out);
     if (out.diverged) break;  // a diverged state is not stored
@@ -310,58 +308,27 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, RunBuf
     out.last = static_cast<std::ptrdiff_t>(k + 1);
   }
   filter_steps[f] += steps;
+  filter_samples[f] += out.samples;
   out.refined_steps = stepper_.refined_steps() - refined_before;
   finish_pass(out, pass, lane);
 }
 
-// A sampled filter over the truth's grid (docs/theory.md, section 2.5): grid step k lies in the
-// period starting at sample time t_s = t0 + s T, s = k / N (N grid steps per period), and the
-// filter makes there the sub-steps u with k' s_f / N <= u < (k' + 1) s_f / N, k' = k mod N, s_f its
-// substeps: integer arithmetic, so every period gets exactly s_f predictions of T / s_f, each
-// started at t_s + u T / s_f, whatever N. At the period's last grid step the update absorbs
-// y_{s+1}. The state visited at a grid point is so the prediction from the last sample to the
-// last sub-step completed (a zero-order hold between sub-steps), and at a sample time the updated
-// state, m(t_k|t_k).
-void Worker::step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth_last, RunBuffers& lane,
-                                 FilterRunResult& out, PassSums& pass, bool shown, std::uint64_t& steps) {
-  const TimeGrid& grid = plan_.grid;
-  const std::size_t N = steps_per_sample_, substeps = filter.substeps, p = observation_.p();
-  const double period = observation_.period(), delta = period / static_cast<double>(substeps);
-  double* state = state_.data();
-  out.sample_sums.assign(4 * p, 0.0);
-  for (std::size_t k = 0; static_cast<std::ptrdiff_t>(k) < truth_last; ++k) {
-    const std::size_t sample = k / N, within = k % N;
-    const double start = grid.t0 + static_cast<double>(sample) * period;
-    for (std::size_t u = within * substeps / N; u < (within + 1) * substeps / N; ++u)
-      filter.predict(state, start + static_cast<double>(u) * delta, delta);
-    if (within + 1 == N) {
-      const double t = grid.t0 + static_cast<double>(sample + 1) * period;  // t_k = t0 + k T, as draw_samples
-      const auto column = static_cast<Eigen::Index>(sample);
-      if (!filter.update(state, t, lane.noisy.col(column).data())) {
-        out.diverged = out.update_failed = true;  // the state is the predicted one: not stored
-        out.divergence_t = t;
-        return;
-      }
-      ++out.samples;
-      double* hat = estimate_.data();
-      observation_.rate().value(t, state, hat);  // C0 + C m(t_k|t_k), or c(m(t_k|t_k))
-      for (std::size_t i = 0; i < p; ++i) {
-        const double Y[2] = {lane.clean(static_cast<Eigen::Index>(i), column), lane.noisy(static_cast<Eigen::Index>(i), column)};
-        for (int reading = 0; reading < 2; ++reading) {
-          const double e = Y[reading] - hat[i];
-          out.sample_sums[4 * i + reading] += e * e;
-          out.sample_sums[4 * i + 2 + reading] += std::abs(e) / std::abs(Y[reading]);
-        }
-      }
+// A sample absorbed at t (column `column` of the run's samples; docs/theory.md, section 2.5):
+// the sample sums of the filter's h(t_k, m(t_k|t_k)) against the noise-free and the noisy sample.
+void Worker::absorb_sample(double t, std::ptrdiff_t column, const double* state, const RunBuffers& lane,
+                           FilterRunResult& out) {
+  const std::size_t p = observation_.p();
+  ++out.samples;
+  double* hat = estimate_.data();
+  observation_.rate().value(t, state, hat);  // C0 + C m(t_k|t_k), or c(m(t_k|t_k))
+  const auto sample = static_cast<Eigen::Index>(column);
+  for (std::size_t i = 0; i < p; ++i) {
+    const double Y[2] = {lane.clean(static_cast<Eigen::Index>(i), sample), lane.noisy(static_cast<Eigen::Index>(i), sample)};
+    for (int reading = 0; reading < 2; ++reading) {
+      const double e = Y[reading] - hat[i];
+      out.sample_sums[4 * i + reading] += e * e;
+      out.sample_sums[4 * i + 2 + reading] += std::abs(e) / std::abs(Y[reading]);
     }
-    ++steps;
-    const bool going = guard(grid.time(k + 1), state, out);
-    if (out.diverged) return;  // a diverged state is not stored
-    enter(k + 1);
-    visit(k + 1, state, shown, lane, out, pass);
-    leave();
-    out.last = static_cast<std::ptrdiff_t>(k + 1);
-    if (!going) return;
   }
 }
 

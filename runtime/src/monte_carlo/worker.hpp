@@ -43,9 +43,9 @@ struct PassSums {
   double previous_L = 0;              // the criterion's L = e^T M e at the previous grid point
 };
 
-// Whether the engine steps this filter in lanes: a continuous filter of any grid step, with a
-// step_lanes of 2, 4, 8 or 16 lanes.
-bool steps_in_lanes(const FilterModel& filter);
+// The lanes the engine steps this filter in: its timing's lanes form's width when it is 2, 4, 8 or
+// 16; 0 (run by run) otherwise.
+std::size_t lane_width(const FilterModel& filter);
 
 class Worker {
  public:
@@ -56,7 +56,7 @@ class Worker {
          const MonteCarloOptions& options, std::size_t batch);
 
   // Runs first .. first + count - 1 (count <= batch; each run's random streams depend on its
-  // number alone) into out[0 .. count - 1]. A filter with step_lanes steps them side by side;
+  // number alone) into out[0 .. count - 1]. A filter with a lanes form steps them side by side;
   // every run's result is bit for bit what it would be alone.
   void run(std::size_t first, std::size_t count, RunResult* out);
 
@@ -100,8 +100,8 @@ class Worker {
   void step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs);
   template <std::size_t W>
   void step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs);
-  void step_sampled_filter(const FilterModel& filter, std::ptrdiff_t truth_last, RunBuffers& lane,
-                           FilterRunResult& out, PassSums& pass, bool shown, std::uint64_t& steps);
+  void absorb_sample(double t, std::ptrdiff_t column, const double* state, const RunBuffers& lane,
+                     FilterRunResult& out);
   // The plan at grid point j: enter() opens its windows and finds its events, visit() takes one
   // run's state there, leave() closes its windows. Every run of a pass visits j between the two.
   void enter_events(std::size_t j);  // enter() where j opens a window or holds an event
@@ -144,6 +144,7 @@ class Worker {
   std::vector<RunBuffers> lanes_;  // batch entries, reused run after run
   std::vector<PassSums> passes_;   // likewise
   std::size_t steps_per_sample_ = 0;  // samples only
+  std::size_t sample_sums_size_ = 0;  // FilterRunResult::sample_sums' (samples only)
   std::vector<double> estimate_;       // a sampled filter's h(t_k, m(t_k|t_k))
   std::vector<double> state_;
   mutable std::vector<double> nees_work_;  // normalized_error_squared's Cholesky factor

@@ -1,5 +1,5 @@
 // A continuous filter stepped over several runs side by side (Worker::step_filter_lanes): one call
-// of the filter's step_lanes advances W runs over a grid step, and what step_filter does around
+// of its GridSteps' step_lanes advances W runs over a grid step, and what step_filter does around
 // its step (the stepper's check, the guards, the error sums) runs over the W lanes in packed passes
 // of compile-time width. Only a lane that fails a check goes through step_filter's own sequence,
 // alone. Each lane's arithmetic is step_filter's, in its order, so every run's results are bit for
@@ -14,9 +14,10 @@
 
 namespace pfgen_runtime::monte_carlo_detail {
 
-bool steps_in_lanes(const FilterModel& filter) {
-  const std::size_t w = filter.lanes;
-  return filter.step_lanes && !filter.sampled() && !filter.fixed_step() && (w == 2 || w == 4 || w == 8 || w == 16);
+std::size_t lane_width(const FilterModel& filter) {
+  const GridSteps* form = filter.timing->lanes();
+  const std::size_t w = form ? form->width() : 0;
+  return w == 2 || w == 4 || w == 8 || w == 16 ? w : 0;
 }
 
 std::size_t Worker::group_path_size() const { return (plan_.grid.steps + 1) * plan_.n * width_; }
@@ -35,7 +36,7 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
     case 2: return step_filter_lanes<2>(f, first, count, runs);
     case 4: return step_filter_lanes<4>(f, first, count, runs);
     case 8: return step_filter_lanes<8>(f, first, count, runs);
-    default: return step_filter_lanes<16>(f, first, count, runs);  // steps_in_lanes allows no other
+    default: return step_filter_lanes<16>(f, first, count, runs);  // lane_width allows no other
   }
 }
 
@@ -61,6 +62,7 @@ template <std::size_t W>
 void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t count, RunResult* runs) {
   namespace lp = lane_pack;
   const FilterModel& filter = filters_[f];
+  const GridSteps& stepped = *filter.timing->lanes();  // in_lanes_[f]: it has a lanes form of width W
   const FilterGuardOptions& guards = options_.filter_guards;
   const TimeGrid& grid = plan_.grid;
   const std::size_t size = filter.state_size(), n = plan_.n, p = plan_.p, windows = plan_.windows.size();
@@ -150,7 +152,7 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
     const double t = grid.time(step), next = grid.time(step + 1);
     // Entry by entry in packs: memmove's wider loads would straddle the step's narrower stores.
     lp::copy(states.data(), size * W, saved.data());
-    filter.step_lanes(states.data(), t, grid.dt, lane_dy + step * p * W);
+    stepped.step_lanes()(states.data(), t, grid.dt, lane_dy + step * p * W);
     // Whether a live lane failed a check (a PSD test of n > 1 is left to each lane).
     constexpr std::size_t packs = W / lp::kLanes;
     lp::Pack passes[packs];
@@ -195,9 +197,9 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
             // The lane's increment from the interleaved copy (the run's own buffer may be unwritten).
             for (std::size_t r = 0; r < p; ++r) lane_increment_[r] = lane_dy[(step * p + r) * W + k];
             const double* dy = lane_increment_.data();
-            if (stepper_.refine(filter.step, state, t, grid.dt, dy) == 0) {
+            if (stepper_.refine(stepped.step(), state, t, grid.dt, dy) == 0) {
               out.diverged = true;  // mid-step: the state is not stored
-              (stepper_.equations_finite_at_start(filter.step, t) ? out.too_stiff : out.undefined) = true;
+              (stepper_.equations_finite_at_start(stepped.step(), t) ? out.too_stiff : out.undefined) = true;
               out.divergence_t = t;
               stop(k, step);
               continue;
