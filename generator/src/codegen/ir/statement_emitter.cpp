@@ -25,6 +25,8 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
     case Kind::ZeroWhereZero: text = zero_where_zero(a.at(0), a.at(1)); break;
     case Kind::Greater: text = greater(a.at(0), a.at(1)); break;
     case Kind::Not: text = logical_not(a.at(0)); break;
+    case Kind::Dimension: text = dimension(e.name); break;
+    case Kind::WholeScalar: text = whole_scalar(e.integer); break;
   }
   return e.grouped ? grouped(text) : text;
 }

@@ -37,6 +37,8 @@ struct Expr {
     ZeroWhereZero,  // 0 where operands[0] is 0, else operands[1]
     Greater,        // operands[0] > operands[1]
     Not,            // not operands[0]
+    Dimension,      // a size the file declares (`name`: "n", "p", "state_size", ...), spelt by its language
+    WholeScalar,    // the whole number `integer` in the scalar type (C++: `Scalar(2)`; C: `2.0f`)
   };
   Kind kind = Kind::Name;
   std::string name;
@@ -65,6 +67,11 @@ Expr zero_where_zero(Expr guard, Expr value);
 Expr greater(Expr a, Expr b);
 Expr logical_not(Expr a);
 Expr grouped(Expr a);
+// A size of the file by its language-neutral name ("n", "p", "state_size"): C++ writes it as it is,
+// C after the file's prefix, Rust as its constant (STATES, OBSERVATIONS, STATE_SIZE).
+Expr dimension(const std::string& name);
+// A whole number in the scalar type, as the language converts one (the Heun step's 2).
+Expr whole_scalar(std::size_t value);
 // a_0 + a_1 + ... (left to right); a single term as it is.
 Expr sum(std::vector<Expr> terms);
 

@@ -17,6 +17,8 @@ class CppEmitter : public CFamilyEmitter {
 
   std::string call(Function function, const std::vector<std::string>& args) const override;
   std::string boolean(bool value) const override { return value ? "true" : "false"; }
+  // `Scalar(2)` in every scalar mode, as the templates' own arithmetic writes it.
+  std::string whole_scalar(std::size_t value) const override { return "Scalar(" + std::to_string(value) + ")"; }
 
  protected:
   std::string field_access() const override { return "."; }
