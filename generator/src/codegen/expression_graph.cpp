@@ -60,6 +60,7 @@ const Leaf kNoLeaf;
 Leaf constant_leaf(const GiNaC::numeric& value) {
   Leaf data;
   data.value = value;
+  data.held = std::make_shared<const GiNaC::numeric>(value);  // one per distinct constant, not one per use
   return data;
 }
 

@@ -11,6 +11,7 @@
 // about 12 million operations before sharing. A node is 24 bytes (its operands in place, an input's
 // or constant's data apart, in `Leaf`), and the hash-consing index is an open-addressing table of
 // node numbers and hashes (8 bytes a slot, at most half full).
+#include <memory>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -56,6 +57,7 @@ struct Leaf {
   std::string name;      // Input: its name in the function ("P12", "a", "t")
   InputSource source;    // Input: what the function reads it from
   GiNaC::numeric value;  // Constant: an exact rational or a float
+  std::shared_ptr<const GiNaC::numeric> held;  // Constant: the same value, which lowered code shares
 };
 
 // A node's operands in place: every operation takes one or two (calls: sin one, pow two).
@@ -86,6 +88,7 @@ struct Node {
   const std::string& name() const { return leaf_data().name; }        // Input
   const InputSource& source() const { return leaf_data().source; }    // Input
   const GiNaC::numeric& value() const { return leaf_data().value; }   // Constant
+  const std::shared_ptr<const GiNaC::numeric>& held_value() const { return leaf_data().held; }  // for ir::held_number
  private:
   const Leaf& leaf_data() const;
 };

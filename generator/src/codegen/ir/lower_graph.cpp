@@ -29,7 +29,9 @@ Expr input_source(const Node& node) {
   return name(node.name());
 }
 
-Expr leaf(const Node& node) { return node.kind == OpKind::Constant ? number(node.value()) : name(node.name()); }
+Expr leaf(const Node& node) {
+  return node.kind == OpKind::Constant ? held_number(node.held_value()) : name(node.name());
+}
 
 Expr operation(const Node& node, std::vector<Expr> a) {
   switch (node.kind) {
@@ -85,6 +87,7 @@ void shared_statements(const ExpressionGraph& graph, const std::vector<std::size
   for (std::size_t id : graph.needed_operations(outputs)) {
     const Node& node = graph.node(id);
     std::vector<Expr> operands;
+    operands.reserve(node.args.size());
     for (std::size_t arg : node.args) operands.push_back(spell(arg));
     std::string temporary = temporary_prefix + std::to_string(names.size());
     sink(declare(temporary, Type::Scalar, operation(node, std::move(operands))));
@@ -107,6 +110,7 @@ Block tree_statements(const ExpressionGraph& graph, const std::vector<std::size_
     const Node& node = graph.node(id);
     if (graph.is_leaf(id)) return leaf(node);
     std::vector<Expr> operands;
+    operands.reserve(node.args.size());
     for (std::size_t arg : node.args) operands.push_back(spell(arg));
     Expr e = operation(node, std::move(operands));
     return node.kind == OpKind::Call ? e : grouped(std::move(e));
@@ -159,26 +163,29 @@ SplitPlan split_statements(const ExpressionGraph& graph, const std::vector<std::
                            std::size_t max_ops, const std::string& shared_array,
                            const std::function<void(const SplitPlan& plan, SplitPart&& part)>& each) {
   SplitPlan plan = split_plan(graph, outputs, max_ops);
-  auto spell = [&](std::size_t id) {
-    return graph.is_leaf(id) ? leaf(graph.node(id)) : name(temporary_prefix + std::to_string(plan.number.at(id)));
-  };
+  auto temporary = [&](std::size_t id) { return temporary_prefix + std::to_string(plan.number.at(id)); };
+  auto spell = [&](std::size_t id) { return graph.is_leaf(id) ? leaf(graph.node(id)) : name(temporary(id)); };
   auto note_input = [&](SplitPart& part, std::size_t id) {
     if (graph.node(id).kind == OpKind::Input) part.inputs.insert(id);
   };
   std::size_t next = 0;
   for (std::size_t p = 0; p < plan.parts; ++p) {
     SplitPart part;
+    part.reads.reserve(plan.reads[p].size());
+    part.arithmetic.reserve(max_ops);
     for (std::size_t id : plan.reads[p])
-      part.reads.push_back(declare(spell(id).name, Type::Scalar, element(shared_array, plan.slot.at(id))));
+      part.reads.push_back(declare(temporary(id), Type::Scalar, element(shared_array, plan.slot.at(id))));
     for (; next < plan.operations.size() && plan.part.at(plan.operations[next]) == p; ++next) {
       const std::size_t id = plan.operations[next];
       std::vector<Expr> operands;
+      operands.reserve(graph.node(id).args.size());
       for (std::size_t arg : graph.node(id).args) {
         note_input(part, arg);
         operands.push_back(spell(arg));
       }
-      part.arithmetic.push_back(declare(spell(id).name, Type::Scalar, operation(graph.node(id), std::move(operands))));
-      if (plan.slot[id] != SplitPlan::kNone) part.stores.push_back(assign(element(shared_array, plan.slot[id]), spell(id)));
+      part.arithmetic.push_back(declare(temporary(id), Type::Scalar, operation(graph.node(id), std::move(operands))));
+      if (plan.slot[id] != SplitPlan::kNone)
+        part.stores.push_back(assign(element(shared_array, plan.slot[id]), spell(id)));
     }
     for (std::size_t k = 0; k < outputs.size(); ++k)
       if (plan.writer(graph, outputs[k]) == p) {

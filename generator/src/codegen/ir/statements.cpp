@@ -12,10 +12,28 @@ Expr node(Expr::Kind kind, std::vector<Expr> operands) {
   return e;
 }
 
-Statement statement(Statement::Kind kind) {
-  Statement s;
-  s.kind = kind;
-  return s;
+// The operators' nodes: their operands moved in (a braced list would copy them, whole subtrees).
+Expr node(Expr::Kind kind, Expr&& a) {
+  Expr e;
+  e.kind = kind;
+  e.operands.reserve(1);
+  e.operands.push_back(std::move(a));
+  return e;
+}
+
+Expr node(Expr::Kind kind, Expr&& a, Expr&& b) {
+  Expr e;
+  e.kind = kind;
+  e.operands.reserve(2);
+  e.operands.push_back(std::move(a));
+  e.operands.push_back(std::move(b));
+  return e;
+}
+
+// A statement with its node constructed in place (not a default node replaced).
+template <class Node>
+Statement statement(Statement::Kind kind, Node&& node) {
+  return Statement{kind, std::forward<Node>(node)};
 }
 
 }  // namespace
@@ -23,6 +41,12 @@ Statement statement(Statement::Kind kind) {
 Expr name(const std::string& text) {
   Expr e;
   e.name = text;
+  return e;
+}
+
+Expr name(std::string&& text) {
+  Expr e;
+  e.name = std::move(text);
   return e;
 }
 
@@ -36,7 +60,14 @@ Expr integer(std::size_t value) {
 Expr number(const GiNaC::numeric& value) {
   Expr e;
   e.kind = Expr::Kind::Number;
-  e.number = value;
+  e.number = std::make_shared<const GiNaC::numeric>(value);
+  return e;
+}
+
+Expr held_number(std::shared_ptr<const GiNaC::numeric> value) {
+  Expr e;
+  e.kind = Expr::Kind::Number;
+  e.number = std::move(value);
   return e;
 }
 
@@ -62,7 +93,7 @@ Expr whole_scalar(std::size_t value) {
 }
 
 Expr element(const std::string& array, Expr index) {
-  Expr e = node(Expr::Kind::Element, {std::move(index)});
+  Expr e = node(Expr::Kind::Element, std::move(index));
   e.name = array;
   return e;
 }
@@ -70,16 +101,16 @@ Expr element(const std::string& array, Expr index) {
 Expr element(const std::string& array, std::size_t index) { return element(array, integer(index)); }
 
 Expr field(const std::string& record, const std::string& field) {
-  Expr e = node(Expr::Kind::Field, {name(record)});
+  Expr e = node(Expr::Kind::Field, name(record));
   e.name = field;
   return e;
 }
 
-Expr add(Expr a, Expr b) { return node(Expr::Kind::Add, {std::move(a), std::move(b)}); }
-Expr sub(Expr a, Expr b) { return node(Expr::Kind::Sub, {std::move(a), std::move(b)}); }
-Expr mul(Expr a, Expr b) { return node(Expr::Kind::Mul, {std::move(a), std::move(b)}); }
-Expr div(Expr a, Expr b) { return node(Expr::Kind::Div, {std::move(a), std::move(b)}); }
-Expr neg(Expr a) { return node(Expr::Kind::Neg, {std::move(a)}); }
+Expr add(Expr a, Expr b) { return node(Expr::Kind::Add, std::move(a), std::move(b)); }
+Expr sub(Expr a, Expr b) { return node(Expr::Kind::Sub, std::move(a), std::move(b)); }
+Expr mul(Expr a, Expr b) { return node(Expr::Kind::Mul, std::move(a), std::move(b)); }
+Expr div(Expr a, Expr b) { return node(Expr::Kind::Div, std::move(a), std::move(b)); }
+Expr neg(Expr a) { return node(Expr::Kind::Neg, std::move(a)); }
 
 Expr call(Function function, std::vector<Expr> arguments) {
   Expr e = node(Expr::Kind::Call, std::move(arguments));
@@ -88,11 +119,11 @@ Expr call(Function function, std::vector<Expr> arguments) {
 }
 
 Expr zero_where_zero(Expr guard, Expr value) {
-  return node(Expr::Kind::ZeroWhereZero, {std::move(guard), std::move(value)});
+  return node(Expr::Kind::ZeroWhereZero, std::move(guard), std::move(value));
 }
 
-Expr greater(Expr a, Expr b) { return node(Expr::Kind::Greater, {std::move(a), std::move(b)}); }
-Expr logical_not(Expr a) { return node(Expr::Kind::Not, {std::move(a)}); }
+Expr greater(Expr a, Expr b) { return node(Expr::Kind::Greater, std::move(a), std::move(b)); }
+Expr logical_not(Expr a) { return node(Expr::Kind::Not, std::move(a)); }
 
 Expr grouped(Expr a) {
   a.grouped = true;
@@ -105,74 +136,63 @@ Expr sum(std::vector<Expr> terms) {
   return total;
 }
 
-Statement declare(const std::string& name, Type type, Expr value) {
-  Statement s = statement(Statement::Kind::Declaration);
-  s.node = Declaration{name, type, std::move(value), std::nullopt};
-  return s;
+Statement declare(std::string name, Type type, Expr value) {
+  return statement(Statement::Kind::Declaration, Declaration{std::move(name), type, std::move(value), std::nullopt});
 }
 
 Statement declare_array(const std::string& name, Type type, std::size_t size) {
-  Statement s = statement(Statement::Kind::Declaration);
-  s.node = Declaration{name, type, std::nullopt, size};
-  return s;
+  return statement(Statement::Kind::Declaration, Declaration{name, type, std::nullopt, size});
 }
 
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable) {
-  Statement s = statement(Statement::Kind::View);
-  s.node = std::make_shared<const View>(View{name, array, std::move(offset), std::move(size), writable});
-  return s;
+  return statement(Statement::Kind::View,
+                   std::make_shared<const View>(View{name, array, std::move(offset), std::move(size), writable}));
 }
 
-Statement assign(Expr target, Expr value) { return assign_all({std::move(target)}, std::move(value)); }
+namespace {
+std::vector<Expr> one_target(Expr&& target) {
+  std::vector<Expr> targets;
+  targets.push_back(std::move(target));  // moved, not copied from a braced list
+  return targets;
+}
+}  // namespace
+
+Statement assign(Expr target, Expr value) { return assign_all(one_target(std::move(target)), std::move(value)); }
 
 Statement assign_all(std::vector<Expr> targets, Expr value) {
-  Statement s = statement(Statement::Kind::Assignment);
-  s.node = Assignment{std::move(targets), std::move(value), false};
-  return s;
+  return statement(Statement::Kind::Assignment, Assignment{std::move(targets), std::move(value), false});
 }
 
 Statement accumulate(Expr target, Expr value) {
-  Statement s = statement(Statement::Kind::Assignment);
-  s.node = Assignment{{std::move(target)}, std::move(value), true};
-  return s;
+  return statement(Statement::Kind::Assignment, Assignment{one_target(std::move(target)), std::move(value), true});
 }
 
 Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Block body,
                std::optional<Loop::Follower> declares, const std::string& steps) {
-  Statement s = statement(Statement::Kind::Loop);
-  s.node = std::make_shared<const Loop>(
-      Loop{index, counter, std::move(begin), std::move(end), std::move(declares), steps, std::move(body)});
-  return s;
+  return statement(Statement::Kind::Loop, std::make_shared<const Loop>(
+      Loop{index, counter, std::move(begin), std::move(end), std::move(declares), steps, std::move(body)}));
 }
 
 Statement call_statement(const std::string& function, std::vector<Expr> arguments) {
-  Statement s = statement(Statement::Kind::Call);
-  s.node = std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments)});
-  return s;
+  return statement(Statement::Kind::Call,
+                   std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments)}));
 }
 
 Statement conditional(Expr condition, Block then) {
-  Statement s = statement(Statement::Kind::Conditional);
-  s.node = std::make_shared<const Conditional>(Conditional{std::move(condition), std::move(then)});
-  return s;
+  return statement(Statement::Kind::Conditional,
+                   std::make_shared<const Conditional>(Conditional{std::move(condition), std::move(then)}));
 }
 
 Statement return_value(std::optional<Expr> value) {
-  Statement s = statement(Statement::Kind::Return);
-  s.node = Return{std::move(value)};
-  return s;
+  return statement(Statement::Kind::Return, Return{std::move(value)});
 }
 
 Statement comment(const std::string& text) {
-  Statement s = statement(Statement::Kind::Comment);
-  s.node = Comment{text};
-  return s;
+  return statement(Statement::Kind::Comment, Comment{text});
 }
 
 Statement unused(const std::string& name) {
-  Statement s = statement(Statement::Kind::Unused);
-  s.node = Unused{name};
-  return s;
+  return statement(Statement::Kind::Unused, Unused{name});
 }
 
 }  // namespace pfgen::codegen::ir

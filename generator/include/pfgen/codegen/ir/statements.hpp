@@ -43,7 +43,9 @@ struct Expr {
   Kind kind = Kind::Name;
   std::string name;
   std::size_t integer = 0;
-  GiNaC::numeric number;
+  // A Number's value, shared: the many Exprs that are not numbers hold a null pointer, which they
+  // move and destroy for nothing (a numeric held by value cost every Expr a GiNaC object).
+  std::shared_ptr<const GiNaC::numeric> number;
   Function function = Function::Sqrt;
   std::vector<Expr> operands;
   bool grouped = false;  // written in parentheses
@@ -51,8 +53,11 @@ struct Expr {
 
 // Builders.
 Expr name(const std::string& name);
+Expr name(std::string&& name);
 Expr integer(std::size_t value);
 Expr number(const GiNaC::numeric& value);
+// A number already shared (an ExpressionGraph constant's held_value()): not copied.
+Expr held_number(std::shared_ptr<const GiNaC::numeric> value);
 Expr boolean(bool value);
 Expr element(const std::string& array, Expr index);
 Expr element(const std::string& array, std::size_t index);
@@ -172,7 +177,7 @@ struct Statement {
   const Conditional& conditional() const { return *std::get<std::shared_ptr<const Conditional>>(node); }
 };
 
-Statement declare(const std::string& name, Type type, Expr value);          // a constant
+Statement declare(std::string name, Type type, Expr value);          // a constant
 Statement declare_array(const std::string& name, Type type, std::size_t size);
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable);
 Statement assign(Expr target, Expr value);

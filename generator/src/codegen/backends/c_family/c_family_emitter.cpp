@@ -84,7 +84,14 @@ std::string CFamilyEmitter::type(ir::Type t) const {
 
 std::string CFamilyEmitter::declaration(const ir::Declaration& node, const std::string&) const {
   if (node.size) return type(node.type) + " " + node.name + "[" + std::to_string(*node.size) + "];";
-  return "const " + type(node.type) + " " + node.name + " = " + expression(*node.value) + ";";
+  std::string text = "const ";
+  text += type(node.type);
+  text += ' ';
+  text += node.name;
+  text += " = ";
+  text += expression(*node.value);
+  text += ';';
+  return text;
 }
 
 std::string CFamilyEmitter::view(const ir::View& node, const std::string&) const {
