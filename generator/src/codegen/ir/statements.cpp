@@ -80,6 +80,13 @@ Expr zero_where_zero(Expr guard, Expr value) {
 Expr greater(Expr a, Expr b) { return node(Expr::Kind::Greater, {std::move(a), std::move(b)}); }
 Expr logical_not(Expr a) { return node(Expr::Kind::Not, {std::move(a)}); }
 
+Expr local_array(const std::string& array, bool writable) {
+  Expr e = node(Expr::Kind::LocalArray, {});
+  e.name = array;
+  e.integer = writable ? 1 : 0;
+  return e;
+}
+
 Expr grouped(Expr a) {
   a.grouped = true;
   return a;
@@ -100,6 +107,12 @@ Statement declare(const std::string& name, Type type, Expr value) {
 Statement declare_array(const std::string& name, Type type, std::size_t size) {
   Statement s = statement(Statement::Kind::Declaration);
   s.node = Declaration{name, type, std::nullopt, size};
+  return s;
+}
+
+Statement local_arrays(std::vector<std::string> names, Type type, Expr length) {
+  Statement s = statement(Statement::Kind::Arrays);
+  s.node = std::make_shared<const LocalArrays>(LocalArrays{std::move(names), type, std::move(length)});
   return s;
 }
 

@@ -4,6 +4,7 @@
 #include "pfgen/codegen/template_text.hpp"
 #include "pfgen/observations/sampled/cholesky_solve.hpp"
 #include "pfgen/observations/sampled/sampled_code.hpp"
+#include "pfgen/observations/sampled/sampled_predict.hpp"
 
 namespace pfgen::codegen {
 
@@ -21,7 +22,8 @@ GeneratedFilter SampledCode::c_filter(const Model& model, const FilterEquations&
   CFilterWriter::add_function(values, "observation", f.observation);
   values.insert({{"h", w.names.h}, {"substeps", std::to_string(eq.update.substeps)}});
   add_sample_meanings(values, eq.update);
-  // cd-euler's Cov(f) dt^2 function and the prediction sub-step, each a partial (its templates/c/partials/).
+  // cd-euler's Cov(f) dt^2 function and the prediction sub-step, each a partial (its templates/c/partials/);
+  // the sub-step's body is statements (sampled_predict).
   std::string euler_function, euler_declaration;
   if (euler) {
     std::map<std::string, std::string> euler_values = {{"prefix", w.prefix}, {"scalar", w.emitter.scalar_type()},
@@ -34,9 +36,12 @@ GeneratedFilter SampledCode::c_filter(const Model& model, const FilterEquations&
                                    euler_values);
   }
   const std::string predict_partial = euler ? "c/partials/predict_euler.c.tmpl" : "c/partials/predict_heun.c.tmpl";
-  std::string predict_function = fill_template(
-      predict_partial, embedded_template(predict_partial),
-      values_in_template(predict_partial, {{"prefix", w.prefix}, {"scalar", w.emitter.scalar_type()}, {"two", w.emitter.literal(2)}}));
+  const ir::Expr n = ir::name(w.prefix + "_n"), state_size = ir::name(w.prefix + "_state_size");
+  const ir::Block predict =
+      predict_statements(euler, {n, state_size, ir::number(2), w.prefix + "_derivatives", w.prefix + "_euler_square"});
+  std::string predict_function =
+      fill_template(predict_partial, embedded_template(predict_partial),
+                    {{"prefix", w.prefix}, {"scalar", w.emitter.scalar_type()}, {"predict_body", w.emitter.block(predict)}});
   predict_function.pop_back();  // its last newline: the template's line after {{predict_function}} ends it
   w.write("sampled_filter", values,
           {{"euler_declaration", euler_declaration},

@@ -7,6 +7,7 @@
 #include "pfgen/codegen/template_text.hpp"
 #include "pfgen/observations/sampled/cholesky_solve.hpp"
 #include "pfgen/observations/sampled/sampled_code.hpp"
+#include "pfgen/observations/sampled/sampled_predict.hpp"
 
 namespace pfgen::codegen {
 
@@ -30,8 +31,8 @@ GeneratedFilter SampledCode::cpp_filter(const Model& model, const FilterEquation
   std::map<std::string, std::string> values =
       cpp_template_values(model, filter_identifier(eq.name), options, n, r, vars.count(), names, emitter);
   const std::string& prefix = values.at("template_prefix");
-  // cd-euler's Cov(f) dt^2 term and the prediction sub-step: the C++ of each in its own partial
-  // (its templates/cpp/partials/), filled here.
+  // cd-euler's Cov(f) dt^2 term and the prediction sub-step: the frame of each in its own partial
+  // (its templates/cpp/partials/), filled here; the sub-step's body is statements (sampled_predict).
   std::string euler_function;
   if (euler)
     euler_function = fill_template("cpp/partials/euler_square.hpp.tmpl",
@@ -44,8 +45,10 @@ GeneratedFilter SampledCode::cpp_filter(const Model& model, const FilterEquation
                                     {"out", names.out},
                                     {"euler_body", functions.euler_square->body.statements}});
   const std::string predict_partial = euler ? "cpp/partials/predict_euler.hpp.tmpl" : "cpp/partials/predict_heun.hpp.tmpl";
-  std::string predict_function =
-      fill_template(predict_partial, embedded_template(predict_partial), {{"template_prefix", prefix}});
+  const ir::Block predict = predict_statements(
+      euler, {ir::name("n"), ir::name("state_size"), ir::name("Scalar(2)"), "derivatives", "euler_square"});
+  std::string predict_function = fill_template(predict_partial, embedded_template(predict_partial),
+                                               {{"template_prefix", prefix}, {"predict_body", emitter.block(predict)}});
   predict_function.pop_back();  // its last newline: the template's line after {{predict_function}} ends it
 
   values.insert({

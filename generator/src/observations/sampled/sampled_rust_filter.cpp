@@ -4,6 +4,7 @@
 #include "pfgen/codegen/template_text.hpp"
 #include "pfgen/observations/sampled/cholesky_solve.hpp"
 #include "pfgen/observations/sampled/sampled_code.hpp"
+#include "pfgen/observations/sampled/sampled_predict.hpp"
 
 namespace pfgen::codegen {
 namespace {
@@ -35,6 +36,8 @@ GeneratedFilter SampledCode::rust_filter(const Model& model, const FilterEquatio
     euler_function = filled_partial("rust/partials/euler_square.rs.tmpl", euler_values);
   }
   const std::string predict = euler ? "rust/partials/predict_euler.rs.tmpl" : "rust/partials/predict_heun.rs.tmpl";
+  values["predict_body"] = w.body(predict_statements(
+      euler, {ir::name("STATES"), ir::name("STATE_SIZE"), ir::number(2), "derivatives", "euler_square"}));
   values.insert({{"period", w.emitter.literal_text(eq.update.period)},
                  {"euler_function", euler_function},
                  {"predict_function", filled_partial(predict, values)},

@@ -106,6 +106,17 @@ std::string RustEmitter::declaration(const ir::Declaration& node, const std::str
   return "let " + node.name + ": " + t + " = " + expression(*node.value) + ";";
 }
 
+std::string RustEmitter::arrays(const ir::LocalArrays& node, const std::string& indent) const {
+  const std::string zero = node.type == ir::Type::Scalar ? constant(GiNaC::numeric(0)) : "0";
+  const std::string t = node.type == ir::Type::Int ? "usize" : type(node.type);
+  const std::string length = expression(node.length);
+  std::string text;
+  for (std::size_t k = 0; k < node.names.size(); ++k)
+    text += (k ? "\n" + indent : "") + "let mut " + node.names[k] + ": [" + t + "; " + length + "] = [" + zero + "; " +
+            length + "];";
+  return text;
+}
+
 std::string RustEmitter::view(const ir::View& node, const std::string&) const {
   const std::string offset = expression(node.offset);
   return "let " + node.name + " = &" + (node.writable ? "mut " : "") + node.array + "[" + offset + ".." + offset +
