@@ -26,6 +26,8 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
     case Kind::Greater: text = greater(a.at(0), a.at(1)); break;
     case Kind::Not: text = logical_not(a.at(0)); break;
     case Kind::LocalArray: text = local_array(e.name, e.integer != 0); break;
+    case Kind::Dimension: text = dimension(e.name); break;
+    case Kind::WholeScalar: text = whole_scalar(e.integer); break;
   }
   return e.grouped ? grouped(text) : text;
 }

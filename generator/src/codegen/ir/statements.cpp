@@ -47,6 +47,20 @@ Expr boolean(bool value) {
   return e;
 }
 
+Expr dimension(const std::string& size_name) {
+  Expr e;
+  e.kind = Expr::Kind::Dimension;
+  e.name = size_name;
+  return e;
+}
+
+Expr whole_scalar(std::size_t value) {
+  Expr e;
+  e.kind = Expr::Kind::WholeScalar;
+  e.integer = value;
+  return e;
+}
+
 Expr element(const std::string& array, Expr index) {
   Expr e = node(Expr::Kind::Element, {std::move(index)});
   e.name = array;

@@ -42,6 +42,10 @@ class StatementEmitter : public Emitter {
   virtual std::string logical_not(const std::string& a) const = 0;
   virtual std::string grouped(const std::string& a) const { return "(" + a + ")"; }
   virtual std::string local_array(const std::string& array, bool writable) const = 0;
+  // A size the file declares, by its language-neutral name; as it is by default.
+  virtual std::string dimension(const std::string& name) const { return name; }
+  // A whole number in the scalar type; its constant by default.
+  virtual std::string whole_scalar(std::size_t value) const { return constant(GiNaC::numeric(static_cast<long>(value))); }
   using Emitter::expression;
   std::string expression(const ir::Expr& expr) const;
 

@@ -39,6 +39,8 @@ struct Expr {
     Not,            // not operands[0]
     LocalArray,     // the local array `name` (a LocalArrays') passed whole to a call; written
                     // through when `integer` != 0 (C: `name`; C++: `name.data()`; Rust: `&mut name`)
+    Dimension,      // a size the file declares (`name`: "n", "p", "state_size", ...), spelt by its language
+    WholeScalar,    // the whole number `integer` in the scalar type (C++: `Scalar(2)`; C: `2.0f`)
   };
   Kind kind = Kind::Name;
   std::string name;
@@ -68,6 +70,11 @@ Expr greater(Expr a, Expr b);
 Expr logical_not(Expr a);
 Expr local_array(const std::string& name, bool writable);
 Expr grouped(Expr a);
+// A size of the file by its language-neutral name ("n", "p", "state_size"): C++ writes it as it is,
+// C after the file's prefix, Rust as its constant (STATES, OBSERVATIONS, STATE_SIZE).
+Expr dimension(const std::string& name);
+// A whole number in the scalar type, as the language converts one (the Heun step's 2).
+Expr whole_scalar(std::size_t value);
 // a_0 + a_1 + ... (left to right); a single term as it is.
 Expr sum(std::vector<Expr> terms);
 

@@ -53,6 +53,8 @@ std::map<std::string, std::string> CFilterWriter::common_values(std::size_t p, s
       {"state", names.state},
       {"params", names.params},
       {"out", names.out},
+      {"zero", emitter.literal(0)},
+      {"one", emitter.literal(1)},
       {"two", emitter.literal(2)},
   };
 }
@@ -73,6 +75,27 @@ void CFilterWriter::write(const std::string& kind, std::map<std::string, std::st
   const std::string h = "c/" + kind + ".h.tmpl", c = "c/" + kind + ".c.tmpl";
   result.files.at(0).contents = fill_template(h, embedded_template(h), values_in_template(h, header_values));
   result.files.at(1).contents = fill_template(c, embedded_template(c), values_in_template(c, source_values));
+}
+
+GeneratedFilter write_c_filter(const ObservationCode& part, const Model& model, const FilterEquations& eq,
+                               const CodegenOptions& options) {
+  CFilterWriter w(model, eq, options);
+  FilterFile file = part.filter_file(model, eq, options, w.names, w.emitter);
+  w.result.functions = std::move(file.stats);
+  std::map<std::string, std::string> values = w.common_values(file.p, file.state_size, file.banner_extra);
+  for (const auto& [key, code] : file.functions) CFilterWriter::add_function(values, key, code);
+  for (const auto& [key, block] : file.blocks) values.emplace(key, w.emitter.block(block));
+  for (const auto& [key, number] : file.numbers) values.emplace(key, w.emitter.literal(number));
+  for (const auto& [key, flag] : file.flags) values.emplace(key, w.emitter.boolean(flag));
+  values.insert(file.words.begin(), file.words.end());
+  w.write(file.layout, std::move(values), {}, {});
+  return std::move(w.result);
+}
+
+std::vector<std::string> c_layout_templates(const std::vector<std::string>& layouts) {
+  std::vector<std::string> names;
+  for (const std::string& layout : layouts) names.insert(names.end(), {"c/" + layout + ".h.tmpl", "c/" + layout + ".c.tmpl"});
+  return names;
 }
 
 }  // namespace pfgen::codegen

@@ -1,5 +1,7 @@
 #include "pfgen/codegen/backends/rust/rust_emitter.hpp"
 
+#include <cctype>
+
 #include "pfgen/codegen/codegen_error.hpp"
 #include "pfgen/kinds/model_functions.hpp"
 
@@ -57,6 +59,14 @@ std::string RustEmitter::constant(const GiNaC::numeric& value) const {
   if (text.front() == '(') text = text.substr(1, text.size() - 2);
   if (mode_ == ScalarMode::Float && text.back() == 'f') text.pop_back();
   return text;
+}
+
+std::string RustEmitter::dimension(const std::string& name) const {
+  if (name == "n") return "STATES";
+  if (name == "p") return "OBSERVATIONS";
+  std::string upper = name;
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return upper;
 }
 
 std::string RustEmitter::function_spelling(Function function) const {

@@ -39,6 +39,8 @@ class RustEmitter : public CFamilyEmitter {
   std::string call(Function function, const std::vector<std::string>& args) const override;
   std::string zero_where_zero(const std::string& guard, const std::string& value) const override;
   std::string boolean(bool value) const override { return value ? "true" : "false"; }
+  // The module's constants: STATES (n), OBSERVATIONS (p), the others' names in capitals (STATE_SIZE).
+  std::string dimension(const std::string& name) const override;
 
   std::string declaration(const ir::Declaration& node, const std::string& indent) const override;
   std::string view(const ir::View& node, const std::string& indent) const override;
