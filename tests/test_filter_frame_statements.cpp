@@ -1,5 +1,4 @@
-// The filter parts the sampled and delayed modules build as statements (sampled_predict.hpp,
-// delayed_history.hpp) as each backend's emitter writes them: the same nodes give C++'s, C's and
+// The filter parts the sampled and delayed modules build as statements (sampled_predict.hpp) as each backend's emitter writes them: the same nodes give C++'s, C's and
 // Rust's text, and the local-array nodes (ir::local_arrays, ir::local_array) are spelled as each
 // language declares and passes an array.
 #include <catch2/catch.hpp>
@@ -29,23 +28,20 @@ TEST_CASE("local arrays: declared together and passed whole, as each language do
 TEST_CASE("sampled predict: Heun's and cd-euler's sub-step as statements for every language", "[unit][codegen]") {
   const CEmitter c(ScalarMode::Double, "tmp", "ns_m_f", "ns_m_f_params");
   const RustEmitter rust(ScalarMode::Double, "tmp", "Params");
-  const PredictNames c_names{ir::name("ns_m_f_n"), ir::name("ns_m_f_state_size"), ir::number(2), "ns_m_f_derivatives",
-                             "ns_m_f_euler_square"};
-  CHECK(c.block(predict_statements(false, c_names)) ==
+  CHECK(c.block(predict_statements(false)) ==
         "  double first[ns_m_f_state_size], predicted[ns_m_f_state_size], second[ns_m_f_state_size];\n"
         "  ns_m_f_derivatives(t, state, params, first);\n"
         "  for (size_t i = 0; i < ns_m_f_state_size; ++i) predicted[i] = state[i] + first[i] * dt;\n"
         "  ns_m_f_derivatives(t + dt, predicted, params, second);\n"
         "  for (size_t i = 0; i < ns_m_f_state_size; ++i) state[i] += (first[i] + second[i]) * dt / 2.0;\n");
-  CHECK(c.block(predict_statements(true, c_names)) ==
+  CHECK(c.block(predict_statements(true)) ==
         "  double rates[ns_m_f_state_size];\n"
         "  double square[ns_m_f_state_size - ns_m_f_n];\n"
         "  ns_m_f_derivatives(t, state, params, rates);\n"
         "  ns_m_f_euler_square(t, state, params, square);\n"
         "  for (size_t i = 0; i < ns_m_f_state_size; ++i) state[i] += rates[i] * dt;\n"
         "  for (size_t i = ns_m_f_n; i < ns_m_f_state_size; ++i) state[i] += square[i - ns_m_f_n] * dt * dt;\n");
-  const PredictNames rust_names{ir::name("STATES"), ir::name("STATE_SIZE"), ir::number(2), "derivatives", "euler_square"};
-  CHECK(rust_indent(rust.block(predict_statements(true, rust_names))) ==
+  CHECK(rust_indent(rust.block(predict_statements(true))) ==
         "    let mut rates: [Scalar; STATE_SIZE] = [0.0; STATE_SIZE];\n"
         "    let mut square: [Scalar; STATE_SIZE - STATES] = [0.0; STATE_SIZE - STATES];\n"
         "    derivatives(t, state, params, &mut rates);\n"

@@ -164,6 +164,12 @@ Statement call_statement(const std::string& function, std::vector<Expr> argument
   return s;
 }
 
+Statement call_file_function(const std::string& function, std::vector<Expr> arguments) {
+  Statement s = statement(Statement::Kind::Call);
+  s.node = std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments), true});
+  return s;
+}
+
 Statement conditional(Expr condition, Block then) {
   Statement s = statement(Statement::Kind::Conditional);
   s.node = std::make_shared<const Conditional>(Conditional{std::move(condition), std::move(then)});

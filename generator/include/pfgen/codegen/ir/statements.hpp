@@ -138,10 +138,12 @@ struct Loop {
   Block body;
 };
 
-// A call of a function of the generated file as a statement: `function(arguments)`.
+// A call as a statement: `function(arguments)`. A function the file declares (`of_file`) is named
+// by its language-neutral name and spelt by its language (C: after the file's prefix).
 struct CallStatement {
   std::string function;
   std::vector<Expr> arguments;
+  bool of_file = false;
 };
 
 // if condition: then.
@@ -196,6 +198,7 @@ Statement accumulate(Expr target, Expr value);
 Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Block body,
                std::optional<Loop::Follower> declares = std::nullopt, const std::string& steps = "");
 Statement call_statement(const std::string& function, std::vector<Expr> arguments);
+Statement call_file_function(const std::string& function, std::vector<Expr> arguments);
 Statement conditional(Expr condition, Block then);
 Statement return_value(std::optional<Expr> value);
 Statement comment(const std::string& text);

@@ -73,8 +73,8 @@ void CFilterWriter::write(const std::string& kind, std::map<std::string, std::st
   header_values.insert(header_only.begin(), header_only.end());
   source_values.insert(source_only.begin(), source_only.end());
   const std::string h = "c/" + kind + ".h.tmpl", c = "c/" + kind + ".c.tmpl";
-  result.files.at(0).contents = fill_template(h, embedded_template(h), values_in_template(h, header_values));
-  result.files.at(1).contents = fill_template(c, embedded_template(c), values_in_template(c, source_values));
+  result.files.at(0).contents = filled_template(h, header_values);
+  result.files.at(1).contents = filled_template(c, source_values);
 }
 
 GeneratedFilter write_c_filter(const ObservationCode& part, const Model& model, const FilterEquations& eq,
@@ -88,7 +88,15 @@ GeneratedFilter write_c_filter(const ObservationCode& part, const Model& model, 
   for (const auto& [key, number] : file.numbers) values.emplace(key, w.emitter.literal(number));
   for (const auto& [key, flag] : file.flags) values.emplace(key, w.emitter.boolean(flag));
   values.insert(file.words.begin(), file.words.end());
-  w.write(file.layout, std::move(values), {}, {});
+  // A framed function: its definition in the .c, and its declaration in the .h where the header has one.
+  std::map<std::string, std::string> header_only, source_only;
+  const std::string header = "c/" + file.layout + ".h.tmpl";
+  for (const auto& [key, frame] : file.frames) {
+    source_only.emplace(key, frame.empty() ? "" : filled_template("c/partials/" + frame + ".c.tmpl", values));
+    if (values_in_template(header, {{key, ""}}).count(key) != 0)
+      header_only.emplace(key, frame.empty() ? "" : filled_template("c/partials/" + frame + ".h.tmpl", values));
+  }
+  w.write(file.layout, std::move(values), header_only, source_only);
   return std::move(w.result);
 }
 

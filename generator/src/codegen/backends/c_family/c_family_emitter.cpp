@@ -123,7 +123,7 @@ std::string CFamilyEmitter::loop(const ir::Loop& node, const std::string& indent
 }
 
 std::string CFamilyEmitter::call_statement(const ir::CallStatement& node, const std::string&) const {
-  std::string text = node.function + "(";
+  std::string text = callee(node) + "(";
   for (std::size_t k = 0; k < node.arguments.size(); ++k) text += (k ? ", " : "") + expression(node.arguments[k]);
   return text + ");";
 }

@@ -156,7 +156,7 @@ std::string RustEmitter::loop(const ir::Loop& node, const std::string& indent) c
 
 std::string RustEmitter::call_statement(const ir::CallStatement& node, const std::string&) const {
   // The IR's calls pass names as they are: scalars, and arrays that are already references.
-  std::string text = node.function + "(";
+  std::string text = callee(node) + "(";
   for (std::size_t k = 0; k < node.arguments.size(); ++k) text += (k ? ", " : "") + expression(node.arguments[k]);
   return text + ");";
 }
