@@ -88,14 +88,15 @@ GeneratedFilter write_c_filter(const ObservationCode& part, const Model& model, 
   for (const auto& [key, number] : file.numbers) values.emplace(key, w.emitter.literal(number));
   for (const auto& [key, flag] : file.flags) values.emplace(key, w.emitter.boolean(flag));
   values.insert(file.words.begin(), file.words.end());
-  // A framed function: its definition in the .c, and its declaration in the .h where the header has one.
+  // A frame in each file whose template has its key: a function's definition in the .c (c/partials/<frame>.c.tmpl),
+  // its declaration in the .h (.h.tmpl).
   std::map<std::string, std::string> header_only, source_only;
-  const std::string header = "c/" + file.layout + ".h.tmpl";
-  for (const auto& [key, frame] : file.frames) {
-    source_only.emplace(key, frame.empty() ? "" : filled_template("c/partials/" + frame + ".c.tmpl", values));
-    if (values_in_template(header, {{key, ""}}).count(key) != 0)
-      header_only.emplace(key, frame.empty() ? "" : filled_template("c/partials/" + frame + ".h.tmpl", values));
-  }
+  for (const auto& [key, frame] : file.frames)
+    for (auto [map, file_extension] : {std::pair{&header_only, "h"}, std::pair{&source_only, "c"}}) {
+      const std::string name = "c/" + file.layout + "." + file_extension + ".tmpl";
+      if (values_in_template(name, {{key, ""}}).count(key) == 0) continue;
+      map->emplace(key, frame.empty() ? "" : filled_template("c/partials/" + frame + "." + file_extension + ".tmpl", values));
+    }
   w.write(file.layout, std::move(values), header_only, source_only);
   return std::move(w.result);
 }

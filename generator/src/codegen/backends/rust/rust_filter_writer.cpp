@@ -75,8 +75,10 @@ GeneratedFilter write_rust_filter(const ObservationCode& part, const Model& mode
   for (const auto& [key, number] : file.numbers) values.emplace(key, w.emitter.literal_text(number));
   for (const auto& [key, flag] : file.flags) values.emplace(key, w.emitter.boolean(flag));
   values.insert(file.words.begin(), file.words.end());
+  // Each frame the layout's template has (rust/partials/<frame>.rs.tmpl).
   for (const auto& [key, frame] : file.frames)
-    values.emplace(key, frame.empty() ? "" : filled_template("rust/partials/" + frame + ".rs.tmpl", values));
+    if (values_in_template("rust/" + file.layout + ".rs.tmpl", {{key, ""}}).count(key) != 0)
+      values.emplace(key, frame.empty() ? "" : filled_template("rust/partials/" + frame + ".rs.tmpl", values));
   w.write(file.layout, std::move(values));
   return std::move(w.result);
 }
