@@ -24,10 +24,7 @@ class SampledCode final : public ObservationCode {
   FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                          const FunctionNames& names, const StatementEmitter& emitter) const override;
   std::vector<std::string> layouts() const override { return {"sampled_filter"}; }
-  // cd-euler's euler_square() frame, which declares a name of its own.
-  std::vector<std::string> c_templates() const override {
-    return {"c/partials/euler_square.h.tmpl", "c/partials/euler_square.c.tmpl"};
-  }
+  std::vector<std::string> declaring_frames() const override { return {"euler_square"}; }  // cd-euler's
   void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<bool>& in_lanes) const override;

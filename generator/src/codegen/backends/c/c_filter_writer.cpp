@@ -107,4 +107,12 @@ std::vector<std::string> c_layout_templates(const std::vector<std::string>& layo
   return names;
 }
 
+std::vector<std::string> c_module_templates(const ObservationCode& part) {
+  std::vector<std::string> names = c_layout_templates(part.layouts());
+  for (const std::string& frame : part.declaring_frames())
+    names.insert(names.end(), {"c/partials/" + frame + ".h.tmpl", "c/partials/" + frame + ".c.tmpl"});
+  for (const std::string& name : part.c_templates()) names.push_back(name);
+  return names;
+}
+
 }  // namespace pfgen::codegen
