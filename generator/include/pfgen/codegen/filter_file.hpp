@@ -45,6 +45,13 @@ struct FilterFile {
   std::map<std::string, std::string> words;
   // Numbers of the scalar type (a sampling period, a delay), written as the language's literals.
   std::map<std::string, GiNaC::numeric> numbers;
+  // Text the backend holds for each language, chosen by the module, under their templates' keys:
+  // key -> the name of a partial of the backend's ("" for none). A function framed by its comment
+  // and signature (euler_square() of a cd-euler filter, the body inside), or a part whose text
+  // differs by language in more than names (the delayed history's ring for the delay's case).
+  // Each backend fills <language>/partials/<name>.* with the file's values into every template of
+  // the layout that has `key` (C: the .c.tmpl into the source, the .h.tmpl into the header).
+  std::map<std::string, std::string> frames;
   // Truth values (`uses_x_star`), written as the language's.
   std::map<std::string, bool> flags;
   // The functions' statistics in the order of the banner and --stats.

@@ -34,6 +34,9 @@ class ObservationCode {
   // Every layout filter_file may give (FilterFile::layout): the C backend reads the names its
   // templates of these declare (backends/c/c_names.hpp).
   virtual std::vector<std::string> layouts() const;
+  // Every frame filter_file may choose that declares a function of the file (FilterFile::frames'
+  // partials, as cd-euler's euler_square): the C backend reads the names those declare too.
+  virtual std::vector<std::string> declaring_frames() const { return {}; }
 
   // Until the sampled and delayed modules describe their files: their writers per language, and
   // every C template c_filter fills, partials included (backends/c/c_names.hpp).

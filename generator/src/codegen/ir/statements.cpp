@@ -125,6 +125,14 @@ Expr zero_where_zero(Expr guard, Expr value) {
 Expr greater(Expr a, Expr b) { return node(Expr::Kind::Greater, std::move(a), std::move(b)); }
 Expr logical_not(Expr a) { return node(Expr::Kind::Not, std::move(a)); }
 
+Expr local_array(const std::string& array, bool writable) {
+  Expr e;
+  e.kind = Expr::Kind::LocalArray;
+  e.name = array;
+  e.integer = writable ? 1 : 0;
+  return e;
+}
+
 Expr grouped(Expr a) {
   a.grouped = true;
   return a;
@@ -142,6 +150,11 @@ Statement declare(std::string name, Type type, Expr value) {
 
 Statement declare_array(const std::string& name, Type type, std::size_t size) {
   return statement(Statement::Kind::Declaration, Declaration{name, type, std::nullopt, size});
+}
+
+Statement local_arrays(std::vector<std::string> names, Type type, Expr length) {
+  return statement(Statement::Kind::Arrays,
+                   std::make_shared<const LocalArrays>(LocalArrays{std::move(names), type, std::move(length)}));
 }
 
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable) {
@@ -176,6 +189,11 @@ Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Blo
 Statement call_statement(const std::string& function, std::vector<Expr> arguments) {
   return statement(Statement::Kind::Call,
                    std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments)}));
+}
+
+Statement call_file_function(const std::string& function, std::vector<Expr> arguments) {
+  return statement(Statement::Kind::Call,
+                   std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments), true}));
 }
 
 Statement conditional(Expr condition, Block then) {

@@ -89,8 +89,7 @@ void check_c_names(const Model& model, const std::string& name_space) {
                          "constants, functions), which it would replace or hide; give it another name");
 
   const ObservationCode& part = observation_code(model.observation.kind());
-  std::vector<std::string> templates = c_layout_templates(part.layouts());
-  for (const std::string& name : part.c_templates()) templates.push_back(name);
+  const std::vector<std::string> templates = c_module_templates(part);
   const CNameSuffixes suffixes = c_name_suffixes(templates);
   std::map<std::string, std::string> declared;          // name -> the filter declaring it
   std::vector<std::pair<std::string, std::string>> internal;  // (name, filter)

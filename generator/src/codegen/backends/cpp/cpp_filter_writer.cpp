@@ -33,9 +33,13 @@ GeneratedFilter write_cpp_filter(const ObservationCode& part, const Model& model
   for (const auto& [key, number] : file.numbers) values.emplace(key, emitter.literal(number));
   for (const auto& [key, flag] : file.flags) values.emplace(key, emitter.boolean(flag));
   values.insert(file.words.begin(), file.words.end());
+  // Each frame the layout's template has (cpp/partials/<frame>.hpp.tmpl).
+  for (const auto& [key, frame] : file.frames)
+    if (values_in_template("cpp/" + file.layout + ".hpp.tmpl", {{key, ""}}).count(key) != 0)
+      values.emplace(key, frame.empty() ? "" : filled_template("cpp/partials/" + frame + ".hpp.tmpl", values));
 
   const std::string name = "cpp/" + file.layout + ".hpp.tmpl";
-  result.files.at(0).contents = fill_template(name, embedded_template(name), values_in_template(name, values));
+  result.files.at(0).contents = filled_template(name, values);
   if (eigen) add_eigen_layer(result, "cpp/" + file.layout + "_eigen.hpp.tmpl", model, eq, options, values);
   return result;
 }

@@ -61,7 +61,7 @@ void RustFilterWriter::add_function(std::map<std::string, std::string>& values, 
 void RustFilterWriter::write(const std::string& kind, std::map<std::string, std::string> values) {
   const std::string name = "rust/" + kind + ".rs.tmpl";
   values["math"] = emitter.math_declarations();
-  result.files.at(0).contents = fill_template(name, embedded_template(name), values_in_template(name, values));
+  result.files.at(0).contents = filled_template(name, values);
 }
 
 GeneratedFilter write_rust_filter(const ObservationCode& part, const Model& model, const FilterEquations& eq,
@@ -75,6 +75,10 @@ GeneratedFilter write_rust_filter(const ObservationCode& part, const Model& mode
   for (const auto& [key, number] : file.numbers) values.emplace(key, w.emitter.literal_text(number));
   for (const auto& [key, flag] : file.flags) values.emplace(key, w.emitter.boolean(flag));
   values.insert(file.words.begin(), file.words.end());
+  // Each frame the layout's template has (rust/partials/<frame>.rs.tmpl).
+  for (const auto& [key, frame] : file.frames)
+    if (values_in_template("rust/" + file.layout + ".rs.tmpl", {{key, ""}}).count(key) != 0)
+      values.emplace(key, frame.empty() ? "" : filled_template("rust/partials/" + frame + ".rs.tmpl", values));
   w.write(file.layout, std::move(values));
   return std::move(w.result);
 }

@@ -48,4 +48,8 @@ GeneratedFilter write_c_filter(const ObservationCode& part, const Model& model, 
 // model's C names are checked against.
 std::vector<std::string> c_layout_templates(const std::vector<std::string>& layouts);
 
+// The C templates whose declared names the model's are checked against for `part`: its layouts'
+// and its declaring frames' (c/partials/<frame>.h.tmpl and .c.tmpl), and any c_templates().
+std::vector<std::string> c_module_templates(const ObservationCode& part);
+
 }  // namespace pfgen::codegen

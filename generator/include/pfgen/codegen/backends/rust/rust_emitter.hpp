@@ -49,6 +49,11 @@ class RustEmitter : public CFamilyEmitter {
   std::string call_statement(const ir::CallStatement& node, const std::string& indent) const override;
   std::string conditional(const ir::Conditional& node, const std::string& indent) const override;
   std::string unused(const ir::Unused& node, const std::string& indent) const override;
+  // Local arrays: one zero-filled `let mut` each, borrowed by calls (`&a`, `&mut a`).
+  std::string arrays(const ir::LocalArrays& node, const std::string& indent) const override;
+  std::string local_array(const std::string& array, bool writable) const override {
+    return (writable ? "&mut " : "&") + array;
+  }
 
   // The <math.h> name of a function for this scalar type: "sin" or "sinf", "fabs" for abs.
   std::string function_spelling(Function function) const;
