@@ -1,9 +1,8 @@
 # Writes OUTPUT, a C++ source defining pfgen::codegen::embedded_template(), with
 # the text of every template compiled in as a raw string: the files under TEMPLATE_DIR; with
 # BACKEND_ROOT (optional) those under each <BACKEND_ROOT>/<language>/templates, a backend's own,
-# each named <language>/<its path below templates> ("cpp/filter.hpp.tmpl"); and with MODULE_ROOT
-# (optional) those under each <MODULE_ROOT>/<module>/templates, each named by its path below its
-# templates folder. One name space for all. Run at build time, so editing a template rebuilds pfgen.
+# each named <language>/<its path below templates> ("cpp/filter.hpp.tmpl"). One name space for
+# all. Run at build time, so editing a template rebuilds pfgen.
 set(template_roots "${TEMPLATE_DIR}")
 set(root_prefixes "")
 list(APPEND root_prefixes "-")
@@ -15,14 +14,6 @@ if(BACKEND_ROOT)
     get_filename_component(language "${language_folder}" NAME)
     list(APPEND template_roots "${folder}")
     list(APPEND root_prefixes "${language}/")
-  endforeach()
-endif()
-if(MODULE_ROOT)
-  file(GLOB module_template_roots LIST_DIRECTORIES true "${MODULE_ROOT}/*/templates")
-  list(SORT module_template_roots)
-  foreach(folder IN LISTS module_template_roots)
-    list(APPEND template_roots "${folder}")
-    list(APPEND root_prefixes "-")
   endforeach()
 endif()
 set(body "")

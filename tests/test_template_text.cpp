@@ -1,8 +1,7 @@
 // fill_template and embedded_template (codegen/template_text.hpp): every `{{key}}` is replaced
 // by its value; a placeholder without a value, a value without a placeholder and an unterminated
 // placeholder are errors, never half-filled code; the templates compiled into pfgen are the
-// files of templates/, of each backend's templates/ (named after its language) and of each
-// observation module's templates/.
+// files of templates/ and of each backend's templates/ (named after its language).
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -54,7 +53,7 @@ TEST_CASE("template filler: a placeholder without value, a value without placeho
   CHECK(open.find("unterminated placeholder") != std::string::npos);
 }
 
-TEST_CASE("embedded templates are the files of templates/, of the backends' and of the observation modules' templates/",
+TEST_CASE("embedded templates are the files of templates/ and of the backends' templates/",
           "[unit][codegen]") {
   namespace fs = std::filesystem;
   const fs::path source(pfgen_test::source_dir());
@@ -67,8 +66,6 @@ TEST_CASE("embedded templates are the files of templates/, of the backends' and 
       ++backends;
     }
   CHECK(backends == 3);  // cpp, c, rust
-  for (const auto& module : fs::directory_iterator(source / "generator/src/observations"))
-    if (fs::is_directory(module.path() / "templates")) roots.emplace_back(module.path() / "templates", "");
   std::size_t files = 0;
   for (const auto& [root, prefix] : roots)
     for (const auto& entry : fs::recursive_directory_iterator(root)) {

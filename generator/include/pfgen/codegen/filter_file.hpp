@@ -16,6 +16,7 @@
 #include <ginac/ginac.h>
 
 #include "pfgen/codegen/filter_functions.hpp"
+#include "pfgen/codegen/ir/statement_emitter.hpp"
 #include "pfgen/codegen/ir/statements.hpp"
 
 namespace pfgen::codegen {
@@ -60,5 +61,21 @@ struct FilterFile {
   // Adds a function under `key`.
   void add_function(const std::string& key, FunctionCode code) { functions.emplace_back(key, std::move(code)); }
 };
+
+// What every backend's writer does with a description, its language given by `emitter` (the one
+// the module wrote the bodies with): adds to `values`, without replacing any, each function's
+// `<key>_ops`, `<key>_helpers` and `<key>_body`, each block as the emitter writes it, each number as
+// its constant, each flag as its truth value, and the words. `indent` turns a body's text (the
+// IR's two-space blocks) into the language's indentation; none keeps it.
+using BodyIndent = std::string (*)(const std::string&);
+void add_filter_file_values(std::map<std::string, std::string>& values, const FilterFile& file,
+                            const StatementEmitter& emitter, BodyIndent indent = nullptr);
+
+// Each frame of `file` whose key the template `template_name` has: the backend's partial
+// <partial_prefix><frame><partial_suffix> filled with `values`, or "" where the module chose none.
+std::map<std::string, std::string> filter_file_frames(const FilterFile& file, const std::string& template_name,
+                                                      const std::map<std::string, std::string>& values,
+                                                      const std::string& partial_prefix,
+                                                      const std::string& partial_suffix);
 
 }  // namespace pfgen::codegen

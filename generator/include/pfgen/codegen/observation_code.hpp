@@ -27,23 +27,15 @@ class ObservationCode {
   // The filter's file as this observation describes it, in no language (filter_file.hpp): its
   // layout, its functions with their bodies written by `emitter` (the backend's, with `names`), its
   // statements, words and statistics. Each backend's writer (backends/<language>/) turns it into
-  // that language's files. A module that does not describe its files yet (layouts() empty) writes
-  // them itself with cpp_filter, c_filter and rust_filter, which go when none is left.
+  // that language's files.
   virtual FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
-                                 const FunctionNames& names, const StatementEmitter& emitter) const;
+                                 const FunctionNames& names, const StatementEmitter& emitter) const = 0;
   // Every layout filter_file may give (FilterFile::layout): the C backend reads the names its
   // templates of these declare (backends/c/c_names.hpp).
-  virtual std::vector<std::string> layouts() const;
+  virtual std::vector<std::string> layouts() const = 0;
   // Every frame filter_file may choose that declares a function of the file (FilterFile::frames'
   // partials, as cd-euler's euler_square): the C backend reads the names those declare too.
   virtual std::vector<std::string> declaring_frames() const { return {}; }
-
-  // Until the sampled and delayed modules describe their files: their writers per language, and
-  // every C template c_filter fills, partials included (backends/c/c_names.hpp).
-  virtual GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const;
-  virtual GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const;
-  virtual GeneratedFilter rust_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const;
-  virtual std::vector<std::string> c_templates() const;
 
   // The simulation plugin (backends/cpp/simulation_plugin.hpp). The truth's observation: its
   // function of t in code.definitions, and TruthCode's observation fields.

@@ -66,15 +66,4 @@ const ObservationCode& continuous_observation_code() {
   return part;
 }
 
-void add_rate_function_values(std::map<std::string, std::string>& values, const ContinuousFunctions& functions,
-                              const FunctionNames& names, const FilterEquations& eq, bool split_parts) {
-  add_function_values(
-      values, {{"derivatives", &functions.derivatives}, {"gain", &functions.gain}, {"observation", &functions.observation}},
-      split_parts);
-  if (functions.rates) add_function_values(values, {{"rates", &*functions.rates}}, split_parts);
-  values.emplace("K", names.K);
-  values.emplace("h", names.h);
-  values.emplace("gain_meaning", gain_meaning(eq));
-}
-
 }  // namespace pfgen::codegen

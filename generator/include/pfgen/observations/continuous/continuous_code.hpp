@@ -52,14 +52,6 @@ std::string gain_meaning(const FilterEquations& eq);
 void add_rate_functions(FilterFile& file, ContinuousFunctions functions, const FunctionNames& names,
                         const FilterEquations& eq);
 
-// The placeholders every rate filter's templates (filter and delayed_filter, C++ and C) have for
-// these functions: `derivatives`, `gain`, `observation` (and `rates` when computed), each with
-// `_ops` and `_body` (and with `split_parts`, `_helpers`: C's parts of a split body, which precede
-// the function), the output arrays' names `K` and `h`, and `gain_meaning`. Added to `values`
-// without replacing any.
-void add_rate_function_values(std::map<std::string, std::string>& values, const ContinuousFunctions& functions,
-                              const FunctionNames& names, const FilterEquations& eq, bool split_parts);
-
 // The truth's observation_noise(values, t, B): B at the parameter values given in the call (the
 // ABI's observation_noise, what the likelihood of recorded data reads).
 std::string observation_noise_function(const Model& model, TruthNames& names, const ExMatrix& B);

@@ -59,13 +59,6 @@ std::map<std::string, std::string> CFilterWriter::common_values(std::size_t p, s
   };
 }
 
-void CFilterWriter::add_function(std::map<std::string, std::string>& values, const std::string& key,
-                                 const FunctionCode& code) {
-  values[key + "_ops"] = ops_comment(code.stats);
-  values[key + "_helpers"] = code.body.helpers;
-  values[key + "_body"] = code.body.statements;
-}
-
 void CFilterWriter::write(const std::string& kind, std::map<std::string, std::string> values,
                           const std::map<std::string, std::string>& header_only,
                           const std::map<std::string, std::string>& source_only) {
@@ -83,35 +76,23 @@ GeneratedFilter write_c_filter(const ObservationCode& part, const Model& model, 
   FilterFile file = part.filter_file(model, eq, options, w.names, w.emitter);
   w.result.functions = std::move(file.stats);
   std::map<std::string, std::string> values = w.common_values(file.p, file.state_size, file.banner_extra);
-  for (const auto& [key, code] : file.functions) CFilterWriter::add_function(values, key, code);
-  for (const auto& [key, block] : file.blocks) values.emplace(key, w.emitter.block(block));
-  for (const auto& [key, number] : file.numbers) values.emplace(key, w.emitter.literal(number));
-  for (const auto& [key, flag] : file.flags) values.emplace(key, w.emitter.boolean(flag));
-  values.insert(file.words.begin(), file.words.end());
-  // A frame in each file whose template has its key: a function's definition in the .c (c/partials/<frame>.c.tmpl),
-  // its declaration in the .h (.h.tmpl).
-  std::map<std::string, std::string> header_only, source_only;
-  for (const auto& [key, frame] : file.frames)
-    for (auto [map, file_extension] : {std::pair{&header_only, "h"}, std::pair{&source_only, "c"}}) {
-      const std::string name = "c/" + file.layout + "." + file_extension + ".tmpl";
-      if (values_in_template(name, {{key, ""}}).count(key) == 0) continue;
-      map->emplace(key, frame.empty() ? "" : filled_template("c/partials/" + frame + "." + file_extension + ".tmpl", values));
-    }
+  add_filter_file_values(values, file, w.emitter);
+  // A frame in each file whose template has its key: a function's definition in the .c
+  // (c/partials/<frame>.c.tmpl), its declaration in the .h (.h.tmpl).
+  const std::map<std::string, std::string> header_only =
+      filter_file_frames(file, "c/" + file.layout + ".h.tmpl", values, "c/partials/", ".h.tmpl");
+  const std::map<std::string, std::string> source_only =
+      filter_file_frames(file, "c/" + file.layout + ".c.tmpl", values, "c/partials/", ".c.tmpl");
   w.write(file.layout, std::move(values), header_only, source_only);
   return std::move(w.result);
 }
 
-std::vector<std::string> c_layout_templates(const std::vector<std::string>& layouts) {
-  std::vector<std::string> names;
-  for (const std::string& layout : layouts) names.insert(names.end(), {"c/" + layout + ".h.tmpl", "c/" + layout + ".c.tmpl"});
-  return names;
-}
-
 std::vector<std::string> c_module_templates(const ObservationCode& part) {
-  std::vector<std::string> names = c_layout_templates(part.layouts());
+  std::vector<std::string> names;
+  for (const std::string& layout : part.layouts())
+    names.insert(names.end(), {"c/" + layout + ".h.tmpl", "c/" + layout + ".c.tmpl"});
   for (const std::string& frame : part.declaring_frames())
     names.insert(names.end(), {"c/partials/" + frame + ".h.tmpl", "c/partials/" + frame + ".c.tmpl"});
-  for (const std::string& name : part.c_templates()) names.push_back(name);
   return names;
 }
 

@@ -51,13 +51,6 @@ std::map<std::string, std::string> RustFilterWriter::common_values(std::size_t p
   };
 }
 
-void RustFilterWriter::add_function(std::map<std::string, std::string>& values, const std::string& key,
-                                    const FunctionCode& code) {
-  values[key + "_ops"] = ops_comment(code.stats);
-  values[key + "_helpers"] = code.body.helpers;
-  values[key + "_body"] = rust_indent(code.body.statements);
-}
-
 void RustFilterWriter::write(const std::string& kind, std::map<std::string, std::string> values) {
   const std::string name = "rust/" + kind + ".rs.tmpl";
   values["math"] = emitter.math_declarations();
@@ -70,15 +63,11 @@ GeneratedFilter write_rust_filter(const ObservationCode& part, const Model& mode
   FilterFile file = part.filter_file(model, eq, options, w.names, w.emitter);
   w.result.functions = std::move(file.stats);
   std::map<std::string, std::string> values = w.common_values(file.p, file.state_size, file.banner_extra);
-  for (const auto& [key, code] : file.functions) RustFilterWriter::add_function(values, key, code);
-  for (const auto& [key, block] : file.blocks) values.emplace(key, w.body(block));
-  for (const auto& [key, number] : file.numbers) values.emplace(key, w.emitter.literal_text(number));
-  for (const auto& [key, flag] : file.flags) values.emplace(key, w.emitter.boolean(flag));
-  values.insert(file.words.begin(), file.words.end());
+  add_filter_file_values(values, file, w.emitter, &rust_indent);
   // Each frame the layout's template has (rust/partials/<frame>.rs.tmpl).
-  for (const auto& [key, frame] : file.frames)
-    if (values_in_template("rust/" + file.layout + ".rs.tmpl", {{key, ""}}).count(key) != 0)
-      values.emplace(key, frame.empty() ? "" : filled_template("rust/partials/" + frame + ".rs.tmpl", values));
+  const std::map<std::string, std::string> frames =
+      filter_file_frames(file, "rust/" + file.layout + ".rs.tmpl", values, "rust/partials/", ".rs.tmpl");
+  values.insert(frames.begin(), frames.end());
   w.write(file.layout, std::move(values));
   return std::move(w.result);
 }

@@ -28,12 +28,6 @@ struct RustFilterWriter {
   // The placeholders every Rust filter template has (its head partial's among them).
   std::map<std::string, std::string> common_values(std::size_t p, std::size_t state_size, const std::string& extra = "");
 
-  // Statements as a function's body: the emitter's text, indented as Rust's.
-  std::string body(const ir::Block& statements) const { return rust_indent(emitter.block(statements)); }
-
-  // A function's ops comment, its helpers (a split body's parts) and its body, under `key`_ops etc.
-  static void add_function(std::map<std::string, std::string>& values, const std::string& key, const FunctionCode& code);
-
   // Fills rust/<kind>.rs.tmpl with `values` and the math declarations the bodies call (so every
   // body is written before this).
   void write(const std::string& kind, std::map<std::string, std::string> values);
