@@ -30,6 +30,14 @@ Expr node(Expr::Kind kind, Expr&& a, Expr&& b) {
   return e;
 }
 
+// A leaf holding a whole number: an index, a truth value, a whole scalar.
+Expr whole_leaf(Expr::Kind kind, std::size_t value) {
+  Expr e;
+  e.kind = kind;
+  e.integer = value;
+  return e;
+}
+
 // A statement with its node constructed in place (not a default node replaced).
 template <class Node>
 Statement statement(Statement::Kind kind, Node&& node) {
@@ -50,12 +58,7 @@ Expr name(std::string&& text) {
   return e;
 }
 
-Expr integer(std::size_t value) {
-  Expr e;
-  e.kind = Expr::Kind::Integer;
-  e.integer = value;
-  return e;
-}
+Expr integer(std::size_t value) { return whole_leaf(Expr::Kind::Integer, value); }
 
 Expr number(const GiNaC::numeric& value) {
   Expr e;
@@ -71,12 +74,7 @@ Expr held_number(std::shared_ptr<const GiNaC::numeric> value) {
   return e;
 }
 
-Expr boolean(bool value) {
-  Expr e;
-  e.kind = Expr::Kind::Boolean;
-  e.integer = value ? 1 : 0;
-  return e;
-}
+Expr boolean(bool value) { return whole_leaf(Expr::Kind::Boolean, value ? 1 : 0); }
 
 Expr dimension(const std::string& size_name) {
   Expr e;
@@ -85,12 +83,7 @@ Expr dimension(const std::string& size_name) {
   return e;
 }
 
-Expr whole_scalar(std::size_t value) {
-  Expr e;
-  e.kind = Expr::Kind::WholeScalar;
-  e.integer = value;
-  return e;
-}
+Expr whole_scalar(std::size_t value) { return whole_leaf(Expr::Kind::WholeScalar, value); }
 
 Expr element(const std::string& array, Expr index) {
   Expr e = node(Expr::Kind::Element, std::move(index));
