@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -98,4 +99,20 @@ TEST_CASE("template filler: an include line becomes the partial, whose placehold
   CHECK(missing.find("no template cpp/partials/none.tmpl") != std::string::npos);
   const std::string open = logic_error_of([] { fill_template("t", "{{> cpp/partials/eigen", {}); });
   CHECK(open.find("unterminated include") != std::string::npos);
+}
+
+TEST_CASE("filled_template: an embedded template takes the values it has a placeholder for, and refuses a missing one",
+          "[unit][codegen]") {
+  const std::string name = "c/partials/params.h.tmpl";
+  std::map<std::string, std::string> values;
+  const std::string text = pfgen::codegen::expanded_template(name);
+  for (std::size_t open = text.find("{{"); open != std::string::npos; open = text.find("{{", open + 2))
+    values[text.substr(open + 2, text.find("}}", open) - open - 2)] = "<value>";
+  REQUIRE(values.count("prefix") == 1);
+  const std::string filled = fill_template(name, embedded_template(name), values);
+  values["a_value_the_template_has_no_placeholder_for"] = "spare";
+  CHECK(pfgen::codegen::filled_template(name, values) == filled);
+  values.erase("prefix");
+  CHECK(logic_error_of([&] { pfgen::codegen::filled_template(name, values); }).find("no value for placeholder") !=
+        std::string::npos);
 }
