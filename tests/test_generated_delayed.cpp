@@ -1,4 +1,4 @@
-// The generated filters for delayed observations (generator/src/observations/delayed/templates/cpp/delayed_filter.hpp.tmpl), run:
+// The generated filters for delayed observations (generator/src/codegen/backends/cpp/templates/delayed_filter.hpp.tmpl), run:
 // the ring history hands out exactly the m (and x*) a direct record of the run holds h ago; Phi*
 // of dx = a x dt is exp(-a h) once t >= h and 0 before; with h = 0 every delay kind's equations
 // are its undelayed counterpart's (md -> m, Phi* -> I), and its generated code steps the same.

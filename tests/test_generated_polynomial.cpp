@@ -1,4 +1,4 @@
-// The generated filters for polynomial observations (generator/src/observations/polynomial/templates/),
+// The generated filters for polynomial observations (generator/src/codegen/backends/*/templates/polynomial_filter.*),
 // compiled with g++ and run:
 //  (a) derivatives(), gain(), covariance_gain() and predicted_observation() against the evaluator
 //      (what `pfgen eval` prints: m_drift, P_drift, gain, P_gain, predicted_observation), for the

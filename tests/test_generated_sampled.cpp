@@ -1,4 +1,4 @@
-// The generated sampled filters (generator/src/observations/sampled/templates/cpp/sampled_filter.hpp.tmpl), compiled and run: for
+// The generated sampled filters (generator/src/codegen/backends/cpp/templates/sampled_filter.hpp.tmpl), compiled and run: for
 // paper 003's two examples (r = 1) and tests/data/sampled_two_observations.yaml (r = 2, so the
 // written-out Cholesky solve meets an off-diagonal S), every sampled kind, every scalar mode
 // (--scalar double, float, template instantiated with double and with float) and both g++ and

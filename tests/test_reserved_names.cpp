@@ -17,8 +17,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // The names to try: C++ keywords and alternative tokens, library macros, and every identifier
-// the C++ templates contain (read from templates/cpp and each observation module's
-// templates/cpp, so a new template name is tried at once).
+// the C++ templates contain (read from templates/cpp and the C++ backend's templates, so a new
+// template name is tried at once).
 std::set<std::string> candidate_names() {
   std::set<std::string> names = {
       "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
@@ -33,9 +33,8 @@ std::set<std::string> candidate_names() {
       "override", "import", "module", "M_PI", "M_E", "NAN", "INFINITY", "HUGE_VAL", "NULL", "errno", "assert",
       "EOF", "stdin", "stdout", "offsetof", "std", "size_t", "Scalar", "Params", "_Reserved", "a__b", "main", "Eigen", "NULL", "true", "no"};
   const std::regex identifier("[A-Za-z_][A-Za-z0-9_]*");
-  std::vector<std::string> folders = {source_dir() + "/templates/cpp"};
-  for (const auto& module : fs::directory_iterator(source_dir() + "/generator/src/observations"))
-    if (fs::is_directory(module.path() / "templates" / "cpp")) folders.push_back((module.path() / "templates" / "cpp").string());
+  std::vector<std::string> folders = {source_dir() + "/templates/cpp",
+                                      source_dir() + "/generator/src/codegen/backends/cpp/templates"};
   for (const auto& folder : folders)
     for (const auto& entry : fs::directory_iterator(folder)) {
       std::string text = std::regex_replace(read_file(entry.path().string()), std::regex("\\{\\{[a-z_]+\\}\\}"), " ");

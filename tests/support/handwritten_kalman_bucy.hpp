@@ -4,7 +4,7 @@
 // "Generated code against hand-written code") and of tests/test_handwritten_agreement.cpp.
 //
 // It takes the same Heun step as the generated `step` of the `optimal` filter
-// (generator/src/observations/continuous/templates/cpp/filter.hpp.tmpl): with the increment
+// (generator/src/codegen/backends/cpp/templates/filter.hpp.tmpl): with the increment
 //   dm = A m dt + K (dy - C m dt),   dP = (A P + P A^T + W - P C^T R^-1 C P) dt,   K = P C^T R^-1,
 // first = increment(m, P), predicted = (m, P) + first, second = increment(predicted), and
 // (m, P) += (first + second) / 2. So both compute the same numbers up to rounding.

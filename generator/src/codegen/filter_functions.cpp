@@ -530,15 +530,6 @@ std::string ops_comment(const FunctionStats& s) {
   return "Ops: " + counts_text(s.naive) + " without CSE, " + counts_text(s.cse) + " with CSE.";
 }
 
-void add_function_values(std::map<std::string, std::string>& values,
-                         const std::vector<std::pair<std::string, const FunctionCode*>>& functions, bool split_parts) {
-  for (const auto& [key, code] : functions) {
-    values.emplace(key + "_ops", ops_comment(code->stats));
-    values.emplace(key + "_body", code->body.statements);
-    if (split_parts) values.emplace(key + "_helpers", code->body.helpers);
-  }
-}
-
 FunctionNames function_names(const Model& model) {
   LocalNames names(filter_input_names(model));
   FunctionNames f;

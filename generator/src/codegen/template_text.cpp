@@ -38,8 +38,11 @@ std::string expanded_template(const std::string& relative_path) {
   return expand_includes(relative_path, embedded_template(relative_path), 0);
 }
 
-std::string fill_template(const std::string& name, const std::string& raw_text,
-                          const std::map<std::string, std::string>& values) {
+namespace {
+
+// The template filled; with `every_value_used`, a value without a placeholder is an error too.
+std::string fill(const std::string& name, const std::string& raw_text, const std::map<std::string, std::string>& values,
+                 bool every_value_used) {
   const std::string text = expand_includes(name, raw_text, 0);
   std::string out;
   std::set<std::string> used;
@@ -58,9 +61,17 @@ std::string fill_template(const std::string& name, const std::string& raw_text,
     pos = close + 2;
   }
   out.append(text, pos, std::string::npos);
-  for (const auto& [key, value] : values)
-    if (!used.count(key)) throw std::logic_error(name + ": value for {{" + key + "}} has no placeholder");
+  if (every_value_used)
+    for (const auto& [key, value] : values)
+      if (!used.count(key)) throw std::logic_error(name + ": value for {{" + key + "}} has no placeholder");
   return out;
+}
+
+}  // namespace
+
+std::string fill_template(const std::string& name, const std::string& raw_text,
+                          const std::map<std::string, std::string>& values) {
+  return fill(name, raw_text, values, true);
 }
 
 std::map<std::string, std::string> values_in_template(const std::string& relative_path,
@@ -70,6 +81,11 @@ std::map<std::string, std::string> values_in_template(const std::string& relativ
   for (const auto& [key, value] : values)
     if (text.find("{{" + key + "}}") != std::string::npos) used.emplace(key, value);
   return used;
+}
+
+std::string filled_template(const std::string& relative_path, const std::map<std::string, std::string>& values) {
+  // Filled from `values` itself, not from a copy of the values it uses (each a function's body).
+  return fill(relative_path, embedded_template(relative_path), values, false);
 }
 
 }  // namespace pfgen::codegen

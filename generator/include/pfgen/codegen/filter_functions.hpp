@@ -77,12 +77,6 @@ FunctionCode rates_code(const Model& model, const FilterEquations& eq, const Cod
                         const FunctionNames& names, const StatementEmitter& emitter, DerivativesForm form,
                         const OpCounts& naive);
 
-// The placeholders a template has for each of its functions, under its key: `<key>_ops` (the ops
-// comment), `<key>_body` and, with `split_parts`, `<key>_helpers` (C's parts of a split body, which
-// precede the function). Added to `values` without replacing any.
-void add_function_values(std::map<std::string, std::string>& values,
-                         const std::vector<std::pair<std::string, const FunctionCode*>>& functions, bool split_parts);
-
 // The filter state at t = 0: m0 and P0's upper triangle (zeros without an initial section); with
 // `x_star`, x*(0) = m0 after them (a delayed filter's noise-free solution).
 std::vector<GiNaC::numeric> initial_values(const Model& model, const FilterVariables& vars, bool x_star = false);

@@ -6,7 +6,7 @@
 // generation, so these facts are a table of their own here rather than the backends' (codegen/
 // backend.hpp, one folder codegen/backends/<language>/ each, which write the code and name their
 // row here): a new language is its backend's folder, which holds its reserved words (defined there,
-// declared below), and one row here.
+// declared beside the rows), and one row in output_languages.cpp.
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,11 +26,5 @@ struct OutputLanguageInfo {
 const std::vector<OutputLanguageInfo>& output_languages();
 // The row of that name; std::logic_error for another.
 const OutputLanguageInfo& output_language_info(const std::string& name);
-
-// Each language's own reserved words (codegen/backends/cpp/cpp_reserved_words.cpp,
-// codegen/backends/c/c_reserved_words.cpp, codegen/backends/rust/rust_reserved_words.cpp).
-std::optional<std::string> cpp_reserved_name_problem(const std::string& name);
-std::optional<std::string> c_reserved_name_problem(const std::string& name);
-std::optional<std::string> rust_reserved_name_problem(const std::string& name);
 
 }  // namespace pfgen

@@ -20,6 +20,9 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
     case Kind::Field: text = field(first(), e.name); break;
     case Kind::Neg: text = neg(first()); break;
     case Kind::Not: text = logical_not(first()); break;
+    case Kind::LocalArray: text = local_array(e.name, e.integer != 0); break;
+    case Kind::Dimension: text = dimension(e.name); break;
+    case Kind::WholeScalar: text = whole_scalar(e.integer); break;
     case Kind::Add:
     case Kind::Sub:
     case Kind::Mul:
@@ -60,6 +63,7 @@ std::string StatementEmitter::statement(const ir::Statement& s, const std::strin
     case Kind::Return: return return_statement(s.result(), indent);
     case Kind::Comment: return comment(s.comment(), indent);
     case Kind::Unused: return unused(s.unused(), indent);
+    case Kind::Arrays: return arrays(s.arrays(), indent);
   }
   return "";
 }

@@ -30,6 +30,14 @@ Expr node(Expr::Kind kind, Expr&& a, Expr&& b) {
   return e;
 }
 
+// A leaf holding a whole number: an index, a truth value, a whole scalar.
+Expr whole_leaf(Expr::Kind kind, std::size_t value) {
+  Expr e;
+  e.kind = kind;
+  e.integer = value;
+  return e;
+}
+
 // A statement with its node constructed in place (not a default node replaced).
 template <class Node>
 Statement statement(Statement::Kind kind, Node&& node) {
@@ -50,12 +58,7 @@ Expr name(std::string&& text) {
   return e;
 }
 
-Expr integer(std::size_t value) {
-  Expr e;
-  e.kind = Expr::Kind::Integer;
-  e.integer = value;
-  return e;
-}
+Expr integer(std::size_t value) { return whole_leaf(Expr::Kind::Integer, value); }
 
 Expr number(const GiNaC::numeric& value) {
   Expr e;
@@ -71,12 +74,16 @@ Expr held_number(std::shared_ptr<const GiNaC::numeric> value) {
   return e;
 }
 
-Expr boolean(bool value) {
+Expr boolean(bool value) { return whole_leaf(Expr::Kind::Boolean, value ? 1 : 0); }
+
+Expr dimension(const std::string& size_name) {
   Expr e;
-  e.kind = Expr::Kind::Boolean;
-  e.integer = value ? 1 : 0;
+  e.kind = Expr::Kind::Dimension;
+  e.name = size_name;
   return e;
 }
+
+Expr whole_scalar(std::size_t value) { return whole_leaf(Expr::Kind::WholeScalar, value); }
 
 Expr element(const std::string& array, Expr index) {
   Expr e = node(Expr::Kind::Element, std::move(index));
@@ -111,6 +118,14 @@ Expr zero_where_zero(Expr guard, Expr value) {
 Expr greater(Expr a, Expr b) { return node(Expr::Kind::Greater, std::move(a), std::move(b)); }
 Expr logical_not(Expr a) { return node(Expr::Kind::Not, std::move(a)); }
 
+Expr local_array(const std::string& array, bool writable) {
+  Expr e;
+  e.kind = Expr::Kind::LocalArray;
+  e.name = array;
+  e.integer = writable ? 1 : 0;
+  return e;
+}
+
 Expr grouped(Expr a) {
   a.grouped = true;
   return a;
@@ -128,6 +143,11 @@ Statement declare(std::string name, Type type, Expr value) {
 
 Statement declare_array(const std::string& name, Type type, std::size_t size) {
   return statement(Statement::Kind::Declaration, Declaration{name, type, std::nullopt, size});
+}
+
+Statement local_arrays(std::vector<std::string> names, Type type, Expr length) {
+  return statement(Statement::Kind::Arrays,
+                   std::make_shared<const LocalArrays>(LocalArrays{std::move(names), type, std::move(length)}));
 }
 
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable) {
@@ -162,6 +182,11 @@ Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Blo
 Statement call_statement(const std::string& function, std::vector<Expr> arguments) {
   return statement(Statement::Kind::Call,
                    std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments)}));
+}
+
+Statement call_file_function(const std::string& function, std::vector<Expr> arguments) {
+  return statement(Statement::Kind::Call,
+                   std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments), true}));
 }
 
 Statement conditional(Expr condition, Block then) {

@@ -1,5 +1,7 @@
-// The continuous module's code generation: its filters' functions, language-neutral, and its part.
+// The continuous module's code generation: its filters' functions and file, language-neutral, and its part.
 #include "pfgen/observations/continuous/continuous_code.hpp"
+
+#include "pfgen/observations/continuous/heun_step.hpp"
 
 namespace pfgen::codegen {
 
@@ -34,20 +36,34 @@ std::string gain_meaning(const FilterEquations& eq) {
   return "P A^T (B B^T)^-1";
 }
 
+FilterFile ContinuousCode::filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                       const FunctionNames& names, const StatementEmitter& emitter) const {
+  FilterFile file;
+  file.layout = "filter";
+  file.p = eq.p;
+  file.state_size = eq.variables.count();
+  add_rate_functions(file, continuous_functions(model, eq, options, names, emitter, true), names, eq);
+  file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
+  HeunStepLoops step = heun_step_loops(eq.n(), eq.p, file.state_size);
+  file.blocks.emplace("increment_loops", std::move(step.increment));
+  file.blocks.emplace("predicted_loop", std::move(step.predicted));
+  file.blocks.emplace("average_loop", std::move(step.average));
+  return file;
+}
+
+void add_rate_functions(FilterFile& file, ContinuousFunctions functions, const FunctionNames& names,
+                        const FilterEquations& eq) {
+  file.stats = functions.stats();
+  file.add_function("derivatives", std::move(functions.derivatives));
+  file.add_function("gain", std::move(functions.gain));
+  file.add_function("observation", std::move(functions.observation));
+  if (functions.rates) file.add_function("rates", std::move(*functions.rates));
+  file.words.insert({{"K", names.K}, {"h", names.h}, {"gain_meaning", gain_meaning(eq)}});
+}
+
 const ObservationCode& continuous_observation_code() {
   static const ContinuousCode part;
   return part;
-}
-
-void add_rate_function_values(std::map<std::string, std::string>& values, const ContinuousFunctions& functions,
-                              const FunctionNames& names, const FilterEquations& eq, bool split_parts) {
-  add_function_values(
-      values, {{"derivatives", &functions.derivatives}, {"gain", &functions.gain}, {"observation", &functions.observation}},
-      split_parts);
-  if (functions.rates) add_function_values(values, {{"rates", &*functions.rates}}, split_parts);
-  values.emplace("K", names.K);
-  values.emplace("h", names.h);
-  values.emplace("gain_meaning", gain_meaning(eq));
 }
 
 }  // namespace pfgen::codegen

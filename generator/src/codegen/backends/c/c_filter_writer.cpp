@@ -53,15 +53,10 @@ std::map<std::string, std::string> CFilterWriter::common_values(std::size_t p, s
       {"state", names.state},
       {"params", names.params},
       {"out", names.out},
+      {"zero", emitter.literal(0)},
+      {"one", emitter.literal(1)},
       {"two", emitter.literal(2)},
   };
-}
-
-void CFilterWriter::add_function(std::map<std::string, std::string>& values, const std::string& key,
-                                 const FunctionCode& code) {
-  values[key + "_ops"] = ops_comment(code.stats);
-  values[key + "_helpers"] = code.body.helpers;
-  values[key + "_body"] = code.body.statements;
 }
 
 void CFilterWriter::write(const std::string& kind, std::map<std::string, std::string> values,
@@ -71,8 +66,34 @@ void CFilterWriter::write(const std::string& kind, std::map<std::string, std::st
   header_values.insert(header_only.begin(), header_only.end());
   source_values.insert(source_only.begin(), source_only.end());
   const std::string h = "c/" + kind + ".h.tmpl", c = "c/" + kind + ".c.tmpl";
-  result.files.at(0).contents = fill_template(h, embedded_template(h), values_in_template(h, header_values));
-  result.files.at(1).contents = fill_template(c, embedded_template(c), values_in_template(c, source_values));
+  result.files.at(0).contents = filled_template(h, header_values);
+  result.files.at(1).contents = filled_template(c, source_values);
+}
+
+GeneratedFilter write_c_filter(const ObservationCode& part, const Model& model, const FilterEquations& eq,
+                               const CodegenOptions& options) {
+  CFilterWriter w(model, eq, options);
+  FilterFile file = part.filter_file(model, eq, options, w.names, w.emitter);
+  w.result.functions = std::move(file.stats);
+  std::map<std::string, std::string> values = w.common_values(file.p, file.state_size, file.banner_extra);
+  add_filter_file_values(values, file, w.emitter);
+  // A frame in each file whose template has its key: a function's definition in the .c
+  // (c/partials/<frame>.c.tmpl), its declaration in the .h (.h.tmpl).
+  const std::map<std::string, std::string> header_only =
+      filter_file_frames(file, "c/" + file.layout + ".h.tmpl", values, "c/partials/", ".h.tmpl");
+  const std::map<std::string, std::string> source_only =
+      filter_file_frames(file, "c/" + file.layout + ".c.tmpl", values, "c/partials/", ".c.tmpl");
+  w.write(file.layout, std::move(values), header_only, source_only);
+  return std::move(w.result);
+}
+
+std::vector<std::string> c_module_templates(const ObservationCode& part) {
+  std::vector<std::string> names;
+  for (const std::string& layout : part.layouts())
+    names.insert(names.end(), {"c/" + layout + ".h.tmpl", "c/" + layout + ".c.tmpl"});
+  for (const std::string& frame : part.declaring_frames())
+    names.insert(names.end(), {"c/partials/" + frame + ".h.tmpl", "c/partials/" + frame + ".c.tmpl"});
+  return names;
 }
 
 }  // namespace pfgen::codegen

@@ -46,21 +46,30 @@ std::map<std::string, std::string> RustFilterWriter::common_values(std::size_t p
       {"params", names.params},
       {"out", names.out},
       {"zero", emitter.literal_text(0)},
+      {"one", emitter.literal_text(1)},
       {"two", emitter.literal_text(2)},
   };
-}
-
-void RustFilterWriter::add_function(std::map<std::string, std::string>& values, const std::string& key,
-                                    const FunctionCode& code) {
-  values[key + "_ops"] = ops_comment(code.stats);
-  values[key + "_helpers"] = code.body.helpers;
-  values[key + "_body"] = rust_indent(code.body.statements);
 }
 
 void RustFilterWriter::write(const std::string& kind, std::map<std::string, std::string> values) {
   const std::string name = "rust/" + kind + ".rs.tmpl";
   values["math"] = emitter.math_declarations();
-  result.files.at(0).contents = fill_template(name, embedded_template(name), values_in_template(name, values));
+  result.files.at(0).contents = filled_template(name, values);
+}
+
+GeneratedFilter write_rust_filter(const ObservationCode& part, const Model& model, const FilterEquations& eq,
+                                  const CodegenOptions& options) {
+  RustFilterWriter w(model, eq, options);
+  FilterFile file = part.filter_file(model, eq, options, w.names, w.emitter);
+  w.result.functions = std::move(file.stats);
+  std::map<std::string, std::string> values = w.common_values(file.p, file.state_size, file.banner_extra);
+  add_filter_file_values(values, file, w.emitter, &rust_indent);
+  // Each frame the layout's template has (rust/partials/<frame>.rs.tmpl).
+  const std::map<std::string, std::string> frames =
+      filter_file_frames(file, "rust/" + file.layout + ".rs.tmpl", values, "rust/partials/", ".rs.tmpl");
+  values.insert(frames.begin(), frames.end());
+  w.write(file.layout, std::move(values));
+  return std::move(w.result);
 }
 
 }  // namespace pfgen::codegen

@@ -1,13 +1,15 @@
 #pragma once
-// What every C filter's .h/.c pair shares, whatever its observation (each observation module's
-// <kind>_c_filter fills its own c/ pair of templates with these and its functions' bodies): the
-// writer of both files (the names C cannot declare are the kind registry's, refused when the model is read).
+// The C backend's writer of a filter's .h/.c pair: any observation module's description of the
+// file (filter_file.hpp) into the backend's templates c/<layout>.h.tmpl and .c.tmpl, with what
+// every C file has (the names' prefix, the scalar, the parameter record). The names C cannot
+// declare are the kind registry's, refused when the model is read.
 #include <map>
 #include <string>
 #include <vector>
 
 #include "pfgen/codegen/backends/c/c_emitter.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
+#include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
 
@@ -27,15 +29,19 @@ struct CFilterWriter {
   // The placeholders of every C filter template and partial.
   std::map<std::string, std::string> common_values(std::size_t p, std::size_t state_size, const std::string& extra = "");
 
-  // A function's ops comment, helpers (a split body's parts) and body, under `key`_ops etc.
-  static void add_function(std::map<std::string, std::string>& values, const std::string& key, const FunctionCode& code);
-
-  // Fills the .h and .c templates (c/<kind>.h.tmpl and .c.tmpl, a module's): `values` holds what both
-  // need; header_only and source_only what one of them has alone (every value must meet its
-  // placeholder).
+  // Fills the .h and .c templates (c/<layout>.h.tmpl and .c.tmpl): `values` holds what both may
+  // need (each takes those it has a placeholder for); header_only and source_only what one of them
+  // has alone under a key both have (a frame: a declaration in the .h, a definition in the .c).
   void write(const std::string& kind, std::map<std::string, std::string> values,
              const std::map<std::string, std::string>& header_only, const std::map<std::string, std::string>& source_only);
-
 };
+
+// The filter's .h and .c from `part`'s description of its file.
+GeneratedFilter write_c_filter(const ObservationCode& part, const Model& model, const FilterEquations& eq,
+                               const CodegenOptions& options);
+
+// The C templates whose declared names the model's are checked against for `part`: its layouts'
+// (c/<layout>.h.tmpl and .c.tmpl) and its declaring frames' (c/partials/<frame>.h.tmpl and .c.tmpl).
+std::vector<std::string> c_module_templates(const ObservationCode& part);
 
 }  // namespace pfgen::codegen

@@ -1,0 +1,32 @@
+#include "pfgen/codegen/filter_file.hpp"
+
+#include "pfgen/codegen/template_text.hpp"
+
+namespace pfgen::codegen {
+
+void add_filter_file_values(std::map<std::string, std::string>& values, const FilterFile& file,
+                            const StatementEmitter& emitter, BodyIndent indent) {
+  auto indented = [indent](std::string text) { return indent ? indent(text) : text; };
+  for (const auto& [key, code] : file.functions) {
+    values.emplace(key + "_ops", ops_comment(code.stats));
+    values.emplace(key + "_helpers", code.body.helpers);
+    values.emplace(key + "_body", indented(code.body.statements));
+  }
+  for (const auto& [key, block] : file.blocks) values.emplace(key, indented(emitter.block(block)));
+  for (const auto& [key, number] : file.numbers) values.emplace(key, emitter.constant(number));
+  for (const auto& [key, flag] : file.flags) values.emplace(key, emitter.boolean(flag));
+  values.insert(file.words.begin(), file.words.end());
+}
+
+std::map<std::string, std::string> filter_file_frames(const FilterFile& file, const std::string& template_name,
+                                                      const std::map<std::string, std::string>& values,
+                                                      const std::string& partial_prefix,
+                                                      const std::string& partial_suffix) {
+  std::map<std::string, std::string> frames;
+  for (const auto& [key, frame] : file.frames)
+    if (values_in_template(template_name, {{key, ""}}).count(key) != 0)
+      frames.emplace(key, frame.empty() ? "" : filled_template(partial_prefix + frame + partial_suffix, values));
+  return frames;
+}
+
+}  // namespace pfgen::codegen
