@@ -1,11 +1,18 @@
-// The filter parts the sampled and delayed modules build as statements (sampled_predict.hpp) as each backend's emitter writes them: the same nodes give C++'s, C's and
-// Rust's text, and the local-array nodes (ir::local_arrays, ir::local_array) are spelled as each
-// language declares and passes an array.
+// The filter parts the sampled and delayed modules describe: the sampled prediction's statements
+// (sampled_predict.hpp) as each backend's emitter writes them, the same nodes giving C++'s, C's and
+// Rust's text, with the local-array nodes (ir::local_arrays, ir::local_array) spelled as each
+// language declares and passes an array; and the delayed history's ring parts, chosen by the
+// delay's case (delayed_code.hpp) and held by each backend that writes the ring.
 #include <catch2/catch.hpp>
+
+#include <set>
+#include <string>
 
 #include "pfgen/codegen/backends/c/c_emitter.hpp"
 #include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 #include "pfgen/codegen/backends/rust/rust_emitter.hpp"
+#include "pfgen/codegen/template_text.hpp"
+#include "pfgen/observations/delayed/delayed_code.hpp"
 #include "pfgen/observations/sampled/sampled_predict.hpp"
 
 using namespace pfgen;
@@ -52,4 +59,31 @@ TEST_CASE("sampled predict: Heun's and cd-euler's sub-step as statements for eve
         "    for i in STATES..STATE_SIZE {\n"
         "        state[i] += square[i - STATES] * dt * dt;\n"
         "    }\n");
+}
+
+TEST_CASE("delayed history: each delay's case chooses a ring part that every backend holding the ring has",
+          "[unit][codegen]") {
+  // C and Rust write the ring for the case (no history, a one-step history whose end is the start
+  // state, a ring), with and without x*; C++'s template has one form for every case, so it has no
+  // key for these frames (its writer skips them).
+  std::set<std::string> chosen;
+  for (std::size_t steps : {0, 1, 50})
+    for (bool x_star : {false, true}) {
+      const auto frames = history_frames(steps, x_star);
+      CHECK(frames.size() == 3);
+      for (const auto& [key, frame] : frames) {
+        INFO(key + " -> " + frame);
+        CHECK_FALSE(frame.empty());
+        CHECK(values_in_template("c/delayed_filter.c.tmpl", {{key, ""}}).count(key) == 1);
+        CHECK(values_in_template("rust/delayed_filter.rs.tmpl", {{key, ""}}).count(key) == 1);
+        CHECK(values_in_template("cpp/delayed_filter.hpp.tmpl", {{key, ""}}).empty());
+        CHECK_NOTHROW(embedded_template("c/partials/" + frame + ".c.tmpl"));
+        CHECK_NOTHROW(embedded_template("rust/partials/" + frame + ".rs.tmpl"));
+        chosen.insert(frame);
+      }
+    }
+  // Each case its own read; the empty history's initial and store parts apart from the ring's.
+  CHECK(chosen.size() == 10);
+  CHECK(history_frames(1, true).at("delayed_inputs_body") != history_frames(50, true).at("delayed_inputs_body"));
+  CHECK(history_frames(0, false).at("history_store") != history_frames(1, false).at("history_store"));
 }
