@@ -14,9 +14,6 @@
 
 namespace pfgen::codegen {
 
-struct TruthNames;  // backends/cpp/truth_functions.hpp
-struct TruthCode;   // backends/cpp/truth_codegen.hpp
-
 class ObservationCode {
  public:
   virtual ~ObservationCode() = default;
@@ -36,10 +33,8 @@ class ObservationCode {
   // filter's prefix are read from them (backends/c/c_names.hpp).
   virtual std::vector<std::string> c_templates() const = 0;
 
-  // The simulation plugin (backends/cpp/simulation_plugin.hpp). The truth's observation: its
-  // function of t in code.definitions, and TruthCode's observation fields.
-  virtual void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const = 0;
-  // The options the plugin's filters are generated with, from the simulation's grid step (a
+  // The simulation plugin (backends/cpp/simulation_plugin.hpp; the truth's observation is composed
+  // from the axes, backends/cpp/truth_codegen). The options the plugin's filters are generated with, from the simulation's grid step (a
   // delayed observation's filters step on that grid; CodegenError without one); unchanged by default.
   virtual void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const;
   // The functions behind the ABI's signatures for the filters of these identifiers. in_lanes[k]:
@@ -62,5 +57,8 @@ const ObservationCode& sampled_observation_code();
 const ObservationCode& delayed_observation_code();
 const ObservationCode& polynomial_observation_code();
 const ObservationCode& observation_code(ObservationKind kind);
+// The model's part composed from its axes, as the derivation's (observation_derivation): samples,
+// a delay, an affine rate (a linear h included, so its filters are the continuous module's), rows.
+const ObservationCode& observation_code(const ObservationModel& observation);
 
 }  // namespace pfgen::codegen

@@ -32,7 +32,7 @@ PolynomialFunctions polynomial_functions(const Model& model, const FilterEquatio
       covariance_gain.push_back(noise[n + u][r]);
     }
   const std::vector<Polynomial> correction =
-      ito_stratonovich_correction(noise, model.observation.polynomial().B, vars);
+      ito_stratonovich_correction(noise, model.observation.rate().noise(), vars);
 
   PolynomialFunctions f;
   f.derivatives = derivatives_code(model, eq, options, names, emitter);

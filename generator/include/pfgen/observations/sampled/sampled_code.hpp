@@ -25,7 +25,6 @@ class SampledCode final : public ObservationCode {
   GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
   GeneratedFilter rust_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
   std::vector<std::string> c_templates() const override;
-  void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<bool>& in_lanes) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,

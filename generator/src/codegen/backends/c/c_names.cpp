@@ -87,7 +87,7 @@ void check_c_names(const Model& model, const std::string& name_space) {
                          "', the prefix of every name the generated C code declares (include guards, enum "
                          "constants, functions), which it would replace or hide; give it another name");
 
-  const CNameSuffixes suffixes = c_name_suffixes(observation_code(model.observation.kind()).c_templates());
+  const CNameSuffixes suffixes = c_name_suffixes(observation_code(model.observation).c_templates());
   std::map<std::string, std::string> declared;          // name -> the filter declaring it
   std::vector<std::pair<std::string, std::string>> internal;  // (name, filter)
   for (const std::string& filter : available_filter_names(model)) {
