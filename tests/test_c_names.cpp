@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "pfgen/codegen/backends/c/c_filter_writer.hpp"
 #include "pfgen/codegen/backends/c/c_names.hpp"
 #include "pfgen/codegen/observation_code.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
@@ -107,20 +108,20 @@ TEST_CASE("C code generation refuses names that cannot build in one program, wit
 
 TEST_CASE("every name the C filters declare after their prefix is read from their module's templates",
           "[c_names][unit]") {
-  // The names the checks compare come from the templates (ObservationCode::c_templates): a name a
-  // template declares that the list misses would escape them.
+  // The names the checks compare come from the templates of the module's layouts and declaring
+  // frames (c_module_templates): a name a template declares that the list misses would escape them.
   const auto continuous =
-      pfgen::codegen::c_name_suffixes(pfgen::codegen::continuous_observation_code().c_templates());
+      pfgen::codegen::c_name_suffixes(pfgen::codegen::c_module_templates(pfgen::codegen::continuous_observation_code()));
   CHECK(continuous.external.count("default_params"));
   CHECK(continuous.external.count("step"));
   CHECK(continuous.internal.count("params"));  // a typedef
   CHECK(continuous.internal.count("state_size"));  // an enum constant
   CHECK(continuous.internal.count("h"));  // the include guard
   CHECK(continuous.internal.count("rates"));  // static in the .c
-  const auto delayed = pfgen::codegen::c_name_suffixes(pfgen::codegen::delayed_observation_code().c_templates());
+  const auto delayed = pfgen::codegen::c_name_suffixes(pfgen::codegen::c_module_templates(pfgen::codegen::delayed_observation_code()));
   CHECK(delayed.external.count("filter_step"));
   CHECK(delayed.internal.count("filter"));
-  const auto sampled = pfgen::codegen::c_name_suffixes(pfgen::codegen::sampled_observation_code().c_templates());
+  const auto sampled = pfgen::codegen::c_name_suffixes(pfgen::codegen::c_module_templates(pfgen::codegen::sampled_observation_code()));
   CHECK(sampled.external.count("euler_square"));  // from a partial
   CHECK(sampled.internal.count("packed_at"));
 }

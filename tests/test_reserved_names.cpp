@@ -17,8 +17,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // The names to try: C++ keywords and alternative tokens, library macros, and every identifier
-// the C++ templates contain (read from templates/cpp and each observation module's
-// templates/cpp, so a new template name is tried at once).
+// the C++ templates contain (read from templates/cpp, the C++ backend's templates and each
+// observation module's templates/cpp, so a new template name is tried at once).
 std::set<std::string> candidate_names() {
   std::set<std::string> names = {
       "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
@@ -33,7 +33,8 @@ std::set<std::string> candidate_names() {
       "override", "import", "module", "M_PI", "M_E", "NAN", "INFINITY", "HUGE_VAL", "NULL", "errno", "assert",
       "EOF", "stdin", "stdout", "offsetof", "std", "size_t", "Scalar", "Params", "_Reserved", "a__b", "main", "Eigen", "NULL", "true", "no"};
   const std::regex identifier("[A-Za-z_][A-Za-z0-9_]*");
-  std::vector<std::string> folders = {source_dir() + "/templates/cpp"};
+  std::vector<std::string> folders = {source_dir() + "/templates/cpp",
+                                      source_dir() + "/generator/src/codegen/backends/cpp/templates"};
   for (const auto& module : fs::directory_iterator(source_dir() + "/generator/src/observations"))
     if (fs::is_directory(module.path() / "templates" / "cpp")) folders.push_back((module.path() / "templates" / "cpp").string());
   for (const auto& folder : folders)

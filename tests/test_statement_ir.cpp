@@ -5,6 +5,7 @@
 
 #include "pfgen/codegen/backends/c/c_emitter.hpp"
 #include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
+#include "pfgen/codegen/backends/rust/rust_emitter.hpp"
 #include "pfgen/codegen/ir/statements.hpp"
 
 using namespace pfgen;
@@ -67,4 +68,22 @@ TEST_CASE("statement IR: every node as C++ and C print it", "[unit][codegen]") {
         "  }\n"
         "  step(t, state);\n"
         "  return sqrtf(d);\n");
+}
+
+TEST_CASE("statement IR: the file's sizes and whole numbers of the scalar as each language spells them",
+          "[unit][codegen]") {
+  // What a module writes once (observations/continuous/heun_step.cpp) and every backend spells:
+  // the sizes its file declares and a whole number in the scalar type.
+  const ir::Expr i = ir::name("i");
+  const ir::Block block = {ir::loop(
+      "i", ir::Type::Size, ir::integer(0), ir::dimension("state_size"),
+      {ir::accumulate(ir::element("x", i), ir::div(ir::element("y", ir::mul(i, ir::dimension("p"))), ir::whole_scalar(2)))})};
+  CHECK(CppEmitter(ScalarMode::Float).block(block) ==
+        "  for (std::size_t i = 0; i < state_size; ++i) x[i] += y[i * p] / Scalar(2);\n");
+  CHECK(CEmitter(ScalarMode::Double, "tmp", "ns_m_f", "ns_m_f_params").block(block) ==
+        "  for (size_t i = 0; i < ns_m_f_state_size; ++i) x[i] += y[i * ns_m_f_p] / 2.0;\n");
+  CHECK(RustEmitter(ScalarMode::Float, "tmp", "Params").block(ir::Block{ir::assign(
+            ir::element("x", ir::dimension("n")), ir::mul(ir::whole_scalar(2), ir::element("y", ir::dimension("p"))))}) ==
+        "  x[STATES] = 2.0 * y[OBSERVATIONS];\n");
+  CHECK(RustEmitter(ScalarMode::Double, "tmp", "Params").expression(ir::dimension("delay_steps")) == "DELAY_STEPS");
 }

@@ -1,11 +1,13 @@
 // fill_template and embedded_template (codegen/template_text.hpp): every `{{key}}` is replaced
 // by its value; a placeholder without a value, a value without a placeholder and an unterminated
 // placeholder are errors, never half-filled code; the templates compiled into pfgen are the
-// files of templates/ and of each observation module's templates/.
+// files of templates/, of each backend's templates/ (named after its language) and of each
+// observation module's templates/.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "pfgen/codegen/template_text.hpp"
@@ -52,18 +54,26 @@ TEST_CASE("template filler: a placeholder without value, a value without placeho
   CHECK(open.find("unterminated placeholder") != std::string::npos);
 }
 
-TEST_CASE("embedded templates are the files of templates/ and of the observation modules' templates/",
+TEST_CASE("embedded templates are the files of templates/, of the backends' and of the observation modules' templates/",
           "[unit][codegen]") {
   namespace fs = std::filesystem;
-  std::vector<fs::path> roots = {fs::path(pfgen_test::source_dir()) / "templates"};
-  for (const auto& module : fs::directory_iterator(fs::path(pfgen_test::source_dir()) / "generator/src/observations"))
-    if (fs::is_directory(module.path() / "templates")) roots.push_back(module.path() / "templates");
-  REQUIRE(roots.size() == 5);  // templates/, and the continuous, sampled, delayed and polynomial modules'
+  const fs::path source(pfgen_test::source_dir());
+  // Each root with the prefix its files are embedded under.
+  std::vector<std::pair<fs::path, std::string>> roots = {{source / "templates", ""}};
+  std::size_t backends = 0;
+  for (const auto& language : fs::directory_iterator(source / "generator/src/codegen/backends"))
+    if (fs::is_directory(language.path() / "templates")) {
+      roots.emplace_back(language.path() / "templates", language.path().filename().string() + "/");
+      ++backends;
+    }
+  CHECK(backends == 3);  // cpp, c, rust
+  for (const auto& module : fs::directory_iterator(source / "generator/src/observations"))
+    if (fs::is_directory(module.path() / "templates")) roots.emplace_back(module.path() / "templates", "");
   std::size_t files = 0;
-  for (const fs::path& root : roots)
+  for (const auto& [root, prefix] : roots)
     for (const auto& entry : fs::recursive_directory_iterator(root)) {
       if (entry.path().extension() != ".tmpl") continue;
-      const std::string name = entry.path().lexically_relative(root).generic_string();
+      const std::string name = prefix + entry.path().lexically_relative(root).generic_string();
       INFO(name);
       CHECK(embedded_template(name) == pfgen_test::read_file(entry.path().string()));
       ++files;

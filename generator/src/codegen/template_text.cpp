@@ -72,4 +72,8 @@ std::map<std::string, std::string> values_in_template(const std::string& relativ
   return used;
 }
 
+std::string filled_template(const std::string& relative_path, const std::map<std::string, std::string>& values) {
+  return fill_template(relative_path, embedded_template(relative_path), values_in_template(relative_path, values));
+}
+
 }  // namespace pfgen::codegen

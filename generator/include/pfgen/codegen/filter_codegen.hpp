@@ -7,8 +7,8 @@
 //     gain(); predicted_observation(); initial_state(); step(); with
 //     CodegenOptions::eigen_wrapper also <filter>_eigen.hpp.
 //   C99 (backends/c/c_backend.hpp): a .h/.c pair per filter, every name prefixed <NS>_<model>_<filter>_.
-// Each backend writes a filter through its observation module (observation_code.hpp), whose
-// templates it fills. A filter for delayed observations steps on a fixed grid dt and keeps its
+// Each backend writes the filter's file as its observation module describes it, in no language
+// (observation_code.hpp, filter_file.hpp), into that backend's templates. A filter for delayed observations steps on a fixed grid dt and keeps its
 // own fixed-size history: CodegenOptions::grid_step must give that dt, and the delay must be a
 // whole number of it (model/delay_grid.hpp); otherwise CodegenError.
 #include <optional>

@@ -2,15 +2,15 @@
 // What code generation needs of an observation model: its filters' code in each output language,
 // and its part of a simulation plugin (the truth's observation function and the ABI table's
 // observation fields). Each module in observations/ implements it (observations/<kind>/<kind>_code.hpp,
-// its methods in <kind>_cpp_filter, <kind>_c_filter and <kind>_plugin); generate_filter_code, the
-// backends' entry points, the truth and the plugin call the model's part and never ask which kind
-// it is.
+// its filters' files described in <kind>_code, its plugin part in <kind>_plugin); the backends'
+// writers, the truth and the plugin call the model's part and never ask which kind it is.
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "pfgen/codegen/filter_codegen.hpp"
+#include "pfgen/codegen/filter_file.hpp"
 
 namespace pfgen::codegen {
 
@@ -21,17 +21,26 @@ class ObservationCode {
   // Refuses (CodegenError), before any graph is built, a filter whose code this observation's
   // form cannot hold at its size; nothing by default.
   virtual void check_size(const Model& model, const FilterEquations& eq) const;
-  // The filter's files (GeneratedFilter::files in filter_file_paths' order) from the module's
-  // templates for each backend (generator/src/observations/<kind>/templates/): cpp/ (header-only
-  // C++, with CodegenOptions::eigen_wrapper its Eigen layer where the observation has one) and c/
-  // (a .h/.c pair).
-  virtual GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const = 0;
-  virtual GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const = 0;
-  // rust/ (a no_std module, templates/rust/), written with codegen/backends/rust/rust_filter_writer.hpp.
-  virtual GeneratedFilter rust_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const = 0;
-  // Every C template c_filter fills, partials included: the names its files declare after the
-  // filter's prefix are read from them (backends/c/c_names.hpp).
-  virtual std::vector<std::string> c_templates() const = 0;
+  // The filter's file as this observation describes it, in no language (filter_file.hpp): its
+  // layout, its functions with their bodies written by `emitter` (the backend's, with `names`), its
+  // statements, words and statistics. Each backend's writer (backends/<language>/) turns it into
+  // that language's files. A module that does not describe its files yet (layouts() empty) writes
+  // them itself with cpp_filter, c_filter and rust_filter, which go when none is left.
+  virtual FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                 const FunctionNames& names, const StatementEmitter& emitter) const;
+  // Every layout filter_file may give (FilterFile::layout): the C backend reads the names its
+  // templates of these declare (backends/c/c_names.hpp).
+  virtual std::vector<std::string> layouts() const;
+  // Every frame filter_file may choose that declares a function of the file (FilterFile::frames'
+  // partials, as cd-euler's euler_square): the C backend reads the names those declare too.
+  virtual std::vector<std::string> declaring_frames() const { return {}; }
+
+  // Until the sampled and delayed modules describe their files: their writers per language, and
+  // every C template c_filter fills, partials included (backends/c/c_names.hpp).
+  virtual GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const;
+  virtual GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const;
+  virtual GeneratedFilter rust_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const;
+  virtual std::vector<std::string> c_templates() const;
 
   // The simulation plugin (backends/cpp/simulation_plugin.hpp; the truth's observation is composed
   // from the axes, backends/cpp/truth_codegen). The options the plugin's filters are generated with, from the simulation's grid step (a

@@ -20,6 +20,9 @@ std::string expanded_template(const std::string& relative_path);
 std::map<std::string, std::string> values_in_template(const std::string& relative_path,
                                                       const std::map<std::string, std::string>& values);
 
+// The embedded template `relative_path` filled with those of `values` it has a placeholder for.
+std::string filled_template(const std::string& relative_path, const std::map<std::string, std::string>& values);
+
 // The template files of templates/, compiled into pfgen (see generator/CMakeLists.txt), and
 // "pfgen_runtime/plugin_abi.h", the runtime's plugin ABI header (see simulation_plugin.hpp).
 const std::string& embedded_template(const std::string& relative_path);

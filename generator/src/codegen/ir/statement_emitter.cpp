@@ -25,6 +25,9 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
     case Kind::ZeroWhereZero: text = zero_where_zero(a.at(0), a.at(1)); break;
     case Kind::Greater: text = greater(a.at(0), a.at(1)); break;
     case Kind::Not: text = logical_not(a.at(0)); break;
+    case Kind::LocalArray: text = local_array(e.name, e.integer != 0); break;
+    case Kind::Dimension: text = dimension(e.name); break;
+    case Kind::WholeScalar: text = whole_scalar(e.integer); break;
   }
   return e.grouped ? grouped(text) : text;
 }
@@ -41,6 +44,7 @@ std::string StatementEmitter::statement(const ir::Statement& s, const std::strin
     case Kind::Return: return return_statement(s.result(), indent);
     case Kind::Comment: return comment(s.comment(), indent);
     case Kind::Unused: return unused(s.unused(), indent);
+    case Kind::Arrays: return arrays(s.arrays(), indent);
   }
   return "";
 }

@@ -47,6 +47,20 @@ Expr boolean(bool value) {
   return e;
 }
 
+Expr dimension(const std::string& size_name) {
+  Expr e;
+  e.kind = Expr::Kind::Dimension;
+  e.name = size_name;
+  return e;
+}
+
+Expr whole_scalar(std::size_t value) {
+  Expr e;
+  e.kind = Expr::Kind::WholeScalar;
+  e.integer = value;
+  return e;
+}
+
 Expr element(const std::string& array, Expr index) {
   Expr e = node(Expr::Kind::Element, {std::move(index)});
   e.name = array;
@@ -80,6 +94,13 @@ Expr zero_where_zero(Expr guard, Expr value) {
 Expr greater(Expr a, Expr b) { return node(Expr::Kind::Greater, {std::move(a), std::move(b)}); }
 Expr logical_not(Expr a) { return node(Expr::Kind::Not, {std::move(a)}); }
 
+Expr local_array(const std::string& array, bool writable) {
+  Expr e = node(Expr::Kind::LocalArray, {});
+  e.name = array;
+  e.integer = writable ? 1 : 0;
+  return e;
+}
+
 Expr grouped(Expr a) {
   a.grouped = true;
   return a;
@@ -100,6 +121,12 @@ Statement declare(const std::string& name, Type type, Expr value) {
 Statement declare_array(const std::string& name, Type type, std::size_t size) {
   Statement s = statement(Statement::Kind::Declaration);
   s.node = Declaration{name, type, std::nullopt, size};
+  return s;
+}
+
+Statement local_arrays(std::vector<std::string> names, Type type, Expr length) {
+  Statement s = statement(Statement::Kind::Arrays);
+  s.node = std::make_shared<const LocalArrays>(LocalArrays{std::move(names), type, std::move(length)});
   return s;
 }
 
@@ -134,6 +161,12 @@ Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Blo
 Statement call_statement(const std::string& function, std::vector<Expr> arguments) {
   Statement s = statement(Statement::Kind::Call);
   s.node = std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments)});
+  return s;
+}
+
+Statement call_file_function(const std::string& function, std::vector<Expr> arguments) {
+  Statement s = statement(Statement::Kind::Call);
+  s.node = std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments), true});
   return s;
 }
 

@@ -1,5 +1,7 @@
-// The continuous module's code generation: its filters' functions, language-neutral, and its part.
+// The continuous module's code generation: its filters' functions and file, language-neutral, and its part.
 #include "pfgen/observations/continuous/continuous_code.hpp"
+
+#include "pfgen/observations/continuous/heun_step.hpp"
 
 namespace pfgen::codegen {
 
@@ -32,6 +34,31 @@ std::string gain_meaning(const FilterEquations& eq) {
   if (eq.is_user_filter()) return "as given in the model file";
   if (eq.uses_x_star()) return "P Phi*^T A^T (B B^T)^-1, Phi* = diag(phi)";
   return "P A^T (B B^T)^-1";
+}
+
+FilterFile ContinuousCode::filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                       const FunctionNames& names, const StatementEmitter& emitter) const {
+  FilterFile file;
+  file.layout = "filter";
+  file.p = eq.p;
+  file.state_size = eq.variables.count();
+  add_rate_functions(file, continuous_functions(model, eq, options, names, emitter, true), names, eq);
+  file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
+  HeunStepLoops step = heun_step_loops(eq.n(), eq.p, file.state_size);
+  file.blocks.emplace("increment_loops", std::move(step.increment));
+  file.blocks.emplace("predicted_loop", std::move(step.predicted));
+  file.blocks.emplace("average_loop", std::move(step.average));
+  return file;
+}
+
+void add_rate_functions(FilterFile& file, ContinuousFunctions functions, const FunctionNames& names,
+                        const FilterEquations& eq) {
+  file.stats = functions.stats();
+  file.add_function("derivatives", std::move(functions.derivatives));
+  file.add_function("gain", std::move(functions.gain));
+  file.add_function("observation", std::move(functions.observation));
+  if (functions.rates) file.add_function("rates", std::move(*functions.rates));
+  file.words.insert({{"K", names.K}, {"h", names.h}, {"gain_meaning", gain_meaning(eq)}});
 }
 
 const ObservationCode& continuous_observation_code() {

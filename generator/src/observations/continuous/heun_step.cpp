@@ -25,15 +25,16 @@ class StepLoops {
   }
 
   // delta[i] += K[i p + r] innovation[r] for each i < n and r < p.
-  void correction(ir::Block& block, const HeunStepNames& names, std::size_t n, std::size_t p) const {
+  void correction(ir::Block& block, std::size_t n, std::size_t p) const {
     auto statement = [](const Expr& i, const Expr& gain_entry, const Expr& r) {
       return ir::accumulate(at("delta", i), ir::mul(at("K", gain_entry), at("innovation", r)));
     };
     if (!written_out_) {
       const Expr i = ir::name("i"), r = ir::name("r");
-      block.push_back(ir::loop("i", ir::Type::Size, ir::integer(0), names.n,
-                               {ir::loop("r", ir::Type::Size, ir::integer(0), names.p,
-                                         {statement(i, ir::add(ir::mul(i, names.p), r), r)})}));
+      const Expr n_size = ir::dimension("n"), p_size = ir::dimension("p");
+      block.push_back(ir::loop("i", ir::Type::Size, ir::integer(0), n_size,
+                               {ir::loop("r", ir::Type::Size, ir::integer(0), p_size,
+                                         {statement(i, ir::add(ir::mul(i, p_size), r), r)})}));
       return;
     }
     for (std::size_t i = 0; i < n; ++i)
@@ -47,29 +48,22 @@ class StepLoops {
 
 }  // namespace
 
-HeunStepLoops heun_step_loops(const HeunStepNames& names, std::size_t n, std::size_t p, std::size_t state_size) {
+HeunStepLoops heun_step_loops(std::size_t n, std::size_t p, std::size_t state_size) {
   const StepLoops loops(n < kStepWrittenOutBelow);
+  const Expr p_size = ir::dimension("p"), state = ir::dimension("state_size"), two = ir::whole_scalar(2);
   HeunStepLoops step;
-  loops.loop(step.increment, "r", names.p, p, [](const Expr& r) {
+  loops.loop(step.increment, "r", p_size, p, [](const Expr& r) {
     return ir::assign(at("innovation", r), ir::sub(at("dy", r), ir::mul(at("innovation", r), ir::name("dt"))));
   });
-  loops.loop(step.increment, "i", names.state_size, state_size,
+  loops.loop(step.increment, "i", state, state_size,
              [](const Expr& i) { return ir::assign(at("delta", i), ir::mul(at("all", i), ir::name("dt"))); });
-  loops.correction(step.increment, names, n, p);
-  loops.loop(step.predicted, "i", names.state_size, state_size,
+  loops.correction(step.increment, n, p);
+  loops.loop(step.predicted, "i", state, state_size,
              [](const Expr& i) { return ir::assign(at("predicted", i), ir::add(at("state", i), at("first", i))); });
-  loops.loop(step.average, "i", names.state_size, state_size, [&](const Expr& i) {
-    return ir::accumulate(at("state", i), ir::div(ir::grouped(ir::add(at("first", i), at("second", i))), names.two));
+  loops.loop(step.average, "i", state, state_size, [&](const Expr& i) {
+    return ir::accumulate(at("state", i), ir::div(ir::grouped(ir::add(at("first", i), at("second", i))), two));
   });
   return step;
-}
-
-void add_heun_step_loops(std::map<std::string, std::string>& values, const StatementEmitter& emitter,
-                         const HeunStepNames& names, std::size_t n, std::size_t p, std::size_t state_size) {
-  const HeunStepLoops step = heun_step_loops(names, n, p, state_size);
-  values.emplace("increment_loops", emitter.block(step.increment));
-  values.emplace("predicted_loop", emitter.block(step.predicted));
-  values.emplace("average_loop", emitter.block(step.average));
 }
 
 }  // namespace pfgen::codegen

@@ -1,6 +1,8 @@
-// The delayed module's code generation: the grid its filters step on, and its part.
+// The delayed module's code generation: the grid its filters step on, their file (language-neutral),
+// and its part.
 #include "pfgen/observations/delayed/delayed_code.hpp"
 
+#include "pfgen/observations/continuous/continuous_code.hpp"
 #include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::codegen {
@@ -18,6 +20,50 @@ std::string delay_banner_line(const FilterEquations& eq, const DelaySteps& steps
   return "// Delayed observations: h = " + pfgen_support::shortest_double(eq.delay.to_double()) + " = " +
          std::to_string(steps.steps) + " steps of dt = " + pfgen_support::shortest_double(grid_step) +
          "; the caller supplies dy over each step of this dt.\n";
+}
+
+std::map<std::string, std::string> history_frames(std::size_t delay_steps, bool x_star) {
+  if (delay_steps == 0)
+    return {{"initial_history_body", "history_initial_none"},
+            {"delayed_inputs_body", x_star ? "history_read_none_x_star" : "history_read_none"},
+            {"history_store", "history_store_none"}};
+  const std::string read = delay_steps == 1 ? "history_read_one" : "history_read_ring";
+  return {{"initial_history_body", "history_initial"},
+          {"delayed_inputs_body", x_star ? read + "_x_star" : read},
+          {"history_store", "history_store"}};
+}
+
+FilterFile DelayedCode::filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                    const FunctionNames& names, const StatementEmitter& emitter) const {
+  const DelaySteps steps = filter_delay_steps(eq, options);
+  const std::size_t n = eq.n();
+  const bool x_star = eq.uses_x_star();
+  FilterFile file;
+  file.layout = "delayed_filter";
+  file.p = eq.p;
+  file.state_size = eq.variables.count() + (x_star ? n : 0);
+  file.banner_extra = delay_banner_line(eq, steps, *options.grid_step);
+  // No layer views the state as m and P (C++'s --eigen is ignored): it carries x* and the filter
+  // keeps a history, so the file's own Filter is the interface.
+  file.state_is_m_and_P = false;
+  add_rate_functions(file, continuous_functions(model, eq, options, names, emitter), names, eq);
+  file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables, x_star)));
+  file.numbers = {{"delay", GiNaC::numeric(eq.delay.to_double())}, {"dt", GiNaC::numeric(*options.grid_step)}};
+  file.flags.emplace("uses_x_star", x_star);
+  const std::size_t width = x_star ? 2 * n : n, history = steps.steps * width;
+  file.words.insert({{"delayed", names.delayed},
+                     {"history_what", x_star ? " and x*" : ""},
+                     {"prehistory_x_star", x_star ? " and x*(s) = m0" : ""},
+                     {"out_x_star", x_star ? ", x* drift f(x*, t)" : ""},
+                     {"initial_x_star", x_star ? ", and x*(0) = m0" : ""},
+                     {"delay_steps", std::to_string(steps.steps)},
+                     {"history_width", std::to_string(width)},
+                     {"history_size", std::to_string(history)},
+                     {"history_array_size", std::to_string(history > 0 ? history : 1)},  // C has no empty array
+                     {"delayed_size", std::to_string(width)}});
+  file.frames = history_frames(steps.steps, x_star);
+  file.frames.emplace("state_x_star", x_star ? "state_x_star" : "");
+  return file;
 }
 
 const ObservationCode& delayed_observation_code() {

@@ -1,4 +1,4 @@
-// The polynomial module's code generation: its filters' functions, language-neutral, and its part.
+// The polynomial module's code generation: its filters' functions and file, language-neutral, and its part.
 // A linear h is the continuous observation: its filters are the continuous module's.
 #include "pfgen/observations/polynomial/polynomial_code.hpp"
 
@@ -44,19 +44,23 @@ PolynomialFunctions polynomial_functions(const Model& model, const FilterEquatio
   return f;
 }
 
-void add_polynomial_function_values(std::map<std::string, std::string>& values, const PolynomialFunctions& functions,
-                                    const FunctionNames& names, bool split_parts) {
-  add_function_values(values,
-                      {{"derivatives", &functions.derivatives},
-                       {"gain", &functions.gain},
-                       {"covariance_gain", &functions.covariance_gain},
-                       {"observation", &functions.observation},
-                       {"correction", &functions.correction}},
-                      split_parts);
-  values.emplace("K", names.K);
-  values.emplace("L", names.L);
-  values.emplace("h", names.h);
-  values.emplace("c", names.c);
+FilterFile PolynomialCode::filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                       const FunctionNames& names, const StatementEmitter& emitter) const {
+  if (written_linear(model)) return continuous_observation_code().filter_file(model, eq, options, names, emitter);
+  PolynomialFunctions f = polynomial_functions(model, eq, options, names, emitter);
+  FilterFile file;
+  file.layout = "polynomial_filter";
+  file.p = eq.p;
+  file.state_size = eq.variables.count();
+  file.stats = f.stats();
+  file.add_function("derivatives", std::move(f.derivatives));
+  file.add_function("gain", std::move(f.gain));
+  file.add_function("covariance_gain", std::move(f.covariance_gain));
+  file.add_function("observation", std::move(f.observation));
+  file.add_function("correction", std::move(f.correction));
+  file.words = {{"K", names.K}, {"L", names.L}, {"h", names.h}, {"c", names.c}};
+  file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
+  return file;
 }
 
 const ObservationCode& polynomial_observation_code() {

@@ -6,6 +6,11 @@
 namespace pfgen::codegen {
 namespace {
 
+// What the solve reads besides PCt, S and K: the file's sizes and the scalar 0.
+struct CholeskyNames {
+  ir::Expr n, p, zero;
+};
+
 ir::Expr L(std::size_t a, std::size_t b) { return ir::name("L" + std::to_string(a) + "_" + std::to_string(b)); }
 
 std::size_t packed(std::size_t a, std::size_t b, std::size_t r) {
@@ -20,7 +25,8 @@ ir::Expr minus(ir::Expr first, std::vector<ir::Expr> terms) {
 
 }  // namespace
 
-ir::Block cholesky_gain_statements(std::size_t r, const CholeskyNames& names) {
+ir::Block cholesky_gain_statements(std::size_t r) {
+  const CholeskyNames names{ir::dimension("n"), ir::dimension("p"), ir::whole_scalar(0)};
   using ir::Type;
   ir::Block body;
   // S = L L^T, column by column: L_jj = sqrt(S_jj - sum_k L_jk^2), L_ij = (S_ji - sum_k L_ik L_jk) / L_jj.

@@ -1,6 +1,9 @@
-// The sampled module's code generation: its filters' functions, language-neutral, its size limit,
-// and its part.
+// The sampled module's code generation: its filters' functions and file, language-neutral, its
+// size limit, and its part.
 #include "pfgen/observations/sampled/sampled_code.hpp"
+
+#include "pfgen/observations/sampled/cholesky_solve.hpp"
+#include "pfgen/observations/sampled/sampled_predict.hpp"
 
 namespace pfgen::codegen {
 
@@ -38,6 +41,35 @@ SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq
   f.observation =
       function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
   return f;
+}
+
+FilterFile SampledCode::filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                    const FunctionNames& names, const StatementEmitter& emitter) const {
+  SampledFunctions f = sampled_functions(model, eq, options, names, emitter);
+  const bool euler = f.euler_square.has_value();
+  FilterFile file;
+  file.layout = "sampled_filter";
+  file.p = eq.update.r();
+  file.state_size = eq.variables.count();
+  file.stats = f.stats();
+  file.add_function("derivatives", std::move(f.derivatives));
+  if (euler) file.add_function("euler", std::move(*f.euler_square));
+  file.add_function("innovation", std::move(f.innovation));
+  file.add_function("matrices", std::move(f.matrices));
+  file.add_function("observation", std::move(f.observation));
+  // cd-euler's Cov(f) dt^2 function, and the prediction sub-step's comment and signature, are each
+  // framed by a partial of the backend's; the sub-step's body is statements.
+  file.frames = {{"euler_function", euler ? "euler_square" : ""},
+                 {"predict_function", euler ? "predict_euler" : "predict_heun"}};
+  file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
+  file.blocks.emplace("solve_body", cholesky_gain_statements(file.p));
+  file.blocks.emplace("predict_body", predict_statements(euler));
+  file.numbers.emplace("period", eq.update.period);
+  file.words = {{"h", names.h},
+                {"substeps", std::to_string(eq.update.substeps)},
+                {"predict_meaning", euler ? "cd-euler's exact moments of one Euler step." : "Heun's scheme on the prediction ODEs."}};
+  add_sample_meanings(file.words, eq.update);
+  return file;
 }
 
 const ObservationCode& sampled_observation_code() {

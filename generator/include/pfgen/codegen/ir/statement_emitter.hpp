@@ -41,6 +41,15 @@ class StatementEmitter : public Emitter {
   virtual std::string greater(const std::string& a, const std::string& b) const = 0;
   virtual std::string logical_not(const std::string& a) const = 0;
   virtual std::string grouped(const std::string& a) const { return "(" + a + ")"; }
+  virtual std::string local_array(const std::string& array, bool writable) const = 0;
+  // A size the file declares, by its language-neutral name; as it is by default.
+  virtual std::string dimension(const std::string& name) const { return name; }
+  // A function the file declares, by its language-neutral name; as it is by default.
+  virtual std::string file_function(const std::string& name) const { return name; }
+  // The function a call statement calls, as the language spells it.
+  std::string callee(const ir::CallStatement& node) const { return node.of_file ? file_function(node.function) : node.function; }
+  // A whole number in the scalar type; its constant by default.
+  virtual std::string whole_scalar(std::size_t value) const { return constant(GiNaC::numeric(static_cast<long>(value))); }
   using Emitter::expression;
   std::string expression(const ir::Expr& expr) const;
 
@@ -56,6 +65,7 @@ class StatementEmitter : public Emitter {
   virtual std::string return_statement(const ir::Return& node, const std::string& indent) const = 0;
   virtual std::string comment(const ir::Comment& node, const std::string& indent) const = 0;
   virtual std::string unused(const ir::Unused& node, const std::string& indent) const = 0;
+  virtual std::string arrays(const ir::LocalArrays& node, const std::string& indent) const = 0;
   std::string statement(const ir::Statement& statement, const std::string& indent) const;
   std::string block(const ir::Block& block, const std::string& indent = "  ") const;
 

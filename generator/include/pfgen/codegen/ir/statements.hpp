@@ -37,6 +37,10 @@ struct Expr {
     ZeroWhereZero,  // 0 where operands[0] is 0, else operands[1]
     Greater,        // operands[0] > operands[1]
     Not,            // not operands[0]
+    LocalArray,     // the local array `name` (a LocalArrays') passed whole to a call; written
+                    // through when `integer` != 0 (C: `name`; C++: `name.data()`; Rust: `&mut name`)
+    Dimension,      // a size the file declares (`name`: "n", "p", "state_size", ...), spelt by its language
+    WholeScalar,    // the whole number `integer` in the scalar type (C++: `Scalar(2)`; C: `2.0f`)
   };
   Kind kind = Kind::Name;
   std::string name;
@@ -64,7 +68,13 @@ Expr call(Function function, std::vector<Expr> arguments);
 Expr zero_where_zero(Expr guard, Expr value);
 Expr greater(Expr a, Expr b);
 Expr logical_not(Expr a);
+Expr local_array(const std::string& name, bool writable);
 Expr grouped(Expr a);
+// A size of the file by its language-neutral name ("n", "p", "state_size"): C++ writes it as it is,
+// C after the file's prefix, Rust as its constant (STATES, OBSERVATIONS, STATE_SIZE).
+Expr dimension(const std::string& name);
+// A whole number in the scalar type, as the language converts one (the Heun step's 2).
+Expr whole_scalar(std::size_t value);
 // a_0 + a_1 + ... (left to right); a single term as it is.
 Expr sum(std::vector<Expr> terms);
 
@@ -95,6 +105,15 @@ struct View {
   bool writable = false;
 };
 
+// Arrays of `length` entries each (an expression of the file's named sizes), declared together:
+// zero-filled where the language fills (C++'s std::array{}, Rust's [0; N]; C leaves them
+// uninitialised), passed whole to calls as local_array(name). C and C++ declare them on one line.
+struct LocalArrays {
+  std::vector<std::string> names;
+  Type type = Type::Scalar;
+  Expr length;
+};
+
 // targets[0] = targets[1] = ... = value (each target a Name or an Element), or with `accumulate`
 // targets[0] += value.
 struct Assignment {
@@ -119,10 +138,12 @@ struct Loop {
   Block body;
 };
 
-// A call of a function of the generated file as a statement: `function(arguments)`.
+// A call as a statement: `function(arguments)`. A function the file declares (`of_file`) is named
+// by its language-neutral name and spelt by its language (C: after the file's prefix).
 struct CallStatement {
   std::string function;
   std::vector<Expr> arguments;
+  bool of_file = false;
 };
 
 // if condition: then.
@@ -148,10 +169,11 @@ struct Unused {
 // place and the others behind a shared pointer, so that a function of a hundred thousand
 // operations stays small in memory while it is written.
 struct Statement {
-  enum class Kind { Declaration, View, Assignment, Loop, Call, Conditional, Return, Comment, Unused };
+  enum class Kind { Declaration, View, Assignment, Loop, Call, Conditional, Return, Comment, Unused, Arrays };
   Kind kind = Kind::Comment;
   std::variant<Comment, Declaration, Assignment, Unused, Return, std::shared_ptr<const View>,
-               std::shared_ptr<const Loop>, std::shared_ptr<const CallStatement>, std::shared_ptr<const Conditional>>
+               std::shared_ptr<const Loop>, std::shared_ptr<const CallStatement>, std::shared_ptr<const Conditional>,
+               std::shared_ptr<const LocalArrays>>
       node;
 
   const Declaration& declaration() const { return std::get<Declaration>(node); }
@@ -163,10 +185,12 @@ struct Statement {
   const Loop& loop() const { return *std::get<std::shared_ptr<const Loop>>(node); }
   const CallStatement& call() const { return *std::get<std::shared_ptr<const CallStatement>>(node); }
   const Conditional& conditional() const { return *std::get<std::shared_ptr<const Conditional>>(node); }
+  const LocalArrays& arrays() const { return *std::get<std::shared_ptr<const LocalArrays>>(node); }
 };
 
 Statement declare(const std::string& name, Type type, Expr value);          // a constant
 Statement declare_array(const std::string& name, Type type, std::size_t size);
+Statement local_arrays(std::vector<std::string> names, Type type, Expr length);
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable);
 Statement assign(Expr target, Expr value);
 Statement assign_all(std::vector<Expr> targets, Expr value);
@@ -174,6 +198,7 @@ Statement accumulate(Expr target, Expr value);
 Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Block body,
                std::optional<Loop::Follower> declares = std::nullopt, const std::string& steps = "");
 Statement call_statement(const std::string& function, std::vector<Expr> arguments);
+Statement call_file_function(const std::string& function, std::vector<Expr> arguments);
 Statement conditional(Expr condition, Block then);
 Statement return_value(std::optional<Expr> value);
 Statement comment(const std::string& text);

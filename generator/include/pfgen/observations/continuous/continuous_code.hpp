@@ -1,9 +1,8 @@
 #pragma once
 // The continuous observation dy = (A0 + A x) dt + B dW2 in code generation: ContinuousCode, its
-// methods by file (continuous_cpp_filter.cpp: the module's templates/cpp/filter.hpp.tmpl and its
-// Eigen layer; continuous_c_filter.cpp: templates/c/filter.h.tmpl and .c.tmpl; continuous_plugin.cpp: the
-// truth's observation and the plugin's table), and what the delayed module, whose filters have the
-// same functions and matrices, takes from it.
+// methods by file (continuous_code.cpp: its filter's file, layout "filter", described in no
+// language; continuous_plugin.cpp: the truth's observation and the plugin's table), and what the
+// delayed module, whose filters have the same functions and matrices, takes from it.
 #include <functional>
 #include <map>
 #include <optional>
@@ -18,10 +17,9 @@ namespace pfgen::codegen {
 
 class ContinuousCode final : public ObservationCode {
  public:
-  GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
-  GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
-  GeneratedFilter rust_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
-  std::vector<std::string> c_templates() const override;
+  FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                         const FunctionNames& names, const StatementEmitter& emitter) const override;
+  std::vector<std::string> layouts() const override { return {"filter"}; }
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<bool>& in_lanes) const override;
@@ -46,6 +44,12 @@ ContinuousFunctions continuous_functions(const Model& model, const FilterEquatio
 
 // What gain() computes, for the templates' comment.
 std::string gain_meaning(const FilterEquations& eq);
+
+// A rate filter's functions in its file (filter and delayed_filter): `derivatives`, `gain`,
+// `observation` (and `rates` when computed), the output arrays' names `K` and `h`, and
+// `gain_meaning`; the statistics in their order.
+void add_rate_functions(FilterFile& file, ContinuousFunctions functions, const FunctionNames& names,
+                        const FilterEquations& eq);
 
 // The placeholders every rate filter's templates (filter and delayed_filter, C++ and C) have for
 // these functions: `derivatives`, `gain`, `observation` (and `rates` when computed), each with

@@ -13,10 +13,7 @@
 // step went from 1.40x to 1.19x hand-written Eigen with these loops alone written out, -O3 and
 // -O3 -march=native unchanged (docs/benchmarks.md, "Generated code against hand-written code").
 #include <cstddef>
-#include <map>
-#include <string>
-
-#include "pfgen/codegen/ir/statement_emitter.hpp"
+#include "pfgen/codegen/ir/statements.hpp"
 
 namespace pfgen::codegen {
 
@@ -24,22 +21,12 @@ namespace pfgen::codegen {
 // state has at most 35 entries.
 inline constexpr std::size_t kStepWrittenOutBelow = 8;
 
-// What the loops read besides the step's own arrays, as the file names and spells them: the sizes
-// (C++: `n`; C: `<prefix>_n`) and the scalar 2 (C++: `Scalar(2)`; C: `2.0f`).
-struct HeunStepNames {
-  ir::Expr n, p, state_size, two;
-};
-
 struct HeunStepLoops {
   ir::Block increment, predicted, average;
 };
 
 // The loops for a filter of n states, p observations and a state of state_size entries (m, then
-// P's upper triangle).
-HeunStepLoops heun_step_loops(const HeunStepNames& names, std::size_t n, std::size_t p, std::size_t state_size);
-
-// Adds increment_loops, predicted_loop and average_loop to values, written by `emitter`.
-void add_heun_step_loops(std::map<std::string, std::string>& values, const StatementEmitter& emitter,
-                         const HeunStepNames& names, std::size_t n, std::size_t p, std::size_t state_size);
+// P's upper triangle). The loops run to the file's sizes n, p and state_size (ir::dimension).
+HeunStepLoops heun_step_loops(std::size_t n, std::size_t p, std::size_t state_size);
 
 }  // namespace pfgen::codegen

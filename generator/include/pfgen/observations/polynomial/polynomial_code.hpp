@@ -1,8 +1,7 @@
 #pragma once
 // The polynomial observation dy = h(x, t) dt + B dW2 in code generation: PolynomialCode, its
-// methods by file (polynomial_cpp_filter.cpp: the module's templates/cpp/polynomial_filter.hpp.tmpl
-// and its Eigen layer; polynomial_c_filter.cpp: templates/c/polynomial_filter.h.tmpl and .c.tmpl;
-// polynomial_plugin.cpp: the truth's observation rate and the plugin's table). A model whose h is
+// methods by file (polynomial_code.cpp: its filter's file, layout "polynomial_filter", described in
+// no language; polynomial_plugin.cpp: the truth's observation rate and the plugin's table). A model whose h is
 // linear in the states is the continuous observation written A0 + A x: its code is the continuous
 // module's, byte for byte.
 #include <map>
@@ -15,10 +14,10 @@ namespace pfgen::codegen {
 
 class PolynomialCode final : public ObservationCode {
  public:
-  GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
-  GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
-  GeneratedFilter rust_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
-  std::vector<std::string> c_templates() const override;
+  FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                         const FunctionNames& names, const StatementEmitter& emitter) const override;
+  // A linear h's file is the continuous module's ("filter").
+  std::vector<std::string> layouts() const override { return {"filter", "polynomial_filter"}; }
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<bool>& in_lanes) const override;
@@ -40,11 +39,6 @@ struct PolynomialFunctions {
 };
 PolynomialFunctions polynomial_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                          const FunctionNames& names, const StatementEmitter& emitter);
-
-// The placeholders of the module's templates for these functions (`<key>_ops`, `<key>_body`, and
-// with `split_parts` `<key>_helpers`) and the output arrays' names K, L, h, c.
-void add_polynomial_function_values(std::map<std::string, std::string>& values, const PolynomialFunctions& functions,
-                                    const FunctionNames& names, bool split_parts);
 
 // Whether the model's h is linear in the states: then every part is the continuous module's.
 bool written_linear(const Model& model);

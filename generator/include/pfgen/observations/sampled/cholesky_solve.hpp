@@ -12,12 +12,7 @@
 
 namespace pfgen::codegen {
 
-// What the solve reads besides PCt, S and K: the filter's dimension constants and the scalar 0 as
-// the file names and spells them (C++: `n`, `Scalar(0)`; C: `<prefix>_n`, `0.0f`).
-struct CholeskyNames {
-  ir::Expr n, p, zero;
-};
-
-ir::Block cholesky_gain_statements(std::size_t r, const CholeskyNames& names);
+// The solve for r outputs; the file's sizes n and p are its dimensions, spelt by the backend.
+ir::Block cholesky_gain_statements(std::size_t r);
 
 }  // namespace pfgen::codegen

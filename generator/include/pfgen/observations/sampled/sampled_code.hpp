@@ -1,8 +1,8 @@
 #pragma once
 // The sampled observation y_k = C0 + C x(t_k) + Uv v_k in code generation: SampledCode, its
-// methods by file (sampled_cpp_filter.cpp: the module's templates/cpp/sampled_filter.hpp.tmpl and its Eigen
-// layer; sampled_c_filter.cpp: templates/c/sampled_filter.h.tmpl and .c.tmpl; sampled_plugin.cpp:
-// the truth's sampled observation and the plugin's table), and the functions its filters consist of.
+// methods by file (sampled_code.cpp: its filter's file, layout "sampled_filter", described in no
+// language; sampled_plugin.cpp: the truth's sampled observation and the plugin's table), and the
+// functions its filters consist of.
 #include <cstddef>
 #include <map>
 #include <optional>
@@ -21,10 +21,10 @@ inline constexpr std::size_t kMaxSampledOutputs = 64;
 class SampledCode final : public ObservationCode {
  public:
   void check_size(const Model& model, const FilterEquations& eq) const override;  // kMaxSampledOutputs
-  GeneratedFilter cpp_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
-  GeneratedFilter c_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
-  GeneratedFilter rust_filter(const Model& model, const FilterEquations& eq, const CodegenOptions& options) const override;
-  std::vector<std::string> c_templates() const override;
+  FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                         const FunctionNames& names, const StatementEmitter& emitter) const override;
+  std::vector<std::string> layouts() const override { return {"sampled_filter"}; }
+  std::vector<std::string> declaring_frames() const override { return {"euler_square"}; }  // cd-euler's
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<bool>& in_lanes) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,

@@ -1,10 +1,11 @@
 // The C99 backend: its name, file layout, scalar modes and the check of the model's C names; a
-// filter's code is its observation module's (ObservationCode::c_filter).
+// filter's files are its observation module's description written by c_filter_writer.
 #include "pfgen/codegen/backends/c/c_backend.hpp"
 
 #include <regex>
 
 #include "pfgen/codegen/backend.hpp"
+#include "pfgen/codegen/backends/c/c_filter_writer.hpp"
 #include "pfgen/codegen/backends/c/c_names.hpp"
 #include "pfgen/codegen/observation_code.hpp"
 
@@ -34,7 +35,9 @@ class CBackend final : public Backend {
   GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
                               const CodegenOptions& options) const override {
     try {
-      return observation_code(eq.observation).c_filter(model, eq, options);
+      const ObservationCode& part = observation_code(eq.observation);
+      if (part.layouts().empty()) return part.c_filter(model, eq, options);
+      return write_c_filter(part, model, eq, options);
     } catch (const CPartNameError& e) {
       throw CodegenError(source_place(model) + e.what());
     }

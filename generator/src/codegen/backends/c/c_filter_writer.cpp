@@ -53,6 +53,8 @@ std::map<std::string, std::string> CFilterWriter::common_values(std::size_t p, s
       {"state", names.state},
       {"params", names.params},
       {"out", names.out},
+      {"zero", emitter.literal(0)},
+      {"one", emitter.literal(1)},
       {"two", emitter.literal(2)},
   };
 }
@@ -71,8 +73,46 @@ void CFilterWriter::write(const std::string& kind, std::map<std::string, std::st
   header_values.insert(header_only.begin(), header_only.end());
   source_values.insert(source_only.begin(), source_only.end());
   const std::string h = "c/" + kind + ".h.tmpl", c = "c/" + kind + ".c.tmpl";
-  result.files.at(0).contents = fill_template(h, embedded_template(h), values_in_template(h, header_values));
-  result.files.at(1).contents = fill_template(c, embedded_template(c), values_in_template(c, source_values));
+  result.files.at(0).contents = filled_template(h, header_values);
+  result.files.at(1).contents = filled_template(c, source_values);
+}
+
+GeneratedFilter write_c_filter(const ObservationCode& part, const Model& model, const FilterEquations& eq,
+                               const CodegenOptions& options) {
+  CFilterWriter w(model, eq, options);
+  FilterFile file = part.filter_file(model, eq, options, w.names, w.emitter);
+  w.result.functions = std::move(file.stats);
+  std::map<std::string, std::string> values = w.common_values(file.p, file.state_size, file.banner_extra);
+  for (const auto& [key, code] : file.functions) CFilterWriter::add_function(values, key, code);
+  for (const auto& [key, block] : file.blocks) values.emplace(key, w.emitter.block(block));
+  for (const auto& [key, number] : file.numbers) values.emplace(key, w.emitter.literal(number));
+  for (const auto& [key, flag] : file.flags) values.emplace(key, w.emitter.boolean(flag));
+  values.insert(file.words.begin(), file.words.end());
+  // A frame in each file whose template has its key: a function's definition in the .c (c/partials/<frame>.c.tmpl),
+  // its declaration in the .h (.h.tmpl).
+  std::map<std::string, std::string> header_only, source_only;
+  for (const auto& [key, frame] : file.frames)
+    for (auto [map, file_extension] : {std::pair{&header_only, "h"}, std::pair{&source_only, "c"}}) {
+      const std::string name = "c/" + file.layout + "." + file_extension + ".tmpl";
+      if (values_in_template(name, {{key, ""}}).count(key) == 0) continue;
+      map->emplace(key, frame.empty() ? "" : filled_template("c/partials/" + frame + "." + file_extension + ".tmpl", values));
+    }
+  w.write(file.layout, std::move(values), header_only, source_only);
+  return std::move(w.result);
+}
+
+std::vector<std::string> c_layout_templates(const std::vector<std::string>& layouts) {
+  std::vector<std::string> names;
+  for (const std::string& layout : layouts) names.insert(names.end(), {"c/" + layout + ".h.tmpl", "c/" + layout + ".c.tmpl"});
+  return names;
+}
+
+std::vector<std::string> c_module_templates(const ObservationCode& part) {
+  std::vector<std::string> names = c_layout_templates(part.layouts());
+  for (const std::string& frame : part.declaring_frames())
+    names.insert(names.end(), {"c/partials/" + frame + ".h.tmpl", "c/partials/" + frame + ".c.tmpl"});
+  for (const std::string& name : part.c_templates()) names.push_back(name);
+  return names;
 }
 
 }  // namespace pfgen::codegen

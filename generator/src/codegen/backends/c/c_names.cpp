@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "pfgen/codegen/backends/c/c_backend.hpp"
+#include "pfgen/codegen/backends/c/c_filter_writer.hpp"
 #include "pfgen/codegen/codegen_error.hpp"
 #include "pfgen/codegen/observation_code.hpp"
 #include "pfgen/codegen/template_text.hpp"
@@ -87,7 +88,9 @@ void check_c_names(const Model& model, const std::string& name_space) {
                          "', the prefix of every name the generated C code declares (include guards, enum "
                          "constants, functions), which it would replace or hide; give it another name");
 
-  const CNameSuffixes suffixes = c_name_suffixes(observation_code(model.observation).c_templates());
+  const ObservationCode& part = observation_code(model.observation);
+  const std::vector<std::string> templates = c_module_templates(part);
+  const CNameSuffixes suffixes = c_name_suffixes(templates);
   std::map<std::string, std::string> declared;          // name -> the filter declaring it
   std::vector<std::pair<std::string, std::string>> internal;  // (name, filter)
   for (const std::string& filter : available_filter_names(model)) {

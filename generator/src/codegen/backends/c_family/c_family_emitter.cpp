@@ -87,6 +87,13 @@ std::string CFamilyEmitter::declaration(const ir::Declaration& node, const std::
   return "const " + type(node.type) + " " + node.name + " = " + expression(*node.value) + ";";
 }
 
+std::string CFamilyEmitter::arrays(const ir::LocalArrays& node, const std::string&) const {
+  const std::string length = expression(node.length);
+  std::string text = type(node.type) + " ";
+  for (std::size_t k = 0; k < node.names.size(); ++k) text += (k ? ", " : "") + node.names[k] + "[" + length + "]";
+  return text + ";";
+}
+
 std::string CFamilyEmitter::view(const ir::View& node, const std::string&) const {
   return std::string(node.writable ? "" : "const ") + scalar_type_ + "* " + node.name + " = " + node.array + " + " +
          expression(node.offset) + ";";
@@ -116,7 +123,7 @@ std::string CFamilyEmitter::loop(const ir::Loop& node, const std::string& indent
 }
 
 std::string CFamilyEmitter::call_statement(const ir::CallStatement& node, const std::string&) const {
-  std::string text = node.function + "(";
+  std::string text = callee(node) + "(";
   for (std::size_t k = 0; k < node.arguments.size(); ++k) text += (k ? ", " : "") + expression(node.arguments[k]);
   return text + ");";
 }

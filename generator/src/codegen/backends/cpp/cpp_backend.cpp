@@ -1,8 +1,9 @@
-// The C++ backend: its name, file layout and scalar modes; a filter's code is its observation
-// module's (ObservationCode::cpp_filter).
+// The C++ backend: its name, file layout and scalar modes; a filter's files are its observation
+// module's description written by cpp_filter_writer.
 #include "pfgen/codegen/backends/cpp/cpp_backend.hpp"
 
 #include "pfgen/codegen/backend.hpp"
+#include "pfgen/codegen/backends/cpp/cpp_filter_writer.hpp"
 #include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
@@ -20,7 +21,9 @@ class CppBackend final : public Backend {
   ScalarMode default_scalar() const override { return ScalarMode::Template; }
   GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
                               const CodegenOptions& options) const override {
-    return observation_code(eq.observation).cpp_filter(model, eq, options);
+    const ObservationCode& part = observation_code(eq.observation);
+    if (part.layouts().empty()) return part.cpp_filter(model, eq, options);
+    return write_cpp_filter(part, model, eq, options);
   }
 };
 

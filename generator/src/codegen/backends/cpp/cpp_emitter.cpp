@@ -8,4 +8,10 @@ std::string CppEmitter::call(Function function, const std::vector<std::string>& 
   return out + ")";
 }
 
+std::string CppEmitter::arrays(const ir::LocalArrays& node, const std::string&) const {
+  std::string text = "std::array<" + type(node.type) + ", " + expression(node.length) + "> ";
+  for (std::size_t k = 0; k < node.names.size(); ++k) text += (k ? ", " : "") + node.names[k] + "{}";
+  return text + ";";
+}
+
 }  // namespace pfgen::codegen

@@ -1,7 +1,8 @@
 // The Rust backend's config: its name, file layout and scalar modes; a filter's module by its
-// observation module (ObservationCode::rust_filter).
+// observation module's description written by rust_filter_writer.
 #include "pfgen/codegen/backend.hpp"
 #include "pfgen/codegen/backends/rust/rust_filter_code.hpp"
+#include "pfgen/codegen/backends/rust/rust_filter_writer.hpp"
 #include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
@@ -25,9 +26,9 @@ class RustBackend final : public Backend {
   }
   GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
                               const CodegenOptions& options) const override {
-    // Each observation module writes its filter's module (<kind>_rust_filter.cpp), as it does in C
-    // and C++, until the modules describe their filters' whole files in the IR.
-    return observation_code(eq.observation).rust_filter(model, eq, options);
+    const ObservationCode& part = observation_code(eq.observation);
+    if (part.layouts().empty()) return part.rust_filter(model, eq, options);
+    return write_rust_filter(part, model, eq, options);
   }
 };
 

@@ -1,5 +1,7 @@
 #include "pfgen/codegen/backends/rust/rust_emitter.hpp"
 
+#include <cctype>
+
 #include "pfgen/codegen/codegen_error.hpp"
 #include "pfgen/kinds/model_functions.hpp"
 
@@ -59,6 +61,14 @@ std::string RustEmitter::constant(const GiNaC::numeric& value) const {
   return text;
 }
 
+std::string RustEmitter::dimension(const std::string& name) const {
+  if (name == "n") return "STATES";
+  if (name == "p") return "OBSERVATIONS";
+  std::string upper = name;
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return upper;
+}
+
 std::string RustEmitter::function_spelling(Function function) const {
   const ModelFunction* model = model_function(function_name(function));
   const std::string name = model ? model->c_name : function_name(function);
@@ -106,6 +116,17 @@ std::string RustEmitter::declaration(const ir::Declaration& node, const std::str
   return "let " + node.name + ": " + t + " = " + expression(*node.value) + ";";
 }
 
+std::string RustEmitter::arrays(const ir::LocalArrays& node, const std::string& indent) const {
+  const std::string zero = node.type == ir::Type::Scalar ? constant(GiNaC::numeric(0)) : "0";
+  const std::string t = node.type == ir::Type::Int ? "usize" : type(node.type);
+  const std::string length = expression(node.length);
+  std::string text;
+  for (std::size_t k = 0; k < node.names.size(); ++k)
+    text += (k ? "\n" + indent : "") + "let mut " + node.names[k] + ": [" + t + "; " + length + "] = [" + zero + "; " +
+            length + "];";
+  return text;
+}
+
 std::string RustEmitter::view(const ir::View& node, const std::string&) const {
   const std::string offset = expression(node.offset);
   return "let " + node.name + " = &" + (node.writable ? "mut " : "") + node.array + "[" + offset + ".." + offset +
@@ -135,7 +156,7 @@ std::string RustEmitter::loop(const ir::Loop& node, const std::string& indent) c
 
 std::string RustEmitter::call_statement(const ir::CallStatement& node, const std::string&) const {
   // The IR's calls pass names as they are: scalars, and arrays that are already references.
-  std::string text = node.function + "(";
+  std::string text = callee(node) + "(";
   for (std::size_t k = 0; k < node.arguments.size(); ++k) text += (k ? ", " : "") + expression(node.arguments[k]);
   return text + ");";
 }

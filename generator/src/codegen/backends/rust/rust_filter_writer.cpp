@@ -46,6 +46,7 @@ std::map<std::string, std::string> RustFilterWriter::common_values(std::size_t p
       {"params", names.params},
       {"out", names.out},
       {"zero", emitter.literal_text(0)},
+      {"one", emitter.literal_text(1)},
       {"two", emitter.literal_text(2)},
   };
 }
@@ -60,7 +61,26 @@ void RustFilterWriter::add_function(std::map<std::string, std::string>& values, 
 void RustFilterWriter::write(const std::string& kind, std::map<std::string, std::string> values) {
   const std::string name = "rust/" + kind + ".rs.tmpl";
   values["math"] = emitter.math_declarations();
-  result.files.at(0).contents = fill_template(name, embedded_template(name), values_in_template(name, values));
+  result.files.at(0).contents = filled_template(name, values);
+}
+
+GeneratedFilter write_rust_filter(const ObservationCode& part, const Model& model, const FilterEquations& eq,
+                                  const CodegenOptions& options) {
+  RustFilterWriter w(model, eq, options);
+  FilterFile file = part.filter_file(model, eq, options, w.names, w.emitter);
+  w.result.functions = std::move(file.stats);
+  std::map<std::string, std::string> values = w.common_values(file.p, file.state_size, file.banner_extra);
+  for (const auto& [key, code] : file.functions) RustFilterWriter::add_function(values, key, code);
+  for (const auto& [key, block] : file.blocks) values.emplace(key, w.body(block));
+  for (const auto& [key, number] : file.numbers) values.emplace(key, w.emitter.literal_text(number));
+  for (const auto& [key, flag] : file.flags) values.emplace(key, w.emitter.boolean(flag));
+  values.insert(file.words.begin(), file.words.end());
+  // Each frame the layout's template has (rust/partials/<frame>.rs.tmpl).
+  for (const auto& [key, frame] : file.frames)
+    if (values_in_template("rust/" + file.layout + ".rs.tmpl", {{key, ""}}).count(key) != 0)
+      values.emplace(key, frame.empty() ? "" : filled_template("rust/partials/" + frame + ".rs.tmpl", values));
+  w.write(file.layout, std::move(values));
+  return std::move(w.result);
 }
 
 }  // namespace pfgen::codegen

@@ -1,11 +1,11 @@
 #pragma once
-// The C99 backend's config (Backend, codegen/backend.hpp): a .h/.c pair per filter (its observation
-// module's templates/c/), every external name prefixed <prefix>_ = <namespace, `::` written
+// The C99 backend's config (Backend, codegen/backend.hpp): a .h/.c pair per filter (this folder's
+// templates/, one pair per layout), every external name prefixed <prefix>_ = <namespace, `::` written
 // `_`>_<model>_<filter identifier>_. No heap, no variable-length arrays; float or double; <math.h>
 // only for sqrt (sampled filters' update) and the functions the model's own equations call.
 // Parameters are a record the caller owns; a delayed filter's history is an array the caller owns
-// (or the <prefix>_filter record). Each observation module fills its own pair of templates
-// (templates/c/) in its <kind>_c_filter through CFilterWriter (c_filter_writer.hpp).
+// (or the <prefix>_filter record). c_filter_writer.hpp writes any observation module's
+// description of the file into the pair of its layout.
 #include <string>
 #include <vector>
 

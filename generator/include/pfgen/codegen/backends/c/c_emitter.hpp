@@ -20,6 +20,10 @@ class CEmitter : public CFamilyEmitter {
   // The <math.h> name of a function for this scalar type: "sin" or "sinf", "fabs" for abs.
   std::string function_spelling(Function function) const;
   std::string boolean(bool value) const override { return value ? "1" : "0"; }
+  // The file's sizes are constants after its prefix: <prefix>_n.
+  std::string dimension(const std::string& name) const override { return symbol_prefix_ + "_" + name; }
+  // And so are its functions: <prefix>_derivatives.
+  std::string file_function(const std::string& name) const override { return symbol_prefix_ + "_" + name; }
 
  protected:
   std::string field_access() const override { return "->"; }

@@ -1,13 +1,15 @@
 #pragma once
-// What every C filter's .h/.c pair shares, whatever its observation (each observation module's
-// <kind>_c_filter fills its own c/ pair of templates with these and its functions' bodies): the
-// writer of both files (the names C cannot declare are the kind registry's, refused when the model is read).
+// The C backend's writer of a filter's .h/.c pair: any observation module's description of the
+// file (filter_file.hpp) into the backend's templates c/<layout>.h.tmpl and .c.tmpl, with what
+// every C file has (the names' prefix, the scalar, the parameter record). The names C cannot
+// declare are the kind registry's, refused when the model is read.
 #include <map>
 #include <string>
 #include <vector>
 
 #include "pfgen/codegen/backends/c/c_emitter.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
+#include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
 
@@ -37,5 +39,17 @@ struct CFilterWriter {
              const std::map<std::string, std::string>& header_only, const std::map<std::string, std::string>& source_only);
 
 };
+
+// The filter's .h and .c from `part`'s description of its file.
+GeneratedFilter write_c_filter(const ObservationCode& part, const Model& model, const FilterEquations& eq,
+                               const CodegenOptions& options);
+
+// The templates of these layouts (c/<layout>.h.tmpl and .c.tmpl), whose declared names the
+// model's C names are checked against.
+std::vector<std::string> c_layout_templates(const std::vector<std::string>& layouts);
+
+// The C templates whose declared names the model's are checked against for `part`: its layouts'
+// and its declaring frames' (c/partials/<frame>.h.tmpl and .c.tmpl), and any c_templates().
+std::vector<std::string> c_module_templates(const ObservationCode& part);
 
 }  // namespace pfgen::codegen

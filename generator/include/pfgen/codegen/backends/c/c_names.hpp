@@ -2,7 +2,7 @@
 // The file-scope names of a model's C filters, and what they must be to build in every C dialect a
 // user compiles with (C99, gcc's default gnu17, C++ through the headers' extern "C") with every
 // filter of the model in one program. A filter's files declare its prefix (c_symbol_prefix) followed
-// by `_` and a suffix of its observation module's templates (ObservationCode::c_templates), and the
+// by `_` and a suffix of the C templates of its observation module's layouts (c_layout_templates), and the
 // static parts of a split function (`<function>_part<k>`).
 //
 // C99 (5.2.4.1) promises 63 significant initial characters in an internal identifier or a macro

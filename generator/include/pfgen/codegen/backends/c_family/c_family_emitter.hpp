@@ -45,6 +45,7 @@ class CFamilyEmitter : public StatementEmitter {
   }
   std::string greater(const std::string& a, const std::string& b) const override { return a + " > " + b; }
   std::string logical_not(const std::string& a) const override { return "!" + a; }
+  std::string local_array(const std::string& array, bool) const override { return array; }
   // StatementEmitter's statements.
   std::string declaration(const ir::Declaration& node, const std::string& indent) const override;
   std::string view(const ir::View& node, const std::string& indent) const override;
@@ -55,6 +56,7 @@ class CFamilyEmitter : public StatementEmitter {
   std::string return_statement(const ir::Return& node, const std::string& indent) const override;
   std::string comment(const ir::Comment& node, const std::string& indent) const override;
   std::string unused(const ir::Unused& node, const std::string& indent) const override;
+  std::string arrays(const ir::LocalArrays& node, const std::string& indent) const override;
 
  protected:
   // "." (C++: a reference) or "->" (C: a pointer): how a field of the parameter record is read.

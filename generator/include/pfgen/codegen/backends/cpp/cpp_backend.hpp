@@ -1,9 +1,9 @@
 #pragma once
 // The C++ backend's config (Backend, codegen/backend.hpp): a header-only C++ file per filter in
 // namespace <NS>::<model>::<filter>, and with CodegenOptions::eigen_wrapper its Eigen layer
-// <filter>_eigen.hpp (not for delayed filters). Each observation module fills its own templates (its
-// templates/cpp/: filter.hpp.tmpl, sampled_filter.hpp.tmpl, delayed_filter.hpp.tmpl) in its
-// <kind>_cpp_filter, with what every header shares (cpp_filter_parts.hpp).
+// <filter>_eigen.hpp (not for delayed filters). cpp_filter_writer.hpp writes any observation
+// module's description of the file into this folder's templates/<layout>.hpp.tmpl, with what every
+// header shares (cpp_filter_parts.hpp).
 #include <string>
 #include <vector>
 

@@ -1,6 +1,6 @@
 #pragma once
-// What every C++ filter header shares, whatever its observation (each observation module's
-// <kind>_cpp_filter fills its own template with these and its functions' bodies).
+// What every C++ filter header shares, whatever its observation: the values cpp_filter_writer
+// fills every layout's template with besides the file's own, and the Eigen layer.
 #include <map>
 #include <string>
 #include <vector>

@@ -39,6 +39,8 @@ class RustEmitter : public CFamilyEmitter {
   std::string call(Function function, const std::vector<std::string>& args) const override;
   std::string zero_where_zero(const std::string& guard, const std::string& value) const override;
   std::string boolean(bool value) const override { return value ? "true" : "false"; }
+  // The module's constants: STATES (n), OBSERVATIONS (p), the others' names in capitals (STATE_SIZE).
+  std::string dimension(const std::string& name) const override;
 
   std::string declaration(const ir::Declaration& node, const std::string& indent) const override;
   std::string view(const ir::View& node, const std::string& indent) const override;
@@ -47,6 +49,11 @@ class RustEmitter : public CFamilyEmitter {
   std::string call_statement(const ir::CallStatement& node, const std::string& indent) const override;
   std::string conditional(const ir::Conditional& node, const std::string& indent) const override;
   std::string unused(const ir::Unused& node, const std::string& indent) const override;
+  // Local arrays: one zero-filled `let mut` each, borrowed by calls (`&a`, `&mut a`).
+  std::string arrays(const ir::LocalArrays& node, const std::string& indent) const override;
+  std::string local_array(const std::string& array, bool writable) const override {
+    return (writable ? "&mut " : "&") + array;
+  }
 
   // The <math.h> name of a function for this scalar type: "sin" or "sinf", "fabs" for abs.
   std::string function_spelling(Function function) const;

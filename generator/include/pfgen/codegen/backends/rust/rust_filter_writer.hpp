@@ -1,8 +1,9 @@
 #pragma once
-// What every Rust filter module shares, whatever its observation: the writer of its one file
-// (templates/rust/<kind>.rs.tmpl with the partial rust/partials/head.rs.tmpl): the banner, the
-// crate attributes, the scalar type and dimensions, the parameter record, the <math.h>
-// declarations the bodies need; the functions' bodies in Rust's indentation.
+// The Rust backend's writer of a filter's module: any observation module's description of the
+// file (filter_file.hpp) into the backend's template rust/<layout>.rs.tmpl (with the partial
+// rust/partials/head.rs.tmpl), with what every module has: the banner, the crate attributes, the
+// scalar type and dimensions, the parameter record, the <math.h> declarations the bodies need;
+// the functions' bodies and statements in Rust's indentation.
 #include <map>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "pfgen/codegen/backends/rust/rust_emitter.hpp"
 #include "pfgen/codegen/filter_codegen.hpp"
 #include "pfgen/codegen/filter_functions.hpp"
+#include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
 
@@ -36,5 +38,9 @@ struct RustFilterWriter {
   // body is written before this).
   void write(const std::string& kind, std::map<std::string, std::string> values);
 };
+
+// The filter's module from `part`'s description of its file.
+GeneratedFilter write_rust_filter(const ObservationCode& part, const Model& model, const FilterEquations& eq,
+                                  const CodegenOptions& options);
 
 }  // namespace pfgen::codegen

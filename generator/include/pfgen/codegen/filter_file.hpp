@@ -1,0 +1,64 @@
+#pragma once
+// What a filter's file holds, in no language: an observation module's description of it
+// (ObservationCode::filter_file), which each backend's writer (codegen/backends/<language>/
+// <language>_filter_writer) turns into its files by filling its templates for the file's layout.
+// The module chooses the layout, the functions and the statements; the backend owns every word of
+// its language (names' prefixes, types, the scalar's literals, how a function is framed). The
+// functions' bodies are already written by the backend's emitter, which the backend passes to the
+// module: each body is lowered once, in the backend's language.
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <ginac/ginac.h>
+
+#include "pfgen/codegen/filter_functions.hpp"
+#include "pfgen/codegen/ir/statements.hpp"
+
+namespace pfgen::codegen {
+
+struct FilterFile {
+  // Which frame the file has: a backend writes it from its templates of this name
+  // (backends/<language>/templates/<layout>.*): "filter" (a rate's Heun step), "polynomial_filter",
+  // "sampled_filter", "delayed_filter".
+  std::string layout;
+  // The file's sizes beyond the model's n: p (observations, or a sample's outputs) and the entries
+  // of the filter's state.
+  std::size_t p = 0, state_size = 0;
+  // Lines the banner has after its first (each ending in a newline): a delayed filter's grid.
+  std::string banner_extra;
+  // Whether the state is m and P's upper triangle alone, so that a layer may view it as a vector
+  // and a matrix (C++'s --eigen wrappers); false for a state with more (x*) and a history.
+  bool state_is_m_and_P = true;
+
+  // The functions, under their templates' keys (`<key>_ops`, `<key>_body`, and where the language
+  // splits a body into functions of its own, `<key>_helpers`).
+  std::vector<std::pair<std::string, FunctionCode>> functions;
+  // Statements under their templates' keys (`initial_body`, the step's loops), each written by the
+  // backend's emitter as a block of the function the template puts it in.
+  std::map<std::string, ir::Block> blocks;
+  // Text the same in every language: comments' words (`gain_meaning`), the output arrays' names
+  // (`K`, `h`), counts.
+  std::map<std::string, std::string> words;
+  // Numbers of the scalar type (a sampling period, a delay), written as the language's literals.
+  std::map<std::string, GiNaC::numeric> numbers;
+  // Text the backend holds for each language, chosen by the module, under their templates' keys:
+  // key -> the name of a partial of the backend's ("" for none). A function framed by its comment
+  // and signature (euler_square() of a cd-euler filter, the body inside), or a part whose text
+  // differs by language in more than names (the delayed history's ring for the delay's case).
+  // Each backend fills <language>/partials/<name>.* with the file's values into every template of
+  // the layout that has `key` (C: the .c.tmpl into the source, the .h.tmpl into the header).
+  std::map<std::string, std::string> frames;
+  // Truth values (`uses_x_star`), written as the language's.
+  std::map<std::string, bool> flags;
+  // The functions' statistics in the order of the banner and --stats.
+  std::vector<FunctionStats> stats;
+
+  // Adds a function under `key`.
+  void add_function(const std::string& key, FunctionCode code) { functions.emplace_back(key, std::move(code)); }
+};
+
+}  // namespace pfgen::codegen
