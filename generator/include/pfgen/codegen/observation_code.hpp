@@ -51,9 +51,9 @@ class ObservationCode {
   // once (its code is arithmetic alone and small: kMaxLaneOps, simulation_plugin.hpp).
   virtual std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                                       const std::vector<bool>& in_lanes) const = 0;
-  // The ABI table's observation fields this observation has (the others keep
-  // plugin_table_defaults()): the filters' table and its count, the observation functions, the
-  // period or the delay.
+  // The ABI table's fields this observation's filters have (the others keep
+  // plugin_table_defaults()): the filters' table and its count, the period or the delay (the
+  // truth's observation functions are the truth's, TruthCode).
   virtual std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                           const std::vector<std::string>& labels,
                                                           std::optional<double> grid_step,
