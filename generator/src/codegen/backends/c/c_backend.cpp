@@ -35,7 +35,7 @@ class CBackend final : public Backend {
   GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
                               const CodegenOptions& options) const override {
     try {
-      const ObservationCode& part = observation_code(eq.observation);
+      const ObservationCode& part = observation_code(model.observation);
       if (part.layouts().empty()) return part.c_filter(model, eq, options);
       return write_c_filter(part, model, eq, options);
     } catch (const CPartNameError& e) {

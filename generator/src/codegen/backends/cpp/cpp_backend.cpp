@@ -21,7 +21,7 @@ class CppBackend final : public Backend {
   ScalarMode default_scalar() const override { return ScalarMode::Template; }
   GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
                               const CodegenOptions& options) const override {
-    const ObservationCode& part = observation_code(eq.observation);
+    const ObservationCode& part = observation_code(model.observation);
     if (part.layouts().empty()) return part.cpp_filter(model, eq, options);
     return write_cpp_filter(part, model, eq, options);
   }

@@ -26,7 +26,7 @@ class RustBackend final : public Backend {
   }
   GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
                               const CodegenOptions& options) const override {
-    const ObservationCode& part = observation_code(eq.observation);
+    const ObservationCode& part = observation_code(model.observation);
     if (part.layouts().empty()) return part.rust_filter(model, eq, options);
     return write_rust_filter(part, model, eq, options);
   }
