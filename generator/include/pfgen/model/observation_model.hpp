@@ -5,8 +5,8 @@
 //   rate:   rows h_r(x, t) polynomial in the states with their noise matrix (B, or a sample's Uv),
 //           with A0 + A x, the affine case, found once when the rate is made.
 // The kind printed in messages and listed by the filter kinds' registry (kinds/observation_kinds)
-// is a name derived from the axes, kind(); the rooms above reach what the observation means to
-// them through the module of that name (observations/<kind>/).
+// is a name derived from the axes, kind(). The rooms above choose their part (observations/<kind>/)
+// from the axes, each in one function (observation_derivation, observation_report, ...).
 #include <cstddef>
 #include <optional>
 #include <vector>
