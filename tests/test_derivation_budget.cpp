@@ -202,9 +202,9 @@ TEST_CASE("the derivation budget counts a polynomial h and a sampled c as it cou
   const std::vector<std::string> two = {"x1^14*x2^14", "x1^14*x2^14 + x1"};
   auto budget = [&](const std::string& B) {
     const Model model = observed_through(two, false, B);
-    std::vector<Polynomial> rows;
-    for (const auto& h : model.observation.polynomial().h) rows.push_back(Polynomial::from_ex(h, model.states));
-    check_observation_budget(model, ObservationPolynomials{rows, "observation.h", false, model.observation.polynomial().B},
+    check_observation_budget(model,
+                             ObservationPolynomials{model.observation.rate().polynomials(model.states), "observation.h",
+                                                    false, model.observation.rate().noise()},
                              true);
   };
   CHECK_NOTHROW(budget("[\"1\", \"0\"], [\"0\", \"1\"]"));

@@ -163,7 +163,7 @@ void check_close(const std::vector<double>& generated, const std::vector<double>
 std::vector<std::vector<double>> noise_covariance(const Model& model) {
   GiNaC::exmap defaults;
   for (const auto& parameter : model.parameters) defaults[parameter.symbol] = parameter.default_value;
-  const ExMatrix& B = model.observation.polynomial().B;
+  const ExMatrix& B = model.observation.rate().noise();
   std::vector<std::vector<double>> R(B.size(), std::vector<double>(B.size()));
   for (std::size_t r = 0; r < B.size(); ++r)
     for (std::size_t q = 0; q < B.size(); ++q)

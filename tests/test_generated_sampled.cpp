@@ -145,17 +145,18 @@ long double value_of(const Model& model, const GiNaC::ex& e, double t) {
 }
 
 Observation observation_at(const Model& model, double t) {
-  const SampledObservation& o = model.observation.sampled();
-  const auto r = static_cast<Eigen::Index>(o.C.size()), n = static_cast<Eigen::Index>(model.n());
-  const auto q = static_cast<Eigen::Index>(o.Uv[0].size());
+  REQUIRE(model.observation.rate().affine());
+  const AffineRate& o = *model.observation.rate().affine();  // C0 + C x with noise Uv: A0, A, B
+  const auto r = static_cast<Eigen::Index>(o.A.size()), n = static_cast<Eigen::Index>(model.n());
+  const auto q = static_cast<Eigen::Index>(o.B[0].size());
   Observation out{MatL(r, n), MatL(r, r), VecL(r)};
   MatL Uv(r, q);
   for (Eigen::Index i = 0; i < r; ++i) {
-    out.C0(i) = value_of(model, o.C0[static_cast<std::size_t>(i)], t);
+    out.C0(i) = value_of(model, o.A0[static_cast<std::size_t>(i)], t);
     for (Eigen::Index j = 0; j < n; ++j)
-      out.C(i, j) = value_of(model, o.C[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)], t);
+      out.C(i, j) = value_of(model, o.A[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)], t);
     for (Eigen::Index j = 0; j < q; ++j)
-      Uv(i, j) = value_of(model, o.Uv[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)], t);
+      Uv(i, j) = value_of(model, o.B[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)], t);
   }
   out.R = Uv * Uv.transpose();
   return out;

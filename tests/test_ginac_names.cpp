@@ -85,7 +85,7 @@ TEST_CASE("GiNaC's names: a model's state or parameter of that name is the model
     CHECK(as_state.state_names.at(0) == name);
     CHECK(GiNaC::ex_to<GiNaC::symbol>(x).get_name() == name);
     CHECK((as_state.drift.at(0) - (-a * x + GiNaC::numeric(1, 4) * GiNaC::pow(x, 2))).expand().is_zero());
-    CHECK((as_state.observation.polynomial().h.at(0) - (GiNaC::pow(x, 3) + a * x)).expand().is_zero());
+    CHECK((as_state.observation.rate().rows().at(0) - (GiNaC::pow(x, 3) + a * x)).expand().is_zero());
     // As a parameter: its own symbol, whose value --set changes (Euler was read as 0.5772...).
     const pfgen::Model as_parameter = pfgen::load_model_text(model_text(other, name), "m.yaml");
     const GiNaC::ex p = as_parameter.parameters.at(0).symbol, y = as_parameter.states.at(0);

@@ -38,7 +38,7 @@ TEST_CASE("polynomial observation: linear h gives the linear observation's filte
   const FilterVariables vars(2);
   const std::vector<GiNaC::symbol> x = x_symbols(2);
   const GiNaC::symbol a("a"), r("r"), t("t");
-  ContinuousObservation linear;
+  AffineRate linear;
   linear.A0 = {3 * t, GiNaC::ex(0)};
   linear.A = {{1, a}, {GiNaC::numeric(1, 2), 2}};
   linear.B = {{r, 0}, {GiNaC::numeric(1, 10), 1}};

@@ -114,8 +114,8 @@ Expected textbook_ekf(const Model& model, const ExMatrix& g, const FilterEquatio
   GiNaC::matrix gm = to_matrix(g);
   for (unsigned i = 0; i < gm.rows(); ++i)
     for (unsigned k = 0; k < gm.cols(); ++k) gm(i, k) = gm(i, k).subs(at_m);
-  GiNaC::matrix A = to_matrix(model.observation.continuous().A);
-  GiNaC::matrix Bm = to_matrix(model.observation.continuous().B);
+  GiNaC::matrix A = to_matrix(model.observation.rate().affine()->A);
+  GiNaC::matrix Bm = to_matrix(model.observation.rate().noise());
   GiNaC::matrix Rinv = Bm.mul(Bm.transpose()).inverse();
   GiNaC::matrix gain = P.mul(A.transpose()).mul(Rinv);
   GiNaC::matrix drift = J.mul(P).add(P.mul(J.transpose())).add(gm.mul(gm.transpose())).sub(gain.mul(A).mul(P));

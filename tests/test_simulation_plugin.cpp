@@ -219,7 +219,7 @@ void check_truth(const pfgen::Model& model, const SimulationPlugin& plugin) {
 }
 
 void check_observation(const pfgen::Model& model, const SimulationPlugin& plugin) {
-  const std::size_t n = model.n(), p = model.p(), r = model.observation.continuous().B.front().size();
+  const std::size_t n = model.n(), p = model.p(), r = model.observation.rate().noise().front().size();
   REQUIRE(plugin.p() == p);
   REQUIRE(plugin.r() == r);
   pfgen_runtime::Observation observation = plugin.observation();
@@ -232,7 +232,7 @@ void check_observation(const pfgen::Model& model, const SimulationPlugin& plugin
     observation.rate().value(t, x.data(), h0.data());
     for (std::size_t i = 0; i < p; ++i) {
       A0[i] = h0[static_cast<Eigen::Index>(i)];
-      A0_expected.push_back(evaluate(model, model.observation.continuous().A0[i], t, none));
+      A0_expected.push_back(evaluate(model, model.observation.rate().affine()->A0[i], t, none));
     }
     check_close(A0, A0_expected, 1e-14, "A0");
     for (std::size_t j = 0; j < n; ++j) {
@@ -243,7 +243,7 @@ void check_observation(const pfgen::Model& model, const SimulationPlugin& plugin
       std::vector<double> column, expected;
       for (std::size_t i = 0; i < p; ++i) {
         column.push_back(h[static_cast<Eigen::Index>(i)] - h0[static_cast<Eigen::Index>(i)]);
-        expected.push_back(evaluate(model, model.observation.continuous().A[i][j], t, none));
+        expected.push_back(evaluate(model, model.observation.rate().affine()->A[i][j], t, none));
       }
       check_close(column, expected, 1e-14, "A column");
     }
@@ -251,7 +251,7 @@ void check_observation(const pfgen::Model& model, const SimulationPlugin& plugin
     std::vector<double> raw_A0(p), raw_A(p * n), B(p * r), B_expected;
     plugin.table().observation(t, raw_A0.data(), raw_A.data(), B.data());
     for (std::size_t i = 0; i < p; ++i)
-      for (std::size_t k = 0; k < r; ++k) B_expected.push_back(evaluate(model, model.observation.continuous().B[i][k], t, none));
+      for (std::size_t k = 0; k < r; ++k) B_expected.push_back(evaluate(model, model.observation.rate().noise()[i][k], t, none));
     check_close(B, B_expected, 1e-14, "B");
   }
 }
@@ -284,8 +284,8 @@ std::vector<double> increment(const pfgen::Model& model, const pfgen::FilterEqua
   for (std::size_t i = 0; i < n; ++i) {
     double d = value.m_drift[i] * dt;
     for (std::size_t r = 0; r < p; ++r) {
-      double h = evaluate(model, model.observation.continuous().A0[r], t, m);
-      for (std::size_t j = 0; j < n; ++j) h += evaluate(model, model.observation.continuous().A[r][j], t, m) * m[j];
+      double h = evaluate(model, model.observation.rate().affine()->A0[r], t, m);
+      for (std::size_t j = 0; j < n; ++j) h += evaluate(model, model.observation.rate().affine()->A[r][j], t, m) * m[j];
       d += value.gain[i][r] * (dy[r] - h * dt);
     }
     delta.push_back(d);
@@ -456,10 +456,11 @@ TEST_CASE("plugin: a random cubic system with multiplicative noise and a time-va
   options.identity_observation = false;
   pfgen_test::RandomSystem s = pfgen_test::make_random_system(rng, options, "random_cubic");
   // A time- and parameter-dependent observation, to exercise the time-varying path.
-  pfgen::ContinuousObservation observation = s.model.observation.continuous();
+  pfgen::AffineRate observation = *s.model.observation.rate().affine();
   observation.A0[0] = observation.A0[0] + GiNaC::sin(s.t) / 2;
   observation.A[0][0] = observation.A[0][0] * (1 + s.a) + s.t;
-  s.model.observation = observation;
+  s.model.observation = pfgen::ObservationModel(
+      pfgen::ObservationRate::of_affine(observation.A0, observation.A, observation.B), std::nullopt, std::nullopt);
   const auto filters = all_filters(s.model);
   const SimulationPlugin plugin(built("random", s.model, filters).build.path);
   CHECK(plugin.q() == 2);

@@ -241,7 +241,7 @@ int run_derive(const DeriveOptions& options) {
     if (options.format == "text") {
       write_equations_text(std::cout, model, eq);
     } else if (options.format == "latex") {
-      std::cout << noise_latex(model) << equations_latex(eq);
+      std::cout << noise_latex(model) << equations_latex(model, eq);
     } else {
       equations_json(model, eq).dump(std::cout);
     }

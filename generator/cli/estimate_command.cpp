@@ -26,17 +26,11 @@ std::string number(double value) { return std::isnan(value) ? "" : pfgen_support
 // noise is B/sqrt(dt) about the state); increments are in other units.
 std::vector<std::optional<std::size_t>> directly_observed(const Model& model, bool rates) {
   std::vector<std::optional<std::size_t>> out(model.p());
-  const ExVector* offset = nullptr;
-  const ExMatrix* rows = nullptr;
-  if (model.observation.is_sampled() && !model.observation.sampled().is_polynomial()) {
-    offset = &model.observation.sampled().C0;
-    rows = &model.observation.sampled().C;
-  } else if (rates && model.observation.kind() == ObservationKind::Continuous) {
-    offset = &model.observation.continuous().A0;
-    rows = &model.observation.continuous().A;
-  } else {
-    return out;
-  }
+  // The rate as written C0 + C x or A0 + A x, undelayed (a delayed row sees the state h ago).
+  const ObservationModel& observation = model.observation;
+  if (!observation.rate().written_affine() || observation.delay_h() || !(observation.samples() || rates)) return out;
+  const ExVector* offset = &observation.rate().affine()->A0;
+  const ExMatrix* rows = &observation.rate().affine()->A;
   for (std::size_t i = 0; i < model.p(); ++i) {
     if (!offset->empty() && !(*offset)[i].is_zero()) continue;
     std::optional<std::size_t> state;

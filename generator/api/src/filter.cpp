@@ -20,7 +20,7 @@ std::string Filter::text() const {
 }
 
 std::string Filter::latex() const {
-  return guarded([&] { return noise_latex(impl_->model->model) + equations_latex(impl_->equations); });
+  return guarded([&] { return noise_latex(impl_->model->model) + equations_latex(impl_->model->model, impl_->equations); });
 }
 
 std::string Filter::json() const {

@@ -54,7 +54,7 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
                   terms, options.max_equation_terms, terms * 0.2e3 / 1e9);
     throw CodegenError(source_place(model) + "filter '" + eq.name + "' of model " + model.name + " " + text);
   }
-  observation_code(eq.observation).check_size(model, eq);
+  observation_code(model.observation).check_size(model, eq);
   try {
     return backend(options.language).filter_code(model, eq, options);
   } catch (const CodegenError& e) {

@@ -13,4 +13,10 @@ const ObservationCode& observation_code(ObservationKind kind) {
   return observation_part(kind, parts);
 }
 
+const ObservationCode& observation_code(const ObservationModel& observation) {
+  if (observation.samples()) return sampled_observation_code();
+  if (observation.delay_h()) return delayed_observation_code();
+  return observation.rate().affine() ? continuous_observation_code() : polynomial_observation_code();
+}
+
 }  // namespace pfgen::codegen

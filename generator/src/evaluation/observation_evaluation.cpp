@@ -16,11 +16,12 @@ void refuse_delayed_inputs(const Model& model, const FilterEquations& eq, const 
                             " has none)");
 }
 
-const ObservationEvaluation& observation_evaluation(ObservationKind kind) {
-  static const ObservationEvaluation* const parts[kObservationKindCount] = {
-      &continuous_observation_evaluation(), &sampled_observation_evaluation(), &delayed_observation_evaluation(),
-      &polynomial_observation_evaluation()};
-  return observation_part(kind, parts);
+// The one place eval's part is chosen from the axes.
+const ObservationEvaluation& observation_evaluation(const ObservationModel& observation) {
+  if (observation.samples()) return sampled_observation_evaluation();
+  if (observation.delay_h()) return delayed_observation_evaluation();
+  return observation.rate().written_affine() ? continuous_observation_evaluation()
+                                             : polynomial_observation_evaluation();
 }
 
 }  // namespace pfgen

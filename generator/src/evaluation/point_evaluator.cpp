@@ -48,7 +48,7 @@ void check_point(const Model& model, const FilterEquations& eq, const Evaluation
 }  // namespace
 
 EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const EvaluationPoint& point) {
-  const ObservationEvaluation& observation = observation_evaluation(eq.observation);
+  const ObservationEvaluation& observation = observation_evaluation(model.observation);
   check_point(model, eq, point, observation);
   return observation.evaluate(model, eq, point);
 }

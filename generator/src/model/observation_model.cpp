@@ -1,7 +1,6 @@
 #include "pfgen/model/observation_model.hpp"
 
 #include <algorithm>
-#include <stdexcept>
 
 #include "pfgen/algebra/polynomial.hpp"
 #include "pfgen/model/polynomial_shape.hpp"
@@ -83,77 +82,12 @@ unsigned ObservationRate::degree(const std::vector<GiNaC::symbol>& states) const
 
 ObservationModel::ObservationModel(ObservationRate rate, std::optional<SampleTimes> samples,
                                    std::optional<GiNaC::numeric> delay)
-    : rate_(std::move(rate)), samples_(std::move(samples)), delay_(std::move(delay)) {
-  switch (kind()) {
-    case ObservationKind::Continuous:
-      view_ = *rate_.affine();
-      break;
-    case ObservationKind::Delayed:
-      view_ = DelayedObservation{*delay_, *rate_.affine()};
-      break;
-    case ObservationKind::Polynomial:
-      view_ = PolynomialObservation{rate_.rows(), rate_.noise()};
-      break;
-    case ObservationKind::Sampled: {
-      SampledObservation sampled{samples_->period, {}, {}, rate_.noise(), samples_->substeps, {}};
-      if (rate_.written_affine()) {
-        sampled.C0 = rate_.affine()->A0;
-        sampled.C = rate_.affine()->A;
-      } else {
-        sampled.c = rate_.rows();  // C0 and C are then zero, r x n
-        sampled.C0.assign(sampled.c.size(), GiNaC::ex(0));
-        sampled.C.assign(sampled.c.size(), ExVector(rate_.n(), GiNaC::ex(0)));
-      }
-      view_ = std::move(sampled);
-      break;
-    }
-  }
-}
-
-ObservationModel::ObservationModel(const ContinuousObservation& continuous)
-    : ObservationModel(ObservationRate::of_affine(continuous.A0, continuous.A, continuous.B), std::nullopt, std::nullopt) {}
-
-ObservationModel::ObservationModel(const DelayedObservation& delayed)
-    : ObservationModel(ObservationRate::of_affine(delayed.rate.A0, delayed.rate.A, delayed.rate.B), std::nullopt,
-                       delayed.delay) {}
-
-ObservationModel::ObservationModel(const SampledObservation& sampled)
-    : ObservationModel(ObservationRate::of_affine(sampled.C0, sampled.C, sampled.Uv),
-                       SampleTimes{sampled.period, sampled.substeps}, std::nullopt) {
-  if (sampled.is_polynomial())
-    throw std::logic_error("samples through rows c are made with the states: ObservationRate::polynomial");
-}
+    : rate_(std::move(rate)), samples_(std::move(samples)), delay_(std::move(delay)) {}
 
 ObservationKind ObservationModel::kind() const {
   if (samples_) return ObservationKind::Sampled;
   if (delay_) return ObservationKind::Delayed;
   return rate_.written_affine() ? ObservationKind::Continuous : ObservationKind::Polynomial;
-}
-
-namespace {
-
-template <class View, class Variant>
-const View& view_of(const Variant& view, ObservationKind kind, const char* wanted) {
-  if (const auto* v = std::get_if<View>(&view)) return *v;
-  throw std::logic_error("the model's observation is " + observation_kind_info(kind).name + ", not " + wanted);
-}
-
-}  // namespace
-
-const ContinuousObservation& ObservationModel::continuous() const {
-  return view_of<ContinuousObservation>(view_, kind(), "continuous");
-}
-
-const SampledObservation& ObservationModel::sampled() const {
-  return view_of<SampledObservation>(view_, kind(), "sampled");
-}
-
-const DelayedObservation& ObservationModel::delayed() const {
-  return view_of<DelayedObservation>(view_, kind(), "delayed");
-}
-
-const PolynomialObservation& ObservationModel::polynomial() const {
-  return view_of<PolynomialObservation>(view_, kind(), "polynomial");
 }
 
 }  // namespace pfgen

@@ -90,7 +90,7 @@ const char* kConvention =
 std::string coefficients_text(const Model& model, const DriftCoefficients& drift,
                               const ObservationCoefficients& observation) {
   TextPrinter printer;
-  const ObservationReport& report = observation_report(observation.kind);
+  const ObservationStatement& report = observation_statement(model.observation);
   const CoefficientNames names = report.coefficient_names();
   std::string out = "model: " + model.name + "\n";
   out += std::string("coefficient form: ") + kConvention + "\n";
@@ -110,7 +110,7 @@ std::string coefficients_text(const Model& model, const DriftCoefficients& drift
 std::string coefficients_latex(const Model& model, const DriftCoefficients& drift,
                                const ObservationCoefficients& observation) {
   LatexPrinter printer;
-  const ObservationReport& report = observation_report(observation.kind);
+  const ObservationStatement& report = observation_statement(model.observation);
   const CoefficientNames names = report.coefficient_names();
   std::string out =
       "\\paragraph{Coefficient form.} $f_{i}(x,t) = A_{i} + \\sum_{j} (A_{1})_{ij} x_{j} + \\sum_{j,k} (A_{2})_{ijk} "
@@ -136,7 +136,7 @@ std::string coefficients_latex(const Model& model, const DriftCoefficients& drif
 
 Json coefficients_json(const Model& model, const DriftCoefficients& drift, const ObservationCoefficients& observation) {
   TextPrinter printer;
-  const ObservationReport& report = observation_report(observation.kind);
+  const ObservationStatement& report = observation_statement(model.observation);
   const CoefficientNames names = report.coefficient_names();
   Json states = Json::array();
   for (const auto& name : model.state_names) states.push(Json::string(name));

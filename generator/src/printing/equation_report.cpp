@@ -7,18 +7,18 @@
 namespace pfgen {
 
 std::string equations_text(const Model& model, const FilterEquations& eq) {
-  return observation_report(eq.observation).text(model, eq, nullptr);
+  return observation_report(model.observation).text(model, eq, nullptr);
 }
 
 void write_equations_text(std::ostream& out, const Model& model, const FilterEquations& eq) {
-  const std::string rest = observation_report(eq.observation).text(model, eq, &out);
+  const std::string rest = observation_report(model.observation).text(model, eq, &out);
   out.write(rest.data(), static_cast<std::streamsize>(rest.size()));
 }
 
-std::string equations_latex(const FilterEquations& eq) { return observation_report(eq.observation).latex(eq); }
+std::string equations_latex(const Model& model, const FilterEquations& eq) { return observation_report(model.observation).latex(model, eq); }
 
 Json equations_json(const Model& model, const FilterEquations& eq) {
-  return observation_report(eq.observation).json(model, eq);
+  return observation_report(model.observation).json(model, eq);
 }
 
 }  // namespace pfgen

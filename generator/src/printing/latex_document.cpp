@@ -32,7 +32,7 @@ std::string model_section(const Model& model) {
              printer.print(model.parameters[k].default_value) + "$";
     out += " (kept symbolic below)";
   }
-  const ObservationReport& observation = observation_report(model.observation.kind());
+  const ObservationStatement& observation = observation_statement(model.observation);
   // With Stratonovich noise f is the drift as written; the Ito drift follows the model (noise_report).
   const bool stratonovich = model.noise == NoiseCalculus::Stratonovich;
   out += std::string(".\n\\[ dx = f\\,dt + g") + (stratonovich ? " \\circ " : "\\,") +
@@ -103,7 +103,7 @@ std::string latex_document(const Model& model, const std::vector<FilterEquations
            coefficients_latex(model, extract_drift_coefficients(model), extract_observation_coefficients(model));
   bool any_user_filter = false;
   for (const auto& eq : filters) any_user_filter = any_user_filter || eq.is_user_filter();
-  out += observation_report(model.observation.kind()).notation_latex();
+  out += observation_statement(model.observation).notation_latex();
   if (any_user_filter)
     out += " A filter defined in the model file has its $dm$, $K$ and $dP$ as given there, not derived by pfgen.";
   out += "\n";
@@ -112,7 +112,7 @@ std::string latex_document(const Model& model, const std::vector<FilterEquations
     const std::string plain = rich_text_plain(eq.description);
     const bool has_stop = !plain.empty() && plain.back() == '.';
     out += rich_text_latex(eq.description) + (has_stop ? "\n\n" : ".\n\n");
-    out += equations_latex(eq);
+    out += equations_latex(model, eq);
   }
   keep_last_rows_together(out);
   out += "\\end{document}\n";

@@ -165,7 +165,7 @@ std::string RateReport::text(const Model& model, const FilterEquations& eq, std:
   return out;
 }
 
-std::string RateReport::latex(const FilterEquations& eq) const {
+std::string RateReport::latex(const Model&, const FilterEquations& eq) const {
   LatexPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return latex_variable_name(vars, v); };

@@ -14,9 +14,6 @@
 
 namespace pfgen::codegen {
 
-struct TruthNames;  // backends/cpp/truth_functions.hpp
-struct TruthCode;   // backends/cpp/truth_codegen.hpp
-
 class ObservationCode {
  public:
   virtual ~ObservationCode() = default;
@@ -37,20 +34,19 @@ class ObservationCode {
   // partials, as cd-euler's euler_square): the C backend reads the names those declare too.
   virtual std::vector<std::string> declaring_frames() const { return {}; }
 
-  // The simulation plugin (backends/cpp/simulation_plugin.hpp). The truth's observation: its
-  // function of t in code.definitions, and TruthCode's observation fields.
-  virtual void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const = 0;
-  // The options the plugin's filters are generated with, from the simulation's grid step (a
-  // delayed observation's filters step on that grid; CodegenError without one); unchanged by default.
+  // The simulation plugin (backends/cpp/simulation_plugin.hpp; the truth's observation is composed
+  // from the axes, backends/cpp/truth_codegen). The options the plugin's filters are generated with,
+  // from the simulation's grid step (a delayed observation's filters step on that grid; CodegenError
+  // without one); unchanged by default.
   virtual void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const;
   // The functions behind the ABI's signatures for the filters of these identifiers. in_lanes[k]:
   // filter k is also instantiated on the plugin's lane type (batch::Lanes), to step several runs at
   // once (its code is arithmetic alone and small: kMaxLaneOps, simulation_plugin.hpp).
   virtual std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                                       const std::vector<bool>& in_lanes) const = 0;
-  // The ABI table's observation fields this observation has (the others keep
-  // plugin_table_defaults()): the filters' table and its count, the observation functions, the
-  // period or the delay.
+  // The ABI table's fields this observation's filters have (the others keep
+  // plugin_table_defaults()): the filters' table and its count, the period or the delay (the
+  // truth's observation functions are the truth's, TruthCode).
   virtual std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                           const std::vector<std::string>& labels,
                                                           std::optional<double> grid_step,
@@ -63,5 +59,8 @@ const ObservationCode& sampled_observation_code();
 const ObservationCode& delayed_observation_code();
 const ObservationCode& polynomial_observation_code();
 const ObservationCode& observation_code(ObservationKind kind);
+// The model's part composed from its axes, as the derivation's (observation_derivation): samples,
+// a delay, an affine rate (a linear h included, so its filters are the continuous module's), rows.
+const ObservationCode& observation_code(const ObservationModel& observation);
 
 }  // namespace pfgen::codegen

@@ -25,11 +25,13 @@ void refuse_delayed_inputs(const Model& model, const FilterEquations& eq, const 
 // Those inputs in that order, each with its option's name.
 std::vector<std::pair<std::string, const std::vector<GiNaC::numeric>*>> delayed_inputs(const EvaluationPoint& point);
 
-// The modules' parts (observations/<kind>/<kind>_evaluation.cpp), and the model's, by kind.
+// The modules' parts (observations/<kind>/<kind>_evaluation.cpp), and the model's, composed from
+// its axes: samples, a delay, then the rate as the model wrote it (eval prints A0 + A x's matrices,
+// and a linear h's E[h] as its report does).
 const ObservationEvaluation& continuous_observation_evaluation();
 const ObservationEvaluation& sampled_observation_evaluation();
 const ObservationEvaluation& delayed_observation_evaluation();
 const ObservationEvaluation& polynomial_observation_evaluation();
-const ObservationEvaluation& observation_evaluation(ObservationKind kind);
+const ObservationEvaluation& observation_evaluation(const ObservationModel& observation);
 
 }  // namespace pfgen

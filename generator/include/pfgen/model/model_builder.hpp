@@ -37,11 +37,11 @@ class ModelBuilder {
   // dy = (A0 + A x(t - delay)) dt + B dW2; delay >= 0 (the validator refuses a negative one).
   ModelBuilder& delayed_observation(const GiNaC::numeric& delay, const ExVector& A0, const ExMatrix& A,
                                     const ExMatrix& B);
-  // Samples y_k = C0 + C x(k T) + Uv v_k (SampledObservation); C0 may be zeros. Without substeps
+  // Samples y_k = C0 + C x(k T) + Uv v_k; C0 may be zeros. Without substeps
   // each filter chooses its own (observations/sampled/substep_choice.hpp).
   ModelBuilder& sampled_observation(const GiNaC::numeric& period, const ExVector& C0, const ExMatrix& C,
                                     const ExMatrix& Uv, std::optional<std::size_t> substeps = std::nullopt);
-  // dy = h(x, t) dt + B dW2, each h_r a polynomial in the states (PolynomialObservation).
+  // dy = h(x, t) dt + B dW2, each h_r a polynomial in the states.
   ModelBuilder& polynomial_observation(const ExVector& h, const ExMatrix& B);
   // Samples y_k = c(x(t_k)) + Uv v_k, c polynomial in the states; a c of degree <= 1 is written
   // C0 + C x by build(), so its filters are those of sampled_observation().

@@ -5,11 +5,10 @@
 //   rate:   rows h_r(x, t) polynomial in the states with their noise matrix (B, or a sample's Uv),
 //           with A0 + A x, the affine case, found once when the rate is made.
 // The kind printed in messages and listed by the filter kinds' registry (kinds/observation_kinds)
-// is a name derived from the axes, kind(); the rooms above reach what the observation means to
-// them through the module of that name (observations/<kind>/).
+// is a name derived from the axes, kind(). The rooms above choose their part (observations/<kind>/)
+// from the axes, each in one function (observation_derivation, observation_report, ...).
 #include <cstddef>
 #include <optional>
-#include <variant>
 #include <vector>
 
 #include "pfgen/kinds/observation_kinds.hpp"
@@ -68,49 +67,19 @@ struct SampleTimes {
   std::optional<std::size_t> substeps;  // prediction sub-steps per period, >= 1; absent: chosen
 };
 
-// The ways the observation is written by the C++ API, ModelBuilder and the tests; each makes the
-// axes. Kept as views for the code-generation and plugin parts until they move to the axes.
-using ContinuousObservation = AffineRate;  // dy = (A0 + A x) dt + B dW2
-
-struct SampledObservation {
-  GiNaC::numeric period;      // T > 0, exact
-  ExVector C0;                // r entries, independent of the states (zeros when not given)
-  ExMatrix C;                 // r x n
-  ExMatrix Uv;                // r x q, with Uv Uv^T positive definite
-  std::optional<std::size_t> substeps;  // prediction sub-steps per period, >= 1; absent: chosen
-  // Samples y_k = c(x(t_k)) + Uv v_k through r polynomials of degree >= 2 (C0 and C then zero);
-  // empty for y_k = C0 + C x(t_k) + Uv v_k.
-  ExVector c;
-  bool is_polynomial() const { return !c.empty(); }
-};
-
-// Continuous observations of the state h time units ago (paper 004): the sensor reports late.
-// Before t = h the observation sees the pre-history x(s) = x(0), s < 0 (docs/theory.md §2.6).
-// The model file's `delay: 0` is an ordinary continuous observation; h = 0 here (C++ API) keeps
-// the delayed kinds' equations, which then reduce to the undelayed ones.
-struct DelayedObservation {
-  GiNaC::numeric delay;        // h >= 0, exact
-  ContinuousObservation rate;  // A0, A, B of dy = (A0 + A x(t - h)) dt + B dW2
-};
-
-struct PolynomialObservation {
-  ExVector h;  // p entries
-  ExMatrix B;  // p x r, with B B^T positive definite
-};
-
 class ObservationModel {
  public:
   ObservationModel() = default;  // continuous with no rows: ModelBuilder requires a real one
   ObservationModel(ObservationRate rate, std::optional<SampleTimes> samples, std::optional<GiNaC::numeric> delay);
-  ObservationModel(const ContinuousObservation& continuous);  // NOLINT: implicit by design
-  ObservationModel(const DelayedObservation& delayed);        // NOLINT: implicit by design
-  // C0 + C x only: samples through rows c are made with the rate's states (ModelBuilder).
-  ObservationModel(const SampledObservation& sampled);  // NOLINT: implicit by design
 
   // The axes.
   const ObservationRate& rate() const { return rate_; }
   const std::optional<SampleTimes>& samples() const { return samples_; }  // nothing: continuous
-  const std::optional<GiNaC::numeric>& delay_h() const { return delay_; }  // nothing: undelayed
+  // h >= 0, the rate read at x(t - h); nothing: undelayed. Before t = h the observation sees the
+  // pre-history x(s) = x(0), s < 0 (docs/theory.md §2.6). The model file's `delay: 0` is an
+  // undelayed observation; h = 0 here (C++ API) keeps the delayed kinds' equations, which then
+  // reduce to the undelayed ones.
+  const std::optional<GiNaC::numeric>& delay_h() const { return delay_; }
 
   // The name derived from the axes (kinds/observation_kinds.hpp): sampled, delayed, continuous
   // when written A0 + A x, polynomial when written as rows.
@@ -121,20 +90,10 @@ class ObservationModel {
   bool is_sampled() const { return samples_.has_value(); }
   bool is_delayed() const { return delay_.has_value(); }
 
-  // Kept for the code-generation and plugin parts until they move to the axes: the axes as the
-  // written form of that kind (std::logic_error for another kind).
-  const ContinuousObservation& continuous() const;
-  const SampledObservation& sampled() const;
-  const DelayedObservation& delayed() const;
-  const PolynomialObservation& polynomial() const;
-  bool is_polynomial() const { return kind() == ObservationKind::Polynomial; }
-
  private:
   ObservationRate rate_;
   std::optional<SampleTimes> samples_;
   std::optional<GiNaC::numeric> delay_;
-  // The written form of kind(), built from the axes once, for the views above.
-  std::variant<ContinuousObservation, SampledObservation, DelayedObservation, PolynomialObservation> view_;
 };
 
 }  // namespace pfgen

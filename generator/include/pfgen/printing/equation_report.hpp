@@ -19,7 +19,7 @@ std::string equations_text(const Model& model, const FilterEquations& eq);
 // The same bytes written to `out` equation by equation, never holding the whole report
 // (a dense cubic n = 20 report is 63 MB).
 void write_equations_text(std::ostream& out, const Model& model, const FilterEquations& eq);
-std::string equations_latex(const FilterEquations& eq);
+std::string equations_latex(const Model& model, const FilterEquations& eq);
 Json equations_json(const Model& model, const FilterEquations& eq);
 
 }  // namespace pfgen

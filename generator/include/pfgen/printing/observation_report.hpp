@@ -1,9 +1,12 @@
 #pragma once
-// What the printers need of an observation model: its filters' reports and what the standalone
-// document and the coefficient form say of it. Each module in observations/ implements it
-// (observations/<kind>/<kind>_report); equation_report, latex_document and coefficient_report call
-// the model's part and never ask which kind it is. The continuous and delayed modules write the
-// rate form dm = ... + K (dy - h dt) through rate_report.hpp; the sampled one writes its own.
+// What the printers need of an observation model, in two parts chosen from its axes apart: its
+// filters' reports (ObservationReport, chosen as the derivation's part is, so a linear h's filters
+// print as A0 + A x's), and what the standalone document and the coefficient form say of the
+// observation as the model wrote it (ObservationStatement: a linear h is shown as rows h). Each
+// module in observations/ implements both (observations/<kind>/<kind>_report); equation_report,
+// latex_document and coefficient_report call the model's parts and never ask which kind it is. The
+// continuous, polynomial and delayed modules write the rate form dm = ... + K (dy - h dt) through
+// rate_report.hpp; the sampled one writes its own.
 #include <iosfwd>
 #include <string>
 
@@ -26,8 +29,13 @@ class ObservationReport {
   // One filter's report (equation_report.hpp): the text, or with a sink the part of it not yet
   // written there; the LaTeX fragment; the JSON.
   virtual std::string text(const Model& model, const FilterEquations& eq, std::ostream* sink) const = 0;
-  virtual std::string latex(const FilterEquations& eq) const = 0;
+  virtual std::string latex(const Model& model, const FilterEquations& eq) const = 0;
   virtual Json json(const Model& model, const FilterEquations& eq) const = 0;
+};
+
+class ObservationStatement {
+ public:
+  virtual ~ObservationStatement() = default;
 
   // The standalone document (latex_document.hpp): the observation's equation in the model's display
   // beside dx's, its matrices as the last lines of the model's align* (no line break after the
@@ -44,11 +52,18 @@ class ObservationReport {
   virtual void add_coefficients_json(const Model& model, Json& observation) const = 0;
 };
 
-// The modules' parts (observations/<kind>/<kind>_report.cpp), and the model's, by kind.
+// The modules' parts (observations/<kind>/<kind>_report.cpp), and the model's, composed from its
+// axes: samples, a delay, then the rate: for the filters' reports its affine case (a linear h's
+// filters are A0 + A x's, field for field), for the statement the rate as the model wrote it.
 const ObservationReport& continuous_observation_report();
 const ObservationReport& sampled_observation_report();
 const ObservationReport& delayed_observation_report();
 const ObservationReport& polynomial_observation_report();
-const ObservationReport& observation_report(ObservationKind kind);
+const ObservationReport& observation_report(const ObservationModel& observation);
+const ObservationStatement& continuous_observation_statement();
+const ObservationStatement& sampled_observation_statement();
+const ObservationStatement& delayed_observation_statement();
+const ObservationStatement& polynomial_observation_statement();
+const ObservationStatement& observation_statement(const ObservationModel& observation);
 
 }  // namespace pfgen

@@ -14,7 +14,7 @@ namespace pfgen {
 class RateReport : public ObservationReport {
  public:
   std::string text(const Model& model, const FilterEquations& eq, std::ostream* sink) const override;
-  std::string latex(const FilterEquations& eq) const override;
+  std::string latex(const Model& model, const FilterEquations& eq) const override;
   Json json(const Model& model, const FilterEquations& eq) const override;
 
  protected:

@@ -1,23 +1,10 @@
-// The continuous observation in a simulation plugin: the truth's observation(t, A0, A, B), each
-// filter's step(state, t, dt, dy) behind the ABI's signature, and the table of pfgen_plugin_filter.
+// The continuous observation in a simulation plugin: each filter's step(state, t, dt, dy) behind the
+// ABI's signature, and the table of pfgen_plugin_filter (the truth's observation is composed from
+// the axes in backends/cpp/truth_codegen).
 #include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
 
 namespace pfgen::codegen {
-
-void rate_truth_observation(const Model& model, const ContinuousObservation& observation, TruthNames& names,
-                            TruthCode& code) {
-  code.r = observation.B.empty() ? 0 : observation.B.front().size();
-  code.observation_is_constant = !depends_on_time(model, ExMatrix{observation.A0}) &&
-                                 !depends_on_time(model, observation.A) && !depends_on_time(model, observation.B);
-  code.definitions +=
-      matrices_function(model, names, "observation", {{"A0", ExMatrix{observation.A0}}, {"A", observation.A}, {"B", observation.B}});
-  code.definitions += observation_noise_function(model, names, observation.B);
-}
-
-std::string observation_noise_function(const Model& model, TruthNames& names, const ExMatrix& B) {
-  return parameterised_matrices_function(model, names, "observation_noise", {{"B", B}});
-}
 
 std::string rate_filter_table(const Model& model, const std::vector<std::string>& names,
                               const std::vector<std::string>& labels,
@@ -38,10 +25,6 @@ std::string rate_filter_table(const Model& model, const std::vector<std::string>
     out += item + "step = &pfgen_simulation::entry::" + names[k] + "_step;\n";
   }
   return out + "    return list;\n  }();\n";
-}
-
-void ContinuousCode::truth_observation(const Model& model, TruthNames& names, TruthCode& code) const {
-  rate_truth_observation(model, model.observation.continuous(), names, code);
 }
 
 // The filters are written with a template Scalar, so that step_lanes can instantiate them on
@@ -97,8 +80,6 @@ std::map<std::string, std::string> ContinuousCode::plugin_table(const Model& mod
       {"filter_table", rate_filter_table(model, names, labels, state_fields)},
       {"filter_count", std::to_string(names.size())},
       {"filters", names.empty() ? "nullptr" : "filters.data()"},
-      {"observation", "&pfgen_simulation::truth::observation"},
-      {"observation_noise", "&pfgen_simulation::truth::observation_noise"},
   };
 }
 

@@ -11,7 +11,7 @@
 namespace pfgen {
 namespace {
 
-class ContinuousReport final : public RateReport {
+class ContinuousReport final : public RateReport, public ObservationStatement {
  public:
   std::string equation_latex(const Model&) const override { return "dy = (A_0 + A x)\\,dt + B\\,dW_2"; }
 
@@ -43,6 +43,11 @@ class ContinuousReport final : public RateReport {
   std::string correction_words_text(const FilterEquations&) const override { return "P A^T (B B^T)^-1 A P"; }
 };
 
+const ContinuousReport& continuous_part() {
+  static const ContinuousReport part;
+  return part;
+}
+
 }  // namespace
 
 std::string rate_matrices_latex(const AffineRate& observation, const std::optional<GiNaC::numeric>& delay) {
@@ -57,9 +62,8 @@ std::string rate_matrices_latex(const AffineRate& observation, const std::option
          (delay ? " \\\\\nh &= " + printer.print(*delay) : "");
 }
 
-const ObservationReport& continuous_observation_report() {
-  static const ContinuousReport part;
-  return part;
-}
+const ObservationReport& continuous_observation_report() { return continuous_part(); }
+
+const ObservationStatement& continuous_observation_statement() { return continuous_part(); }
 
 }  // namespace pfgen

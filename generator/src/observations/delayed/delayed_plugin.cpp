@@ -1,8 +1,8 @@
-// The delayed observation in a simulation plugin (ABI version 3): the truth's observation(t, A0, A, B)
-// as the continuous one's (the runtime reads x D steps back), each filter's step behind the ABI's
+// The delayed observation in a simulation plugin (ABI version 3): each filter's step behind the ABI's
 // signature with its history after its state, the table with each filter's extra state and fixed
-// grid step, and h, dt and D = h / dt; version 8: step_at, predicted_observation and B at given
-// parameter values, for recorded data.
+// grid step, and h, dt and D = h / dt, with which the runtime reads the truth's observation(t, A0,
+// A, B) at x D steps back; version 8: step_at and predicted_observation at given parameter values,
+// for recorded data.
 #include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 #include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
@@ -10,10 +10,6 @@
 #include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::codegen {
-
-void DelayedCode::truth_observation(const Model& model, TruthNames& names, TruthCode& code) const {
-  rate_truth_observation(model, model.observation.delayed().rate, names, code);
-}
 
 // The plugin's filters are generated for the simulation's grid: the truth reads x(t - h) D steps
 // back, the filters keep D steps.
@@ -73,8 +69,6 @@ std::map<std::string, std::string> DelayedCode::plugin_table(const Model& model,
       {"filter_table", rate_filter_table(model, names, labels, fields)},
       {"filter_count", std::to_string(names.size())},
       {"filters", names.empty() ? "nullptr" : "filters.data()"},
-      {"observation", "&pfgen_simulation::truth::observation"},
-      {"observation_noise", "&pfgen_simulation::truth::observation_noise"},
       {"delay", CppEmitter(ScalarMode::Double).literal(model.observation.delay())},
       {"delay_dt", pfgen_support::shortest_double(*grid_step)},
       {"delay_steps", std::to_string(delay_steps(model.observation.delay(), *grid_step).steps)},

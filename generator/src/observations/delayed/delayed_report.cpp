@@ -116,7 +116,7 @@ void add_delayed_json(const FilterEquations& eq, Json& out) {
   }
 }
 
-class DelayedReport final : public RateReport {
+class DelayedReport final : public RateReport, public ObservationStatement {
  public:
   std::string equation_latex(const Model&) const override { return "dy = (A_0 + A x(t-h))\\,dt + B\\,dW_2"; }
 
@@ -161,11 +161,15 @@ class DelayedReport final : public RateReport {
   void add_json(const FilterEquations& eq, Json& out) const override { add_delayed_json(eq, out); }
 };
 
-}  // namespace
-
-const ObservationReport& delayed_observation_report() {
+const DelayedReport& delayed_part() {
   static const DelayedReport part;
   return part;
 }
+
+}  // namespace
+
+const ObservationReport& delayed_observation_report() { return delayed_part(); }
+
+const ObservationStatement& delayed_observation_statement() { return delayed_part(); }
 
 }  // namespace pfgen

@@ -1,13 +1,11 @@
 // The polynomial module's code generation: its filters' functions and file, language-neutral, and its part.
-// A linear h is the continuous observation: its filters are the continuous module's.
+// A linear h is the continuous observation: observation_code gives it the continuous module.
 #include "pfgen/observations/polynomial/polynomial_code.hpp"
 
 #include "pfgen/observations/polynomial/ito_stratonovich_correction.hpp"
 #include "pfgen/observations/polynomial/polynomial_observation.hpp"
 
 namespace pfgen::codegen {
-
-bool written_linear(const Model& model) { return observation_degree(model) <= 1; }
 
 std::vector<FunctionStats> PolynomialFunctions::stats() const {
   return {derivatives.stats, gain.stats, covariance_gain.stats, observation.stats, correction.stats};
@@ -32,7 +30,7 @@ PolynomialFunctions polynomial_functions(const Model& model, const FilterEquatio
       covariance_gain.push_back(noise[n + u][r]);
     }
   const std::vector<Polynomial> correction =
-      ito_stratonovich_correction(noise, model.observation.polynomial().B, vars);
+      ito_stratonovich_correction(noise, model.observation.rate().noise(), vars);
 
   PolynomialFunctions f;
   f.derivatives = derivatives_code(model, eq, options, names, emitter);
@@ -46,7 +44,6 @@ PolynomialFunctions polynomial_functions(const Model& model, const FilterEquatio
 
 FilterFile PolynomialCode::filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                        const FunctionNames& names, const StatementEmitter& emitter) const {
-  if (written_linear(model)) return continuous_observation_code().filter_file(model, eq, options, names, emitter);
   PolynomialFunctions f = polynomial_functions(model, eq, options, names, emitter);
   FilterFile file;
   file.layout = "polynomial_filter";

@@ -14,6 +14,4 @@ bool predicts_linearly(const FilterEquations& eq) {
   return true;
 }
 
-std::optional<ContinuousObservation> linear_form(const Model& model) { return model.observation.rate().affine(); }
-
 }  // namespace pfgen

@@ -1,9 +1,9 @@
-// The polynomial observation dy = h(x, t) dt + B dW2 in the reports: the rate form
-// (rate_report.hpp), whose dP lines carry the covariance's own innovation term L (dy - E[h] dt)
-// when h is nonlinear, with the correction P E[J]^T (B B^T)^-1 E[J] P; and its lines in the
-// standalone document and (for a linear h) the coefficient form.
+// The polynomial observation dy = h(x, t) dt + B dW2 in the reports: a nonlinear h's filters in the
+// rate form (rate_report.hpp), whose dP lines carry the covariance's own innovation term
+// L (dy - E[h] dt), with the correction P E[J]^T (B B^T)^-1 E[J] P (a linear h's filters are the
+// continuous module's report); and rows h as written in the standalone document and (for a linear
+// h) the coefficient form.
 #include "pfgen/notation/latex_line_breaker.hpp"
-#include "pfgen/observations/polynomial/polynomial_observation.hpp"
 #include "pfgen/notation/latex_printer.hpp"
 #include "pfgen/printing/latex_matrix.hpp"
 #include "pfgen/printing/rate_report.hpp"
@@ -11,7 +11,7 @@
 namespace pfgen {
 namespace {
 
-class PolynomialReport final : public RateReport {
+class PolynomialReport final : public RateReport, public ObservationStatement {
  public:
   std::string equation_latex(const Model&) const override { return "dy = h(x, t)\\,dt + B\\,dW_2"; }
 
@@ -48,25 +48,27 @@ class PolynomialReport final : public RateReport {
   void add_coefficients_json(const Model&, Json&) const override {}
 
  protected:
-  // A linear h's filter is printed as the continuous observation's, byte for byte.
+  // A nonlinear h's only: a linear h's filters are the continuous module's report (observation_report).
   std::string correction_words_text(const FilterEquations& eq) const override {
-    if (predicts_linearly(eq)) return "P A^T (B B^T)^-1 A P";
     if (eq.kind && uses_sigma_points(*eq.kind)) return "C (B B^T)^-1 C^T, C = sum_i w_i (X_i-m) h(X_i)^T";
     return eq.kind && is_extended_kalman(*eq.kind) ? "P J_h(m)^T (B B^T)^-1 J_h(m) P"
                                                    : "P E[J_h]^T (B B^T)^-1 E[J_h] P";
   }
 
-  std::string sigma_point_correction_latex(const FilterEquations& eq) const override {
-    if (predicts_linearly(eq)) return RateReport::sigma_point_correction_latex(eq);
+  std::string sigma_point_correction_latex(const FilterEquations&) const override {
     return "C (B B^T)^{-1} C^T$ with $C = \\sum_i w_i (X_i - m) h(X_i)^T";
   }
 };
 
-}  // namespace
-
-const ObservationReport& polynomial_observation_report() {
+const PolynomialReport& polynomial_part() {
   static const PolynomialReport part;
   return part;
 }
+
+}  // namespace
+
+const ObservationReport& polynomial_observation_report() { return polynomial_part(); }
+
+const ObservationStatement& polynomial_observation_statement() { return polynomial_part(); }
 
 }  // namespace pfgen

@@ -1,12 +1,9 @@
-// The sampled observation in a simulation plugin (ABI version 2): the truth's
-// sampled_observation(t, C0, C, Uv), each filter's predict and update behind the ABI's signatures,
-// the period and the table of pfgen_plugin_sampled_filter.
+// The sampled observation in a simulation plugin (ABI version 2): each filter's predict and update
+// behind the ABI's signatures, the period and the table of pfgen_plugin_sampled_filter (the truth's
+// sampled_observation is composed from the axes in backends/cpp/truth_codegen).
 #include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 #include "pfgen/codegen/backends/cpp/simulation_plugin.hpp"
-#include "pfgen/codegen/backends/cpp/truth_codegen.hpp"
-#include "pfgen/codegen/backends/cpp/truth_functions.hpp"
 #include "pfgen/observations/sampled/sampled_code.hpp"
-#include "pfgen/observations/sampled/sampled_update.hpp"
 
 namespace pfgen::codegen {
 namespace {
@@ -38,17 +35,6 @@ std::string sampled_filter_table(const Model& model, const std::vector<std::stri
 }
 
 }  // namespace
-
-// C0, C and Uv in one function of t: entry k of C0, then of C, then of Uv. The observation's
-// matrices do not depend on t where the runtime asks (TruthCode's default).
-void SampledCode::truth_observation(const Model& model, TruthNames& names, TruthCode& code) const {
-  const SampledObservation& sampled = model.observation.sampled();
-  code.r = sampled.Uv.empty() ? 0 : sampled.Uv.front().size();
-  code.definitions +=
-      matrices_function(model, names, "sampled_observation", {{"C0", ExMatrix{sampled.C0}}, {"C", sampled.C}, {"Uv", sampled.Uv}});
-  // A polynomial c: C0 and C above are zero, and the samples are c(x) + Uv v (ABI version 4).
-  if (sampled.is_polynomial()) code.definitions += state_function(model, names, "observation_rate", "c", sample_polynomials(model));
-}
 
 // The ABI's predict and update have no parameters argument: the model's defaults; predict_at,
 // update_at and innovation read the parameters' values from their argument. innovation unpacks
@@ -86,13 +72,9 @@ std::map<std::string, std::string> SampledCode::plugin_table(const Model& model,
                                                              const std::vector<bool>&) const {
   return {
       {"filter_table", sampled_filter_table(model, names, labels)},
-      {"observation_is_sampled", "1"},
-      {"period", CppEmitter(ScalarMode::Double).literal(model.observation.sampled().period)},
-      {"sampled_observation", "&pfgen_simulation::truth::sampled_observation"},
+      {"period", CppEmitter(ScalarMode::Double).literal(model.observation.samples()->period)},
       {"sampled_filter_count", std::to_string(names.size())},
       {"sampled_filters", names.empty() ? "nullptr" : "sampled_filters.data()"},
-      {"observation_rate", model.observation.sampled().is_polynomial() ? "&pfgen_simulation::truth::observation_rate"
-                                                                        : "nullptr"},
   };
 }
 

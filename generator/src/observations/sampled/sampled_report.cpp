@@ -34,17 +34,79 @@ std::string substep_reason(const SampledUpdate& u, const std::string& open, cons
   return {};
 }
 
-// How a polynomial c's update reads C and R (the Joseph form's, equal to P - K S K^T).
-std::string moment_matching_text(const SampledUpdate& u) {
-  return u.at_mean ? "linearised at m: h = c(m), C = J_c(m), R = Uv Uv^T (Joseph form)"
-                   : "Gaussian moment matching: h = E[c], C = E[J_c], R = Cov(c) - C P C^T + Uv Uv^T (Joseph form, "
-                     "equal to P - K S K^T)";
-}
+// What the samples' rate changes in their report, one part per value of the rate, chosen once
+// (sample_rate_report) as the derivation chooses its part (sampled_observation_derivation): the
+// samples as written, the update's words (how it reads C and R) and its JSON, the document's lines.
+class SampleRateReport {
+ public:
+  virtual ~SampleRateReport() = default;
+  virtual std::string samples_text(const Model& model, TextPrinter& printer) const = 0;  // after "y_k = "
+  virtual std::string update_text(const SampledUpdate& u) const = 0;
+  virtual std::string update_latex(const SampledUpdate& u) const = 0;
+  virtual void add_update_json(const Model& model, const SampledUpdate& u, TextPrinter& printer, Json& update) const = 0;
+  virtual std::string equation_latex() const = 0;
+  virtual std::string matrices_latex(const Model& model, LatexPrinter& printer, const std::string& period) const = 0;
+};
 
-std::string moment_matching_latex(const SampledUpdate& u) {
-  return u.at_mean ? "linearised at $m$: $h = c(m)$, $C = J_c(m)$, $R = U_v U_v^{T}$, Joseph form"
-                   : "Gaussian moment matching: $h = E[c]$, $C = E[J_c]$, $R = \\mathrm{Cov}(c) - C P C^{T} + U_v U_v^{T}$, "
-                     "Joseph form, equal to $P - K S K^{T}$";
+// Samples C0 + C x(t_k) + Uv v_k: the Kalman update in Joseph form.
+class AffineSampleReport final : public SampleRateReport {
+ public:
+  std::string samples_text(const Model&, TextPrinter&) const override { return "C0 + C x(t_k) + Uv v_k"; }
+  std::string update_text(const SampledUpdate&) const override { return "R = Uv Uv^T (Joseph form)"; }
+  std::string update_latex(const SampledUpdate&) const override { return "$R = U_v U_v^{T}$, Joseph form"; }
+  void add_update_json(const Model&, const SampledUpdate&, TextPrinter&, Json&) const override {}
+  std::string equation_latex() const override { return "y_k = C_0 + C\\,x(t_k) + U_v v_k"; }
+  std::string matrices_latex(const Model& model, LatexPrinter& printer, const std::string& period) const override {
+    const AffineRate& sampled = *model.observation.rate().affine();
+    const std::string observation_line = bmatrix(printer, column(sampled.A0)) + ", \\quad C = " +
+                                         bmatrix(printer, sampled.A) + ", \\quad U_v = " + bmatrix(printer, sampled.B) +
+                                         ", \\quad T = " + period;
+    if (latex_width("C_0 = " + observation_line) <= kLatexLineWidth) return "C_0 &= " + observation_line;
+    return matrix_lines(printer, "C_0", "C_0", column(sampled.A0)) + " \\\\\n" +
+           matrix_lines(printer, "C", "C", sampled.A) + " \\\\\n" + matrix_lines(printer, "U_v", "U_v", sampled.B) +
+           " \\\\\nT &= " + period;
+  }
+};
+
+// Samples c(x(t_k)) + Uv v_k through rows c: the update reads C and R as the moments give them (the
+// Joseph form's, equal to P - K S K^T), or linearised at m.
+class RowSampleReport final : public SampleRateReport {
+ public:
+  std::string samples_text(const Model& model, TextPrinter& printer) const override {
+    std::string out = "c(x(t_k)) + Uv v_k, c = (";
+    for (std::size_t a = 0; a < model.observation.rate().rows().size(); ++a)
+      out += (a ? ", " : "") + printer.print(model.observation.rate().rows()[a]);
+    return out + ")";
+  }
+  std::string update_text(const SampledUpdate& u) const override {
+    return u.at_mean ? "linearised at m: h = c(m), C = J_c(m), R = Uv Uv^T (Joseph form)"
+                     : "Gaussian moment matching: h = E[c], C = E[J_c], R = Cov(c) - C P C^T + Uv Uv^T (Joseph form, "
+                       "equal to P - K S K^T)";
+  }
+  std::string update_latex(const SampledUpdate& u) const override {
+    return u.at_mean ? "linearised at $m$: $h = c(m)$, $C = J_c(m)$, $R = U_v U_v^{T}$, Joseph form"
+                     : "Gaussian moment matching: $h = E[c]$, $C = E[J_c]$, $R = \\mathrm{Cov}(c) - C P C^{T} + U_v U_v^{T}$, "
+                       "Joseph form, equal to $P - K S K^{T}$";
+  }
+  void add_update_json(const Model& model, const SampledUpdate& u, TextPrinter& printer, Json& update) const override {
+    Json c = Json::array();
+    for (const GiNaC::ex& entry : model.observation.rate().rows()) c.push(Json::string(printer.print(entry)));
+    update.add("c", c);
+    update.add("form", Json::string(update_text(u)));
+  }
+  std::string equation_latex() const override { return "y_k = c(x(t_k)) + U_v v_k"; }
+  std::string matrices_latex(const Model& model, LatexPrinter& printer, const std::string& period) const override {
+    const ObservationRate& rate = model.observation.rate();
+    return matrix_lines(printer, "c", "c", column(rate.rows())) + " \\\\\n" +
+           matrix_lines(printer, "U_v", "U_v", rate.noise()) + " \\\\\nT &= " + period;
+  }
+};
+
+const SampleRateReport& sample_rate_report(const ObservationRate& rate) {
+  static const AffineSampleReport affine;
+  static const RowSampleReport rows;
+  if (rate.affine()) return affine;
+  return rows;
 }
 
 std::string sampled_equations_text(const Model& model, const FilterEquations& eq) {
@@ -66,14 +128,8 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   out += "; P = covariance of (";
   for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
   out += ")\n";
-  std::string samples = "C0 + C x(t_k) + Uv v_k";
-  if (u.polynomial_samples) {
-    samples = "c(x(t_k)) + Uv v_k, c = (";
-    for (std::size_t a = 0; a < model.observation.rate().rows().size(); ++a)
-      samples += (a ? ", " : "") + printer.print(model.observation.rate().rows()[a]);
-    samples += ")";
-  }
-  out += "observation: sampled every T = " + printer.print(u.period) + ", y_k = " + samples + "; " +
+  const SampleRateReport& rate = sample_rate_report(model.observation.rate());
+  out += "observation: sampled every T = " + printer.print(u.period) + ", y_k = " + rate.samples_text(model, printer) + "; " +
          substep_phrase(u) + " of dt = T/" + std::to_string(u.substeps) + " between samples" +
          substep_reason(u, " (", ")") + "\n\n";
   if (eq.P_euler.empty()) {
@@ -101,7 +157,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   }
   out += "\nupdate at each sample y = (";
   for (std::size_t a = 0; a < r; ++a) out += (a ? ", " : "") + std::string("y") + std::to_string(a + 1);
-  out += u.polynomial_samples ? "), " + moment_matching_text(u) + ":\n" : "), R = Uv Uv^T (Joseph form):\n";
+  out += "), " + rate.update_text(u) + ":\n";
   for (std::size_t a = 0; a < r; ++a)
     out += "h" + std::to_string(a + 1) + " = " + writer.print(eq.predicted_observation[a]) + "\n";
   for (std::size_t i = 0; i < n; ++i)
@@ -126,7 +182,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   return out + "]\n";
 }
 
-std::string sampled_equations_latex(const FilterEquations& eq) {
+std::string sampled_equations_latex(const Model& model, const FilterEquations& eq) {
   LatexPrinter printer;
   const FilterVariables& vars = eq.variables;
   auto name = [&](std::uint32_t v) { return vars.latex_name(v); };
@@ -163,8 +219,7 @@ std::string sampled_equations_latex(const FilterEquations& eq) {
                                  : latex_align_lines("\\frac{d" + P + "}{dt}", join_parts(writer, P_parts(eq, k))));
     }
   out += block(prediction);
-  out += u.polynomial_samples ? "\\paragraph{Update at each sample} (" + moment_matching_latex(u) + "):\n"
-                              : "\\paragraph{Update at each sample} ($R = U_v U_v^{T}$, Joseph form):\n";
+  out += "\\paragraph{Update at each sample} (" + sample_rate_report(model.observation.rate()).update_latex(u) + "):\n";
   std::vector<std::string> update;
   for (std::size_t a = 0; a < r; ++a)
     update.push_back(latex_align_lines("h_{" + std::to_string(a + 1) + "}", writer.print(eq.predicted_observation[a])));
@@ -240,12 +295,7 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   }
   update.add("C", C);
   update.add("R", full(u.R, r, S_index));
-  if (u.polynomial_samples) {
-    Json c = Json::array();
-    for (const GiNaC::ex& entry : model.observation.rate().rows()) c.push(Json::string(printer.print(entry)));
-    update.add("c", c);
-    update.add("form", Json::string(moment_matching_text(u)));
-  }
+  sample_rate_report(model.observation.rate()).add_update_json(model, u, printer, update);
 
   Json out = Json::object();
   out.add("model", Json::string(model.name));
@@ -262,36 +312,27 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   return out;
 }
 
-class SampledReport final : public ObservationReport {
+class SampledReport final : public ObservationReport, public ObservationStatement {
  public:
   // The whole report at once: a sampled filter's is small (its update is written out per sample
   // output, not per term of a large model's P equations).
   std::string text(const Model& model, const FilterEquations& eq, std::ostream*) const override {
     return sampled_equations_text(model, eq);
   }
-  std::string latex(const FilterEquations& eq) const override { return sampled_equations_latex(eq); }
+  std::string latex(const Model& model, const FilterEquations& eq) const override {
+    return sampled_equations_latex(model, eq);
+  }
   Json json(const Model& model, const FilterEquations& eq) const override { return sampled_equations_json(model, eq); }
 
   // The samples' equation beside dx's, their matrices (or c) below it.
   std::string equation_latex(const Model& model) const override {
-    return model.observation.rate().written_affine() ? "y_k = C_0 + C\\,x(t_k) + U_v v_k" : "y_k = c(x(t_k)) + U_v v_k";
+    return sample_rate_report(model.observation.rate()).equation_latex();
   }
 
   std::string matrices_latex(const Model& model) const override {
     LatexPrinter printer;
-    const ObservationRate& rate = model.observation.rate();
-    const GiNaC::numeric& period = model.observation.samples()->period;
-    if (!rate.written_affine())
-      return matrix_lines(printer, "c", "c", column(rate.rows())) + " \\\\\n" +
-             matrix_lines(printer, "U_v", "U_v", rate.noise()) + " \\\\\nT &= " + printer.print(period);
-    const AffineRate& sampled = *rate.affine();
-    const std::string observation_line = bmatrix(printer, column(sampled.A0)) + ", \\quad C = " +
-                                         bmatrix(printer, sampled.A) + ", \\quad U_v = " + bmatrix(printer, sampled.B) +
-                                         ", \\quad T = " + printer.print(period);
-    if (latex_width("C_0 = " + observation_line) <= kLatexLineWidth) return "C_0 &= " + observation_line;
-    return matrix_lines(printer, "C_0", "C_0", column(sampled.A0)) + " \\\\\n" +
-           matrix_lines(printer, "C", "C", sampled.A) + " \\\\\n" + matrix_lines(printer, "U_v", "U_v", sampled.B) +
-           " \\\\\nT &= " + printer.print(period);
+    const std::string period = printer.print(model.observation.samples()->period);
+    return sample_rate_report(model.observation.rate()).matrices_latex(model, printer, period);
   }
 
   std::string notation_latex() const override {
@@ -314,11 +355,15 @@ class SampledReport final : public ObservationReport {
   void add_coefficients_json(const Model&, Json&) const override {}
 };
 
-}  // namespace
-
-const ObservationReport& sampled_observation_report() {
+const SampledReport& sampled_part() {
   static const SampledReport part;
   return part;
 }
+
+}  // namespace
+
+const ObservationReport& sampled_observation_report() { return sampled_part(); }
+
+const ObservationStatement& sampled_observation_statement() { return sampled_part(); }
 
 }  // namespace pfgen

@@ -49,11 +49,6 @@ std::vector<Polynomial> predicted_sample(const AffineRate& observation, const Fi
 
 namespace pfgen {
 
-std::vector<Polynomial> sample_polynomials(const Model& model) {
-  if (model.observation.rate().affine()) return {};
-  return model.observation.rate().polynomials(model.states);
-}
-
 SampledUpdate polynomial_sampled_update(const Model& model, const FilterVariables& vars, bool at_mean,
                                         std::vector<Polynomial>& predicted) {
   const ObservationRate& rate = model.observation.rate();

@@ -9,8 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "pfgen/codegen/backends/cpp/truth_codegen.hpp"
-#include "pfgen/codegen/backends/cpp/truth_functions.hpp"
 #include "pfgen/codegen/observation_code.hpp"
 
 namespace pfgen::codegen {
@@ -20,7 +18,6 @@ class ContinuousCode final : public ObservationCode {
   FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                          const FunctionNames& names, const StatementEmitter& emitter) const override;
   std::vector<std::string> layouts() const override { return {"filter"}; }
-  void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<bool>& in_lanes) const override;
@@ -51,16 +48,6 @@ std::string gain_meaning(const FilterEquations& eq);
 // `gain_meaning`; the statistics in their order.
 void add_rate_functions(FilterFile& file, ContinuousFunctions functions, const FunctionNames& names,
                         const FilterEquations& eq);
-
-// The truth's observation_noise(values, t, B): B at the parameter values given in the call (the
-// ABI's observation_noise, what the likelihood of recorded data reads).
-std::string observation_noise_function(const Model& model, TruthNames& names, const ExMatrix& B);
-
-// The truth's observation(t, A0, A, B) of these rate terms (a delayed observation has the same;
-// the runtime applies them to x(t - h)), and TruthCode's r and observation_is_constant; and
-// observation_noise.
-void rate_truth_observation(const Model& model, const ContinuousObservation& observation, TruthNames& names,
-                            TruthCode& code);
 
 // The plugin's table of pfgen_plugin_filter entries (names: C++ identifiers, filter_identifier;
 // labels: the filters' own names, for the runtime), `state_fields` writing each entry's fields

@@ -20,7 +20,6 @@ class DelayedCode final : public ObservationCode {
   FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                          const FunctionNames& names, const StatementEmitter& emitter) const override;
   std::vector<std::string> layouts() const override { return {"delayed_filter"}; }
-  void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<bool>& in_lanes) const override;

@@ -16,9 +16,8 @@ class PolynomialCode final : public ObservationCode {
  public:
   FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                          const FunctionNames& names, const StatementEmitter& emitter) const override;
-  // A linear h's file is the continuous module's ("filter").
-  std::vector<std::string> layouts() const override { return {"filter", "polynomial_filter"}; }
-  void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
+  // A nonlinear h's only: a linear h's filters are the continuous module's (observation_code).
+  std::vector<std::string> layouts() const override { return {"polynomial_filter"}; }
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<bool>& in_lanes) const override;
@@ -40,8 +39,5 @@ struct PolynomialFunctions {
 };
 PolynomialFunctions polynomial_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                          const FunctionNames& names, const StatementEmitter& emitter);
-
-// Whether the model's h is linear in the states: then every part is the continuous module's.
-bool written_linear(const Model& model);
 
 }  // namespace pfgen::codegen

@@ -2,7 +2,6 @@
 // The polynomial observation dy = h(x, t) dt + B dW2 as the module's rooms read it: h as
 // polynomials in the states (the rate's rows, model/observation_model.hpp), whose affine case
 // A0 + A x the rate found when the model was built.
-#include <optional>
 #include <vector>
 
 #include "pfgen/algebra/polynomial.hpp"
@@ -13,10 +12,6 @@ namespace pfgen {
 
 // The rate's rows h_r as polynomials in the states.
 std::vector<Polynomial> observation_polynomials(const Model& model);
-
-// The rate's affine case, A0 + A x, when h is linear in the states: kept for the code-generation
-// and plugin parts until they move to the axes (model.observation.rate().affine()).
-std::optional<ContinuousObservation> linear_form(const Model& model);
 
 // The highest total degree of an h_r in the states.
 unsigned observation_degree(const Model& model);

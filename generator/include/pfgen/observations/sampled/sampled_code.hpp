@@ -25,7 +25,6 @@ class SampledCode final : public ObservationCode {
                          const FunctionNames& names, const StatementEmitter& emitter) const override;
   std::vector<std::string> layouts() const override { return {"sampled_filter"}; }
   std::vector<std::string> declaring_frames() const override { return {"euler_square"}; }  // cd-euler's
-  void truth_observation(const Model& model, TruthNames& names, TruthCode& code) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<bool>& in_lanes) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,

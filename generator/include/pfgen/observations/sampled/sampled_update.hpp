@@ -30,10 +30,6 @@ SampledUpdate sampled_update(const SampleTimes& times, const AffineRate& rate, c
 // C0 + C m, one polynomial per observation row, in the filter's variables.
 std::vector<Polynomial> predicted_sample(const AffineRate& rate, const FilterVariables& vars);
 
-// The samples' c as polynomials in the states (the rate's rows; empty for C0 + C x). Kept for the
-// plugin part until it moves to the axes (model.observation.rate().polynomials).
-std::vector<Polynomial> sample_polynomials(const Model& model);
-
 // For a rate that is not affine, c: the update above with E[c] (c(m)
 // `at_mean`, the extended kind) as the predicted sample, which it returns in `predicted`.
 SampledUpdate polynomial_sampled_update(const Model& model, const FilterVariables& vars, bool at_mean,

@@ -35,7 +35,7 @@ class CBackend final : public Backend {
   GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
                               const CodegenOptions& options) const override {
     try {
-      return write_c_filter(observation_code(eq.observation), model, eq, options);
+      return write_c_filter(observation_code(model.observation), model, eq, options);
     } catch (const CPartNameError& e) {
       throw CodegenError(source_place(model) + e.what());
     }

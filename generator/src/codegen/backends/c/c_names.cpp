@@ -88,7 +88,7 @@ void check_c_names(const Model& model, const std::string& name_space) {
                          "', the prefix of every name the generated C code declares (include guards, enum "
                          "constants, functions), which it would replace or hide; give it another name");
 
-  const ObservationCode& part = observation_code(model.observation.kind());
+  const ObservationCode& part = observation_code(model.observation);
   const std::vector<std::string> templates = c_module_templates(part);
   const CNameSuffixes suffixes = c_name_suffixes(templates);
   std::map<std::string, std::string> declared;          // name -> the filter declaring it

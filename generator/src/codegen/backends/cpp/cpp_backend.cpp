@@ -21,7 +21,7 @@ class CppBackend final : public Backend {
   ScalarMode default_scalar() const override { return ScalarMode::Template; }
   GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
                               const CodegenOptions& options) const override {
-    return write_cpp_filter(observation_code(eq.observation), model, eq, options);
+    return write_cpp_filter(observation_code(model.observation), model, eq, options);
   }
 };
 

@@ -34,25 +34,21 @@ std::string truth_pointer(bool present, const std::string& name) {
   return present ? "&pfgen_simulation::truth::" + name : "nullptr";
 }
 
-// The ABI table's observation fields, each at its value for an observation that does not have it
-// (no filters' table of that form, no observation function of that form, no period, no delay):
-// each observation module's plugin_table replaces those its observation has.
+// The ABI table's filter and timing fields, each at its value for an observation that does not have
+// it (no filters' table of that form, no period, no delay): each observation module's plugin_table
+// replaces those its observation has. The truth's observation functions are the truth's
+// (generate_simulation_plugin).
 std::map<std::string, std::string> plugin_table_defaults() {
   return {
       {"filter_table", ""},
       {"filter_count", "0"},
       {"filters", "nullptr"},
-      {"observation", "nullptr"},
-      {"observation_rate", "nullptr"},
-      {"observation_is_sampled", "0"},
       {"period", "0.0"},
-      {"sampled_observation", "nullptr"},
       {"sampled_filter_count", "0"},
       {"sampled_filters", "nullptr"},
       {"delay", CppEmitter(ScalarMode::Double).literal(GiNaC::numeric(0))},
       {"delay_dt", "0.0"},
       {"delay_steps", "0"},
-      {"observation_noise", "nullptr"},
   };
 }
 
@@ -105,7 +101,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
   CodegenOptions options;
   options.scalar = ScalarMode::Double;
   options.name_space = kFilterNamespace;
-  const ObservationCode& observation = observation_code(model.observation.kind());
+  const ObservationCode& observation = observation_code(model.observation);
   // A delayed observation's filters are generated for the grid (and refused without one).
   observation.plugin_options(model, grid_step, options);
 
@@ -151,6 +147,13 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
       {"diffusion_covariance", truth_pointer(truth.diffusion_is_covariance, "diffusion_covariance")},
   };
   values.merge(plugin_table_defaults());
+  // The truth's observation functions, those its axes gave it (truth_codegen): the timing's, and a
+  // rate's rows that are not affine.
+  values["observation_is_sampled"] = flag(truth.observation_is_sampled);
+  values["observation"] = truth_pointer(!truth.observation_is_sampled, "observation");
+  values["observation_noise"] = truth_pointer(!truth.observation_is_sampled, "observation_noise");
+  values["sampled_observation"] = truth_pointer(truth.observation_is_sampled, "sampled_observation");
+  values["observation_rate"] = truth_pointer(truth.has_observation_rate, "observation_rate");
   for (auto& [field, value] : observation.plugin_table(model, names, labels, grid_step, in_lanes))
     values[field] = value;
   // The batched forms (the template's batch::lanes over the one-state function), present exactly

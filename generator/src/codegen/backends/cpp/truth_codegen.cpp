@@ -4,10 +4,46 @@
 
 #include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 #include "pfgen/codegen/backends/cpp/truth_functions.hpp"
-#include "pfgen/codegen/observation_code.hpp"
 #include "pfgen/model/simulation_rules.hpp"
 
 namespace pfgen::codegen {
+namespace {
+
+// The truth's observation, composed from the axes: the rate gives the matrices' offset and linear
+// part (A0 + A x as they are; for rows that are not affine, zeros and the rows' own function
+// observation_rate(t, x, out)), the timing names them and the noise. Increments:
+// observation(t, A0, A, B), then observation_rate's h, then observation_noise(values, t, B) at given
+// parameter values (the likelihood of recorded data); observation_is_constant when A0, A and B do
+// not read t. Samples: sampled_observation(t, C0, C, Uv), then observation_rate's c; the runtime
+// reads their matrices where it asks (TruthCode's default).
+void truth_observation(const Model& model, TruthNames& names, TruthCode& code) {
+  const ObservationRate& rate = model.observation.rate();
+  const ExMatrix& noise = rate.noise();
+  const std::size_t p = rate.p();
+  ExMatrix offset{ExVector(p, GiNaC::ex(0))}, linear(p, ExVector(model.n(), GiNaC::ex(0)));
+  if (rate.affine()) {
+    offset = ExMatrix{rate.affine()->A0};
+    linear = rate.affine()->A;
+  }
+  code.r = noise.empty() ? 0 : noise.front().size();
+  code.has_observation_rate = !rate.affine();
+  code.observation_is_sampled = model.observation.samples().has_value();
+  const char* const rate_target = code.observation_is_sampled ? "c" : "h";
+  if (code.observation_is_sampled) {
+    code.definitions +=
+        matrices_function(model, names, "sampled_observation", {{"C0", offset}, {"C", linear}, {"Uv", noise}});
+  } else {
+    code.observation_is_constant =
+        !depends_on_time(model, offset) && !depends_on_time(model, linear) && !depends_on_time(model, noise);
+    code.definitions += matrices_function(model, names, "observation", {{"A0", offset}, {"A", linear}, {"B", noise}});
+  }
+  if (code.has_observation_rate)
+    code.definitions += state_function(model, names, "observation_rate", rate_target, rate.polynomials(model.states));
+  if (!code.observation_is_sampled)
+    code.definitions += parameterised_matrices_function(model, names, "observation_noise", {{"B", noise}});
+}
+
+}  // namespace
 
 TruthCode generate_truth_code(const Model& model) {
   const Diffusion& d = model.diffusion;
@@ -46,7 +82,7 @@ TruthCode generate_truth_code(const Model& model) {
   }
   if (code.diffusion_is_covariance)
     out += state_function(model, names, "diffusion_covariance", "G", in_states(model, d.G));
-  observation_code(model.observation.kind()).truth_observation(model, names, code);
+  truth_observation(model, names, code);
   if (code.has_initial_state) {
     out += "inline void initial_state(double* x0) {\n";
     for (std::size_t i = 0; i < code.n; ++i)

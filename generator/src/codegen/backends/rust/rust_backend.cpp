@@ -26,7 +26,7 @@ class RustBackend final : public Backend {
   }
   GeneratedFilter filter_code(const Model& model, const FilterEquations& eq,
                               const CodegenOptions& options) const override {
-    return write_rust_filter(observation_code(eq.observation), model, eq, options);
+    return write_rust_filter(observation_code(model.observation), model, eq, options);
   }
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 // The pieces the truth's functions are written with (truth_codegen.hpp), shared with the
-// observation modules, which write the truth's observation function (ObservationCode::truth_observation).
+// observation modules' plugin parts.
 #include <string>
 #include <utility>
 #include <vector>
