@@ -37,13 +37,14 @@ Expr operation(const Node& node, std::vector<Expr> a) {
   switch (node.kind) {
     case OpKind::Input:
     case OpKind::Constant: return leaf(node);
-    case OpKind::Add: return add(std::move(a.at(0)), std::move(a.at(1)));
-    case OpKind::Sub: return sub(std::move(a.at(0)), std::move(a.at(1)));
-    case OpKind::Mul: return mul(std::move(a.at(0)), std::move(a.at(1)));
-    case OpKind::Div: return div(std::move(a.at(0)), std::move(a.at(1)));
-    case OpKind::Neg: return neg(std::move(a.at(0)));
+    // The operands' vector becomes the node's (no copy, no second allocation).
+    case OpKind::Add: return operator_node(Expr::Kind::Add, std::move(a));
+    case OpKind::Sub: return operator_node(Expr::Kind::Sub, std::move(a));
+    case OpKind::Mul: return operator_node(Expr::Kind::Mul, std::move(a));
+    case OpKind::Div: return operator_node(Expr::Kind::Div, std::move(a));
+    case OpKind::Neg: return operator_node(Expr::Kind::Neg, std::move(a));
     case OpKind::Call: return call(node.function, std::move(a));
-    case OpKind::ZeroWhereZero: return zero_where_zero(std::move(a.at(0)), std::move(a.at(1)));
+    case OpKind::ZeroWhereZero: return operator_node(Expr::Kind::ZeroWhereZero, std::move(a));
   }
   return leaf(node);
 }
@@ -163,7 +164,11 @@ SplitPlan split_statements(const ExpressionGraph& graph, const std::vector<std::
                            std::size_t max_ops, const std::string& shared_array,
                            const std::function<void(const SplitPlan& plan, SplitPart&& part)>& each) {
   SplitPlan plan = split_plan(graph, outputs, max_ops);
-  auto temporary = [&](std::size_t id) { return temporary_prefix + std::to_string(plan.number.at(id)); };
+  // Each temporary's name made once (a name is read by every use of its value: formatting it at each
+  // use was a tenth of the lowering's cost).
+  std::vector<std::string> names(plan.operations.size());
+  for (std::size_t k = 0; k < names.size(); ++k) names[k] = temporary_prefix + std::to_string(k);
+  auto temporary = [&](std::size_t id) -> const std::string& { return names[plan.number.at(id)]; };
   auto spell = [&](std::size_t id) { return graph.is_leaf(id) ? leaf(graph.node(id)) : name(temporary(id)); };
   auto note_input = [&](SplitPart& part, std::size_t id) {
     if (graph.node(id).kind == OpKind::Input) part.inputs.insert(id);

@@ -126,6 +126,8 @@ Expr local_array(const std::string& array, bool writable) {
   return e;
 }
 
+Expr operator_node(Expr::Kind kind, std::vector<Expr> operands) { return node(kind, std::move(operands)); }
+
 Expr grouped(Expr a) {
   a.grouped = true;
   return a;

@@ -75,6 +75,9 @@ Expr greater(Expr a, Expr b);
 Expr logical_not(Expr a);
 Expr local_array(const std::string& name, bool writable);
 Expr grouped(Expr a);
+// An operator node (Add, Sub, Mul, Div, Neg, ZeroWhereZero, Greater, Not) over operands already in a
+// vector, which the node keeps: lowering a graph builds each operation's operands once.
+Expr operator_node(Expr::Kind kind, std::vector<Expr> operands);
 // A size of the file by its language-neutral name ("n", "p", "state_size"): C++ writes it as it is,
 // C after the file's prefix, Rust as its constant (STATES, OBSERVATIONS, STATE_SIZE).
 Expr dimension(const std::string& name);
