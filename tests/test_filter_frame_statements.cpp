@@ -1,8 +1,9 @@
 // The filter parts the sampled and delayed modules describe: the sampled prediction's statements
 // (sampled_predict.hpp) as each backend's emitter writes them, the same nodes giving C++'s, C's and
 // Rust's text, with the local-array nodes (ir::local_arrays, ir::local_array) spelled as each
-// language declares and passes an array; and the delayed history's ring parts, chosen by the
-// delay's case (delayed_code.hpp) and held by each backend that writes the ring.
+// language declares and passes an array; the delayed history's ring parts, built for the delay's
+// case (delayed_history.hpp), as C and Rust write them; and the layouts of a loop's or a
+// conditional's block.
 #include <catch2/catch.hpp>
 
 #include <set>
@@ -12,7 +13,7 @@
 #include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 #include "pfgen/codegen/backends/rust/rust_emitter.hpp"
 #include "pfgen/codegen/template_text.hpp"
-#include "pfgen/observations/delayed/delayed_code.hpp"
+#include "pfgen/observations/delayed/delayed_history.hpp"
 #include "pfgen/observations/sampled/sampled_predict.hpp"
 
 using namespace pfgen;
@@ -61,29 +62,121 @@ TEST_CASE("sampled predict: Heun's and cd-euler's sub-step as statements for eve
         "    }\n");
 }
 
-TEST_CASE("delayed history: each delay's case chooses a ring part that every backend holding the ring has",
+TEST_CASE("delayed history: the ring's parts for each delay's case are statements every backend holding the ring writes",
           "[unit][codegen]") {
   // C and Rust write the ring for the case (no history, a one-step history whose end is the start
   // state, a ring), with and without x*; C++'s template has one form for every case, so it has no
-  // key for these frames (its writer skips them).
-  std::set<std::string> chosen;
+  // key for these blocks (its writer skips them).
+  const CEmitter c(ScalarMode::Double, "tmp", "ns_m_f", "ns_m_f_params");
+  const RustEmitter rust(ScalarMode::Double, "tmp", "Params");
+  std::set<std::string> texts;
   for (std::size_t steps : {0, 1, 50})
     for (bool x_star : {false, true}) {
-      const auto frames = history_frames(steps, x_star);
-      CHECK(frames.size() == 3);
-      for (const auto& [key, frame] : frames) {
-        INFO(key + " -> " + frame);
-        CHECK_FALSE(frame.empty());
+      const auto blocks = history_statements(steps, x_star);
+      CHECK(blocks.size() == 3);
+      for (const auto& [key, block] : blocks) {
+        INFO(key);
+        CHECK_FALSE(block.empty());
         CHECK(values_in_template("c/delayed_filter.c.tmpl", {{key, ""}}).count(key) == 1);
         CHECK(values_in_template("rust/delayed_filter.rs.tmpl", {{key, ""}}).count(key) == 1);
         CHECK(values_in_template("cpp/delayed_filter.hpp.tmpl", {{key, ""}}).empty());
-        CHECK_NOTHROW(embedded_template("c/partials/" + frame + ".c.tmpl"));
-        CHECK_NOTHROW(embedded_template("rust/partials/" + frame + ".rs.tmpl"));
-        chosen.insert(frame);
+        texts.insert(key + ":" + c.block(block));
       }
     }
   // Each case its own read; the empty history's initial and store parts apart from the ring's.
-  CHECK(chosen.size() == 10);
-  CHECK(history_frames(1, true).at("delayed_inputs_body") != history_frames(50, true).at("delayed_inputs_body"));
-  CHECK(history_frames(0, false).at("history_store") != history_frames(1, false).at("history_store"));
+  CHECK(texts.size() == 10);
+
+  // C's text is the ring as the C backend has always written it.
+  const auto ring = history_statements(50, true);
+  CHECK(c.block(ring.at("initial_history_body")) ==
+        "  for (size_t slot = 0; slot < ns_m_f_delay_steps; ++slot)\n"
+        "    for (size_t i = 0; i < ns_m_f_history_width; ++i)\n"
+        "      history[slot * ns_m_f_history_width + i] = i < ns_m_f_n ? state[i] : state[ns_m_f_state_size - "
+        "ns_m_f_n + (i - ns_m_f_n)];\n");
+  CHECK(c.block(ring.at("history_store")) ==
+        "  {\n"
+        "    double* slot = history + (k % ns_m_f_delay_steps) * ns_m_f_history_width;\n"
+        "    for (size_t i = 0; i < ns_m_f_history_width; ++i) slot[i] = i < ns_m_f_n ? state[i] : "
+        "state[ns_m_f_state_size - ns_m_f_n + (i - ns_m_f_n)];\n"
+        "  }\n");
+  CHECK(c.block(ring.at("delayed_inputs_body")) ==
+        "  const double* m_past = history + ((k + offset) % ns_m_f_delay_steps) * ns_m_f_history_width;\n"
+        "  const double* x_star_past = m_past + ns_m_f_n;\n"
+        "  (void)start;\n"
+        "  for (size_t i = 0; i < ns_m_f_n; ++i) delayed[i] = m_past[i];\n"
+        "  {\n"
+        "    const double* x_star_now = now + (ns_m_f_state_size - ns_m_f_n);\n"
+        "    for (size_t i = 0; i < ns_m_f_n; ++i) {\n"
+        "      if (k < ns_m_f_delay_steps || x_star_now[i] == 0.0)\n"
+        "        delayed[ns_m_f_n + i] = 0.0;\n"
+        "      else\n"
+        "        delayed[ns_m_f_n + i] = x_star_past[i] / x_star_now[i];\n"
+        "    }\n"
+        "  }\n");
+  CHECK(c.block(history_statements(1, false).at("delayed_inputs_body")) ==
+        "  const double* m_past = history + ((k + offset) % ns_m_f_delay_steps) * ns_m_f_history_width;\n"
+        "  if (offset == 1) {\n"
+        "    m_past = start;\n"
+        "  }\n"
+        "  for (size_t i = 0; i < ns_m_f_n; ++i) delayed[i] = m_past[i];\n"
+        "  (void)now;\n");
+  CHECK(c.block(history_statements(0, true).at("delayed_inputs_body")) ==
+        "  (void)history;\n  (void)start;\n  (void)k;\n  (void)offset;\n"
+        "  for (size_t i = 0; i < ns_m_f_n; ++i) delayed[i] = now[i];\n"
+        "  for (size_t i = 0; i < ns_m_f_n; ++i) delayed[ns_m_f_n + i] = 1.0;\n");
+  CHECK(c.block(history_statements(0, false).at("history_store")) == "  (void)history;\n");
+
+  // Rust's: the same statements; the views rebound at the end of a one-step history are `let mut`
+  // slices, the others immutable (rustc denies an unused `mut`).
+  CHECK(rust_indent(rust.block(history_statements(1, true).at("delayed_inputs_body"))) ==
+        "    let mut m_past: &[Scalar] = &history[((k + offset) % DELAY_STEPS) * HISTORY_WIDTH..((k + offset) % "
+        "DELAY_STEPS) * HISTORY_WIDTH + HISTORY_WIDTH];\n"
+        "    let mut x_star_past: &[Scalar] = &m_past[STATES..STATES + STATES];\n"
+        "    if offset == 1 {\n"
+        "        m_past = &start[..];\n"
+        "        x_star_past = &start[STATE_SIZE - STATES..STATE_SIZE - STATES + STATES];\n"
+        "    }\n"
+        "    for i in 0..STATES {\n"
+        "        delayed[i] = m_past[i];\n"
+        "    }\n"
+        "    {\n"
+        "        let x_star_now = &now[STATE_SIZE - STATES..STATE_SIZE - STATES + STATES];\n"
+        "        for i in 0..STATES {\n"
+        "            if k < DELAY_STEPS || x_star_now[i] == 0.0 {\n"
+        "                delayed[STATES + i] = 0.0;\n"
+        "            } else {\n"
+        "                delayed[STATES + i] = x_star_past[i] / x_star_now[i];\n"
+        "            }\n"
+        "        }\n"
+        "    }\n");
+  CHECK(rust_indent(rust.block(ring.at("history_store"))) ==
+        "    {\n"
+        "        let slot = &mut history[(k % DELAY_STEPS) * HISTORY_WIDTH..(k % DELAY_STEPS) * HISTORY_WIDTH + "
+        "HISTORY_WIDTH];\n"
+        "        for i in 0..HISTORY_WIDTH {\n"
+        "            slot[i] = if i < STATES { state[i] } else { state[STATE_SIZE - STATES + (i - STATES)] };\n"
+        "        }\n"
+        "    }\n");
+}
+
+TEST_CASE("statement layouts: a C-family block on the header's line, the next line or in braces; Rust always braces",
+          "[unit][codegen]") {
+  const CEmitter c(ScalarMode::Float, "tmp", "ns_m_f", "ns_m_f_params");
+  const RustEmitter rust(ScalarMode::Float, "tmp", "Params");
+  const auto one = [] { return ir::Block{ir::assign(ir::element("a", ir::name("i")), ir::number(0))}; };
+  const ir::Statement loop = ir::loop("i", ir::Type::Size, ir::integer(0), ir::name("N"), one());
+  CHECK(c.block({loop}) == "  for (size_t i = 0; i < N; ++i) a[i] = 0.0f;\n");
+  CHECK(c.block({ir::laid_out(loop, ir::Layout::NextLine)}) == "  for (size_t i = 0; i < N; ++i)\n    a[i] = 0.0f;\n");
+  CHECK(c.block({ir::laid_out(loop, ir::Layout::Braced)}) == "  for (size_t i = 0; i < N; ++i) {\n    a[i] = 0.0f;\n  }\n");
+  CHECK(rust.block({ir::laid_out(loop, ir::Layout::NextLine)}) == rust.block({loop}));
+  const ir::Statement choice = ir::conditional(ir::less(ir::name("i"), ir::name("N")), one(), one());
+  CHECK(c.block({choice}) == "  if (i < N)\n    a[i] = 0.0f;\n  else\n    a[i] = 0.0f;\n");
+  CHECK(rust.block({choice}) == "  if i < N {\n    a[i] = 0.0;\n  } else {\n    a[i] = 0.0;\n  }\n");
+  const ir::Expr pick = ir::select(ir::logical_or(ir::equal(ir::name("k"), ir::integer(1)), ir::name("b")),
+                                   ir::rem(ir::name("k"), ir::name("N")), ir::integer(0));
+  CHECK(c.expression(pick) == "k == 1 || b ? k % N : 0");
+  CHECK(rust.expression(pick) == "if k == 1 || b { k % N } else { 0 }");
+  CHECK(c.expression(ir::slice("a")) == "a");
+  CHECK(rust.expression(ir::slice("a", ir::grouped(ir::sub(ir::name("N"), ir::name("M"))), ir::name("M"))) ==
+        "&a[N - M..N - M + M]");
 }

@@ -48,8 +48,8 @@ struct FilterFile {
   std::map<std::string, GiNaC::numeric> numbers;
   // Text the backend holds for each language, chosen by the module, under their templates' keys:
   // key -> the name of a partial of the backend's ("" for none). A function framed by its comment
-  // and signature (euler_square() of a cd-euler filter, the body inside), or a part whose text
-  // differs by language in more than names (the delayed history's ring for the delay's case).
+  // and signature (euler_square() of a cd-euler filter, the body inside), or a comment's words
+  // that differ by language in more than names (a delayed filter's state_x_star).
   // Each backend fills <language>/partials/<name>.* with the file's values into every template of
   // the layout that has `key` (C: the .c.tmpl into the source, the .h.tmpl into the header).
   std::map<std::string, std::string> frames;

@@ -28,7 +28,11 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
     case Kind::Mul:
     case Kind::Div:
     case Kind::ZeroWhereZero:
-    case Kind::Greater: {
+    case Kind::Greater:
+    case Kind::Less:
+    case Kind::Equal:
+    case Kind::Or:
+    case Kind::Rem: {
       const std::string a = first();
       const std::string b = expression(e.operands.at(1));
       if (e.kind == Kind::Add) text = add(a, b);
@@ -37,8 +41,19 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
       if (e.kind == Kind::Div) text = div(a, b);
       if (e.kind == Kind::ZeroWhereZero) text = zero_where_zero(a, b);
       if (e.kind == Kind::Greater) text = greater(a, b);
+      if (e.kind == Kind::Less) text = less(a, b);
+      if (e.kind == Kind::Equal) text = equal(a, b);
+      if (e.kind == Kind::Or) text = logical_or(a, b);
+      if (e.kind == Kind::Rem) text = rem(a, b);
       break;
     }
+    case Kind::Select: {
+      const std::string condition = first();
+      const std::string if_true = expression(e.operands.at(1));
+      text = select(condition, if_true, expression(e.operands.at(2)));
+      break;
+    }
+    case Kind::Slice: text = slice(e); break;
     case Kind::Call: {
       std::vector<std::string> a;
       a.reserve(e.operands.size());
@@ -64,6 +79,7 @@ std::string StatementEmitter::statement(const ir::Statement& s, const std::strin
     case Kind::Comment: return comment(s.comment(), indent);
     case Kind::Unused: return unused(s.unused(), indent);
     case Kind::Arrays: return arrays(s.arrays(), indent);
+    case Kind::Scope: return scope(s.scope(), indent);
   }
   return "";
 }

@@ -117,6 +117,29 @@ Expr zero_where_zero(Expr guard, Expr value) {
 
 Expr greater(Expr a, Expr b) { return node(Expr::Kind::Greater, std::move(a), std::move(b)); }
 Expr logical_not(Expr a) { return node(Expr::Kind::Not, std::move(a)); }
+Expr less(Expr a, Expr b) { return node(Expr::Kind::Less, std::move(a), std::move(b)); }
+Expr equal(Expr a, Expr b) { return node(Expr::Kind::Equal, std::move(a), std::move(b)); }
+Expr logical_or(Expr a, Expr b) { return node(Expr::Kind::Or, std::move(a), std::move(b)); }
+Expr rem(Expr a, Expr b) { return node(Expr::Kind::Rem, std::move(a), std::move(b)); }
+
+Expr select(Expr condition, Expr if_true, Expr if_false) {
+  Expr e = node(Expr::Kind::Select, std::move(condition), std::move(if_true));
+  e.operands.push_back(std::move(if_false));
+  return e;
+}
+
+Expr slice(const std::string& array) {
+  Expr e;
+  e.kind = Expr::Kind::Slice;
+  e.name = array;
+  return e;
+}
+
+Expr slice(const std::string& array, Expr offset, Expr size) {
+  Expr e = node(Expr::Kind::Slice, std::move(offset), std::move(size));
+  e.name = array;
+  return e;
+}
 
 Expr local_array(const std::string& array, bool writable) {
   Expr e;
@@ -157,6 +180,11 @@ Statement view(const std::string& name, const std::string& array, Expr offset, E
                    std::make_shared<const View>(View{name, array, std::move(offset), std::move(size), writable}));
 }
 
+Statement rebound_view(const std::string& name, const std::string& array, Expr offset, Expr size) {
+  return statement(Statement::Kind::View, std::make_shared<const View>(
+                                              View{name, array, std::move(offset), std::move(size), false, true}));
+}
+
 namespace {
 std::vector<Expr> one_target(Expr&& target) {
   std::vector<Expr> targets;
@@ -191,9 +219,27 @@ Statement call_file_function(const std::string& function, std::vector<Expr> argu
                    std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments), true}));
 }
 
-Statement conditional(Expr condition, Block then) {
-  return statement(Statement::Kind::Conditional,
-                   std::make_shared<const Conditional>(Conditional{std::move(condition), std::move(then)}));
+Statement conditional(Expr condition, Block then, Block otherwise) {
+  return statement(Statement::Kind::Conditional, std::make_shared<const Conditional>(Conditional{
+                                                     std::move(condition), std::move(then), std::move(otherwise)}));
+}
+
+Statement scope(Block body) {
+  return statement(Statement::Kind::Scope, std::make_shared<const Scope>(Scope{std::move(body)}));
+}
+
+Statement laid_out(Statement s, Layout layout) {
+  if (s.kind == Statement::Kind::Loop) {
+    Loop node = s.loop();
+    node.layout = layout;
+    return statement(Statement::Kind::Loop, std::make_shared<const Loop>(std::move(node)));
+  }
+  if (s.kind == Statement::Kind::Conditional) {
+    Conditional node = s.conditional();
+    node.layout = layout;
+    return statement(Statement::Kind::Conditional, std::make_shared<const Conditional>(std::move(node)));
+  }
+  return s;
 }
 
 Statement return_value(std::optional<Expr> value) {

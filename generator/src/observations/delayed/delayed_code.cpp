@@ -3,6 +3,7 @@
 #include "pfgen/observations/delayed/delayed_code.hpp"
 
 #include "pfgen/observations/continuous/continuous_code.hpp"
+#include "pfgen/observations/delayed/delayed_history.hpp"
 #include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::codegen {
@@ -20,17 +21,6 @@ std::string delay_banner_line(const FilterEquations& eq, const DelaySteps& steps
   return "// Delayed observations: h = " + pfgen_support::shortest_double(eq.delay.to_double()) + " = " +
          std::to_string(steps.steps) + " steps of dt = " + pfgen_support::shortest_double(grid_step) +
          "; the caller supplies dy over each step of this dt.\n";
-}
-
-std::map<std::string, std::string> history_frames(std::size_t delay_steps, bool x_star) {
-  if (delay_steps == 0)
-    return {{"initial_history_body", "history_initial_none"},
-            {"delayed_inputs_body", x_star ? "history_read_none_x_star" : "history_read_none"},
-            {"history_store", "history_store_none"}};
-  const std::string read = delay_steps == 1 ? "history_read_one" : "history_read_ring";
-  return {{"initial_history_body", "history_initial"},
-          {"delayed_inputs_body", x_star ? read + "_x_star" : read},
-          {"history_store", "history_store"}};
 }
 
 FilterFile DelayedCode::filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
@@ -61,7 +51,7 @@ FilterFile DelayedCode::filter_file(const Model& model, const FilterEquations& e
                      {"history_size", std::to_string(history)},
                      {"history_array_size", std::to_string(history > 0 ? history : 1)},  // C has no empty array
                      {"delayed_size", std::to_string(width)}});
-  file.frames = history_frames(steps.steps, x_star);
+  for (auto& [key, block] : history_statements(steps.steps, x_star)) file.blocks.emplace(key, std::move(block));
   file.frames.emplace("state_x_star", x_star ? "state_x_star" : "");
   return file;
 }

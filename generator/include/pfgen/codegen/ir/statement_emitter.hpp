@@ -40,6 +40,14 @@ class StatementEmitter : public Emitter {
   virtual std::string field(const std::string& record, const std::string& field) const = 0;
   virtual std::string greater(const std::string& a, const std::string& b) const = 0;
   virtual std::string logical_not(const std::string& a) const = 0;
+  virtual std::string less(const std::string& a, const std::string& b) const = 0;
+  virtual std::string equal(const std::string& a, const std::string& b) const = 0;
+  virtual std::string logical_or(const std::string& a, const std::string& b) const = 0;
+  virtual std::string rem(const std::string& a, const std::string& b) const = 0;
+  virtual std::string select(const std::string& condition, const std::string& if_true,
+                             const std::string& if_false) const = 0;
+  // A Slice node (its operands written by the method, which may drop their grouping).
+  virtual std::string slice(const ir::Expr& node) const = 0;
   virtual std::string grouped(const std::string& a) const { return "(" + a + ")"; }
   virtual std::string local_array(const std::string& array, bool writable) const = 0;
   // A size the file declares, by its language-neutral name; as it is by default.
@@ -66,6 +74,7 @@ class StatementEmitter : public Emitter {
   virtual std::string comment(const ir::Comment& node, const std::string& indent) const = 0;
   virtual std::string unused(const ir::Unused& node, const std::string& indent) const = 0;
   virtual std::string arrays(const ir::LocalArrays& node, const std::string& indent) const = 0;
+  virtual std::string scope(const ir::Scope& node, const std::string& indent) const = 0;
   std::string statement(const ir::Statement& statement, const std::string& indent) const;
   std::string block(const ir::Block& block, const std::string& indent = "  ") const;
 

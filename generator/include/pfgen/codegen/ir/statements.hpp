@@ -41,6 +41,12 @@ struct Expr {
                     // through when `integer` != 0 (C: `name`; C++: `name.data()`; Rust: `&mut name`)
     Dimension,      // a size the file declares (`name`: "n", "p", "state_size", ...), spelt by its language
     WholeScalar,    // the whole number `integer` in the scalar type (C++: `Scalar(2)`; C: `2.0f`)
+    Less, Equal,    // operands[0] < operands[1], operands[0] == operands[1]
+    Or,             // operands[0] or operands[1] (C: `||`)
+    Rem,            // operands[0] modulo operands[1], of sizes (`%`)
+    Select,         // operands[1] if operands[0], else operands[2] (C: `a ? b : c`; Rust: `if a { b } else { c }`)
+    Slice,          // the entries of the array `name` from operands[0] on, operands[1] of them (C: `name + o`;
+                    // Rust: `&name[o..o + size]`); without operands, the whole array (C: `name`; Rust: `&name[..]`)
   };
   Kind kind = Kind::Name;
   std::string name;
@@ -74,6 +80,14 @@ Expr zero_where_zero(Expr guard, Expr value);
 Expr greater(Expr a, Expr b);
 Expr logical_not(Expr a);
 Expr local_array(const std::string& name, bool writable);
+Expr less(Expr a, Expr b);
+Expr equal(Expr a, Expr b);
+Expr logical_or(Expr a, Expr b);
+Expr rem(Expr a, Expr b);
+Expr select(Expr condition, Expr if_true, Expr if_false);
+// A slice to rebind a view to (`rebound_view`): the whole array, or `size` entries from `offset`.
+Expr slice(const std::string& array);
+Expr slice(const std::string& array, Expr offset, Expr size);
 Expr grouped(Expr a);
 // An operator node (Add, Sub, Mul, Div, Neg, ZeroWhereZero, Greater, Not) over operands already in a
 // vector, which the node keeps: lowering a graph builds each operation's operands once.
@@ -96,6 +110,11 @@ enum class Type {
 struct Statement;
 using Block = std::vector<Statement>;
 
+// How a C-family language lays out the block of a loop or a conditional (Rust always braces it):
+// Compact puts one statement on the header's line (a nested loop on the next, indented), several in
+// braces; NextLine puts one statement on the next line, indented; Braced always uses braces.
+enum class Layout { Compact, NextLine, Braced };
+
 // `name` of `type`: a constant with its value, or an array of `size` entries, uninitialised.
 struct Declaration {
   std::string name;
@@ -111,6 +130,7 @@ struct View {
   std::string array;
   Expr offset, size;
   bool writable = false;
+  bool rebound = false;  // later assigned another slice (ir::slice): Rust's `let mut name: &[Scalar]`
 };
 
 // Arrays of `length` entries each (an expression of the file's named sizes), declared together:
@@ -144,6 +164,7 @@ struct Loop {
   std::optional<Follower> declares;
   std::string steps;  // empty: none
   Block body;
+  Layout layout = Layout::Compact;
 };
 
 // A call as a statement: `function(arguments)`. A function the file declares (`of_file`) is named
@@ -154,10 +175,18 @@ struct CallStatement {
   bool of_file = false;
 };
 
-// if condition: then.
+// if condition: then, else: otherwise (when not empty; a C-family language writes each branch of
+// one statement on its own line, several in braces).
 struct Conditional {
   Expr condition;
   Block then;
+  Block otherwise;
+  Layout layout = Layout::Compact;
+};
+
+// A block of its own, in braces: what it declares ends with it.
+struct Scope {
+  Block body;
 };
 
 struct Return {
@@ -177,11 +206,11 @@ struct Unused {
 // place and the others behind a shared pointer, so that a function of a hundred thousand
 // operations stays small in memory while it is written.
 struct Statement {
-  enum class Kind { Declaration, View, Assignment, Loop, Call, Conditional, Return, Comment, Unused, Arrays };
+  enum class Kind { Declaration, View, Assignment, Loop, Call, Conditional, Return, Comment, Unused, Arrays, Scope };
   Kind kind = Kind::Comment;
   std::variant<Comment, Declaration, Assignment, Unused, Return, std::shared_ptr<const View>,
                std::shared_ptr<const Loop>, std::shared_ptr<const CallStatement>, std::shared_ptr<const Conditional>,
-               std::shared_ptr<const LocalArrays>>
+               std::shared_ptr<const LocalArrays>, std::shared_ptr<const Scope>>
       node;
 
   const Declaration& declaration() const { return std::get<Declaration>(node); }
@@ -194,12 +223,15 @@ struct Statement {
   const CallStatement& call() const { return *std::get<std::shared_ptr<const CallStatement>>(node); }
   const Conditional& conditional() const { return *std::get<std::shared_ptr<const Conditional>>(node); }
   const LocalArrays& arrays() const { return *std::get<std::shared_ptr<const LocalArrays>>(node); }
+  const Scope& scope() const { return *std::get<std::shared_ptr<const Scope>>(node); }
 };
 
 Statement declare(std::string name, Type type, Expr value);          // a constant
 Statement declare_array(const std::string& name, Type type, std::size_t size);
 Statement local_arrays(std::vector<std::string> names, Type type, Expr length);
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable);
+// A read-only view that is later assigned another slice (ir::slice).
+Statement rebound_view(const std::string& name, const std::string& array, Expr offset, Expr size);
 Statement assign(Expr target, Expr value);
 Statement assign_all(std::vector<Expr> targets, Expr value);
 Statement accumulate(Expr target, Expr value);
@@ -207,7 +239,10 @@ Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Blo
                std::optional<Loop::Follower> declares = std::nullopt, const std::string& steps = "");
 Statement call_statement(const std::string& function, std::vector<Expr> arguments);
 Statement call_file_function(const std::string& function, std::vector<Expr> arguments);
-Statement conditional(Expr condition, Block then);
+Statement conditional(Expr condition, Block then, Block otherwise = {});
+Statement scope(Block body);
+// `s` (a loop or a conditional) with its block laid out as `layout`; any other statement as it is.
+Statement laid_out(Statement s, Layout layout);
 Statement return_value(std::optional<Expr> value);
 Statement comment(const std::string& text);
 Statement unused(const std::string& name);

@@ -1,8 +1,9 @@
 #pragma once
 // The delayed observation dy = (A0 + A x(t - h)) dt + B dW2 in code generation (docs/theory.md
 // §2.6): DelayedCode, its methods by file (delayed_code.cpp: its filter's file, layout
-// delayed_filter, described in no language; delayed_plugin.cpp: the truth's observation and the
-// plugin's table, ABI version 3). Its filters have the continuous module's functions
+// delayed_filter, described in no language, with the history ring's statements of
+// delayed_history.hpp; delayed_plugin.cpp: the truth's observation and the plugin's table, ABI
+// version 3). Its filters have the continuous module's functions
 // (continuous_code.hpp), reading m(t - h) and Phi* from a second array, and step on the fixed grid
 // they are generated for, keeping a history of m (and x*) in a ring the caller owns.
 #include <map>
@@ -32,13 +33,6 @@ class DelayedCode final : public ObservationCode {
 // The filter's delay in steps of options.grid_step: CodegenError when there is no grid step or the
 // delay is not a whole number of it.
 DelaySteps filter_delay_steps(const FilterEquations& eq, const CodegenOptions& options);
-
-// The history ring's parts for the delay in steps and x*: the frames (partials of each backend's)
-// of initial_history(), delayed_inputs() and the step's store, each written for the case it serves
-// (no history when the delay is 0 steps; the end's read from the start state when it is 1), so that
-// no generated branch is always true or always false and nothing indexes an empty history (which
-// C's -Wextra and rustc report). C++'s template keeps one form for every case (if constexpr).
-std::map<std::string, std::string> history_frames(std::size_t delay_steps, bool x_star);
 
 // The banner's line on the grid: "// Delayed observations: h = 0.5 = 50 steps of dt = 0.01; ...".
 std::string delay_banner_line(const FilterEquations& eq, const DelaySteps& steps, double grid_step);

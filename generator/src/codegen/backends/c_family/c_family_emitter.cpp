@@ -112,12 +112,22 @@ std::string CFamilyEmitter::assignment(const ir::Assignment& node, const std::st
   return text + expression(node.value) + ";";
 }
 
-std::string CFamilyEmitter::with_block(const std::string& header, const ir::Block& body,
-                                       const std::string& indent) const {
+std::string CFamilyEmitter::slice(const ir::Expr& node) const {
+  if (node.operands.empty()) return node.name;
+  return node.name + " + " + expression(node.operands.at(0));
+}
+
+std::string CFamilyEmitter::scope(const ir::Scope& node, const std::string& indent) const {
+  return "{\n" + block(node.body, indent + "  ") + indent + "}";
+}
+
+std::string CFamilyEmitter::with_block(const std::string& header, const ir::Block& body, const std::string& indent,
+                                       ir::Layout layout) const {
   const std::string inner = indent + "  ";
-  if (body.size() == 1 && body[0].kind == ir::Statement::Kind::Loop)
+  if (layout != ir::Layout::Braced && body.size() == 1 &&
+      (layout == ir::Layout::NextLine || body[0].kind == ir::Statement::Kind::Loop))
     return header + "\n" + inner + statement(body[0], inner);
-  if (body.size() == 1) return header + " " + statement(body[0], indent);
+  if (layout != ir::Layout::Braced && body.size() == 1) return header + " " + statement(body[0], indent);
   return header + " {\n" + block(body, inner) + indent + "}";
 }
 
@@ -126,7 +136,7 @@ std::string CFamilyEmitter::loop(const ir::Loop& node, const std::string& indent
   if (node.declares) header += ", " + node.declares->name + " = " + expression(node.declares->start);
   header += "; " + node.index + " < " + expression(node.end) + "; ++" + node.index;
   if (!node.steps.empty()) header += ", ++" + node.steps;
-  return with_block(header + ")", node.body, indent);
+  return with_block(header + ")", node.body, indent, node.layout);
 }
 
 std::string CFamilyEmitter::call_statement(const ir::CallStatement& node, const std::string&) const {
@@ -136,7 +146,14 @@ std::string CFamilyEmitter::call_statement(const ir::CallStatement& node, const 
 }
 
 std::string CFamilyEmitter::conditional(const ir::Conditional& node, const std::string& indent) const {
-  return with_block("if (" + expression(node.condition) + ")", node.then, indent);
+  const std::string header = "if (" + expression(node.condition) + ")";
+  if (node.otherwise.empty()) return with_block(header, node.then, indent, node.layout);
+  // With an else: each branch of one statement on its own line, else both in braces.
+  const std::string inner = indent + "  ";
+  if (node.then.size() == 1 && node.otherwise.size() == 1)
+    return header + "\n" + inner + statement(node.then[0], inner) + "\n" + indent + "else\n" + inner +
+           statement(node.otherwise[0], inner);
+  return header + " {\n" + block(node.then, inner) + indent + "} else {\n" + block(node.otherwise, inner) + indent + "}";
 }
 
 std::string CFamilyEmitter::return_statement(const ir::Return& node, const std::string&) const {

@@ -127,10 +127,25 @@ std::string RustEmitter::arrays(const ir::LocalArrays& node, const std::string& 
   return text;
 }
 
+namespace {
+// A range's bound needs no parentheses (`..` binds loosest), and rustc would lint them.
+ir::Expr ungrouped(ir::Expr e) {
+  e.grouped = false;
+  return e;
+}
+}  // namespace
+
+std::string RustEmitter::slice(const ir::Expr& node) const {
+  if (node.operands.empty()) return "&" + node.name + "[..]";
+  const std::string offset = expression(ungrouped(node.operands.at(0)));
+  return "&" + node.name + "[" + offset + ".." + offset + " + " + expression(node.operands.at(1)) + "]";
+}
+
 std::string RustEmitter::view(const ir::View& node, const std::string&) const {
-  const std::string offset = expression(node.offset);
-  return "let " + node.name + " = &" + (node.writable ? "mut " : "") + node.array + "[" + offset + ".." + offset +
-         " + " + expression(node.size) + "];";
+  const std::string offset = expression(ungrouped(node.offset));
+  const std::string head = node.rebound ? "let mut " + node.name + ": &[" + scalar_type() + "] = &" : "let " + node.name + " = &";
+  return head + (node.writable ? "mut " : "") + node.array + "[" + offset + ".." + offset + " + " +
+         expression(node.size) + "];";
 }
 
 std::string RustEmitter::assignment(const ir::Assignment& node, const std::string& indent) const {
@@ -162,7 +177,9 @@ std::string RustEmitter::call_statement(const ir::CallStatement& node, const std
 }
 
 std::string RustEmitter::conditional(const ir::Conditional& node, const std::string& indent) const {
-  return braced("if " + expression(node.condition), block(node.then, indent + "  "), indent);
+  std::string text = braced("if " + expression(node.condition), block(node.then, indent + "  "), indent);
+  if (!node.otherwise.empty()) text += braced(" else", block(node.otherwise, indent + "  "), indent);
+  return text;
 }
 
 std::string RustEmitter::unused(const ir::Unused& node, const std::string&) const { return "let _ = " + node.name + ";"; }

@@ -45,6 +45,16 @@ class CFamilyEmitter : public StatementEmitter {
   }
   std::string greater(const std::string& a, const std::string& b) const override { return a + " > " + b; }
   std::string logical_not(const std::string& a) const override { return "!" + a; }
+  std::string less(const std::string& a, const std::string& b) const override { return a + " < " + b; }
+  std::string equal(const std::string& a, const std::string& b) const override { return a + " == " + b; }
+  std::string logical_or(const std::string& a, const std::string& b) const override { return a + " || " + b; }
+  std::string rem(const std::string& a, const std::string& b) const override { return a + " % " + b; }
+  std::string select(const std::string& condition, const std::string& if_true,
+                     const std::string& if_false) const override {
+    return condition + " ? " + if_true + " : " + if_false;
+  }
+  // A pointer into the array: `array` or `array + offset`.
+  std::string slice(const ir::Expr& node) const override;
   std::string local_array(const std::string& array, bool) const override { return array; }
   // StatementEmitter's statements.
   std::string declaration(const ir::Declaration& node, const std::string& indent) const override;
@@ -57,6 +67,7 @@ class CFamilyEmitter : public StatementEmitter {
   std::string comment(const ir::Comment& node, const std::string& indent) const override;
   std::string unused(const ir::Unused& node, const std::string& indent) const override;
   std::string arrays(const ir::LocalArrays& node, const std::string& indent) const override;
+  std::string scope(const ir::Scope& node, const std::string& indent) const override;
 
  protected:
   // "." (C++: a reference) or "->" (C: a pointer): how a field of the parameter record is read.
@@ -64,9 +75,9 @@ class CFamilyEmitter : public StatementEmitter {
   // How the language spells a size (C++: std::size_t; C: size_t).
   virtual std::string size_type() const = 0;
   std::string type(ir::Type type) const;
-  // A loop's or a conditional's header followed by its block: one statement on the header's line
-  // (a nested loop on the next, indented), several in braces.
-  std::string with_block(const std::string& header, const ir::Block& body, const std::string& indent) const;
+  // A loop's or a conditional's header followed by its block as `layout` says (ir::Layout).
+  std::string with_block(const std::string& header, const ir::Block& body, const std::string& indent,
+                         ir::Layout layout) const;
 
   ScalarMode mode_;
   std::string scalar_type_;

@@ -39,6 +39,12 @@ class RustEmitter : public CFamilyEmitter {
   std::string call(Function function, const std::vector<std::string>& args) const override;
   std::string zero_where_zero(const std::string& guard, const std::string& value) const override;
   std::string boolean(bool value) const override { return value ? "true" : "false"; }
+  std::string select(const std::string& condition, const std::string& if_true,
+                     const std::string& if_false) const override {
+    return "if " + condition + " { " + if_true + " } else { " + if_false + " }";
+  }
+  // A borrowed slice: `&array[..]`, `&array[offset..offset + size]`.
+  std::string slice(const ir::Expr& node) const override;
   // The module's constants: STATES (n), OBSERVATIONS (p), the others' names in capitals (STATE_SIZE).
   std::string dimension(const std::string& name) const override;
 
