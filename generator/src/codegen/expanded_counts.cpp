@@ -46,6 +46,7 @@ std::size_t shared_length(const Prefix& p, const Prefix& q) {
 }  // namespace
 
 std::optional<ExpandedCounts> expanded_counts(const FilterEquations& eq) {
+  static const GiNaC::numeric one(1), minus_one(-1);
   ExpandedCounts counts;
   bool numbers = true;
   std::vector<Prefix> prefixes;
@@ -60,11 +61,13 @@ std::optional<ExpandedCounts> expanded_counts(const FilterEquations& eq) {
         numbers = false;
         return;
       }
-      GiNaC::numeric c = GiNaC::ex_to<GiNaC::numeric>(coefficient);
-      if (prefix.length == 0 && c.is_negative()) sign = -1;
-      all_negative = all_negative && c.is_negative();
-      if (c.is_negative()) c = -c;
+      const GiNaC::numeric& c = GiNaC::ex_to<GiNaC::numeric>(coefficient);
+      const bool negative = c.is_negative();
+      if (prefix.length == 0 && negative) sign = -1;
+      all_negative = all_negative && negative;
       // As GraphBuilder::scaled: a constant alone, else the monomial, times |c| unless it is 1.
+      // (|c| = 1 is tested without making |c|: negating every coefficient of a dense cubic's
+      // outputs was a twentieth of codegen.)
       if (!m.is_one()) {
         std::size_t factors = 0;
         for (const auto& [variable, exponent] : m.factors()) {
@@ -77,7 +80,7 @@ std::optional<ExpandedCounts> expanded_counts(const FilterEquations& eq) {
           counts.naive.muls += exponent - 1;
           ++factors;
         }
-        counts.naive.muls += factors - 1 + (c == 1 ? 0 : 1);
+        counts.naive.muls += factors - 1 + (c == (negative ? minus_one : one) ? 0 : 1);
       }
       if (prefix.terms.size() < kKeptTerms)
         prefix.terms.push_back(Term{m, sign * GiNaC::ex_to<GiNaC::numeric>(coefficient)});
