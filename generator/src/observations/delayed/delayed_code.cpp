@@ -2,11 +2,31 @@
 // and its part.
 #include "pfgen/observations/delayed/delayed_code.hpp"
 
+#include "pfgen/codegen/heun_step.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
 #include "pfgen/observations/delayed/delayed_history.hpp"
 #include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::codegen {
+namespace {
+
+// The step's loops: the increment rates dt + K (dy - h dt) over the grid's step (`step`, the
+// file's dt()), the predicted state and the average. Loops at every n (the written-out form was
+// measured on the continuous filter's step only).
+void add_step_loops(FilterFile& file, std::size_t n) {
+  const HeunStepLoops loops(n, file.p, file.state_size, false);
+  const ir::Expr step = ir::name("step");
+  ir::Block increment;
+  loops.scaled_rates(increment, [](const ir::Expr& i) { return ir::element("rates", i); }, step);
+  loops.state_gain(increment, "K", [&](const ir::Expr& r) {
+    return ir::grouped(ir::sub(ir::element("dy", r), ir::mul(ir::element("h", r), step)));
+  });
+  file.blocks.emplace("increment_loops", std::move(increment));
+  file.blocks.emplace("predicted_loop", loops.predicted());
+  file.blocks.emplace("average_loop", loops.average());
+}
+
+}  // namespace
 
 DelaySteps filter_delay_steps(const FilterEquations& eq, const CodegenOptions& options) {
   if (!options.grid_step)
@@ -53,6 +73,7 @@ FilterFile DelayedCode::filter_file(const Model& model, const FilterEquations& e
                      {"delayed_size", std::to_string(width)}});
   for (auto& [key, block] : history_statements(steps.steps, x_star)) file.blocks.emplace(key, std::move(block));
   file.frames.emplace("state_x_star", x_star ? "state_x_star" : "");
+  add_step_loops(file, n);
   return file;
 }
 
