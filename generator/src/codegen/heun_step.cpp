@@ -67,6 +67,17 @@ ir::Block HeunStepLoops::predicted() const {
   return block;
 }
 
+ir::Block HeunStepLoops::predictor_corrector(const Increment& increment) const {
+  ir::Block block = {ir::local_arrays({"first", "predicted", "second"}, ir::Type::Scalar, ir::dimension("state_size"))};
+  auto append = [&block](ir::Block part) {
+    for (ir::Statement& s : part) block.push_back(std::move(s));
+  };
+  append(increment(false, ir::name("state"), ir::local_array("first", true)));
+  append(predicted());
+  append(increment(true, ir::local_array("predicted", false), ir::local_array("second", true)));
+  return block;
+}
+
 ir::Block HeunStepLoops::average() const {
   ir::Block block;
   each(block, "i", ir::dimension("state_size"), state_size_, [](const Expr& i) {

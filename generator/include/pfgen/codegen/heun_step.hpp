@@ -50,6 +50,13 @@ class HeunStepLoops {
   // state[i] += (first[i] + second[i]) / 2 for each i < state_size: the trapezoid of the two increments.
   ir::Block average() const;
 
+  // The statements of one increment: of the state `state` at the step's start (`end` false) or at
+  // its end, into the array `delta` (the calls of the file's functions that give it).
+  using Increment = std::function<ir::Block(bool end, const ir::Expr& state, const ir::Expr& delta)>;
+  // step()'s predictor and corrector: the local arrays first, predicted and second (state_size
+  // entries), increment(start, state, first), predicted(), increment(end, predicted, second).
+  ir::Block predictor_corrector(const Increment& increment) const;
+
  private:
   // for index < count: body(index), or written out body(0), body(1), ...
   void each(ir::Block& block, const std::string& index, const ir::Expr& count_size, std::size_t count,

@@ -11,7 +11,7 @@ namespace pfgen::codegen {
 namespace {
 
 // The step's loops: the increment rates dt + K (dy - h dt) over the grid's step (`step`, the
-// file's dt()), the predicted state and the average. Loops at every n (the written-out form was
+// file's dt()), step()'s predictor and corrector and the average. Loops at every n (the written-out form was
 // measured on the continuous filter's step only).
 void add_step_loops(FilterFile& file, std::size_t n) {
   const HeunStepLoops loops(n, file.p, file.state_size, false);
@@ -22,7 +22,19 @@ void add_step_loops(FilterFile& file, std::size_t n) {
     return ir::grouped(ir::sub(ir::element("dy", r), ir::mul(ir::element("h", r), step)));
   });
   file.blocks.emplace("increment_loops", std::move(increment));
-  file.blocks.emplace("predicted_loop", loops.predicted());
+  // step(): the delayed inputs and the increment at t_k and, from the predicted state, at t_{k+1};
+  // the template stores the start state in the history before the average.
+  const ir::Expr history = ir::name("history"), k = ir::name("k"), dy = ir::name("dy"), params = ir::name("params");
+  ir::Block body = {ir::local_arrays({"delayed"}, ir::Type::Scalar, ir::dimension("delayed_size"))};
+  for (ir::Statement& s : loops.predictor_corrector([&](bool end, const ir::Expr& state, const ir::Expr& delta) {
+         return ir::Block{
+             ir::call_internal_function("delayed_inputs", {history, ir::name("state"), state, k, ir::integer(end ? 1 : 0),
+                                                           ir::local_array("delayed", true)}),
+             ir::call_internal_function("increment", {ir::name(end ? "t_end" : "t"), state,
+                                                      ir::local_array("delayed", false), dy, params, delta})};
+       }))
+    body.push_back(std::move(s));
+  file.blocks.emplace("step_increments", std::move(body));
   file.blocks.emplace("average_loop", loops.average());
 }
 

@@ -10,7 +10,7 @@ namespace pfgen::codegen {
 namespace {
 
 // The step's loops: the innovation dy - yhat dt, the increment (rates - c) dt + [K; L] (dy - yhat dt),
-// the predicted state and the average. Loops at every n (the written-out form was measured on the
+// step()'s predictor and corrector and the average. Loops at every n (the written-out form was measured on the
 // continuous filter's step only).
 void add_step_loops(FilterFile& file, std::size_t n) {
   const HeunStepLoops loops(n, file.p, file.state_size, false);
@@ -25,7 +25,13 @@ void add_step_loops(FilterFile& file, std::size_t n) {
   loops.state_gain(increment, "K", innovation);
   loops.covariance_gain(increment, "L", innovation);
   file.blocks.emplace("increment_loops", std::move(increment));
-  file.blocks.emplace("predicted_loop", loops.predicted());
+  // step(): the increment at t and, from the predicted state, at t + dt, then their average.
+  const ir::Expr t = ir::name("t"), dy = ir::name("dy"), params = ir::name("params");
+  file.blocks.emplace("step_increments",
+                      loops.predictor_corrector([&](bool end, const ir::Expr& state, const ir::Expr& delta) {
+                        return ir::Block{ir::call_internal_function(
+                            "increment", {end ? ir::add(t, dt) : t, state, dt, dy, params, delta})};
+                      }));
   file.blocks.emplace("average_loop", loops.average());
 }
 
