@@ -170,9 +170,9 @@ Statement declare_array(const std::string& name, Type type, std::size_t size) {
   return statement(Statement::Kind::Declaration, Declaration{name, type, std::nullopt, size});
 }
 
-Statement local_arrays(std::vector<std::string> names, Type type, Expr length) {
-  return statement(Statement::Kind::Arrays,
-                   std::make_shared<const LocalArrays>(LocalArrays{std::move(names), type, std::move(length)}));
+Statement local_arrays(std::vector<std::string> names, Type type, Expr length, bool written_first) {
+  return statement(Statement::Kind::Arrays, std::make_shared<const LocalArrays>(
+                                                LocalArrays{std::move(names), type, std::move(length), written_first}));
 }
 
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable) {

@@ -140,6 +140,9 @@ struct LocalArrays {
   std::vector<std::string> names;
   Type type = Type::Scalar;
   Expr length;
+  // Every entry written before it is read: a language that fills them may leave them unfilled
+  // (C++'s std::array without {}, saying so in a comment; Rust fills them all the same).
+  bool written_first = false;
 };
 
 // targets[0] = targets[1] = ... = value (each target a Name or an Element), or with `accumulate`
@@ -231,7 +234,7 @@ struct Statement {
 
 Statement declare(std::string name, Type type, Expr value);          // a constant
 Statement declare_array(const std::string& name, Type type, std::size_t size);
-Statement local_arrays(std::vector<std::string> names, Type type, Expr length);
+Statement local_arrays(std::vector<std::string> names, Type type, Expr length, bool written_first = false);
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable);
 // A read-only view that is later assigned another slice (ir::slice).
 Statement rebound_view(const std::string& name, const std::string& array, Expr offset, Expr size);

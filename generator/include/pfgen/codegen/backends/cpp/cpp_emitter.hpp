@@ -17,7 +17,7 @@ class CppEmitter : public CFamilyEmitter {
 
   std::string call(Function function, const std::vector<std::string>& args) const override;
   std::string boolean(bool value) const override { return value ? "true" : "false"; }
-  // Local arrays are zero-filled std::arrays, passed to calls by their data().
+  // Local arrays are std::arrays, zero-filled unless written first, passed to calls by their data().
   std::string local_array(const std::string& array, bool) const override { return array + ".data()"; }
   std::string arrays(const ir::LocalArrays& node, const std::string& indent) const override;
   // `Scalar(2)` in every scalar mode, as the templates' own arithmetic writes it.
