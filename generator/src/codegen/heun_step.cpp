@@ -67,8 +67,9 @@ ir::Block HeunStepLoops::predicted() const {
   return block;
 }
 
-ir::Block HeunStepLoops::predictor_corrector(const Increment& increment) const {
-  ir::Block block = {ir::local_arrays({"first", "predicted", "second"}, ir::Type::Scalar, ir::dimension("state_size"))};
+ir::Block HeunStepLoops::predictor_corrector(const Increment& increment, bool written_first) const {
+  ir::Block block = {ir::local_arrays({"first", "predicted", "second"}, ir::Type::Scalar, ir::dimension("state_size"),
+                                      written_first)};
   auto append = [&block](ir::Block part) {
     for (ir::Statement& s : part) block.push_back(std::move(s));
   };

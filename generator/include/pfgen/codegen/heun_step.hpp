@@ -1,10 +1,10 @@
 #pragma once
 // The element-wise loops of a filter's Heun step, as statements for every language: the parts of
-// an increment (the innovation dy - h dt, the rates times dt, a gain times the innovation) and the
-// step's predicted state and average of the two increments. Each observation module composes its
-// increment from these parts (its rates and innovation differ) and the templates place the blocks
-// ({{increment_loops}}, {{predicted_loop}}, {{average_loop}}); the names they use (delta, dy, state,
-// first, predicted, second) are the templates' frame's.
+// an increment (the innovation dy - h dt, the rates times dt, a gain times the innovation), step()'s
+// predictor and corrector around an increment, and the average of the two increments. Each
+// observation module composes its increment from these parts (its rates and innovation differ) and
+// the templates place the blocks ({{increment_loops}}, {{step_increments}}, {{average_loop}}); the
+// names they use (delta, dy, state, t, dt, params, first, predicted, second) are the templates' frame's.
 //
 // The loops run to the file's sizes n, p and state_size (ir::dimension). Written out, each loop is
 // one statement per entry with its index as a number, in the loop's order (so the arithmetic, and
@@ -54,8 +54,9 @@ class HeunStepLoops {
   // its end, into the array `delta` (the calls of the file's functions that give it).
   using Increment = std::function<ir::Block(bool end, const ir::Expr& state, const ir::Expr& delta)>;
   // step()'s predictor and corrector: the local arrays first, predicted and second (state_size
-  // entries), increment(start, state, first), predicted(), increment(end, predicted, second).
-  ir::Block predictor_corrector(const Increment& increment) const;
+  // entries; `written_first`: declared as arrays written before they are read, ir::LocalArrays),
+  // increment(start, state, first), predicted(), increment(end, predicted, second).
+  ir::Block predictor_corrector(const Increment& increment, bool written_first = false) const;
 
  private:
   // for index < count: body(index), or written out body(0), body(1), ...

@@ -6,8 +6,8 @@
 namespace pfgen::codegen {
 namespace {
 
-// The step's loops: the innovation dy - h dt, the increment rates dt + K (dy - h dt), the predicted
-// state and the average.
+// The step's loops: the innovation dy - h dt, the increment rates dt + K (dy - h dt), step()'s
+// predictor and corrector and the average.
 void add_step_loops(FilterFile& file, std::size_t n) {
   // rates() writes [drift, K, h] into `all`; `innovation` views its h, which becomes dy - h dt.
   const HeunStepLoops loops(n, file.p, file.state_size, n < kStepWrittenOutBelow);
@@ -17,7 +17,14 @@ void add_step_loops(FilterFile& file, std::size_t n) {
   loops.scaled_rates(increment, [](const ir::Expr& i) { return ir::element("all", i); }, dt);
   loops.state_gain(increment, "K", [](const ir::Expr& r) { return ir::element("innovation", r); });
   file.blocks.emplace("increment_loops", std::move(increment));
-  file.blocks.emplace("predicted_loop", loops.predicted());
+  // step(): the increment at t and, from the predicted state, at t + dt, then their average; the
+  // increments write every entry of first and second, and predicted() every entry of predicted.
+  const ir::Expr t = ir::name("t"), dy = ir::name("dy"), params = ir::name("params");
+  auto increment_at = [&](bool end, const ir::Expr& state, const ir::Expr& delta) {
+    return ir::Block{
+        ir::call_internal_function("increment", {end ? ir::add(t, dt) : t, state, dt, dy, params, delta})};
+  };
+  file.blocks.emplace("step_increments", loops.predictor_corrector(increment_at, true));
   file.blocks.emplace("average_loop", loops.average());
 }
 

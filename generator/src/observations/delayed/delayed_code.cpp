@@ -28,8 +28,8 @@ void add_step_loops(FilterFile& file, std::size_t n) {
   ir::Block body = {ir::local_arrays({"delayed"}, ir::Type::Scalar, ir::dimension("delayed_size"))};
   for (ir::Statement& s : loops.predictor_corrector([&](bool end, const ir::Expr& state, const ir::Expr& delta) {
          return ir::Block{
-             ir::call_internal_function("delayed_inputs", {history, ir::name("state"), state, k, ir::integer(end ? 1 : 0),
-                                                           ir::local_array("delayed", true)}),
+             ir::call_internal_function("delayed_inputs", {history, ir::name("state"), state, k,
+                                                           ir::integer(end ? 1 : 0), ir::local_array("delayed", true)}),
              ir::call_internal_function("increment", {ir::name(end ? "t_end" : "t"), state,
                                                       ir::local_array("delayed", false), dy, params, delta})};
        }))
