@@ -1,10 +1,10 @@
-// The filter parts the sampled and delayed modules describe: the sampled prediction's statements
+// The filter parts the observation modules describe: the sampled prediction's statements
 // (sampled_predict.hpp) as each backend's emitter writes them, the same nodes giving C++'s, C's and
 // Rust's text, with the local-array nodes (ir::local_arrays, ir::local_array) spelled as each
 // language declares and passes an array; the delayed history's ring parts, built for the delay's
-// case (delayed_history.hpp), as C and Rust write them; the Heun step's loops (codegen/heun_step.hpp)
-// and the continuous, polynomial and delayed files' steps composed of them; and the layouts of a
-// loop's or a conditional's block.
+// case (delayed_history.hpp), as C and Rust write them; the Heun step's statements
+// (codegen/heun_step.hpp) and the continuous, polynomial and delayed files' steps composed of them;
+// and the layouts of a loop's or a conditional's block.
 #include <catch2/catch.hpp>
 
 #include <set>
@@ -253,6 +253,13 @@ TEST_CASE("Heun step loops: an increment's parts and the step's loops, as loops 
           "        predicted[i] = state[i] + first[i];\n"
           "    }\n"
           "    increment(t + dt, &predicted, dt, dy, &mut second);\n");
+    // Arrays written before they are read: C++ leaves them unfilled, C and Rust as before.
+    auto none = [](bool, const ir::Expr&, const ir::Expr&) { return ir::Block{}; };
+    const ir::Block unfilled = {loops.predictor_corrector(none, true).front()};
+    CHECK(cpp.block(unfilled) ==
+          "  std::array<Scalar, state_size> first, predicted, second;  // written before they are read\n");
+    CHECK(c.block(unfilled) ==
+          "  float first[ns_m_f_state_size], predicted[ns_m_f_state_size], second[ns_m_f_state_size];\n");
   }
   {
     // Written out: one statement per entry, the loops' order, the indices as numbers.
@@ -265,7 +272,9 @@ TEST_CASE("Heun step loops: an increment's parts and the step's loops, as loops 
           "  delta[0] += K[1] * innovation[1];\n"
           "  delta[1] += L[0] * innovation[0];\n"
           "  delta[1] += L[1] * innovation[1];\n");
-    CHECK(c.block(loops.predicted()) == "  predicted[0] = state[0] + first[0];\n  predicted[1] = state[1] + first[1];\n");
+    CHECK(c.block(loops.predicted()) ==
+          "  predicted[0] = state[0] + first[0];\n"
+          "  predicted[1] = state[1] + first[1];\n");
   }
 }
 
@@ -287,42 +296,47 @@ std::string filter_text(const std::string& model_file, const std::string& filter
   return "";
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+// Whether `text` holds `part`, each `$` in it standing for the C file's prefix `prefix`.
+bool contains(const std::string& text, std::string part, const std::string& prefix = "") {
+  for (std::size_t at = part.find('$'); at != std::string::npos; at = part.find('$', at + prefix.size()))
+    part.replace(at, 1, prefix);
+  return text.find(part) != std::string::npos;
+}
 
 }  // namespace
 
-TEST_CASE("polynomial and delayed steps: the increment's and the step's loops are the module's statements in every "
-          "language",
+TEST_CASE("continuous, polynomial and delayed steps: the increment's and the step's loops are the module's statements "
+          "in every language",
           "[unit][codegen]") {
   // Each file's template places the blocks the module built (a template's placeholder without its
   // block fails to fill); the text is the loops the templates held before they were statements.
   const std::string poly_c = filter_text("polynomial/cubic_sensor.yaml", "optimal", "c", ".c");
+  const std::string poly_prefix = "pfgen_models_cubic_sensor_optimal";
   CHECK(contains(poly_c,
-                 "  pfgen_models_cubic_sensor_optimal_stratonovich_correction(t, state, params, correction);\n"
-                 "  for (size_t r = 0; r < pfgen_models_cubic_sensor_optimal_p; ++r) innovation[r] = dy[r] - yhat[r] * dt;\n"
-                 "  for (size_t i = 0; i < pfgen_models_cubic_sensor_optimal_state_size; ++i) delta[i] = (rates[i] - correction[i]) "
-                 "* dt;\n"
-                 "  for (size_t i = 0; i < pfgen_models_cubic_sensor_optimal_n; ++i)\n"
-                 "    for (size_t r = 0; r < pfgen_models_cubic_sensor_optimal_p; ++r) delta[i] += K[i * pfgen_models_cubic_sensor_optimal_p + r] "
-                 "* innovation[r];\n"
-                 "  for (size_t u = 0; u < pfgen_models_cubic_sensor_optimal_state_size - pfgen_models_cubic_sensor_optimal_n; ++u)\n"
-                 "    for (size_t r = 0; r < pfgen_models_cubic_sensor_optimal_p; ++r) delta[pfgen_models_cubic_sensor_optimal_n + u] += L[u * "
-                 "pfgen_models_cubic_sensor_optimal_p + r] * innovation[r];\n"
-                 "}\n"));
+                 "  $_stratonovich_correction(t, state, params, correction);\n"
+                 "  for (size_t r = 0; r < $_p; ++r) innovation[r] = dy[r] - yhat[r] * dt;\n"
+                 "  for (size_t i = 0; i < $_state_size; ++i) delta[i] = (rates[i] - correction[i]) * dt;\n"
+                 "  for (size_t i = 0; i < $_n; ++i)\n"
+                 "    for (size_t r = 0; r < $_p; ++r) delta[i] += K[i * $_p + r] * innovation[r];\n"
+                 "  for (size_t u = 0; u < $_state_size - $_n; ++u)\n"
+                 "    for (size_t r = 0; r < $_p; ++r) delta[$_n + u] += L[u * $_p + r] * innovation[r];\n"
+                 "}\n",
+                 poly_prefix));
   CHECK(contains(poly_c,
-                 "  pfgen_models_cubic_sensor_optimal_increment(t, state, dt, dy, params, first);\n"
-                 "  for (size_t i = 0; i < pfgen_models_cubic_sensor_optimal_state_size; ++i) predicted[i] = state[i] + first[i];\n"
-                 "  pfgen_models_cubic_sensor_optimal_increment(t + dt, predicted, dt, dy, params, second);\n"
-                 "  for (size_t i = 0; i < pfgen_models_cubic_sensor_optimal_state_size; ++i) state[i] += (first[i] + second[i]) / "
-                 "2.0;\n"
-                 "}\n"));
+                 "  $_increment(t, state, dt, dy, params, first);\n"
+                 "  for (size_t i = 0; i < $_state_size; ++i) predicted[i] = state[i] + first[i];\n"
+                 "  $_increment(t + dt, predicted, dt, dy, params, second);\n"
+                 "  for (size_t i = 0; i < $_state_size; ++i) state[i] += (first[i] + second[i]) / 2.0;\n"
+                 "}\n",
+                 poly_prefix));
   const std::string poly_cpp = filter_text("polynomial/cubic_sensor.yaml", "optimal", "cpp", ".hpp");
   CHECK(contains(poly_cpp,
                  "  for (std::size_t u = 0; u < state_size - n; ++u)\n"
                  "    for (std::size_t r = 0; r < p; ++r) delta[n + u] += L[u * p + r] * innovation[r];\n"
                  "}\n"));
   CHECK(contains(poly_cpp,
-                 "  for (std::size_t i = 0; i < state_size; ++i) state[i] += (first[i] + second[i]) / Scalar(2);\n}\n"));
+                 "  for (std::size_t i = 0; i < state_size; ++i) state[i] += (first[i] + second[i]) / Scalar(2);\n"
+                 "}\n"));
   const std::string poly_rust = filter_text("polynomial/cubic_sensor.yaml", "optimal", "rust", ".rs");
   CHECK(contains(poly_rust,
                  "    stratonovich_correction(t, state, params, &mut correction);\n"
@@ -333,15 +347,24 @@ TEST_CASE("polynomial and delayed steps: the increment's and the step's loops ar
                  "        delta[i] = (rates[i] - correction[i]) * dt;\n"
                  "    }\n"));
 
+  // The continuous file's step: its arrays written first, its loops written out below 8 states.
+  CHECK(contains(filter_text("van_der_pol.yaml", "optimal", "cpp", "optimal.hpp"),
+                 "  std::array<Scalar, state_size> first, predicted, second;  // written before they are read\n"
+                 "  detail::increment(t, state, dt, dy, params, first.data());\n"
+                 "  predicted[0] = state[0] + first[0];\n"));
+
   const std::string delayed_c = filter_text("delay_linear.yaml", "delay-optimal", "c", ".c");
+  const std::string delayed_prefix = "pfgen_models_delay_linear_delay_optimal";
   CHECK(contains(delayed_c,
-                 "  for (size_t i = 0; i < pfgen_models_delay_linear_delay_optimal_state_size; ++i) delta[i] = rates[i] * step;\n"
-                 "  for (size_t i = 0; i < pfgen_models_delay_linear_delay_optimal_n; ++i)\n"
-                 "    for (size_t r = 0; r < pfgen_models_delay_linear_delay_optimal_p; ++r) delta[i] += K[i * pfgen_models_delay_linear_delay_optimal_p + r] "
-                 "* (dy[r] - h[r] * step);\n"
-                 "}\n"));
-  CHECK(contains(delayed_c, "  for (size_t i = 0; i < pfgen_models_delay_linear_delay_optimal_state_size; ++i) predicted[i] = state[i] + "
-                            "first[i];\n  pfgen_models_delay_linear_delay_optimal_delayed_inputs(history, state, predicted, k, 1, delayed);\n"));
+                 "  for (size_t i = 0; i < $_state_size; ++i) delta[i] = rates[i] * step;\n"
+                 "  for (size_t i = 0; i < $_n; ++i)\n"
+                 "    for (size_t r = 0; r < $_p; ++r) delta[i] += K[i * $_p + r] * (dy[r] - h[r] * step);\n"
+                 "}\n",
+                 delayed_prefix));
+  CHECK(contains(delayed_c,
+                 "  for (size_t i = 0; i < $_state_size; ++i) predicted[i] = state[i] + first[i];\n"
+                 "  $_delayed_inputs(history, state, predicted, k, 1, delayed);\n",
+                 delayed_prefix));
   const std::string delayed_cpp = filter_text("delay_linear.yaml", "delay-optimal", "cpp", ".hpp");
   CHECK(contains(delayed_cpp,
                  "  std::array<Scalar, delayed_size> delayed{};\n"
