@@ -1,9 +1,10 @@
-// The filter parts the sampled and delayed modules describe: the sampled prediction's statements
+// The filter parts the observation modules describe: the sampled prediction's statements
 // (sampled_predict.hpp) as each backend's emitter writes them, the same nodes giving C++'s, C's and
 // Rust's text, with the local-array nodes (ir::local_arrays, ir::local_array) spelled as each
 // language declares and passes an array; the delayed history's ring parts, built for the delay's
-// case (delayed_history.hpp), as C and Rust write them; and the layouts of a loop's or a
-// conditional's block.
+// case (delayed_history.hpp), as C and Rust write them; the Heun step's statements
+// (codegen/heun_step.hpp) and the continuous, polynomial and delayed files' steps composed of them;
+// and the layouts of a loop's or a conditional's block.
 #include <catch2/catch.hpp>
 
 #include <set>
@@ -12,9 +13,15 @@
 #include "pfgen/codegen/backends/c/c_emitter.hpp"
 #include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
 #include "pfgen/codegen/backends/rust/rust_emitter.hpp"
+#include "pfgen/codegen/filter_codegen.hpp"
+#include "pfgen/codegen/heun_step.hpp"
 #include "pfgen/codegen/template_text.hpp"
+#include "pfgen/derivation/filter_equations.hpp"
+#include "pfgen/model/model_filters.hpp"
+#include "pfgen/model/yaml_model_loader.hpp"
 #include "pfgen/observations/delayed/delayed_history.hpp"
 #include "pfgen/observations/sampled/sampled_predict.hpp"
+#include "support/test_paths.hpp"
 
 using namespace pfgen;
 using namespace pfgen::codegen;
@@ -179,4 +186,209 @@ TEST_CASE("statement layouts: a C-family block on the header's line, the next li
   CHECK(c.expression(ir::slice("a")) == "a");
   CHECK(rust.expression(ir::slice("a", ir::grouped(ir::sub(ir::name("N"), ir::name("M"))), ir::name("M"))) ==
         "&a[N - M..N - M + M]");
+}
+
+TEST_CASE("Heun step loops: an increment's parts and the step's loops, as loops or written out, in every language",
+          "[unit][codegen]") {
+  const CppEmitter cpp(ScalarMode::Template);
+  const CEmitter c(ScalarMode::Float, "tmp", "ns_m_f", "ns_m_f_params");
+  const RustEmitter rust(ScalarMode::Double, "tmp", "Params");
+  auto innovation = [](const ir::Expr& r) { return ir::element("innovation", r); };
+  auto rates = [](const ir::Expr& i) { return ir::element("rates", i); };
+  const ir::Expr dt = ir::name("dt");
+  {
+    const HeunStepLoops loops(2, 1, 5, false);
+    ir::Block increment;
+    loops.innovation(increment, "yhat", dt);
+    loops.scaled_rates(increment, rates, dt);
+    loops.state_gain(increment, "K", innovation);
+    loops.covariance_gain(increment, "L", innovation);
+    CHECK(c.block(increment) ==
+          "  for (size_t r = 0; r < ns_m_f_p; ++r) innovation[r] = dy[r] - yhat[r] * dt;\n"
+          "  for (size_t i = 0; i < ns_m_f_state_size; ++i) delta[i] = rates[i] * dt;\n"
+          "  for (size_t i = 0; i < ns_m_f_n; ++i)\n"
+          "    for (size_t r = 0; r < ns_m_f_p; ++r) delta[i] += K[i * ns_m_f_p + r] * innovation[r];\n"
+          "  for (size_t u = 0; u < ns_m_f_state_size - ns_m_f_n; ++u)\n"
+          "    for (size_t r = 0; r < ns_m_f_p; ++r) delta[ns_m_f_n + u] += L[u * ns_m_f_p + r] * innovation[r];\n");
+    CHECK(cpp.block(loops.predicted()) ==
+          "  for (std::size_t i = 0; i < state_size; ++i) predicted[i] = state[i] + first[i];\n");
+    CHECK(cpp.block(loops.average()) ==
+          "  for (std::size_t i = 0; i < state_size; ++i) state[i] += (first[i] + second[i]) / Scalar(2);\n");
+    CHECK(c.block(loops.average()) ==
+          "  for (size_t i = 0; i < ns_m_f_state_size; ++i) state[i] += (first[i] + second[i]) / 2.0f;\n");
+    ir::Block covariance;
+    loops.covariance_gain(covariance, "L", innovation);
+    CHECK(rust_indent(rust.block(covariance)) ==
+          "    for u in 0..STATE_SIZE - STATES {\n"
+          "        for r in 0..OBSERVATIONS {\n"
+          "            delta[STATES + u] += L[u * OBSERVATIONS + r] * innovation[r];\n"
+          "        }\n"
+          "    }\n");
+    CHECK(rust_indent(rust.block(loops.average())) ==
+          "    for i in 0..STATE_SIZE {\n"
+          "        state[i] += (first[i] + second[i]) / 2.0;\n"
+          "    }\n");
+    // step()'s predictor and corrector around the module's increment, a call of the file's internal
+    // function: C's prefixed, C++'s in namespace detail, Rust's by its name.
+    const ir::Block step = loops.predictor_corrector([&](bool end, const ir::Expr& state, const ir::Expr& delta) {
+      return ir::Block{ir::call_internal_function(
+          "increment", {end ? ir::add(ir::name("t"), dt) : ir::name("t"), state, dt, ir::name("dy"), delta})};
+    });
+    CHECK(cpp.block(step) ==
+          "  std::array<Scalar, state_size> first{}, predicted{}, second{};\n"
+          "  detail::increment(t, state, dt, dy, first.data());\n"
+          "  for (std::size_t i = 0; i < state_size; ++i) predicted[i] = state[i] + first[i];\n"
+          "  detail::increment(t + dt, predicted.data(), dt, dy, second.data());\n");
+    CHECK(c.block(step) ==
+          "  float first[ns_m_f_state_size], predicted[ns_m_f_state_size], second[ns_m_f_state_size];\n"
+          "  ns_m_f_increment(t, state, dt, dy, first);\n"
+          "  for (size_t i = 0; i < ns_m_f_state_size; ++i) predicted[i] = state[i] + first[i];\n"
+          "  ns_m_f_increment(t + dt, predicted, dt, dy, second);\n");
+    CHECK(rust_indent(rust.block(step)) ==
+          "    let mut first: [Scalar; STATE_SIZE] = [0.0; STATE_SIZE];\n"
+          "    let mut predicted: [Scalar; STATE_SIZE] = [0.0; STATE_SIZE];\n"
+          "    let mut second: [Scalar; STATE_SIZE] = [0.0; STATE_SIZE];\n"
+          "    increment(t, state, dt, dy, &mut first);\n"
+          "    for i in 0..STATE_SIZE {\n"
+          "        predicted[i] = state[i] + first[i];\n"
+          "    }\n"
+          "    increment(t + dt, &predicted, dt, dy, &mut second);\n");
+    // Arrays written before they are read: C++ leaves them unfilled, C and Rust as before.
+    auto none = [](bool, const ir::Expr&, const ir::Expr&) { return ir::Block{}; };
+    const ir::Block unfilled = {loops.predictor_corrector(none, true).front()};
+    CHECK(cpp.block(unfilled) ==
+          "  std::array<Scalar, state_size> first, predicted, second;  // written before they are read\n");
+    CHECK(c.block(unfilled) ==
+          "  float first[ns_m_f_state_size], predicted[ns_m_f_state_size], second[ns_m_f_state_size];\n");
+  }
+  {
+    // Written out: one statement per entry, the loops' order, the indices as numbers.
+    const HeunStepLoops loops(1, 2, 2, true);
+    ir::Block increment;
+    loops.state_gain(increment, "K", innovation);
+    loops.covariance_gain(increment, "L", innovation);
+    CHECK(c.block(increment) ==
+          "  delta[0] += K[0] * innovation[0];\n"
+          "  delta[0] += K[1] * innovation[1];\n"
+          "  delta[1] += L[0] * innovation[0];\n"
+          "  delta[1] += L[1] * innovation[1];\n");
+    CHECK(c.block(loops.predicted()) ==
+          "  predicted[0] = state[0] + first[0];\n"
+          "  predicted[1] = state[1] + first[1];\n");
+  }
+}
+
+namespace {
+
+// The generated file of `model_file`'s filter `filter` in `language` whose path ends with `suffix`
+// (names under the default namespace, pfgen_models).
+std::string filter_text(const std::string& model_file, const std::string& filter, const std::string& language,
+                        const std::string& suffix) {
+  const Model model = load_model_file(pfgen_test::source_dir() + "/examples/" + model_file);
+  codegen::CodegenOptions options;
+  options.language = language;
+  options.scalar = language == "cpp" ? ScalarMode::Template : ScalarMode::Double;
+  options.grid_step = model.simulation.dt;
+  for (const auto& file : codegen::generate_filter_code(model, derive_named_filter(model, filter), options).files)
+    if (file.relative_path.size() >= suffix.size() &&
+        file.relative_path.compare(file.relative_path.size() - suffix.size(), suffix.size(), suffix) == 0)
+      return file.contents;
+  return "";
+}
+
+// Whether `text` holds `part`, each `$` in it standing for the C file's prefix `prefix`.
+bool contains(const std::string& text, std::string part, const std::string& prefix = "") {
+  for (std::size_t at = part.find('$'); at != std::string::npos; at = part.find('$', at + prefix.size()))
+    part.replace(at, 1, prefix);
+  return text.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("continuous, polynomial and delayed steps: the increment's and the step's loops are the module's statements "
+          "in every language",
+          "[unit][codegen]") {
+  // Each file's template places the blocks the module built (a template's placeholder without its
+  // block fails to fill); the text is the loops the templates held before they were statements.
+  const std::string poly_c = filter_text("polynomial/cubic_sensor.yaml", "optimal", "c", ".c");
+  const std::string poly_prefix = "pfgen_models_cubic_sensor_optimal";
+  CHECK(contains(poly_c,
+                 "  $_stratonovich_correction(t, state, params, correction);\n"
+                 "  for (size_t r = 0; r < $_p; ++r) innovation[r] = dy[r] - yhat[r] * dt;\n"
+                 "  for (size_t i = 0; i < $_state_size; ++i) delta[i] = (rates[i] - correction[i]) * dt;\n"
+                 "  for (size_t i = 0; i < $_n; ++i)\n"
+                 "    for (size_t r = 0; r < $_p; ++r) delta[i] += K[i * $_p + r] * innovation[r];\n"
+                 "  for (size_t u = 0; u < $_state_size - $_n; ++u)\n"
+                 "    for (size_t r = 0; r < $_p; ++r) delta[$_n + u] += L[u * $_p + r] * innovation[r];\n"
+                 "}\n",
+                 poly_prefix));
+  CHECK(contains(poly_c,
+                 "  $_increment(t, state, dt, dy, params, first);\n"
+                 "  for (size_t i = 0; i < $_state_size; ++i) predicted[i] = state[i] + first[i];\n"
+                 "  $_increment(t + dt, predicted, dt, dy, params, second);\n"
+                 "  for (size_t i = 0; i < $_state_size; ++i) state[i] += (first[i] + second[i]) / 2.0;\n"
+                 "}\n",
+                 poly_prefix));
+  const std::string poly_cpp = filter_text("polynomial/cubic_sensor.yaml", "optimal", "cpp", ".hpp");
+  CHECK(contains(poly_cpp,
+                 "  for (std::size_t u = 0; u < state_size - n; ++u)\n"
+                 "    for (std::size_t r = 0; r < p; ++r) delta[n + u] += L[u * p + r] * innovation[r];\n"
+                 "}\n"));
+  CHECK(contains(poly_cpp,
+                 "  for (std::size_t i = 0; i < state_size; ++i) state[i] += (first[i] + second[i]) / Scalar(2);\n"
+                 "}\n"));
+  const std::string poly_rust = filter_text("polynomial/cubic_sensor.yaml", "optimal", "rust", ".rs");
+  CHECK(contains(poly_rust,
+                 "    stratonovich_correction(t, state, params, &mut correction);\n"
+                 "    for r in 0..OBSERVATIONS {\n"
+                 "        innovation[r] = dy[r] - yhat[r] * dt;\n"
+                 "    }\n"
+                 "    for i in 0..STATE_SIZE {\n"
+                 "        delta[i] = (rates[i] - correction[i]) * dt;\n"
+                 "    }\n"));
+
+  // The continuous file's step: its arrays written first, its loops written out below 8 states.
+  CHECK(contains(filter_text("van_der_pol.yaml", "optimal", "cpp", "optimal.hpp"),
+                 "  std::array<Scalar, state_size> first, predicted, second;  // written before they are read\n"
+                 "  detail::increment(t, state, dt, dy, params, first.data());\n"
+                 "  predicted[0] = state[0] + first[0];\n"));
+
+  const std::string delayed_c = filter_text("delay_linear.yaml", "delay-optimal", "c", ".c");
+  const std::string delayed_prefix = "pfgen_models_delay_linear_delay_optimal";
+  CHECK(contains(delayed_c,
+                 "  for (size_t i = 0; i < $_state_size; ++i) delta[i] = rates[i] * step;\n"
+                 "  for (size_t i = 0; i < $_n; ++i)\n"
+                 "    for (size_t r = 0; r < $_p; ++r) delta[i] += K[i * $_p + r] * (dy[r] - h[r] * step);\n"
+                 "}\n",
+                 delayed_prefix));
+  CHECK(contains(delayed_c,
+                 "  for (size_t i = 0; i < $_state_size; ++i) predicted[i] = state[i] + first[i];\n"
+                 "  $_delayed_inputs(history, state, predicted, k, 1, delayed);\n",
+                 delayed_prefix));
+  const std::string delayed_cpp = filter_text("delay_linear.yaml", "delay-optimal", "cpp", ".hpp");
+  CHECK(contains(delayed_cpp,
+                 "  std::array<Scalar, delayed_size> delayed{};\n"
+                 "  std::array<Scalar, state_size> first{}, predicted{}, second{};\n"
+                 "  detail::delayed_inputs(history, state, state, k, 0, delayed.data());\n"
+                 "  detail::increment(t, state, delayed.data(), dy, params, first.data());\n"
+                 "  for (std::size_t i = 0; i < state_size; ++i) predicted[i] = state[i] + first[i];\n"
+                 "  detail::delayed_inputs(history, state, predicted.data(), k, 1, delayed.data());\n"
+                 "  detail::increment(t_end, predicted.data(), delayed.data(), dy, params, second.data());\n"));
+  CHECK(contains(delayed_cpp, "  }\n  for (std::size_t i = 0; i < state_size; ++i) state[i] += (first[i] + second[i]) "
+                              "/ Scalar(2);\n}\n"));
+  const std::string delayed_rust = filter_text("delay_linear.yaml", "delay-optimal", "rust", ".rs");
+  CHECK(contains(delayed_rust,
+                 "    let step: Scalar = dt();\n"
+                 "    derivatives(t, state, delayed, params, &mut rates);\n"
+                 "    gain(t, state, delayed, params, &mut K);\n"
+                 "    predicted_observation(t, state, delayed, params, &mut h);\n"
+                 "    for i in 0..STATE_SIZE {\n"
+                 "        delta[i] = rates[i] * step;\n"
+                 "    }\n"
+                 "    for i in 0..STATES {\n"
+                 "        for r in 0..OBSERVATIONS {\n"
+                 "            delta[i] += K[i * OBSERVATIONS + r] * (dy[r] - h[r] * step);\n"
+                 "        }\n"
+                 "    }\n"
+                 "}\n"));
 }

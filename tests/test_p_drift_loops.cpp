@@ -26,7 +26,7 @@
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
-#include "pfgen/observations/continuous/heun_step.hpp"
+#include "pfgen/codegen/heun_step.hpp"
 #include "support/cli_helpers.hpp"
 #include "support/dense_linear_system.hpp"
 #include "support/process.hpp"

@@ -72,7 +72,7 @@ TEST_CASE("statement IR: every node as C++ and C print it", "[unit][codegen]") {
 
 TEST_CASE("statement IR: the file's sizes and whole numbers of the scalar as each language spells them",
           "[unit][codegen]") {
-  // What a module writes once (observations/continuous/heun_step.cpp) and every backend spells:
+  // What a module writes once (codegen/heun_step.cpp) and every backend spells:
   // the sizes its file declares and a whole number in the scalar type.
   const ir::Expr i = ir::name("i");
   const ir::Block block = {ir::loop(

@@ -49,7 +49,7 @@ ir::Block p_drift_statements(const PDriftLoops& loops, const PDriftLoopNames& na
   // keeps the row loop, reading each row's coefficients back from the work array and broadcasting
   // them; with the offsets known it takes E[J]'s and A's entries as the constants they often are.
   // Dense linear n = 4, -O2, float: the step 1.40x to 1.14x hand-written Eigen with these rows
-  // alone, 0.93x with the step's loops written out too (observations/continuous/heun_step.hpp); -O3
+  // alone, 0.93x with the step's loops written out too (codegen/heun_step.hpp); -O3
   // 1.07x to 1.18x, where GCC had unrolled the row loop itself. At n = 4 the rows are now a loop
   // again: with 512-bit vectors GCC packed the written-out rows badly (p_drift_loops.hpp,
   // kRowsWrittenOutFrom).

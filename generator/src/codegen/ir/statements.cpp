@@ -170,9 +170,9 @@ Statement declare_array(const std::string& name, Type type, std::size_t size) {
   return statement(Statement::Kind::Declaration, Declaration{name, type, std::nullopt, size});
 }
 
-Statement local_arrays(std::vector<std::string> names, Type type, Expr length) {
-  return statement(Statement::Kind::Arrays,
-                   std::make_shared<const LocalArrays>(LocalArrays{std::move(names), type, std::move(length)}));
+Statement local_arrays(std::vector<std::string> names, Type type, Expr length, bool written_first) {
+  return statement(Statement::Kind::Arrays, std::make_shared<const LocalArrays>(
+                                                LocalArrays{std::move(names), type, std::move(length), written_first}));
 }
 
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable) {
@@ -217,6 +217,11 @@ Statement call_statement(const std::string& function, std::vector<Expr> argument
 Statement call_file_function(const std::string& function, std::vector<Expr> arguments) {
   return statement(Statement::Kind::Call,
                    std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments), true}));
+}
+
+Statement call_internal_function(const std::string& function, std::vector<Expr> arguments) {
+  return statement(Statement::Kind::Call,
+                   std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments), true, true}));
 }
 
 Statement conditional(Expr condition, Block then, Block otherwise) {

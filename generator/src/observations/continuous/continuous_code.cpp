@@ -1,9 +1,34 @@
 // The continuous module's code generation: its filters' functions and file, language-neutral, and its part.
 #include "pfgen/observations/continuous/continuous_code.hpp"
 
-#include "pfgen/observations/continuous/heun_step.hpp"
+#include "pfgen/codegen/heun_step.hpp"
 
 namespace pfgen::codegen {
+namespace {
+
+// The step's loops: the innovation dy - h dt, the increment rates dt + K (dy - h dt), step()'s
+// predictor and corrector and the average.
+void add_step_loops(FilterFile& file, std::size_t n) {
+  // rates() writes [drift, K, h] into `all`; `innovation` views its h, which becomes dy - h dt.
+  const HeunStepLoops loops(n, file.p, file.state_size, n < kStepWrittenOutBelow);
+  const ir::Expr dt = ir::name("dt");
+  ir::Block increment;
+  loops.innovation(increment, "innovation", dt);
+  loops.scaled_rates(increment, [](const ir::Expr& i) { return ir::element("all", i); }, dt);
+  loops.state_gain(increment, "K", [](const ir::Expr& r) { return ir::element("innovation", r); });
+  file.blocks.emplace("increment_loops", std::move(increment));
+  // step(): the increment at t and, from the predicted state, at t + dt, then their average; the
+  // increments write every entry of first and second, and predicted() every entry of predicted.
+  const ir::Expr t = ir::name("t"), dy = ir::name("dy"), params = ir::name("params");
+  auto increment_at = [&](bool end, const ir::Expr& state, const ir::Expr& delta) {
+    return ir::Block{
+        ir::call_internal_function("increment", {end ? ir::add(t, dt) : t, state, dt, dy, params, delta})};
+  };
+  file.blocks.emplace("step_increments", loops.predictor_corrector(increment_at, true));
+  file.blocks.emplace("average_loop", loops.average());
+}
+
+}  // namespace
 
 std::vector<FunctionStats> ContinuousFunctions::stats() const {
   std::vector<FunctionStats> all = {derivatives.stats, gain.stats, observation.stats};
@@ -44,10 +69,7 @@ FilterFile ContinuousCode::filter_file(const Model& model, const FilterEquations
   file.state_size = eq.variables.count();
   add_rate_functions(file, continuous_functions(model, eq, options, names, emitter, true), names, eq);
   file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
-  HeunStepLoops step = heun_step_loops(eq.n(), eq.p, file.state_size);
-  file.blocks.emplace("increment_loops", std::move(step.increment));
-  file.blocks.emplace("predicted_loop", std::move(step.predicted));
-  file.blocks.emplace("average_loop", std::move(step.average));
+  add_step_loops(file, eq.n());
   return file;
 }
 

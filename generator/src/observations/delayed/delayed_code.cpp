@@ -2,11 +2,43 @@
 // and its part.
 #include "pfgen/observations/delayed/delayed_code.hpp"
 
+#include "pfgen/codegen/heun_step.hpp"
 #include "pfgen/observations/continuous/continuous_code.hpp"
 #include "pfgen/observations/delayed/delayed_history.hpp"
 #include "pfgen_support/shortest_double.hpp"
 
 namespace pfgen::codegen {
+namespace {
+
+// The step's loops: the increment rates dt + K (dy - h dt) over the grid's step (`step`, the
+// file's dt()), step()'s predictor and corrector and the average. Loops at every n (the written-out form was
+// measured on the continuous filter's step only).
+void add_step_loops(FilterFile& file, std::size_t n) {
+  const HeunStepLoops loops(n, file.p, file.state_size, false);
+  const ir::Expr step = ir::name("step");
+  ir::Block increment;
+  loops.scaled_rates(increment, [](const ir::Expr& i) { return ir::element("rates", i); }, step);
+  loops.state_gain(increment, "K", [&](const ir::Expr& r) {
+    return ir::grouped(ir::sub(ir::element("dy", r), ir::mul(ir::element("h", r), step)));
+  });
+  file.blocks.emplace("increment_loops", std::move(increment));
+  // step(): the delayed inputs and the increment at t_k and, from the predicted state, at t_{k+1};
+  // the template stores the start state in the history before the average.
+  const ir::Expr history = ir::name("history"), k = ir::name("k"), dy = ir::name("dy"), params = ir::name("params");
+  ir::Block body = {ir::local_arrays({"delayed"}, ir::Type::Scalar, ir::dimension("delayed_size"))};
+  for (ir::Statement& s : loops.predictor_corrector([&](bool end, const ir::Expr& state, const ir::Expr& delta) {
+         return ir::Block{
+             ir::call_internal_function("delayed_inputs", {history, ir::name("state"), state, k,
+                                                           ir::integer(end ? 1 : 0), ir::local_array("delayed", true)}),
+             ir::call_internal_function("increment", {ir::name(end ? "t_end" : "t"), state,
+                                                      ir::local_array("delayed", false), dy, params, delta})};
+       }))
+    body.push_back(std::move(s));
+  file.blocks.emplace("step_increments", std::move(body));
+  file.blocks.emplace("average_loop", loops.average());
+}
+
+}  // namespace
 
 DelaySteps filter_delay_steps(const FilterEquations& eq, const CodegenOptions& options) {
   if (!options.grid_step)
@@ -53,6 +85,7 @@ FilterFile DelayedCode::filter_file(const Model& model, const FilterEquations& e
                      {"delayed_size", std::to_string(width)}});
   for (auto& [key, block] : history_statements(steps.steps, x_star)) file.blocks.emplace(key, std::move(block));
   file.frames.emplace("state_x_star", x_star ? "state_x_star" : "");
+  add_step_loops(file, n);
   return file;
 }
 

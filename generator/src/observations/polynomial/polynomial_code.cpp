@@ -2,10 +2,40 @@
 // A linear h is the continuous observation: observation_code gives it the continuous module.
 #include "pfgen/observations/polynomial/polynomial_code.hpp"
 
+#include "pfgen/codegen/heun_step.hpp"
 #include "pfgen/observations/polynomial/ito_stratonovich_correction.hpp"
 #include "pfgen/observations/polynomial/polynomial_observation.hpp"
 
 namespace pfgen::codegen {
+namespace {
+
+// The step's loops: the innovation dy - yhat dt, the increment (rates - c) dt + [K; L] (dy - yhat dt),
+// step()'s predictor and corrector and the average. Loops at every n (the written-out form was measured on the
+// continuous filter's step only).
+void add_step_loops(FilterFile& file, std::size_t n) {
+  const HeunStepLoops loops(n, file.p, file.state_size, false);
+  const ir::Expr dt = ir::name("dt");
+  auto innovation = [](const ir::Expr& r) { return ir::element("innovation", r); };
+  ir::Block increment;
+  loops.innovation(increment, "yhat", dt);
+  loops.scaled_rates(
+      increment,
+      [](const ir::Expr& i) { return ir::grouped(ir::sub(ir::element("rates", i), ir::element("correction", i))); },
+      dt);
+  loops.state_gain(increment, "K", innovation);
+  loops.covariance_gain(increment, "L", innovation);
+  file.blocks.emplace("increment_loops", std::move(increment));
+  // step(): the increment at t and, from the predicted state, at t + dt, then their average.
+  const ir::Expr t = ir::name("t"), dy = ir::name("dy"), params = ir::name("params");
+  file.blocks.emplace("step_increments",
+                      loops.predictor_corrector([&](bool end, const ir::Expr& state, const ir::Expr& delta) {
+                        return ir::Block{ir::call_internal_function(
+                            "increment", {end ? ir::add(t, dt) : t, state, dt, dy, params, delta})};
+                      }));
+  file.blocks.emplace("average_loop", loops.average());
+}
+
+}  // namespace
 
 std::vector<FunctionStats> PolynomialFunctions::stats() const {
   return {derivatives.stats, gain.stats, covariance_gain.stats, observation.stats, correction.stats};
@@ -57,6 +87,7 @@ FilterFile PolynomialCode::filter_file(const Model& model, const FilterEquations
   file.add_function("correction", std::move(f.correction));
   file.words = {{"K", names.K}, {"L", names.L}, {"h", names.h}, {"c", names.c}};
   file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
+  add_step_loops(file, eq.n());
   return file;
 }
 

@@ -140,6 +140,9 @@ struct LocalArrays {
   std::vector<std::string> names;
   Type type = Type::Scalar;
   Expr length;
+  // Every entry written before it is read: a language that fills them may leave them unfilled
+  // (C++'s std::array without {}, saying so in a comment; Rust fills them all the same).
+  bool written_first = false;
 };
 
 // targets[0] = targets[1] = ... = value (each target a Name or an Element), or with `accumulate`
@@ -168,11 +171,14 @@ struct Loop {
 };
 
 // A call as a statement: `function(arguments)`. A function the file declares (`of_file`) is named
-// by its language-neutral name and spelt by its language (C: after the file's prefix).
+// by its language-neutral name and spelt by its language (C: after the file's prefix); one it keeps
+// out of its interface (`internal`: C's static functions, C++'s namespace detail, Rust's private
+// fns) as the language reaches such a function.
 struct CallStatement {
   std::string function;
   std::vector<Expr> arguments;
   bool of_file = false;
+  bool internal = false;
 };
 
 // if condition: then, else: otherwise (when not empty; a C-family language writes each branch of
@@ -228,7 +234,7 @@ struct Statement {
 
 Statement declare(std::string name, Type type, Expr value);          // a constant
 Statement declare_array(const std::string& name, Type type, std::size_t size);
-Statement local_arrays(std::vector<std::string> names, Type type, Expr length);
+Statement local_arrays(std::vector<std::string> names, Type type, Expr length, bool written_first = false);
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable);
 // A read-only view that is later assigned another slice (ir::slice).
 Statement rebound_view(const std::string& name, const std::string& array, Expr offset, Expr size);
@@ -239,6 +245,7 @@ Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Blo
                std::optional<Loop::Follower> declares = std::nullopt, const std::string& steps = "");
 Statement call_statement(const std::string& function, std::vector<Expr> arguments);
 Statement call_file_function(const std::string& function, std::vector<Expr> arguments);
+Statement call_internal_function(const std::string& function, std::vector<Expr> arguments);
 Statement conditional(Expr condition, Block then, Block otherwise = {});
 Statement scope(Block body);
 // `s` (a loop or a conditional) with its block laid out as `layout`; any other statement as it is.

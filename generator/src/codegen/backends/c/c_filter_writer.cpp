@@ -55,7 +55,6 @@ std::map<std::string, std::string> CFilterWriter::common_values(std::size_t p, s
       {"out", names.out},
       {"zero", emitter.literal(0)},
       {"one", emitter.literal(1)},
-      {"two", emitter.literal(2)},
   };
 }
 

@@ -10,8 +10,9 @@ std::string CppEmitter::call(Function function, const std::vector<std::string>& 
 
 std::string CppEmitter::arrays(const ir::LocalArrays& node, const std::string&) const {
   std::string text = "std::array<" + type(node.type) + ", " + expression(node.length) + "> ";
-  for (std::size_t k = 0; k < node.names.size(); ++k) text += (k ? ", " : "") + node.names[k] + "{}";
-  return text + ";";
+  for (std::size_t k = 0; k < node.names.size(); ++k)
+    text += (k ? ", " : "") + node.names[k] + (node.written_first ? "" : "{}");
+  return text + (node.written_first ? ";  // written before they are read" : ";");
 }
 
 }  // namespace pfgen::codegen

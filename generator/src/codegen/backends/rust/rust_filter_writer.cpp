@@ -47,7 +47,6 @@ std::map<std::string, std::string> RustFilterWriter::common_values(std::size_t p
       {"out", names.out},
       {"zero", emitter.literal_text(0)},
       {"one", emitter.literal_text(1)},
-      {"two", emitter.literal_text(2)},
   };
 }
 

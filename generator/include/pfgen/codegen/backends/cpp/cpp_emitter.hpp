@@ -17,11 +17,13 @@ class CppEmitter : public CFamilyEmitter {
 
   std::string call(Function function, const std::vector<std::string>& args) const override;
   std::string boolean(bool value) const override { return value ? "true" : "false"; }
-  // Local arrays are zero-filled std::arrays, passed to calls by their data().
+  // Local arrays are std::arrays, zero-filled unless written first, passed to calls by their data().
   std::string local_array(const std::string& array, bool) const override { return array + ".data()"; }
   std::string arrays(const ir::LocalArrays& node, const std::string& indent) const override;
   // `Scalar(2)` in every scalar mode, as the templates' own arithmetic writes it.
   std::string whole_scalar(std::size_t value) const override { return "Scalar(" + std::to_string(value) + ")"; }
+  // The file's internal functions are in its namespace detail.
+  std::string internal_function(const std::string& name) const override { return "detail::" + name; }
 
  protected:
   std::string field_access() const override { return "."; }
