@@ -176,6 +176,29 @@ TEST_CASE("statement layouts: a C-family block on the header's line, the next li
                                    ir::rem(ir::name("k"), ir::name("N")), ir::integer(0));
   CHECK(c.expression(pick) == "k == 1 || b ? k % N : 0");
   CHECK(rust.expression(pick) == "if k == 1 || b { k % N } else { 0 }");
+  // An else of one conditional continues the chain.
+  const ir::Statement chain = ir::conditional(ir::equal(ir::name("k"), ir::integer(0)), one(), {choice});
+  CHECK(c.block({chain}) == "  if (k == 0)\n    a[i] = 0.0f;\n  else if (i < N)\n    a[i] = 0.0f;\n  else\n    a[i] = 0.0f;\n");
+  CHECK(rust.block({chain}) ==
+        "  if k == 0 {\n    a[i] = 0.0;\n  } else if i < N {\n    a[i] = 0.0;\n  } else {\n    a[i] = 0.0;\n  }\n");
+  const ir::Statement braced_chain = ir::conditional(ir::name("b"), {one()[0], one()[0]}, {choice});
+  CHECK(c.block({braced_chain}) ==
+        "  if (b) {\n    a[i] = 0.0f;\n    a[i] = 0.0f;\n  } else if (i < N)\n    a[i] = 0.0f;\n  else\n    a[i] = 0.0f;\n");
+  // A conditional on the file's constants: C++ folds it (if constexpr), C and Rust test it.
+  const ir::Statement constant_choice =
+      ir::compile_time_conditional(ir::dimension("uses_x_star"), one(), {ir::unused("x")});
+  CHECK(CppEmitter(ScalarMode::Float).block({constant_choice}) ==
+        "  if constexpr (uses_x_star)\n    a[i] = 0.0f;\n  else\n    (void)x;\n");
+  CHECK(c.block({constant_choice}) == "  if (ns_m_f_uses_x_star)\n    a[i] = 0.0f;\n  else\n    (void)x;\n");
+  CHECK(rust.block({constant_choice}) == "  if USES_X_STAR {\n    a[i] = 0.0;\n  } else {\n    let _ = x;\n  }\n");
+  // A variable (assigned again), a truth value, `and`, a view of a whole array.
+  const ir::Block locals = {ir::declare_variable("b", ir::Type::Bool, ir::boolean(false)),
+                            ir::assign(ir::name("b"), ir::logical_and(ir::name("c"), ir::name("d"))),
+                            ir::rebound_view("v", "a"), ir::view("w", "a", ir::integer(1), ir::integer(2), false)};
+  CHECK(c.block(locals) ==
+        "  int b = 0;\n  b = c && d;\n  const float* v = a;\n  const float* w = a + 1;\n");
+  CHECK(rust.block(locals) ==
+        "  let mut b: bool = false;\n  b = c && d;\n  let mut v: &[Scalar] = &a[..];\n  let w = &a[1..1 + 2];\n");
   CHECK(c.expression(ir::slice("a")) == "a");
   CHECK(rust.expression(ir::slice("a", ir::grouped(ir::sub(ir::name("N"), ir::name("M"))), ir::name("M"))) ==
         "&a[N - M..N - M + M]");
