@@ -72,8 +72,8 @@ TEST_CASE("sampled predict: Heun's and cd-euler's sub-step as statements for eve
 TEST_CASE("delayed history: the ring's parts for each delay's case are statements every backend holding the ring writes",
           "[unit][codegen]") {
   // C and Rust write the ring for the case (no history, a one-step history whose end is the start
-  // state, a ring), with and without x*; C++'s template has one form for every case, so it has no
-  // key for these blocks (its writer skips them).
+  // state, a ring), with and without x*; C++'s template places the form for any delay (next case),
+  // so it has no key for these blocks.
   const CEmitter c(ScalarMode::Double, "tmp", "ns_m_f", "ns_m_f_params");
   const RustEmitter rust(ScalarMode::Double, "tmp", "Params");
   std::set<std::string> texts;
@@ -166,6 +166,65 @@ TEST_CASE("delayed history: the ring's parts for each delay's case are statement
         "    }\n");
 }
 
+TEST_CASE("delayed history for any delay: one form of every ring part, chosen by the file's constants, that C++ writes",
+          "[unit][codegen]") {
+  // C++'s template places this form (its constexpr constants fold the tests), the others the case's.
+  const auto blocks = any_delay_history_statements();
+  CHECK(blocks.size() == 3);
+  for (const auto& [key, block] : blocks) {
+    INFO(key);
+    CHECK(values_in_template("cpp/delayed_filter.hpp.tmpl", {{key, ""}}).count(key) == 1);
+    CHECK(values_in_template("c/delayed_filter.c.tmpl", {{key, ""}}).empty());
+    CHECK(values_in_template("rust/delayed_filter.rs.tmpl", {{key, ""}}).empty());
+  }
+  // The text C++'s delayed filters have always had, in every scalar mode (Scalar is the alias or
+  // the template parameter; its whole numbers are Scalar(k) in each).
+  for (ScalarMode mode : {ScalarMode::Template, ScalarMode::Float, ScalarMode::Double}) {
+    const CppEmitter cpp(mode);
+    INFO(scalar_mode_name(mode));
+    CHECK(cpp.block(blocks.at("any_delay_initial_history_body")) ==
+          "  for (std::size_t slot = 0; slot < delay_steps; ++slot)\n"
+          "    for (std::size_t i = 0; i < history_width; ++i)\n"
+          "      history[slot * history_width + i] = i < n ? state[i] : state[state_size - n + (i - n)];\n");
+    CHECK(cpp.block(blocks.at("any_delay_delayed_inputs_body")) ==
+          "  const Scalar* m_past = now;\n"
+          "  const Scalar* x_star_past = now + (state_size - n);\n"
+          "  bool step_starts_before_h = false;\n"
+          "  if (delay_steps > 0) {\n"
+          "    step_starts_before_h = k < delay_steps;\n"
+          "    if (offset == 1 && delay_steps == 1) {\n"
+          "      m_past = start;\n"
+          "      x_star_past = start + (state_size - n);\n"
+          "    } else {\n"
+          "      const std::size_t slot = (k + offset) % (delay_steps > 0 ? delay_steps : 1);\n"
+          "      m_past = history + slot * history_width;\n"
+          "      x_star_past = m_past + n;\n"
+          "    }\n"
+          "  }\n"
+          "  for (std::size_t i = 0; i < n; ++i) delayed[i] = m_past[i];\n"
+          "  if constexpr (uses_x_star) {\n"
+          "    const Scalar* x_star_now = now + (state_size - n);\n"
+          "    for (std::size_t i = 0; i < n; ++i) {\n"
+          "      if (delay_steps == 0)\n"
+          "        delayed[n + i] = Scalar(1);\n"
+          "      else if (step_starts_before_h || x_star_now[i] == Scalar(0))\n"
+          "        delayed[n + i] = Scalar(0);\n"
+          "      else\n"
+          "        delayed[n + i] = x_star_past[i] / x_star_now[i];\n"
+          "    }\n"
+          "  } else {\n"
+          "    (void)x_star_past;\n"
+          "    (void)step_starts_before_h;\n"
+          "  }\n");
+    CHECK(cpp.block(blocks.at("any_delay_history_store")) ==
+          "  if (delay_steps > 0) {\n"
+          "    Scalar* slot = history + (k % (delay_steps > 0 ? delay_steps : 1)) * history_width;\n"
+          "    for (std::size_t i = 0; i < history_width; ++i) slot[i] = i < n ? state[i] : state[state_size - n + (i - "
+          "n)];\n"
+          "  }\n");
+  }
+}
+
 TEST_CASE("statement layouts: a C-family block on the header's line, the next line or in braces; Rust always braces",
           "[unit][codegen]") {
   const CEmitter c(ScalarMode::Float, "tmp", "ns_m_f", "ns_m_f_params");
@@ -183,6 +242,29 @@ TEST_CASE("statement layouts: a C-family block on the header's line, the next li
                                    ir::rem(ir::name("k"), ir::name("N")), ir::integer(0));
   CHECK(c.expression(pick) == "k == 1 || b ? k % N : 0");
   CHECK(rust.expression(pick) == "if k == 1 || b { k % N } else { 0 }");
+  // An else of one conditional continues the chain.
+  const ir::Statement chain = ir::conditional(ir::equal(ir::name("k"), ir::integer(0)), one(), {choice});
+  CHECK(c.block({chain}) == "  if (k == 0)\n    a[i] = 0.0f;\n  else if (i < N)\n    a[i] = 0.0f;\n  else\n    a[i] = 0.0f;\n");
+  CHECK(rust.block({chain}) ==
+        "  if k == 0 {\n    a[i] = 0.0;\n  } else if i < N {\n    a[i] = 0.0;\n  } else {\n    a[i] = 0.0;\n  }\n");
+  const ir::Statement braced_chain = ir::conditional(ir::name("b"), {one()[0], one()[0]}, {choice});
+  CHECK(c.block({braced_chain}) ==
+        "  if (b) {\n    a[i] = 0.0f;\n    a[i] = 0.0f;\n  } else if (i < N)\n    a[i] = 0.0f;\n  else\n    a[i] = 0.0f;\n");
+  // A conditional on the file's constants: C++ folds it (if constexpr), C and Rust test it.
+  const ir::Statement constant_choice =
+      ir::compile_time_conditional(ir::dimension("uses_x_star"), one(), {ir::unused("x")});
+  CHECK(CppEmitter(ScalarMode::Float).block({constant_choice}) ==
+        "  if constexpr (uses_x_star)\n    a[i] = 0.0f;\n  else\n    (void)x;\n");
+  CHECK(c.block({constant_choice}) == "  if (ns_m_f_uses_x_star)\n    a[i] = 0.0f;\n  else\n    (void)x;\n");
+  CHECK(rust.block({constant_choice}) == "  if USES_X_STAR {\n    a[i] = 0.0;\n  } else {\n    let _ = x;\n  }\n");
+  // A variable (assigned again), a truth value, `and`, a view of a whole array.
+  const ir::Block locals = {ir::declare_variable("b", ir::Type::Bool, ir::boolean(false)),
+                            ir::assign(ir::name("b"), ir::logical_and(ir::name("c"), ir::name("d"))),
+                            ir::rebound_view("v", "a"), ir::view("w", "a", ir::integer(1), ir::integer(2), false)};
+  CHECK(c.block(locals) ==
+        "  int b = 0;\n  b = c && d;\n  const float* v = a;\n  const float* w = a + 1;\n");
+  CHECK(rust.block(locals) ==
+        "  let mut b: bool = false;\n  b = c && d;\n  let mut v: &[Scalar] = &a[..];\n  let w = &a[1..1 + 2];\n");
   CHECK(c.expression(ir::slice("a")) == "a");
   CHECK(rust.expression(ir::slice("a", ir::grouped(ir::sub(ir::name("N"), ir::name("M"))), ir::name("M"))) ==
         "&a[N - M..N - M + M]");

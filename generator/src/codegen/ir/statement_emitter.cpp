@@ -32,6 +32,7 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
     case Kind::Less:
     case Kind::Equal:
     case Kind::Or:
+    case Kind::And:
     case Kind::Rem: {
       const std::string a = first();
       const std::string b = expression(e.operands.at(1));
@@ -44,6 +45,7 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
       if (e.kind == Kind::Less) text = less(a, b);
       if (e.kind == Kind::Equal) text = equal(a, b);
       if (e.kind == Kind::Or) text = logical_or(a, b);
+      if (e.kind == Kind::And) text = logical_and(a, b);
       if (e.kind == Kind::Rem) text = rem(a, b);
       break;
     }

@@ -120,6 +120,7 @@ Expr logical_not(Expr a) { return node(Expr::Kind::Not, std::move(a)); }
 Expr less(Expr a, Expr b) { return node(Expr::Kind::Less, std::move(a), std::move(b)); }
 Expr equal(Expr a, Expr b) { return node(Expr::Kind::Equal, std::move(a), std::move(b)); }
 Expr logical_or(Expr a, Expr b) { return node(Expr::Kind::Or, std::move(a), std::move(b)); }
+Expr logical_and(Expr a, Expr b) { return node(Expr::Kind::And, std::move(a), std::move(b)); }
 Expr rem(Expr a, Expr b) { return node(Expr::Kind::Rem, std::move(a), std::move(b)); }
 
 Expr select(Expr condition, Expr if_true, Expr if_false) {
@@ -166,6 +167,11 @@ Statement declare(std::string name, Type type, Expr value) {
   return statement(Statement::Kind::Declaration, Declaration{std::move(name), type, std::move(value), std::nullopt});
 }
 
+Statement declare_variable(std::string name, Type type, Expr value) {
+  return statement(Statement::Kind::Declaration,
+                   Declaration{std::move(name), type, std::move(value), std::nullopt, true});
+}
+
 Statement declare_array(const std::string& name, Type type, std::size_t size) {
   return statement(Statement::Kind::Declaration, Declaration{name, type, std::nullopt, size});
 }
@@ -183,6 +189,11 @@ Statement view(const std::string& name, const std::string& array, Expr offset, E
 Statement rebound_view(const std::string& name, const std::string& array, Expr offset, Expr size) {
   return statement(Statement::Kind::View, std::make_shared<const View>(
                                               View{name, array, std::move(offset), std::move(size), false, true}));
+}
+
+Statement rebound_view(const std::string& name, const std::string& array) {
+  return statement(Statement::Kind::View,
+                   std::make_shared<const View>(View{name, array, integer(0), integer(0), false, true, true}));
 }
 
 namespace {
@@ -227,6 +238,12 @@ Statement call_internal_function(const std::string& function, std::vector<Expr> 
 Statement conditional(Expr condition, Block then, Block otherwise) {
   return statement(Statement::Kind::Conditional, std::make_shared<const Conditional>(Conditional{
                                                      std::move(condition), std::move(then), std::move(otherwise)}));
+}
+
+Statement compile_time_conditional(Expr condition, Block then, Block otherwise) {
+  Conditional node{std::move(condition), std::move(then), std::move(otherwise)};
+  node.compile_time = true;
+  return statement(Statement::Kind::Conditional, std::make_shared<const Conditional>(std::move(node)));
 }
 
 Statement scope(Block body) {

@@ -83,7 +83,9 @@ FilterFile DelayedCode::filter_file(const Model& model, const FilterEquations& e
                      {"history_size", std::to_string(history)},
                      {"history_array_size", std::to_string(history > 0 ? history : 1)},  // C has no empty array
                      {"delayed_size", std::to_string(width)}});
+  // The ring in the delay's case, and for any delay (a backend's template places one of the two).
   for (auto& [key, block] : history_statements(steps.steps, x_star)) file.blocks.emplace(key, std::move(block));
+  for (auto& [key, block] : any_delay_history_statements()) file.blocks.emplace(key, std::move(block));
   file.frames.emplace("state_x_star", x_star ? "state_x_star" : "");
   add_step_loops(file, n);
   return file;

@@ -43,6 +43,7 @@ class StatementEmitter : public Emitter {
   virtual std::string less(const std::string& a, const std::string& b) const = 0;
   virtual std::string equal(const std::string& a, const std::string& b) const = 0;
   virtual std::string logical_or(const std::string& a, const std::string& b) const = 0;
+  virtual std::string logical_and(const std::string& a, const std::string& b) const = 0;
   virtual std::string rem(const std::string& a, const std::string& b) const = 0;
   virtual std::string select(const std::string& condition, const std::string& if_true,
                              const std::string& if_false) const = 0;

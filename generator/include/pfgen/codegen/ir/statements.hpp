@@ -39,10 +39,12 @@ struct Expr {
     Not,            // not operands[0]
     LocalArray,     // the local array `name` (a LocalArrays') passed whole to a call; written
                     // through when `integer` != 0 (C: `name`; C++: `name.data()`; Rust: `&mut name`)
-    Dimension,      // a size the file declares (`name`: "n", "p", "state_size", ...), spelt by its language
+    Dimension,      // a size or flag the file declares (`name`: "n", "p", "state_size", "uses_x_star", ...),
+                    // spelt by its language
     WholeScalar,    // the whole number `integer` in the scalar type (C++: `Scalar(2)`; C: `2.0f`)
     Less, Equal,    // operands[0] < operands[1], operands[0] == operands[1]
     Or,             // operands[0] or operands[1] (C: `||`)
+    And,            // operands[0] and operands[1] (C: `&&`)
     Rem,            // operands[0] modulo operands[1], of sizes (`%`)
     Select,         // operands[1] if operands[0], else operands[2] (C: `a ? b : c`; Rust: `if a { b } else { c }`)
     Slice,          // the entries of the array `name` from operands[0] on, operands[1] of them (C: `name + o`;
@@ -83,6 +85,7 @@ Expr local_array(const std::string& name, bool writable);
 Expr less(Expr a, Expr b);
 Expr equal(Expr a, Expr b);
 Expr logical_or(Expr a, Expr b);
+Expr logical_and(Expr a, Expr b);
 Expr rem(Expr a, Expr b);
 Expr select(Expr condition, Expr if_true, Expr if_false);
 // A slice to rebind a view to (`rebound_view`): the whole array, or `size` entries from `offset`.
@@ -105,6 +108,7 @@ enum class Type {
   Scalar,  // the filter's scalar (float, double, C++'s template parameter)
   Size,    // a size or an index of the filter's arrays (C's size_t)
   Int,     // a plain integer loop counter (C's int)
+  Bool,    // a truth value
 };
 
 struct Statement;
@@ -115,22 +119,25 @@ using Block = std::vector<Statement>;
 // braces; NextLine puts one statement on the next line, indented; Braced always uses braces.
 enum class Layout { Compact, NextLine, Braced };
 
-// `name` of `type`: a constant with its value, or an array of `size` entries, uninitialised.
+// `name` of `type`: a constant with its value (a variable, assigned again later, when `variable`),
+// or an array of `size` entries, uninitialised.
 struct Declaration {
   std::string name;
   Type type = Type::Scalar;
   std::optional<Expr> value;        // a constant initialised with it
   std::optional<std::size_t> size;  // an array of this many entries
+  bool variable = false;            // C: no `const`; Rust: `let mut`
 };
 
 // A view of `size` entries of an array from `offset` on (C: a pointer into it; Rust: a slice),
-// read-only unless `writable`.
+// read-only unless `writable`; with `whole`, of the whole array (offset and size unused).
 struct View {
   std::string name;
   std::string array;
   Expr offset, size;
   bool writable = false;
   bool rebound = false;  // later assigned another slice (ir::slice): Rust's `let mut name: &[Scalar]`
+  bool whole = false;
 };
 
 // Arrays of `length` entries each (an expression of the file's named sizes), declared together:
@@ -182,12 +189,15 @@ struct CallStatement {
 };
 
 // if condition: then, else: otherwise (when not empty; a C-family language writes each branch of
-// one statement on its own line, several in braces).
+// one statement on its own line, several in braces; an otherwise of one conditional as `else if`).
+// A `compile_time` condition is of the file's constants alone: C++ tests it at compile time (`if
+// constexpr`, so a branch may index what is empty in the other case), C and Rust as any other.
 struct Conditional {
   Expr condition;
   Block then;
   Block otherwise;
   Layout layout = Layout::Compact;
+  bool compile_time = false;
 };
 
 // A block of its own, in braces: what it declares ends with it.
@@ -233,11 +243,14 @@ struct Statement {
 };
 
 Statement declare(std::string name, Type type, Expr value);          // a constant
+Statement declare_variable(std::string name, Type type, Expr value);  // a variable, assigned again later
 Statement declare_array(const std::string& name, Type type, std::size_t size);
 Statement local_arrays(std::vector<std::string> names, Type type, Expr length, bool written_first = false);
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable);
 // A read-only view that is later assigned another slice (ir::slice).
 Statement rebound_view(const std::string& name, const std::string& array, Expr offset, Expr size);
+// The same of the whole array.
+Statement rebound_view(const std::string& name, const std::string& array);
 Statement assign(Expr target, Expr value);
 Statement assign_all(std::vector<Expr> targets, Expr value);
 Statement accumulate(Expr target, Expr value);
@@ -247,6 +260,8 @@ Statement call_statement(const std::string& function, std::vector<Expr> argument
 Statement call_file_function(const std::string& function, std::vector<Expr> arguments);
 Statement call_internal_function(const std::string& function, std::vector<Expr> arguments);
 Statement conditional(Expr condition, Block then, Block otherwise = {});
+// A conditional on the file's constants alone (Conditional::compile_time).
+Statement compile_time_conditional(Expr condition, Block then, Block otherwise = {});
 Statement scope(Block body);
 // `s` (a loop or a conditional) with its block laid out as `layout`; any other statement as it is.
 Statement laid_out(Statement s, Layout layout);

@@ -78,13 +78,14 @@ std::string CFamilyEmitter::type(ir::Type t) const {
     case ir::Type::Scalar: return scalar_type_;
     case ir::Type::Size: return size_type();
     case ir::Type::Int: return "int";
+    case ir::Type::Bool: return truth_type();
   }
   return "?";
 }
 
 std::string CFamilyEmitter::declaration(const ir::Declaration& node, const std::string&) const {
   if (node.size) return type(node.type) + " " + node.name + "[" + std::to_string(*node.size) + "];";
-  std::string text = "const ";
+  std::string text = node.variable ? "" : "const ";
   text += type(node.type);
   text += ' ';
   text += node.name;
@@ -102,8 +103,8 @@ std::string CFamilyEmitter::arrays(const ir::LocalArrays& node, const std::strin
 }
 
 std::string CFamilyEmitter::view(const ir::View& node, const std::string&) const {
-  return std::string(node.writable ? "" : "const ") + scalar_type_ + "* " + node.name + " = " + node.array + " + " +
-         expression(node.offset) + ";";
+  const std::string start = std::string(node.writable ? "" : "const ") + scalar_type_ + "* " + node.name + " = " + node.array;
+  return node.whole ? start + ";" : start + " + " + expression(node.offset) + ";";
 }
 
 std::string CFamilyEmitter::assignment(const ir::Assignment& node, const std::string&) const {
@@ -146,14 +147,17 @@ std::string CFamilyEmitter::call_statement(const ir::CallStatement& node, const 
 }
 
 std::string CFamilyEmitter::conditional(const ir::Conditional& node, const std::string& indent) const {
-  const std::string header = "if (" + expression(node.condition) + ")";
+  const std::string header = (node.compile_time ? compile_time_if() : "if") + " (" + expression(node.condition) + ")";
   if (node.otherwise.empty()) return with_block(header, node.then, indent, node.layout);
-  // With an else: each branch of one statement on its own line, else both in braces.
+  // With an else: each branch of one statement on its own line, else both in braces; an else of
+  // one conditional continues the chain on the else's line (`else if`).
   const std::string inner = indent + "  ";
+  const bool chain = node.otherwise.size() == 1 && node.otherwise[0].kind == ir::Statement::Kind::Conditional;
   if (node.then.size() == 1 && node.otherwise.size() == 1)
-    return header + "\n" + inner + statement(node.then[0], inner) + "\n" + indent + "else\n" + inner +
-           statement(node.otherwise[0], inner);
-  return header + " {\n" + block(node.then, inner) + indent + "} else {\n" + block(node.otherwise, inner) + indent + "}";
+    return header + "\n" + inner + statement(node.then[0], inner) + "\n" + indent +
+           (chain ? "else " + statement(node.otherwise[0], indent) : "else\n" + inner + statement(node.otherwise[0], inner));
+  return header + " {\n" + block(node.then, inner) + indent +
+         (chain ? "} else " + statement(node.otherwise[0], indent) : "} else {\n" + block(node.otherwise, inner) + indent + "}");
 }
 
 std::string CFamilyEmitter::return_statement(const ir::Return& node, const std::string&) const {

@@ -113,7 +113,7 @@ std::string RustEmitter::declaration(const ir::Declaration& node, const std::str
     const std::string size = std::to_string(*node.size);
     return "let mut " + node.name + ": [" + t + "; " + size + "] = [" + zero + "; " + size + "];";
   }
-  return "let " + node.name + ": " + t + " = " + expression(*node.value) + ";";
+  return (node.variable ? "let mut " : "let ") + node.name + ": " + t + " = " + expression(*node.value) + ";";
 }
 
 std::string RustEmitter::arrays(const ir::LocalArrays& node, const std::string& indent) const {
@@ -142,8 +142,9 @@ std::string RustEmitter::slice(const ir::Expr& node) const {
 }
 
 std::string RustEmitter::view(const ir::View& node, const std::string&) const {
-  const std::string offset = expression(ungrouped(node.offset));
   const std::string head = node.rebound ? "let mut " + node.name + ": &[" + scalar_type() + "] = &" : "let " + node.name + " = &";
+  if (node.whole) return head + (node.writable ? "mut " : "") + node.array + "[..];";
+  const std::string offset = expression(ungrouped(node.offset));
   return head + (node.writable ? "mut " : "") + node.array + "[" + offset + ".." + offset + " + " +
          expression(node.size) + "];";
 }
@@ -178,7 +179,11 @@ std::string RustEmitter::call_statement(const ir::CallStatement& node, const std
 
 std::string RustEmitter::conditional(const ir::Conditional& node, const std::string& indent) const {
   std::string text = braced("if " + expression(node.condition), block(node.then, indent + "  "), indent);
-  if (!node.otherwise.empty()) text += braced(" else", block(node.otherwise, indent + "  "), indent);
+  // An else of one conditional continues the chain (`else if`).
+  if (node.otherwise.size() == 1 && node.otherwise[0].kind == ir::Statement::Kind::Conditional)
+    text += " else " + statement(node.otherwise[0], indent);
+  else if (!node.otherwise.empty())
+    text += braced(" else", block(node.otherwise, indent + "  "), indent);
   return text;
 }
 

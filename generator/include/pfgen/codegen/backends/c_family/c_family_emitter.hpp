@@ -48,6 +48,7 @@ class CFamilyEmitter : public StatementEmitter {
   std::string less(const std::string& a, const std::string& b) const override { return a + " < " + b; }
   std::string equal(const std::string& a, const std::string& b) const override { return a + " == " + b; }
   std::string logical_or(const std::string& a, const std::string& b) const override { return a + " || " + b; }
+  std::string logical_and(const std::string& a, const std::string& b) const override { return a + " && " + b; }
   std::string rem(const std::string& a, const std::string& b) const override { return a + " % " + b; }
   std::string select(const std::string& condition, const std::string& if_true,
                      const std::string& if_false) const override {
@@ -74,6 +75,10 @@ class CFamilyEmitter : public StatementEmitter {
   virtual std::string field_access() const = 0;
   // How the language spells a size (C++: std::size_t; C: size_t).
   virtual std::string size_type() const = 0;
+  // How the language spells a truth value's type (C++: bool; C: int, as its truth values are 1 and 0).
+  virtual std::string truth_type() const { return "bool"; }
+  // How a conditional on the file's constants alone begins (C++: `if constexpr`; C: `if`).
+  virtual std::string compile_time_if() const { return "if"; }
   std::string type(ir::Type type) const;
   // A loop's or a conditional's header followed by its block as `layout` says (ir::Layout).
   std::string with_block(const std::string& header, const ir::Block& body, const std::string& indent,

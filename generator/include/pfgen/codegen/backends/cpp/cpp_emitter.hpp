@@ -28,6 +28,7 @@ class CppEmitter : public CFamilyEmitter {
  protected:
   std::string field_access() const override { return "."; }
   std::string size_type() const override { return "std::size_t"; }
+  std::string compile_time_if() const override { return "if constexpr"; }
   FunctionBody split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                           const FunctionSignature& signature, const std::vector<std::size_t>& order) const override;
 };
