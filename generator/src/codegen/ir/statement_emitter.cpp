@@ -23,6 +23,9 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
     case Kind::LocalArray: text = local_array(e.name, e.integer != 0); break;
     case Kind::Dimension: text = dimension(e.name); break;
     case Kind::WholeScalar: text = whole_scalar(e.integer); break;
+    case Kind::ArrayFrom: text = array_from(e.name, first(), e.integer != 0); break;
+    case Kind::PostIncrement: text = post_increment(e.name); break;
+    case Kind::FileCall: text = call_text(file_function(e.name), e.operands); break;
     case Kind::Add:
     case Kind::Sub:
     case Kind::Mul:
@@ -64,6 +67,12 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
   }
   if (e.grouped) return grouped(text);
   return text;
+}
+
+std::string StatementEmitter::call_text(const std::string& callee, const std::vector<ir::Expr>& arguments) const {
+  std::string text = callee + "(";
+  for (std::size_t k = 0; k < arguments.size(); ++k) text += (k ? ", " : "") + expression(arguments[k]);
+  return text + ")";
 }
 
 std::string StatementEmitter::statement(const ir::Statement& s, const std::string& indent) const {

@@ -149,6 +149,26 @@ Expr local_array(const std::string& array, bool writable) {
   return e;
 }
 
+Expr file_call(const std::string& function, std::vector<Expr> arguments) {
+  Expr e = node(Expr::Kind::FileCall, std::move(arguments));
+  e.name = function;
+  return e;
+}
+
+Expr array_from(const std::string& array, Expr offset, bool writable) {
+  Expr e = node(Expr::Kind::ArrayFrom, std::move(offset));
+  e.name = array;
+  e.integer = writable ? 1 : 0;
+  return e;
+}
+
+Expr post_increment(const std::string& index) {
+  Expr e;
+  e.kind = Expr::Kind::PostIncrement;
+  e.name = index;
+  return e;
+}
+
 Expr operator_node(Expr::Kind kind, std::vector<Expr> operands) { return node(kind, std::move(operands)); }
 
 Expr grouped(Expr a) {
@@ -164,6 +184,11 @@ Expr sum(std::vector<Expr> terms) {
 
 Statement declare(std::string name, Type type, Expr value) {
   return statement(Statement::Kind::Declaration, Declaration{std::move(name), type, std::move(value), std::nullopt});
+}
+
+Statement declare_variable(std::string name, Type type, Expr value) {
+  return statement(Statement::Kind::Declaration,
+                   Declaration{std::move(name), type, std::move(value), std::nullopt, true});
 }
 
 Statement declare_array(const std::string& name, Type type, std::size_t size) {
@@ -201,6 +226,11 @@ Statement assign_all(std::vector<Expr> targets, Expr value) {
 
 Statement accumulate(Expr target, Expr value) {
   return statement(Statement::Kind::Assignment, Assignment{one_target(std::move(target)), std::move(value), true});
+}
+
+Statement decrease(Expr target, Expr value) {
+  return statement(Statement::Kind::Assignment,
+                   Assignment{one_target(std::move(target)), std::move(value), true, true});
 }
 
 Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Block body,

@@ -50,12 +50,19 @@ class StatementEmitter : public Emitter {
   virtual std::string slice(const ir::Expr& node) const = 0;
   virtual std::string grouped(const std::string& a) const { return "(" + a + ")"; }
   virtual std::string local_array(const std::string& array, bool writable) const = 0;
+  // A local array from `offset` on, passed to a call.
+  virtual std::string array_from(const std::string& array, const std::string& offset, bool writable) const = 0;
+  // An index's value, which then steps by one.
+  virtual std::string post_increment(const std::string& index) const = 0;
   // A size the file declares, by its language-neutral name; as it is by default.
   virtual std::string dimension(const std::string& name) const { return name; }
   // A function the file declares, by its language-neutral name; as it is by default.
   virtual std::string file_function(const std::string& name) const { return name; }
   // The function a call statement calls, as the language spells it.
   std::string callee(const ir::CallStatement& node) const { return node.of_file ? file_function(node.function) : node.function; }
+  // `callee(arguments...)`: a call statement's text before its `;`, and a file's function called for
+  // its value (FileCall), written alike.
+  std::string call_text(const std::string& callee, const std::vector<ir::Expr>& arguments) const;
   // A whole number in the scalar type; its constant by default.
   virtual std::string whole_scalar(std::size_t value) const { return constant(GiNaC::numeric(static_cast<long>(value))); }
   using Emitter::expression;

@@ -47,6 +47,10 @@ struct Expr {
     Select,         // operands[1] if operands[0], else operands[2] (C: `a ? b : c`; Rust: `if a { b } else { c }`)
     Slice,          // the entries of the array `name` from operands[0] on, operands[1] of them (C: `name + o`;
                     // Rust: `&name[o..o + size]`); without operands, the whole array (C: `name`; Rust: `&name[..]`)
+    FileCall,       // the file's function `name` (spelt as file_function) of the operands, as a value
+    ArrayFrom,      // the local array `name` from operands[0] on, passed to a call; written through
+                    // when `integer` != 0 (C: `name + off`; C++: `name.data() + off`; Rust: `&name[off..]`)
+    PostIncrement,  // the index `name`'s value, which then steps by one (C: `name++`)
   };
   Kind kind = Kind::Name;
   std::string name;
@@ -88,6 +92,9 @@ Expr select(Expr condition, Expr if_true, Expr if_false);
 // A slice to rebind a view to (`rebound_view`): the whole array, or `size` entries from `offset`.
 Expr slice(const std::string& array);
 Expr slice(const std::string& array, Expr offset, Expr size);
+Expr file_call(const std::string& function, std::vector<Expr> arguments);
+Expr array_from(const std::string& array, Expr offset, bool writable);
+Expr post_increment(const std::string& index);
 Expr grouped(Expr a);
 // An operator node (Add, Sub, Mul, Div, Neg, ZeroWhereZero, Greater, Not) over operands already in a
 // vector, which the node keeps: lowering a graph builds each operation's operands once.
@@ -115,12 +122,14 @@ using Block = std::vector<Statement>;
 // braces; NextLine puts one statement on the next line, indented; Braced always uses braces.
 enum class Layout { Compact, NextLine, Braced };
 
-// `name` of `type`: a constant with its value, or an array of `size` entries, uninitialised.
+// `name` of `type`: a constant with its value (a variable when `variable`), or an array of `size`
+// entries, uninitialised.
 struct Declaration {
   std::string name;
   Type type = Type::Scalar;
   std::optional<Expr> value;        // a constant initialised with it
   std::optional<std::size_t> size;  // an array of this many entries
+  bool variable = false;            // assigned again later (C: no `const`; Rust: `let mut`)
 };
 
 // A view of `size` entries of an array from `offset` on (C: a pointer into it; Rust: a slice),
@@ -143,11 +152,12 @@ struct LocalArrays {
 };
 
 // targets[0] = targets[1] = ... = value (each target a Name or an Element), or with `accumulate`
-// targets[0] += value.
+// targets[0] += value (-= with `subtract`).
 struct Assignment {
   std::vector<Expr> targets;
   Expr value;
   bool accumulate = false;
+  bool subtract = false;
 };
 
 // for index in [begin, end): body. A second counter of a loop nest (the P drift's packed upper
@@ -227,6 +237,7 @@ struct Statement {
 };
 
 Statement declare(std::string name, Type type, Expr value);          // a constant
+Statement declare_variable(std::string name, Type type, Expr value); // a variable, assigned again later
 Statement declare_array(const std::string& name, Type type, std::size_t size);
 Statement local_arrays(std::vector<std::string> names, Type type, Expr length);
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable);
@@ -235,6 +246,7 @@ Statement rebound_view(const std::string& name, const std::string& array, Expr o
 Statement assign(Expr target, Expr value);
 Statement assign_all(std::vector<Expr> targets, Expr value);
 Statement accumulate(Expr target, Expr value);
+Statement decrease(Expr target, Expr value);  // target -= value
 Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Block body,
                std::optional<Loop::Follower> declares = std::nullopt, const std::string& steps = "");
 Statement call_statement(const std::string& function, std::vector<Expr> arguments);

@@ -84,7 +84,7 @@ std::string CFamilyEmitter::type(ir::Type t) const {
 
 std::string CFamilyEmitter::declaration(const ir::Declaration& node, const std::string&) const {
   if (node.size) return type(node.type) + " " + node.name + "[" + std::to_string(*node.size) + "];";
-  std::string text = "const ";
+  std::string text = node.variable ? "" : "const ";
   text += type(node.type);
   text += ' ';
   text += node.name;
@@ -102,13 +102,16 @@ std::string CFamilyEmitter::arrays(const ir::LocalArrays& node, const std::strin
 }
 
 std::string CFamilyEmitter::view(const ir::View& node, const std::string&) const {
-  return std::string(node.writable ? "" : "const ") + scalar_type_ + "* " + node.name + " = " + node.array + " + " +
-         expression(node.offset) + ";";
+  std::string text = std::string(node.writable ? "" : "const ") + scalar_type_ + "* " + node.name + " = " + node.array;
+  // A view from the start is the array itself.
+  if (node.offset.kind == ir::Expr::Kind::Integer && node.offset.integer == 0) return text + ";";
+  return text + " + " + expression(node.offset) + ";";
 }
 
 std::string CFamilyEmitter::assignment(const ir::Assignment& node, const std::string&) const {
   std::string text;
-  for (const ir::Expr& target : node.targets) text += expression(target) + (node.accumulate ? " += " : " = ");
+  const char* op = !node.accumulate ? " = " : node.subtract ? " -= " : " += ";
+  for (const ir::Expr& target : node.targets) text += expression(target) + op;
   return text + expression(node.value) + ";";
 }
 
@@ -140,9 +143,7 @@ std::string CFamilyEmitter::loop(const ir::Loop& node, const std::string& indent
 }
 
 std::string CFamilyEmitter::call_statement(const ir::CallStatement& node, const std::string&) const {
-  std::string text = callee(node) + "(";
-  for (std::size_t k = 0; k < node.arguments.size(); ++k) text += (k ? ", " : "") + expression(node.arguments[k]);
-  return text + ");";
+  return call_text(callee(node), node.arguments) + ";";
 }
 
 std::string CFamilyEmitter::conditional(const ir::Conditional& node, const std::string& indent) const {

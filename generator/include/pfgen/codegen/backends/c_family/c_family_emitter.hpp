@@ -56,6 +56,10 @@ class CFamilyEmitter : public StatementEmitter {
   // A pointer into the array: `array` or `array + offset`.
   std::string slice(const ir::Expr& node) const override;
   std::string local_array(const std::string& array, bool) const override { return array; }
+  std::string array_from(const std::string& array, const std::string& offset, bool writable) const override {
+    return local_array(array, writable) + " + " + offset;
+  }
+  std::string post_increment(const std::string& index) const override { return index + "++"; }
   // StatementEmitter's statements.
   std::string declaration(const ir::Declaration& node, const std::string& indent) const override;
   std::string view(const ir::View& node, const std::string& indent) const override;
