@@ -249,6 +249,11 @@ Statement call_file_function(const std::string& function, std::vector<Expr> argu
                    std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments), true}));
 }
 
+Statement call_internal_function(const std::string& function, std::vector<Expr> arguments) {
+  return statement(Statement::Kind::Call,
+                   std::make_shared<const CallStatement>(CallStatement{function, std::move(arguments), true, true}));
+}
+
 Statement conditional(Expr condition, Block then, Block otherwise) {
   return statement(Statement::Kind::Conditional, std::make_shared<const Conditional>(Conditional{
                                                      std::move(condition), std::move(then), std::move(otherwise)}));

@@ -58,8 +58,13 @@ class StatementEmitter : public Emitter {
   virtual std::string dimension(const std::string& name) const { return name; }
   // A function the file declares, by its language-neutral name; as it is by default.
   virtual std::string file_function(const std::string& name) const { return name; }
+  // A function the file keeps out of its interface (ir::CallStatement::internal); as file_function by default.
+  virtual std::string internal_function(const std::string& name) const { return file_function(name); }
   // The function a call statement calls, as the language spells it.
-  std::string callee(const ir::CallStatement& node) const { return node.of_file ? file_function(node.function) : node.function; }
+  std::string callee(const ir::CallStatement& node) const {
+    if (node.internal) return internal_function(node.function);
+    return node.of_file ? file_function(node.function) : node.function;
+  }
   // `callee(arguments...)`: a call statement's text before its `;`, and a file's function called for
   // its value (FileCall), written alike.
   std::string call_text(const std::string& callee, const std::vector<ir::Expr>& arguments) const;

@@ -178,11 +178,14 @@ struct Loop {
 };
 
 // A call as a statement: `function(arguments)`. A function the file declares (`of_file`) is named
-// by its language-neutral name and spelt by its language (C: after the file's prefix).
+// by its language-neutral name and spelt by its language (C: after the file's prefix); one it keeps
+// out of its interface (`internal`: C's static functions, C++'s namespace detail, Rust's private
+// fns) as the language reaches such a function.
 struct CallStatement {
   std::string function;
   std::vector<Expr> arguments;
   bool of_file = false;
+  bool internal = false;
 };
 
 // if condition: then, else: otherwise (when not empty; a C-family language writes each branch of
@@ -251,6 +254,7 @@ Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Blo
                std::optional<Loop::Follower> declares = std::nullopt, const std::string& steps = "");
 Statement call_statement(const std::string& function, std::vector<Expr> arguments);
 Statement call_file_function(const std::string& function, std::vector<Expr> arguments);
+Statement call_internal_function(const std::string& function, std::vector<Expr> arguments);
 Statement conditional(Expr condition, Block then, Block otherwise = {});
 Statement scope(Block body);
 // `s` (a loop or a conditional) with its block laid out as `layout`; any other statement as it is.

@@ -22,6 +22,8 @@ class CppEmitter : public CFamilyEmitter {
   std::string arrays(const ir::LocalArrays& node, const std::string& indent) const override;
   // `Scalar(2)` in every scalar mode, as the templates' own arithmetic writes it.
   std::string whole_scalar(std::size_t value) const override { return "Scalar(" + std::to_string(value) + ")"; }
+  // The file's internal functions are in its namespace detail.
+  std::string internal_function(const std::string& name) const override { return "detail::" + name; }
 
  protected:
   std::string field_access() const override { return "."; }
