@@ -25,7 +25,14 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
     case Kind::WholeScalar: text = whole_scalar(e.integer); break;
     case Kind::ArrayFrom: text = array_from(e.name, first(), e.integer != 0); break;
     case Kind::PostIncrement: text = post_increment(e.name); break;
-    case Kind::FileCall: text = call_text(file_function(e.name), e.operands); break;
+    case Kind::FileCall:
+      text = call_text(e.integer != 0 ? internal_function(e.name) : file_function(e.name), e.operands);
+      break;
+    case Kind::PackedEntry: {
+      const std::string a = first();
+      text = packed_entry(e.name, a, expression(e.operands.at(1)));
+      break;
+    }
     case Kind::Add:
     case Kind::Sub:
     case Kind::Mul:

@@ -155,6 +155,18 @@ Expr file_call(const std::string& function, std::vector<Expr> arguments) {
   return e;
 }
 
+Expr internal_call(const std::string& function, std::vector<Expr> arguments) {
+  Expr e = file_call(function, std::move(arguments));
+  e.integer = 1;
+  return e;
+}
+
+Expr packed_entry(const std::string& matrix, Expr row, Expr column) {
+  Expr e = node(Expr::Kind::PackedEntry, std::move(row), std::move(column));
+  e.name = matrix;
+  return e;
+}
+
 Expr array_from(const std::string& array, Expr offset, bool writable) {
   Expr e = node(Expr::Kind::ArrayFrom, std::move(offset));
   e.name = array;
@@ -210,6 +222,29 @@ Statement rebound_view(const std::string& name, const std::string& array, Expr o
                                               View{name, array, std::move(offset), std::move(size), false, true}));
 }
 
+Statement local_view(const std::string& name, const std::string& array, Expr offset, Expr size) {
+  View v;
+  v.name = name;
+  v.array = array;
+  v.offset = std::move(offset);
+  v.size = std::move(size);
+  v.local = true;
+  return statement(Statement::Kind::View, std::make_shared<const View>(std::move(v)));
+}
+
+Statement packed_local_view(const std::string& name, const std::string& array, Expr offset, Expr rows) {
+  // rows (rows + 1) / 2 entries.
+  Expr size = div(mul(rows, grouped(add(rows, integer(1)))), integer(2));
+  View v;
+  v.name = name;
+  v.array = array;
+  v.offset = std::move(offset);
+  v.size = std::move(size);
+  v.local = true;
+  v.packed_rows = std::move(rows);
+  return statement(Statement::Kind::View, std::make_shared<const View>(std::move(v)));
+}
+
 namespace {
 std::vector<Expr> one_target(Expr&& target) {
   std::vector<Expr> targets;
@@ -231,6 +266,18 @@ Statement accumulate(Expr target, Expr value) {
 Statement decrease(Expr target, Expr value) {
   return statement(Statement::Kind::Assignment,
                    Assignment{one_target(std::move(target)), std::move(value), true, true});
+}
+
+Statement assign_symmetric(Expr upper, Expr lower, Expr value) {
+  std::vector<Expr> targets;
+  targets.reserve(2);
+  targets.push_back(std::move(upper));
+  targets.push_back(std::move(lower));
+  Assignment a;
+  a.targets = std::move(targets);
+  a.value = std::move(value);
+  a.symmetric = true;
+  return statement(Statement::Kind::Assignment, std::move(a));
 }
 
 Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Block body,

@@ -54,6 +54,11 @@ class StatementEmitter : public Emitter {
   virtual std::string array_from(const std::string& array, const std::string& offset, bool writable) const = 0;
   // An index's value, which then steps by one.
   virtual std::string post_increment(const std::string& index) const = 0;
+  // Entry (a, b) of the packed symmetric matrix `matrix` (ir::packed_entry): by default the file's
+  // function packed_at(matrix, a, b), which C's and Rust's templates define.
+  virtual std::string packed_entry(const std::string& matrix, const std::string& a, const std::string& b) const {
+    return file_function("packed_at") + "(" + matrix + ", " + a + ", " + b + ")";
+  }
   // A size the file declares, by its language-neutral name; as it is by default.
   virtual std::string dimension(const std::string& name) const { return name; }
   // A function the file declares, by its language-neutral name; as it is by default.

@@ -78,6 +78,9 @@ class CFamilyEmitter : public StatementEmitter {
   virtual std::string field_access() const = 0;
   // How the language spells a size (C++: std::size_t; C: size_t).
   virtual std::string size_type() const = 0;
+  // Whether a symmetric store (ir::assign_symmetric) is one chained assignment `a = b = value;` (C++)
+  // or two statements, `a = value;` and `b = a;` (C), which a loop's block then braces.
+  virtual bool chains_symmetric_store() const { return true; }
   std::string type(ir::Type type) const;
   // A loop's or a conditional's header followed by its block as `layout` says (ir::Layout).
   std::string with_block(const std::string& header, const ir::Block& body, const std::string& indent,
