@@ -56,7 +56,8 @@ TEST_CASE("joseph update's nodes: each language's spelling", "[unit][codegen]") 
 TEST_CASE("joseph update: C's text from the statements, Rust's views after the calls", "[unit][codegen]") {
   const CEmitter c(ScalarMode::Double, "tmp", "f", "f_params");
   const JosephUpdate u = joseph_update_statements();
-  const std::string text = c.block(u.arrays) + c.block(u.views) + c.block(u.solve) + c.block(u.update);
+  const std::string text = c.block(u.arrays) + c.block(u.matrices) + c.block(u.views) + c.block(u.counter) +
+                           c.block(u.solve) + c.block(u.update);
   CHECK(text ==
         "  double u[f_n * f_p + f_p * (f_p + 1) / 2];\n"
         "  double CR[f_p * f_n + f_p * (f_p + 1) / 2];\n"
@@ -101,8 +102,8 @@ TEST_CASE("joseph update: C's text from the statements, Rust's views after the c
         "      state[k++] = sum;\n"
         "    }\n"
         "  return 1;\n");
-  // No backend's template writes the update itself any more: C and Rust place the four parts
-  // (Rust's views after the calls that fill CR), C++'s keeps its own form.
+  // No backend's template writes the update itself any more: C and Rust place the six parts
+  // (Rust's views after the calls that fill CR); C++'s too (below).
   for (const char* name : {"c/sampled_filter.c.tmpl", "rust/sampled_filter.rs.tmpl"}) {
     INFO(name);
     const std::string tmpl = embedded_template(name);
@@ -110,5 +111,120 @@ TEST_CASE("joseph update: C's text from the statements, Rust's views after the c
     CHECK(tmpl.find("packed_at(R, a, b)") == std::string::npos);
   }
   const std::string rust = embedded_template("rust/sampled_filter.rs.tmpl");
-  CHECK(rust.find("{{update_solve}}{{update_views}}") != std::string::npos);
+  CHECK(rust.find("{{update_solve}}{{update_views}}{{update_counter}}") != std::string::npos);
+}
+
+TEST_CASE("joseph update: C++'s text from the same statements, its parts in its own order", "[unit][codegen]") {
+  // Byte for byte the update C++'s sampled_filter template has always written: std::arrays passed by
+  // data(), the gain's solve in namespace detail, R's packed entries through a lambda R_at that the
+  // packed view declares, P's two entries stored by one chained assignment, and the a/b loop's one
+  // statement on its header's line (it fits in the width; C's, longer, goes below).
+  const CppEmitter cpp(ScalarMode::Template);
+  const JosephUpdate u = joseph_update_statements();
+  const std::string text = cpp.block(u.arrays) + cpp.block(u.solve) + cpp.block(u.views) + cpp.block(u.matrices) +
+                           cpp.block(u.counter) + cpp.block(u.update);
+  CHECK(text ==
+        "  std::array<Scalar, n * p + p * (p + 1) / 2> u{};\n"
+        "  std::array<Scalar, p * n + p * (p + 1) / 2> CR{};\n"
+        "  std::array<Scalar, n * p> K{};\n"
+        "  std::array<Scalar, p> h{};\n"
+        "  innovation_terms(t, state, params, u.data());\n"
+        "  if (!detail::solve_gain(u.data(), u.data() + n * p, K.data())) return false;\n"
+        "  observation_matrices(t, state, params, CR.data());\n"
+        "  predicted_observation(t, state, params, h.data());\n"
+        "  const Scalar* C = CR.data();\n"
+        "  const Scalar* R = CR.data() + p * n;\n"
+        "  auto R_at = [&](std::size_t a, std::size_t b) {\n"
+        "    if (a > b) { const std::size_t c = a; a = b; b = c; }\n"
+        "    return R[a * p - a * (a + 1) / 2 + b];\n"
+        "  };\n"
+        "  std::array<Scalar, n * n> P{}, A{}, AP{};\n"
+        "  std::size_t k = n;\n"
+        "  for (std::size_t i = 0; i < n; ++i)\n"
+        "    for (std::size_t j = i; j < n; ++j) P[i * n + j] = P[j * n + i] = state[k++];\n"
+        "  for (std::size_t i = 0; i < n; ++i)\n"
+        "    for (std::size_t r = 0; r < p; ++r) state[i] += K[i * p + r] * (y[r] - h[r]);\n"
+        "  // A = Id - K C\n"
+        "  for (std::size_t i = 0; i < n; ++i)\n"
+        "    for (std::size_t j = 0; j < n; ++j) {\n"
+        "      Scalar sum = i == j ? Scalar(1) : Scalar(0);\n"
+        "      for (std::size_t r = 0; r < p; ++r) sum -= K[i * p + r] * C[r * n + j];\n"
+        "      A[i * n + j] = sum;\n"
+        "    }\n"
+        "  for (std::size_t i = 0; i < n; ++i)\n"
+        "    for (std::size_t j = 0; j < n; ++j) {\n"
+        "      Scalar sum = Scalar(0);\n"
+        "      for (std::size_t l = 0; l < n; ++l) sum += A[i * n + l] * P[l * n + j];\n"
+        "      AP[i * n + j] = sum;\n"
+        "    }\n"
+        "  k = n;\n"
+        "  for (std::size_t i = 0; i < n; ++i)\n"
+        "    for (std::size_t j = i; j < n; ++j) {\n"
+        "      Scalar sum = Scalar(0);\n"
+        "      for (std::size_t l = 0; l < n; ++l) sum += AP[i * n + l] * A[j * n + l];\n"
+        "      for (std::size_t a = 0; a < p; ++a)\n"
+        "        for (std::size_t b = 0; b < p; ++b) sum += K[i * p + a] * R_at(a, b) * K[j * p + b];\n"
+        "      state[k++] = sum;\n"
+        "    }\n"
+        "  return true;\n");
+  // The template places the parts and writes none of them.
+  const std::string tmpl = embedded_template("cpp/sampled_filter.hpp.tmpl");
+  CHECK(tmpl.find("// A = Id - K C") == std::string::npos);
+  CHECK(tmpl.find("R_at") == std::string::npos);
+  CHECK(tmpl.find("{{update_arrays}}{{update_solve}}{{update_views}}{{update_matrices}}{{update_counter}}{{update_body}}") !=
+        std::string::npos);
+}
+
+TEST_CASE("joseph update's C++ nodes: a packed view and its entries, a symmetric store, a line that fits", "[unit][codegen]") {
+  const CppEmitter cpp(ScalarMode::Double);
+  const CEmitter c(ScalarMode::Float, "tmp", "ns_m_f", "ns_m_f_params");
+  const RustEmitter rust(ScalarMode::Float, "tmp", "Params");
+  const ir::Expr q = ir::name("q");
+  const ir::Block block = {
+      ir::packed_local_view("S", "W", ir::name("o"), q),
+      ir::local_view("V", "W", ir::integer(0), q),
+      ir::loop("j", ir::Type::Size, ir::integer(0), q,
+               {ir::assign_symmetric(ir::element("X", ir::name("j")), ir::element("Y", ir::name("j")),
+                                     ir::packed_entry("S", ir::name("j"), ir::integer(0)))}),
+      ir::laid_out(ir::loop("j", ir::Type::Size, ir::integer(0), q, {ir::accumulate(ir::name("s"), ir::name("j"))}),
+                   ir::Layout::Fit),
+      ir::conditional(ir::logical_not(ir::internal_call("g", {ir::local_array("W", false)})), {ir::return_value(ir::boolean(false))}),
+  };
+  CHECK(cpp.block(block) ==
+        "  const Scalar* S = W.data() + o;\n"
+        "  auto S_at = [&](std::size_t a, std::size_t b) {\n"
+        "    if (a > b) { const std::size_t c = a; a = b; b = c; }\n"
+        "    return S[a * q - a * (a + 1) / 2 + b];\n"
+        "  };\n"
+        "  const Scalar* V = W.data();\n"
+        "  for (std::size_t j = 0; j < q; ++j) X[j] = Y[j] = S_at(j, 0);\n"
+        "  for (std::size_t j = 0; j < q; ++j) s += j;\n"
+        "  if (!detail::g(W.data())) return false;\n");
+  CHECK(c.block(block) ==
+        "  const float* S = W + o;\n"
+        "  const float* V = W;\n"
+        "  for (size_t j = 0; j < q; ++j) {\n"
+        "    X[j] = ns_m_f_packed_at(S, j, 0);\n"
+        "    Y[j] = X[j];\n"
+        "  }\n"
+        "  for (size_t j = 0; j < q; ++j) s += j;\n"
+        "  if (!ns_m_f_g(W)) return 0;\n");
+  CHECK(rust_indent(rust.block(block)) ==
+        "    let S = &W[o..o + q * (q + 1) / 2];\n"
+        "    let V = &W[..q];\n"
+        "    for j in 0..q {\n"
+        "        Y[j] = packed_at(S, j, 0);\n"
+        "        X[j] = Y[j];\n"
+        "    }\n"
+        "    for j in 0..q {\n"
+        "        s += j;\n"
+        "    }\n"
+        "    if !g(&W) {\n"
+        "        return false;\n"
+        "    }\n");
+  // A body that does not fit in the width goes on the next line.
+  const std::string long_name(90, 'z');
+  const ir::Block wide = {ir::laid_out(
+      ir::loop("j", ir::Type::Size, ir::integer(0), q, {ir::accumulate(ir::name(long_name), ir::name("j"))}), ir::Layout::Fit)};
+  CHECK(cpp.block(wide) == "  for (std::size_t j = 0; j < q; ++j)\n    " + long_name + " += j;\n");
 }

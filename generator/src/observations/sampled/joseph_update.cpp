@@ -37,13 +37,12 @@ JosephUpdate joseph_update_statements() {
   u.arrays = {ir::local_arrays({"u"}, Type::Scalar, ir::add(ir::mul(n, p), triangle)),
               ir::local_arrays({"CR"}, Type::Scalar, ir::add(ir::mul(p, n), triangle)),
               ir::local_arrays({"K"}, Type::Scalar, ir::mul(n, p)),
-              ir::local_arrays({"h"}, Type::Scalar, p),
-              ir::local_arrays({"P", "A", "AP"}, Type::Scalar, ir::mul(n, n))};
-  u.views = {ir::view("C", "CR", ir::integer(0), ir::mul(p, n), false),
-             ir::view("R", "CR", ir::mul(p, n), triangle, false),
-             ir::declare_variable("k", Type::Size, n)};
+              ir::local_arrays({"h"}, Type::Scalar, p)};
+  u.matrices = {ir::local_arrays({"P", "A", "AP"}, Type::Scalar, ir::mul(n, n))};
+  u.views = {ir::local_view("C", "CR", ir::integer(0), ir::mul(p, n)), ir::packed_local_view("R", "CR", ir::mul(p, n), p)};
+  u.counter = {ir::declare_variable("k", Type::Size, n)};
   u.solve = {call("innovation_terms", "u"),
-             ir::conditional(ir::logical_not(ir::file_call("solve_gain", {ir::local_array("u", false),
+             ir::conditional(ir::logical_not(ir::internal_call("solve_gain", {ir::local_array("u", false),
                                                                           ir::array_from("u", ir::mul(n, p), false),
                                                                           ir::local_array("K", true)})),
                              {ir::return_value(ir::boolean(false))}),
@@ -53,8 +52,8 @@ JosephUpdate joseph_update_statements() {
   // P (n x n) from its packed upper triangle, the state after m.
   u.update.push_back(over("i", ir::integer(0), n,
                           {over("j", i, n,
-                                {ir::assign(at("P", "i", n, "j"), ir::element("state", ir::post_increment("k"))),
-                                 ir::assign(at("P", "j", n, "i"), at("P", "i", n, "j"))})}));
+                                {ir::assign_symmetric(at("P", "i", n, "j"), at("P", "j", n, "i"),
+                                                      ir::element("state", ir::post_increment("k")))})}));
   // m += K (y - h).
   u.update.push_back(over(
       "i", ir::integer(0), n,
@@ -78,7 +77,7 @@ JosephUpdate joseph_update_statements() {
              ir::assign(at("AP", "i", n, "j"), ir::name("sum"))})}));
   // P = AP A^T + K R K^T, its upper triangle back into the state.
   u.update.push_back(ir::assign(ir::name("k"), n));
-  const Expr r_ab = ir::file_call("packed_at", {ir::name("R"), index("a"), index("b")});
+  const Expr r_ab = ir::packed_entry("R", index("a"), index("b"));
   u.update.push_back(over(
       "i", ir::integer(0), n,
       {over("j", i, n,
@@ -88,7 +87,7 @@ JosephUpdate joseph_update_statements() {
                   {ir::laid_out(over("b", ir::integer(0), p,
                                      {ir::accumulate(ir::name("sum"), ir::mul(ir::mul(at("K", "i", p, "a"), r_ab),
                                                                               at("K", "j", p, "b")))}),
-                                ir::Layout::NextLine)}),
+                                ir::Layout::Fit)}),
              ir::assign(ir::element("state", ir::post_increment("k")), ir::name("sum"))})}));
   u.update.push_back(ir::return_value(ir::boolean(true)));
   return u;

@@ -67,7 +67,9 @@ FilterFile SampledCode::filter_file(const Model& model, const FilterEquations& e
   file.blocks.emplace("predict_body", predict_statements(euler));
   JosephUpdate update = joseph_update_statements();
   file.blocks.emplace("update_arrays", std::move(update.arrays));
+  file.blocks.emplace("update_matrices", std::move(update.matrices));
   file.blocks.emplace("update_views", std::move(update.views));
+  file.blocks.emplace("update_counter", std::move(update.counter));
   file.blocks.emplace("update_solve", std::move(update.solve));
   file.blocks.emplace("update_body", std::move(update.update));
   file.numbers.emplace("period", eq.update.period);
