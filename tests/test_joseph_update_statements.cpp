@@ -12,6 +12,7 @@
 #include "pfgen/codegen/backends/rust/rust_emitter.hpp"
 #include "pfgen/codegen/template_text.hpp"
 #include "pfgen/observations/sampled/joseph_update.hpp"
+#include "pfgen/observations/sampled/sampled_predict.hpp"
 
 using namespace pfgen;
 using namespace pfgen::codegen;
@@ -227,4 +228,34 @@ TEST_CASE("joseph update's C++ nodes: a packed view and its entries, a symmetric
   const ir::Block wide = {ir::laid_out(
       ir::loop("j", ir::Type::Size, ir::integer(0), q, {ir::accumulate(ir::name(long_name), ir::name("j"))}), ir::Layout::Fit)};
   CHECK(cpp.block(wide) == "  for (std::size_t j = 0; j < q; ++j)\n    " + long_name + " += j;\n");
+}
+
+TEST_CASE("sampled advance(): the sub-steps and the update as statements, each language's text as its template had it",
+          "[unit][codegen]") {
+  const ir::Block advance = advance_statements();
+  // A conversion of an index to the scalar and the period, a function template of the scalar alone.
+  CHECK(CppEmitter(ScalarMode::Template).block(advance) ==
+        "  const Scalar dt = period<Scalar>() / Scalar(substeps);\n"
+        "  for (std::size_t s = 0; s < substeps; ++s) predict(state, t + Scalar(s) * dt, dt, params);\n"
+        "  return update(state, t + period<Scalar>(), y, params);\n");
+  CHECK(CppEmitter(ScalarMode::Float).block(advance) ==
+        "  const Scalar dt = period() / Scalar(substeps);\n"
+        "  for (std::size_t s = 0; s < substeps; ++s) predict(state, t + Scalar(s) * dt, dt, params);\n"
+        "  return update(state, t + period(), y, params);\n");
+  CHECK(CEmitter(ScalarMode::Double, "tmp", "f", "f_params").block(advance) ==
+        "  const double dt = f_period() / (double)f_substeps;\n"
+        "  for (size_t s = 0; s < f_substeps; ++s) f_predict(state, t + (double)s * dt, dt, params);\n"
+        "  return f_update(state, t + f_period(), y, params);\n");
+  CHECK(rust_indent(RustEmitter(ScalarMode::Float, "tmp", "Params").block(advance)) ==
+        "    let dt: Scalar = period() / SUBSTEPS as Scalar;\n"
+        "    for s in 0..SUBSTEPS {\n"
+        "        predict(state, t + s as Scalar * dt, dt, params);\n"
+        "    }\n"
+        "    return update(state, t + period(), y, params);\n");
+  for (const char* name : {"cpp/sampled_filter.hpp.tmpl", "c/sampled_filter.c.tmpl", "rust/sampled_filter.rs.tmpl"}) {
+    INFO(name);
+    const std::string tmpl = embedded_template(name);
+    CHECK(tmpl.find("{{advance_body}}") != std::string::npos);
+    CHECK(tmpl.find("predict(state, t +") == std::string::npos);
+  }
 }

@@ -181,6 +181,15 @@ Expr post_increment(const std::string& index) {
   return e;
 }
 
+Expr to_scalar(Expr index) { return node(Expr::Kind::ToScalar, std::move(index)); }
+
+Expr file_scalar(const std::string& function) {
+  Expr e;
+  e.kind = Expr::Kind::FileScalar;
+  e.name = function;
+  return e;
+}
+
 Expr operator_node(Expr::Kind kind, std::vector<Expr> operands) { return node(kind, std::move(operands)); }
 
 Expr grouped(Expr a) {

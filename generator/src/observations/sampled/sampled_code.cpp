@@ -65,6 +65,7 @@ FilterFile SampledCode::filter_file(const Model& model, const FilterEquations& e
   file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
   file.blocks.emplace("solve_body", cholesky_gain_statements(file.p));
   file.blocks.emplace("predict_body", predict_statements(euler));
+  file.blocks.emplace("advance_body", advance_statements());
   JosephUpdate update = joseph_update_statements();
   file.blocks.emplace("update_arrays", std::move(update.arrays));
   file.blocks.emplace("update_matrices", std::move(update.matrices));

@@ -54,6 +54,10 @@ class StatementEmitter : public Emitter {
   virtual std::string array_from(const std::string& array, const std::string& offset, bool writable) const = 0;
   // An index's value, which then steps by one.
   virtual std::string post_increment(const std::string& index) const = 0;
+  // An index or a size in the scalar type (ir::to_scalar).
+  virtual std::string to_scalar(const std::string& index) const = 0;
+  // The file's function of no arguments giving a scalar (ir::file_scalar), called.
+  virtual std::string file_scalar(const std::string& name) const { return file_function(name) + "()"; }
   // Entry (a, b) of the packed symmetric matrix `matrix` (ir::packed_entry): by default the file's
   // function packed_at(matrix, a, b), which C's and Rust's templates define.
   virtual std::string packed_entry(const std::string& matrix, const std::string& a, const std::string& b) const {

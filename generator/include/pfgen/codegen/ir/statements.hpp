@@ -54,6 +54,9 @@ struct Expr {
     ArrayFrom,      // the local array `name` from operands[0] on, passed to a call; written through
                     // when `integer` != 0 (C: `name + off`; C++: `name.data() + off`; Rust: `&name[off..]`)
     PostIncrement,  // the index `name`'s value, which then steps by one (C: `name++`)
+    ToScalar,       // operands[0], an index or a size, in the scalar type (C: `(double)s`; C++: `Scalar(s)`; Rust: `s as f64`)
+    FileScalar,     // the file's function `name` of no arguments, a scalar (period()): C++'s names its scalar
+                    // type where a function template cannot deduce it (`period<Scalar>()`)
   };
   Kind kind = Kind::Name;
   std::string name;
@@ -100,6 +103,8 @@ Expr internal_call(const std::string& function, std::vector<Expr> arguments);
 Expr packed_entry(const std::string& matrix, Expr row, Expr column);
 Expr array_from(const std::string& array, Expr offset, bool writable);
 Expr post_increment(const std::string& index);
+Expr to_scalar(Expr index);
+Expr file_scalar(const std::string& function);
 Expr grouped(Expr a);
 // An operator node (Add, Sub, Mul, Div, Neg, ZeroWhereZero, Greater, Not) over operands already in a
 // vector, which the node keeps: lowering a graph builds each operation's operands once.

@@ -60,6 +60,8 @@ class CFamilyEmitter : public StatementEmitter {
     return local_array(array, writable) + " + " + offset;
   }
   std::string post_increment(const std::string& index) const override { return index + "++"; }
+  // A cast: `(double)s`.
+  std::string to_scalar(const std::string& index) const override { return "(" + scalar_type_ + ")" + index; }
   // StatementEmitter's statements.
   std::string declaration(const ir::Declaration& node, const std::string& indent) const override;
   std::string view(const ir::View& node, const std::string& indent) const override;

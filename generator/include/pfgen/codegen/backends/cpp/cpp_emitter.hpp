@@ -28,6 +28,12 @@ class CppEmitter : public CFamilyEmitter {
   std::string packed_entry(const std::string& matrix, const std::string& a, const std::string& b) const override {
     return matrix + "_at(" + a + ", " + b + ")";
   }
+  // `Scalar(s)`, as the templates' own arithmetic converts.
+  std::string to_scalar(const std::string& index) const override { return "Scalar(" + index + ")"; }
+  // A function template of the scalar alone cannot deduce it: `period<Scalar>()` in template mode.
+  std::string file_scalar(const std::string& name) const override {
+    return name + (mode() == ScalarMode::Template ? "<Scalar>()" : "()");
+  }
   // The file's internal functions are in its namespace detail.
   std::string internal_function(const std::string& name) const override { return "detail::" + name; }
 

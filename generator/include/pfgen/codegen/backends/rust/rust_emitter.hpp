@@ -62,6 +62,8 @@ class RustEmitter : public CFamilyEmitter {
   std::string array_from(const std::string& array, const std::string& offset, bool writable) const override {
     return (writable ? "&mut " : "&") + array + "[" + offset + "..]";
   }
+  // `s as f64`: `as` binds tighter than the arithmetic around it.
+  std::string to_scalar(const std::string& index) const override { return index + " as " + scalar_type(); }
   // Rust has no `k++`: a block that steps the index and gives its value before.
   std::string post_increment(const std::string& index) const override {
     return "{ " + index + " += 1; " + index + " - 1 }";
