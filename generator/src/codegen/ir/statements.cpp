@@ -38,6 +38,14 @@ Expr whole_leaf(Expr::Kind kind, std::size_t value) {
   return e;
 }
 
+// A leaf that names what it is: an index, a function of the file.
+Expr named_leaf(Expr::Kind kind, const std::string& name) {
+  Expr e;
+  e.kind = kind;
+  e.name = name;
+  return e;
+}
+
 // A statement with its node constructed in place (not a default node replaced).
 template <class Node>
 Statement statement(Statement::Kind kind, Node&& node) {
@@ -174,21 +182,11 @@ Expr array_from(const std::string& array, Expr offset, bool writable) {
   return e;
 }
 
-Expr post_increment(const std::string& index) {
-  Expr e;
-  e.kind = Expr::Kind::PostIncrement;
-  e.name = index;
-  return e;
-}
+Expr post_increment(const std::string& index) { return named_leaf(Expr::Kind::PostIncrement, index); }
 
 Expr to_scalar(Expr index) { return node(Expr::Kind::ToScalar, std::move(index)); }
 
-Expr file_scalar(const std::string& function) {
-  Expr e;
-  e.kind = Expr::Kind::FileScalar;
-  e.name = function;
-  return e;
-}
+Expr file_scalar(const std::string& function) { return named_leaf(Expr::Kind::FileScalar, function); }
 
 Expr operator_node(Expr::Kind kind, std::vector<Expr> operands) { return node(kind, std::move(operands)); }
 
@@ -231,25 +229,26 @@ Statement rebound_view(const std::string& name, const std::string& array, Expr o
                                               View{name, array, std::move(offset), std::move(size), false, true}));
 }
 
-Statement local_view(const std::string& name, const std::string& array, Expr offset, Expr size) {
+namespace {
+View read_only_local_view(const std::string& name, const std::string& array, Expr offset, Expr size) {
   View v;
   v.name = name;
   v.array = array;
   v.offset = std::move(offset);
   v.size = std::move(size);
   v.local = true;
-  return statement(Statement::Kind::View, std::make_shared<const View>(std::move(v)));
+  return v;
+}
+}  // namespace
+
+Statement local_view(const std::string& name, const std::string& array, Expr offset, Expr size) {
+  return statement(Statement::Kind::View,
+                   std::make_shared<const View>(read_only_local_view(name, array, std::move(offset), std::move(size))));
 }
 
 Statement packed_local_view(const std::string& name, const std::string& array, Expr offset, Expr rows) {
   // rows (rows + 1) / 2 entries.
-  Expr size = div(mul(rows, grouped(add(rows, integer(1)))), integer(2));
-  View v;
-  v.name = name;
-  v.array = array;
-  v.offset = std::move(offset);
-  v.size = std::move(size);
-  v.local = true;
+  View v = read_only_local_view(name, array, std::move(offset), div(mul(rows, grouped(add(rows, integer(1)))), integer(2)));
   v.packed_rows = std::move(rows);
   return statement(Statement::Kind::View, std::make_shared<const View>(std::move(v)));
 }
