@@ -23,6 +23,18 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
     case Kind::LocalArray: text = local_array(e.name, e.integer != 0); break;
     case Kind::Dimension: text = dimension(e.name); break;
     case Kind::WholeScalar: text = whole_scalar(e.integer); break;
+    case Kind::ArrayFrom: text = array_from(e.name, first(), e.integer != 0); break;
+    case Kind::PostIncrement: text = post_increment(e.name); break;
+    case Kind::FileCall:
+      text = call_text(e.integer != 0 ? internal_function(e.name) : file_function(e.name), e.operands);
+      break;
+    case Kind::ToScalar: text = to_scalar(first()); break;
+    case Kind::FileScalar: text = file_scalar(e.name); break;
+    case Kind::PackedEntry: {
+      const std::string a = first();
+      text = packed_entry(e.name, a, expression(e.operands.at(1)));
+      break;
+    }
     case Kind::Add:
     case Kind::Sub:
     case Kind::Mul:
@@ -66,6 +78,12 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
   }
   if (e.grouped) return grouped(text);
   return text;
+}
+
+std::string StatementEmitter::call_text(const std::string& callee, const std::vector<ir::Expr>& arguments) const {
+  std::string text = callee + "(";
+  for (std::size_t k = 0; k < arguments.size(); ++k) text += (k ? ", " : "") + expression(arguments[k]);
+  return text + ")";
 }
 
 std::string StatementEmitter::statement(const ir::Statement& s, const std::string& indent) const {

@@ -38,6 +38,14 @@ Expr whole_leaf(Expr::Kind kind, std::size_t value) {
   return e;
 }
 
+// A leaf that names what it is: an index, a function of the file.
+Expr named_leaf(Expr::Kind kind, const std::string& name) {
+  Expr e;
+  e.kind = kind;
+  e.name = name;
+  return e;
+}
+
 // A statement with its node constructed in place (not a default node replaced).
 template <class Node>
 Statement statement(Statement::Kind kind, Node&& node) {
@@ -150,6 +158,37 @@ Expr local_array(const std::string& array, bool writable) {
   return e;
 }
 
+Expr file_call(const std::string& function, std::vector<Expr> arguments) {
+  Expr e = node(Expr::Kind::FileCall, std::move(arguments));
+  e.name = function;
+  return e;
+}
+
+Expr internal_call(const std::string& function, std::vector<Expr> arguments) {
+  Expr e = file_call(function, std::move(arguments));
+  e.integer = 1;
+  return e;
+}
+
+Expr packed_entry(const std::string& matrix, Expr row, Expr column) {
+  Expr e = node(Expr::Kind::PackedEntry, std::move(row), std::move(column));
+  e.name = matrix;
+  return e;
+}
+
+Expr array_from(const std::string& array, Expr offset, bool writable) {
+  Expr e = node(Expr::Kind::ArrayFrom, std::move(offset));
+  e.name = array;
+  e.integer = writable ? 1 : 0;
+  return e;
+}
+
+Expr post_increment(const std::string& index) { return named_leaf(Expr::Kind::PostIncrement, index); }
+
+Expr to_scalar(Expr index) { return node(Expr::Kind::ToScalar, std::move(index)); }
+
+Expr file_scalar(const std::string& function) { return named_leaf(Expr::Kind::FileScalar, function); }
+
 Expr operator_node(Expr::Kind kind, std::vector<Expr> operands) { return node(kind, std::move(operands)); }
 
 Expr grouped(Expr a) {
@@ -197,6 +236,30 @@ Statement rebound_view(const std::string& name, const std::string& array) {
 }
 
 namespace {
+View read_only_local_view(const std::string& name, const std::string& array, Expr offset, Expr size) {
+  View v;
+  v.name = name;
+  v.array = array;
+  v.offset = std::move(offset);
+  v.size = std::move(size);
+  v.local = true;
+  return v;
+}
+}  // namespace
+
+Statement local_view(const std::string& name, const std::string& array, Expr offset, Expr size) {
+  return statement(Statement::Kind::View,
+                   std::make_shared<const View>(read_only_local_view(name, array, std::move(offset), std::move(size))));
+}
+
+Statement packed_local_view(const std::string& name, const std::string& array, Expr offset, Expr rows) {
+  // rows (rows + 1) / 2 entries.
+  View v = read_only_local_view(name, array, std::move(offset), div(mul(rows, grouped(add(rows, integer(1)))), integer(2)));
+  v.packed_rows = std::move(rows);
+  return statement(Statement::Kind::View, std::make_shared<const View>(std::move(v)));
+}
+
+namespace {
 std::vector<Expr> one_target(Expr&& target) {
   std::vector<Expr> targets;
   targets.push_back(std::move(target));  // moved, not copied from a braced list
@@ -212,6 +275,23 @@ Statement assign_all(std::vector<Expr> targets, Expr value) {
 
 Statement accumulate(Expr target, Expr value) {
   return statement(Statement::Kind::Assignment, Assignment{one_target(std::move(target)), std::move(value), true});
+}
+
+Statement decrease(Expr target, Expr value) {
+  return statement(Statement::Kind::Assignment,
+                   Assignment{one_target(std::move(target)), std::move(value), true, true});
+}
+
+Statement assign_symmetric(Expr upper, Expr lower, Expr value) {
+  std::vector<Expr> targets;
+  targets.reserve(2);
+  targets.push_back(std::move(upper));
+  targets.push_back(std::move(lower));
+  Assignment a;
+  a.targets = std::move(targets);
+  a.value = std::move(value);
+  a.symmetric = true;
+  return statement(Statement::Kind::Assignment, std::move(a));
 }
 
 Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Block body,

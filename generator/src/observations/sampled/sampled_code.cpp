@@ -3,6 +3,7 @@
 #include "pfgen/observations/sampled/sampled_code.hpp"
 
 #include "pfgen/observations/sampled/cholesky_solve.hpp"
+#include "pfgen/observations/sampled/joseph_update.hpp"
 #include "pfgen/observations/sampled/sampled_predict.hpp"
 
 namespace pfgen::codegen {
@@ -64,6 +65,14 @@ FilterFile SampledCode::filter_file(const Model& model, const FilterEquations& e
   file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
   file.blocks.emplace("solve_body", cholesky_gain_statements(file.p));
   file.blocks.emplace("predict_body", predict_statements(euler));
+  file.blocks.emplace("advance_body", advance_statements());
+  JosephUpdate update = joseph_update_statements();
+  file.blocks.emplace("update_arrays", std::move(update.arrays));
+  file.blocks.emplace("update_matrices", std::move(update.matrices));
+  file.blocks.emplace("update_views", std::move(update.views));
+  file.blocks.emplace("update_counter", std::move(update.counter));
+  file.blocks.emplace("update_solve", std::move(update.solve));
+  file.blocks.emplace("update_body", std::move(update.update));
   file.numbers.emplace("period", eq.update.period);
   file.words = {{"h", names.h},
                 {"substeps", std::to_string(eq.update.substeps)},

@@ -44,4 +44,15 @@ ir::Block predict_statements(bool euler) {
   };
 }
 
+ir::Block advance_statements() {
+  const Expr t = ir::name("t"), dt = ir::name("dt"), state = ir::name("state"), params = ir::name("params");
+  const Expr period = ir::file_scalar("period");
+  return {
+      ir::declare("dt", ir::Type::Scalar, ir::div(period, ir::to_scalar(ir::dimension("substeps")))),
+      ir::loop("s", ir::Type::Size, ir::integer(0), ir::dimension("substeps"),
+               {ir::call_file_function("predict", {state, ir::add(t, ir::mul(ir::to_scalar(ir::name("s")), dt)), dt, params})}),
+      ir::return_value(ir::file_call("update", {state, ir::add(t, period), ir::name("y"), params})),
+  };
+}
+
 }  // namespace pfgen::codegen

@@ -51,6 +51,19 @@ class StatementEmitter : public Emitter {
   virtual std::string slice(const ir::Expr& node) const = 0;
   virtual std::string grouped(const std::string& a) const { return "(" + a + ")"; }
   virtual std::string local_array(const std::string& array, bool writable) const = 0;
+  // A local array from `offset` on, passed to a call.
+  virtual std::string array_from(const std::string& array, const std::string& offset, bool writable) const = 0;
+  // An index's value, which then steps by one.
+  virtual std::string post_increment(const std::string& index) const = 0;
+  // An index or a size in the scalar type (ir::to_scalar).
+  virtual std::string to_scalar(const std::string& index) const = 0;
+  // The file's function of no arguments giving a scalar (ir::file_scalar), called.
+  virtual std::string file_scalar(const std::string& name) const { return file_function(name) + "()"; }
+  // Entry (a, b) of the packed symmetric matrix `matrix` (ir::packed_entry): by default the file's
+  // function packed_at(matrix, a, b), which C's and Rust's templates define.
+  virtual std::string packed_entry(const std::string& matrix, const std::string& a, const std::string& b) const {
+    return file_function("packed_at") + "(" + matrix + ", " + a + ", " + b + ")";
+  }
   // A size the file declares, by its language-neutral name; as it is by default.
   virtual std::string dimension(const std::string& name) const { return name; }
   // A function the file declares, by its language-neutral name; as it is by default.
@@ -62,6 +75,9 @@ class StatementEmitter : public Emitter {
     if (node.internal) return internal_function(node.function);
     return node.of_file ? file_function(node.function) : node.function;
   }
+  // `callee(arguments...)`: a call statement's text before its `;`, and a file's function called for
+  // its value (FileCall), written alike.
+  std::string call_text(const std::string& callee, const std::vector<ir::Expr>& arguments) const;
   // A whole number in the scalar type; its constant by default.
   virtual std::string whole_scalar(std::size_t value) const { return constant(GiNaC::numeric(static_cast<long>(value))); }
   using Emitter::expression;

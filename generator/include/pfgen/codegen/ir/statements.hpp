@@ -49,6 +49,16 @@ struct Expr {
     Select,         // operands[1] if operands[0], else operands[2] (C: `a ? b : c`; Rust: `if a { b } else { c }`)
     Slice,          // the entries of the array `name` from operands[0] on, operands[1] of them (C: `name + o`;
                     // Rust: `&name[o..o + size]`); without operands, the whole array (C: `name`; Rust: `&name[..]`)
+    FileCall,       // the file's function `name` of the operands, as a value: spelt as file_function, or
+                    // when `integer` != 0 as internal_function (one the file keeps out of its interface)
+    PackedEntry,    // entry (operands[0], operands[1]) of the packed symmetric matrix `name` (a packed view:
+                    // its upper triangle row by row); C and Rust: the file's packed_at(name, a, b); C++: name_at(a, b)
+    ArrayFrom,      // the local array `name` from operands[0] on, passed to a call; written through
+                    // when `integer` != 0 (C: `name + off`; C++: `name.data() + off`; Rust: `&name[off..]`)
+    PostIncrement,  // the index `name`'s value, which then steps by one (C: `name++`)
+    ToScalar,       // operands[0], an index or a size, in the scalar type (C: `(double)s`; C++: `Scalar(s)`; Rust: `s as f64`)
+    FileScalar,     // the file's function `name` of no arguments, a scalar (period()): C++'s names its scalar
+                    // type where a function template cannot deduce it (`period<Scalar>()`)
   };
   Kind kind = Kind::Name;
   std::string name;
@@ -91,6 +101,13 @@ Expr select(Expr condition, Expr if_true, Expr if_false);
 // A slice to rebind a view to (`rebound_view`): the whole array, or `size` entries from `offset`.
 Expr slice(const std::string& array);
 Expr slice(const std::string& array, Expr offset, Expr size);
+Expr file_call(const std::string& function, std::vector<Expr> arguments);
+Expr internal_call(const std::string& function, std::vector<Expr> arguments);
+Expr packed_entry(const std::string& matrix, Expr row, Expr column);
+Expr array_from(const std::string& array, Expr offset, bool writable);
+Expr post_increment(const std::string& index);
+Expr to_scalar(Expr index);
+Expr file_scalar(const std::string& function);
 Expr grouped(Expr a);
 // An operator node (Add, Sub, Mul, Div, Neg, ZeroWhereZero, Greater, Not) over operands already in a
 // vector, which the node keeps: lowering a graph builds each operation's operands once.
@@ -116,8 +133,9 @@ using Block = std::vector<Statement>;
 
 // How a C-family language lays out the block of a loop or a conditional (Rust always braces it):
 // Compact puts one statement on the header's line (a nested loop on the next, indented), several in
-// braces; NextLine puts one statement on the next line, indented; Braced always uses braces.
-enum class Layout { Compact, NextLine, Braced };
+// braces; NextLine puts one statement on the next line, indented; Braced always uses braces; Fit puts
+// one statement on the header's line when that line stays within 100 characters, else on the next.
+enum class Layout { Compact, NextLine, Braced, Fit };
 
 // `name` of `type`: a constant with its value (a variable, assigned again later, when `variable`),
 // or an array of `size` entries, uninitialised.
@@ -137,7 +155,11 @@ struct View {
   Expr offset, size;
   bool writable = false;
   bool rebound = false;  // later assigned another slice (ir::slice): Rust's `let mut name: &[Scalar]`
-  bool whole = false;
+  bool whole = false;    // the whole array, not `size` entries from `offset`
+  bool local = false;    // `array` is a local array (LocalArrays'), reached as calls reach it (C++: `CR.data()`)
+  // A packed symmetric matrix of this many rows (its upper triangle row by row), whose entries
+  // ir::packed_entry reads: C++ declares its accessor `name_at` here.
+  std::optional<Expr> packed_rows = std::nullopt;
 };
 
 // Arrays of `length` entries each (an expression of the file's named sizes), declared together:
@@ -153,11 +175,15 @@ struct LocalArrays {
 };
 
 // targets[0] = targets[1] = ... = value (each target a Name or an Element), or with `accumulate`
-// targets[0] += value.
+// targets[0] += value (-= with `subtract`). With `symmetric`, targets[0] and targets[1] are a
+// symmetric matrix's entries (i, j) and (j, i), which a language stores as one chained assignment
+// (C++) or as two, the second copying the first (C).
 struct Assignment {
   std::vector<Expr> targets;
   Expr value;
   bool accumulate = false;
+  bool subtract = false;
+  bool symmetric = false;
 };
 
 // for index in [begin, end): body. A second counter of a loop nest (the P drift's packed upper
@@ -251,9 +277,17 @@ Statement view(const std::string& name, const std::string& array, Expr offset, E
 Statement rebound_view(const std::string& name, const std::string& array, Expr offset, Expr size);
 // The same of the whole array.
 Statement rebound_view(const std::string& name, const std::string& array);
+// A read-only view of a local array (LocalArrays').
+Statement local_view(const std::string& name, const std::string& array, Expr offset, Expr size);
+// A read-only view of a local array holding a packed symmetric matrix of `rows` rows (rows (rows + 1)
+// / 2 entries) from `offset` on, read by ir::packed_entry(name, a, b).
+Statement packed_local_view(const std::string& name, const std::string& array, Expr offset, Expr rows);
 Statement assign(Expr target, Expr value);
 Statement assign_all(std::vector<Expr> targets, Expr value);
 Statement accumulate(Expr target, Expr value);
+Statement decrease(Expr target, Expr value);  // target -= value
+// upper and lower, a symmetric matrix's entries (i, j) and (j, i), both take value.
+Statement assign_symmetric(Expr upper, Expr lower, Expr value);
 Statement loop(const std::string& index, Type counter, Expr begin, Expr end, Block body,
                std::optional<Loop::Follower> declares = std::nullopt, const std::string& steps = "");
 Statement call_statement(const std::string& function, std::vector<Expr> arguments);

@@ -12,4 +12,8 @@ namespace pfgen::codegen {
 
 ir::Block predict_statements(bool euler);
 
+// The body of advance(state, t, y, params), from one sample time t to the next: `substeps`
+// predictions of period() / substeps each, then update() with the sample y taken at t + period().
+ir::Block advance_statements();
+
 }  // namespace pfgen::codegen

@@ -103,13 +103,21 @@ std::string CFamilyEmitter::arrays(const ir::LocalArrays& node, const std::strin
 }
 
 std::string CFamilyEmitter::view(const ir::View& node, const std::string&) const {
-  const std::string start = std::string(node.writable ? "" : "const ") + scalar_type_ + "* " + node.name + " = " + node.array;
-  return node.whole ? start + ";" : start + " + " + expression(node.offset) + ";";
+  std::string text = std::string(node.writable ? "" : "const ") + scalar_type_ + "* " + node.name + " = " +
+                     (node.local ? local_array(node.array, node.writable) : node.array);
+  // A view of the whole array, or from its start, is the array itself.
+  if (node.whole || (node.offset.kind == ir::Expr::Kind::Integer && node.offset.integer == 0)) return text + ";";
+  return text + " + " + expression(node.offset) + ";";
 }
 
-std::string CFamilyEmitter::assignment(const ir::Assignment& node, const std::string&) const {
+std::string CFamilyEmitter::assignment(const ir::Assignment& node, const std::string& indent) const {
+  if (node.symmetric && !chains_symmetric_store()) {
+    const std::string upper = expression(node.targets.at(0));
+    return upper + " = " + expression(node.value) + ";\n" + indent + expression(node.targets.at(1)) + " = " + upper + ";";
+  }
   std::string text;
-  for (const ir::Expr& target : node.targets) text += expression(target) + (node.accumulate ? " += " : " = ");
+  const char* op = !node.accumulate ? " = " : node.subtract ? " -= " : " += ";
+  for (const ir::Expr& target : node.targets) text += expression(target) + op;
   return text + expression(node.value) + ";";
 }
 
@@ -125,10 +133,18 @@ std::string CFamilyEmitter::scope(const ir::Scope& node, const std::string& inde
 std::string CFamilyEmitter::with_block(const std::string& header, const ir::Block& body, const std::string& indent,
                                        ir::Layout layout) const {
   const std::string inner = indent + "  ";
-  if (layout != ir::Layout::Braced && body.size() == 1 &&
+  // A symmetric store written as two statements is braced like two.
+  const bool one = body.size() == 1 && !(body[0].kind == ir::Statement::Kind::Assignment &&
+                                         body[0].assignment().symmetric && !chains_symmetric_store());
+  if (layout != ir::Layout::Braced && one &&
       (layout == ir::Layout::NextLine || body[0].kind == ir::Statement::Kind::Loop))
     return header + "\n" + inner + statement(body[0], inner);
-  if (layout != ir::Layout::Braced && body.size() == 1) return header + " " + statement(body[0], indent);
+  if (layout == ir::Layout::Fit && one) {
+    const std::string text = statement(body[0], indent);
+    if (indent.size() + header.size() + 1 + text.size() <= 100) return header + " " + text;
+    return header + "\n" + inner + statement(body[0], inner);
+  }
+  if (layout != ir::Layout::Braced && one) return header + " " + statement(body[0], indent);
   return header + " {\n" + block(body, inner) + indent + "}";
 }
 
@@ -141,9 +157,7 @@ std::string CFamilyEmitter::loop(const ir::Loop& node, const std::string& indent
 }
 
 std::string CFamilyEmitter::call_statement(const ir::CallStatement& node, const std::string&) const {
-  std::string text = callee(node) + "(";
-  for (std::size_t k = 0; k < node.arguments.size(); ++k) text += (k ? ", " : "") + expression(node.arguments[k]);
-  return text + ");";
+  return call_text(callee(node), node.arguments) + ";";
 }
 
 std::string CFamilyEmitter::conditional(const ir::Conditional& node, const std::string& indent) const {

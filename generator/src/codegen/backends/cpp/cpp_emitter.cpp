@@ -15,4 +15,13 @@ std::string CppEmitter::arrays(const ir::LocalArrays& node, const std::string&) 
   return text + (node.written_first ? ";  // written before they are read" : ";");
 }
 
+std::string CppEmitter::view(const ir::View& node, const std::string& indent) const {
+  std::string text = CFamilyEmitter::view(node, indent);
+  if (!node.packed_rows) return text;
+  const std::string rows = expression(*node.packed_rows);
+  return text + "\n" + indent + "auto " + node.name + "_at = [&](std::size_t a, std::size_t b) {\n" + indent +
+         "  if (a > b) { const std::size_t c = a; a = b; b = c; }\n" + indent + "  return " + node.name + "[a * " + rows +
+         " - a * (a + 1) / 2 + b];\n" + indent + "};";
+}
+
 }  // namespace pfgen::codegen

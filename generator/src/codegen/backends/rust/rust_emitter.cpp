@@ -142,16 +142,19 @@ std::string RustEmitter::slice(const ir::Expr& node) const {
 }
 
 std::string RustEmitter::view(const ir::View& node, const std::string&) const {
-  const std::string head = node.rebound ? "let mut " + node.name + ": &[" + scalar_type() + "] = &" : "let " + node.name + " = &";
-  if (node.whole) return head + (node.writable ? "mut " : "") + node.array + "[..];";
+  const std::string head = (node.rebound ? "let mut " + node.name + ": &[" + scalar_type() + "] = &" : "let " + node.name + " = &") +
+                           (node.writable ? "mut " : "") + node.array + "[";
+  if (node.whole) return head + "..];";
+  // A view from the start: up to its size.
+  if (node.offset.kind == ir::Expr::Kind::Integer && node.offset.integer == 0)
+    return head + ".." + expression(node.size) + "];";
   const std::string offset = expression(ungrouped(node.offset));
-  return head + (node.writable ? "mut " : "") + node.array + "[" + offset + ".." + offset + " + " +
-         expression(node.size) + "];";
+  return head + offset + ".." + offset + " + " + expression(node.size) + "];";
 }
 
 std::string RustEmitter::assignment(const ir::Assignment& node, const std::string& indent) const {
   // Rust has no chained assignment: the last target takes the value, each one before it the next's.
-  const std::string op = node.accumulate ? " += " : " = ";
+  const std::string op = !node.accumulate ? " = " : node.subtract ? " -= " : " += ";
   std::string text = expression(node.targets.back()) + op + expression(node.value) + ";";
   for (std::size_t k = node.targets.size() - 1; k-- > 0;)
     text += "\n" + indent + expression(node.targets[k]) + " = " + expression(node.targets[k + 1]) + ";";
@@ -168,13 +171,6 @@ std::string RustEmitter::loop(const ir::Loop& node, const std::string& indent) c
   if (node.declares)
     text = "let mut " + node.declares->name + ": usize = " + expression(node.declares->start) + ";\n" + indent + text;
   return text;
-}
-
-std::string RustEmitter::call_statement(const ir::CallStatement& node, const std::string&) const {
-  // The IR's calls pass names as they are: scalars, and arrays that are already references.
-  std::string text = callee(node) + "(";
-  for (std::size_t k = 0; k < node.arguments.size(); ++k) text += (k ? ", " : "") + expression(node.arguments[k]);
-  return text + ");";
 }
 
 std::string RustEmitter::conditional(const ir::Conditional& node, const std::string& indent) const {

@@ -29,6 +29,7 @@ class CEmitter : public CFamilyEmitter {
   std::string field_access() const override { return "->"; }
   std::string size_type() const override { return "size_t"; }
   std::string truth_type() const override { return "int"; }
+  bool chains_symmetric_store() const override { return false; }
   FunctionBody split_body(const ExpressionGraph& graph, const std::vector<std::size_t>& outputs,
                           const FunctionSignature& signature, const std::vector<std::size_t>& order) const override;
 

@@ -57,6 +57,12 @@ class CFamilyEmitter : public StatementEmitter {
   // A pointer into the array: `array` or `array + offset`.
   std::string slice(const ir::Expr& node) const override;
   std::string local_array(const std::string& array, bool) const override { return array; }
+  std::string array_from(const std::string& array, const std::string& offset, bool writable) const override {
+    return local_array(array, writable) + " + " + offset;
+  }
+  std::string post_increment(const std::string& index) const override { return index + "++"; }
+  // A cast: `(double)s`.
+  std::string to_scalar(const std::string& index) const override { return "(" + scalar_type_ + ")" + index; }
   // StatementEmitter's statements.
   std::string declaration(const ir::Declaration& node, const std::string& indent) const override;
   std::string view(const ir::View& node, const std::string& indent) const override;
@@ -79,6 +85,9 @@ class CFamilyEmitter : public StatementEmitter {
   virtual std::string truth_type() const { return "bool"; }
   // How a conditional on the file's constants alone begins (C++: `if constexpr`; C: `if`).
   virtual std::string compile_time_if() const { return "if"; }
+  // Whether a symmetric store (ir::assign_symmetric) is one chained assignment `a = b = value;` (C++)
+  // or two statements, `a = value;` and `b = a;` (C), which a loop's block then braces.
+  virtual bool chains_symmetric_store() const { return true; }
   std::string type(ir::Type type) const;
   // A loop's or a conditional's header followed by its block as `layout` says (ir::Layout).
   std::string with_block(const std::string& header, const ir::Block& body, const std::string& indent,

@@ -22,6 +22,18 @@ class CppEmitter : public CFamilyEmitter {
   std::string arrays(const ir::LocalArrays& node, const std::string& indent) const override;
   // `Scalar(2)` in every scalar mode, as the templates' own arithmetic writes it.
   std::string whole_scalar(std::size_t value) const override { return "Scalar(" + std::to_string(value) + ")"; }
+  // A packed symmetric matrix's view declares its accessor, a lambda `name_at(a, b)` (either order),
+  // through which its entries are read.
+  std::string view(const ir::View& node, const std::string& indent) const override;
+  std::string packed_entry(const std::string& matrix, const std::string& a, const std::string& b) const override {
+    return matrix + "_at(" + a + ", " + b + ")";
+  }
+  // `Scalar(s)`, as the templates' own arithmetic converts.
+  std::string to_scalar(const std::string& index) const override { return "Scalar(" + index + ")"; }
+  // A function template of the scalar alone cannot deduce it: `period<Scalar>()` in template mode.
+  std::string file_scalar(const std::string& name) const override {
+    return name + (mode() == ScalarMode::Template ? "<Scalar>()" : "()");
+  }
   // The file's internal functions are in its namespace detail.
   std::string internal_function(const std::string& name) const override { return "detail::" + name; }
 

@@ -52,13 +52,21 @@ class RustEmitter : public CFamilyEmitter {
   std::string view(const ir::View& node, const std::string& indent) const override;
   std::string assignment(const ir::Assignment& node, const std::string& indent) const override;
   std::string loop(const ir::Loop& node, const std::string& indent) const override;
-  std::string call_statement(const ir::CallStatement& node, const std::string& indent) const override;
   std::string conditional(const ir::Conditional& node, const std::string& indent) const override;
   std::string unused(const ir::Unused& node, const std::string& indent) const override;
   // Local arrays: one zero-filled `let mut` each, borrowed by calls (`&a`, `&mut a`).
   std::string arrays(const ir::LocalArrays& node, const std::string& indent) const override;
   std::string local_array(const std::string& array, bool writable) const override {
     return (writable ? "&mut " : "&") + array;
+  }
+  std::string array_from(const std::string& array, const std::string& offset, bool writable) const override {
+    return (writable ? "&mut " : "&") + array + "[" + offset + "..]";
+  }
+  // `s as f64`: `as` binds tighter than the arithmetic around it.
+  std::string to_scalar(const std::string& index) const override { return index + " as " + scalar_type(); }
+  // Rust has no `k++`: a block that steps the index and gives its value before.
+  std::string post_increment(const std::string& index) const override {
+    return "{ " + index + " += 1; " + index + " - 1 }";
   }
 
   // The <math.h> name of a function for this scalar type: "sin" or "sinf", "fabs" for abs.
