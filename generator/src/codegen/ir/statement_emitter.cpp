@@ -28,7 +28,7 @@ std::string StatementEmitter::expression(const ir::Expr& e) const {
     case Kind::FileCall:
       text = call_text(e.integer != 0 ? internal_function(e.name) : file_function(e.name), e.operands);
       break;
-    case Kind::ToScalar: text = to_scalar(first()); break;
+    case Kind::ToScalar: text = e.integer != 0 ? cast_to_scalar(e.operands.at(0)) : to_scalar(first()); break;
     case Kind::FileScalar: text = file_scalar(e.name); break;
     case Kind::PackedEntry: {
       const std::string a = first();

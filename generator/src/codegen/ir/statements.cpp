@@ -187,6 +187,12 @@ Expr post_increment(const std::string& index) { return named_leaf(Expr::Kind::Po
 
 Expr to_scalar(Expr index) { return node(Expr::Kind::ToScalar, std::move(index)); }
 
+Expr cast_to_scalar(Expr index) {
+  Expr e = to_scalar(std::move(index));
+  e.integer = 1;
+  return e;
+}
+
 Expr file_scalar(const std::string& function) { return named_leaf(Expr::Kind::FileScalar, function); }
 
 Expr operator_node(Expr::Kind kind, std::vector<Expr> operands) { return node(kind, std::move(operands)); }
@@ -220,6 +226,18 @@ Statement local_arrays(std::vector<std::string> names, Type type, Expr length, b
                                                 LocalArrays{std::move(names), type, std::move(length), written_first}));
 }
 
+Statement local_arrays_apart(std::vector<std::string> names, Type type, Expr length) {
+  LocalArrays arrays{std::move(names), type, std::move(length)};
+  arrays.apart = true;
+  return statement(Statement::Kind::Arrays, std::make_shared<const LocalArrays>(std::move(arrays)));
+}
+
+Statement local_array_written_by(const std::string& name, Type type, Expr length, const std::string& writer) {
+  LocalArrays arrays{{name}, type, std::move(length), true};
+  arrays.written_by = writer;
+  return statement(Statement::Kind::Arrays, std::make_shared<const LocalArrays>(std::move(arrays)));
+}
+
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable) {
   return statement(Statement::Kind::View,
                    std::make_shared<const View>(View{name, array, std::move(offset), std::move(size), writable}));
@@ -250,6 +268,14 @@ View read_only_local_view(const std::string& name, const std::string& array, Exp
 Statement local_view(const std::string& name, const std::string& array, Expr offset, Expr size) {
   return statement(Statement::Kind::View,
                    std::make_shared<const View>(read_only_local_view(name, array, std::move(offset), std::move(size))));
+}
+
+Statement local_tail_view(const std::string& name, const std::string& array, Expr offset, Expr size,
+                          const std::string& comment) {
+  View v = read_only_local_view(name, array, std::move(offset), std::move(size));
+  v.writable = true;
+  v.comment = comment;
+  return statement(Statement::Kind::View, std::make_shared<const View>(std::move(v)));
 }
 
 Statement packed_local_view(const std::string& name, const std::string& array, Expr offset, Expr rows) {

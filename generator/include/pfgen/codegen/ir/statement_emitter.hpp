@@ -57,6 +57,10 @@ class StatementEmitter : public Emitter {
   virtual std::string post_increment(const std::string& index) const = 0;
   // An index or a size in the scalar type (ir::to_scalar).
   virtual std::string to_scalar(const std::string& index) const = 0;
+  // The same as a cast (ir::cast_to_scalar), given the index's node: to_scalar by default.
+  virtual std::string cast_to_scalar(const ir::Expr& index) const { return to_scalar(expression(index)); }
+  // A comment after a statement on its line, from the statement's end: `  // text` by default.
+  virtual std::string trailing_comment(const std::string& text) const { return "  // " + text; }
   // The file's function of no arguments giving a scalar (ir::file_scalar), called.
   virtual std::string file_scalar(const std::string& name) const { return file_function(name) + "()"; }
   // Entry (a, b) of the packed symmetric matrix `matrix` (ir::packed_entry): by default the file's

@@ -56,7 +56,8 @@ struct Expr {
     ArrayFrom,      // the local array `name` from operands[0] on, passed to a call; written through
                     // when `integer` != 0 (C: `name + off`; C++: `name.data() + off`; Rust: `&name[off..]`)
     PostIncrement,  // the index `name`'s value, which then steps by one (C: `name++`)
-    ToScalar,       // operands[0], an index or a size, in the scalar type (C: `(double)s`; C++: `Scalar(s)`; Rust: `s as f64`)
+    ToScalar,       // operands[0], an index or a size, in the scalar type (C: `(double)s`; C++: `Scalar(s)`; Rust: `s as f64`);
+                    // when `integer` != 0 spelt as a cast where the language has one apart (C++: `static_cast<Scalar>(s)`)
     FileScalar,     // the file's function `name` of no arguments, a scalar (period()): C++'s names its scalar
                     // type where a function template cannot deduce it (`period<Scalar>()`)
   };
@@ -107,6 +108,8 @@ Expr packed_entry(const std::string& matrix, Expr row, Expr column);
 Expr array_from(const std::string& array, Expr offset, bool writable);
 Expr post_increment(const std::string& index);
 Expr to_scalar(Expr index);
+// The same conversion as a cast (C++'s static_cast: the delayed step's time from its step count).
+Expr cast_to_scalar(Expr index);
 Expr file_scalar(const std::string& function);
 Expr grouped(Expr a);
 // An operator node (Add, Sub, Mul, Div, Neg, ZeroWhereZero, Greater, Not) over operands already in a
@@ -157,6 +160,9 @@ struct View {
   bool rebound = false;  // later assigned another slice (ir::slice): Rust's `let mut name: &[Scalar]`
   bool whole = false;    // the whole array, not `size` entries from `offset`
   bool local = false;    // `array` is a local array (LocalArrays'), reached as calls reach it (C++: `CR.data()`)
+  // Writable and local: the view runs to the array's end, and the array's name reaches only the
+  // entries before it from here on (Rust splits the array in two there: `split_at_mut`).
+  std::string comment{};  // written after the declaration, on its line ("": none)
   // A packed symmetric matrix of this many rows (its upper triangle row by row), whose entries
   // ir::packed_entry reads: C++ declares its accessor `name_at` here.
   std::optional<Expr> packed_rows = std::nullopt;
@@ -172,6 +178,11 @@ struct LocalArrays {
   // Every entry written before it is read: a language that fills them may leave them unfilled
   // (C++'s std::array without {}, saying so in a comment; Rust fills them all the same).
   bool written_first = false;
+  // With written_first, what writes them (C++'s comment: "every entry written by <written_by>"; "":
+  // "written before they are read").
+  std::string written_by{};
+  // C declares each on its own line (C++ still declares them together, Rust always one by one).
+  bool apart = false;
 };
 
 // targets[0] = targets[1] = ... = value (each target a Name or an Element), or with `accumulate`
@@ -272,6 +283,10 @@ Statement declare(std::string name, Type type, Expr value);          // a consta
 Statement declare_variable(std::string name, Type type, Expr value);  // a variable, assigned again later
 Statement declare_array(const std::string& name, Type type, std::size_t size);
 Statement local_arrays(std::vector<std::string> names, Type type, Expr length, bool written_first = false);
+// The same, each declared on its own line in C (LocalArrays::apart).
+Statement local_arrays_apart(std::vector<std::string> names, Type type, Expr length);
+// One array every entry of which the call of the file's function `writer` writes (LocalArrays::written_by).
+Statement local_array_written_by(const std::string& name, Type type, Expr length, const std::string& writer);
 Statement view(const std::string& name, const std::string& array, Expr offset, Expr size, bool writable);
 // A read-only view that is later assigned another slice (ir::slice).
 Statement rebound_view(const std::string& name, const std::string& array, Expr offset, Expr size);
@@ -279,6 +294,9 @@ Statement rebound_view(const std::string& name, const std::string& array, Expr o
 Statement rebound_view(const std::string& name, const std::string& array);
 // A read-only view of a local array (LocalArrays').
 Statement local_view(const std::string& name, const std::string& array, Expr offset, Expr size);
+// A writable view of a local array from `offset` to its end (View::local), with a comment on its line.
+Statement local_tail_view(const std::string& name, const std::string& array, Expr offset, Expr size,
+                          const std::string& comment);
 // A read-only view of a local array holding a packed symmetric matrix of `rows` rows (rows (rows + 1)
 // / 2 entries) from `offset` on, read by ir::packed_entry(name, a, b).
 Statement packed_local_view(const std::string& name, const std::string& array, Expr offset, Expr rows);

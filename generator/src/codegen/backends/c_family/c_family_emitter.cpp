@@ -95,10 +95,13 @@ std::string CFamilyEmitter::declaration(const ir::Declaration& node, const std::
   return text;
 }
 
-std::string CFamilyEmitter::arrays(const ir::LocalArrays& node, const std::string&) const {
+std::string CFamilyEmitter::arrays(const ir::LocalArrays& node, const std::string& indent) const {
   const std::string length = expression(node.length);
   std::string text = type(node.type) + " ";
-  for (std::size_t k = 0; k < node.names.size(); ++k) text += (k ? ", " : "") + node.names[k] + "[" + length + "]";
+  for (std::size_t k = 0; k < node.names.size(); ++k) {
+    if (k) text += node.apart ? ";\n" + indent + type(node.type) + " " : ", ";
+    text += node.names[k] + "[" + length + "]";
+  }
   return text + ";";
 }
 
@@ -106,8 +109,9 @@ std::string CFamilyEmitter::view(const ir::View& node, const std::string&) const
   std::string text = std::string(node.writable ? "" : "const ") + scalar_type_ + "* " + node.name + " = " +
                      (node.local ? local_array(node.array, node.writable) : node.array);
   // A view of the whole array, or from its start, is the array itself.
-  if (node.whole || (node.offset.kind == ir::Expr::Kind::Integer && node.offset.integer == 0)) return text + ";";
-  return text + " + " + expression(node.offset) + ";";
+  if (!node.whole && !(node.offset.kind == ir::Expr::Kind::Integer && node.offset.integer == 0))
+    text += " + " + expression(node.offset);
+  return text + ";" + (node.comment.empty() ? "" : trailing_comment(node.comment));
 }
 
 std::string CFamilyEmitter::assignment(const ir::Assignment& node, const std::string& indent) const {

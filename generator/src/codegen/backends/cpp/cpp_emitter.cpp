@@ -12,7 +12,15 @@ std::string CppEmitter::arrays(const ir::LocalArrays& node, const std::string&) 
   std::string text = "std::array<" + type(node.type) + ", " + expression(node.length) + "> ";
   for (std::size_t k = 0; k < node.names.size(); ++k)
     text += (k ? ", " : "") + node.names[k] + (node.written_first ? "" : "{}");
-  return text + (node.written_first ? ";  // written before they are read" : ";");
+  if (!node.written_first) return text + ";";
+  return text + ";" + trailing_comment(node.written_by.empty() ? "written before they are read"
+                                                                : "every entry written by " + node.written_by);
+}
+
+std::string CppEmitter::cast_to_scalar(const ir::Expr& index) const {
+  ir::Expr bare = index;
+  bare.grouped = false;  // the cast's own parentheses hold it
+  return "static_cast<Scalar>(" + expression(bare) + ")";
 }
 
 std::string CppEmitter::view(const ir::View& node, const std::string& indent) const {

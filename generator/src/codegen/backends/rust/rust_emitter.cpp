@@ -141,7 +141,17 @@ std::string RustEmitter::slice(const ir::Expr& node) const {
   return "&" + node.name + "[" + offset + ".." + offset + " + " + expression(node.operands.at(1)) + "]";
 }
 
-std::string RustEmitter::view(const ir::View& node, const std::string&) const {
+std::string RustEmitter::view(const ir::View& node, const std::string& indent) const {
+  if (!node.comment.empty()) {
+    ir::View bare = node;
+    bare.comment.clear();
+    return view(bare, indent) + trailing_comment(node.comment);
+  }
+  // A writable view of a local array while the array is read: the borrow checker allows the two
+  // only as the array split in two, the array's name shadowed by the part before the view.
+  if (node.local && node.writable)
+    return "let (" + node.array + ", " + node.name + ") = " + node.array + ".split_at_mut(" +
+           expression(ungrouped(node.offset)) + ");";
   const std::string head = (node.rebound ? "let mut " + node.name + ": &[" + scalar_type() + "] = &" : "let " + node.name + " = &") +
                            (node.writable ? "mut " : "") + node.array + "[";
   if (node.whole) return head + "..];";

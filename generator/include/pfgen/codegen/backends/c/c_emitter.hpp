@@ -24,6 +24,8 @@ class CEmitter : public CFamilyEmitter {
   std::string dimension(const std::string& name) const override { return symbol_prefix_ + "_" + name; }
   // And so are its functions: <prefix>_derivatives.
   std::string file_function(const std::string& name) const override { return symbol_prefix_ + "_" + name; }
+  // A comment after a statement as C89 writes one, as the C files' trailing comments have always been.
+  std::string trailing_comment(const std::string& text) const override { return "  /* " + text + " */"; }
 
  protected:
   std::string field_access() const override { return "->"; }

@@ -30,6 +30,8 @@ class CppEmitter : public CFamilyEmitter {
   }
   // `Scalar(s)`, as the templates' own arithmetic converts.
   std::string to_scalar(const std::string& index) const override { return "Scalar(" + index + ")"; }
+  // `static_cast<Scalar>(s)`.
+  std::string cast_to_scalar(const ir::Expr& index) const override;
   // A function template of the scalar alone cannot deduce it: `period<Scalar>()` in template mode.
   std::string file_scalar(const std::string& name) const override {
     return name + (mode() == ScalarMode::Template ? "<Scalar>()" : "()");
