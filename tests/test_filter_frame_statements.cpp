@@ -394,6 +394,22 @@ TEST_CASE("continuous, polynomial and delayed steps: the increment's and the ste
   // block fails to fill); the text is the loops the templates held before they were statements.
   const std::string poly_c = filter_text("polynomial/cubic_sensor.yaml", "optimal", "c", ".c");
   const std::string poly_prefix = "pfgen_models_cubic_sensor_optimal";
+  // increment()'s arrays and calls: C one array a line, C++ those of one length together.
+  CHECK(contains(poly_c,
+                 "                      const $_params* params, double* delta) {\n"
+                 "  double rates[$_state_size];\n"
+                 "  double correction[$_state_size];\n"
+                 "  double K[$_n * $_p];\n"
+                 "  double L[($_state_size - $_n) * $_p];\n"
+                 "  double yhat[$_p];\n"
+                 "  double innovation[$_p];\n"
+                 "  $_derivatives(t, state, params, rates);\n"
+                 "  $_gain(t, state, params, K);\n"
+                 "  $_covariance_gain(t, state, params, L);\n"
+                 "  $_predicted_observation(t, state, params, yhat);\n"
+                 "  $_stratonovich_correction(t, state, params, correction);\n"
+                 "  for (size_t r = 0; r < $_p; ++r) innovation[r] = dy[r] - yhat[r] * dt;\n",
+                 poly_prefix));
   CHECK(contains(poly_c,
                  "  $_stratonovich_correction(t, state, params, correction);\n"
                  "  for (size_t r = 0; r < $_p; ++r) innovation[r] = dy[r] - yhat[r] * dt;\n"
@@ -413,6 +429,18 @@ TEST_CASE("continuous, polynomial and delayed steps: the increment's and the ste
                  poly_prefix));
   const std::string poly_cpp = filter_text("polynomial/cubic_sensor.yaml", "optimal", "cpp", ".hpp");
   CHECK(contains(poly_cpp,
+                 "                      Scalar* delta) {\n"
+                 "  std::array<Scalar, state_size> rates{}, correction{};\n"
+                 "  std::array<Scalar, n * p> K{};\n"
+                 "  std::array<Scalar, (state_size - n) * p> L{};\n"
+                 "  std::array<Scalar, p> yhat{}, innovation{};\n"
+                 "  derivatives(t, state, params, rates.data());\n"
+                 "  gain(t, state, params, K.data());\n"
+                 "  covariance_gain(t, state, params, L.data());\n"
+                 "  predicted_observation(t, state, params, yhat.data());\n"
+                 "  stratonovich_correction(t, state, params, correction.data());\n"
+                 "  for (std::size_t r = 0; r < p; ++r) innovation[r] = dy[r] - yhat[r] * dt;\n"));
+  CHECK(contains(poly_cpp,
                  "  for (std::size_t u = 0; u < state_size - n; ++u)\n"
                  "    for (std::size_t r = 0; r < p; ++r) delta[n + u] += L[u * p + r] * innovation[r];\n"
                  "}\n"));
@@ -420,6 +448,15 @@ TEST_CASE("continuous, polynomial and delayed steps: the increment's and the ste
                  "  for (std::size_t i = 0; i < state_size; ++i) state[i] += (first[i] + second[i]) / Scalar(2);\n"
                  "}\n"));
   const std::string poly_rust = filter_text("polynomial/cubic_sensor.yaml", "optimal", "rust", ".rs");
+  CHECK(contains(poly_rust,
+                 "             delta: &mut [Scalar; STATE_SIZE]) {\n"
+                 "    let mut rates: [Scalar; STATE_SIZE] = [0.0; STATE_SIZE];\n"
+                 "    let mut correction: [Scalar; STATE_SIZE] = [0.0; STATE_SIZE];\n"
+                 "    let mut K: [Scalar; STATES * OBSERVATIONS] = [0.0; STATES * OBSERVATIONS];\n"
+                 "    let mut L: [Scalar; (STATE_SIZE - STATES) * OBSERVATIONS] = [0.0; (STATE_SIZE - STATES) * OBSERVATIONS];\n"
+                 "    let mut yhat: [Scalar; OBSERVATIONS] = [0.0; OBSERVATIONS];\n"
+                 "    let mut innovation: [Scalar; OBSERVATIONS] = [0.0; OBSERVATIONS];\n"
+                 "    derivatives(t, state, params, &mut rates);\n"));
   CHECK(contains(poly_rust,
                  "    stratonovich_correction(t, state, params, &mut correction);\n"
                  "    for r in 0..OBSERVATIONS {\n"
@@ -438,6 +475,23 @@ TEST_CASE("continuous, polynomial and delayed steps: the increment's and the ste
   const std::string delayed_c = filter_text("delay_linear.yaml", "delay-optimal", "c", ".c");
   const std::string delayed_prefix = "pfgen_models_delay_linear_delay_optimal";
   CHECK(contains(delayed_c,
+                 "                      const $_params* params, double* delta) {\n"
+                 "  double rates[$_state_size];\n"
+                 "  double K[$_n * $_p];\n"
+                 "  double h[$_p];\n"
+                 "  const double step = $_dt();\n"
+                 "  $_derivatives(t, state, delayed, params, rates);\n"
+                 "  $_gain(t, state, delayed, params, K);\n"
+                 "  $_predicted_observation(t, state, delayed, params, h);\n"
+                 "  for (size_t i = 0; i < $_state_size; ++i) delta[i] = rates[i] * step;\n",
+                 delayed_prefix));
+  CHECK(contains(delayed_c,
+                 "const $_params* params) {\n"
+                 "  const double t = (double)k * $_dt();\n"
+                 "  const double t_end = (double)(k + 1) * $_dt();\n"
+                 "  double delayed[$_delayed_size];\n",
+                 delayed_prefix));
+  CHECK(contains(delayed_c,
                  "  for (size_t i = 0; i < $_state_size; ++i) delta[i] = rates[i] * step;\n"
                  "  for (size_t i = 0; i < $_n; ++i)\n"
                  "    for (size_t r = 0; r < $_p; ++r) delta[i] += K[i * $_p + r] * (dy[r] - h[r] * step);\n"
@@ -448,6 +502,21 @@ TEST_CASE("continuous, polynomial and delayed steps: the increment's and the ste
                  "  $_delayed_inputs(history, state, predicted, k, 1, delayed);\n",
                  delayed_prefix));
   const std::string delayed_cpp = filter_text("delay_linear.yaml", "delay-optimal", "cpp", ".hpp");
+  CHECK(contains(delayed_cpp,
+                 "                      const Params<Scalar>& params, Scalar* delta) {\n"
+                 "  std::array<Scalar, state_size> rates{};\n"
+                 "  std::array<Scalar, n * p> K{};\n"
+                 "  std::array<Scalar, p> h{};\n"
+                 "  const Scalar step = dt<Scalar>();\n"
+                 "  derivatives(t, state, delayed, params, rates.data());\n"
+                 "  gain(t, state, delayed, params, K.data());\n"
+                 "  predicted_observation(t, state, delayed, params, h.data());\n"
+                 "  for (std::size_t i = 0; i < state_size; ++i) delta[i] = rates[i] * step;\n"));
+  CHECK(contains(delayed_cpp,
+                 "const Params<Scalar>& params) {\n"
+                 "  const Scalar t = static_cast<Scalar>(k) * dt<Scalar>();\n"
+                 "  const Scalar t_end = static_cast<Scalar>(k + 1) * dt<Scalar>();\n"
+                 "  std::array<Scalar, delayed_size> delayed{};\n"));
   CHECK(contains(delayed_cpp,
                  "  std::array<Scalar, delayed_size> delayed{};\n"
                  "  std::array<Scalar, state_size> first{}, predicted{}, second{};\n"
@@ -460,6 +529,15 @@ TEST_CASE("continuous, polynomial and delayed steps: the increment's and the ste
                               "/ Scalar(2);\n}\n"));
   const std::string delayed_rust = filter_text("delay_linear.yaml", "delay-optimal", "rust", ".rs");
   CHECK(contains(delayed_rust,
+                 "            params: &Params) {\n"
+                 "    let t: Scalar = k as Scalar * dt();\n"
+                 "    let t_end: Scalar = (k + 1) as Scalar * dt();\n"
+                 "    let mut delayed: [Scalar; DELAYED_SIZE] = [0.0; DELAYED_SIZE];\n"));
+  CHECK(contains(delayed_rust,
+                 "             params: &Params, delta: &mut [Scalar; STATE_SIZE]) {\n"
+                 "    let mut rates: [Scalar; STATE_SIZE] = [0.0; STATE_SIZE];\n"
+                 "    let mut K: [Scalar; STATES * OBSERVATIONS] = [0.0; STATES * OBSERVATIONS];\n"
+                 "    let mut h: [Scalar; OBSERVATIONS] = [0.0; OBSERVATIONS];\n"
                  "    let step: Scalar = dt();\n"
                  "    derivatives(t, state, delayed, params, &mut rates);\n"
                  "    gain(t, state, delayed, params, &mut K);\n"

@@ -10,22 +10,48 @@
 namespace pfgen::codegen {
 namespace {
 
-// The step's loops: the increment rates dt + K (dy - h dt) over the grid's step (`step`, the
-// file's dt()), step()'s predictor and corrector and the average. Loops at every n (the written-out form was
+// increment()'s arrays, the grid's step (`step`, the file's dt()) and the calls that fill the arrays: the
+// rates, K and h at (t, state) with the delayed inputs.
+ir::Block increment_inputs() {
+  const ir::Expr t = ir::name("t"), state = ir::name("state"), delayed = ir::name("delayed"),
+                 params = ir::name("params");
+  ir::Block block = {
+      ir::local_arrays({"rates"}, ir::Type::Scalar, ir::dimension("state_size")),
+      ir::local_arrays({"K"}, ir::Type::Scalar, ir::mul(ir::dimension("n"), ir::dimension("p"))),
+      ir::local_arrays({"h"}, ir::Type::Scalar, ir::dimension("p")),
+      ir::declare("step", ir::Type::Scalar, ir::file_scalar("dt")),
+  };
+  for (const auto& [function, array] : {std::pair<const char*, const char*>{"derivatives", "rates"},
+                                        {"gain", "K"},
+                                        {"predicted_observation", "h"}})
+    block.push_back(ir::call_file_function(function, {t, state, delayed, params, ir::local_array(array, true)}));
+  return block;
+}
+
+// The time at the start of grid step k (`k_end` false) or at its end: k dt, (k + 1) dt.
+ir::Expr grid_time(bool end) {
+  const ir::Expr k = end ? ir::grouped(ir::add(ir::name("k"), ir::integer(1))) : ir::name("k");
+  return ir::mul(ir::cast_to_scalar(k), ir::file_scalar("dt"));
+}
+
+// The step's statements: increment()'s inputs and its increment rates dt + K (dy - h dt) over the grid's
+// step, step()'s times, predictor and corrector and the average. Loops at every n (the written-out form was
 // measured on the continuous filter's step only).
 void add_step_loops(FilterFile& file, std::size_t n) {
   const HeunStepLoops loops(n, file.p, file.state_size, false);
   const ir::Expr step = ir::name("step");
-  ir::Block increment;
+  ir::Block increment = increment_inputs();
   loops.scaled_rates(increment, [](const ir::Expr& i) { return ir::element("rates", i); }, step);
   loops.state_gain(increment, "K", [&](const ir::Expr& r) {
     return ir::grouped(ir::sub(ir::element("dy", r), ir::mul(ir::element("h", r), step)));
   });
-  file.blocks.emplace("increment_loops", std::move(increment));
-  // step(): the delayed inputs and the increment at t_k and, from the predicted state, at t_{k+1};
+  file.blocks.emplace("increment_body", std::move(increment));
+  // step(): t_k and t_{k+1}, the delayed inputs and the increment at t_k and, from the predicted state, at t_{k+1};
   // the template stores the start state in the history before the average.
   const ir::Expr history = ir::name("history"), k = ir::name("k"), dy = ir::name("dy"), params = ir::name("params");
-  ir::Block body = {ir::local_arrays({"delayed"}, ir::Type::Scalar, ir::dimension("delayed_size"))};
+  ir::Block body = {ir::declare("t", ir::Type::Scalar, grid_time(false)),
+                    ir::declare("t_end", ir::Type::Scalar, grid_time(true)),
+                    ir::local_arrays({"delayed"}, ir::Type::Scalar, ir::dimension("delayed_size"))};
   for (ir::Statement& s : loops.predictor_corrector([&](bool end, const ir::Expr& state, const ir::Expr& delta) {
          return ir::Block{
              ir::call_internal_function("delayed_inputs", {history, ir::name("state"), state, k,

@@ -9,14 +9,34 @@
 namespace pfgen::codegen {
 namespace {
 
-// The step's loops: the innovation dy - yhat dt, the increment (rates - c) dt + [K; L] (dy - yhat dt),
-// step()'s predictor and corrector and the average. Loops at every n (the written-out form was measured on the
-// continuous filter's step only).
+// increment()'s arrays and the calls that fill them: the rates, c, K, L and yhat at (t, state), and the
+// innovation's array. C declares each array on its own line, C++ those of one length together.
+ir::Block increment_inputs() {
+  const ir::Expr t = ir::name("t"), state = ir::name("state"), params = ir::name("params");
+  const ir::Expr n = ir::dimension("n"), p = ir::dimension("p"), state_size = ir::dimension("state_size");
+  ir::Block block = {
+      ir::local_arrays_apart({"rates", "correction"}, ir::Type::Scalar, state_size),
+      ir::local_arrays({"K"}, ir::Type::Scalar, ir::mul(n, p)),
+      ir::local_arrays({"L"}, ir::Type::Scalar, ir::mul(ir::grouped(ir::sub(state_size, n)), p)),
+      ir::local_arrays_apart({"yhat", "innovation"}, ir::Type::Scalar, p),
+  };
+  for (const auto& [function, array] : {std::pair<const char*, const char*>{"derivatives", "rates"},
+                                        {"gain", "K"},
+                                        {"covariance_gain", "L"},
+                                        {"predicted_observation", "yhat"},
+                                        {"stratonovich_correction", "correction"}})
+    block.push_back(ir::call_file_function(function, {t, state, params, ir::local_array(array, true)}));
+  return block;
+}
+
+// The step's statements: increment()'s inputs, the innovation dy - yhat dt, the increment (rates - c) dt +
+// [K; L] (dy - yhat dt), step()'s predictor and corrector and the average. Loops at every n (the written-out
+// form was measured on the continuous filter's step only).
 void add_step_loops(FilterFile& file, std::size_t n) {
   const HeunStepLoops loops(n, file.p, file.state_size, false);
   const ir::Expr dt = ir::name("dt");
   auto innovation = [](const ir::Expr& r) { return ir::element("innovation", r); };
-  ir::Block increment;
+  ir::Block increment = increment_inputs();
   loops.innovation(increment, "yhat", dt);
   loops.scaled_rates(
       increment,
@@ -24,7 +44,7 @@ void add_step_loops(FilterFile& file, std::size_t n) {
       dt);
   loops.state_gain(increment, "K", innovation);
   loops.covariance_gain(increment, "L", innovation);
-  file.blocks.emplace("increment_loops", std::move(increment));
+  file.blocks.emplace("increment_body", std::move(increment));
   // step(): the increment at t and, from the predicted state, at t + dt, then their average.
   const ir::Expr t = ir::name("t"), dy = ir::name("dy"), params = ir::name("params");
   file.blocks.emplace("step_increments",
