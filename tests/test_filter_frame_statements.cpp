@@ -7,8 +7,10 @@
 // and the layouts of a loop's or a conditional's block.
 #include <catch2/catch.hpp>
 
+#include <regex>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "pfgen/codegen/backends/c/c_emitter.hpp"
 #include "pfgen/codegen/backends/cpp/cpp_emitter.hpp"
@@ -551,4 +553,29 @@ TEST_CASE("continuous, polynomial and delayed steps: the increment's and the ste
                  "        }\n"
                  "    }\n"
                  "}\n"));
+}
+
+TEST_CASE("Heun-step templates: increment()'s and step()'s bodies are the module's blocks alone, in every language",
+          "[unit][codegen]") {
+  // Each body is placeholders only, up to its closing brace: the statements are the module's.
+  const std::regex blocks_only(R"(^(\{\{[a-z_]+\}\})+\}\n)");
+  struct Frame {
+    std::string language, suffix, increment, step;
+  };
+  const std::vector<Frame> frames = {{"cpp", ".hpp.tmpl", "inline void increment(", "inline void step("},
+                                     {"c", ".c.tmpl", "_increment({{scalar}} t", "_step({{scalar}}* state"},
+                                     {"rust", ".rs.tmpl", "fn increment(", "pub fn step("}};
+  for (const Frame& frame : frames)
+    for (const std::string layout : {"filter", "polynomial_filter", "delayed_filter"}) {
+      const std::string name = frame.language + "/" + layout + frame.suffix;
+      const std::string text = expanded_template(name);
+      for (const std::string& header : {frame.increment, frame.step}) {
+        INFO(name << ": " << header);
+        const std::size_t at = text.find(header);
+        REQUIRE(at != std::string::npos);
+        const std::size_t body = text.find(") {\n", at);
+        REQUIRE(body != std::string::npos);
+        CHECK(std::regex_search(text.substr(body + 4), blocks_only));
+      }
+    }
 }

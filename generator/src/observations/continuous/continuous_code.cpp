@@ -6,10 +6,27 @@
 namespace pfgen::codegen {
 namespace {
 
-// The step's loops: the innovation dy - h dt, the increment rates dt + K (dy - h dt), step()'s
-// predictor and corrector and the average.
+// increment()'s start in four parts, which each language's template places in its own order (C declares
+// the views before the call, C++ after it, Rust the innovation's first, splitting `all` there): the array
+// `all`, which rates() writes whole, [drift, K, h]; the call; the view K; and the view `innovation` of
+// its h, which becomes dy - h dt.
+void add_increment_start(FilterFile& file) {
+  const ir::Expr n = ir::dimension("n"), p = ir::dimension("p"), state_size = ir::dimension("state_size");
+  const ir::Expr h_offset = ir::add(state_size, ir::mul(n, p));
+  file.blocks.emplace("increment_array",
+                      ir::Block{ir::local_array_written_by("all", ir::Type::Scalar, ir::add(h_offset, p), "rates()")});
+  file.blocks.emplace("increment_call",
+                      ir::Block{ir::call_file_function("rates", {ir::name("t"), ir::name("state"), ir::name("params"),
+                                                                 ir::local_array("all", true)})});
+  file.blocks.emplace("gain_view", ir::Block{ir::local_view("K", "all", state_size, ir::mul(n, p))});
+  file.blocks.emplace("innovation_view",
+                      ir::Block{ir::local_tail_view("innovation", "all", h_offset, p, "h, replaced by dy - h dt")});
+}
+
+// The step's statements: increment()'s start, the innovation dy - h dt, the increment rates dt + K (dy - h dt),
+// step()'s predictor and corrector and the average.
 void add_step_loops(FilterFile& file, std::size_t n) {
-  // rates() writes [drift, K, h] into `all`; `innovation` views its h, which becomes dy - h dt.
+  add_increment_start(file);
   const HeunStepLoops loops(n, file.p, file.state_size, n < kStepWrittenOutBelow);
   const ir::Expr dt = ir::name("dt");
   ir::Block increment;
