@@ -2,8 +2,10 @@
 // The element-wise loops of a filter's Heun step, as statements for every language: the parts of
 // an increment (the innovation dy - h dt, the rates times dt, a gain times the innovation), step()'s
 // predictor and corrector around an increment, and the average of the two increments. Each
-// observation module composes its increment from these parts (its rates and innovation differ) and
-// the templates place the blocks ({{increment_loops}}, {{step_increments}}, {{average_loop}}); the
+// observation module composes its increment from these parts (its rates and innovation differ),
+// after its own statements that give their inputs (local arrays and the calls that fill them), and
+// the templates place the blocks ({{increment_body}}, or the continuous file's parts ending with
+// {{increment_loops}}; {{step_increments}}, {{average_loop}}), holding no statement of their own; the
 // names they use (delta, dy, state, t, dt, params, first, predicted, second) are the templates' frame's.
 //
 // The loops run to the file's sizes n, p and state_size (ir::dimension). Written out, each loop is
