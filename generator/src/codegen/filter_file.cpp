@@ -29,4 +29,13 @@ std::map<std::string, std::string> filter_file_frames(const FilterFile& file, co
   return frames;
 }
 
+ir::Statement state_function_call(const std::string& function, ir::Expr t, ir::Expr state, const std::string& out,
+                                  std::optional<ir::Expr> delayed) {
+  std::vector<ir::Expr> arguments = {std::move(t), std::move(state)};
+  if (delayed) arguments.push_back(std::move(*delayed));
+  arguments.push_back(ir::name("params"));
+  arguments.push_back(ir::local_array(out, true));
+  return ir::call_file_function(function, std::move(arguments));
+}
+
 }  // namespace pfgen::codegen

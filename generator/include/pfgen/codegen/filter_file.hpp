@@ -62,6 +62,12 @@ struct FilterFile {
   void add_function(const std::string& key, FunctionCode code) { functions.emplace_back(key, std::move(code)); }
 };
 
+// function(t, state, [delayed,] params, out): a call of one of the file's functions of the filter state
+// (derivatives, gain, rates, observation_matrices, ...), which write the local array `out`; a delayed
+// filter's read its delayed inputs after the state.
+ir::Statement state_function_call(const std::string& function, ir::Expr t, ir::Expr state, const std::string& out,
+                                  std::optional<ir::Expr> delayed = std::nullopt);
+
 // What every backend's writer does with a description, its language given by `emitter` (the one
 // the module wrote the bodies with): adds to `values`, without replacing any, each function's
 // `<key>_ops`, `<key>_helpers` and `<key>_body`, each block as the emitter writes it, each number as

@@ -16,8 +16,7 @@ void add_increment_start(FilterFile& file) {
   file.blocks.emplace("increment_array",
                       ir::Block{ir::local_array_written_by("all", ir::Type::Scalar, ir::add(h_offset, p), "rates()")});
   file.blocks.emplace("increment_call",
-                      ir::Block{ir::call_file_function("rates", {ir::name("t"), ir::name("state"), ir::name("params"),
-                                                                 ir::local_array("all", true)})});
+                      ir::Block{state_function_call("rates", ir::name("t"), ir::name("state"), "all")});
   file.blocks.emplace("gain_view", ir::Block{ir::local_view("K", "all", state_size, ir::mul(n, p))});
   file.blocks.emplace("innovation_view",
                       ir::Block{ir::local_tail_view("innovation", "all", h_offset, p, "h, replaced by dy - h dt")});

@@ -13,8 +13,7 @@ namespace {
 // increment()'s arrays, the grid's step (`step`, the file's dt()) and the calls that fill the arrays: the
 // rates, K and h at (t, state) with the delayed inputs.
 ir::Block increment_inputs() {
-  const ir::Expr t = ir::name("t"), state = ir::name("state"), delayed = ir::name("delayed"),
-                 params = ir::name("params");
+  const ir::Expr t = ir::name("t"), state = ir::name("state"), delayed = ir::name("delayed");
   ir::Block block = {
       ir::local_arrays({"rates"}, ir::Type::Scalar, ir::dimension("state_size")),
       ir::local_arrays({"K"}, ir::Type::Scalar, ir::mul(ir::dimension("n"), ir::dimension("p"))),
@@ -24,7 +23,7 @@ ir::Block increment_inputs() {
   for (const auto& [function, array] : {std::pair<const char*, const char*>{"derivatives", "rates"},
                                         {"gain", "K"},
                                         {"predicted_observation", "h"}})
-    block.push_back(ir::call_file_function(function, {t, state, delayed, params, ir::local_array(array, true)}));
+    block.push_back(state_function_call(function, t, state, array, delayed));
   return block;
 }
 

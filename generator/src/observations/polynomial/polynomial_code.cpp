@@ -12,7 +12,7 @@ namespace {
 // increment()'s arrays and the calls that fill them: the rates, c, K, L and yhat at (t, state), and the
 // innovation's array. C declares each array on its own line, C++ those of one length together.
 ir::Block increment_inputs() {
-  const ir::Expr t = ir::name("t"), state = ir::name("state"), params = ir::name("params");
+  const ir::Expr t = ir::name("t"), state = ir::name("state");
   const ir::Expr n = ir::dimension("n"), p = ir::dimension("p"), state_size = ir::dimension("state_size");
   ir::Block block = {
       ir::local_arrays_apart({"rates", "correction"}, ir::Type::Scalar, state_size),
@@ -25,7 +25,7 @@ ir::Block increment_inputs() {
                                         {"covariance_gain", "L"},
                                         {"predicted_observation", "yhat"},
                                         {"stratonovich_correction", "correction"}})
-    block.push_back(ir::call_file_function(function, {t, state, params, ir::local_array(array, true)}));
+    block.push_back(state_function_call(function, t, state, array));
   return block;
 }
 

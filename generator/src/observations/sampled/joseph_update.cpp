@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "pfgen/codegen/filter_file.hpp"
+
 namespace pfgen::codegen {
 namespace {
 
@@ -22,8 +24,7 @@ ir::Statement over(const char* name, Expr begin, const Expr& end, ir::Block body
 
 // name(t, state, params, out): a function of the filter state writing the local array `out`.
 ir::Statement call(const std::string& function, const std::string& out) {
-  return ir::call_file_function(
-      function, {ir::name("t"), ir::name("state"), ir::name("params"), ir::local_array(out, true)});
+  return state_function_call(function, ir::name("t"), ir::name("state"), out);
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "pfgen/codegen/filter_file.hpp"
+
 namespace pfgen::codegen {
 namespace {
 
@@ -14,11 +16,6 @@ ir::Statement over_state(Expr begin, ir::Statement body) {
   return ir::loop("i", ir::Type::Size, std::move(begin), ir::dimension("state_size"), {std::move(body)});
 }
 
-// name(t, state, params, out): a function of the filter state writing the local array `out`.
-ir::Statement call(const std::string& function, Expr t, Expr state, const std::string& out) {
-  return ir::call_file_function(function, {std::move(t), std::move(state), ir::name("params"), ir::local_array(out, true)});
-}
-
 }  // namespace
 
 ir::Block predict_statements(bool euler) {
@@ -28,17 +25,17 @@ ir::Block predict_statements(bool euler) {
     return {
         ir::local_arrays({"rates"}, ir::Type::Scalar, state_size),
         ir::local_arrays({"square"}, ir::Type::Scalar, ir::sub(state_size, n)),
-        call("derivatives", t, state, "rates"),
-        call("euler_square", t, state, "square"),
+        state_function_call("derivatives", t, state, "rates"),
+        state_function_call("euler_square", t, state, "square"),
         over_state(ir::integer(0), ir::accumulate(at("state"), ir::mul(at("rates"), dt))),
         over_state(n,
                    ir::accumulate(at("state"), ir::mul(ir::mul(ir::element("square", ir::sub(ir::name("i"), n)), dt), dt))),
     };
   return {
       ir::local_arrays({"first", "predicted", "second"}, ir::Type::Scalar, state_size),
-      call("derivatives", t, state, "first"),
+      state_function_call("derivatives", t, state, "first"),
       over_state(ir::integer(0), ir::assign(at("predicted"), ir::add(at("state"), ir::mul(at("first"), dt)))),
-      call("derivatives", ir::add(t, dt), ir::local_array("predicted", false), "second"),
+      state_function_call("derivatives", ir::add(t, dt), ir::local_array("predicted", false), "second"),
       over_state(ir::integer(0),
                  ir::accumulate(at("state"), ir::div(ir::mul(ir::grouped(ir::add(at("first"), at("second"))), dt), ir::whole_scalar(2)))),
   };

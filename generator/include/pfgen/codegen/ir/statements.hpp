@@ -159,9 +159,10 @@ struct View {
   bool writable = false;
   bool rebound = false;  // later assigned another slice (ir::slice): Rust's `let mut name: &[Scalar]`
   bool whole = false;    // the whole array, not `size` entries from `offset`
-  bool local = false;    // `array` is a local array (LocalArrays'), reached as calls reach it (C++: `CR.data()`)
-  // Writable and local: the view runs to the array's end, and the array's name reaches only the
-  // entries before it from here on (Rust splits the array in two there: `split_at_mut`).
+  // `array` is a local array (LocalArrays'), reached as calls reach it (C++: `CR.data()`). Writable and
+  // local: the view runs to the array's end, and the array's name reaches only the entries before it
+  // from here on (Rust splits the array in two there: `split_at_mut`).
+  bool local = false;
   std::string comment{};  // written after the declaration, on its line ("": none)
   // A packed symmetric matrix of this many rows (its upper triangle row by row), whose entries
   // ir::packed_entry reads: C++ declares its accessor `name_at` here.
