@@ -279,7 +279,7 @@ const std::vector<BadModel>& bad_models() {
       {"simulation_seed_too_large.yaml", "simulation.seed", 0, 0, 10, "'18446744073709551616' is too large"},
       {"simulation_shown_run_out_of_range.yaml", "simulation.shown_run", 0, 0, 11, "run 5 is not among the 5 runs"},
       {"simulation_unknown_field.yaml", "simulation.horizon", 0, 0, 10, "unknown field (known: T, dt, runs, seed,"},
-      {"simulation_unknown_filter.yaml", "simulation.filters", 2, 0, 10, "unknown filter 'kalman' (known: optimal, ekf, ukf)"},
+      {"simulation_unknown_filter.yaml", "simulation.filters", 2, 0, 10, "unknown filter 'kalman' (known: optimal, ekf, ukf, closure3, closure4)"},
       {"simulation_unknown_scheme.yaml", "simulation.scheme", 0, 0, 10, "unknown scheme 'runge-kutta'"},
       {"simulation_window_after_T.yaml", "simulation.windows", 2, 0, 11, "window [4, 10] ends after the horizon T = 9.2"},
       {"simulation_window_not_pair.yaml", "simulation.windows", 1, 0, 10, "a window is [start, end], found 3 values"},

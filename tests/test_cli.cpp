@@ -42,7 +42,12 @@ std::vector<double> numbers(const JsonValue& array) {
   return out;
 }
 
-Evaluated eval(const std::vector<std::string>& args) {
+// A moment filter's eval adds dP's dy terms and its higher moments (closure3, closure4).
+const std::vector<std::string> kMomentFilterKeys = {"model", "filter", "m_drift", "gain", "P_drift",
+                                                    "P_gain", "moments", "moment_drift", "moment_gain"};
+
+Evaluated eval(const std::vector<std::string>& args,
+               const std::vector<std::string>& keys = {"model", "filter", "m_drift", "gain", "P_drift"}) {
   std::vector<std::string> full = {"eval"};
   full.insert(full.end(), args.begin(), args.end());
   ProcessResult r = run_pfgen(full);
@@ -51,7 +56,7 @@ Evaluated eval(const std::vector<std::string>& args) {
   CHECK(r.err.empty());
   JsonValue j = parse_json(r.out);
   REQUIRE(j.kind == JsonValue::Kind::Object);
-  CHECK(j.keys() == std::vector<std::string>{"model", "filter", "m_drift", "gain", "P_drift"});
+  CHECK(j.keys() == keys);
   Evaluated e;
   e.m_drift = numbers(j["m_drift"]);
   for (const auto& row : j["gain"].items) e.gain.push_back(numbers(row));
@@ -113,9 +118,44 @@ TEST_CASE("eval of basin2006_quadratic at a negative m matches the hand-computed
       // degrees 2, 3 and 4, so the ukf is the optimal filter here (docs/theory.md §2.8).
       {"ukf", 0.1 * (m * m + P), P, 0.4 * m * P + 0.03 * P * P + 0.06 * m * m * P + 0.01 * std::pow(m, 4) - P * P},
   };
+  // The moment filters at M3 = 0.2 (and M4 = 1): with h = x, R = 1 the gain is P, and E[f], E[(x-m) f] and
+  // E[G] read E[e^3] = M3, E[e^4] = M4 (3 P^2 at order 3), E[e^5] = 10 P M3 (the fifth cumulant zero):
+  //   dP = 0.2 (2 m P + M3) + 0.01 (m^4 + 6 m^2 P + 4 m M3 + M4) - P^2, dP's dy term C_2 R^-1 = M3,
+  //   dM3 = 0.3 (2 m M3 + M4 - P^2) + 0.03 (4 m^3 P + 6 m^2 M3 + 4 m M4 + 10 P M3) - 3 M3 P, its dy term M4 - 3 P^2.
+  struct MomentCase {
+    std::string kind;
+    double M4;
+    std::vector<std::string> moments;
+  };
+  const double M3 = 0.2;
+  const std::vector<MomentCase> moment_cases = {{"closure3", 3 * P * P, {"--moment", "M3_111=0.2"}},
+                                                {"closure4", 1.0, {"--moment", "M3_111=0.2", "--moment", "M4_1111=1"}}};
   std::vector<std::string> covered;
   for (const auto& c : cases) covered.push_back(c.kind);
+  for (const auto& c : moment_cases) covered.push_back(c.kind);
   CHECK(covered == kAllKinds);  // a kind added to the registry needs its hand-computed values here
+  for (const auto& c : moment_cases) {
+    INFO("filter " << c.kind);
+    std::vector<std::string> args = {model, "--filter", c.kind, "--m=-1.5", "--P", "0.5"};
+    args.insert(args.end(), c.moments.begin(), c.moments.end());
+    Evaluated e = eval(args, kMomentFilterKeys);
+    check_close(e.m_drift[0], 0.1 * (m * m + P), "m_drift");
+    check_close(e.gain[0][0], P, "gain");
+    check_close(e.P_drift[0][0], 0.2 * (2 * m * P + M3) + 0.01 * (std::pow(m, 4) + 6 * m * m * P + 4 * m * M3 + c.M4) - P * P,
+                "P_drift");
+    const JsonValue j = parse_json(run_pfgen([&] {
+                                     std::vector<std::string> full = {"eval"};
+                                     full.insert(full.end(), args.begin(), args.end());
+                                     return full;
+                                   }())
+                                       .out);
+    check_close(j["P_gain"].items[0].items[0].items[0].number, M3, "P_gain");
+    check_close(j["moment_drift"].items[0].number,
+                0.3 * (2 * m * M3 + c.M4 - P * P) +
+                    0.03 * (4 * std::pow(m, 3) * P + 6 * m * m * M3 + 4 * m * c.M4 + 10 * P * M3) - 3 * M3 * P,
+                "M3_111's drift");
+    check_close(j["moment_gain"].items[0].items[0].number, c.M4 - 3 * P * P, "M3_111's dy term");
+  }
   for (const auto& c : cases) {
     INFO("filter " << c.kind);
     Evaluated e = eval({model, "--filter", c.kind, "--m=-1.5", "--P", "0.5"});
@@ -434,7 +474,8 @@ TEST_CASE("derive --format json is a JSON object with the documented keys", "[cl
       CHECK(j["model"].text == c.file.substr(0, c.file.size() - 5));
       CHECK(j["filter"].text == kind);
       CHECK(j["exactness"]["exact"].kind == JsonValue::Kind::Boolean);
-      CHECK(j["variables"].items.size() == c.n + c.n * (c.n + 1) / 2);
+      // A moment filter's central moments above P follow m and P.
+      CHECK(j["variables"].items.size() == c.n + c.n * (c.n + 1) / 2 + (j.has("moments") ? j["moments"].items.size() : 0));
       REQUIRE(j["m_drift"].items.size() == c.n);
       for (const auto& entry : j["m_drift"].items) {
         CHECK(entry.kind == JsonValue::Kind::String);

@@ -50,6 +50,7 @@ std::string expectation_words(ExpectationRule rule) {
     case ExpectationRule::Gaussian: return "Gaussian";
     case ExpectationRule::AtMean: return "at the mean";
     case ExpectationRule::SigmaPoints: return "sigma points";
+    case ExpectationRule::CumulantNeglect: return "cumulant neglect";
   }
   return "";
 }
@@ -59,6 +60,7 @@ std::string drift_words(ExpectationRule rule) {
     case ExpectationRule::Gaussian: return "E[f]";
     case ExpectationRule::AtMean: return "f(m)";
     case ExpectationRule::SigmaPoints: return "Σ wᵢ f(Xᵢ)";
+    case ExpectationRule::CumulantNeglect: return "E[f]";
   }
   return "";
 }

@@ -57,7 +57,7 @@ TEST_CASE("public API: one exception type, with the command's line", "[api][unit
     FAIL("derive accepted an unknown filter");
   } catch (const api::Error& e) {
     CHECK(e.report() ==
-          "error: --filter: unknown filter 'kalman' (known: optimal, ekf, additive, ekf-additive, ukf, ekf-printed)");
+          "error: --filter: unknown filter 'kalman' (known: optimal, ekf, additive, ekf-additive, ukf, closure3, closure4, ekf-printed)");
   }
   CHECK_THROWS_AS(api::Model::from_yaml("name: x\n"), api::Error);
   api::CodegenOptions c;

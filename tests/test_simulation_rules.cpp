@@ -55,7 +55,7 @@ TEST_CASE("simulation rules: each rule names its field and entry, and applies on
   REQUIRE(filter);
   CHECK(filter->field == "filters");
   CHECK(filter->entry == std::optional<std::size_t>(1));
-  CHECK(filter->message == "unknown filter 'kalman' (known: optimal, ekf, additive, ekf-additive, ukf, ekf-printed)");
+  CHECK(filter->message == "unknown filter 'kalman' (known: optimal, ekf, additive, ekf-additive, ukf, closure3, closure4, ekf-printed)");
   s.filters = std::vector<std::string>{"ekf", "ekf"};
   REQUIRE(breach_of(s));
   CHECK(breach_of(s)->message == "filter 'ekf' is listed twice");

@@ -340,7 +340,7 @@ TEST_CASE("user filters: every command takes them by name, after the built-in ki
     ProcessResult r = run_pfgen({"eval", model, "--filter", "ekf-paper", "--m=1,2", "--P", "0.5,0.1;0.1,0.3"});
     CHECK(r.exit_code == 1);
     CHECK(r.out.empty());
-    CHECK_THAT(r.err, Contains("unknown filter 'ekf-paper' (known: optimal, ekf, ukf, ekf-printed)"));
+    CHECK_THAT(r.err, Contains("unknown filter 'ekf-paper' (known: optimal, ekf, ukf, closure3, closure4, ekf-printed)"));
   }
 }
 
@@ -438,7 +438,7 @@ TEST_CASE("user filters: ModelBuilder adds them with the same checks", "[userfil
     CHECK(from_api.P_drift(0, 0) == from_file.P_drift(0, 0));
     CHECK(from_api.gain == from_file.gain);
     CHECK(from_api.description == "as printed");
-    CHECK(available_filter_names(api) == std::vector<std::string>{"optimal", "ekf", "ukf", "ekf-printed"});
+    CHECK(available_filter_names(api) == std::vector<std::string>{"optimal", "ekf", "ukf", "closure3", "closure4", "ekf-printed"});
     CHECK(default_filter_names(api) == std::vector<std::string>{"optimal", "ekf", "ekf-printed"});
   }
   SECTION("a state in a user filter is refused") {

@@ -289,6 +289,10 @@ EvalOutcome evaluate_filter(Model model, const EvalOptions& options, const Filte
   point.x_star = optional_list("--x-star", options.x_star);
   point.x_star_delayed = optional_list("--x-star-delayed", options.x_star_delayed);
   point.phi = optional_list("--phi", options.phi);
+  for (const std::string& text : options.moments) {
+    auto [name, value] = parse_assignment("--moment", text);
+    if (!point.moments.emplace(name, value).second) throw CliValueError("--moment: " + name + " is given twice");
+  }
   EvalOutcome outcome;
   outcome.value = evaluate_at(model, eq, point);
   outcome.json = eval_json(model, eq, outcome.value);
@@ -300,6 +304,7 @@ std::string eval_json(const Model& model, const FilterEquations& eq, const Evalu
   out.add("model", Json::string(model.name));
   out.add("filter", Json::string(eq.name));
   observation_command(eq.observation).add_eval_json(eq, value, out);
+  if (!value.moment_names.empty()) add_moment_eval_json(value, out);
   return out.dump();
 }
 

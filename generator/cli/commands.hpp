@@ -36,6 +36,7 @@ struct EvalOptions {
   std::vector<std::string> assignments;
   // Delayed observations only (empty: the default, point_evaluator.hpp).
   std::string m_delayed, x_star, x_star_delayed, phi;
+  std::vector<std::string> moments;  // moment filters: NAME=VALUE of a central moment above P
 };
 
 struct CodegenCliOptions {

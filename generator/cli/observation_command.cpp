@@ -31,6 +31,20 @@ void add_rate_eval_json(const EvaluatedFilter& value, Json& out) {
   out.add("P_drift", values_json(value.P_drift));
 }
 
+void add_P_gain_eval_json(const EvaluatedFilter& value, Json& out) {
+  Json P_gain = Json::array();
+  for (const auto& L : value.P_gain) P_gain.push(values_json(L));
+  out.add("P_gain", P_gain);
+}
+
+void add_moment_eval_json(const EvaluatedFilter& value, Json& out) {
+  Json names = Json::array();
+  for (const auto& name : value.moment_names) names.push(Json::string(name));
+  out.add("moments", names);
+  out.add("moment_drift", values_json(value.moment_drift));
+  out.add("moment_gain", values_json(value.moment_gain));
+}
+
 const ObservationCommand& observation_command(ObservationKind kind) {
   static const ObservationCommand* const parts[kObservationKindCount] = {
       &continuous_observation_command(), &sampled_observation_command(), &delayed_observation_command(),

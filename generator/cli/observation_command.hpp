@@ -38,6 +38,10 @@ class ObservationCommand {
 // pfgen eval's values of a filter whose observation is a rate (continuous, delayed): m_drift,
 // gain and P_drift, flat.
 void add_rate_eval_json(const EvaluatedFilter& value, Json& out);
+// "P_gain": per observation r, dP's coefficients of dy_r - predicted_observation_r dt (n x n).
+void add_P_gain_eval_json(const EvaluatedFilter& value, Json& out);
+// A moment filter's "moments" (names), "moment_drift" and "moment_gain" (one row of p per moment).
+void add_moment_eval_json(const EvaluatedFilter& value, Json& out);
 // A vector and a matrix of values as JSON arrays.
 Json values_json(const std::vector<double>& values);
 Json values_json(const std::vector<std::vector<double>>& values);

@@ -30,4 +30,18 @@ std::vector<std::string> filter_variable_names(std::size_t n) {
   return names;
 }
 
+std::string central_moment_name(const std::vector<std::size_t>& indices, std::size_t n) {
+  std::string name = "M" + std::to_string(indices.size()) + "_";
+  for (std::size_t k = 0; k < indices.size(); ++k)
+    name += (k && separates_covariance_indices(n) ? "_" : "") + one_based(indices[k]);
+  return name;
+}
+
+std::string central_moment_latex_name(const std::vector<std::size_t>& indices, std::size_t n) {
+  std::string name = "\\mu_{";
+  for (std::size_t k = 0; k < indices.size(); ++k)
+    name += (k && separates_covariance_indices(n) ? "," : "") + one_based(indices[k]);
+  return name + "}";
+}
+
 }  // namespace pfgen_support

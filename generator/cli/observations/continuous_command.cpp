@@ -8,6 +8,8 @@ class ContinuousCommand final : public ObservationCommand {
  public:
   void add_eval_json(const FilterEquations&, const EvaluatedFilter& value, Json& out) const override {
     add_rate_eval_json(value, out);
+    // A moment filter's dP has a dy term for a linear h too (its P_gain reads the third moments).
+    if (!value.P_gain.empty()) add_P_gain_eval_json(value, out);
   }
 };
 

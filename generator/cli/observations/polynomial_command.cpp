@@ -10,12 +10,11 @@ class PolynomialCommand final : public ObservationCommand {
  public:
   void add_eval_json(const FilterEquations& eq, const EvaluatedFilter& value, Json& out) const override {
     add_rate_eval_json(value, out);
-    if (predicts_linearly(eq)) return;  // a linear h's values as the continuous observation's
+    // A linear h's values as the continuous observation's, but for a moment filter, whose E[h] and dP's dy terms
+    // read the higher moments.
+    if (predicts_linearly(eq) && value.moment_names.empty()) return;
     out.add("predicted_observation", values_json(value.predicted_observation));
-    if (value.P_gain.empty()) return;
-    Json P_gain = Json::array();
-    for (const auto& L : value.P_gain) P_gain.push(values_json(L));
-    out.add("P_gain", P_gain);
+    if (!value.P_gain.empty()) add_P_gain_eval_json(value, out);
   }
 };
 

@@ -24,6 +24,9 @@ Subcommand add_eval_subcommand(CLI::App& app, const OptionChecks&) {
                        "0 where x*_i(t) = 0, 0 for t < h (1 when h = 0)");
   eval_cmd->add_option("--phi", eval->phi,
                        "delay-optimal: the diagonal of Phi* itself, used as given (instead of --x-star-delayed)");
+  eval_cmd->add_option("--moment", eval->moments,
+                       "Moment filters (closure3, closure4): a central moment above P, NAME=VALUE (repeatable), e.g. "
+                       "--moment M3_111=0.2; one not given takes its value under N(m, P)");
   return {eval_cmd, [eval] { return run_eval(*eval); }};
 }
 

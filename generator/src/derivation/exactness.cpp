@@ -54,11 +54,39 @@ ExactnessReport unscented_exactness(const ExactnessFacts& facts) {
   return report;
 }
 
+// The moment filters (docs/theory.md §2.9): with f and h affine and g free of the state, a Gaussian prior
+// stays Gaussian, so the cumulants above the order carried stay zero and the closure drops nothing.
+ExactnessReport moment_closure_exactness(const ExactnessFacts& facts, FilterKind kind) {
+  ExactnessReport report;
+  const std::string nonaffine = facts.nonaffine_drift();
+  const std::string multiplicative = facts.state_dependent_noise();
+  const unsigned h_degree = facts.model.observation.rate().degree(facts.model.states);
+  const std::string nonlinear_h =
+      h_degree > 1 ? "the observation's h has degree " + std::to_string(h_degree) : std::string();
+  const std::string order = std::to_string(filter_kind_info(kind).closure_order);
+  if (nonaffine.empty() && multiplicative.empty() && nonlinear_h.empty()) {
+    report.exact = true;
+    report.condition = "Kalman-Bucy";
+    report.explanation = "exact: $f|f$ and $h|h$ are affine and $g|g$ does not depend on $x|x$, so from the Gaussian "
+                         "prior the conditional law stays Gaussian: the moments of order 3 and above stay those of "
+                         "$N(m, P)|N(m, P)$ and $m|m$, $P|P$ are the Kalman-Bucy filter's";
+    return report;
+  }
+  report.condition = "none";
+  report.explanation = "approximation: the conditional law's cumulants of order above " + order +
+                       " are set to zero (cumulant neglect), so the moments above order " + order +
+                       " that the equations read are those of that closed law";
+  report.failed.push_back("Kalman-Bucy: " +
+                          (!nonaffine.empty() ? nonaffine : !multiplicative.empty() ? multiplicative : nonlinear_h));
+  return report;
+}
+
 }  // namespace
 
 ExactnessReport assess_exactness(const Model& model, FilterKind kind) {
   if (is_risk_sensitive(kind)) return risk_sensitive_exactness(ExactnessFacts(model, kind));
   if (uses_sigma_points(kind)) return unscented_exactness(ExactnessFacts(model, kind));
+  if (uses_cumulant_closure(kind)) return moment_closure_exactness(ExactnessFacts(model, kind), kind);
   // The Gaussian-closure kinds: exact under conditions that depend on how the states are observed.
   return observation_derivation(model.observation).exactness(model, kind);
 }

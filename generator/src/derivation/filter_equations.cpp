@@ -4,6 +4,7 @@
 
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
+#include "pfgen/derivation/moment_closure.hpp"
 #include "pfgen/derivation/observation_derivation.hpp"
 #include "pfgen/derivation/risk_sensitive.hpp"
 #include "pfgen/derivation/unscented.hpp"
@@ -133,6 +134,27 @@ FilterEquations unscented_filter(const Model& model, FilterEquations eq) {
   return eq;
 }
 
+// A moment filter (moment_closure.hpp): its variables carry the central moments up to the kind's order, and
+// the Kushner-Stratonovich equations of each, closed, give every term, the observation's included: the
+// registry derives these kinds for the undelayed continuous rate only, linear or polynomial alike.
+FilterEquations moment_filter(const Model& model, FilterKind kind, FilterEquations eq) {
+  const std::vector<Polynomial> f = state_polynomials(model.drift, model);
+  check_model_terms_budget(model, true, f, jacobian(f));
+  eq.variables = FilterVariables(model.n(), false, filter_kind_info(kind).closure_order);
+  const ObservationRate& rate = model.observation.rate();
+  MomentClosureTerms terms = moment_closure_terms(model, eq.variables, rate.polynomials(model.states), rate.noise());
+  eq.m_drift = std::move(terms.m_drift);
+  eq.gain = std::move(terms.gain);
+  eq.predicted_observation = std::move(terms.predicted_observation);
+  eq.P_moment = std::move(terms.P_moment);
+  eq.P_diffusion = std::move(terms.P_diffusion);
+  eq.P_correction = std::move(terms.P_correction);
+  eq.P_gain = std::move(terms.P_gain);
+  eq.higher_drift = std::move(terms.higher_drift);
+  eq.higher_gain = std::move(terms.higher_gain);
+  return eq;
+}
+
 }  // namespace
 
 Polynomial FilterEquations::P_drift(std::size_t i, std::size_t j) const {
@@ -156,6 +178,7 @@ FilterEquations derive_filter(const Model& model, FilterKind kind) {
   auto P = [&](std::size_t i, std::size_t j) { return Monomial::variable(vars.P(i, j)); };
   if (is_risk_sensitive(kind)) return risk_sensitive_filter(model, std::move(eq));
   if (uses_sigma_points(kind)) return unscented_filter(model, std::move(eq));
+  if (uses_cumulant_closure(kind)) return moment_filter(model, kind, std::move(eq));
 
   MomentTerms terms = moment_terms(model, kind, vars);
   eq.expectation_sources = std::move(terms.sources);

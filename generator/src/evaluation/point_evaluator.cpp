@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "pfgen/evaluation/observation_evaluation.hpp"
+#include "pfgen/evaluation/polynomial_evaluator.hpp"
 
 namespace pfgen {
 
@@ -38,6 +39,17 @@ void check_point(const Model& model, const FilterEquations& eq, const Evaluation
   if (smallest < -1e-12 * std::max(1.0, P.cwiseAbs().maxCoeff()))
     throw EvaluationError("--P: not positive semi-definite (smallest eigenvalue " + std::to_string(smallest) + ")");
   observation.check_inputs(model, eq, point);
+  for (const auto& [name, value] : point.moments) {
+    bool known = false;
+    for (std::size_t q = 0; q < eq.variables.higher_moments().size(); ++q)
+      known = known || eq.variables.text_name(eq.variables.first_higher_moment() + static_cast<std::uint32_t>(q)) == name;
+    if (known) continue;
+    if (eq.variables.higher_moments().empty())
+      throw EvaluationError("--moment: filter " + eq.name + " carries no central moments above P (the closure kinds do)");
+    throw EvaluationError("--moment: filter " + eq.name + " has no central moment '" + name + "' (its moments are " +
+                          eq.variables.text_name(eq.variables.first_higher_moment()) + " to " +
+                          eq.variables.text_name(static_cast<std::uint32_t>(eq.variables.count() - 1)) + ")");
+  }
   for (const auto& [name, value] : point.parameters) {
     bool known = false;
     for (const auto& p : model.parameters) known = known || p.name == name;
@@ -50,7 +62,9 @@ void check_point(const Model& model, const FilterEquations& eq, const Evaluation
 EvaluatedFilter evaluate_at(const Model& model, const FilterEquations& eq, const EvaluationPoint& point) {
   const ObservationEvaluation& observation = observation_evaluation(model.observation);
   check_point(model, eq, point, observation);
-  return observation.evaluate(model, eq, point);
+  EvaluatedFilter out = observation.evaluate(model, eq, point);
+  if (!eq.higher_drift.empty()) evaluate_higher_moments(eq, PolynomialEvaluator(model, eq, point, {}), out);
+  return out;
 }
 
 }  // namespace pfgen

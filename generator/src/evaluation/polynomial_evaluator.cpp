@@ -6,6 +6,14 @@
 
 namespace pfgen {
 
+GiNaC::numeric central_moment_value(const FilterVariables& vars, const EvaluationPoint& point, std::uint32_t variable) {
+  if (auto it = point.moments.find(vars.text_name(variable)); it != point.moments.end()) return it->second;
+  const std::vector<std::size_t>& i = vars.higher_moments().at(variable - vars.first_higher_moment());
+  if (i.size() != 4) return 0;  // odd orders vanish under N(m, P); the filters carry orders 3 and 4
+  auto P = [&](std::size_t a, std::size_t b) { return point.P[i[a]][i[b]]; };
+  return P(0, 1) * P(2, 3) + P(0, 2) * P(1, 3) + P(0, 3) * P(1, 2);
+}
+
 PolynomialEvaluator::PolynomialEvaluator(const Model& model, const FilterEquations& eq, const EvaluationPoint& point,
                                          const InputValues& inputs) {
   const FilterVariables& vars = eq.variables;
@@ -19,6 +27,10 @@ PolynomialEvaluator::PolynomialEvaluator(const Model& model, const FilterEquatio
   for (std::size_t i = 0; i < vars.n(); ++i) {
     variable_values_[vars.m(i)] = point.m[i];
     for (std::size_t j = i; j < vars.n(); ++j) variable_values_[vars.P(i, j)] = point.P[i][j];
+  }
+  for (std::size_t q = 0; q < vars.higher_moments().size(); ++q) {
+    const std::uint32_t v = vars.first_higher_moment() + static_cast<std::uint32_t>(q);
+    variable_values_[v] = central_moment_value(vars, point, v);
   }
   for (const auto& [variable, value] : inputs) variable_values_[variable] = value;
   define_names(eq);
@@ -88,6 +100,29 @@ std::vector<double> rounded_values(const std::vector<GiNaC::numeric>& exact, con
   for (std::size_t i = 0; i < exact.size(); ++i)
     out.push_back(PolynomialEvaluator::rounded(exact[i], what + "[" + std::to_string(i + 1) + "]"));
   return out;
+}
+
+void evaluate_higher_moments(const FilterEquations& eq, const PolynomialEvaluator& value, EvaluatedFilter& out) {
+  const FilterVariables& vars = eq.variables;
+  const std::size_t n = eq.n();
+  if (out.P_gain.empty())
+    for (std::size_t r = 0; r < eq.p && !eq.P_gain.empty(); ++r) {
+      std::vector<std::vector<double>> L(n, std::vector<double>(n));
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i; j < n; ++j)
+          L[i][j] = L[j][i] = value(eq.P_gain[vars.upper_index(i, j)][r],
+                                    entry_name("P_gain", i, j) + " of observation " + std::to_string(r + 1));
+      out.P_gain.push_back(std::move(L));
+    }
+  for (std::size_t q = 0; q < eq.higher_drift.size(); ++q) {
+    const std::string name = vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q));
+    out.moment_names.push_back(name);
+    out.moment_drift.push_back(value(eq.higher_drift[q], "the drift of " + name));
+    std::vector<double> gain;
+    for (std::size_t r = 0; r < eq.p && !eq.higher_gain.empty(); ++r)
+      gain.push_back(value(eq.higher_gain[q][r], "the gain of " + name + " for observation " + std::to_string(r + 1)));
+    out.moment_gain.push_back(std::move(gain));
+  }
 }
 
 void evaluate_m_drift(const FilterEquations& eq, const PolynomialEvaluator& value, EvaluatedFilter& out) {

@@ -64,6 +64,17 @@ const std::vector<FilterKindInfo>& filter_kinds() {
        "Cholesky factor of $P|P$; opt-in (not among the defaults)",
        E::SigmaPoints, D::Model, rate, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
        /*in_defaults=*/false},
+      // The moment filters (docs/theory.md §2.9); opt-in like the ukf, so that every default output stays.
+      {FilterKind::Closure3, "closure3",
+       "moment filter of order 3: $m|m$, $P|P$ and the third central moments $E[(x-m)_i (x-m)_j (x-m)_l]|"
+       "E[(x-m)_i (x-m)_j (x-m)_l]$, every cumulant of order > 3 set to zero; opt-in (not among the defaults)",
+       E::CumulantNeglect, D::Model, rate, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
+       /*in_defaults=*/false, /*closure_order=*/3},
+      {FilterKind::Closure4, "closure4",
+       "moment filter of order 4: $m|m$, $P|P$ and the central moments of orders 3 and 4, every cumulant of "
+       "order > 4 set to zero; opt-in (not among the defaults)",
+       E::CumulantNeglect, D::Model, rate, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
+       /*in_defaults=*/false, /*closure_order=*/4},
   };
   return kinds;
 }

@@ -1,5 +1,6 @@
 #include "pfgen/model/model.hpp"
 
+#include "pfgen/algebra/coefficient.hpp"
 #include "pfgen_support/truth_schemes.hpp"
 
 #include <algorithm>
@@ -17,6 +18,18 @@ ExMatrix multiply_by_transpose(const ExMatrix& g) {
     }
   }
   return G;
+}
+
+ExMatrix inverse_noise_covariance(const ExMatrix& B) {
+  const ExMatrix R = multiply_by_transpose(B);
+  GiNaC::matrix matrix(static_cast<unsigned>(R.size()), static_cast<unsigned>(R.size()));
+  for (unsigned i = 0; i < matrix.rows(); ++i)
+    for (unsigned j = 0; j < matrix.cols(); ++j) matrix(i, j) = R[i][j];
+  const GiNaC::matrix inverse = matrix.inverse();
+  ExMatrix out(R.size(), ExVector(R.size()));
+  for (unsigned i = 0; i < inverse.rows(); ++i)
+    for (unsigned j = 0; j < inverse.cols(); ++j) out[i][j] = normalize_coefficient(inverse(i, j));
+  return out;
 }
 
 std::string filter_identifier(const std::string& name) {

@@ -49,6 +49,22 @@ std::string sigma_point_paragraph_latex(const FilterEquations& eq, const std::st
          correction + "$.\n\n";
 }
 
+// A moment filter's variables beyond m and P, and its closure, on the line after the variables.
+std::string higher_moments_header_text(const FilterEquations& eq) {
+  if (eq.variables.higher_moments().empty()) return {};
+  const std::string k = std::to_string(eq.variables.order());
+  std::string out = "central moments: M3_ijl = E[(x-m)_i (x-m)_j (x-m)_l]";
+  if (eq.variables.order() >= 4) out += ", M4_ijlq = E[(x-m)_i (x-m)_j (x-m)_l (x-m)_q]";
+  return out + " (i <= j <= l <= q); moments above order " + k + " read as those of the law whose cumulants above order " +
+         k + " are zero\n";
+}
+
+// The words for dP's observation term: a moment filter's cross-covariance C = E[(x-m) h^T] holds the higher
+// moments, so it is no P E[J_h]^T.
+std::string closure_correction_words(const FilterEquations& eq, const std::string& module_words) {
+  return eq.kind && uses_cumulant_closure(*eq.kind) ? "C (B B^T)^-1 C^T, C = E[(x-m) h^T]" : module_words;
+}
+
 // The variables line (m = E[x], P its covariance), the observation's header lines and which terms
 // make up dP.
 std::string mean_square_header_text(const Model& model, const FilterEquations& eq, const std::string& observation_lines,
@@ -61,11 +77,12 @@ std::string mean_square_header_text(const Model& model, const FilterEquations& e
   out += "; P = covariance of (";
   for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
   out += ")\n";
+  out += higher_moments_header_text(eq);
   out += observation_lines;
   if (eq.kind && uses_sigma_points(*eq.kind)) return out + sigma_point_header_text(eq, correction_words);
   out += eq.is_user_filter() ? "dP terms: as given in the model file\n\n"
-                              : "dP terms: [" + moment_terms_text(eq) + "] + [diffusion] - [" + correction_words +
-                                    "]\n\n";
+                              : "dP terms: [" + moment_terms_text(eq) + "] + [diffusion] - [" +
+                                    closure_correction_words(eq, correction_words) + "]\n\n";
   return out;
 }
 
@@ -85,6 +102,23 @@ std::string L_text_name(const FilterVariables& vars, std::size_t i, std::size_t 
 std::string L_latex_name(const FilterVariables& vars, std::size_t i, std::size_t j, std::size_t r) {
   const std::string P = vars.latex_name(vars.P(i, j));  // "P_{11}"
   return "L_{" + P.substr(3, P.size() - 4) + "," + std::to_string(r + 1) + "}";
+}
+
+// A higher moment's dy term: L, then its name without the M ("L3_112_1"; LaTeX "L^{\mu}_{112,1}").
+std::string moment_L_text_name(const FilterVariables& vars, std::uint32_t v, std::size_t r) {
+  return "L" + vars.text_name(v).substr(1) + "_" + std::to_string(r + 1);
+}
+
+std::string moment_L_latex_name(const FilterVariables& vars, std::uint32_t v, std::size_t r) {
+  const std::string mu = vars.latex_name(v);  // "\mu_{112}"
+  return "L^{\\mu}_{" + mu.substr(5, mu.size() - 6) + "," + std::to_string(r + 1) + "}";
+}
+
+bool has_gain(const std::vector<std::vector<Polynomial>>& gains, std::size_t q) {
+  if (gains.empty()) return false;
+  for (const Polynomial& L : gains[q])
+    if (!L.is_zero()) return true;
+  return false;
 }
 
 // With a sink, `out` is written to it whenever it passes a megabyte.
@@ -161,6 +195,23 @@ std::string RateReport::text(const Model& model, const FilterEquations& eq, std:
             out += L_text_name(vars, i, j, r) + " = " + writer.print(eq.P_gain[vars.upper_index(i, j)][r]) + "\n";
             drain(out, sink);
           }
+  for (std::size_t q = 0; q < eq.higher_drift.size(); ++q) {
+    const std::uint32_t v = vars.first_higher_moment() + static_cast<std::uint32_t>(q);
+    out += "d" + vars.text_name(v) + " = (";
+    writer.append(out, eq.higher_drift[q]);
+    out += ") dt";
+    for (std::size_t r = 0; r < eq.p && has_gain(eq.higher_gain, q); ++r)
+      if (!eq.higher_gain[q][r].is_zero()) out += " + " + moment_L_text_name(vars, v, r) + innovation[r];
+    out += "\n";
+    drain(out, sink);
+  }
+  for (std::size_t q = 0; q < eq.higher_drift.size(); ++q)
+    for (std::size_t r = 0; r < eq.p && has_gain(eq.higher_gain, q); ++r)
+      if (!eq.higher_gain[q][r].is_zero()) {
+        const std::uint32_t v = vars.first_higher_moment() + static_cast<std::uint32_t>(q);
+        out += moment_L_text_name(vars, v, r) + " = " + writer.print(eq.higher_gain[q][r]) + "\n";
+        drain(out, sink);
+      }
   out += trailing_text(eq);
   return out;
 }
@@ -215,6 +266,23 @@ std::string RateReport::latex(const Model&, const FilterEquations& eq) const {
         for (std::size_t r = 0; r < eq.p; ++r)
           if (!eq.P_gain[vars.upper_index(i, j)][r].is_zero())
             lines.push_back(latex_align_lines(L_latex_name(vars, i, j, r), writer.print(eq.P_gain[vars.upper_index(i, j)][r])));
+  for (std::size_t q = 0; q < eq.higher_drift.size(); ++q) {
+    const std::uint32_t v = vars.first_higher_moment() + static_cast<std::uint32_t>(q);
+    if (!has_gain(eq.higher_gain, q)) {
+      lines.push_back(latex_align_lines("\\frac{d" + vars.latex_name(v) + "}{dt}", writer.print(eq.higher_drift[q])));
+      continue;
+    }
+    std::string rhs = "\\left(" + writer.print(eq.higher_drift[q]) + "\\right)dt";
+    for (std::size_t r = 0; r < eq.p; ++r)
+      if (!eq.higher_gain[q][r].is_zero()) rhs += " + " + moment_L_latex_name(vars, v, r) + innovation[r];
+    lines.push_back(latex_align_lines("d" + vars.latex_name(v), rhs));
+  }
+  for (std::size_t q = 0; q < eq.higher_drift.size(); ++q)
+    for (std::size_t r = 0; r < eq.p && has_gain(eq.higher_gain, q); ++r)
+      if (!eq.higher_gain[q][r].is_zero())
+        lines.push_back(latex_align_lines(
+            moment_L_latex_name(vars, vars.first_higher_moment() + static_cast<std::uint32_t>(q), r),
+            writer.print(eq.higher_gain[q][r])));
   for (std::string& line : trailing_latex(eq)) lines.push_back(std::move(line));
   for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
   out += "\\end{align*}\n";
@@ -282,6 +350,19 @@ Json RateReport::json(const Model& model, const FilterEquations& eq) const {
       P_gain.push(matrix);
     }
     out.add("P_gain", P_gain);
+  }
+  if (!eq.higher_drift.empty()) {  // a moment filter's central moments of order >= 3, in the state's order
+    Json names = Json::array(), drift = Json::array(), gains = Json::array();
+    for (std::size_t q = 0; q < eq.higher_drift.size(); ++q) {
+      names.push(Json::string(vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q))));
+      drift.push(Json::string(writer.print(eq.higher_drift[q])));
+      Json row = Json::array();
+      for (std::size_t r = 0; r < eq.p && !eq.higher_gain.empty(); ++r) row.push(Json::string(writer.print(eq.higher_gain[q][r])));
+      gains.push(row);
+    }
+    out.add("moments", names);
+    out.add("moment_drift", drift);
+    if (!eq.higher_gain.empty()) out.add("moment_gain", gains);
   }
   add_json(eq, out);
   if (is_risk_sensitive_report(eq)) add_risk_json(eq, out);

@@ -27,4 +27,10 @@ std::string covariance_latex_name(std::size_t i, std::size_t j, std::size_t n);
 // m1..mn, then P's upper triangle row by row: n + n(n+1)/2 names, in the filter state's order.
 std::vector<std::string> filter_variable_names(std::size_t n);
 
+// A central moment of order r >= 3 of an n-state moment filter, E[(x-m)_i (x-m)_j ...], its indices
+// ascending: "M3_112" (order, then the indices run together), or "M3_1_2_10" when n >= 10.
+std::string central_moment_name(const std::vector<std::size_t>& indices, std::size_t n);
+// "\mu_{112}", or "\mu_{1,2,10}" when n >= 10.
+std::string central_moment_latex_name(const std::vector<std::size_t>& indices, std::size_t n);
+
 }  // namespace pfgen_support

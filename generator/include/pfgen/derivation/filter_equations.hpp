@@ -82,6 +82,12 @@ struct FilterEquations {
   // predicted_observation_r dt), u = upper_index(i, j): the covariance's own innovation term
   // sum_k P E[H_k] P (R^-1)_kr (observations/polynomial/polynomial_observation_terms.hpp).
   std::vector<std::vector<Polynomial>> P_gain;
+  // The moment filters only (the closure kinds; empty otherwise): each central moment of order >= 3's
+  // dt coefficient and (continuous observations) its coefficients of dy_r - predicted_observation_r dt, in
+  // FilterVariables::higher_moments() order (derivation/moment_closure.hpp). Their P_gain is set for a
+  // linear observation too.
+  std::vector<Polynomial> higher_drift;
+  std::vector<std::vector<Polynomial>> higher_gain;
   // Delayed observations only: the delay h (0 otherwise), and for the kinds with the Phi* gain the
   // drift f(xs, t) of the noise-free solution xs, n entries (empty otherwise).
   GiNaC::numeric delay = 0;

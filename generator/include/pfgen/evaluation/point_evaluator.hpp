@@ -26,6 +26,9 @@ struct EvaluationPoint {
   std::vector<GiNaC::numeric> x_star;            // --x-star
   std::vector<GiNaC::numeric> x_star_delayed;    // --x-star-delayed
   std::vector<GiNaC::numeric> phi;               // --phi, instead of --x-star-delayed
+  // A moment filter's central moments of order >= 3 by name (--moment M3_112=0.1); one not given takes its
+  // value under N(m, P): 0 at order 3, P_ij P_lq + P_il P_jq + P_iq P_jl at order 4.
+  std::map<std::string, GiNaC::numeric> moments;
 };
 
 // For a sampled kind, m_drift and P_drift are the prediction's (no observation term) and gain is
@@ -42,6 +45,11 @@ struct EvaluatedFilter {
   // Polynomial observations only: per observation r, the n x n coefficients of dy_r - E[h_r] dt in dP
   // (FilterEquations::P_gain); predicted_observation then holds E[h] (or h(m)).
   std::vector<std::vector<std::vector<double>>> P_gain;
+  // Moment filters only: the central moments of order >= 3 (their names, in the state's order), each one's
+  // drift and coefficients of dy_r - predicted_observation_r dt; P_gain is then set for a linear h too.
+  std::vector<std::string> moment_names;
+  std::vector<double> moment_drift;
+  std::vector<std::vector<double>> moment_gain;
 };
 
 // A problem with the point itself (wrong sizes, asymmetric P, unknown parameter, a delayed input

@@ -14,7 +14,7 @@
 namespace pfgen {
 
 enum class FilterKind { Optimal, Ekf, Additive, EkfAdditive, CdOptimal, CdEkf, CdEuler, DelayOptimal, DelayUncorrected, DelayEkf,
-                        RiskSensitive, Ukf };
+                        RiskSensitive, Ukf, Closure3, Closure4 };
 
 // How a kind takes the expectations of f, of its Jacobian and of g g^T.
 enum class ExpectationRule {
@@ -22,6 +22,8 @@ enum class ExpectationRule {
   AtMean,    // evaluated at x = m: the extended Kalman-Bucy filter
   SigmaPoints,  // a weighted sum over the 2n+1 sigma points m, m +- sqrt(c) L_j (L L^T = P): the unscented
                 // Kalman-Bucy filter (derivation/unscented.hpp, docs/theory.md §2.8)
+  CumulantNeglect,  // the moment filter of order k (closure_order): m and the central moments of orders 2..k
+                    // carried, every cumulant of order > k set to zero (derivation/moment_closure.hpp, §2.9)
 };
 
 // Which diffusion a kind puts into its P equation.
@@ -67,6 +69,8 @@ struct FilterKindInfo {
   // comparator one asks for (`--filter ukf`): adding it to every default would change every
   // default output and the checked-in generated/ code.
   bool in_defaults = true;
+  // The highest order of central moment the filter carries: 2 (m and P) but for the moment filters.
+  unsigned closure_order = 2;
 };
 
 // Every built-in kind, in the canonical order in which commands list and default to them.
@@ -101,6 +105,9 @@ inline bool is_extended_kalman(FilterKind kind) { return filter_kind_info(kind).
 inline bool uses_sigma_points(FilterKind kind) { return filter_kind_info(kind).expectation == ExpectationRule::SigmaPoints; }
 inline bool uses_euler_map(FilterKind kind) { return filter_kind_info(kind).prediction == Prediction::EulerMap; }
 inline bool uses_transition_gain(FilterKind kind) { return filter_kind_info(kind).delay_gain == DelayGain::Transition; }
+inline bool uses_cumulant_closure(FilterKind kind) {
+  return filter_kind_info(kind).expectation == ExpectationRule::CumulantNeglect;
+}
 inline bool is_risk_sensitive(FilterKind kind) { return filter_kind_info(kind).criterion == Criterion::RiskSensitive; }
 
 }  // namespace pfgen

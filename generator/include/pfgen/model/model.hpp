@@ -168,6 +168,7 @@ std::string filter_identifier(const std::string& name);
 std::string source_place(const Model& model);
 
 ExMatrix multiply_by_transpose(const ExMatrix& g);  // g g^T, expanded
+ExMatrix inverse_noise_covariance(const ExMatrix& B);  // (B B^T)^-1, each entry a normalised coefficient
 bool depends_on_states(const Model& model, const GiNaC::ex& e);
 
 }  // namespace pfgen

@@ -7,19 +7,6 @@
 namespace pfgen {
 namespace {
 
-// R^-1 = (B B^T)^-1, each entry a normalised coefficient.
-ExMatrix inverse_noise_covariance(const ExMatrix& B) {
-  const ExMatrix R = multiply_by_transpose(B);
-  GiNaC::matrix matrix(static_cast<unsigned>(R.size()), static_cast<unsigned>(R.size()));
-  for (unsigned i = 0; i < matrix.rows(); ++i)
-    for (unsigned j = 0; j < matrix.cols(); ++j) matrix(i, j) = R[i][j];
-  const GiNaC::matrix inverse = matrix.inverse();
-  ExMatrix out(R.size(), ExVector(R.size()));
-  for (unsigned i = 0; i < inverse.rows(); ++i)
-    for (unsigned j = 0; j < inverse.cols(); ++j) out[i][j] = normalize_coefficient(inverse(i, j));
-  return out;
-}
-
 // sum_k P_ik M_kj for M a matrix of polynomials (M_kj = 0 skipped).
 Polynomial P_times(const FilterVariables& vars, const std::vector<std::vector<Polynomial>>& M, std::size_t i,
                    std::size_t j) {
