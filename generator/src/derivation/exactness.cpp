@@ -54,7 +54,7 @@ ExactnessReport unscented_exactness(const ExactnessFacts& facts) {
   return report;
 }
 
-// The moment filters (docs/theory.md §2.9): with f and h affine and g free of the state, a Gaussian prior
+// The moment filters (docs/theory.md §2.10): with f and h affine and g free of the state, a Gaussian prior
 // stays Gaussian, so the cumulants above the order carried stay zero and the closure drops nothing.
 ExactnessReport moment_closure_exactness(const ExactnessFacts& facts, FilterKind kind) {
   ExactnessReport report;

@@ -64,7 +64,7 @@ const std::vector<FilterKindInfo>& filter_kinds() {
        "Cholesky factor of $P|P$; opt-in (not among the defaults)",
        E::SigmaPoints, D::Model, rate, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
        /*in_defaults=*/false},
-      // The moment filters (docs/theory.md §2.9); opt-in like the ukf, so that every default output stays.
+      // The moment filters (docs/theory.md §2.10); opt-in like the ukf, so that every default output stays.
       {FilterKind::Closure3, "closure3",
        "moment filter of order 3: $m|m$, $P|P$ and the third central moments $E[(x-m)_i (x-m)_j (x-m)_l]|"
        "E[(x-m)_i (x-m)_j (x-m)_l]$, every cumulant of order > 3 set to zero; opt-in (not among the defaults)",

@@ -1,5 +1,5 @@
 #pragma once
-// Expectations under a moment filter's closed law (docs/theory.md §2.9): x = m + e, the deviation e
+// Expectations under a moment filter's closed law (docs/theory.md §2.10): x = m + e, the deviation e
 // with the central moments the filter carries (P, then M3, M4 ... up to its order k) and every
 // cumulant of order > k zero. E[q(x)] is then a polynomial in m and those moments.
 //

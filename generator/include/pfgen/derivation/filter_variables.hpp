@@ -9,7 +9,7 @@
 // A filter for delayed observations (docs/theory.md §2.6) has three more blocks after P, which
 // are not part of count(): md_i = m_i(t - h), phi_i = Phi*_ii(t - h, t) (inputs the filter reads
 // from its history) and xs_i = x*_i, the noise-free solution the Phi* kinds integrate beside m, P.
-// A moment filter of order k >= 3 (the closure kinds, docs/theory.md §2.9) carries after P the central
+// A moment filter of order k >= 3 (the closure kinds, docs/theory.md §2.10) carries after P the central
 // moments of orders 3..k, E[(x-m)_i (x-m)_j (x-m)_l] for i <= j <= l (M3_ijl), then those of order 4
 // (M4_ijlq), each order in lexicographic order of its ascending indices; they are part of count().
 #include <cstdint>

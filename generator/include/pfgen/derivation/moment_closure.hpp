@@ -1,5 +1,5 @@
 #pragma once
-// The moment filter of order k (the closure kinds; docs/theory.md §2.9): m and the central moments
+// The moment filter of order k (the closure kinds; docs/theory.md §2.10): m and the central moments
 // mu_a = E[(x-m)^a], 2 <= |a| <= k, of the conditional law, whose Kushner-Stratonovich equations are
 // closed by setting every cumulant of order > k to zero (ClosedExpectation). In Ito form, with
 // e = x - m, dnu = dy - E[h] dt, C_b = E[e^b h] - mu_b E[h] (1 x p) and K_i = C_(e_i) R^-1:

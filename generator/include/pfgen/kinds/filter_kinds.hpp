@@ -23,7 +23,7 @@ enum class ExpectationRule {
   SigmaPoints,  // a weighted sum over the 2n+1 sigma points m, m +- sqrt(c) L_j (L L^T = P): the unscented
                 // Kalman-Bucy filter (derivation/unscented.hpp, docs/theory.md §2.8)
   CumulantNeglect,  // the moment filter of order k (closure_order): m and the central moments of orders 2..k
-                    // carried, every cumulant of order > k set to zero (derivation/moment_closure.hpp, §2.9)
+                    // carried, every cumulant of order > k set to zero (derivation/moment_closure.hpp, §2.10)
 };
 
 // Which diffusion a kind puts into its P equation.
