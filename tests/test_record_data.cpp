@@ -213,3 +213,22 @@ TEST_CASE("estimate refuses a gap between samples that would take more than 10^7
       "gap.csv:4: the interval from t = 1872 to 118000000 needs 1.18e+08 prediction sub-steps (1 per period 1), more "
       "than 1e+07: check the time column");
 }
+
+TEST_CASE("a moment filter over a record fails where its moments leave the realisable set, and runs where not",
+          "[record][compiler]") {
+  // Van der Pol's record at one closure4 step per 0.01: the first row already drives x1's Pearson bound below 0,
+  // which fails the run with the margin's name (never a silent run past it); four steps per row keep it realisable.
+  TempDir dir;
+  const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/van_der_pol.yaml";
+  const std::string data = std::string(PFGEN_SOURCE_DIR) + "/examples/records/van_der_pol_increments.csv";
+  const auto failed = pfgen_test::run_pfgen({"estimate", model, "--data", data, "--filters", "closure4",
+                                             "--cache-dir=" + dir.file("cache"), "-q"});
+  CHECK(failed.exit_code == 1);
+  CHECK_THAT(failed.err, Contains("van_der_pol_increments.csv:3: the filter 'closure4' failed: its moments left the "
+                                  "realisable set at t = 0.01 (Pearson's bound of x1 is -"));
+  const auto ran = pfgen_test::run_pfgen({"estimate", model, "--data", data, "--filters", "closure3,closure4",
+                                          "--substeps", "4", "--cache-dir=" + dir.file("cache"), "-q"});
+  INFO(ran.err);
+  CHECK(ran.exit_code == 0);
+  CHECK_THAT(ran.out, Contains("closure4 ") && Contains("passes: consistent and white"));
+}

@@ -237,6 +237,10 @@ std::vector<RecordFilter> SimulationPlugin::record_filters() const {
     else
       filter.timing = std::make_shared<RecordIncrements>(f.step_at, f.predicted_observation, table_->observation_noise,
                                                          f.extra_state_size);
+    if (f.realisability_margins) {
+      filter.realisability_margins = f.realisability_margins;
+      filter.margin_names.assign(f.margin_names, f.margin_names + f.margin_count);
+    }
     out.push_back(std::move(filter));
   }
   for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {

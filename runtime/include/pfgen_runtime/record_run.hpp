@@ -51,8 +51,11 @@ class RecordRun {
   bool failed() const { return !progress_.failure.empty(); }
 
  private:
+  bool realisable();  // false, failing the run, where a moment filter's margin is not positive
+
   const RecordFilter& filter_;
   RecordProgress progress_;
+  std::vector<double> margins_;
   bool begun_ = false;  // a row has been given
 };
 

@@ -1,5 +1,6 @@
 #include "pfgen_runtime/record_run.hpp"
 
+#include <sstream>
 #include <stdexcept>
 
 namespace pfgen_runtime {
@@ -25,7 +26,25 @@ bool RecordRun::advance(double t, const double* observation) {
   if (failed()) return false;
   const bool first = !begun_;
   begun_ = true;
-  return filter_.timing->absorb(progress_, t, observation, first);
+  if (!filter_.timing->absorb(progress_, t, observation, first)) return false;
+  return realisable();
+}
+
+// A moment filter's state must stay in the realisable set: a margin not positive (NaN included) fails the run
+// there, as it stops a simulated one.
+bool RecordRun::realisable() {
+  if (!filter_.realisability_margins) return true;
+  margins_.resize(filter_.margin_names.size());
+  filter_.realisability_margins(progress_.state.data(), margins_.data());
+  for (std::size_t k = 0; k < margins_.size(); ++k)
+    if (!(margins_[k] > 0)) {
+      std::ostringstream why;
+      why.precision(10);
+      why << "its moments left the realisable set at t = " << progress_.t << " (" << filter_.margin_names[k] << " is "
+          << margins_[k] << ")";
+      return progress_.fail(why.str());
+    }
+  return true;
 }
 
 }  // namespace pfgen_runtime
