@@ -135,4 +135,10 @@ TEST_CASE("public API: a moment the filter does not carry is refused with the co
                     "--moment: filter closure3 has no central moment 'M4_1111' (its moments are M3_111 to M3_111)");
   CHECK_THROWS_WITH(model.derive("optimal").eval(point),
                     "--moment: filter optimal carries no central moments above P (the closure kinds do)");
+  // A name holding '=' is refused as one, not split by the command's NAME=VALUE into M3_111 and "1=2".
+  point.moments = {{"M3_111=1", 2}};
+  CHECK_THROWS_WITH(model.derive("closure3").eval(point), "--moment: 'M3_111=1' is not a name: it holds '='");
+  point.moments.clear();
+  point.parameters = {{"a=1", 2}};
+  CHECK_THROWS_WITH(model.derive("closure3").eval(point), "--set: 'a=1' is not a name: it holds '='");
 }

@@ -57,6 +57,10 @@ std::vector<std::string> assignment_texts(const std::map<std::string, double>& v
   std::vector<std::string> texts;
   for (const auto& [name, value] : values) {
     check_no_nul(option, name);
+    // The command splits NAME=VALUE at the first '=': a name holding one would be read as another name
+    // with a value that is not a number.
+    if (name.find('=') != std::string::npos)
+      throw Error(option + ": " + pfgen_support::quoted(name) + " is not a name: it holds '='");
     texts.push_back(name + "=" + number_text(value));
   }
   return texts;

@@ -75,7 +75,8 @@ std::shared_ptr<const T> locked_shared(T&& value) {
   return std::shared_ptr<const T>(new T(std::forward<T>(value)), [](const T* p) { destroy_locked(p); });
 }
 
-// Named values as the command's texts of `option`, "name=value" (names checked by check_no_nul):
+// Named values as the command's texts of `option`, "name=value" (names checked by check_no_nul, and
+// refused if they hold '='):
 // parameters' for --set, a moment filter's moments for --moment.
 std::vector<std::string> assignment_texts(const std::map<std::string, double>& values,
                                           const std::string& option = "--set");
