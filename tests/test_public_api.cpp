@@ -1,6 +1,8 @@
 // The public C++ API (<pfgen/pfgen.hpp>) in process: a model built in code gives the model file's
 // filter byte for byte, the one exception type carries the command's line, and handles stay valid
 // when the model they came from is dropped. (Against the installed package: the package test.)
+#include <algorithm>
+
 #include <catch2/catch.hpp>
 
 #include "pfgen/pfgen.hpp"
@@ -85,4 +87,58 @@ TEST_CASE("public API: model text is bounded as a model file is", "[api][unit]")
   } catch (const api::Error& e) {
     CHECK(e.report() == "big.yaml: error: the model file is larger than 64 MiB: not a model file");
   }
+}
+
+TEST_CASE("public API: a moment filter takes its moments and gives theirs", "[api][unit]") {
+  // closure3 of the quadratic example at m = -1.5, P = 0.5, M3_111 = 0.2 (tests/test_cli.cpp's hand values):
+  // dP = 0.2 (2 m P + M3) + 0.01 (m^4 + 6 m^2 P + 4 m M3 + 3 P^2) - P^2, dP's dy term M3, dM3's drift
+  // 0.3 (2 m M3 + 2 P^2) + 0.03 (4 m^3 P + 6 m^2 M3 + 12 m P^2 + 10 P M3) - 3 M3 P and dy term M4 - 3 P^2 = 0.
+  const api::Filter closure3 = api::Model::load(pfgen_test::example("basin2006_quadratic.yaml")).derive("closure3");
+  api::Point point;
+  point.m = {-1.5};
+  point.P = {{0.5}};
+  point.moments = {{"M3_111", 0.2}};
+  const api::Evaluation value = closure3.eval(point);
+  CHECK(value.P_drift[0][0] == Approx(-0.396375).epsilon(1e-14));
+  REQUIRE(value.P_gain.size() == 1);
+  CHECK(value.P_gain[0][0][0] == Approx(0.2).epsilon(1e-14));
+  CHECK(value.moment_names == std::vector<std::string>{"M3_111"});
+  REQUIRE(value.moment_drift.size() == 1);
+  CHECK(value.moment_drift[0] == Approx(-0.5565).epsilon(1e-14));
+  CHECK(value.moment_gain == api::Matrix{{0}});
+  CHECK(value.json.find("\"moments\": [\"M3_111\"]") != std::string::npos);  // the command's JSON
+  // Left out, M3 takes its Gaussian value 0: dP's dy term is then 0.
+  point.moments.clear();
+  CHECK(closure3.eval(point).P_gain[0][0][0] == 0);
+
+  const api::Expressions e = closure3.expressions();
+  CHECK(e.moment_names == std::vector<std::string>{"M3_111"});
+  CHECK(e.moment_drift.size() == 1);
+  CHECK(e.moment_gain == std::vector<std::vector<std::string>>{{"0"}});
+  REQUIRE(e.P_gain.size() == 1);
+  CHECK(e.P_gain[0][0][0] == "M3_111");
+  CHECK(std::find(e.names.begin(), e.names.end(), "M3_111") != e.names.end());
+  const api::Expressions optimal =
+      api::Model::load(pfgen_test::example("basin2006_quadratic.yaml")).derive("optimal").expressions();
+  CHECK(optimal.moment_names.empty());
+  CHECK(optimal.moment_drift.empty());
+  CHECK(optimal.moment_gain.empty());
+}
+
+TEST_CASE("public API: a moment the filter does not carry is refused with the command's line", "[api][unit]") {
+  const api::Model model = api::Model::load(pfgen_test::example("basin2006_quadratic.yaml"));
+  api::Point point;
+  point.m = {1};
+  point.P = {{1}};
+  point.moments = {{"M4_1111", 1}};
+  CHECK_THROWS_WITH(model.derive("closure3").eval(point),
+                    "--moment: filter closure3 has no central moment 'M4_1111' (its moments are M3_111 to M3_111)");
+  CHECK_THROWS_WITH(model.derive("optimal").eval(point),
+                    "--moment: filter optimal carries no central moments above P (the closure kinds do)");
+  // A name holding '=' is refused as one, not split by the command's NAME=VALUE into M3_111 and "1=2".
+  point.moments = {{"M3_111=1", 2}};
+  CHECK_THROWS_WITH(model.derive("closure3").eval(point), "--moment: 'M3_111=1' is not a name: it holds '='");
+  point.moments.clear();
+  point.parameters = {{"a=1", 2}};
+  CHECK_THROWS_WITH(model.derive("closure3").eval(point), "--set: 'a=1' is not a name: it holds '='");
 }

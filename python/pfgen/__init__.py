@@ -196,24 +196,33 @@ def _optional_module(name, package, call):
 
 def _parameters(values):
     """Parameters' new values, name -> number, as --set name=value gives them."""
+    return _assignments(values, "--set", "parameter")
+
+
+def _assignments(values, option, what):
+    """Named numbers, name -> number, as the command's `option` name=value gives them (--set, --moment)."""
     if values is None:
         return {}
     try:
         items = list(values.items())
     except (AttributeError, TypeError):
-        raise Error(f"error: --set: expected a dict of parameter names and numbers, got {type(values).__name__}") from None
+        raise Error(f"error: {option}: expected a dict of {what} names and numbers, "
+                    f"got {type(values).__name__}") from None
     out = {}
     for name, value in items:
         if not isinstance(name, str):
-            raise Error(f"error: --set: a parameter's name must be a str, got {_shown(name)}")
-        out[name] = _number(value, f"--set {name}")
+            raise Error(f"error: {option}: a {what}'s name must be a str, got {_shown(name)}")
+        out[name] = _number(value, f"{option} {name}")
     return out
 
 
 def _arrays(value):
-    """eval's JSON with its lists as numpy arrays (its objects stay dicts)."""
+    """eval's JSON with its lists of numbers as numpy arrays (its objects stay dicts, its lists of names
+    lists: a moment filter's "moments")."""
     if isinstance(value, dict):
         return {key: _arrays(item) for key, item in value.items()}
+    if isinstance(value, list) and value and all(isinstance(item, str) for item in value):
+        return list(value)
     return _np.array(value, dtype=float)
 
 
@@ -261,19 +270,25 @@ class Filter:
     def __repr__(self):
         return f"<pfgen.Filter {self.name} of model {self._model.name}>"
 
-    def eval(self, t, m, P, /, *, m_delayed=None, x_star=None, x_star_delayed=None, phi=None, parameters=None,
-             **more_parameters):
+    def eval(self, t, m, P, /, *, m_delayed=None, x_star=None, x_star_delayed=None, phi=None, moments=None,
+             parameters=None, **more_parameters):
         """The filter's values at (t, m, P), with parameters given new values by keyword (or in
         ``parameters``, for one named like an argument of eval, such as phi):
-        ``pfgen eval --t T --m M --P P --set name=value``. Returns the command's JSON without
-        model and filter, each list a numpy array: m_drift, gain, P_drift (a sampled filter's
-        under "prediction" and "update", a delayed filter's inputs under "delayed_inputs")."""
+        ``pfgen eval --t T --m M --P P --set name=value``. A moment filter (closure3, closure4)
+        reads its central moments above P from ``moments``, name -> number (``{"M3_111": 0.2}``,
+        ``--moment M3_111=0.2``); one left out takes its value under N(m, P). Returns the command's
+        JSON without model and filter, each list of numbers a numpy array: m_drift, gain, P_drift
+        (a sampled filter's under "prediction" and "update", a delayed filter's inputs under
+        "delayed_inputs"); a polynomial observation's or a moment filter's P_gain (p x n x n: dP's
+        coefficients of dy_r - predicted_observation_r dt); a moment filter's "moments" (their
+        names, a list), "moment_drift" (one per moment) and "moment_gain" (one row of p per moment)."""
         values = _parameters(parameters)
         values.update(_parameters(more_parameters))
         native = self._native.eval(
             _number(t, "--t"), _number_list(m, "--m"), _number_matrix(P, "--P"), values,
             _number_list(m_delayed, "--m-delayed"), _number_list(x_star, "--x-star"),
-            _number_list(x_star_delayed, "--x-star-delayed"), _number_list(phi, "--phi"))
+            _number_list(x_star_delayed, "--x-star-delayed"), _number_list(phi, "--phi"),
+            _assignments(moments, "--moment", "moment"))
         values = _json.loads(native.json)
         return {key: _arrays(value) for key, value in values.items() if key not in ("model", "filter")}
 
@@ -288,9 +303,13 @@ class Filter:
             dm = m_drift dt + gain (dy - predicted_observation dt),   dP = P_drift dt
 
         (a sampled filter's m_drift and P_drift are its prediction between samples, and its gain
-        is empty; a polynomial observation's dP adds sum_r P_gain[r] (dy_r - predicted_observation_r dt)). Returns a SympyFilter with m_drift (n x 1), gain (n x p), P_drift (n x n),
-        predicted_observation (p x 1), definitions (name -> expression, in order) and symbols
-        (name -> Symbol: m1, P11, ..., the parameters, the time)."""
+        is empty; a polynomial observation's or a moment filter's dP adds sum_r P_gain[r] (dy_r -
+        predicted_observation_r dt); a moment filter carries its central moments above P too, each
+        dM_q = moment_drift[q] dt + sum_r moment_gain[q, r] (dy_r - predicted_observation_r dt)).
+        Returns a SympyFilter with m_drift (n x 1), gain (n x p), P_drift (n x n),
+        predicted_observation (p x 1), P_gain (p matrices n x n), moment_names (M3_111, ...),
+        moment_drift (q x 1), moment_gain (q x p), definitions (name -> expression, in order) and
+        symbols (name -> Symbol: m1, P11, ..., M3_111, ..., the parameters, the time)."""
         sympy = _optional_module("sympy", "python3-sympy", "Filter.to_sympy")
         e = self._native.expressions()
         # Every name as a plain Symbol, so that a parameter called gamma or E stays a symbol; in
@@ -317,18 +336,26 @@ class Filter:
                                                [parse(x) for x in e.predicted_observation]),
             definitions={name: parse(value) for name, value in e.definitions},
             symbols=symbols,
-            P_gain=[sympy.Matrix(n, n, [parse(x) for row in L for x in row]) for L in e.P_gain])
+            P_gain=[sympy.Matrix(n, n, [parse(x) for row in L for x in row]) for L in e.P_gain],
+            moment_names=list(e.moment_names),
+            moment_drift=sympy.Matrix(len(e.moment_drift), 1, [parse(x) for x in e.moment_drift]),
+            moment_gain=sympy.Matrix(len(e.moment_gain), p, [parse(x) for row in e.moment_gain for x in row]))
 
 
 class SympyFilter:
     """Filter.to_sympy's result."""
 
-    def __init__(self, m_drift, gain, P_drift, predicted_observation, definitions, symbols, P_gain):
+    def __init__(self, m_drift, gain, P_drift, predicted_observation, definitions, symbols, P_gain, moment_names,
+                 moment_drift, moment_gain):
         self.m_drift, self.gain, self.P_drift = m_drift, gain, P_drift
         self.predicted_observation, self.definitions, self.symbols = predicted_observation, definitions, symbols
-        #: a polynomial observation's dP = P_drift dt + sum_r P_gain[r] (dy_r - predicted_observation_r dt);
-        #: empty for the other observations
+        #: a polynomial observation's (or a moment filter's) dP = P_drift dt + sum_r P_gain[r] (dy_r -
+        #: predicted_observation_r dt); empty for the other filters
         self.P_gain = P_gain
+        #: a moment filter's central moments above P, in its state's order (M3_111, ..., then M4_...);
+        #: dM_q = moment_drift[q] dt + sum_r moment_gain[q, r] (dy_r - predicted_observation_r dt).
+        #: Empty (0 rows) for the other filters; a sampled filter's moment_gain has no columns.
+        self.moment_names, self.moment_drift, self.moment_gain = moment_names, moment_drift, moment_gain
 
     def __repr__(self):
         return f"SympyFilter(m_drift={self.m_drift}, gain={self.gain}, P_drift={self.P_drift})"
@@ -422,13 +449,15 @@ class Simulation:
         self.steps = native.steps
         #: column name -> numpy array, one value per recorded time (NaN where the CSV is empty)
         self.series = {name: _np.array(values, dtype=float) for name, values in zip(native.columns, native.series)}
-        #: filter name -> dict of completed, diverged, psd_losses, rms, rms_se, peak_median,
+        #: filter name -> dict of completed, diverged, psd_losses, unrealisable (a moment filter's runs
+        #: stopped where its moments left the realisable set, among diverged), rms, rms_se, peak_median,
         #: peak_q95, reference_distance, reference_distance_se, own_error (per state: numpy arrays;
         #: own_error, the particle reference's own Monte Carlo error, in the "reference" entry only)
         self.summary = {}
         for f in native.filters:
             self.summary[f.name] = {
                 "completed": f.completed, "diverged": f.diverged, "psd_losses": f.psd_losses,
+                "unrealisable": f.unrealisable,
                 "rms": _np.array(f.rms), "rms_se": _np.array(f.rms_se),
                 "peak_median": _np.array(f.peak_median), "peak_q95": _np.array(f.peak_q95),
                 "reference_distance": _np.array(f.reference_distance),

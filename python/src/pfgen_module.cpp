@@ -115,6 +115,9 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readonly("P_drift", &api::Expressions::P_drift)
       .def_readonly("predicted_observation", &api::Expressions::predicted_observation)
       .def_readonly("P_gain", &api::Expressions::P_gain)
+      .def_readonly("moment_names", &api::Expressions::moment_names)
+      .def_readonly("moment_drift", &api::Expressions::moment_drift)
+      .def_readonly("moment_gain", &api::Expressions::moment_gain)
       .def_readonly("definitions", &api::Expressions::definitions)
       .def_readonly("m_names", &api::Expressions::m_names)
       .def_readonly("P_names", &api::Expressions::P_names)
@@ -130,8 +133,9 @@ PYBIND11_MODULE(_pfgen, m) {
           "eval",
           [](const api::Filter& filter, double t, const api::Vector& m, const api::Matrix& P,
              const std::map<std::string, double>& parameters, const api::Vector& m_delayed,
-             const api::Vector& x_star, const api::Vector& x_star_delayed, const api::Vector& phi) {
-            const api::Point point{t, m, P, parameters, m_delayed, x_star, x_star_delayed, phi};
+             const api::Vector& x_star, const api::Vector& x_star_delayed, const api::Vector& phi,
+             const std::map<std::string, double>& moments) {
+            const api::Point point{t, m, P, parameters, m_delayed, x_star, x_star_delayed, phi, moments};
             return filter.eval(point);
           },
           Released());
@@ -184,6 +188,7 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readonly("completed", &api::FilterSummary::completed)
       .def_readonly("diverged", &api::FilterSummary::diverged)
       .def_readonly("psd_losses", &api::FilterSummary::psd_losses)
+      .def_readonly("unrealisable", &api::FilterSummary::unrealisable)
       .def_readonly("rms", &api::FilterSummary::rms)
       .def_readonly("rms_se", &api::FilterSummary::rms_se)
       .def_readonly("peak_median", &api::FilterSummary::peak_median)

@@ -47,7 +47,7 @@ def test_eval_is_the_commands(path, pfgen_command):
         values = model.derive(kind).eval(0.25, np.array(m), np.array(P))
         del expected["model"], expected["filter"]
         assert_same(values, expected, f"{path} {kind}")
-        assert model.derive(kind)._native.eval(0.25, m, P, {}, [], [], [], []).json == done.stdout
+        assert model.derive(kind)._native.eval(0.25, m, P, {}, [], [], [], [], {}).json == done.stdout
 
 
 def test_parameters_by_keyword_are_set(pfgen_command):
@@ -88,3 +88,60 @@ def test_a_parameter_named_like_an_argument(pfgen_command, work_dir):
     values = pfgen.Model.load(str(path)).derive("optimal").eval(0, [1], [[1]], parameters={"phi": 2, "m": 3})
     assert values["P_drift"].tolist() == json.loads(done.stdout)["P_drift"]
     assert values["m_drift"].tolist() == [-2]
+
+
+def test_a_moment_filter_takes_its_moments_by_name(pfgen_command):
+    # closure3 of the quadratic example at m = -1.5, P = 0.5, M3_111 = 0.2 (tests/test_cli.cpp's hand values):
+    # dP = 0.2 (2 m P + M3) + 0.01 (m^4 + 6 m^2 P + 4 m M3 + 3 P^2) - P^2, dP's dy term M3, dM3's drift
+    # 0.3 (2 m M3 + 2 P^2) + 0.03 (4 m^3 P + 6 m^2 M3 + 12 m P^2 + 10 P M3) - 3 M3 P and dy term 0.
+    path = "examples/basin2006_quadratic.yaml"
+    closure3 = pfgen.Model.load(path).derive("closure3")
+    values = closure3.eval(0, [-1.5], [[0.5]], moments={"M3_111": 0.2})
+    assert values["moments"] == ["M3_111"]
+    np.testing.assert_allclose(values["P_drift"], [[-0.396375]], rtol=1e-14)
+    np.testing.assert_allclose(values["P_gain"], [[[0.2]]], rtol=1e-14)
+    np.testing.assert_allclose(values["moment_drift"], [-0.5565], rtol=1e-14)
+    np.testing.assert_array_equal(values["moment_gain"], [[0]])
+    done = pfgen_command.run("eval", path, "--filter", "closure3", "--m=-1.5", "--P", "0.5", "--moment", "M3_111=0.2")
+    expected = json.loads(done.stdout)
+    del expected["model"], expected["filter"], expected["moments"]
+    assert_same({key: value for key, value in values.items() if key != "moments"}, expected, "closure3")
+    # A moment left out takes its Gaussian value (M3 = 0): the moments are not ignored.
+    np.testing.assert_allclose(closure3.eval(0, [-1.5], [[0.5]])["P_gain"], [[[0]]], atol=1e-15)
+
+
+@pytest.mark.parametrize("path", example_models())
+def test_a_moment_filters_eval_is_the_commands(path, pfgen_command):
+    # Every example with the moment filters (but for ins16's 16 states, whose closure4 takes seconds), each
+    # moment given a value of its own.
+    model = pfgen.Model.load(path)
+    n = len(model.state_names)
+    kinds = [kind for kind in ("closure3", "closure4") if kind in model.kinds and n <= 4]
+    for kind in kinds:
+        filter_ = model.derive(kind)
+        m, P = point(n)
+        names = filter_.eval(0.25, m, P)["moments"]
+        moments = {name: 0.01 * (k + 1) * (-1) ** k for k, name in enumerate(names)}
+        args = ["eval", path, "--filter", kind, "--t", "0.25", "--m", text_list(m),
+                "--P", ";".join(text_list(row) for row in P)]
+        for name, value in moments.items():
+            args += ["--moment", f"{name}={value!r}"]
+        expected = json.loads(pfgen_command.run(*args).stdout)
+        values = filter_.eval(0.25, m, P, moments=moments)
+        assert values["moments"] == expected["moments"] == names
+        del expected["model"], expected["filter"], expected["moments"]
+        assert_same({key: value for key, value in values.items() if key != "moments"}, expected, f"{path} {kind}")
+
+
+def test_a_moment_the_filter_does_not_carry_is_the_commands_error(pfgen_command):
+    path = "examples/basin2006_quadratic.yaml"
+    model = pfgen.Model.load(path)
+    for kind, name in (("closure3", "M4_1111"), ("optimal", "M3_111")):
+        line = pfgen_command.error_line("eval", path, "--filter", kind, "--m", "1", "--P", "1", "--moment", f"{name}=1")
+        with pytest.raises(pfgen.Error) as refused:
+            model.derive(kind).eval(0, [1], [[1]], moments={name: 1})
+        assert str(refused.value) == line
+    with pytest.raises(pfgen.Error, match=r"^error: --moment: expected a dict of moment names and numbers, got list$"):
+        model.derive("closure3").eval(0, [1], [[1]], moments=[("M3_111", 1)])
+    with pytest.raises(pfgen.Error, match=r"^error: --moment M3_111: 'x' is not a number$"):
+        model.derive("closure3").eval(0, [1], [[1]], moments={"M3_111": "x"})

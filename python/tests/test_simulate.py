@@ -53,6 +53,21 @@ def test_simulate_is_the_commands(pfgen_command, work_dir):
     assert any(f"{own[0]:.4g}" in row for row in reference_rows)
 
 
+def test_a_moment_filter_is_the_commands(pfgen_command):
+    # closure3 leaves the realisable set in these runs (docs/theory.md §2.10): the summary counts the runs the
+    # report lists under their own heading, among the diverged ones.
+    done = pfgen_command.run("simulate", QUADRATIC, "--runs", "6", "--T", "4", "--filters", "optimal,closure3",
+                             "--seed", "3", "--quiet")
+    result = pfgen.simulate(pfgen.Model.load(QUADRATIC), runs=6, T=4, filters=["optimal", "closure3"], seed=3)
+    assert result.report == done.stdout
+    heading = next(k for k, line in enumerate(result.report.splitlines()) if "left the realisable set" in line)
+    listed = result.report.splitlines()[heading + 1].split()
+    assert listed[0] == "closure3:" and listed[2] == "runs"
+    closure3 = result.summary["closure3"]
+    assert 0 < closure3["unrealisable"] == int(listed[1]) <= closure3["diverged"]
+    assert result.summary["optimal"]["unrealisable"] == 0
+
+
 def test_thread_count_does_not_change_the_result():
     model = pfgen.Model.load(QUADRATIC)
     one = pfgen.simulate(model, runs=4, T=0.5, filters=["optimal", "ekf"], threads=1)

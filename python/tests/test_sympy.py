@@ -90,3 +90,24 @@ def test_a_parameter_named_e_beside_small_numbers(tmp_path):
     eq = pfgen.Model.load(str(path)).derive("optimal").to_sympy()
     e, m = sympy.Symbol("e"), sympy.Symbol("m1")
     assert sympy.expand(eq.m_drift[0] + sympy.Rational(1, 100000) * e * m) == 0
+
+
+def test_the_moment_filters_carry_their_moments():
+    """closure3 and closure4 of the quadratic example (h = x, R = 1; tests/test_cli.cpp): dP's dy term is M3,
+    dM3 = (0.3 (2 m M3 + M4 - P^2) + 0.03 (4 m^3 P + 6 m^2 M3 + 4 m M4 + 10 P M3) - 3 M3 P) dt + (M4 - 3 P^2) dnu,
+    with M4 = 3 P^2 under closure3 (its fourth cumulant zero)."""
+    model = pfgen.Model.load("examples/basin2006_quadratic.yaml")
+    for kind in ("closure3", "closure4"):
+        eq = model.derive(kind).to_sympy()
+        m, P, M3 = (eq.symbols[name] for name in ("m1", "P11", "M3_111"))
+        M4 = eq.symbols["M4_1111"] if kind == "closure4" else 3 * P**2
+        tenth = sympy.Rational(1, 10)
+        assert eq.moment_names == (["M3_111"] if kind == "closure3" else ["M3_111", "M4_1111"])
+        assert eq.moment_drift.shape == (len(eq.moment_names), 1) and eq.moment_gain.shape == (len(eq.moment_names), 1)
+        assert sympy.expand(eq.P_gain[0][0, 0] - M3) == 0
+        drift = (3 * tenth * (2 * m * M3 + M4 - P**2)
+                 + 3 * tenth**2 * (4 * m**3 * P + 6 * m**2 * M3 + 4 * m * M4 + 10 * P * M3) - 3 * M3 * P)
+        assert sympy.expand(eq.moment_drift[0] - drift) == 0
+        assert sympy.expand(eq.moment_gain[0, 0] - (M4 - 3 * P**2)) == 0
+    optimal = model.derive("optimal").to_sympy()
+    assert optimal.moment_names == [] and optimal.moment_drift.shape == (0, 1) and optimal.moment_gain.shape == (0, 1)

@@ -53,10 +53,14 @@ void check_no_nul(const std::string& what, const std::string& text) {
                 " is followed by a NUL character, which no file name or option can hold");
 }
 
-std::vector<std::string> assignment_texts(const std::map<std::string, double>& parameters) {
+std::vector<std::string> assignment_texts(const std::map<std::string, double>& values, const std::string& option) {
   std::vector<std::string> texts;
-  for (const auto& [name, value] : parameters) {
-    check_no_nul("--set", name);
+  for (const auto& [name, value] : values) {
+    check_no_nul(option, name);
+    // The command splits NAME=VALUE at the first '=': a name holding one would be read as another name
+    // with a value that is not a number.
+    if (name.find('=') != std::string::npos)
+      throw Error(option + ": " + pfgen_support::quoted(name) + " is not a name: it holds '='");
     texts.push_back(name + "=" + number_text(value));
   }
   return texts;

@@ -75,8 +75,11 @@ std::shared_ptr<const T> locked_shared(T&& value) {
   return std::shared_ptr<const T>(new T(std::forward<T>(value)), [](const T* p) { destroy_locked(p); });
 }
 
-// Parameters' values as the command's --set texts, "name=value" (names checked by check_no_nul).
-std::vector<std::string> assignment_texts(const std::map<std::string, double>& parameters);
+// Named values as the command's texts of `option`, "name=value" (names checked by check_no_nul, and
+// refused if they hold '='):
+// parameters' for --set, a moment filter's moments for --moment.
+std::vector<std::string> assignment_texts(const std::map<std::string, double>& values,
+                                          const std::string& option = "--set");
 
 // Refuses a string that holds a NUL character: no file name or option of the command can, and
 // the C library would read it only up to the NUL (a path "m.yaml\0x" would load m.yaml).

@@ -62,6 +62,7 @@ Evaluation Filter::eval(const Point& point) const {
     options.x_star = list_text(point.x_star);
     options.x_star_delayed = list_text(point.x_star_delayed);
     options.phi = list_text(point.phi);
+    options.moments = assignment_texts(point.moments, "--moment");
     const cli::EvalOutcome outcome = cli::evaluate_filter(impl_->model->model, options, &impl_->equations);
     const EvaluatedFilter& value = outcome.value;
     Evaluation out;
@@ -77,6 +78,9 @@ Evaluation Filter::eval(const Point& point) const {
     out.x_star = value.x_star;
     out.x_star_drift = value.x_star_drift;
     out.P_gain = value.P_gain;
+    out.moment_names = value.moment_names;
+    out.moment_drift = value.moment_drift;
+    out.moment_gain = value.moment_gain;
     return out;
   });
 }
@@ -122,6 +126,15 @@ Expressions Filter::expressions() const {
       for (std::size_t i = 0; i < n; ++i)
         for (std::size_t j = 0; j < n; ++j) L[i][j] = text(eq.P_gain[eq.variables.upper_index(i, j)][r]);
       out.P_gain.push_back(std::move(L));
+    }
+    for (std::size_t q = 0; q < eq.higher_drift.size(); ++q) {
+      const std::uint32_t moment = eq.variables.first_higher_moment() + static_cast<std::uint32_t>(q);
+      out.moment_names.push_back(eq.variables.text_name(moment));
+      out.moment_drift.push_back(text(eq.higher_drift[q]));
+      std::vector<std::string> gain_row;
+      if (q < eq.higher_gain.size())  // a sampled filter's moments have no dy term
+        for (const Polynomial& entry : eq.higher_gain[q]) gain_row.push_back(text(entry));
+      out.moment_gain.push_back(std::move(gain_row));
     }
     for (const GiNaC::ex& symbol : symbols) out.names.push_back(GiNaC::ex_to<GiNaC::symbol>(symbol).get_name());
     for (const Parameter& parameter : impl_->model->model.parameters) out.names.push_back(parameter.symbol.get_name());

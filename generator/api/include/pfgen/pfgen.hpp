@@ -53,12 +53,16 @@ using Matrix = std::vector<std::vector<double>>;  // row by row
 // they print as (0.1 is exactly 1/10), as the command reads its options' text. parameters: the
 // model's parameters given other values (the model is checked again with them). The four
 // delayed-observation inputs are read by delayed filters only; empty takes the command's default.
+// moments: a moment filter's (closure3, closure4) central moments above P by name, `--moment
+// M3_112=0.1`; one left out takes its value under N(m, P) (0 at order 3, P_ij P_lq + P_il P_jq +
+// P_iq P_jl at order 4). A name the filter does not carry is refused.
 struct Point {
   double t = 0;
   Vector m;
   Matrix P;
   std::map<std::string, double> parameters;
   Vector m_delayed, x_star, x_star_delayed, phi;
+  std::map<std::string, double> moments;
 };
 
 // A filter's values at a Point. json is what `pfgen eval` prints; the fields are its numbers
@@ -71,22 +75,35 @@ struct Evaluation {
   Matrix P_dt2;                  // cd-euler only
   Matrix innovation_covariance;  // sampled observations only
   Vector predicted_observation, m_delayed, phi, x_star, x_star_drift;  // delayed observations only
-  // Polynomial observations: per observation r, dP's n x n coefficients of dy_r - E[h_r] dt.
+  // Polynomial observations and the moment filters (whatever their h): per observation r, dP's
+  // n x n coefficients of dy_r - predicted_observation_r dt.
   std::vector<Matrix> P_gain;
+  // The moment filters only: the central moments above P in the state's order (M3_111, M3_112, ...,
+  // then M4_...), each one's drift, and its coefficients of dy_r - predicted_observation_r dt (one
+  // row of p per moment): eval's "moments", "moment_drift" and "moment_gain".
+  std::vector<std::string> moment_names;
+  Vector moment_drift;
+  Matrix moment_gain;
 };
 
 // A filter's equations as expressions that Python (and SymPy's sympify, with rational=True) reads:
 // the text output's spelling (numbers as its decimals, so read them as exact rationals) with `**`
 // for powers. Variables as in the text output: m1..mn, P11, P12, ... (P21 is P12), the time symbol
-// and the parameters by their names; a delayed filter's md1, phi1, xs1. Deterministic, as the text is.
+// and the parameters by their names; a delayed filter's md1, phi1, xs1; a moment filter's central
+// moments above P (M3_111, M4_1122). Deterministic, as the text is.
 struct Expressions {
   std::vector<std::string> m_drift;                 // n
   std::vector<std::vector<std::string>> gain;       // n x p (n x 0 for a sampled filter)
   std::vector<std::vector<std::string>> P_drift;    // n x n, symmetric
   std::vector<std::string> predicted_observation;   // p (empty for a sampled filter)
-  // A polynomial observation's dP = P_drift dt + sum_r P_gain[r] (dy_r - predicted_observation_r dt):
-  // per observation, n x n; empty for the other observations.
+  // A polynomial observation's (or a moment filter's) dP = P_drift dt + sum_r P_gain[r] (dy_r -
+  // predicted_observation_r dt): per observation, n x n; empty for the other filters.
   std::vector<std::vector<std::vector<std::string>>> P_gain;
+  // A moment filter's central moments above P (empty for the other filters), in the state's order:
+  // dM_q = moment_drift[q] dt + sum_r moment_gain[q][r] (dy_r - predicted_observation_r dt).
+  std::vector<std::string> moment_names;              // q
+  std::vector<std::string> moment_drift;              // q
+  std::vector<std::vector<std::string>> moment_gain;  // q x p
   // A user filter's `define:` names or the ukf's Cholesky entries, in order: each value may read
   // the names before it, and the expressions above may read them all.
   std::vector<std::pair<std::string, std::string>> definitions;
@@ -169,6 +186,8 @@ struct FilterSummary {
   std::size_t completed = 0;   // runs that reached T
   std::size_t diverged = 0;
   std::size_t psd_losses = 0;
+  // A moment filter's runs stopped where its moments left the realisable set (counted in diverged).
+  std::size_t unrealisable = 0;
   Vector rms, rms_se;          // RMS error over [0, T] and its standard error
   Vector peak_median, peak_q95;  // of max_t |x - m| over the completed runs
   // With the particle reference: RMS(m - m_ref) and its standard error (empty without).
