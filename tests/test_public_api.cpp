@@ -132,7 +132,7 @@ TEST_CASE("public API: a moment the filter does not carry is refused with the co
   point.P = {{1}};
   point.moments = {{"M4_1111", 1}};
   CHECK_THROWS_WITH(model.derive("closure3").eval(point),
-                    "--moment: filter closure3 has no central moment 'M4_1111' (its moments are M3_111 to M3_111)");
+                    "--moment: filter closure3 has no central moment 'M4_1111' (its one is M3_111)");
   CHECK_THROWS_WITH(model.derive("optimal").eval(point),
                     "--moment: filter optimal carries no central moments above P (the closure kinds do)");
   // A name holding '=' is refused as one, not split by the command's NAME=VALUE into M3_111 and "1=2".

@@ -46,9 +46,10 @@ void check_point(const Model& model, const FilterEquations& eq, const Evaluation
     if (known) continue;
     if (eq.variables.higher_moments().empty())
       throw EvaluationError("--moment: filter " + eq.name + " carries no central moments above P (the closure kinds do)");
-    throw EvaluationError("--moment: filter " + eq.name + " has no central moment '" + name + "' (its moments are " +
-                          eq.variables.text_name(eq.variables.first_higher_moment()) + " to " +
-                          eq.variables.text_name(static_cast<std::uint32_t>(eq.variables.count() - 1)) + ")");
+    const std::string first = eq.variables.text_name(eq.variables.first_higher_moment());
+    const std::string last = eq.variables.text_name(static_cast<std::uint32_t>(eq.variables.count() - 1));
+    throw EvaluationError("--moment: filter " + eq.name + " has no central moment '" + name + "' (" +
+                          (first == last ? "its one is " + first : "its moments are " + first + " to " + last) + ")");
   }
   for (const auto& [name, value] : point.parameters) {
     bool known = false;
