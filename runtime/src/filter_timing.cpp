@@ -11,6 +11,7 @@ void FilterTiming::check_grid(const std::string&, const TimeGrid&) const {}  // 
 FilterStepOutcome GridSteps::advance(FilterStepper& stepper, double* state, const FilterInput& input,
                                      std::size_t k) const {
   const double t = input.grid.time(k);
+  stepper.set_extra_state(extra_state_);
   if (stepper.advance(step_, state, t, input.grid.dt, input.dy + k * input.p) != 0) return {};
   using Stop = FilterStepOutcome::Stop;  // given up mid-step
   return {stepper.equations_finite_at_start(step_, t) ? Stop::too_stiff : Stop::equations_undefined, t};

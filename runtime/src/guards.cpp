@@ -22,6 +22,11 @@ std::string DivergenceEvent::describe() const {
         << " (a definition such as a Cholesky entry cannot be computed there)";
     return out.str();
   }
+  if (kind == DivergenceKind::unrealisable) {
+    out << "the moments left the realisable set at t = " << t << " (" << (what.empty() ? "margin " + std::to_string(index) : what)
+        << " is " << value << ")";
+    return out.str();
+  }
   if (kind == DivergenceKind::covariance_indefinite) {
     out << "the diffusion covariance G is not positive semi-definite at t = " << t << " (eigenvalue " << value << ")";
     return out.str();

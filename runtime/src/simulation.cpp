@@ -120,8 +120,13 @@ FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const Fil
   filter.initial_state(state.data());
 
   // True while the run may go on. Events are written only when they happen.
+  std::vector<double> margins;
   auto guard = [&](double t) {
     if (auto event = check_filter_divergence(options, t, state.data(), filter.n)) {
+      result.divergence = event;
+      return false;
+    }
+    if (auto event = check_realisability(filter.realisability, t, state.data(), margins)) {
       result.divergence = event;
       return false;
     }
@@ -135,7 +140,7 @@ FilterRun run_filter(const FilterModel& filter, const TruthRun& truth, const Fil
     return true;
   };
 
-  FilterStepper stepper(filter.n, filter.p, options.stepping);
+  FilterStepper stepper(filter.n, filter.p, options.stepping, filter.state_size() - filter_state_size(filter.n));
   bool going = guard(grid.t0);
   const bool initial_ok = !result.divergence;  // a PSD loss at t0 keeps P0 on record
   if (initial_ok) result.state.col(0) = state.head(recorded);

@@ -64,8 +64,15 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
     require(f.name && f.initial_state && f.step, path, "filter " + std::to_string(k) + " lacks a name or function");
     require(f.n == t.n && f.p == t.p && f.state_size == filter_state_size(t.n), path,
             "filter " + std::string(f.name) + " has other dimensions than the model");
-    require(std::isfinite(f.fixed_dt) && f.fixed_dt >= 0 && (f.extra_state_size == 0 || f.fixed_dt > 0), path,
-            "filter " + std::string(f.name) + " has extra state without a fixed grid step, or a bad one");
+    // Extra state on any grid only for a moment filter (its moments above P), which has margins.
+    require(std::isfinite(f.fixed_dt) && f.fixed_dt >= 0 &&
+                (f.extra_state_size == 0 || f.fixed_dt > 0 || f.realisability_margins != nullptr),
+            path, "filter " + std::string(f.name) + " has extra state without a fixed grid step, or a bad one");
+    require((f.realisability_margins != nullptr) == (f.margin_count > 0) &&
+                (f.margin_count == 0 || f.margin_names != nullptr),
+            path, "filter " + std::string(f.name) + " has realisability margins without their count or names");
+    for (std::size_t m = 0; m < f.margin_count; ++m)
+      require(f.margin_names[m] != nullptr, path, "filter " + std::string(f.name) + " has a margin without a name");
     require((f.step_lanes != nullptr) == (f.lanes > 0) && (f.step_lanes == nullptr || f.extra_state_size == 0) &&
                 f.lanes <= 64,
             path, "filter " + std::string(f.name) + " has step_lanes without 1 to 64 lanes, or with extra state");
@@ -228,7 +235,8 @@ std::vector<RecordFilter> SimulationPlugin::record_filters() const {
       filter.timing = std::make_shared<RecordFixedIncrements>(f.step_at, f.predicted_observation,
                                                               table_->observation_noise, f.fixed_dt, f.extra_state_size);
     else
-      filter.timing = std::make_shared<RecordIncrements>(f.step_at, f.predicted_observation, table_->observation_noise);
+      filter.timing = std::make_shared<RecordIncrements>(f.step_at, f.predicted_observation, table_->observation_noise,
+                                                         f.extra_state_size);
     out.push_back(std::move(filter));
   }
   for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {
@@ -261,10 +269,16 @@ std::vector<FilterModel> SimulationPlugin::filters() const {
         step_lanes = [library, step = f.step_lanes](double* state, double t, double dt, const double* dy) {
           step(state, t, dt, dy);
         };
-      timing = std::make_unique<GridSteps>(std::move(step), std::move(step_lanes), f.lanes);
+      timing = std::make_unique<GridSteps>(std::move(step), std::move(step_lanes), f.lanes, f.extra_state_size);
     }
     out.emplace_back(f.name, f.n, f.p, [library, init = f.initial_state](double* state) { init(state); },
                      std::move(timing));
+    if (f.realisability_margins) {
+      out.back().realisability.margins = [library, margins = f.realisability_margins](const double* state, double* out) {
+        margins(state, out);
+      };
+      out.back().realisability.names.assign(f.margin_names, f.margin_names + f.margin_count);
+    }
   }
   for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {
     const pfgen_plugin_sampled_filter& f = table_->sampled_filters[k];

@@ -10,6 +10,8 @@ void for_each_expanded_output(const FilterEquations& eq, const std::function<voi
   for (const Polynomial& p : eq.m_drift) visit(p);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i; j < n; ++j) visit(eq.P_drift(i, j));
+  // A moment filter's central moments above P follow it (FilterVariables).
+  for (const Polynomial& p : eq.higher_drift) visit(p);
   // A delayed filter with Phi* integrates x* beside m and P: its drift follows them in `out`.
   for (const Polynomial& p : eq.x_star_drift) visit(p);
 }

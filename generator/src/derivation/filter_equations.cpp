@@ -159,6 +159,9 @@ FilterEquations moment_filter(const Model& model, FilterKind kind, FilterEquatio
   eq.P_gain = std::move(terms.P_gain);
   eq.higher_drift = std::move(terms.higher_drift);
   eq.higher_gain = std::move(terms.higher_gain);
+  RealisabilityMargins margins = realisability_margins(eq.variables, model.state_names);
+  eq.realisability = std::move(margins.margins);
+  eq.realisability_meaning = std::move(margins.meaning);
   return eq;
 }
 

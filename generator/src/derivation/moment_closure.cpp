@@ -147,4 +147,22 @@ MomentClosureTerms moment_closure_terms(const Model& model, const FilterVariable
   return out;
 }
 
+RealisabilityMargins realisability_margins(const FilterVariables& vars, const std::vector<std::string>& state_names) {
+  RealisabilityMargins out;
+  for (std::size_t i = 0; i < vars.n(); ++i) {
+    const Polynomial P = Polynomial::variable(vars.P(i, i));
+    out.margins.push_back(P);
+    out.meaning.push_back("variance of " + state_names.at(i));
+  }
+  if (vars.order() < 4) return out;
+  for (std::size_t i = 0; i < vars.n(); ++i) {
+    const Polynomial P = Polynomial::variable(vars.P(i, i));
+    const Polynomial M3 = Polynomial::variable(vars.higher_moment({i, i, i}));
+    const Polynomial M4 = Polynomial::variable(vars.higher_moment({i, i, i, i}));
+    out.margins.push_back(M4 * P - P * P * P - M3 * M3);
+    out.meaning.push_back("Pearson's bound of " + state_names.at(i));
+  }
+  return out;
+}
+
 }  // namespace pfgen

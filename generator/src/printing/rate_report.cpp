@@ -212,6 +212,12 @@ std::string RateReport::text(const Model& model, const FilterEquations& eq, std:
         out += moment_L_text_name(vars, v, r) + " = " + writer.print(eq.higher_gain[q][r]) + "\n";
         drain(out, sink);
       }
+  if (!eq.realisability.empty()) {
+    out += "realisable while each is positive:";
+    for (std::size_t k = 0; k < eq.realisability.size(); ++k)
+      out += std::string(k ? "," : "") + " " + writer.print(eq.realisability[k]) + " (" + eq.realisability_meaning[k] + ")";
+    out += "\n";
+  }
   out += trailing_text(eq);
   return out;
 }
@@ -286,6 +292,14 @@ std::string RateReport::latex(const Model&, const FilterEquations& eq) const {
   for (std::string& line : trailing_latex(eq)) lines.push_back(std::move(line));
   for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
   out += "\\end{align*}\n";
+  if (!eq.realisability.empty()) {
+    // The states' names may not be LaTeX: the margins are said by kind, in state order.
+    out += "\\noindent Realisable while each is positive (each state's variance, then at order 4 its Pearson bound "
+           "$\\mu_{4} P - P^{3} - \\mu_{3}^{2}$):";
+    for (std::size_t k = 0; k < eq.realisability.size(); ++k)
+      out += std::string(k ? "," : "") + " $" + writer.print(eq.realisability[k]) + "$";
+    out += ".\n";
+  }
   return out;
 }
 
@@ -361,6 +375,9 @@ Json RateReport::json(const Model& model, const FilterEquations& eq) const {
       gains.push(row);
     }
     out.add("moments", names);
+    Json margins = Json::array();
+    for (const Polynomial& margin : eq.realisability) margins.push(Json::string(writer.print(margin)));
+    out.add("realisability", margins);
     out.add("moment_drift", drift);
     if (!eq.higher_gain.empty()) out.add("moment_gain", gains);
   }

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "pfgen_runtime/guards.hpp"
@@ -44,7 +45,14 @@ struct FilterStepControl {
 
 class FilterStepper {
  public:
-  FilterStepper(std::size_t n, std::size_t p, const FilterStepControl& control);
+  // extra_capacity: the most entries after m and P a state it steps may have (set_extra_state).
+  FilterStepper(std::size_t n, std::size_t p, const FilterStepControl& control, std::size_t extra_capacity = 0);
+  // The entries after m and P of the states the next steps take (saved and restored with them); at most
+  // extra_capacity. 0 unless set.
+  void set_extra_state(std::size_t extra) {
+    if (extra > capacity_ - filter_state_size(n_)) throw std::invalid_argument("filter stepper: too much extra state");
+    size_ = filter_state_size(n_) + extra;
+  }
   // Advances `state` over [t, t + dt] given dy (p entries) with `step`; returns the number of
   // step() calls that were kept (1 unless the step was refined), or 0 when the grid step would
   // need more than control.max_substeps calls: `state` is then mid-step and the run must stop.
@@ -192,7 +200,7 @@ class FilterStepper {
       }
   }
 
-  std::size_t n_, p_, size_;
+  std::size_t n_, p_, size_, capacity_;
   FilterStepControl control_;
   std::vector<double> saved_;    // (max_depth + 1) states
   std::vector<double> half_dy_;  // (max_depth + 1) increments

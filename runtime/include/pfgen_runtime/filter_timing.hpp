@@ -83,12 +83,17 @@ class GridSteps final : public FilterTiming {
  public:
   // step_lanes (optional): `lanes` states at once, entry-major (state[e * lanes + k],
   // dy[r * lanes + k]), each lane bit for bit what `step` makes of it.
-  explicit GridSteps(FilterStepFunction step, FilterStepFunction step_lanes = {}, std::size_t lanes = 0)
-      : step_(std::move(step)), step_lanes_(std::move(step_lanes)), lanes_(step_lanes_ ? lanes : 0) {}
+  // extra_state: entries after m and P that only the step reads (a moment filter's higher moments; no lanes form
+  // then), refined with the rest.
+  explicit GridSteps(FilterStepFunction step, FilterStepFunction step_lanes = {}, std::size_t lanes = 0,
+                     std::size_t extra_state = 0)
+      : step_(std::move(step)), step_lanes_(std::move(step_lanes)), lanes_(step_lanes_ ? lanes : 0),
+        extra_state_(extra_state) {}
   std::unique_ptr<FilterTiming> clone() const override { return std::make_unique<GridSteps>(*this); }
   bool takes_samples() const override { return false; }
   bool complete() const override { return static_cast<bool>(step_); }
   bool refines_steps() const override { return true; }
+  std::size_t extra_state() const override { return extra_state_; }
   const GridSteps* lanes() const override { return step_lanes_ ? this : nullptr; }
   FilterStepOutcome advance(FilterStepper& stepper, double* state, const FilterInput& input,
                             std::size_t k) const override;
@@ -100,6 +105,7 @@ class GridSteps final : public FilterTiming {
  private:
   FilterStepFunction step_, step_lanes_;
   std::size_t lanes_;
+  std::size_t extra_state_;
 };
 
 class FixedSteps final : public FilterTiming {

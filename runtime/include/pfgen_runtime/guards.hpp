@@ -26,13 +26,17 @@ namespace pfgen_runtime {
 // covariance_indefinite: the truth's diffusion covariance G(t, x) has a negative eigenvalue
 // beyond round-off (a model's state-dependent G can lose definiteness as x moves; `value` is
 // the eigenvalue).
-enum class DivergenceKind { non_finite, bound_exceeded, too_stiff, covariance_indefinite, equations_undefined };
+// unrealisable: a moment filter's state left the set of moments a law can have (a realisability margin not
+// positive; `index` is the margin, `value` its value).
+enum class DivergenceKind { non_finite, bound_exceeded, too_stiff, covariance_indefinite, equations_undefined,
+                            unrealisable };
 
 struct DivergenceEvent {
   double t = 0;           // the grid time at which the offending value was first seen
   std::size_t index = 0;  // which entry
   double value = 0;       // the offending value (NaN or inf, or beyond the bound)
   DivergenceKind kind = DivergenceKind::non_finite;
+  std::string what;       // unrealisable: what the margin says ("Pearson's bound of x1")
   std::string describe() const;  // e.g. "entry 0 is inf at t = 9.0901"
 };
 

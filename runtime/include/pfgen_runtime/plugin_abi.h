@@ -24,7 +24,7 @@
 extern "C" {
 #endif
 
-#define PFGEN_PLUGIN_ABI_VERSION 8u
+#define PFGEN_PLUGIN_ABI_VERSION 9u
 #define PFGEN_PLUGIN_ENTRY_NAME "pfgen_plugin_entry"
 
 /* One filter over its packed state [m (n entries), upper triangle of P row by row], followed by
@@ -55,6 +55,12 @@ typedef struct pfgen_plugin_filter {
    * A0 + A m(t - h), m(t - h) from the filter's history (what step's predictor reads). */
   void (*step_at)(double* state, const double* values, double t, double dt, const double* dy);
   void (*predicted_observation)(const double* state, const double* values, double t, double* h);
+  /* Version 9 on: a moment filter (closure3, closure4) carries its central moments above P as extra
+   * state on any grid (fixed_dt 0), and gives its realisability margins: margin_count values, each
+   * positive while its moments can be a law's, named by margin_names; NULL and 0 for the others. */
+  size_t margin_count;
+  void (*realisability_margins)(const double* state, double* margins);
+  const char* const* margin_names;
 } pfgen_plugin_filter;
 
 /* One filter for sampled observations (y_k = C0 + C x(t_k) + Uv v_k every `period`) over the

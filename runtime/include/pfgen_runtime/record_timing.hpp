@@ -103,8 +103,11 @@ class RecordIncrements : public RecordTiming {
   using Noise = void (*)(const double* values, double t, double* B);
   // One step over [t, t + dt] with the increment dy, the predicted rate h of a state, and B at t
   // (p x r, row-major).
-  RecordIncrements(Step step, Rate predicted_observation, Noise observation_noise)
-      : step_(step), predicted_observation_(predicted_observation), observation_noise_(observation_noise) {}
+  // extra_state: entries after m and P that only the step reads (a moment filter's higher moments).
+  RecordIncrements(Step step, Rate predicted_observation, Noise observation_noise, std::size_t extra_state = 0)
+      : step_(step), predicted_observation_(predicted_observation), observation_noise_(observation_noise),
+        extra_state_(extra_state) {}
+  std::size_t extra_state() const override { return extra_state_; }
   bool absorb(RecordProgress& progress, double t, const double* observation, bool first) const override;
   double log_likelihood(const RecordProgress& progress) const override { return progress.increment_log_density; }
 
@@ -121,6 +124,7 @@ class RecordIncrements : public RecordTiming {
   bool score_and_step(RecordProgress& progress, double t, const double* observation) const;
   Rate predicted_observation_;
   Noise observation_noise_;
+  std::size_t extra_state_;
 };
 
 // A delayed filter's increments: its only step is fixed_dt, on its own grid tau_k = k fixed_dt

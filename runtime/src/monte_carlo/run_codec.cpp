@@ -28,6 +28,7 @@ void filter_fields(IO& io, Run& f) {
   io.put_or_get(f.psd_lost);
   io.put_or_get(f.too_stiff);
   io.put_or_get(f.undefined);
+  io.put_or_get(f.unrealisable);
   io.put_or_get(f.divergence_t);
   io.put_or_get(f.psd_t);
   io.put_or_get(f.mean_square);

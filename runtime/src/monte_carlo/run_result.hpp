@@ -18,6 +18,7 @@ struct FilterRunResult {
   bool diverged = false, psd_lost = false;
   bool too_stiff = false;  // diverged because a grid step needed more sub-steps than allowed
   bool undefined = false;  // diverged because its equations were not finite at its own state
+  bool unrealisable = false;  // a moment filter stopped where its moments left the realisable set (diverged)
   double divergence_t = nan, psd_t = nan;
   std::vector<double> mean_square;   // (1 + windows) x n, the horizon first; NaN unless reached
   std::vector<double> report_error;  // reports x n; NaN where not alive

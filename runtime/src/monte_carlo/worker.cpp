@@ -8,12 +8,22 @@
 #include "pfgen_runtime/statistics.hpp"
 
 namespace pfgen_runtime::monte_carlo_detail {
+namespace {
+
+// The most entries after m and P that a filter's state has (a moment filter's higher moments).
+std::size_t largest_extra_state(const std::vector<FilterModel>& filters) {
+  std::size_t largest = 0;
+  for (const FilterModel& filter : filters) largest = std::max(largest, filter.state_size() - filter_state_size(filter.n));
+  return largest;
+}
+
+}  // namespace
 
 Worker::Worker(const TruthScheme& scheme, const Observation& observation, const std::vector<FilterModel>& filters, const Eigen::VectorXd& x0, const Plan& plan,
                const MonteCarloOptions& options, std::size_t batch)
     : scheme_(scheme.clone()), observation_(observation), filters_(filters), plan_(plan), options_(options),
       lanes_(std::max<std::size_t>(batch, 1)), passes_(lanes_.size()),
-      stepper_(plan.n, plan.p, options.filter_guards.stepping) {
+      stepper_(plan.n, plan.p, options.filter_guards.stepping, largest_extra_state(filters)) {
   filter_seconds.assign(filters.size(), 0.0);
   filter_cpu_seconds.assign(filters.size(), 0.0);
   filter_steps.assign(filters.size(), 0);
@@ -235,7 +245,7 @@ bool Worker::start_pass(bool shown, const RunResult& run, FilterRunResult& out, 
 }
 
 // True while the run may go on, as in run_filter; events are written when they happen.
-bool Worker::guard(double t, const double* state, FilterRunResult& out) const {
+bool Worker::guard(double t, const double* state, FilterRunResult& out, const RealisabilityCheck* realisability) {
   const FilterGuardOptions& guards = options_.filter_guards;
   const std::size_t n = plan_.n;
   if (auto event = check_filter_divergence(guards, t, state, n)) {  // as run_filter does
@@ -243,6 +253,12 @@ bool Worker::guard(double t, const double* state, FilterRunResult& out) const {
     out.divergence_t = event->t;
     return false;
   }
+  if (realisability)
+    if (auto event = check_realisability(*realisability, t, state, margins_)) {
+      out.diverged = out.unrealisable = true;
+      out.divergence_t = event->t;
+      return false;
+    }
   if (guards.check_psd && !out.psd_lost && !guards.psd.passes_filter_state(state, n)) {
     out.psd_lost = true;
     out.psd_t = t;
@@ -277,7 +293,7 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, RunBuf
   double* state = state_.data();
   reset_plan();
   filter.initial_state(state);
-  bool going = guard(grid.t0, state, out);
+  bool going = guard(grid.t0, state, out, &filter.realisability);
   if (out.diverged) return;
   enter(0);
   visit(0, state, shown, lane, out, pass);
@@ -300,7 +316,7 @@ void Worker::step_filter(std::size_t f, bool shown, const RunResult& run, RunBuf
     }
     if (outcome.sample >= 0) absorb_sample(outcome.t, outcome.sample, state, lane, out);
     ++steps;
-    going = guard(grid.time(k + 1), state, out);
+    going = guard(grid.time(k + 1), state, out, &filter.realisability);
     if (out.diverged) break;  // a diverged state is not stored
     enter(k + 1);
     visit(k + 1, state, shown, lane, out, pass);

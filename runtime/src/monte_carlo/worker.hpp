@@ -87,7 +87,8 @@ class Worker {
   // A filter pass's results sized and filled with NaN; false when the run has no truth to compare with.
   bool start_pass(bool shown, const RunResult& run, FilterRunResult& out, PassSums& pass) const;
   // False when the state at t diverged (out says so) or lost its PSD and must stop.
-  bool guard(double t, const double* state, FilterRunResult& out) const;
+  // A moment filter's realisability (`realisability`, when given) is checked too.
+  bool guard(double t, const double* state, FilterRunResult& out, const RealisabilityCheck* realisability = nullptr);
   void finish_pass(FilterRunResult& out, const PassSums& pass, const RunBuffers& lane) const;
   void step_filter(std::size_t f, bool shown, const RunResult& run, RunBuffers& lane, FilterRunResult& out);
   // worker_lanes.cpp: runs first .. first + count - 1 (count <= width_, their buffers lanes_[group_]
@@ -147,6 +148,7 @@ class Worker {
   std::size_t sample_sums_size_ = 0;  // FilterRunResult::sample_sums' (samples only)
   std::vector<double> estimate_;       // a sampled filter's h(t_k, m(t_k|t_k))
   std::vector<double> state_;
+  std::vector<double> margins_;  // a moment filter's realisability margins (guard)
   mutable std::vector<double> nees_work_;  // normalized_error_squared's Cholesky factor
   FilterStepper stepper_;
   // The plan's cursor of a pass: windows open at the current grid point, its events.

@@ -63,6 +63,7 @@ void Worker::step_filter_lanes(std::size_t f, std::size_t first, std::size_t cou
   namespace lp = lane_pack;
   const FilterModel& filter = filters_[f];
   const GridSteps& stepped = *filter.timing->lanes();  // in_lanes_[f]: it has a lanes form of width W
+  stepper_.set_extra_state(0);  // a filter with lanes has no state beyond m and P
   const FilterGuardOptions& guards = options_.filter_guards;
   const TimeGrid& grid = plan_.grid;
   const std::size_t size = filter.state_size(), n = plan_.n, p = plan_.p, windows = plan_.windows.size();

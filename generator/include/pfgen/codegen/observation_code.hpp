@@ -14,6 +14,15 @@
 
 namespace pfgen::codegen {
 
+// What the plugin's table says of each filter besides its name: whether it also steps several runs at once
+// (step_lanes: its code is arithmetic alone and small, kMaxLaneOps, simulation_plugin.hpp), and a moment
+// filter's state beyond m and P and its realisability margins (none for the others).
+struct PluginFilterFacts {
+  bool in_lanes = false;
+  std::size_t extra_state = 0;
+  std::vector<std::string> margin_names;
+};
+
 class ObservationCode {
  public:
   virtual ~ObservationCode() = default;
@@ -39,18 +48,17 @@ class ObservationCode {
   // from the simulation's grid step (a delayed observation's filters step on that grid; CodegenError
   // without one); unchanged by default.
   virtual void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const;
-  // The functions behind the ABI's signatures for the filters of these identifiers. in_lanes[k]:
-  // filter k is also instantiated on the plugin's lane type (batch::Lanes), to step several runs at
-  // once (its code is arithmetic alone and small: kMaxLaneOps, simulation_plugin.hpp).
+  // The functions behind the ABI's signatures for the filters of these identifiers; facts[k].in_lanes:
+  // filter k is also instantiated on the plugin's lane type (batch::Lanes), to step several runs at once.
   virtual std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                      const std::vector<bool>& in_lanes) const = 0;
+                                      const std::vector<PluginFilterFacts>& facts) const = 0;
   // The ABI table's fields this observation's filters have (the others keep
   // plugin_table_defaults()): the filters' table and its count, the period or the delay (the
   // truth's observation functions are the truth's, TruthCode).
   virtual std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                           const std::vector<std::string>& labels,
                                                           std::optional<double> grid_step,
-                                                          const std::vector<bool>& in_lanes) const = 0;
+                                                          const std::vector<PluginFilterFacts>& facts) const = 0;
 };
 
 // The modules' parts (observations/<kind>/<kind>_code.cpp), and the model's, by kind.

@@ -88,6 +88,10 @@ struct FilterEquations {
   // linear observation too.
   std::vector<Polynomial> higher_drift;
   std::vector<std::vector<Polynomial>> higher_gain;
+  // The moment filters only: the realisability margins, each positive while the moment state can be a law's
+  // (moment_closure.hpp, realisability_margins), with what each says.
+  std::vector<Polynomial> realisability;
+  std::vector<std::string> realisability_meaning;
   // Delayed observations only: the delay h (0 otherwise), and for the kinds with the Phi* gain the
   // drift f(xs, t) of the noise-free solution xs, n entries (empty otherwise).
   GiNaC::numeric delay = 0;

@@ -36,4 +36,14 @@ struct MomentClosureTerms {
 MomentClosureTerms moment_closure_terms(const Model& model, const FilterVariables& vars, const std::vector<Polynomial>& h,
                                         const ExMatrix& B);
 
+// Margins that are all positive while the moment state can belong to a law, one pair of words per margin: per
+// state i the variance P_ii and, at order 4, Pearson's bound M4_iiii P_ii - P_ii^3 - M3_iii^2 (kurtosis above 1 +
+// skewness^2; zero only for a law on two points). These are necessary conditions, checked on each marginal; the
+// joint moment matrix may lose positive definiteness first (docs/theory.md §2.10).
+struct RealisabilityMargins {
+  std::vector<Polynomial> margins;
+  std::vector<std::string> meaning;  // "variance of x1", "Pearson's bound of x1"
+};
+RealisabilityMargins realisability_margins(const FilterVariables& vars, const std::vector<std::string>& state_names);
+
 }  // namespace pfgen

@@ -79,6 +79,9 @@ std::string gain_meaning(const FilterEquations& eq) {
 
 FilterFile ContinuousCode::filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                        const FunctionNames& names, const StatementEmitter& emitter) const {
+  // A filter whose covariance has a dy term of its own (a moment filter: its third moments enter dP's) steps as a
+  // nonlinear h's filters do, with the Ito-Stratonovich correction.
+  if (!eq.P_gain.empty()) return polynomial_observation_code().filter_file(model, eq, options, names, emitter);
   FilterFile file;
   file.layout = "filter";
   file.p = eq.p;

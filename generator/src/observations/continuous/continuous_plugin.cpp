@@ -36,7 +36,7 @@ void ContinuousCode::plugin_options(const Model&, std::optional<double>, Codegen
 // The ABI's step and initial_state have no parameters argument: the model's defaults; step_at and
 // predicted_observation read the parameters' values from their argument.
 std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                            const std::vector<bool>& in_lanes) const {
+                                            const std::vector<PluginFilterFacts>& facts) const {
   std::string out;
   for (std::size_t k = 0; k < names.size(); ++k) {
     const std::string& name = names[k];
@@ -49,7 +49,15 @@ std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vecto
     out += "void " + name + "_predicted_observation(const double* state, const double* values, double t, double* h) {\n" +
            alias +
            "  F::predicted_observation(t, state, ::pfgen_simulation::parameters::from<F::Params<double>>(values), h);\n}\n";
-    if (!in_lanes[k]) {
+    if (!facts[k].margin_names.empty()) {  // a moment filter's realisability margins (its generated function)
+      out += "void " + name + "_realisability_margins(const double* state, double* margins) {\n" + alias +
+             "  F::realisability_margins(0.0, state, F::Params<double>{}, margins);\n}\n";
+      out += "const char* const " + name + "_margin_names[] = {";
+      for (std::size_t m = 0; m < facts[k].margin_names.size(); ++m)
+        out += (m ? ", " : "") + plugin_c_string(facts[k].margin_names[m]);
+      out += "};\n";
+    }
+    if (!facts[k].in_lanes) {
       out += "\n";
       continue;
     }
@@ -66,13 +74,20 @@ std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vecto
 std::map<std::string, std::string> ContinuousCode::plugin_table(const Model& model, const std::vector<std::string>& names,
                                                                 const std::vector<std::string>& labels,
                                                                 std::optional<double>,
-                                                                const std::vector<bool>& in_lanes) const {
+                                                                const std::vector<PluginFilterFacts>& facts) const {
   auto state_fields = [&](const std::string& item, const std::string& ns, std::size_t k) {
     const std::string entry = item + "step_at = &pfgen_simulation::entry::" + names[k] + "_step_at;\n" + item +
                               "predicted_observation = &pfgen_simulation::entry::" + names[k] +
                               "_predicted_observation;\n";
-    const std::string size = entry + item + "state_size = " + ns + "::state_size;\n";
-    if (!in_lanes[k]) return size;  // step_lanes NULL, lanes 0
+    std::string size = entry + item + "state_size = " + ns + "::state_size;\n";
+    if (facts[k].extra_state > 0) {  // a moment filter: its moments above P are extra state, checked by its margins
+      const std::string extra = std::to_string(facts[k].extra_state);
+      size = entry + item + "state_size = " + ns + "::state_size - " + extra + ";\n" + item + "extra_state_size = " +
+             extra + ";\n" + item + "margin_count = " + std::to_string(facts[k].margin_names.size()) + ";\n" + item +
+             "realisability_margins = &pfgen_simulation::entry::" + names[k] + "_realisability_margins;\n" + item +
+             "margin_names = pfgen_simulation::entry::" + names[k] + "_margin_names;\n";
+    }
+    if (!facts[k].in_lanes) return size;  // step_lanes NULL, lanes 0
     return size + item + "step_lanes = &pfgen_simulation::entry::" + names[k] + "_step_lanes;\n" + item +
            "lanes = pfgen_simulation::batch::kLanes;\n";
   };

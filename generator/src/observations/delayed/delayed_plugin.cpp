@@ -23,7 +23,7 @@ void DelayedCode::plugin_options(const Model& model, std::optional<double> grid_
 // The ABI's flat state is [F's state (m, P, x*), F's history]; the grid index k of the step from t:
 // the loader accepts only the grid t_k = k F::dt (fixed_dt).
 std::string DelayedCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                        const std::vector<bool>&) const {
+                                        const std::vector<PluginFilterFacts>&) const {
   std::string out;
   for (const auto& name : names) {
     const std::string alias = "  namespace F = " + plugin_filter_namespace(model, name) + ";\n";
@@ -54,7 +54,7 @@ std::string DelayedCode::plugin_wrappers(const Model& model, const std::vector<s
 std::map<std::string, std::string> DelayedCode::plugin_table(const Model& model, const std::vector<std::string>& names,
                                                              const std::vector<std::string>& labels,
                                                              std::optional<double> grid_step,
-                                                             const std::vector<bool>&) const {
+                                                             const std::vector<PluginFilterFacts>&) const {
   // The ABI's state_size is m and P; x* and the history follow as extra state.
   auto state_fields = [](const std::string& item, const std::string& ns, std::size_t) {
     const std::string mP = ns + "::n + " + ns + "::n * (" + ns + "::n + 1) / 2";

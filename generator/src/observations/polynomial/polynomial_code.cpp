@@ -58,7 +58,10 @@ void add_step_loops(FilterFile& file, std::size_t n) {
 }  // namespace
 
 std::vector<FunctionStats> PolynomialFunctions::stats() const {
-  return {derivatives.stats, gain.stats, covariance_gain.stats, observation.stats, correction.stats};
+  std::vector<FunctionStats> all = {derivatives.stats, gain.stats, covariance_gain.stats, observation.stats,
+                                    correction.stats};
+  if (realisability) all.push_back(realisability->stats);
+  return all;
 }
 
 PolynomialFunctions polynomial_functions(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
@@ -74,9 +77,12 @@ PolynomialFunctions polynomial_functions(const Model& model, const FilterEquatio
       noise[vars.m(i)][r] = eq.gain[i][r];
       gain.push_back(eq.gain[i][r]);
     }
+  // Then a moment filter's central moments above P, each with its own dnu term.
+  const std::size_t P_entries = n * (n + 1) / 2;
   for (std::size_t u = 0; u < count - n; ++u)
     for (std::size_t r = 0; r < p; ++r) {
-      if (!eq.P_gain.empty()) noise[n + u][r] = eq.P_gain[u][r];
+      if (u < P_entries && !eq.P_gain.empty()) noise[n + u][r] = eq.P_gain[u][r];
+      if (u >= P_entries && !eq.higher_gain.empty()) noise[n + u][r] = eq.higher_gain[u - P_entries][r];
       covariance_gain.push_back(noise[n + u][r]);
     }
   const std::vector<Polynomial> correction =
@@ -89,6 +95,9 @@ PolynomialFunctions polynomial_functions(const Model& model, const FilterEquatio
   f.observation =
       function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
   f.correction = function_code("stratonovich_correction", correction, names.c, model, eq, options, names, emitter);
+  if (!eq.realisability.empty())
+    f.realisability =
+        function_code("realisability_margins", eq.realisability, names.out, model, eq, options, names, emitter);
   return f;
 }
 
@@ -106,6 +115,15 @@ FilterFile PolynomialCode::filter_file(const Model& model, const FilterEquations
   file.add_function("observation", std::move(f.observation));
   file.add_function("correction", std::move(f.correction));
   file.words = {{"K", names.K}, {"L", names.L}, {"h", names.h}, {"c", names.c}};
+  // A moment filter's realisability margins (derivation/moment_closure.hpp): a function of the file, framed by
+  // each language's partial.
+  file.frames = {{"realisability_function", f.realisability ? "realisability_margins" : ""}};
+  if (f.realisability) {
+    file.words.emplace("margin_count", std::to_string(eq.realisability.size()));
+    file.words.emplace("moment_order", std::to_string(eq.variables.order()));
+    file.words.emplace("higher_orders", eq.variables.order() == 3 ? "of order 3" : "of orders 3 to " + std::to_string(eq.variables.order()));
+    file.add_function("realisability", std::move(*f.realisability));
+  }
   file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
   add_step_loops(file, eq.n());
   return file;

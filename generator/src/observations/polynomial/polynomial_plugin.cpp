@@ -13,15 +13,15 @@ void PolynomialCode::plugin_options(const Model& model, std::optional<double> gr
 }
 
 std::string PolynomialCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                            const std::vector<bool>& in_lanes) const {
-  return continuous_observation_code().plugin_wrappers(model, names, in_lanes);
+                                            const std::vector<PluginFilterFacts>& facts) const {
+  return continuous_observation_code().plugin_wrappers(model, names, facts);
 }
 
 std::map<std::string, std::string> PolynomialCode::plugin_table(const Model& model, const std::vector<std::string>& names,
                                                                 const std::vector<std::string>& labels,
                                                                 std::optional<double> grid_step,
-                                                                const std::vector<bool>& in_lanes) const {
-  return continuous_observation_code().plugin_table(model, names, labels, grid_step, in_lanes);
+                                                                const std::vector<PluginFilterFacts>& facts) const {
+  return continuous_observation_code().plugin_table(model, names, labels, grid_step, facts);
 }
 
 }  // namespace pfgen::codegen

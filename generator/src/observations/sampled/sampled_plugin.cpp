@@ -40,7 +40,7 @@ std::string sampled_filter_table(const Model& model, const std::vector<std::stri
 // update_at and innovation read the parameters' values from their argument. innovation unpacks
 // innovation_terms' upper triangle of S (after P C^T) into the ABI's full p x p matrix.
 std::string SampledCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                        const std::vector<bool>&) const {
+                                        const std::vector<PluginFilterFacts>&) const {
   std::string out;
   for (const auto& name : names) {
     const std::string alias = "  namespace F = " + plugin_filter_namespace(model, name) + ";\n";
@@ -69,7 +69,7 @@ std::string SampledCode::plugin_wrappers(const Model& model, const std::vector<s
 std::map<std::string, std::string> SampledCode::plugin_table(const Model& model, const std::vector<std::string>& names,
                                                              const std::vector<std::string>& labels,
                                                              std::optional<double>,
-                                                             const std::vector<bool>&) const {
+                                                             const std::vector<PluginFilterFacts>&) const {
   return {
       {"filter_table", sampled_filter_table(model, names, labels)},
       {"period", CppEmitter(ScalarMode::Double).literal(model.observation.samples()->period)},

@@ -17,14 +17,16 @@ class ContinuousCode final : public ObservationCode {
  public:
   FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                          const FunctionNames& names, const StatementEmitter& emitter) const override;
-  std::vector<std::string> layouts() const override { return {"filter"}; }
+  // A moment filter's file is the polynomial observation's (filter_file).
+  std::vector<std::string> layouts() const override { return {"filter", "polynomial_filter"}; }
+  std::vector<std::string> declaring_frames() const override { return {"realisability_margins"}; }
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                              const std::vector<bool>& in_lanes) const override;
+                              const std::vector<PluginFilterFacts>& facts) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                   const std::vector<std::string>& labels,
                                                   std::optional<double> grid_step,
-                                                  const std::vector<bool>& in_lanes) const override;
+                                                  const std::vector<PluginFilterFacts>& facts) const override;
 };
 
 // The three functions of a filter whose observation is a rate (continuous or delayed):

@@ -23,11 +23,11 @@ class DelayedCode final : public ObservationCode {
   std::vector<std::string> layouts() const override { return {"delayed_filter"}; }
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                              const std::vector<bool>& in_lanes) const override;
+                              const std::vector<PluginFilterFacts>& facts) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                   const std::vector<std::string>& labels,
                                                   std::optional<double> grid_step,
-                                                  const std::vector<bool>& in_lanes) const override;
+                                                  const std::vector<PluginFilterFacts>& facts) const override;
 };
 
 // The filter's delay in steps of options.grid_step: CodegenError when there is no grid step or the

@@ -5,6 +5,7 @@
 // linear in the states is the continuous observation written A0 + A x: its code is the continuous
 // module's, byte for byte.
 #include <map>
+#include <optional>
 #include <string>
 
 #include "pfgen/codegen/filter_functions.hpp"
@@ -18,13 +19,14 @@ class PolynomialCode final : public ObservationCode {
                          const FunctionNames& names, const StatementEmitter& emitter) const override;
   // A nonlinear h's only: a linear h's filters are the continuous module's (observation_code).
   std::vector<std::string> layouts() const override { return {"polynomial_filter"}; }
+  std::vector<std::string> declaring_frames() const override { return {"realisability_margins"}; }  // moment filters'
   void plugin_options(const Model& model, std::optional<double> grid_step, CodegenOptions& options) const override;
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                              const std::vector<bool>& in_lanes) const override;
+                              const std::vector<PluginFilterFacts>& facts) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                   const std::vector<std::string>& labels,
                                                   std::optional<double> grid_step,
-                                                  const std::vector<bool>& in_lanes) const override;
+                                                  const std::vector<PluginFilterFacts>& facts) const override;
 };
 
 // The functions of a filter for a nonlinear h (docs/theory.md §2.9), with s = [m, P's upper
@@ -34,6 +36,7 @@ class PolynomialCode final : public ObservationCode {
 // so that Heun's scheme, which holds dy fixed across a step, converges to the Ito filter.
 struct PolynomialFunctions {
   FunctionCode derivatives, gain, covariance_gain, observation, correction;
+  std::optional<FunctionCode> realisability;  // a moment filter's margins (realisability_margins)
   // Their statistics in the order of the file's banner and --stats.
   std::vector<FunctionStats> stats() const;
 };

@@ -26,11 +26,11 @@ class SampledCode final : public ObservationCode {
   std::vector<std::string> layouts() const override { return {"sampled_filter"}; }
   std::vector<std::string> declaring_frames() const override { return {"euler_square"}; }  // cd-euler's
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                              const std::vector<bool>& in_lanes) const override;
+                              const std::vector<PluginFilterFacts>& facts) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
                                                   const std::vector<std::string>& labels,
                                                   std::optional<double> grid_step,
-                                                  const std::vector<bool>& in_lanes) const override;
+                                                  const std::vector<PluginFilterFacts>& facts) const override;
 };
 
 // The functions of a filter for sampled observations: the prediction's derivatives() (and

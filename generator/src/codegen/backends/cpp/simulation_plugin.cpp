@@ -106,7 +106,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
   observation.plugin_options(model, grid_step, options);
 
   std::vector<std::string> names, labels;
-  std::vector<bool> in_lanes;  // per filter: it steps runs side by side (step_lanes)
+  std::vector<PluginFilterFacts> facts;  // per filter: lanes, a moment filter's extra state and margins
   std::set<std::string> seen;
   std::string filter_sources;
   for (const auto& eq : filters) {
@@ -116,7 +116,11 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
     labels.push_back(eq.name);
     GeneratedFilter generated = generate_filter_code(model, eq, options);
     filter_sources += without_pragma_once(std::move(generated.files.at(0).contents)) + "\n";
-    in_lanes.push_back(steps_in_lanes(generated));
+    PluginFilterFacts filter;
+    filter.extra_state = eq.higher_drift.size();
+    filter.in_lanes = filter.extra_state == 0 && steps_in_lanes(generated);  // lanes step m and P alone
+    filter.margin_names = eq.realisability_meaning;
+    facts.push_back(std::move(filter));
   }
 
   const TruthCode truth = generate_truth_code(model);
@@ -131,7 +135,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
       {"parameter_names", model.parameters.empty() ? "nullptr" : "pfgen_simulation::parameters::names"},
       {"parameter_defaults", model.parameters.empty() ? "nullptr" : "pfgen_simulation::parameters::defaults"},
       {"truth_definitions", truth.definitions},
-      {"filter_wrappers", observation.plugin_wrappers(model, names, in_lanes)},
+      {"filter_wrappers", observation.plugin_wrappers(model, names, facts)},
       {"model_name", plugin_c_string(model.name)},
       {"pfgen_version", plugin_c_string(PFGEN_VERSION)},
       {"n", std::to_string(truth.n)},
@@ -154,7 +158,7 @@ std::string generate_simulation_plugin(const Model& model, const std::vector<Fil
   values["observation_noise"] = truth_pointer(!truth.observation_is_sampled, "observation_noise");
   values["sampled_observation"] = truth_pointer(truth.observation_is_sampled, "sampled_observation");
   values["observation_rate"] = truth_pointer(truth.has_observation_rate, "observation_rate");
-  for (auto& [field, value] : observation.plugin_table(model, names, labels, grid_step, in_lanes))
+  for (auto& [field, value] : observation.plugin_table(model, names, labels, grid_step, facts))
     values[field] = value;
   // The batched forms (the template's batch::lanes over the one-state function), present exactly
   // where the one-state functions are.
