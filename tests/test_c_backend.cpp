@@ -115,6 +115,10 @@ TEST_CASE("the C backend's results are bit-identical to the C++ backend's on eve
     for (const std::string& path : examples) {
       const Model model = load_model_file(path);
       for (const std::string& name : available_filter_names(model)) {
+        // The moment filters' state grows as C(n + k, k): their files for the larger examples (ins16: 4844
+        // variables at order 4) would take minutes to compile; they are checked here on the examples of up to
+        // three states.
+        if (const auto kind = parse_filter_kind(name); kind && uses_cumulant_closure(*kind) && model.n() > 3) continue;
         const FilterEquations eq = derive_named_filter(model, name);
         codegen::CodegenOptions options;
         options.scalar = scalar == "float" ? codegen::ScalarMode::Float : codegen::ScalarMode::Double;

@@ -50,6 +50,19 @@ void runaway_step(double* state, double, double dt, const double*, const int&) {
   state[0] += state[0] * state[0] * dt;
 }
 
+// A moment filter's shape: m, P and one entry of extra state (a higher moment) that falls as 0.35 - t, whose margin
+// is that entry. P falls fast (P' = -40 P), so that every grid step of 0.01 is refined into sub-steps: the extra
+// entry must be saved and restored with m and P, or the rejected steps would leave their decrements in it.
+void moment_initial(double* state) {
+  state[0] = 0.0;
+  state[1] = 1.0;
+  state[2] = 0.35;
+}
+void moment_step(double* state, double, double dt, const double*) {
+  state[1] -= 40 * state[1] * dt;
+  state[2] -= dt;
+}
+
 TruthRun quiet_truth(double T, double dt) {
   SdeSystem system;
   system.n = 1;
@@ -209,4 +222,29 @@ TEST_CASE("runtime: a generated filter plugs in and paper 001's singular P0 is l
   INFO("x(6.5) = " << truth.x.col(last).transpose() << ", m(6.5) = " << run.state.col(last).head(2).transpose());
   // The optimal filter tracks the measured x1 closely by t = 6.5.
   CHECK(std::abs(truth.x(0, last) - run.state(0, last)) < 1.0);
+}
+
+TEST_CASE("runtime: a moment filter's extra state is refined with m and P, and a margin not positive stops the run",
+          "[runtime][filters][unit]") {
+  const TruthRun truth = quiet_truth(1.0, 0.01);
+  FilterModel filter("moments", 1, 1, &moment_initial,
+                     std::make_unique<GridSteps>(&moment_step, FilterStepFunction{}, 0, 1));
+  REQUIRE(filter.state_size() == 3);
+  // Without margins the run goes to the end, its steps refined.
+  FilterRun run = run_filter(filter, truth);
+  CHECK_FALSE(run.stopped);
+  CHECK(run.refined_steps > 30);  // every grid step while P = exp(-40 t) is above the stepper's floor
+  // With the margin: stops at the first grid time where 0.35 - t <= 0 (t = 0.35, or 0.36 after round-off).
+  filter.realisability.margins = [](const double* state, double* margins) { margins[0] = state[2]; };
+  filter.realisability.names = {"the extra entry"};
+  run = run_filter(filter, truth);
+  REQUIRE(run.divergence);
+  CHECK(run.divergence->kind == DivergenceKind::unrealisable);
+  CHECK(run.divergence->t >= 0.35 - 1e-12);
+  CHECK(run.divergence->t <= 0.36 + 1e-12);
+  CHECK(run.divergence->value <= 1e-12);
+  CHECK(run.divergence->value > -0.01 - 1e-12);  // restored on every rejected step: off by at most one grid step
+  CHECK(run.stopped);
+  CHECK(run.divergence->describe().find("the moments left the realisable set") != std::string::npos);
+  CHECK(run.divergence->describe().find("the extra entry") != std::string::npos);
 }

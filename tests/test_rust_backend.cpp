@@ -223,8 +223,11 @@ TEST_CASE("the Rust backend's modules compile with warnings denied and equal the
   for (const std::string& path : examples) models.push_back(load_model_file(path));
   std::vector<std::pair<const Model*, FilterEquations>> derived;
   for (const Model& model : models)
-    for (const std::string& name : available_filter_names(model))
+    for (const std::string& name : available_filter_names(model)) {
+      // The moment filters on the examples of up to three states (their state grows as C(n + k, k); as the C test).
+      if (const auto kind = parse_filter_kind(name); kind && uses_cumulant_closure(*kind) && model.n() > 3) continue;
       derived.emplace_back(&model, derive_named_filter(model, name));
+    }
 
   for (const std::string scalar : {"f64", "f32"}) {
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("pfgen-test-rust-backend-" + scalar);

@@ -105,6 +105,12 @@ std::vector<double> rounded_values(const std::vector<GiNaC::numeric>& exact, con
 void evaluate_higher_moments(const FilterEquations& eq, const PolynomialEvaluator& value, EvaluatedFilter& out) {
   const FilterVariables& vars = eq.variables;
   const std::size_t n = eq.n();
+  // E[h], which a polynomial h's moment filter reads its higher moments in; the observation's part fills it for a
+  // polynomial h only.
+  if (out.predicted_observation.empty())
+    for (std::size_t r = 0; r < eq.p; ++r)
+      out.predicted_observation.push_back(
+          value(eq.predicted_observation[r], "predicted_observation[" + std::to_string(r + 1) + "]"));
   if (out.P_gain.empty())
     for (std::size_t r = 0; r < eq.p && !eq.P_gain.empty(); ++r) {
       std::vector<std::vector<double>> L(n, std::vector<double>(n));

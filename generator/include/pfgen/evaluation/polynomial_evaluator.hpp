@@ -43,8 +43,8 @@ std::vector<double> rounded_values(const std::vector<GiNaC::numeric>& exact, con
 // The parts every filter's values have: m's drift, the gain (n x p), and P's drift (full, symmetric).
 // A moment filter's central moment of order >= 3 at the point: as given (--moment), else its value under N(m, P).
 GiNaC::numeric central_moment_value(const FilterVariables& vars, const EvaluationPoint& point, std::uint32_t variable);
-// A moment filter's values beyond m and P: each higher moment's drift and gain, and P_gain when the observation's
-// part left it out (a linear h's).
+// A moment filter's values beyond m and P: each higher moment's drift and gain, and the predicted observation and
+// P_gain when the observation's part left them out (a linear h's).
 void evaluate_higher_moments(const FilterEquations& eq, const PolynomialEvaluator& value, EvaluatedFilter& out);
 void evaluate_m_drift(const FilterEquations& eq, const PolynomialEvaluator& value, EvaluatedFilter& out);
 void evaluate_gain(const FilterEquations& eq, const PolynomialEvaluator& value, EvaluatedFilter& out);
