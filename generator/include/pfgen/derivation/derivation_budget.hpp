@@ -21,10 +21,11 @@ inline constexpr double kMaxEquationTerms = 2000000;    // terms of the m and P 
 // Products of two terms that a polynomial observation's correction or a sampled c's update take
 // (each a product of coefficients, about 1 us and 40 bytes: about 5 s and 150 MB at the limit).
 inline constexpr double kMaxObservationProducts = 4000000;
-// Products of two terms that a moment filter's derivation takes (closure3, closure4): each about
-// 1 us and 110 bytes held to the end (the equations and the memoised moments), measured on the
-// dense cubic models (closure4 of 9 states: 11.6 million products, 11.6 s, 1.3 GB); about 10 s and
-// 1.1 GB at the limit.
+// Products of two terms that a moment filter's derivation takes (closure3, closure4), as
+// closure_derivation_work counts them: each took 0.4-0.75 us of derivation on dense cubic, linear,
+// high-degree and polynomial-h models, and at most about 110 bytes held to the end (closure4 of 8
+// dense cubic states: 6.2 million, 4.6 s, 583 MB; of 9: 13.6 million, 11.6 s, 1.3 GB). At the
+// limit: under 10 s and about 1.1 GB.
 inline constexpr double kMaxClosureProducts = 10000000;
 
 // The number of terms of E[x^alpha] for x ~ N(m, P), as a polynomial in m and P: one per way to
