@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "pfgen/derivation/closed_expectation.hpp"
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
@@ -209,4 +210,147 @@ TEST_CASE("the derivation budget counts a polynomial h and a sampled c as it cou
   };
   CHECK_NOTHROW(budget("[\"1\", \"0\"], [\"0\", \"1\"]"));
   CHECK_THROWS_WITH(budget("[\"1\", \"0\"], [\"1\", \"1\"]"), Catch::Contains("above the limit of 4000000"));
+}
+
+namespace {
+
+// Every g with |g| <= most over n states, by dense exponent vectors.
+std::vector<std::vector<std::uint32_t>> exponent_vectors(std::size_t n, std::uint32_t most) {
+  std::vector<std::vector<std::uint32_t>> out{{}};
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<std::vector<std::uint32_t>> next;
+    for (const auto& g : out) {
+      std::uint32_t size = 0;
+      for (std::uint32_t e : g) size += e;
+      for (std::uint32_t e = 0; size + e <= most; ++e) {
+        next.push_back(g);
+        next.back().push_back(e);
+      }
+    }
+    out = std::move(next);
+  }
+  return out;
+}
+
+// All terms of a moment filter's equations.
+double equation_terms(const FilterEquations& eq) {
+  double terms = 0;
+  auto add = [&](const std::vector<Polynomial>& list) {
+    for (const auto& p : list) terms += static_cast<double>(p.terms().size());
+  };
+  add(eq.m_drift);
+  add(eq.P_moment);
+  add(eq.P_diffusion);
+  add(eq.P_correction);
+  add(eq.higher_drift);
+  for (const auto* rows : {&eq.gain, &eq.P_gain, &eq.higher_gain})
+    for (const auto& row : *rows) add(row);
+  return terms;
+}
+
+ClosureInputs closure_inputs(const Model& model, FilterKind kind) {
+  std::vector<Polynomial> f, h = model.observation.rate().polynomials(model.states);
+  for (const auto& e : model.drift) f.push_back(Polynomial::from_ex(e, model.states));
+  return ClosureInputs{filter_kind_info(kind).closure_order, filter_kind_name(kind), f, h,
+                       model.observation.rate().noise(), "diffusion", "observation.h"};
+}
+
+}  // namespace
+
+TEST_CASE("closed_moment_terms counts the terms of the closed law's central moments", "[derivation_budget][unit]") {
+  // At order 3 the count is exact; at order 4 the M4's cumulant M4 - 3 P^2 cancels some of the P terms
+  // (E[e^8] of one state: 35 M4^2 + 280 M3^2 P - 210 P^4, its M4 P^2 terms cancel), so it is at most
+  // 20 % above.
+  for (unsigned order : {3u, 4u}) {
+    const FilterVariables vars(3, false, order);
+    ClosedExpectation E(vars);
+    double counted = 0, terms = 0;
+    for (const auto& g : exponent_vectors(3, 9)) {
+      INFO("order " << order << ", e^(" << g[0] << ", " << g[1] << ", " << g[2] << ")");
+      const double real = static_cast<double>(E.central(g).terms().size());
+      if (order == 3) CHECK(closed_moment_terms(g, order) == real);
+      CHECK(closed_moment_terms(g, order) >= real);
+      counted += closed_moment_terms(g, order);
+      terms += real;
+    }
+    CHECK(counted <= 1.2 * terms);
+  }
+  // By hand: E[e^6] of one state at order 4 is 15 M4 P - 30 P^3 + 10 M3^2 (15 kappa4 kappa2 + 10 kappa3^2
+  // + 15 kappa2^3, kappa4 = M4 - 3 P^2); of six distinct states, one term per split into blocks of
+  // 2..4: 15 into pairs, 10 into two triples, 15 into a block of four and a pair.
+  CHECK(closed_moment_terms({6}, 4) == 3);
+  CHECK(closed_moment_terms({1, 1, 1, 1, 1, 1}, 4) == 40);
+  CHECK(closed_moment_terms({1, 1, 1, 1, 1, 1}, 3) == 25);
+  // The carried moments are their own variables; one factor has mean zero.
+  CHECK(closed_moment_terms({2, 1, 1}, 4) == 1);
+  CHECK(closed_moment_terms({0, 1}, 3) == 0);
+  CHECK(closed_moment_terms({}, 3) == 1);
+  // Beyond the stopping point only "more than" is promised, cheaply: 30 distinct states.
+  CHECK(closed_moment_terms(std::vector<std::uint32_t>(30, 1), 4, 1e6) > 1e6);
+}
+
+TEST_CASE("the moment filters' count bounds the terms of their equations", "[derivation_budget][integration]") {
+  // The dense cubic models (cubic drift, linear multiplicative noise, every state observed) and a polynomial
+  // observation: the count is at least the equations' terms, and within a small factor of them.
+  std::vector<Model> models = {pfgen_test::dense_cubic_model(2), pfgen_test::dense_cubic_model(3)};
+  models.push_back(load_model_text("name: obs\nstates: [x1, x2]\ndrift: [\"-x1 + x2^2\", \"-x2^3\"]\n"
+                                   "diffusion: [[\"1\", \"0\"], [\"x1\", \"1\"]]\n"
+                                   "observation:\n  h: [\"x1^2 + x2\", \"x1*x2^2\"]\n  B: [[\"1\", \"0\"], [\"1\", \"1\"]]\n",
+                                   "obs.yaml"));
+  for (const Model& model : models)
+    for (FilterKind kind : {FilterKind::Closure3, FilterKind::Closure4}) {
+      INFO(model.name << " " << filter_kind_name(kind));
+      const double terms = equation_terms(derive_filter(model, kind));
+      const double counted = closure_derivation_work(model, closure_inputs(model, kind)).total();
+      CHECK(counted >= terms);
+      CHECK(counted <= 30 * terms);
+    }
+}
+
+TEST_CASE("the moment filters' budget refuses what would run away and passes the dense models it can derive",
+          "[derivation_budget][integration]") {
+  // closure4 of 9 dense cubic states took 11.6 s and 1.3 GB; of 10, 30 s and 2.7 GB.
+  try {
+    derive_filter(pfgen_test::dense_cubic_model(9), FilterKind::Closure4);
+    FAIL("closure4 of 9 dense cubic states was derived");
+  } catch (const ModelError& e) {
+    CHECK(e.field() == "drift");
+    CHECK(e.message().rfind("filter closure4 of a 9-state model with a drift of degree 3 would take up to ", 0) == 0);
+    CHECK(e.message().find(" products of terms (limit 10000000): its 714 equations (m and the central moments of "
+                           "orders 2 to 4) read the closed law's moments up to order 6; use closure3, fewer states "
+                           "or lower degrees") != std::string::npos);
+  }
+  // What passes derives: 4 states at once, 8 states (closure4, 5 s) and 12 (closure3, 6 s) pass the count.
+  const FilterEquations four = derive_filter(pfgen_test::dense_cubic_model(4), FilterKind::Closure4);
+  CHECK(four.higher_drift.size() == 20 + 35);
+  for (auto [n, kind] : {std::pair{8, FilterKind::Closure4}, std::pair{12, FilterKind::Closure3}}) {
+    const Model model = pfgen_test::dense_cubic_model(static_cast<std::size_t>(n));
+    CHECK_NOTHROW(check_closure_budget(model, closure_inputs(model, kind)));
+  }
+  const Model thirteen = pfgen_test::dense_cubic_model(13);
+  CHECK_THROWS_WITH(check_closure_budget(thirteen, closure_inputs(thirteen, FilterKind::Closure3)),
+                    Catch::Contains("filter closure3 of a 13-state model") && Catch::Contains("use fewer states"));
+
+  // A polynomial observation's products: h of degree 3 in all of 4 states (closure3: 3.6 s).
+  const Model observed = load_model_text(
+      "name: obs\nstates: [x1, x2, x3, x4]\ndrift: [\"-x1\", \"-x2\", \"-x3\", \"-x4\"]\n"
+      "diffusion: [[\"1\", \"0\", \"0\", \"0\"], [\"0\", \"1\", \"0\", \"0\"], [\"0\", \"0\", \"1\", \"0\"], "
+      "[\"0\", \"0\", \"0\", \"1\"]]\nobservation:\n  h: [\"(x1 + x2 + x3 + x4 + 1)^3\"]\n  B: [[\"1\"]]\n",
+      "obs.yaml");
+  CHECK_NOTHROW(check_closure_budget(observed, closure_inputs(observed, FilterKind::Closure3)));
+  try {
+    derive_filter(observed, FilterKind::Closure4);
+    FAIL("closure4 of a cubic h in 4 states was derived");
+  } catch (const ModelError& e) {
+    CHECK(e.field() == "observation.h");
+    CHECK(e.file() == "obs.yaml");
+    CHECK(e.message().rfind("filter closure4 of a 4-state model with a drift of degree 1 would take up to ", 0) == 0);
+  }
+  // Many states with a linear drift: the equations themselves, C(n + 4, 4) - 1 of them.
+  std::vector<std::string> linear;
+  for (int i = 1; i <= 64; ++i) linear.push_back("-x" + std::to_string(i));
+  CHECK(refusal(model_with_drift(linear, 1), FilterKind::Closure4)
+            .rfind("states: filter closure4 of a 64-state model with a drift of degree 1 would take more than "
+                   "40000000 products of terms (limit 10000000): its 814384 equations",
+                   0) == 0);
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/model/model_error.hpp"
@@ -104,6 +105,24 @@ class ExpectationCount {
   std::map<Monomial, double> held_;  // each monomial's E[m] terms
   double total_ = 0;
 };
+
+// The rows of an observation that the gain's R^-1 = (B B^T)^-1 may couple: group[r] == group[s]
+// when R links r to s, directly or through others (R^-1 is block-diagonal on those groups).
+std::vector<std::size_t> noise_groups(const ExMatrix& noise, std::size_t p) {
+  const ExMatrix R = multiply_by_transpose(noise);
+  std::vector<std::size_t> group(p);
+  for (std::size_t r = 0; r < p; ++r) group[r] = r;
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (std::size_t r = 0; r < p; ++r)
+      for (std::size_t s = 0; s < p; ++s)
+        if (!R[r][s].is_zero() && group[r] != group[s]) {
+          group[r] = group[s] = std::min(group[r], group[s]);
+          merged = true;
+        }
+  }
+  return group;
+}
 
 }  // namespace
 
@@ -225,18 +244,7 @@ void check_observation_budget(const Model& model, const ObservationPolynomials& 
     // The correction K E[J] P, entry (i, j): sum_s gain_is cross_js, the gain entry gain_is a sum
     // of cross_ir over the rows r that R^-1 = (B B^T)^-1 couples with s (those R links to s,
     // directly or through others); dP's dy term P E[H_r] P for each such pair.
-    const ExMatrix R = multiply_by_transpose(observation.noise);
-    std::vector<std::size_t> group(p);
-    for (std::size_t r = 0; r < p; ++r) group[r] = r;
-    for (bool merged = true; merged;) {
-      merged = false;
-      for (std::size_t r = 0; r < p; ++r)
-        for (std::size_t s = 0; s < p; ++s)
-          if (!R[r][s].is_zero() && group[r] != group[s]) {
-            group[r] = group[s] = std::min(group[r], group[s]);
-            merged = true;
-          }
-    }
+    const std::vector<std::size_t> group = noise_groups(observation.noise, p);
     for (std::size_t s = 0; s < p; ++s)
       for (std::size_t r = 0; r < p; ++r)
         if (group[r] == group[s]) equations += upper * (cross[r] * cross[s] + hessian[r]);
@@ -265,6 +273,326 @@ std::size_t observed_states(const std::vector<Polynomial>& observation, std::siz
     for (const auto& [monomial, coefficient] : row.terms())
       for (const auto& [variable, exponent] : monomial.factors()) read[variable] = true;
   return static_cast<std::size_t>(std::count(read.begin(), read.end(), true));
+}
+
+
+
+// The moment filters' budget (closure3, closure4).
+namespace {
+
+// A count that would take more steps than this (points of the box times blocks) is of a moment
+// with far more terms than any limit: g has many factors over many states (x1^5 ... x5^5 times a
+// moment's indices), and the recursion that would compute it visits as many (moment, block) pairs,
+// each a product of polynomials. It is taken as beyond the limit rather than counted.
+constexpr double kMaxCountSteps = 2e7;
+
+// Ways to split a multiset of factors (`shape`: each state's exponent, all > 0) into blocks of 2..k
+// factors, the order of the blocks aside: the coefficient of z^shape in the product over block
+// types b of 1 / (1 - z^b), by dynamic programming over the box of sub-multisets (mixed radix).
+double block_partitions(const std::vector<std::uint32_t>& shape, unsigned order, double stop_above) {
+  const std::size_t s = shape.size();
+  std::vector<std::size_t> stride(s);
+  double box = 1;
+  for (std::size_t i = 0; i < s; ++i) {
+    stride[i] = static_cast<std::size_t>(box);
+    box *= shape[i] + 1.0;
+    if (box > kMaxCountSteps) return std::max(stop_above, kMaxCountSteps) + 1;
+  }
+  // The block types: every b <= shape with 2 <= |b| <= k, as exponents and as an offset in the box.
+  std::vector<std::vector<std::uint32_t>> blocks;
+  std::vector<std::size_t> offsets;
+  std::vector<std::uint32_t> b(s, 0);
+  auto enumerate = [&](auto& self, std::size_t at, unsigned size, std::size_t offset) -> void {
+    if (at == s) {
+      if (size >= 2) {
+        blocks.push_back(b);
+        offsets.push_back(offset);
+      }
+      return;
+    }
+    for (std::uint32_t e = 0; e <= shape[at] && size + e <= order; ++e) {
+      b[at] = e;
+      self(self, at + 1, size + e, offset + e * stride[at]);
+    }
+    b[at] = 0;
+  };
+  enumerate(enumerate, 0, 0, 0);
+  if (box * static_cast<double>(blocks.size()) > kMaxCountSteps) return std::max(stop_above, kMaxCountSteps) + 1;
+  const std::size_t points = static_cast<std::size_t>(box);
+  std::vector<double> ways(points, 0.0);
+  ways[0] = 1;
+  std::vector<std::uint32_t> digit(s);
+  for (std::size_t t = 0; t < blocks.size(); ++t) {
+    // Ascending, so that ways[v - b] already counts any number of blocks b.
+    std::fill(digit.begin(), digit.end(), 0);
+    for (std::size_t v = 0; v < points; ++v) {
+      bool fits = true;
+      for (std::size_t i = 0; i < s && fits; ++i) fits = digit[i] >= blocks[t][i];
+      if (fits) ways[v] += ways[v - offsets[t]];
+      for (std::size_t i = 0; i < s && ++digit[i] > shape[i]; ++i) digit[i] = 0;
+    }
+  }
+  return ways[points - 1];
+}
+
+// A monomial's (state, exponent) pairs, states ascending: e^b, e^d, e^g.
+using Exponents = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
+
+std::uint32_t size_of(const Exponents& g) {
+  std::uint32_t size = 0;
+  for (const auto& [state, exponent] : g) size += exponent;
+  return size;
+}
+
+Exponents minus_one(Exponents a, std::uint32_t state) {
+  for (auto it = a.begin(); it != a.end(); ++it)
+    if (it->first == state) {
+      if (--it->second == 0) a.erase(it);
+      break;
+    }
+  return a;
+}
+
+// The terms m^c e^d of q(m + e), grouped by d: each monomial x^alpha gives one for every d <= alpha,
+// so d's count is the number of q's monomials above it.
+std::vector<std::pair<Exponents, double>> deviation_parts(const Polynomial& q) {
+  std::map<Exponents, double> parts;
+  for (const auto& [monomial, coefficient] : q.terms()) {
+    const auto& factors = monomial.factors();
+    std::vector<std::uint32_t> d(factors.size(), 0);
+    for (;;) {
+      Exponents key;
+      for (std::size_t i = 0; i < d.size(); ++i)
+        if (d[i]) key.emplace_back(factors[i].first, d[i]);
+      parts[key] += 1;
+      std::size_t i = 0;
+      while (i < d.size() && ++d[i] > factors[i].second) d[i++] = 0;
+      if (i == d.size()) break;
+    }
+  }
+  return {parts.begin(), parts.end()};
+}
+
+// The derivation's work, counted as moment_closure_terms does it (see closure_derivation_work).
+class ClosureCount {
+ public:
+  ClosureCount(unsigned order, double stop_above) : order_(order), stop_above_(stop_above) {}
+
+  // Terms of E[e^g] (closed_moment_terms), memoised by the sorted exponents, which alone decide it.
+  double moment(const Exponents& g) {
+    std::vector<std::uint32_t> shape;
+    for (const auto& [state, exponent] : g) shape.push_back(exponent);
+    std::sort(shape.begin(), shape.end(), std::greater<>());
+    const auto [it, added] = moments_.emplace(shape, 0.0);
+    if (added) it->second = closed_moment_terms(shape, order_, stop_above_);
+    return it->second;
+  }
+  // Products E[e^b q] takes: for each term m^c e^d of q(m + e), the terms of E[e^(b+d)], and those
+  // of the recursion that computes E[e^(b+d)] the first time. The first part bounds E[e^b q]'s terms.
+  double expectation(const Exponents& b, const std::vector<std::pair<Exponents, double>>& q) {
+    double products = 0;
+    Exponents g;
+    for (const auto& [d, count] : q) {
+      g.clear();
+      std::merge(b.begin(), b.end(), d.begin(), d.end(), std::back_inserter(g));
+      for (std::size_t k = 1; k < g.size(); ++k)  // a state in both: one factor
+        if (g[k].first == g[k - 1].first) {
+          g[k - 1].second += g[k].second;
+          g.erase(g.begin() + static_cast<std::ptrdiff_t>(k--));
+        }
+      products += count * moment(g) + recursion(g);
+    }
+    return products;
+  }
+
+ private:
+  // Products ClosedExpectation::central takes to compute E[e^g] and the moments on its way that it
+  // does not hold yet (memoised by g as it is): with i g's first state, for each b <= g - e_i with
+  // 1 <= |b| <= k - 1, the cumulant of e_i + b (one term, or four for an M4 less three pairs of P's)
+  // times E[e^(g - e_i - b)].
+  double recursion(const Exponents& g) {
+    if (size_of(g) <= order_ || !computed_.insert(g).second) return 0;
+    const Exponents rest = minus_one(g, g.front().first);
+    double products = 0;
+    Exponents b, remaining;
+    auto visit = [&](auto& self, std::size_t at, unsigned size) -> void {
+      if (at == rest.size()) {
+        if (size == 0) return;
+        remaining.clear();
+        for (std::size_t t = 0; t < rest.size(); ++t) {
+          const std::uint32_t left = rest[t].second - b[t].second;
+          if (left) remaining.emplace_back(rest[t].first, left);
+        }
+        products += (size + 1 == 4 ? 4 : 1) * moment(remaining) + recursion(remaining);
+        return;
+      }
+      for (std::uint32_t e = 0; e <= rest[at].second && size + e < order_; ++e) {
+        b[at].second = e;
+        self(self, at + 1, size + e);
+      }
+      b[at].second = 0;
+    };
+    b = rest;
+    for (auto& factor : b) factor.second = 0;
+    visit(visit, 0, 0);
+    return products;
+  }
+
+  unsigned order_;
+  double stop_above_;
+  std::map<std::vector<std::uint32_t>, double> moments_;
+  std::set<Exponents> computed_;
+};
+
+}  // namespace
+
+double closed_moment_terms(const std::vector<std::uint32_t>& g, unsigned order, double stop_above) {
+  std::vector<std::uint32_t> shape;
+  std::uint32_t size = 0;
+  for (std::uint32_t exponent : g)
+    if (exponent) {
+      shape.push_back(exponent);
+      size += exponent;
+    }
+  if (size == 1) return 0;
+  if (size <= order) return 1;  // 1, or the carried moment's variable
+  std::sort(shape.begin(), shape.end(), std::greater<>());
+  return block_partitions(shape, order, stop_above);
+}
+
+ClosureWork closure_derivation_work(const Model& model, const ClosureInputs& inputs, double stop_above) {
+  const std::size_t n = model.n(), p = inputs.observation.size();
+  const unsigned k = inputs.order;
+  ClosureCount count(k, stop_above);
+  ClosureWork work;
+  auto over = [&] { return work.total() > stop_above; };
+  using Parts = std::vector<std::pair<Exponents, double>>;
+  std::vector<Parts> f, h;
+  std::vector<std::vector<Parts>> G(n, std::vector<Parts>(n));
+  std::uint32_t degree_f = 0, degree_G = 0, degree_h = 0;
+  for (const Polynomial& fi : inputs.drift) {
+    f.push_back(deviation_parts(fi));
+    degree_f = std::max(degree_f, fi.degree());
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) {
+      const Polynomial Gij = Polynomial::from_ex(model.diffusion.G[i][j], model.states);
+      if (Gij.is_zero()) continue;
+      G[i][j] = deviation_parts(Gij);
+      degree_G = std::max(degree_G, Gij.degree());
+    }
+  for (const Polynomial& hr : inputs.observation) {
+    h.push_back(deviation_parts(hr));
+    degree_h = std::max(degree_h, hr.degree());
+  }
+  // m and the central moments of orders 2..k: C(n + k, k) - 1 equations. The derivation writes each
+  // moment's indices as a vector of n exponents and finds it, its neighbours and their C_b in maps
+  // keyed by those vectors: a cost of n for each, which is most of the work when the drift is
+  // linear (64 states, closure3: 47904 equations, 3.4 s).
+  double equations = -1;
+  for (unsigned r = 0; r <= k; ++r) equations += std::round(std::exp(std::lgamma(n + r) - std::lgamma(n) - std::lgamma(r + 1.0)));
+  work.equations = equations;
+  work.bookkeeping = equations * static_cast<double>(n);
+  if (over()) return work;
+  work.moment_order = std::max({k - 1 + degree_f, k - 2 + degree_G, p ? k + degree_h : 0});
+
+  // E[f], E[h] (the frame's and the gain's), once.
+  std::vector<double> Ef(n), Eh(p);
+  for (std::size_t i = 0; i < n; ++i) work.drift += Ef[i] = count.expectation({}, f[i]);
+  for (std::size_t r = 0; r < p; ++r) work.observation += Eh[r] = count.expectation({}, h[r]);
+  // C_b = E[e^b h] - mu_b E[h], once for each b (mu_b is one variable for |b| >= 2, zero for |b| = 1);
+  // a row's terms times R^-1 (sums of rows R^-1 couples, each term scaled); a dot product of two.
+  using Row = std::vector<double>;
+  std::map<Exponents, Row> C;
+  auto C_of = [&](const Exponents& b) -> const Row& {
+    if (auto it = C.find(b); it != C.end()) return it->second;
+    Row row(p);
+    for (std::size_t r = 0; r < p; ++r)
+      work.observation += row[r] = count.expectation(b, h[r]) + (size_of(b) >= 2 ? Eh[r] : 0);
+    return C.emplace(b, std::move(row)).first->second;
+  };
+  const std::vector<std::size_t> group = p ? noise_groups(inputs.noise, p) : std::vector<std::size_t>{};
+  auto times_R_inverse = [&](const Row& row) {
+    Row out(p, 0.0);
+    for (std::size_t s = 0; s < p; ++s)
+      for (std::size_t r = 0; r < p; ++r)
+        if (group[r] == group[s]) out[s] += row[r];
+    for (double terms : out) work.observation += terms;
+    return out;
+  };
+  auto dot = [&](const Row& a, const Row& b) {
+    double products = 0;
+    for (std::size_t s = 0; s < p; ++s) products += a[s] * b[s];
+    return products;
+  };
+  auto unit = [](std::size_t i) { return Exponents{{static_cast<std::uint32_t>(i), 1}}; };
+  std::vector<Row> K;  // K_i = C_(e_i) R^-1
+  for (std::size_t i = 0; i < n && p; ++i) K.push_back(times_R_inverse(C_of(unit(i))));
+
+  // Each central moment a of order 2..k, indices i1 <= ... <= ir (moment_parts).
+  auto moment_equation = [&](const Exponents& a) {
+    Row innovation = p ? C_of(a) : Row{};
+    for (const auto& [state, exponent] : a) {
+      const Exponents b = minus_one(a, state);
+      const bool carried = size_of(b) >= 2;  // mu_b a variable, not zero
+      work.drift += count.expectation(b, f[state]) + (carried ? Ef[state] : 0);
+      for (const auto& [other, e] : b) {
+        const Exponents c = minus_one(b, other);
+        if (!G[state][other].empty()) work.diffusion += count.expectation(c, G[state][other]);
+        if (p) work.observation += dot(K[state], C_of(unit(other))) * (size_of(c) == 1 ? 1 : 2);
+      }
+      if (p) {
+        work.observation += dot(times_R_inverse(C_of(b)), C_of(unit(state)));
+        if (carried)
+          for (std::size_t r = 0; r < p; ++r) work.observation += C_of(unit(state))[r], innovation[r] += C_of(unit(state))[r];
+      }
+    }
+    if (p) times_R_inverse(innovation);
+  };
+  for (unsigned r = 2; r <= k && !over(); ++r) {
+    std::vector<std::uint32_t> indices(r, 0);
+    for (;;) {
+      Exponents a;
+      for (std::uint32_t i : indices)
+        if (!a.empty() && a.back().first == i) ++a.back().second;
+        else a.emplace_back(i, 1);
+      moment_equation(a);
+      if (over()) break;
+      // The next i1 <= ... <= ir in lexicographic order.
+      std::size_t at = r;
+      while (at > 0 && indices[at - 1] == n - 1) --at;
+      if (at == 0) break;
+      const std::uint32_t next = indices[at - 1] + 1;
+      for (std::size_t t = at - 1; t < r; ++t) indices[t] = next;
+    }
+  }
+  return work;
+}
+
+void check_closure_budget(const Model& model, const ClosureInputs& inputs) {
+  // Counted on to four times the limit, to say how far beyond it a model is (the count takes about
+  // 0.1 s per 10 million products it counts, on the dense cubic models).
+  const double counted = 4 * kMaxClosureProducts;
+  const ClosureWork work = closure_derivation_work(model, inputs, counted);
+  if (work.total() <= kMaxClosureProducts) return;
+  // The field whose terms take most of the work.
+  std::string field = "drift";
+  if (work.diffusion > std::max(work.drift, work.observation)) field = inputs.diffusion_field;
+  if (work.observation > std::max(work.drift, work.diffusion)) field = inputs.observation_field;
+  if (work.bookkeeping > std::max({work.drift, work.diffusion, work.observation})) field = "states";
+  std::uint32_t degree = 0;
+  for (const Polynomial& fi : inputs.drift) degree = std::max(degree, fi.degree());
+  ModelError error(field,
+                   "filter " + inputs.kind + " of a " + std::to_string(model.n()) + "-state model with a drift of degree " +
+                       std::to_string(degree) + " would take " + (work.total() > counted ? "more than " + count_text(counted) : "up to " + count_text(work.total())) +
+                       " products of terms (limit " + count_text(kMaxClosureProducts) + "): its " +
+                       count_text(work.equations) + " equations (m and the central moments of orders 2 to " +
+                       std::to_string(inputs.order) + ") read the closed law's moments up to order " +
+                       std::to_string(work.moment_order) + "; use " +
+                       (inputs.order > 3 ? "closure" + std::to_string(inputs.order - 1) + ", " : std::string()) +
+                       "fewer states or lower degrees");
+  error.set_file(model.source);
+  throw error;
 }
 
 }  // namespace pfgen

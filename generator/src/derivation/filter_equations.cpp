@@ -139,10 +139,17 @@ FilterEquations unscented_filter(const Model& model, FilterEquations eq) {
 // registry derives these kinds for the undelayed continuous rate only, linear or polynomial alike.
 FilterEquations moment_filter(const Model& model, FilterKind kind, FilterEquations eq) {
   const std::vector<Polynomial> f = state_polynomials(model.drift, model);
-  check_model_terms_budget(model, true, f, jacobian(f));
-  eq.variables = FilterVariables(model.n(), false, filter_kind_info(kind).closure_order);
+  const unsigned order = filter_kind_info(kind).closure_order;
   const ObservationRate& rate = model.observation.rate();
-  MomentClosureTerms terms = moment_closure_terms(model, eq.variables, rate.polynomials(model.states), rate.noise());
+  const std::vector<Polynomial> h = rate.polynomials(model.states);
+  // The Gaussian kinds' limits first (the closed law's moments include the Gaussian ones), then the
+  // closure's own count of its moments' equations.
+  check_model_terms_budget(model, true, f, jacobian(f));
+  check_closure_budget(model, ClosureInputs{order, filter_kind_name(kind), f, h, rate.noise(),
+                                            diffusion_field(model.diffusion, false),
+                                            rate.written_affine() ? "observation.A" : "observation.h"});
+  eq.variables = FilterVariables(model.n(), false, order);
+  MomentClosureTerms terms = moment_closure_terms(model, eq.variables, h, rate.noise());
   eq.m_drift = std::move(terms.m_drift);
   eq.gain = std::move(terms.gain);
   eq.predicted_observation = std::move(terms.predicted_observation);
