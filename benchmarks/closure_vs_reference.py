@@ -102,15 +102,18 @@ def one_run(args, filters, seed, workdir):
     data = np.genfromtxt(csv_path, delimiter=",", names=True)
     states = [n[len("reference_m_"):] for n in data.dtype.names if n.startswith("reference_m_")]
     realisable = realisable_stops(out.stdout)
-    stops = {}
+    stops, psd_losses = {}, {}
     with open(stops_path) as f:
         next(f)
         for line in f:
             source, event, _, t = line.strip().split(",")
+            if event == "psd_loss":  # recorded, but the filter goes on
+                psd_losses[source] = float(t)
+                continue
             kind = "realisable" if source in realisable else event
             stops[source] = {"kind": kind, "t": float(t)}
     rec = {"seed": seed, "wall_s": wall, "states": states, "stops": stops,
-           "own_error": reference_own_error(out.stdout, states), "mse": {}, "dist": {}}
+           "psd_losses": psd_losses, "own_error": reference_own_error(out.stdout, states), "mse": {}, "dist": {}}
     for s in states:
         x = data["truth_" + s]
         mref = data["reference_m_" + s]
@@ -122,6 +125,21 @@ def one_run(args, filters, seed, workdir):
             m = data["%s_m_%s" % (f, s)]
             rec["mse"].setdefault(f, {})[s] = float(np.mean((x - m) ** 2))
             rec["dist"].setdefault(f, {})[s] = float(np.mean((m - mref) ** 2))
+    # Every filter up to the run's first stop, so that no run is left out: the window [0, tau),
+    # tau the earliest stop of any filter (T if none stopped).
+    t = data["t"]
+    tau = min([v["t"] for v in stops.values()] + [float(t[-1])])
+    keep = t < tau if tau < t[-1] else np.ones_like(t, dtype=bool)
+    rec["tau"] = tau
+    rec["pre"] = {}
+    if "reference" not in stops and "truth" not in stops and keep.any():
+        for s in states:
+            x, mref = data["truth_" + s][keep], data["reference_m_" + s][keep]
+            rec["pre"].setdefault("reference", {})[s] = [float(np.mean((x - mref) ** 2)), 0.0]
+            for f in filters:
+                m = data["%s_m_%s" % (f, s)][keep]
+                rec["pre"].setdefault(f, {})[s] = [float(np.mean((x - m) ** 2)),
+                                                   float(np.mean((m - mref) ** 2))]
     os.remove(csv_path)
     os.remove(stops_path)
     return rec
@@ -177,8 +195,10 @@ def main():
              args.jobs, sum(r["wall_s"] for r in runs) / n))
     print()
     print("Stops (runs where the filter stopped before T; kind: realisable = moments left the "
-          "realisable set, diverged = |x| or |m| passed the bound):")
-    print("%-10s %8s  %-28s %14s" % ("source", "stopped", "kinds", "median stop t"))
+          "realisable set, diverged = |x| or |m| passed the bound; P not PSD: runs where P lost "
+          "positive semi-definiteness, recorded, the filter going on):")
+    print("%-10s %8s  %-28s %14s %10s" % ("source", "stopped", "kinds", "median stop t",
+                                          "P not PSD"))
     for src in ["truth", "reference"] + filters:
         hit = [r["stops"][src] for r in runs if src in r["stops"]]
         kinds = {}
@@ -186,7 +206,8 @@ def main():
             kinds[h["kind"]] = kinds.get(h["kind"], 0) + 1
         kinds_s = ", ".join("%s %d" % kv for kv in sorted(kinds.items())) or "-"
         med = "%.3g" % float(np.median([h["t"] for h in hit])) if hit else "-"
-        print("%-10s %4d/%-3d  %-28s %14s" % (src, len(hit), n, kinds_s, med))
+        psd = sum(1 for r in runs if src in r.get("psd_losses", {}))
+        print("%-10s %4d/%-3d  %-28s %14s %10d" % (src, len(hit), n, kinds_s, med, psd))
     print()
 
     common = [r for r in runs if all(f in r["dist"] for f in filters)]
@@ -220,6 +241,35 @@ def main():
                   % ("", label, fmt(*half), half[0] / half[1] if half[1] > 0 else float("nan"),
                      fmt(*halfd), halfd[0] / halfd[1] if halfd[1] > 0 else float("nan")))
     print()
+
+    pre = [r for r in runs if len(r.get("pre", {})) == len(filters) + 1]
+    if pre:
+        print("Over all %d runs, each up to its first stop (tau = the earliest stop of any filter, "
+              "else T; median tau %.3g; no run left out, early times weigh more):"
+              % (len(pre), float(np.median([r["tau"] for r in pre]))))
+        print("%-10s %-6s %22s %20s %18s" % ("filter", "state", "excess MSE", "RMS(m - m_ref)",
+                                            "excess / optimal's"))
+        for label, ss in groups:
+            def excess(r, f):
+                return sum(r["pre"][f][s][0] - r["pre"]["reference"][s][0] for s in ss)
+
+            def dist(r, f):
+                return sum(r["pre"][f][s][1] for s in ss)
+
+            opt = mean_se([excess(r, "optimal") for r in pre])[0] if "optimal" in filters else None
+            for f in filters:
+                e = mean_se([excess(r, f) for r in pre])
+                ratio = "%.2f" % (e[0] / opt) if opt else "-"
+                print("%-10s %-6s %22s %20s %18s" % (f, label, fmt(*e),
+                                                    rms_fmt([dist(r, f) for r in pre]), ratio))
+            if "optimal" in filters and "closure4" in filters:
+                half = mean_se([excess(r, "closure4") - 0.5 * excess(r, "optimal") for r in pre])
+                halfd = mean_se([dist(r, "closure4") - 0.5 * dist(r, "optimal") for r in pre])
+                print("%-10s %-6s target: closure4's excess - optimal's / 2 = %s (%.1f standard "
+                      "errors); in mean squared distance %s (%.1f)"
+                      % ("", label, fmt(*half), half[0] / half[1] if half[1] > 0 else float("nan"),
+                         fmt(*halfd), halfd[0] / halfd[1] if halfd[1] > 0 else float("nan")))
+        print()
 
     usable = [r for r in runs if "truth" not in r["stops"] and "reference" not in r["stops"]]
     print("Are the survivors the easy runs? optimal's excess MSE (summed over states) on the runs "
