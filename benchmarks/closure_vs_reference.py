@@ -163,6 +163,39 @@ def rms_fmt(ms_values):
     return "%.4g ± %.2g" % (r, se / (2 * r) if r > 0 else float("nan"))
 
 
+def comparison_table(runs, filters, groups, mse, dist, with_reference):
+    """Per group of states: each filter's excess MSE over the reference's and its distance, paired
+    over `runs`; mse(r, f, s) and dist(r, f, s) read a run's mean squares."""
+    print("%-10s %-6s %22s %20s %18s" % ("filter", "state", "excess MSE", "RMS(m - m_ref)",
+                                        "excess / optimal's"))
+    for label, ss in groups:
+        def excess(r, f):
+            return sum(mse(r, f, s) - mse(r, "reference", s) for s in ss)
+
+        def distance(r, f):
+            return sum(dist(r, f, s) for s in ss)
+
+        opt = mean_se([excess(r, "optimal") for r in runs])[0] if "optimal" in filters else None
+        for f in filters:
+            e = mean_se([excess(r, f) for r in runs])
+            ratio = "%.2f" % (e[0] / opt) if opt else "-"
+            print("%-10s %-6s %22s %20s %18s" % (f, label, fmt(*e),
+                                                rms_fmt([distance(r, f) for r in runs]), ratio))
+        if with_reference:
+            ref_ms = mean_se([sum(mse(r, "reference", s) for s in ss) for r in runs])
+            own = [sum(r["own_error"][s] ** 2 for s in ss) for r in runs]
+            print("%-10s %-6s %22s %20s   (MSE(x - m_ref) = %.4g ± %.2g; m_ref's own error^2 %.2g)"
+                  % ("reference", label, "", "", ref_ms[0], ref_ms[1], float(np.nanmean(own))))
+        if "optimal" in filters and "closure4" in filters:
+            half = mean_se([excess(r, "closure4") - 0.5 * excess(r, "optimal") for r in runs])
+            halfd = mean_se([distance(r, "closure4") - 0.5 * distance(r, "optimal") for r in runs])
+            print("%-10s %-6s target: closure4's excess - optimal's / 2 = %s (%.1f standard errors)"
+                  "; in mean squared distance %s (%.1f)"
+                  % ("", label, fmt(*half), half[0] / half[1] if half[1] > 0 else float("nan"),
+                     fmt(*halfd), halfd[0] / halfd[1] if halfd[1] > 0 else float("nan")))
+    print()
+
+
 def main():
     args = parse_args()
     filters = args.filters.split(",")
@@ -210,66 +243,20 @@ def main():
         print("%-10s %4d/%-3d  %-28s %14s %10d" % (src, len(hit), n, kinds_s, med, psd))
     print()
 
+    groups = [(s, [s]) for s in states] + ([("sum", states)] if len(states) > 1 else [])
     common = [r for r in runs if all(f in r["dist"] for f in filters)]
     print("Over the %d runs where every filter and the reference reached T (paired; excess = "
           "MSE(x - m) - MSE(x - m_ref), mean ± standard error over runs):" % len(common))
-    print("%-10s %-6s %22s %20s %18s" % ("filter", "state", "excess MSE", "RMS(m - m_ref)",
-                                        "excess / optimal's"))
-    groups = [(s, [s]) for s in states] + ([("sum", states)] if len(states) > 1 else [])
-    for label, ss in groups:
-        def excess(r, f):
-            return sum(r["mse"][f][s] - r["mse"]["reference"][s] for s in ss)
-
-        def dist(r, f):
-            return sum(r["dist"][f][s] for s in ss)
-
-        opt = mean_se([excess(r, "optimal") for r in common])[0] if "optimal" in filters else None
-        for f in filters:
-            e = mean_se([excess(r, f) for r in common])
-            ratio = "%.2f" % (e[0] / opt) if opt else "-"
-            print("%-10s %-6s %22s %20s %18s" % (f, label, fmt(*e),
-                                                rms_fmt([dist(r, f) for r in common]), ratio))
-        ref_ms = mean_se([sum(r["mse"]["reference"][s] for s in ss) for r in common])
-        own = [sum(r["own_error"][s] ** 2 for s in ss) for r in common]
-        print("%-10s %-6s %22s %20s   (MSE(x - m_ref) = %.4g ± %.2g; m_ref's own error^2 %.2g)"
-              % ("reference", label, "", "", ref_ms[0], ref_ms[1], float(np.nanmean(own))))
-        if "optimal" in filters and "closure4" in filters:
-            half = mean_se([excess(r, "closure4") - 0.5 * excess(r, "optimal") for r in common])
-            halfd = mean_se([dist(r, "closure4") - 0.5 * dist(r, "optimal") for r in common])
-            print("%-10s %-6s target: closure4's excess - optimal's / 2 = %s (%.1f standard errors)"
-                  "; in mean squared distance %s (%.1f)"
-                  % ("", label, fmt(*half), half[0] / half[1] if half[1] > 0 else float("nan"),
-                     fmt(*halfd), halfd[0] / halfd[1] if halfd[1] > 0 else float("nan")))
-    print()
+    comparison_table(common, filters, groups, lambda r, f, s: r["mse"][f][s],
+                     lambda r, f, s: r["dist"][f][s], with_reference=True)
 
     pre = [r for r in runs if len(r.get("pre", {})) == len(filters) + 1]
     if pre:
         print("Over all %d runs, each up to its first stop (tau = the earliest stop of any filter, "
               "else T; median tau %.3g; no run left out, early times weigh more):"
               % (len(pre), float(np.median([r["tau"] for r in pre]))))
-        print("%-10s %-6s %22s %20s %18s" % ("filter", "state", "excess MSE", "RMS(m - m_ref)",
-                                            "excess / optimal's"))
-        for label, ss in groups:
-            def excess(r, f):
-                return sum(r["pre"][f][s][0] - r["pre"]["reference"][s][0] for s in ss)
-
-            def dist(r, f):
-                return sum(r["pre"][f][s][1] for s in ss)
-
-            opt = mean_se([excess(r, "optimal") for r in pre])[0] if "optimal" in filters else None
-            for f in filters:
-                e = mean_se([excess(r, f) for r in pre])
-                ratio = "%.2f" % (e[0] / opt) if opt else "-"
-                print("%-10s %-6s %22s %20s %18s" % (f, label, fmt(*e),
-                                                    rms_fmt([dist(r, f) for r in pre]), ratio))
-            if "optimal" in filters and "closure4" in filters:
-                half = mean_se([excess(r, "closure4") - 0.5 * excess(r, "optimal") for r in pre])
-                halfd = mean_se([dist(r, "closure4") - 0.5 * dist(r, "optimal") for r in pre])
-                print("%-10s %-6s target: closure4's excess - optimal's / 2 = %s (%.1f standard "
-                      "errors); in mean squared distance %s (%.1f)"
-                      % ("", label, fmt(*half), half[0] / half[1] if half[1] > 0 else float("nan"),
-                         fmt(*halfd), halfd[0] / halfd[1] if halfd[1] > 0 else float("nan")))
-        print()
+        comparison_table(pre, filters, groups, lambda r, f, s: r["pre"][f][s][0],
+                         lambda r, f, s: r["pre"][f][s][1], with_reference=False)
 
     usable = [r for r in runs if "truth" not in r["stops"] and "reference" not in r["stops"]]
     print("Are the survivors the easy runs? optimal's excess MSE (summed over states) on the runs "
