@@ -259,10 +259,11 @@ def main():
                          lambda r, f, s: r["pre"][f][s][1], with_reference=False)
 
     usable = [r for r in runs if "truth" not in r["stops"] and "reference" not in r["stops"]]
-    print("Are the survivors the easy runs? optimal's excess MSE (summed over states) on the runs "
-          "where a filter stopped and where it reached T:")
-    print("%-10s %24s %24s %26s" % ("filter", "runs it stopped in", "runs it reached T",
-                                    "its own excess there"))
+    print("Are the survivors the easy runs? optimal's excess MSE and the reference's MSE(x - m_ref) "
+          "(summed over states) on the runs where a filter stopped and on those where it reached T; "
+          "the filter's own excess on the latter:")
+    print("%-10s %24s %24s %26s %22s" % ("filter", "runs it stopped in", "runs it reached T",
+                                         "its own excess there", "MSE(x - m_ref): s / r"))
     for f in filters:
         if f == "optimal" or "optimal" not in filters:
             continue
@@ -271,12 +272,14 @@ def main():
         if not stopped:
             continue
         ex = lambda r, g: sum(r["mse"][g][s] - r["mse"]["reference"][s] for s in states)
+        ref = lambda r: sum(r["mse"]["reference"][s] for s in states)
         a = mean_se([ex(r, "optimal") for r in stopped])
         b = mean_se([ex(r, "optimal") for r in kept])
         c = mean_se([ex(r, f) for r in kept])
-        print("%-10s %24s %24s %26s" % (f, "%d: %s" % (len(stopped), fmt(*a)),
-                                        "%d: %s" % (len(kept), fmt(*b)), fmt(*c)))
-
+        refs = "%.3g / %.3g" % (mean_se([ref(r) for r in stopped])[0],
+                                mean_se([ref(r) for r in kept])[0] if kept else float("nan"))
+        print("%-10s %24s %24s %26s %22s" % (f, "%d: %s" % (len(stopped), fmt(*a)),
+                                             "%d: %s" % (len(kept), fmt(*b)), fmt(*c), refs))
 
 if __name__ == "__main__":
     main()
