@@ -11,7 +11,7 @@ difference of mean-square errors. This script runs `pfgen simulate MODEL --runs 
 independent run whose truth is drawn from the filters' prior) and reads every run's time series
 back, on `--record-points` equally spaced points of [0, T]. It prints:
   - the stops: in how many runs each filter stopped, by kind (`realisable`: a moment filter's
-    moments left the realisable set; `diverged`: |x| or |m| passed the bound), and the median stop
+    moments left the realisable set; `diverged`: m or P passed simulate's bound), and the median stop
     time;
   - over the runs where every filter and the reference reached T, per state: each filter's excess
     mean-square error MSE(x - m) - MSE(x - m_ref) and its distance RMS(m - m_ref), each with its
@@ -228,7 +228,7 @@ def main():
              args.jobs, sum(r["wall_s"] for r in runs) / n))
     print()
     print("Stops (runs where the filter stopped before T; kind: realisable = moments left the "
-          "realisable set, diverged = |x| or |m| passed the bound; P not PSD: runs where P lost "
+          "realisable set, diverged = m or P passed simulate's bound; P not PSD: runs where P lost "
           "positive semi-definiteness, recorded, the filter going on):")
     print("%-10s %8s  %-28s %14s %10s" % ("source", "stopped", "kinds", "median stop t",
                                           "P not PSD"))
