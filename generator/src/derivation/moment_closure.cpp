@@ -23,7 +23,7 @@ Exponents minus(Exponents a, std::size_t i) {
 class ClosureTerms {
  public:
   ClosureTerms(const Model& model, const FilterVariables& vars, const std::vector<Polynomial>& h, const ExMatrix& B)
-      : vars_(vars), E_(vars), n_(vars.n()) {
+      : E_(vars), n_(vars.n()) {
     for (const auto& fi : model.drift) f_.push_back(E_.shifted(Polynomial::from_ex(fi, model.states)));
     G_.assign(n_, std::vector<Polynomial>(n_));
     for (std::size_t i = 0; i < n_; ++i)
@@ -109,7 +109,6 @@ class ClosureTerms {
   }
 
  private:
-  const FilterVariables& vars_;
   ClosedExpectation E_;
   std::size_t n_;
   std::vector<Polynomial> f_, h_, Ef_, Eh_;
