@@ -232,3 +232,20 @@ TEST_CASE("a moment filter over a record fails where its moments leave the reali
   CHECK(ran.exit_code == 0);
   CHECK_THAT(ran.out, Contains("closure4 ") && Contains("passes: consistent and white"));
 }
+
+TEST_CASE("simulate stops a moment filter's run where its moments leave the realisable set, in its own section",
+          "[record][compiler]") {
+  // The double well's closure4 leaves the realisable set (a state's Pearson bound) in most runs; the plugin hands
+  // simulate its margins, and each such run is stopped, counted as diverged and listed in the section.
+  TempDir dir;
+  const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/reference/double_well.yaml";
+  const auto result = pfgen_test::run_pfgen({"simulate", model, "--filters", "optimal,closure3,closure4", "--runs", "20",
+                                             "--threads", "2", "--cache-dir=" + dir.file("cache"), "-q"});
+  INFO(result.err);
+  REQUIRE(result.exit_code == 0);
+  CHECK_THAT(result.out, Contains("Runs stopped where a moment filter's moments left the realisable set"));
+  CHECK_THAT(result.out, Contains("  closure4: 14 runs"));
+  CHECK_THAT(result.out, Contains("  closure3: 3 runs"));
+  const std::size_t section = result.out.find("left the realisable set");
+  CHECK(result.out.find("  optimal: ", section) == std::string::npos);  // the Gaussian closure has no margins
+}
