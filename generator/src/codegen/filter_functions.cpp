@@ -11,6 +11,7 @@
 #include "pfgen/codegen/moment_form.hpp"
 #include "pfgen/codegen/p_drift_loops.hpp"
 #include "pfgen/codegen/local_names.hpp"
+#include "pfgen/derivation/closed_expectation.hpp"
 
 namespace pfgen::codegen {
 namespace {
@@ -567,13 +568,9 @@ std::vector<GiNaC::numeric> initial_values(const Model& model, const FilterVaria
       for (std::size_t j = i; j < vars.n(); ++j) values[vars.P(i, j)] = model.initial->P0[i][j];
       if (x_star) values[vars.count() + i] = model.initial->m0[i];
     }
-    // A moment filter starts from the Gaussian prior's moments: 0 at order 3, the pairings of P0 at order 4.
-    for (std::size_t q = 0; q < vars.higher_moments().size(); ++q) {
-      const std::vector<std::size_t>& i = vars.higher_moments()[q];
-      if (i.size() != 4) continue;
-      auto P0 = [&](std::size_t a, std::size_t b) { return model.initial->P0[i[a]][i[b]]; };
-      values[vars.first_higher_moment() + q] = P0(0, 1) * P0(2, 3) + P0(0, 2) * P0(1, 3) + P0(0, 3) * P0(1, 2);
-    }
+    // A moment filter starts from the Gaussian prior's moments.
+    for (std::size_t q = 0; q < vars.higher_moments().size(); ++q)
+      values[vars.first_higher_moment() + q] = gaussian_central_moment(vars.higher_moments()[q], model.initial->P0);
   }
   return values;
 }

@@ -137,4 +137,12 @@ Polynomial ClosedExpectation::of(const Polynomial& p) {
   return Polynomial::sum_of(std::move(products));
 }
 
+GiNaC::numeric gaussian_central_moment(const std::vector<std::size_t>& indices,
+                                       const std::vector<std::vector<GiNaC::numeric>>& P) {
+  if (indices.size() == 3) return 0;  // odd orders vanish
+  if (indices.size() != 4) throw std::logic_error("gaussian_central_moment: moments of orders 3 and 4 only");
+  auto pair = [&](std::size_t a, std::size_t b) { return P[indices[a]][indices[b]]; };
+  return pair(0, 1) * pair(2, 3) + pair(0, 2) * pair(1, 3) + pair(0, 3) * pair(1, 2);
+}
+
 }  // namespace pfgen

@@ -3,15 +3,13 @@
 #include <cmath>
 
 #include "pfgen/algebra/numeric_value.hpp"
+#include "pfgen/derivation/closed_expectation.hpp"
 
 namespace pfgen {
 
 GiNaC::numeric central_moment_value(const FilterVariables& vars, const EvaluationPoint& point, std::uint32_t variable) {
   if (auto it = point.moments.find(vars.text_name(variable)); it != point.moments.end()) return it->second;
-  const std::vector<std::size_t>& i = vars.higher_moments().at(variable - vars.first_higher_moment());
-  if (i.size() != 4) return 0;  // odd orders vanish under N(m, P); the filters carry orders 3 and 4
-  auto P = [&](std::size_t a, std::size_t b) { return point.P[i[a]][i[b]]; };
-  return P(0, 1) * P(2, 3) + P(0, 2) * P(1, 3) + P(0, 3) * P(1, 2);
+  return gaussian_central_moment(vars.higher_moments().at(variable - vars.first_higher_moment()), point.P);
 }
 
 PolynomialEvaluator::PolynomialEvaluator(const Model& model, const FilterEquations& eq, const EvaluationPoint& point,

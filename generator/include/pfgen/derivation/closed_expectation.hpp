@@ -45,4 +45,10 @@ class ClosedExpectation {
   std::map<std::pair<std::size_t, std::uint32_t>, Polynomial> powers_;
 };
 
+// The central moment of x ~ N(m, P) with these indices (a moment filter's of order 3 or 4): 0 at order 3,
+// P_ij P_lq + P_il P_jq + P_iq P_jl at order 4. A moment filter's value under its Gaussian prior (its initial
+// state) and `eval`'s for a moment not given. P is full and symmetric.
+GiNaC::numeric gaussian_central_moment(const std::vector<std::size_t>& indices,
+                                       const std::vector<std::vector<GiNaC::numeric>>& P);
+
 }  // namespace pfgen
