@@ -87,6 +87,15 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
           "observation_noise is only for continuous observations");
 }
 
+// A moment filter's margins as the runtime checks them (empty for the other filters), keeping `library` loaded.
+RealisabilityCheck realisability_check(const pfgen_plugin_filter& f, const std::shared_ptr<void>& library) {
+  RealisabilityCheck check;
+  if (!f.realisability_margins) return check;
+  check.margins = [library, margins = f.realisability_margins](const double* state, double* out) { margins(state, out); };
+  check.names.assign(f.margin_names, f.margin_names + f.margin_count);
+  return check;
+}
+
 }  // namespace
 
 SimulationPlugin::SimulationPlugin(const std::string& path) : path_(path) {
@@ -237,10 +246,7 @@ std::vector<RecordFilter> SimulationPlugin::record_filters() const {
     else
       filter.timing = std::make_shared<RecordIncrements>(f.step_at, f.predicted_observation, table_->observation_noise,
                                                          f.extra_state_size);
-    if (f.realisability_margins) {
-      filter.realisability_margins = f.realisability_margins;
-      filter.margin_names.assign(f.margin_names, f.margin_names + f.margin_count);
-    }
+    filter.realisability = realisability_check(f, library_);
     out.push_back(std::move(filter));
   }
   for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {
@@ -277,12 +283,7 @@ std::vector<FilterModel> SimulationPlugin::filters() const {
     }
     out.emplace_back(f.name, f.n, f.p, [library, init = f.initial_state](double* state) { init(state); },
                      std::move(timing));
-    if (f.realisability_margins) {
-      out.back().realisability.margins = [library, margins = f.realisability_margins](const double* state, double* out) {
-        margins(state, out);
-      };
-      out.back().realisability.names.assign(f.margin_names, f.margin_names + f.margin_count);
-    }
+    out.back().realisability = realisability_check(f, library);
   }
   for (std::size_t k = 0; k < table_->sampled_filter_count; ++k) {
     const pfgen_plugin_sampled_filter& f = table_->sampled_filters[k];

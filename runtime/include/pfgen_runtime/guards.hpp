@@ -9,6 +9,8 @@
 // of P row by row: (0,0), (0,1), ..., (0,n-1), (1,1), ..., (n-1,n-1).
 #include <cmath>
 #include <cstddef>
+#include <vector>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -39,6 +41,25 @@ struct DivergenceEvent {
   std::string what;       // unrealisable: what the margin says ("Pearson's bound of x1")
   std::string describe() const;  // e.g. "entry 0 is inf at t = 9.0901"
 };
+
+// A moment filter's realisability margins (closure3, closure4): each positive while its moments can be a law's.
+struct RealisabilityCheck {
+  std::function<void(const double* state, double* margins)> margins;  // empty: the filter has none
+  std::vector<std::string> names;                                       // what each margin says
+};
+
+// A moment filter's first realisability margin that is not positive (NaN included) at its state, if any
+// (DivergenceKind::unrealisable); `margins` is work space. run_filter, the Monte Carlo engine and a record run stop
+// on it.
+inline std::optional<DivergenceEvent> check_realisability(const RealisabilityCheck& check, double t, const double* state,
+                                                          std::vector<double>& margins) {
+  if (!check.margins) return std::nullopt;
+  margins.resize(check.names.size());
+  check.margins(state, margins.data());
+  for (std::size_t k = 0; k < margins.size(); ++k)
+    if (!(margins[k] > 0)) return DivergenceEvent{t, k, margins[k], DivergenceKind::unrealisable, check.names[k]};
+  return std::nullopt;
+}
 
 class DivergenceGuard {
  public:

@@ -22,10 +22,9 @@ struct RecordFilter {
   // RecordIncrements or a delayed filter's RecordFixedIncrements. Its functions are plain
   // pointers, so copies of the filter share it.
   std::shared_ptr<const RecordTiming> timing;
-  // A moment filter's realisability margins at a state (margin_names.size() values, each positive while its moments
-  // can be a law's); null for the other filters. A run fails where one is not (RecordRun::advance).
-  void (*realisability_margins)(const double* state, double* margins) = nullptr;
-  std::vector<std::string> margin_names;
+  // A moment filter's realisability margins (empty for the other filters): a run fails where one is not positive
+  // (RecordRun::advance).
+  RealisabilityCheck realisability;
 
   std::size_t state_size() const { return filter_state_size(n); }  // m and P
   std::size_t full_state_size() const { return state_size() + timing->extra_state(); }

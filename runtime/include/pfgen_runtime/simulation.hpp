@@ -75,12 +75,6 @@ std::size_t draw_samples(Observation& observation, const TimeGrid& grid, std::si
 // delayed filter's, once per grid step of the one grid it was generated for) or SampledSteps
 // (prediction sub-steps between samples, the update at each). Copies are independent (the timing
 // is cloned): each thread steps its own.
-// A moment filter's realisability margins (closure3, closure4): each positive while its moments can be a law's.
-struct RealisabilityCheck {
-  std::function<void(const double* state, double* margins)> margins;  // empty: the filter has none
-  std::vector<std::string> names;                                       // what each margin says
-};
-
 struct FilterModel {
   std::string name;
   std::size_t n = 0;
@@ -168,18 +162,6 @@ inline std::optional<DivergenceEvent> check_filter_divergence(const FilterGuardO
     event->index += n;  // index into the whole filter state
     return event;
   }
-  return std::nullopt;
-}
-
-// A moment filter's first realisability margin that is not positive (NaN included) at its state, if any
-// (DivergenceKind::unrealisable); `margins` is work space. run_filter and the Monte Carlo engine stop on it.
-inline std::optional<DivergenceEvent> check_realisability(const RealisabilityCheck& check, double t, const double* state,
-                                                          std::vector<double>& margins) {
-  if (!check.margins) return std::nullopt;
-  margins.resize(check.names.size());
-  check.margins(state, margins.data());
-  for (std::size_t k = 0; k < margins.size(); ++k)
-    if (!(margins[k] > 0)) return DivergenceEvent{t, k, margins[k], DivergenceKind::unrealisable, check.names[k]};
   return std::nullopt;
 }
 

@@ -33,18 +33,12 @@ bool RecordRun::advance(double t, const double* observation) {
 // A moment filter's state must stay in the realisable set: a margin not positive (NaN included) fails the run
 // there, as it stops a simulated one.
 bool RecordRun::realisable() {
-  if (!filter_.realisability_margins) return true;
-  margins_.resize(filter_.margin_names.size());
-  filter_.realisability_margins(progress_.state.data(), margins_.data());
-  for (std::size_t k = 0; k < margins_.size(); ++k)
-    if (!(margins_[k] > 0)) {
-      std::ostringstream why;
-      why.precision(10);
-      why << "its moments left the realisable set at t = " << progress_.t << " (" << filter_.margin_names[k] << " is "
-          << margins_[k] << ")";
-      return progress_.fail(why.str());
-    }
-  return true;
+  const auto event = check_realisability(filter_.realisability, progress_.t, progress_.state.data(), margins_);
+  if (!event) return true;
+  std::ostringstream why;
+  why.precision(10);
+  why << "its moments left the realisable set at t = " << event->t << " (" << event->what << " is " << event->value << ")";
+  return progress_.fail(why.str());
 }
 
 }  // namespace pfgen_runtime
