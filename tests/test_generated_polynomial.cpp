@@ -197,6 +197,19 @@ std::vector<double> random_state(std::mt19937& rng, const FilterVariables& vars)
   return s;
 }
 
+// What a C++ driver beside the filter's header in dir prints: compiled warning-free and run, each required to succeed.
+std::string compiled_output(const TempDir& dir, const std::string& program) {
+  write_file(dir.file("main.cpp"), program);
+  const std::string command = "g++ -std=c++17 -O2 -Wall -Wextra -Werror -I " + shell_quote(dir.path()) + " " +
+                              shell_quote(dir.file("main.cpp")) + " -o " + shell_quote(dir.file("steps"));
+  const ProcessResult compiled = run_process(command);
+  INFO(compiled.err.substr(0, 4000));
+  REQUIRE(compiled.exit_code == 0);
+  const ProcessResult ran = run_program({dir.file("steps")});
+  REQUIRE(ran.exit_code == 0);
+  return ran.out;
+}
+
 }  // namespace
 
 TEST_CASE("generated polynomial-observation filters: functions against the evaluator, the correction against its "
@@ -303,15 +316,7 @@ int main() {
   return 0;
 }
 )";
-  write_file(dir.file("main.cpp"), program);
-  const std::string command = "g++ -std=c++17 -O2 -Wall -Wextra -Werror -I " + shell_quote(dir.path()) + " " +
-                              shell_quote(dir.file("main.cpp")) + " -o " + shell_quote(dir.file("steps"));
-  const ProcessResult compiled = run_process(command);
-  INFO(compiled.err.substr(0, 4000));
-  REQUIRE(compiled.exit_code == 0);
-  const ProcessResult ran = run_program({dir.file("steps")});
-  REQUIRE(ran.exit_code == 0);
-  std::istringstream lines(ran.out);
+  std::istringstream lines(compiled_output(dir, program));
   std::vector<std::vector<double>> generated(4, std::vector<double>(2));
   for (auto& s : generated) lines >> s[0] >> s[1];
   std::vector<double> dy(std::size_t{1} << 16);
@@ -449,15 +454,7 @@ int main() {
   return 0;
 }
 )";
-  write_file(dir.file("main.cpp"), program);
-  const std::string command = "g++ -std=c++17 -O2 -Wall -Wextra -Werror -I " + shell_quote(dir.path()) + " " +
-                              shell_quote(dir.file("main.cpp")) + " -o " + shell_quote(dir.file("steps"));
-  const ProcessResult compiled = run_process(command);
-  INFO(compiled.err.substr(0, 4000));
-  REQUIRE(compiled.exit_code == 0);
-  const ProcessResult ran = run_program({dir.file("steps")});
-  REQUIRE(ran.exit_code == 0);
-  std::istringstream lines(ran.out);
+  std::istringstream lines(compiled_output(dir, program));
   std::vector<std::vector<double>> generated(4, std::vector<double>(4));
   std::vector<double> euler(4), plain(4);
   double least = 0;
