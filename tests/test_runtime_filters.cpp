@@ -248,3 +248,29 @@ TEST_CASE("runtime: a moment filter's extra state is refined with m and P, and a
   CHECK(run.divergence->describe().find("the moments left the realisable set") != std::string::npos);
   CHECK(run.divergence->describe().find("the extra entry") != std::string::npos);
 }
+
+TEST_CASE("runtime: a moment filter whose margins pass stops where its P is not a covariance",
+          "[runtime][filters][unit]") {
+  // Three states with positive variances and positive leading 2 x 2 minor, so margins on those pass, but P is
+  // indefinite (its 3 x 3 determinant is negative): the check still stops, naming P's least eigenvalue.
+  RealisabilityCheck check;
+  check.margins = [](const double* state, double* margins) {
+    margins[0] = state[3];
+    margins[1] = state[3] * state[6] - state[4] * state[4];
+  };
+  check.names = {"variance of x1", "P's leading 2 x 2 minor"};
+  check.n = 3;
+  // m (3), then P's upper triangle row by row: P11 P12 P13 P22 P23 P33.
+  const std::vector<double> indefinite = {0, 0, 0, 1, 0.9, 0.9, 1, 0.1, 1};
+  std::vector<double> margins;
+  const auto event = check_realisability(check, 0.5, indefinite.data(), margins);
+  REQUIRE(event);
+  CHECK(event->kind == DivergenceKind::unrealisable);
+  CHECK(event->what == "P's least eigenvalue");
+  CHECK(event->value < -0.1);
+  CHECK(event->t == 0.5);
+  const std::vector<double> definite = {0, 0, 0, 1, 0.5, 0.2, 1, 0.1, 1};
+  CHECK_FALSE(check_realisability(check, 0.5, definite.data(), margins));
+  check.n = 0;  // P not checked
+  CHECK_FALSE(check_realisability(check, 0.5, indefinite.data(), margins));
+}

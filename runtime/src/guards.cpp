@@ -213,4 +213,17 @@ CovarianceCheck CovarianceGuard::check_filter_state(const double* state, std::si
   return result;
 }
 
+std::optional<DivergenceEvent> check_realisability(const RealisabilityCheck& check, double t, const double* state,
+                                                   std::vector<double>& margins) {
+  if (!check.margins) return std::nullopt;
+  margins.resize(check.names.size());
+  check.margins(state, margins.data());
+  for (std::size_t k = 0; k < margins.size(); ++k)
+    if (!(margins[k] > 0)) return DivergenceEvent{t, k, margins[k], DivergenceKind::unrealisable, check.names[k]};
+  static const CovarianceGuard covariance;
+  if (check.n == 0 || covariance.passes_filter_state(state, check.n)) return std::nullopt;
+  const CovarianceCheck P = covariance.check_filter_state(state, check.n);
+  return DivergenceEvent{t, margins.size(), P.min_eigenvalue, DivergenceKind::unrealisable, "P's least eigenvalue"};
+}
+
 }  // namespace pfgen_runtime

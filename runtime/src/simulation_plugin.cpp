@@ -93,6 +93,7 @@ RealisabilityCheck realisability_check(const pfgen_plugin_filter& f, const std::
   if (!f.realisability_margins) return check;
   check.margins = [library, margins = f.realisability_margins](const double* state, double* out) { margins(state, out); };
   check.names.assign(f.margin_names, f.margin_names + f.margin_count);
+  check.n = f.n;
   return check;
 }
 

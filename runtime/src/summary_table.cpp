@@ -414,9 +414,9 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
     stopped_runs("Runs stopped where the filter's equations were not finite at its own state (a definition, such as "
                  "a Cholesky entry, could not be computed there; counted as diverged; no smaller step would help)",
                  &FilterStatistics::undefined_runs);
-    stopped_runs("Runs stopped where a moment filter's moments left the realisable set (a variance or, at order 4, "
-                 "Pearson's bound kurtosis >= 1 + skewness^2 of a state not positive; counted as diverged; the "
-                 "closure's known failure, docs/theory.md §2.10)",
+    stopped_runs("Runs stopped where a moment filter's moments left the realisable set (P not positive definite, "
+                 "or a state's kurtosis below Pearson's bound 1 + skewness^2; counted as diverged; the closure's "
+                 "known failure, docs/theory.md §2.10)",
                  &FilterStatistics::unrealisable_runs);
     out << reference_section(result, state_names);
     out << sampled_section(result);

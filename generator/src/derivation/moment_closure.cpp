@@ -1,5 +1,7 @@
 #include "pfgen/derivation/moment_closure.hpp"
 
+#include <algorithm>
+
 #include "pfgen/derivation/closed_expectation.hpp"
 
 namespace pfgen {
@@ -146,19 +148,49 @@ MomentClosureTerms moment_closure_terms(const Model& model, const FilterVariable
   return out;
 }
 
+namespace {
+
+// det of P's leading principal block of size r (Laplace expansion along the first row; r <= 4).
+Polynomial leading_minor(const FilterVariables& vars, std::vector<std::size_t> rows, std::vector<std::size_t> columns) {
+  if (rows.size() == 1) return Polynomial::variable(vars.P(rows[0], columns[0]));
+  Polynomial det;
+  const std::vector<std::size_t> rest(rows.begin() + 1, rows.end());
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    std::vector<std::size_t> minor_columns = columns;
+    minor_columns.erase(minor_columns.begin() + static_cast<std::ptrdiff_t>(k));
+    const Polynomial term = Polynomial::variable(vars.P(rows[0], columns[k])) * leading_minor(vars, rest, minor_columns);
+    det += k % 2 ? term.scaled(-1) : term;
+  }
+  return det;
+}
+
+}  // namespace
+
 RealisabilityMargins realisability_margins(const FilterVariables& vars, const std::vector<std::string>& state_names) {
   RealisabilityMargins out;
+  ClosedExpectation E(vars);
   for (std::size_t i = 0; i < vars.n(); ++i) {
-    const Polynomial P = Polynomial::variable(vars.P(i, i));
-    out.margins.push_back(P);
+    out.margins.push_back(Polynomial::variable(vars.P(i, i)));
     out.meaning.push_back("variance of " + state_names.at(i));
   }
-  if (vars.order() < 4) return out;
+  // P positive definite (Sylvester): its leading principal minors, up to size 4; larger P are the runtime's PSD
+  // check, which stops a moment filter as well.
+  for (std::size_t r = 2; r <= std::min<std::size_t>(vars.n(), 4); ++r) {
+    std::vector<std::size_t> first(r);
+    for (std::size_t k = 0; k < r; ++k) first[k] = k;
+    out.margins.push_back(leading_minor(vars, first, first));
+    out.meaning.push_back("P's leading " + std::to_string(r) + " x " + std::to_string(r) + " minor");
+  }
+  // Pearson's bound of each state, mu4 P - P^3 - mu3^2 >= 0, with mu4 the closed law's (3 P^2 at order 3, where the
+  // bound reads M3^2 <= 2 P^3).
   for (std::size_t i = 0; i < vars.n(); ++i) {
+    std::vector<std::uint32_t> g(vars.n(), 0);
+    g[i] = 3;
+    const Polynomial mu3 = E.central(g);
+    g[i] = 4;
+    const Polynomial mu4 = E.central(g);
     const Polynomial P = Polynomial::variable(vars.P(i, i));
-    const Polynomial M3 = Polynomial::variable(vars.higher_moment({i, i, i}));
-    const Polynomial M4 = Polynomial::variable(vars.higher_moment({i, i, i, i}));
-    out.margins.push_back(M4 * P - P * P * P - M3 * M3);
+    out.margins.push_back(mu4 * P - P * P * P - mu3 * mu3);
     out.meaning.push_back("Pearson's bound of " + state_names.at(i));
   }
   return out;

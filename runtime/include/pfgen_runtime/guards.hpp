@@ -42,25 +42,6 @@ struct DivergenceEvent {
   std::string describe() const;  // e.g. "entry 0 is inf at t = 9.0901"
 };
 
-// A moment filter's realisability margins (closure3, closure4): each positive while its moments can be a law's.
-struct RealisabilityCheck {
-  std::function<void(const double* state, double* margins)> margins;  // empty: the filter has none
-  std::vector<std::string> names;                                       // what each margin says
-};
-
-// A moment filter's first realisability margin that is not positive (NaN included) at its state, if any
-// (DivergenceKind::unrealisable); `margins` is work space. run_filter, the Monte Carlo engine and a record run stop
-// on it.
-inline std::optional<DivergenceEvent> check_realisability(const RealisabilityCheck& check, double t, const double* state,
-                                                          std::vector<double>& margins) {
-  if (!check.margins) return std::nullopt;
-  margins.resize(check.names.size());
-  check.margins(state, margins.data());
-  for (std::size_t k = 0; k < margins.size(); ++k)
-    if (!(margins[k] > 0)) return DivergenceEvent{t, k, margins[k], DivergenceKind::unrealisable, check.names[k]};
-  return std::nullopt;
-}
-
 class DivergenceGuard {
  public:
   explicit DivergenceGuard(double bound = 1e8);  // bound > 0, may be +inf (finiteness only)
@@ -173,5 +154,19 @@ class CovarianceGuard {
   double relative_tolerance_;
   double absolute_tolerance_;
 };
+
+// A moment filter's realisability margins (closure3, closure4): each positive while its moments can be a law's.
+struct RealisabilityCheck {
+  std::function<void(const double* state, double* margins)> margins;  // empty: the filter has none
+  std::vector<std::string> names;                                       // what each margin says
+  std::size_t n = 0;  // the filter's states (P is n x n; 0: P not checked)
+};
+
+// A moment filter's first realisability margin that is not positive (NaN included) at its state, if any, and then
+// its P as a covariance (CovarianceGuard's default tolerance: the margins hold P's leading minors only up to four
+// states): DivergenceKind::unrealisable. `margins` is work space. run_filter, the Monte Carlo engine and a record
+// run stop on it.
+std::optional<DivergenceEvent> check_realisability(const RealisabilityCheck& check, double t, const double* state,
+                                                   std::vector<double>& margins);
 
 }  // namespace pfgen_runtime
