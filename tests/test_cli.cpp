@@ -350,14 +350,27 @@ TEST_CASE("eval of the sampled examples matches the hand-computed prediction and
   // gamma = 1: g g^T = 36 + 0.01 x^2; gamma = 0.5: 36 + 0.01 x. At (m, P):
   //   m drift -0.5 m; P drift 2 (-0.5) P + E[g g^T] (at the mean for cd-ekf);
   //   cd-euler's dt^2 term Cov(f) = 0.25 P; S = 100 P + 1, K = 10 P / S.
+  // The moment filters (gamma = 1): m and P as cd-optimal's (E[g g^T] = 36 + 0.01 (m^2 + P) needs no M3), and
+  //   dM3 = 3 (E[e^2 f] - P E[f]) + 3 E[e G] = -1.47 M3 + 0.06 m P,
+  //   dM4 = 4 (E[e^3 f] - M3 E[f]) + 6 E[e^2 G] = -1.94 M4 + 216 P + 0.06 m^2 P + 0.12 m M3;
+  //   after the update, A = 1 - 10 K = 1/201, U = A^2 P, Q = K^2: M3 A^3 and M4 A^4 + 6 U Q + 3 Q^2.
   struct Expected {
     std::string file, kind, m, P;
     double m_drift, P_drift, P_dt2, S, K;  // P_dt2 < 0: no such term
+    std::vector<std::string> moments = {};   // --moment options
+    std::vector<double> moment_drift = {}, moments_after_update = {};
   };
+  const double A = 1.0 / 201, Q = 400.0 / 40401, U = 2.0 / 40401;
   const std::vector<Expected> cases = {
       {"allahyani_date_example1_gamma1.yaml", "cd-optimal", "0.5", "2", -0.25, -2 + 36 + 0.01 * (0.25 + 2), -1, 201, 20.0 / 201},
       {"allahyani_date_example1_gamma1.yaml", "cd-ekf", "0.5", "2", -0.25, -2 + 36 + 0.01 * 0.25, -1, 201, 20.0 / 201},
       {"allahyani_date_example1_gamma1.yaml", "cd-euler", "0.5", "2", -0.25, 34.0225, 0.5, 201, 20.0 / 201},
+      {"allahyani_date_example1_gamma1.yaml", "cd-closure3", "0.5", "2", -0.25, 34.0225, -1, 201, 20.0 / 201,
+       {"--moment", "M3_111=0.3"}, {-1.47 * 0.3 + 0.06}, {0.3 * A * A * A}},
+      {"allahyani_date_example1_gamma1.yaml", "cd-closure4", "0.5", "2", -0.25, 34.0225, -1, 201, 20.0 / 201,
+       {"--moment", "M3_111=0.3", "--moment", "M4_1111=10"},
+       {-1.47 * 0.3 + 0.06, -1.94 * 10 + 432 + 0.03 + 0.12 * 0.5 * 0.3},
+       {0.3 * A * A * A, 10 * A * A * A * A + 6 * U * Q + 3 * Q * Q}},
       {"allahyani_date_example1_gamma05.yaml", "cd-optimal", "-1.5", "0.5", 0.75, -0.5 + 36 - 0.015, -1, 51, 5.0 / 51},
       {"allahyani_date_example1_gamma05.yaml", "cd-ekf", "-1.5", "0.5", 0.75, 35.485, -1, 51, 5.0 / 51},
       {"allahyani_date_example1_gamma05.yaml", "cd-euler", "-1.5", "0.5", 0.75, 35.485, 0.125, 51, 5.0 / 51},
@@ -368,13 +381,27 @@ TEST_CASE("eval of the sampled examples matches the hand-computed prediction and
   CHECK(covered == kinds_for(pfgen::ObservationKind::Sampled));  // a new sampled kind needs its case here
   for (const auto& c : cases) {
     INFO(c.file << " --filter " << c.kind);
-    ProcessResult r = run_pfgen({"eval", example(c.file), "--filter", c.kind, "--m=" + c.m, "--P=" + c.P});
+    std::vector<std::string> arguments = {"eval", example(c.file), "--filter", c.kind, "--m=" + c.m, "--P=" + c.P};
+    arguments.insert(arguments.end(), c.moments.begin(), c.moments.end());
+    ProcessResult r = run_pfgen(arguments);
     INFO("stderr: " << r.err);
     REQUIRE(r.exit_code == 0);
     CHECK(r.err.empty());
     JsonValue j = parse_json(r.out);
     REQUIRE(j.kind == JsonValue::Kind::Object);
-    CHECK(j.keys() == std::vector<std::string>{"model", "filter", "prediction", "update"});
+    if (c.moment_drift.empty()) {
+      CHECK(j.keys() == std::vector<std::string>{"model", "filter", "prediction", "update"});
+    } else {
+      CHECK(j.keys() == std::vector<std::string>{"model", "filter", "prediction", "update", "moments", "moment_drift",
+                                                 "moments_after_update"});
+      const std::vector<double> drift = numbers(j["moment_drift"]), after = numbers(j["moments_after_update"]);
+      REQUIRE(drift.size() == c.moment_drift.size());
+      REQUIRE(after.size() == c.moments_after_update.size());
+      for (std::size_t q = 0; q < drift.size(); ++q) {
+        check_close(drift[q], c.moment_drift[q], "moment_drift");
+        check_close(after[q], c.moments_after_update[q], "moments_after_update");
+      }
+    }
     const bool euler = c.P_dt2 >= 0;
     CHECK(j["prediction"].keys() == (euler ? std::vector<std::string>{"m_drift", "P_drift", "P_dt2"}
                                            : std::vector<std::string>{"m_drift", "P_drift"}));
@@ -691,7 +718,7 @@ TEST_CASE("option values no double holds, and filters a model does not offer, ar
        "has no parameter 'qqq"},
       {{"derive", example("paper003/example1_gamma0.yaml"), "--filter", "ukf"},
        "'ukf' is not derived for sampled observations in model allahyani_date_example1_gamma0 (available: "
-       "cd-optimal, cd-ekf, cd-euler)"},
+       "cd-optimal, cd-ekf, cd-euler, cd-closure3, cd-closure4)"},
       {{"derive", undelayed, "--filter", "delay-optimal"}, "delay: 0, or none, is the undelayed model"},
       {{"derive", stratonovich, "--coefficients"},
        "drift[1] has degree 5 once the Stratonovich correction 1/2 g dg/dx is added (as written: degree 1)"},

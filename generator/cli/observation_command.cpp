@@ -42,7 +42,11 @@ void add_moment_eval_json(const EvaluatedFilter& value, Json& out) {
   for (const auto& name : value.moment_names) names.push(Json::string(name));
   out.add("moments", names);
   out.add("moment_drift", values_json(value.moment_drift));
-  out.add("moment_gain", values_json(value.moment_gain));
+  // A sampled moment filter has no dy terms; its moments change at each sample instead.
+  if (!value.moments_after_update.empty())
+    out.add("moments_after_update", values_json(value.moments_after_update));
+  else
+    out.add("moment_gain", values_json(value.moment_gain));
 }
 
 const ObservationCommand& observation_command(ObservationKind kind) {

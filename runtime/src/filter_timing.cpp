@@ -37,8 +37,9 @@ FilterStepOutcome FixedSteps::advance(FilterStepper&, double* state, const Filte
   return {};
 }
 
-SampledSteps::SampledSteps(std::size_t substeps, FilterPredictFunction predict, FilterUpdateFunction update)
-    : substeps_(substeps), predict_(std::move(predict)), update_(std::move(update)) {
+SampledSteps::SampledSteps(std::size_t substeps, FilterPredictFunction predict, FilterUpdateFunction update,
+                           std::size_t extra_state)
+    : substeps_(substeps), predict_(std::move(predict)), update_(std::move(update)), extra_state_(extra_state) {
   if (substeps == 0) throw std::invalid_argument("a sampled filter needs at least one prediction sub-step");
 }
 

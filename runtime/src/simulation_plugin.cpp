@@ -41,6 +41,8 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
               "sampled filter " + std::to_string(k) + " lacks a name, function or sub-steps");
       require(f.n == t.n && f.p == t.p && f.state_size == filter_state_size(t.n), path,
               "filter " + std::string(f.name) + " has other dimensions than the model");
+      require(f.extra_state_size == 0 || (f.margin_count > 0 && f.realisability_margins && f.margin_names), path,
+              "sampled filter " + std::string(f.name) + " carries extra state without its realisability margins");
     }
   } else {
     require(t.sampled_filter_count == 0, path, "sampled filters need a sampled observation");
@@ -87,8 +89,10 @@ void check_table(const pfgen_plugin& t, const std::string& path) {
           "observation_noise is only for continuous observations");
 }
 
-// A moment filter's margins as the runtime checks them (empty for the other filters), keeping `library` loaded.
-RealisabilityCheck realisability_check(const pfgen_plugin_filter& f, const std::shared_ptr<void>& library) {
+// A moment filter's margins as the runtime checks them (empty for the other filters), keeping `library` loaded;
+// a continuous or a sampled filter's table entry.
+template <typename Entry>
+RealisabilityCheck realisability_check(const Entry& f, const std::shared_ptr<void>& library) {
   RealisabilityCheck check;
   if (!f.realisability_margins) return check;
   check.margins = [library, margins = f.realisability_margins](const double* state, double* out) { margins(state, out); };
@@ -254,7 +258,9 @@ std::vector<RecordFilter> SimulationPlugin::record_filters() const {
     const pfgen_plugin_sampled_filter& f = table_->sampled_filters[k];
     RecordFilter filter = record_filter(f.name, f.n, f.p);
     filter.initial_state = f.initial_state;
-    filter.timing = std::make_shared<RecordSamples>(f.substeps, table_->period, f.predict_at, f.update_at, f.innovation);
+    filter.timing = std::make_shared<RecordSamples>(f.substeps, table_->period, f.predict_at, f.update_at, f.innovation,
+                                                    f.extra_state_size);
+    filter.realisability = realisability_check(f, library_);
     out.push_back(std::move(filter));
   }
   return out;
@@ -292,7 +298,9 @@ std::vector<FilterModel> SimulationPlugin::filters() const {
         f.name, f.n, f.p, [library, init = f.initial_state](double* state) { init(state); },
         std::make_unique<SampledSteps>(
             f.substeps, [library, predict = f.predict](double* state, double t, double dt) { predict(state, t, dt); },
-            [library, update = f.update](double* state, double t, const double* y) { return update(state, t, y) != 0; }));
+            [library, update = f.update](double* state, double t, const double* y) { return update(state, t, y) != 0; },
+            f.extra_state_size));
+    out.back().realisability = realisability_check(f, library);
   }
   return out;
 }

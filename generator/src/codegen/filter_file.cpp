@@ -38,4 +38,20 @@ ir::Statement state_function_call(const std::string& function, ir::Expr t, ir::E
   return ir::call_file_function(function, std::move(arguments));
 }
 
+std::optional<FunctionCode> realisability_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                               const FunctionNames& names, const StatementEmitter& emitter) {
+  if (eq.realisability.empty()) return std::nullopt;
+  return function_code("realisability_margins", eq.realisability, names.out, model, eq, options, names, emitter);
+}
+
+void add_realisability_function(FilterFile& file, const FilterEquations& eq, std::optional<FunctionCode> code) {
+  file.frames["realisability_function"] = code ? "realisability_margins" : "";
+  if (!code) return;
+  file.words.emplace("margin_count", std::to_string(eq.realisability.size()));
+  file.words.emplace("moment_order", std::to_string(eq.variables.order()));
+  file.words.emplace("higher_orders",
+                     eq.variables.order() == 3 ? "of order 3" : "of orders 3 to " + std::to_string(eq.variables.order()));
+  file.add_function("realisability", std::move(*code));
+}
+
 }  // namespace pfgen::codegen

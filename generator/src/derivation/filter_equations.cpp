@@ -135,13 +135,16 @@ FilterEquations unscented_filter(const Model& model, FilterEquations eq) {
 }
 
 // A moment filter (moment_closure.hpp): its variables carry the central moments up to the kind's order, and
-// the Kushner-Stratonovich equations of each, closed, give every term, the observation's included: the
-// registry derives these kinds for the undelayed continuous rate only, linear or polynomial alike.
+// the Kushner-Stratonovich equations of each, closed, give every term, a continuous observation's included
+// (linear or polynomial alike). With samples (cd-closure3, cd-closure4, through C0 + C x) the equations
+// have no observation term: they are the prediction, and the sampled module's frame gave the update of m and
+// P, which code generation and eval extend to the higher moments (sampled_moment_update.hpp).
 FilterEquations moment_filter(const Model& model, FilterKind kind, FilterEquations eq) {
   const std::vector<Polynomial> f = state_polynomials(model.drift, model);
   const unsigned order = filter_kind_info(kind).closure_order;
   const ObservationRate& rate = model.observation.rate();
-  const std::vector<Polynomial> h = rate.polynomials(model.states);
+  const bool sampled = model.observation.samples().has_value();
+  const std::vector<Polynomial> h = sampled ? std::vector<Polynomial>() : rate.polynomials(model.states);
   // The Gaussian kinds' limits first (the closed law's moments include the Gaussian ones), then the
   // closure's own count of its moments' equations.
   check_model_terms_budget(model, true, f, jacobian(f));
@@ -152,7 +155,7 @@ FilterEquations moment_filter(const Model& model, FilterKind kind, FilterEquatio
   MomentClosureTerms terms = moment_closure_terms(model, eq.variables, h, rate.noise());
   eq.m_drift = std::move(terms.m_drift);
   eq.gain = std::move(terms.gain);
-  eq.predicted_observation = std::move(terms.predicted_observation);
+  if (!sampled) eq.predicted_observation = std::move(terms.predicted_observation);  // else the frame's C0 + C m
   eq.P_moment = std::move(terms.P_moment);
   eq.P_diffusion = std::move(terms.P_diffusion);
   eq.P_correction = std::move(terms.P_correction);
@@ -162,6 +165,8 @@ FilterEquations moment_filter(const Model& model, FilterKind kind, FilterEquatio
   RealisabilityMargins margins = realisability_margins(eq.variables, model.state_names);
   eq.realisability = std::move(margins.margins);
   eq.realisability_meaning = std::move(margins.meaning);
+  // The sampled module's own terms: none between samples, and the prediction's sub-steps.
+  if (sampled) observation_derivation(model.observation).observation_terms(model, kind, eq);
   return eq;
 }
 

@@ -75,6 +75,17 @@ const std::vector<FilterKindInfo>& filter_kinds() {
        "order > 4 set to zero; opt-in (not among the defaults)",
        E::CumulantNeglect, D::Model, rate, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
        /*in_defaults=*/false, /*closure_order=*/4},
+      // Their sampled form: the same moment equations between samples, and at each sample the moments of the
+      // Kalman-updated law x + K (y - C0 - C x - v) (docs/theory.md §2.10).
+      {FilterKind::CdClosure3, "cd-closure3",
+       "continuous-discrete moment filter of order 3: the closed moment ODEs of m, P and the third central moments "
+       "between samples, at each the Kalman update of m and P and the third moments of the updated law; opt-in",
+       E::CumulantNeglect, D::Model, sampled, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
+       /*in_defaults=*/false, /*closure_order=*/3},
+      {FilterKind::CdClosure4, "cd-closure4",
+       "continuous-discrete moment filter of order 4: as cd-closure3, with the fourth central moments; opt-in",
+       E::CumulantNeglect, D::Model, sampled, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
+       /*in_defaults=*/false, /*closure_order=*/4},
   };
   return kinds;
 }
@@ -102,6 +113,10 @@ std::optional<std::string> unsupported_reason(const FilterKindInfo& kind, const 
     return std::string("needs additive_diffusion or additive_diffusion_covariance");
   if (std::find(kind.observations.begin(), kind.observations.end(), model.observation) == kind.observations.end())
     return "is not derived for " + observation_kind_info(model.observation).name + " observations";
+  // The sampled moment filters' update is the linear one's (observations/sampled/sampled_moment_update.hpp).
+  if (kind.expectation == ExpectationRule::CumulantNeglect && model.observation == ObservationKind::Sampled &&
+      model.samples_degree > 1)
+    return "is derived for samples through C0 + C x (c has degree " + std::to_string(model.samples_degree) + ")";
   if (kind.criterion == Criterion::RiskSensitive) {
     if (!model.has_risk_criterion) return std::string("needs a risk: section (risk: {epsilon: ...})");
     if (!model.state_independent_diffusion)

@@ -11,6 +11,7 @@ FilterKindNeeds filter_kind_needs(const Model& model) {
   needs.has_additive_diffusion = model.additive_diffusion.has_value();
   needs.observation = model.observation.kind();
   needs.has_risk_criterion = model.risk.has_value();
+  if (model.observation.samples()) needs.samples_degree = model.observation.rate().degree(model.states);
   // Only the risk-sensitive kind reads the facts below, and only with a risk: section: skip the
   // expansions for every other model.
   if (!needs.has_risk_criterion) return needs;

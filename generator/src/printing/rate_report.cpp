@@ -9,6 +9,7 @@
 #include "pfgen/notation/rich_text.hpp"
 #include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/definitions_report.hpp"
+#include "pfgen/printing/moment_report.hpp"
 #include "pfgen/printing/noise_report.hpp"
 #include "pfgen/printing/report_parts.hpp"
 #include "pfgen/printing/risk_report.hpp"
@@ -47,16 +48,6 @@ std::string sigma_point_paragraph_latex(const FilterEquations& eq, const std::st
          "below), weights $w_0 = " + printer.print(w.w0) + "$, $w_i = " + printer.print(w.w) +
          "$; $dP/dt = \\sum_i w_i \\left((X_i - m) f(X_i)^T + f(X_i) (X_i - m)^T + g(X_i) g(X_i)^T\\right) - " +
          correction + "$.\n\n";
-}
-
-// A moment filter's variables beyond m and P, and its closure, on the line after the variables.
-std::string higher_moments_header_text(const FilterEquations& eq) {
-  if (eq.variables.higher_moments().empty()) return {};
-  const std::string k = std::to_string(eq.variables.order());
-  std::string out = "central moments: M3_ijl = E[(x-m)_i (x-m)_j (x-m)_l]";
-  if (eq.variables.order() >= 4) out += ", M4_ijlq = E[(x-m)_i (x-m)_j (x-m)_l (x-m)_q]";
-  return out + " (i <= j <= l <= q); moments above order " + k + " read as those of the law whose cumulants above order " +
-         k + " are zero\n";
 }
 
 // The words for dP's observation term: a moment filter's cross-covariance C = E[(x-m) h^T] holds the higher
@@ -212,12 +203,7 @@ std::string RateReport::text(const Model& model, const FilterEquations& eq, std:
         out += moment_L_text_name(vars, v, r) + " = " + writer.print(eq.higher_gain[q][r]) + "\n";
         drain(out, sink);
       }
-  if (!eq.realisability.empty()) {
-    out += "realisable while each is positive:";
-    for (std::size_t k = 0; k < eq.realisability.size(); ++k)
-      out += std::string(k ? "," : "") + " " + writer.print(eq.realisability[k]) + " (" + eq.realisability_meaning[k] + ")";
-    out += "\n";
-  }
+  out += realisability_text(eq, writer);
   out += trailing_text(eq);
   return out;
 }
@@ -292,14 +278,7 @@ std::string RateReport::latex(const Model&, const FilterEquations& eq) const {
   for (std::string& line : trailing_latex(eq)) lines.push_back(std::move(line));
   for (std::size_t k = 0; k < lines.size(); ++k) out += lines[k] + (k + 1 < lines.size() ? " \\\\\n" : "\n");
   out += "\\end{align*}\n";
-  if (!eq.realisability.empty()) {
-    // The states' names may not be LaTeX: the margins are said by kind, in state order.
-    out += "\\noindent Realisable while each is positive (each state's variance, then at order 4 its Pearson bound "
-           "$\\mu_{4} P - P^{3} - \\mu_{3}^{2}$):";
-    for (std::size_t k = 0; k < eq.realisability.size(); ++k)
-      out += std::string(k ? "," : "") + " $" + writer.print(eq.realisability[k]) + "$";
-    out += ".\n";
-  }
+  out += realisability_latex(eq, writer);
   return out;
 }
 
@@ -365,22 +344,7 @@ Json RateReport::json(const Model& model, const FilterEquations& eq) const {
     }
     out.add("P_gain", P_gain);
   }
-  if (!eq.higher_drift.empty()) {  // a moment filter's central moments of order >= 3, in the state's order
-    Json names = Json::array(), drift = Json::array(), gains = Json::array();
-    for (std::size_t q = 0; q < eq.higher_drift.size(); ++q) {
-      names.push(Json::string(vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q))));
-      drift.push(Json::string(writer.print(eq.higher_drift[q])));
-      Json row = Json::array();
-      for (std::size_t r = 0; r < eq.p && !eq.higher_gain.empty(); ++r) row.push(Json::string(writer.print(eq.higher_gain[q][r])));
-      gains.push(row);
-    }
-    out.add("moments", names);
-    Json margins = Json::array();
-    for (const Polynomial& margin : eq.realisability) margins.push(Json::string(writer.print(margin)));
-    out.add("realisability", margins);
-    out.add("moment_drift", drift);
-    if (!eq.higher_gain.empty()) out.add("moment_gain", gains);
-  }
+  add_moments_json(eq, writer, out);  // a moment filter's central moments of order >= 3, in the state's order
   add_json(eq, out);
   if (is_risk_sensitive_report(eq)) add_risk_json(eq, out);
   return out;

@@ -134,7 +134,9 @@ class FixedSteps final : public FilterTiming {
 class SampledSteps final : public FilterTiming {
  public:
   // std::invalid_argument unless substeps >= 1.
-  SampledSteps(std::size_t substeps, FilterPredictFunction predict, FilterUpdateFunction update);
+  // extra_state: entries after m and P that predict and update carry along (a moment filter's higher moments).
+  SampledSteps(std::size_t substeps, FilterPredictFunction predict, FilterUpdateFunction update,
+               std::size_t extra_state = 0);
   std::unique_ptr<FilterTiming> clone() const override { return std::make_unique<SampledSteps>(*this); }
   bool takes_samples() const override { return true; }
   bool complete() const override { return predict_ && update_; }
@@ -146,6 +148,7 @@ class SampledSteps final : public FilterTiming {
   FilterStepOutcome advance(FilterStepper& stepper, double* state, const FilterInput& input,
                             std::size_t k) const override;
 
+  std::size_t extra_state() const override { return extra_state_; }
   std::size_t substeps() const { return substeps_; }
   const FilterPredictFunction& predict() const { return predict_; }
   const FilterUpdateFunction& update() const { return update_; }
@@ -154,6 +157,7 @@ class SampledSteps final : public FilterTiming {
   std::size_t substeps_;
   FilterPredictFunction predict_;
   FilterUpdateFunction update_;
+  std::size_t extra_state_;
 };
 
 }  // namespace pfgen_runtime

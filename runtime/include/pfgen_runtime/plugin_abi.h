@@ -24,7 +24,7 @@
 extern "C" {
 #endif
 
-#define PFGEN_PLUGIN_ABI_VERSION 9u
+#define PFGEN_PLUGIN_ABI_VERSION 10u
 #define PFGEN_PLUGIN_ENTRY_NAME "pfgen_plugin_entry"
 
 /* One filter over its packed state [m (n entries), upper triangle of P row by row], followed by
@@ -82,6 +82,13 @@ typedef struct pfgen_plugin_sampled_filter {
   void (*predict_at)(double* state, const double* values, double t, double dt);
   int (*update_at)(double* state, const double* values, double t, const double* y);
   void (*innovation)(const double* state, const double* values, double t, double* yhat, double* S);
+  /* Version 10 on: a sampled moment filter (cd-closure3, cd-closure4) carries its central moments above P
+   * as extra_state_size entries after m and P, and gives its realisability margins as a continuous moment
+   * filter does (margin_count values, named by margin_names); 0 and NULL for the others. */
+  size_t extra_state_size;
+  size_t margin_count;
+  void (*realisability_margins)(const double* state, double* margins);
+  const char* const* margin_names;
 } pfgen_plugin_sampled_filter;
 
 typedef struct pfgen_plugin {

@@ -82,8 +82,12 @@ class RecordSamples final : public RecordTiming {
   using Innovation = void (*)(const double* state, const double* values, double t, double* yhat, double* S);
   // One prediction sub-step, the update with a sample y at t (0 when S is not positive definite),
   // and the predicted sample yhat with its covariance S (p x p) at t; `substeps` per `period`.
-  RecordSamples(std::size_t substeps, double period, Predict predict, Update update, Innovation innovation)
-      : substeps_(substeps), period_(period), predict_(predict), update_(update), innovation_(innovation) {}
+  // extra_state: entries after m and P that predict and update carry along (a moment filter's higher moments).
+  RecordSamples(std::size_t substeps, double period, Predict predict, Update update, Innovation innovation,
+                std::size_t extra_state = 0)
+      : substeps_(substeps), period_(period), predict_(predict), update_(update), innovation_(innovation),
+        extra_state_(extra_state) {}
+  std::size_t extra_state() const override { return extra_state_; }
   bool absorb(RecordProgress& progress, double t, const double* observation, bool first) const override;
   double log_likelihood(const RecordProgress& progress) const override;
 
@@ -94,6 +98,7 @@ class RecordSamples final : public RecordTiming {
   Predict predict_;
   Update update_;
   Innovation innovation_;
+  std::size_t extra_state_;
 };
 
 class RecordIncrements : public RecordTiming {

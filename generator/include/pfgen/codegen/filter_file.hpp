@@ -84,4 +84,11 @@ std::map<std::string, std::string> filter_file_frames(const FilterFile& file, co
                                                       const std::string& partial_prefix,
                                                       const std::string& partial_suffix);
 
+// A moment filter's realisability margins (derivation/moment_closure.hpp) as a function of its file, whatever its
+// observation: the function's code (nothing for another filter), then its frame (each language's partial
+// realisability_margins, an empty frame without margins), words and function in the file.
+std::optional<FunctionCode> realisability_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
+                                               const FunctionNames& names, const StatementEmitter& emitter);
+void add_realisability_function(FilterFile& file, const FilterEquations& eq, std::optional<FunctionCode> code);
+
 }  // namespace pfgen::codegen

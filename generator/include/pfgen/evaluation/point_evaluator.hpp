@@ -50,6 +50,8 @@ struct EvaluatedFilter {
   std::vector<std::string> moment_names;
   std::vector<double> moment_drift;
   std::vector<std::vector<double>> moment_gain;
+  // Sampled moment filters only (cd-closure3, cd-closure4): the higher moments after an update at the point.
+  std::vector<double> moments_after_update;
 };
 
 // A problem with the point itself (wrong sizes, asymmetric P, unknown parameter, a delayed input

@@ -14,7 +14,7 @@
 namespace pfgen {
 
 enum class FilterKind { Optimal, Ekf, Additive, EkfAdditive, CdOptimal, CdEkf, CdEuler, DelayOptimal, DelayUncorrected, DelayEkf,
-                        RiskSensitive, Ukf, Closure3, Closure4 };
+                        RiskSensitive, Ukf, Closure3, Closure4, CdClosure3, CdClosure4 };
 
 // How a kind takes the expectations of f, of its Jacobian and of g g^T.
 enum class ExpectationRule {
@@ -87,6 +87,7 @@ struct FilterKindNeeds {
   bool state_independent_diffusion = false;  // g (or G) free of the states
   unsigned drift_degree = 0;               // the highest total degree of a drift entry in the states
   unsigned drift_degree_row = 0;           // 1-based row of the first entry of that degree
+  unsigned samples_degree = 1;             // sampled observations: the degree of c in the states (1: C0 + C x)
 };
 // The risk-sensitive kind is derived for drifts of degree <= 3 (the second- and third-degree systems
 // of Alcorta-Garcia et al. 2011; the construction's dropped terms grow with the degree).

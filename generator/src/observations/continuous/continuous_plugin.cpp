@@ -49,14 +49,7 @@ std::string ContinuousCode::plugin_wrappers(const Model& model, const std::vecto
     out += "void " + name + "_predicted_observation(const double* state, const double* values, double t, double* h) {\n" +
            alias +
            "  F::predicted_observation(t, state, ::pfgen_simulation::parameters::from<F::Params<double>>(values), h);\n}\n";
-    if (!facts[k].margin_names.empty()) {  // a moment filter's realisability margins (its generated function)
-      out += "void " + name + "_realisability_margins(const double* state, double* margins) {\n" + alias +
-             "  F::realisability_margins(0.0, state, F::Params<double>{}, margins);\n}\n";
-      out += "const char* const " + name + "_margin_names[] = {";
-      for (std::size_t m = 0; m < facts[k].margin_names.size(); ++m)
-        out += (m ? ", " : "") + plugin_c_string(facts[k].margin_names[m]);
-      out += "};\n";
-    }
+    out += realisability_wrapper(model, name, facts[k]);
     if (!facts[k].in_lanes) {
       out += "\n";
       continue;

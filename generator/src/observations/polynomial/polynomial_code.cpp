@@ -95,9 +95,7 @@ PolynomialFunctions polynomial_functions(const Model& model, const FilterEquatio
   f.observation =
       function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
   f.correction = function_code("stratonovich_correction", correction, names.c, model, eq, options, names, emitter);
-  if (!eq.realisability.empty())
-    f.realisability =
-        function_code("realisability_margins", eq.realisability, names.out, model, eq, options, names, emitter);
+  f.realisability = realisability_code(model, eq, options, names, emitter);
   return f;
 }
 
@@ -115,15 +113,7 @@ FilterFile PolynomialCode::filter_file(const Model& model, const FilterEquations
   file.add_function("observation", std::move(f.observation));
   file.add_function("correction", std::move(f.correction));
   file.words = {{"K", names.K}, {"L", names.L}, {"h", names.h}, {"c", names.c}};
-  // A moment filter's realisability margins (derivation/moment_closure.hpp): a function of the file, framed by
-  // each language's partial.
-  file.frames = {{"realisability_function", f.realisability ? "realisability_margins" : ""}};
-  if (f.realisability) {
-    file.words.emplace("margin_count", std::to_string(eq.realisability.size()));
-    file.words.emplace("moment_order", std::to_string(eq.variables.order()));
-    file.words.emplace("higher_orders", eq.variables.order() == 3 ? "of order 3" : "of orders 3 to " + std::to_string(eq.variables.order()));
-    file.add_function("realisability", std::move(*f.realisability));
-  }
+  add_realisability_function(file, eq, std::move(f.realisability));
   file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
   add_step_loops(file, eq.n());
   return file;

@@ -4,6 +4,7 @@
 
 #include "pfgen/observations/sampled/cholesky_solve.hpp"
 #include "pfgen/observations/sampled/joseph_update.hpp"
+#include "pfgen/observations/sampled/sampled_moment_update.hpp"
 #include "pfgen/observations/sampled/sampled_predict.hpp"
 
 namespace pfgen::codegen {
@@ -67,6 +68,9 @@ FilterFile SampledCode::filter_file(const Model& model, const FilterEquations& e
   file.blocks.emplace("predict_body", predict_statements(euler));
   file.blocks.emplace("advance_body", advance_statements());
   JosephUpdate update = joseph_update_statements();
+  // A moment filter's higher moments after m and P, before the update returns.
+  ir::Block moments = moment_update_statements(eq.variables);
+  update.update.insert(update.update.end() - 1, std::make_move_iterator(moments.begin()), std::make_move_iterator(moments.end()));
   file.blocks.emplace("update_arrays", std::move(update.arrays));
   file.blocks.emplace("update_matrices", std::move(update.matrices));
   file.blocks.emplace("update_views", std::move(update.views));
@@ -78,6 +82,10 @@ FilterFile SampledCode::filter_file(const Model& model, const FilterEquations& e
                 {"substeps", std::to_string(eq.update.substeps)},
                 {"predict_meaning", euler ? "cd-euler's exact moments of one Euler step." : "Heun's scheme on the prediction ODEs."}};
   add_sample_meanings(file.words, eq.update);
+  // A moment filter's margins, after the other functions in the banner.
+  std::optional<FunctionCode> margins = realisability_code(model, eq, options, names, emitter);
+  if (margins) file.stats.push_back(margins->stats);
+  add_realisability_function(file, eq, std::move(margins));
   return file;
 }
 

@@ -3,11 +3,40 @@
 // K = P C^T S^-1, formed exactly (GiNaC's rational matrix inverse) and rounded once.
 #include "pfgen/evaluation/observation_evaluation.hpp"
 #include "pfgen/evaluation/polynomial_evaluator.hpp"
+#include "pfgen/observations/sampled/sampled_moment_update.hpp"
 
 namespace pfgen {
 namespace {
 
-void evaluate_update(const FilterEquations& eq, const PolynomialEvaluator& value, EvaluatedFilter& out) {
+// A moment filter's higher moments after the update (sampled_moment_update.hpp), exactly, then rounded once.
+void evaluate_moment_update(const FilterEquations& eq, const PolynomialEvaluator& value, const EvaluationPoint& point,
+                            const GiNaC::matrix& K, EvaluatedFilter& out) {
+  const FilterVariables& vars = eq.variables;
+  const SampledUpdate& u = eq.update;
+  const std::size_t n = eq.n(), r = u.r();
+  auto num = [](const GiNaC::ex& e) { return GiNaC::ex_to<GiNaC::numeric>(e); };
+  NumericMatrix A(n, std::vector<GiNaC::numeric>(n)), P(n, std::vector<GiNaC::numeric>(n)),
+      Q(n, std::vector<GiNaC::numeric>(n, 0));
+  for (unsigned i = 0; i < n; ++i)
+    for (unsigned j = 0; j < n; ++j) {
+      GiNaC::numeric a = i == j ? 1 : 0;
+      for (unsigned b = 0; b < r; ++b) a -= num(K(i, b)) * num(value.exact(u.C[b][j]));
+      A[i][j] = a;
+      P[i][j] = point.P[i][j];
+      for (unsigned b = 0; b < r; ++b)
+        for (unsigned c = 0; c < r; ++c) Q[i][j] += num(K(i, b)) * num(value.exact(u.R[u.upper_index(b, c)])) * num(K(j, c));
+    }
+  std::vector<GiNaC::numeric> moments;
+  for (std::size_t q = 0; q < vars.higher_moments().size(); ++q)
+    moments.push_back(central_moment_value(vars, point, vars.first_higher_moment() + static_cast<std::uint32_t>(q)));
+  const std::vector<GiNaC::numeric> after = updated_higher_moments(vars, A, P, Q, moments);
+  for (std::size_t q = 0; q < after.size(); ++q)
+    out.moments_after_update.push_back(PolynomialEvaluator::rounded(
+        after[q], vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q)) + " after the update"));
+}
+
+void evaluate_update(const FilterEquations& eq, const PolynomialEvaluator& value, const EvaluationPoint& point,
+                     EvaluatedFilter& out) {
   const std::size_t n = eq.n();
   const SampledUpdate& u = eq.update;
   const std::size_t r = u.r();
@@ -37,6 +66,7 @@ void evaluate_update(const FilterEquations& eq, const PolynomialEvaluator& value
   out.gain.assign(n, std::vector<double>(r));
   for (unsigned i = 0; i < n; ++i)
     for (unsigned a = 0; a < r; ++a) out.gain[i][a] = PolynomialEvaluator::rounded(K(i, a), entry_name("gain", i, a));
+  if (!eq.variables.higher_moments().empty()) evaluate_moment_update(eq, value, point, K, out);
 }
 
 class SampledEvaluation final : public ObservationEvaluation {
@@ -51,7 +81,7 @@ class SampledEvaluation final : public ObservationEvaluation {
     EvaluatedFilter out;
     evaluate_m_drift(eq, value, out);
     evaluate_P_drift(eq, value, out);
-    evaluate_update(eq, value, out);
+    evaluate_update(eq, value, point, out);
     return out;
   }
 };

@@ -10,7 +10,7 @@ namespace {
 
 // The sampled filters' table: substeps from each filter's own header (the model's, or NAME@S's).
 std::string sampled_filter_table(const Model& model, const std::vector<std::string>& names,
-                                 const std::vector<std::string>& labels) {
+                                 const std::vector<std::string>& labels, const std::vector<PluginFilterFacts>& facts) {
   if (names.empty()) return "";
   const std::string count = std::to_string(names.size());
   std::string out = "  static const std::array<pfgen_plugin_sampled_filter, " + count + "> sampled_filters = [] {\n" +
@@ -22,7 +22,16 @@ std::string sampled_filter_table(const Model& model, const std::vector<std::stri
     out += item + "name = " + plugin_c_string(labels[k]) + ";\n";
     out += item + "n = " + ns + "::n;\n";
     out += item + "p = " + ns + "::p;\n";
-    out += item + "state_size = " + ns + "::state_size;\n";
+    if (facts[k].extra_state > 0) {  // a moment filter: its moments above P are extra state, checked by its margins
+      const std::string extra = std::to_string(facts[k].extra_state);
+      out += item + "state_size = " + ns + "::state_size - " + extra + ";\n";
+      out += item + "extra_state_size = " + extra + ";\n";
+      out += item + "margin_count = " + std::to_string(facts[k].margin_names.size()) + ";\n";
+      out += item + "realisability_margins = &pfgen_simulation::entry::" + names[k] + "_realisability_margins;\n";
+      out += item + "margin_names = pfgen_simulation::entry::" + names[k] + "_margin_names;\n";
+    } else {
+      out += item + "state_size = " + ns + "::state_size;\n";
+    }
     out += item + "substeps = " + ns + "::substeps;\n";
     out += item + "initial_state = &pfgen_simulation::entry::" + names[k] + "_initial_state;\n";
     out += item + "predict = &pfgen_simulation::entry::" + names[k] + "_predict;\n";
@@ -40,9 +49,10 @@ std::string sampled_filter_table(const Model& model, const std::vector<std::stri
 // update_at and innovation read the parameters' values from their argument. innovation unpacks
 // innovation_terms' upper triangle of S (after P C^T) into the ABI's full p x p matrix.
 std::string SampledCode::plugin_wrappers(const Model& model, const std::vector<std::string>& names,
-                                        const std::vector<PluginFilterFacts>&) const {
+                                        const std::vector<PluginFilterFacts>& facts) const {
   std::string out;
-  for (const auto& name : names) {
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string& name = names[k];
     const std::string alias = "  namespace F = " + plugin_filter_namespace(model, name) + ";\n";
     out += "void " + name + "_initial_state(double* state) {\n" + alias + "  F::initial_state(state);\n}\n";
     out += "void " + name + "_predict(double* state, double t, double dt) {\n" + alias +
@@ -61,7 +71,8 @@ std::string SampledCode::plugin_wrappers(const Model& model, const std::vector<s
            "  F::predicted_observation(t, state, params, yhat);\n"
            "  std::size_t k = F::n * F::p;\n"
            "  for (std::size_t i = 0; i < F::p; ++i)\n"
-           "    for (std::size_t j = i; j < F::p; ++j) S[i * F::p + j] = S[j * F::p + i] = u[k++];\n}\n\n";
+           "    for (std::size_t j = i; j < F::p; ++j) S[i * F::p + j] = S[j * F::p + i] = u[k++];\n}\n";
+    out += realisability_wrapper(model, name, facts[k]) + "\n";
   }
   return out;
 }
@@ -69,9 +80,9 @@ std::string SampledCode::plugin_wrappers(const Model& model, const std::vector<s
 std::map<std::string, std::string> SampledCode::plugin_table(const Model& model, const std::vector<std::string>& names,
                                                              const std::vector<std::string>& labels,
                                                              std::optional<double>,
-                                                             const std::vector<PluginFilterFacts>&) const {
+                                                             const std::vector<PluginFilterFacts>& facts) const {
   return {
-      {"filter_table", sampled_filter_table(model, names, labels)},
+      {"filter_table", sampled_filter_table(model, names, labels, facts)},
       {"period", CppEmitter(ScalarMode::Double).literal(model.observation.samples()->period)},
       {"sampled_filter_count", std::to_string(names.size())},
       {"sampled_filters", names.empty() ? "nullptr" : "sampled_filters.data()"},

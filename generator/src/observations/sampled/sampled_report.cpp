@@ -7,12 +7,52 @@
 #include "pfgen/notation/rich_text.hpp"
 #include "pfgen/notation/text_printer.hpp"
 #include "pfgen/printing/latex_matrix.hpp"
+#include "pfgen/printing/moment_report.hpp"
 #include "pfgen/printing/noise_report.hpp"
 #include "pfgen/printing/observation_report.hpp"
 #include "pfgen/printing/report_parts.hpp"
 
 namespace pfgen {
 namespace {
+
+// A moment filter's higher moments at a sample: those of the law of x + K (y - C0 - C x - v), v ~ N(0, R)
+// (sampled_moment_update.hpp), one line per order.
+std::vector<std::string> moment_update_lines(const FilterVariables& vars) {
+  std::vector<std::string> lines;
+  if (vars.higher_moments().empty()) return lines;
+  lines.push_back("M3_ijl <- sum_abc A_ia A_jb A_lc M3_abc");
+  if (vars.order() >= 4)
+    lines.push_back("M4_ijlq <- sum_abcd A_ia A_jb A_lc A_qd M4_abcd + U_ij Q_lq + U_il Q_jq + U_iq Q_jl + U_jl Q_iq + "
+                    "U_jq Q_il + U_lq Q_ij + Q_ij Q_lq + Q_il Q_jq + Q_iq Q_jl");
+  return lines;
+}
+
+std::string moment_update_where(const FilterVariables& vars) {
+  return std::string("A = I - K C") + (vars.order() >= 4 ? ", U = A P A^T, Q = K R K^T" : "") +
+         ": the moments of the law of x + K (y - C0 - C x - v), v ~ N(0, R)";
+}
+
+std::string moment_update_text(const FilterVariables& vars) {
+  std::string out;
+  for (const std::string& line : moment_update_lines(vars)) out += line + "\n";
+  return out.empty() ? out : out + "  (" + moment_update_where(vars) + ")\n";
+}
+
+std::string moment_update_formula(const FilterVariables& vars) {
+  std::string out;
+  for (const std::string& line : moment_update_lines(vars)) out += line + "; ";
+  return out + moment_update_where(vars);
+}
+
+std::vector<std::string> moment_update_latex(const FilterVariables& vars) {
+  std::vector<std::string> lines;
+  if (vars.higher_moments().empty()) return lines;
+  lines.push_back("\\mu_{ijl} &\\leftarrow \\textstyle\\sum_{abc} A_{ia} A_{jb} A_{lc}\\, \\mu_{abc}, \\quad A = I - K C");
+  if (vars.order() >= 4)
+    lines.push_back("\\mu_{ijlq} &\\leftarrow \\textstyle\\sum_{abcd} A_{ia} A_{jb} A_{lc} A_{qd}\\, \\mu_{abcd} + "
+                    "\\sum_{6} U_{ij} Q_{lq} + \\sum_{3} Q_{ij} Q_{lq}, \\quad U = A P A^{T}, \\ Q = K R K^{T}");
+  return lines;
+}
 
 std::vector<ReportPart> P_parts(const FilterEquations& eq, std::size_t u) { return {{&eq.P_moment[u]}, {&eq.P_diffusion[u]}}; }
 
@@ -128,6 +168,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   out += "; P = covariance of (";
   for (std::size_t i = 0; i < n; ++i) out += (i ? ", " : "") + model.state_names[i];
   out += ")\n";
+  out += higher_moments_header_text(eq);
   const SampleRateReport& rate = sample_rate_report(model.observation.rate());
   out += "observation: sampled every T = " + printer.print(u.period) + ", y_k = " + rate.samples_text(model, printer) + "; " +
          substep_phrase(u) + " of dt = T/" + std::to_string(u.substeps) + " between samples" +
@@ -140,6 +181,9 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
       for (std::size_t j = i; j < n; ++j)
         out += "d" + vars.text_name(vars.P(i, j)) + " = (" + join_parts(writer, P_parts(eq, vars.upper_index(i, j))) +
                ") dt\n";
+    for (std::size_t q = 0; q < eq.higher_drift.size(); ++q)
+      out += "d" + vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q)) + " = (" +
+             writer.print(eq.higher_drift[q]) + ") dt\n";
   } else {
     out += "prediction over one sub-step dt (exact moments of x + f dt + g sqrt(dt) xi; dP terms: [" +
            moment_terms_text(eq) + "] + [diffusion], then Cov(f)):\n";
@@ -169,6 +213,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   out += "K = PCt Pyy^-1\n";
   out += "m <- m + K (y - h)\n";
   out += "P <- (I - K C) P (I - K C)^T + K R K^T\n";
+  out += moment_update_text(vars);
   out += "C = [";
   for (std::size_t a = 0; a < r; ++a) {
     out += a ? "; " : "";
@@ -179,7 +224,7 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
     out += a ? "; " : "";
     for (std::size_t b = 0; b < r; ++b) out += (b ? ", " : "") + writer.print(u.R[u.upper_index(a, b)]);
   }
-  return out + "]\n";
+  return out + "]\n" + realisability_text(eq, writer);
 }
 
 std::string sampled_equations_latex(const Model& model, const FilterEquations& eq) {
@@ -218,6 +263,10 @@ std::string sampled_equations_latex(const Model& model, const FilterEquations& e
                                                                   "\\right)\\Delta^{2}")
                                  : latex_align_lines("\\frac{d" + P + "}{dt}", join_parts(writer, P_parts(eq, k))));
     }
+  for (std::size_t q = 0; q < eq.higher_drift.size(); ++q)
+    prediction.push_back(latex_align_lines(
+        "\\frac{d" + vars.latex_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q)) + "}{dt}",
+        writer.print(eq.higher_drift[q])));
   out += block(prediction);
   out += "\\paragraph{Update at each sample} (" + sample_rate_report(model.observation.rate()).update_latex(u) + "):\n";
   std::vector<std::string> update;
@@ -233,8 +282,9 @@ std::string sampled_equations_latex(const Model& model, const FilterEquations& e
                                          writer.print(u.S[u.upper_index(a, b)])));
   update.push_back("K &= P C^{T} S^{-1}, \\quad m \\leftarrow m + K (y - h), \\quad "
                    "P \\leftarrow (I - K C) P (I - K C)^{T} + K R K^{T}");
+  for (std::string& line : moment_update_latex(vars)) update.push_back(std::move(line));
   out += block(update);
-  return out;
+  return out + realisability_latex(eq, writer);
 }
 
 Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
@@ -287,6 +337,7 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   update.add("S", full(u.S, r, S_index));
   update.add("gain", Json::string("PCt S^-1"));
   update.add("covariance", Json::string("(I - K C) P (I - K C)^T + K R K^T"));
+  if (!vars.higher_moments().empty()) update.add("moments", Json::string(moment_update_formula(vars)));
   Json C = Json::array();
   for (std::size_t a = 0; a < r; ++a) {
     Json row = Json::array();
@@ -309,6 +360,7 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   out.add("substeps_chosen", Json::boolean(u.substeps_chosen));
   out.add("prediction", prediction);
   out.add("update", update);
+  add_moments_json(eq, writer, out);
   return out;
 }
 

@@ -6,14 +6,15 @@
 #include <string>
 
 #include "pfgen/algebra/numeric_value.hpp"
+#include "pfgen/derivation/closed_expectation.hpp"
 #include "pfgen/model/model_error.hpp"
 #include "pfgen/notation/number_format.hpp"
 
 namespace pfgen {
 namespace {
 
-// The prediction field z' = F(z), z = (m, upper triangle of P) in FilterVariables' order (m_i is
-// variable i, P_ij variable n + upper_index(i, j)), with its coefficients' values at t = 0 and the
+// The prediction field z' = F(z), z = (m, upper triangle of P, a moment filter's higher moments) in
+// FilterVariables' order (m_i is variable i, P_ij variable n + upper_index(i, j)), with its coefficients' values at t = 0 and the
 // model file's parameters taken once, in double precision. Sums run over the terms in their stored
 // order, so every value is the same in every process.
 class NumericField {
@@ -108,6 +109,10 @@ SubstepAdvice advise_substeps(const Model& model, const FilterEquations& eq) {
     for (std::size_t i = 0; i < n && i < model.initial->P0.size(); ++i)
       for (std::size_t j = i; j < n && j < model.initial->P0[i].size(); ++j)
         z(vars.P(i, j)) = model.initial->P0[i][j].to_double();
+    // A moment filter's higher moments start at the Gaussian prior's.
+    if (model.initial->P0.size() == n)
+      for (std::size_t q = 0; q < vars.higher_moments().size(); ++q)
+        z(vars.first_higher_moment() + q) = gaussian_central_moment(vars.higher_moments()[q], model.initial->P0).to_double();
   }
   GiNaC::exmap values;
   for (const Parameter& p : model.parameters) values[p.symbol] = p.default_value;
@@ -118,6 +123,7 @@ SubstepAdvice advise_substeps(const Model& model, const FilterEquations& eq) {
   std::vector<const Polynomial*> rows;
   for (const Polynomial& p : eq.m_drift) rows.push_back(&p);
   for (const Polynomial& p : P_drift) rows.push_back(&p);
+  for (const Polynomial& p : eq.higher_drift) rows.push_back(&p);  // a moment filter's
   const NumericField field(rows, values);
 
   SubstepAdvice advice;

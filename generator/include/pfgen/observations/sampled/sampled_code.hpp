@@ -24,7 +24,8 @@ class SampledCode final : public ObservationCode {
   FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                          const FunctionNames& names, const StatementEmitter& emitter) const override;
   std::vector<std::string> layouts() const override { return {"sampled_filter"}; }
-  std::vector<std::string> declaring_frames() const override { return {"euler_square"}; }  // cd-euler's
+  // cd-euler's, and a moment filter's (cd-closure3, cd-closure4)
+  std::vector<std::string> declaring_frames() const override { return {"euler_square", "realisability_margins"}; }
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<PluginFilterFacts>& facts) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,

@@ -85,6 +85,16 @@ std::string plugin_filter_namespace(const Model& model, const std::string& ident
   return std::string("::") + kFilterNamespace + "::" + model.name + "::" + identifier;
 }
 
+std::string realisability_wrapper(const Model& model, const std::string& identifier, const PluginFilterFacts& facts) {
+  if (facts.margin_names.empty()) return {};
+  std::string out = "void " + identifier + "_realisability_margins(const double* state, double* margins) {\n" +
+                    "  namespace F = " + plugin_filter_namespace(model, identifier) + ";\n" +
+                    "  F::realisability_margins(0.0, state, F::Params<double>{}, margins);\n}\n";
+  out += "const char* const " + identifier + "_margin_names[] = {";
+  for (std::size_t m = 0; m < facts.margin_names.size(); ++m) out += (m ? ", " : "") + plugin_c_string(facts.margin_names[m]);
+  return out + "};\n";
+}
+
 const std::string& plugin_abi_header() { return embedded_template("pfgen_runtime/plugin_abi.h"); }
 
 bool steps_in_lanes(const GeneratedFilter& filter) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pfgen/codegen/filter_codegen.hpp"
+#include "pfgen/codegen/observation_code.hpp"
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/model/model.hpp"
 
@@ -40,5 +41,8 @@ const std::string& plugin_abi_header();
 // ::pfgen_simulation::filters::<model>::<identifier>.
 std::string plugin_c_string(const std::string& text);
 std::string plugin_filter_namespace(const Model& model, const std::string& identifier);
+// A moment filter's realisability margins behind the ABI's signature, <identifier>_realisability_margins, and their
+// names, <identifier>_margin_names (empty for another filter): continuous and sampled filters alike.
+std::string realisability_wrapper(const Model& model, const std::string& identifier, const PluginFilterFacts& facts);
 
 }  // namespace pfgen::codegen
