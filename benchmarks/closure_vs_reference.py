@@ -38,6 +38,16 @@ import numpy as np
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 FILTERS = "optimal,ekf,ukf,closure3,closure4"
+
+
+def baseline(filters):
+    """The Gaussian closure the target compares with: cd-optimal for sampled observations."""
+    return "cd-optimal" if "cd-optimal" in filters else "optimal"
+
+
+def target(filters):
+    """The order-4 moment filter of the target."""
+    return "cd-closure4" if "cd-closure4" in filters else "closure4"
 REALISABLE_HEADER = "Runs stopped where a moment filter's moments left the realisable set"
 
 
@@ -99,7 +109,7 @@ def one_run(args, filters, seed, workdir):
     wall = time.monotonic() - start
     if out.returncode != 0:
         sys.exit("closure_vs_reference: %s failed:\n%s" % (" ".join(cmd), out.stderr))
-    data = np.genfromtxt(csv_path, delimiter=",", names=True)
+    data = np.genfromtxt(csv_path, delimiter=",", names=True, deletechars="")  # keep "cd-optimal"
     states = [n[len("reference_m_"):] for n in data.dtype.names if n.startswith("reference_m_")]
     realisable = realisable_stops(out.stdout)
     stops, psd_losses = {}, {}
@@ -175,7 +185,8 @@ def comparison_table(runs, filters, groups, mse, dist, with_reference):
         def distance(r, f):
             return sum(dist(r, f, s) for s in ss)
 
-        opt = mean_se([excess(r, "optimal") for r in runs])[0] if "optimal" in filters else None
+        base, top = baseline(filters), target(filters)
+        opt = mean_se([excess(r, base) for r in runs])[0] if base in filters else None
         for f in filters:
             e = mean_se([excess(r, f) for r in runs])
             ratio = "%.2f" % (e[0] / opt) if opt else "-"
@@ -186,12 +197,12 @@ def comparison_table(runs, filters, groups, mse, dist, with_reference):
             own = [sum(r["own_error"][s] ** 2 for s in ss) for r in runs]
             print("%-10s %-6s %22s %20s   (MSE(x - m_ref) = %.4g ± %.2g; m_ref's own error^2 %.2g)"
                   % ("reference", label, "", "", ref_ms[0], ref_ms[1], float(np.nanmean(own))))
-        if "optimal" in filters and "closure4" in filters:
-            half = mean_se([excess(r, "closure4") - 0.5 * excess(r, "optimal") for r in runs])
-            halfd = mean_se([distance(r, "closure4") - 0.5 * distance(r, "optimal") for r in runs])
-            print("%-10s %-6s target: closure4's excess - optimal's / 2 = %s (%.1f standard errors)"
+        if base in filters and top in filters:
+            half = mean_se([excess(r, top) - 0.5 * excess(r, base) for r in runs])
+            halfd = mean_se([distance(r, top) - 0.5 * distance(r, base) for r in runs])
+            print("%-10s %-6s target: %s's excess - %s's / 2 = %s (%.1f standard errors)"
                   "; in mean squared distance %s (%.1f)"
-                  % ("", label, fmt(*half), half[0] / half[1] if half[1] > 0 else float("nan"),
+                  % ("", label, top, base, fmt(*half), half[0] / half[1] if half[1] > 0 else float("nan"),
                      fmt(*halfd), halfd[0] / halfd[1] if halfd[1] > 0 else float("nan")))
     print()
 
@@ -264,17 +275,18 @@ def main():
           "the filter's own excess on the latter:")
     print("%-10s %24s %24s %26s %22s" % ("filter", "runs it stopped in", "runs it reached T",
                                          "its own excess there", "MSE(x - m_ref): s / r"))
+    base = baseline(filters)
     for f in filters:
-        if f == "optimal" or "optimal" not in filters:
+        if f == base or base not in filters:
             continue
-        stopped = [r for r in usable if f in r["stops"] and "optimal" in r["mse"]]
-        kept = [r for r in usable if f not in r["stops"] and "optimal" in r["mse"]]
+        stopped = [r for r in usable if f in r["stops"] and base in r["mse"]]
+        kept = [r for r in usable if f not in r["stops"] and base in r["mse"]]
         if not stopped:
             continue
         ex = lambda r, g: sum(r["mse"][g][s] - r["mse"]["reference"][s] for s in states)
         ref = lambda r: sum(r["mse"]["reference"][s] for s in states)
-        a = mean_se([ex(r, "optimal") for r in stopped])
-        b = mean_se([ex(r, "optimal") for r in kept])
+        a = mean_se([ex(r, base) for r in stopped])
+        b = mean_se([ex(r, base) for r in kept])
         c = mean_se([ex(r, f) for r in kept])
         refs = "%.3g / %.3g" % (mean_se([ref(r) for r in stopped])[0],
                                 mean_se([ref(r) for r in kept])[0] if kept else float("nan"))
