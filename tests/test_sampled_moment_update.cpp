@@ -2,39 +2,48 @@
 // against an enumeration: a prior law on five points of the plane and a noise whose components take -sqrt(3), 0
 // and sqrt(3) with probabilities 1/6, 2/3, 1/6 (N(0, 1)'s moments up to order 5, so the updated law's moments up to
 // order 4 are those of Gaussian noise). x+ = x + K (y - C0 - C x - Uv z), taken point by point over the 5 x 9 pairs,
-// gives the updated law's central moments exactly; eval's moments after the update must equal them.
+// gives the updated law's moments exactly; eval's moments after the update, and the generated C++ update's m, P
+// and higher moments, must equal them.
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <sstream>
 
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
+#include "support/cli_helpers.hpp"
+#include "support/process.hpp"
+#include "support/test_paths.hpp"
 
 using namespace pfgen;
+using pfgen_test::run_pfgen;
+using pfgen_test::TempDir;
+using pfgen_test::ProcessResult;
 
 namespace {
 
-const char* kModel = R"(name: sampled_two_sensors
-states: [x1, x2]
-drift: ["-x1 + x2^2", "-x2"]
-diffusion: [["0.3", "0"], ["0", "0.2*x1"]]
-observation:
-  sampled:
-    period: 0.5
-    C0: ["0.1", "-0.3"]
-    C: [["1", "0.5"], ["0.2", "-1"]]
-    Uv: [["0.3", "0"], ["0.1", "0.4"]]
-initial: {x0: [0, 0], m0: [0, 0], P0: [[1, 0], [0, 1]]}
-)";
-
 using Vec = std::vector<double>;
 
-// Central moment E[prod (x - mean)_i over the indices] of a weighted point set.
-double central(const std::vector<Vec>& points, const Vec& weights, const std::vector<std::size_t>& indices) {
+const std::string kModel = pfgen_test::test_data_dir() + "/sampled_two_sensors.yaml";
+// The model file's samples.
+const double kC0[2] = {0.1, -0.3}, kC[2][2] = {{1, 0.5}, {0.2, -1}}, kUv[2][2] = {{0.3, 0}, {0.1, 0.4}};
+const double kY[2] = {0.7, -0.2};
+
+// The prior: five weighted points of the plane.
+const std::vector<Vec> kPrior = {{0.3, -0.2}, {1.4, 0.5}, {-0.6, 0.9}, {0.1, -1.3}, {2.2, 0.4}};
+const Vec kWeights = {0.3, 0.15, 0.25, 0.2, 0.1};
+
+Vec mean_of(const std::vector<Vec>& points, const Vec& weights) {
   Vec mean(2, 0);
   for (std::size_t s = 0; s < points.size(); ++s)
     for (std::size_t i = 0; i < 2; ++i) mean[i] += weights[s] * points[s][i];
+  return mean;
+}
+
+// Central moment E[prod (x - mean)_i over the indices] of a weighted point set.
+double central(const std::vector<Vec>& points, const Vec& weights, const std::vector<std::size_t>& indices) {
+  const Vec mean = mean_of(points, weights);
   double out = 0;
   for (std::size_t s = 0; s < points.size(); ++s) {
     double product = weights[s];
@@ -44,56 +53,133 @@ double central(const std::vector<Vec>& points, const Vec& weights, const std::ve
   return out;
 }
 
+// The updated law with gain K (2 x 2): every prior point with every noise value.
+void updated_law(const std::vector<Vec>& K, std::vector<Vec>& points, Vec& weights) {
+  const double root3 = std::sqrt(3.0), z_values[3] = {-root3, 0, root3}, z_weights[3] = {1.0 / 6, 2.0 / 3, 1.0 / 6};
+  for (std::size_t s = 0; s < kPrior.size(); ++s)
+    for (std::size_t a = 0; a < 3; ++a)
+      for (std::size_t b = 0; b < 3; ++b) {
+        const double z[2] = {z_values[a], z_values[b]};
+        Vec x = kPrior[s];
+        double innovation[2];
+        for (std::size_t r = 0; r < 2; ++r)
+          innovation[r] = kY[r] - kC0[r] - kC[r][0] * x[0] - kC[r][1] * x[1] - kUv[r][0] * z[0] - kUv[r][1] * z[1];
+        for (std::size_t i = 0; i < 2; ++i) x[i] += K[i][0] * innovation[0] + K[i][1] * innovation[1];
+        points.push_back(x);
+        weights.push_back(kWeights[s] * z_weights[a] * z_weights[b]);
+      }
+}
+
+// The filter state (m, P's upper triangle, the higher moments) of a weighted point set.
+Vec filter_state(const FilterVariables& vars, const std::vector<Vec>& points, const Vec& weights) {
+  Vec state = mean_of(points, weights);
+  for (std::size_t i = 0; i < 2; ++i)
+    for (std::size_t j = i; j < 2; ++j) state.push_back(central(points, weights, {i, j}));
+  for (const auto& indices : vars.higher_moments()) state.push_back(central(points, weights, indices));
+  return state;
+}
+
 }  // namespace
 
 TEST_CASE("the sampled moment filters' update gives the central moments of the Kalman-updated law",
           "[closure][sampled][unit]") {
-  const Model model = load_model_text(kModel, "sampled_two_sensors.yaml");
-  const std::vector<Vec> prior = {{0.3, -0.2}, {1.4, 0.5}, {-0.6, 0.9}, {0.1, -1.3}, {2.2, 0.4}};
-  const Vec weights = {0.3, 0.15, 0.25, 0.2, 0.1};
+  const Model model = load_model_file(kModel);
   for (FilterKind kind : {FilterKind::CdClosure3, FilterKind::CdClosure4}) {
     const FilterEquations eq = derive_filter(model, kind);
     const FilterVariables& vars = eq.variables;
     INFO(eq.name);
     EvaluationPoint point;
-    for (std::size_t i = 0; i < 2; ++i) {
-      double mean = 0;
-      for (std::size_t s = 0; s < prior.size(); ++s) mean += weights[s] * prior[s][i];
-      point.m.push_back(GiNaC::numeric(mean));
-    }
+    for (double m : mean_of(kPrior, kWeights)) point.m.push_back(GiNaC::numeric(m));
     point.P.assign(2, std::vector<GiNaC::numeric>(2));
     for (std::size_t i = 0; i < 2; ++i)
-      for (std::size_t j = 0; j < 2; ++j) point.P[i][j] = GiNaC::numeric(central(prior, weights, {i, j}));
+      for (std::size_t j = 0; j < 2; ++j) point.P[i][j] = GiNaC::numeric(central(kPrior, kWeights, {i, j}));
     for (std::size_t q = 0; q < vars.higher_moments().size(); ++q)
       point.moments[vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q))] =
-          GiNaC::numeric(central(prior, weights, vars.higher_moments()[q]));
+          GiNaC::numeric(central(kPrior, kWeights, vars.higher_moments()[q]));
     const EvaluatedFilter value = evaluate_at(model, eq, point);
     REQUIRE(value.moments_after_update.size() == vars.higher_moments().size());
-    // The updated law, point by point.
-    const double C0[2] = {0.1, -0.3}, C[2][2] = {{1, 0.5}, {0.2, -1}}, Uv[2][2] = {{0.3, 0}, {0.1, 0.4}};
-    const double y[2] = {0.7, -0.2};
-    const double root3 = std::sqrt(3.0), z_values[3] = {-root3, 0, root3}, z_weights[3] = {1.0 / 6, 2.0 / 3, 1.0 / 6};
     std::vector<Vec> after;
     Vec after_weights;
-    for (std::size_t s = 0; s < prior.size(); ++s)
-      for (std::size_t a = 0; a < 3; ++a)
-        for (std::size_t b = 0; b < 3; ++b) {
-          const double z[2] = {z_values[a], z_values[b]};
-          Vec x = prior[s];
-          double innovation[2];
-          for (std::size_t r = 0; r < 2; ++r)
-            innovation[r] = y[r] - C0[r] - C[r][0] * x[0] - C[r][1] * x[1] - Uv[r][0] * z[0] - Uv[r][1] * z[1];
-          for (std::size_t i = 0; i < 2; ++i)
-            x[i] += value.gain[i][0] * innovation[0] + value.gain[i][1] * innovation[1];
-          after.push_back(x);
-          after_weights.push_back(weights[s] * z_weights[a] * z_weights[b]);
-        }
+    updated_law(value.gain, after, after_weights);
     for (std::size_t q = 0; q < vars.higher_moments().size(); ++q) {
       const double expected = central(after, after_weights, vars.higher_moments()[q]);
-      INFO(vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q)) << ": eval "
-                                                                                       << value.moments_after_update[q]
-                                                                                       << ", enumeration " << expected);
+      INFO(vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q))
+           << ": eval " << value.moments_after_update[q] << ", enumeration " << expected);
       CHECK(std::abs(value.moments_after_update[q] - expected) <= 1e-12 + 1e-9 * std::abs(expected));
+    }
+  }
+}
+
+TEST_CASE("generated sampled moment filters: the update's m, P and higher moments are the Kalman-updated law's, and "
+          "the margins hold at a realisable state",
+          "[closure][sampled][codegen][compiler]") {
+  const Model model = load_model_file(kModel);
+  TempDir dir;
+  const ProcessResult generated =
+      run_pfgen({"codegen", kModel, "--filter", "cd-closure3,cd-closure4", "--language", "cpp", "-o", dir.path()});
+  INFO(generated.err);
+  REQUIRE(generated.exit_code == 0);
+  for (FilterKind kind : {FilterKind::CdClosure3, FilterKind::CdClosure4}) {
+    const FilterEquations eq = derive_filter(model, kind);
+    const FilterVariables& vars = eq.variables;
+    const std::string ns = eq.name == "cd-closure3" ? "cd_closure3" : "cd_closure4";
+    INFO(eq.name);
+    const Vec prior = filter_state(vars, kPrior, kWeights);
+    std::ostringstream state;
+    state.precision(17);
+    for (double v : prior) state << v << ", ";
+    const std::string program = "#include <cstdio>\n#include \"sampled_two_sensors/" + ns + ".hpp\"\n" +
+                                "namespace F = pfgen_models::sampled_two_sensors::" + ns + ";\n" +
+                                "int main() {\n  double state[F::state_size] = {" + state.str() + "};\n" +
+                                "  double margins[F::margin_count];\n  F::realisability_margins(0.0, state, {}, margins);\n" +
+                                "  for (double v : margins) std::printf(\"%.17g \", v);\n  std::printf(\"\\n\");\n" +
+                                "  const double y[2] = {0.7, -0.2};\n  if (!F::update(state, 0.5, y, {})) return 1;\n" +
+                                "  for (double v : state) std::printf(\"%.17g \", v);\n  std::printf(\"\\n\");\n}\n";
+    pfgen_test::write_file(dir.file("main.cpp"), program);
+    const std::string command = "g++ -std=c++17 -O2 -Wall -Wextra -Werror -I " + pfgen_test::shell_quote(dir.path()) +
+                                " " + pfgen_test::shell_quote(dir.file("main.cpp")) + " -o " +
+                                pfgen_test::shell_quote(dir.file("update"));
+    const ProcessResult compiled = pfgen_test::run_process(command);
+    INFO(compiled.err.substr(0, 4000));
+    REQUIRE(compiled.exit_code == 0);
+    const ProcessResult ran = pfgen_test::run_process(pfgen_test::shell_quote(dir.file("update")));
+    REQUIRE(ran.exit_code == 0);
+    std::istringstream lines(ran.out);
+    // The prior is a law: every margin is positive.
+    for (std::size_t k = 0; k < eq.realisability.size(); ++k) {
+      double margin = 0;
+      lines >> margin;
+      INFO(eq.realisability_meaning[k] << " = " << margin);
+      CHECK(margin > 0);
+    }
+    Vec updated(prior.size());
+    for (double& v : updated) lines >> v;
+    REQUIRE(lines);
+    // K = P C^T S^-1 from the prior's P, by hand.
+    const double P[2][2] = {{prior[2], prior[3]}, {prior[3], prior[4]}};
+    double PCt[2][2] = {}, S[2][2] = {};
+    for (std::size_t i = 0; i < 2; ++i)
+      for (std::size_t a = 0; a < 2; ++a)
+        for (std::size_t k = 0; k < 2; ++k) PCt[i][a] += P[i][k] * kC[a][k];
+    for (std::size_t a = 0; a < 2; ++a)
+      for (std::size_t b = 0; b < 2; ++b) {
+        S[a][b] = kUv[a][0] * kUv[b][0] + kUv[a][1] * kUv[b][1];
+        for (std::size_t k = 0; k < 2; ++k) S[a][b] += kC[a][k] * PCt[k][b];
+      }
+    const double det = S[0][0] * S[1][1] - S[0][1] * S[1][0];
+    const double Si[2][2] = {{S[1][1] / det, -S[0][1] / det}, {-S[1][0] / det, S[0][0] / det}};
+    std::vector<Vec> K(2, Vec(2, 0));
+    for (std::size_t i = 0; i < 2; ++i)
+      for (std::size_t a = 0; a < 2; ++a)
+        for (std::size_t b = 0; b < 2; ++b) K[i][a] += PCt[i][b] * Si[b][a];
+    std::vector<Vec> after;
+    Vec after_weights;
+    updated_law(K, after, after_weights);
+    const Vec expected = filter_state(vars, after, after_weights);
+    for (std::size_t v = 0; v < expected.size(); ++v) {
+      INFO(vars.text_name(static_cast<std::uint32_t>(v)) << ": generated " << updated[v] << ", enumeration "
+                                                         << expected[v]);
+      CHECK(std::abs(updated[v] - expected[v]) <= 1e-12 + 1e-9 * std::abs(expected[v]));
     }
   }
 }

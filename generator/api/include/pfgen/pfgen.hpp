@@ -84,6 +84,9 @@ struct Evaluation {
   std::vector<std::string> moment_names;
   Vector moment_drift;
   Matrix moment_gain;
+  // A sampled moment filter's (cd-closure3, cd-closure4) higher moments after an update at the point: eval's
+  // "moments_after_update" (empty for the other filters).
+  Vector moments_after_update;
 };
 
 // A filter's equations as expressions that Python (and SymPy's sympify, with rational=True) reads:

@@ -37,9 +37,11 @@ MomentClosureTerms moment_closure_terms(const Model& model, const FilterVariable
                                         const ExMatrix& B);
 
 // Margins that are all positive while the moment state can belong to a law, one pair of words per margin: per
-// state i the variance P_ii and, at order 4, Pearson's bound M4_iiii P_ii - P_ii^3 - M3_iii^2 (kurtosis above 1 +
-// skewness^2; zero only for a law on two points). These are necessary conditions, checked on each marginal; the
-// joint moment matrix may lose positive definiteness first (docs/theory.md §2.10).
+// state i the variance P_ii; P's leading principal minors of sizes 2..min(n, 4) (Sylvester: P positive definite;
+// the runtime checks P's least eigenvalue at any n); and per state Pearson's bound mu4 P_ii - P_ii^3 - M3_iii^2
+// (kurtosis above 1 + skewness^2; zero only for a law on two points) with mu4 the closed law's: M4_iiii at order 4,
+// 3 P_ii^2 at order 3. These are necessary conditions on P and each marginal; the joint moment matrix may lose
+// positive definiteness first (docs/theory.md §2.10).
 struct RealisabilityMargins {
   std::vector<Polynomial> margins;
   std::vector<std::string> meaning;  // "variance of x1", "Pearson's bound of x1"
