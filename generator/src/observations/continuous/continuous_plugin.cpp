@@ -72,14 +72,7 @@ std::map<std::string, std::string> ContinuousCode::plugin_table(const Model& mod
     const std::string entry = item + "step_at = &pfgen_simulation::entry::" + names[k] + "_step_at;\n" + item +
                               "predicted_observation = &pfgen_simulation::entry::" + names[k] +
                               "_predicted_observation;\n";
-    std::string size = entry + item + "state_size = " + ns + "::state_size;\n";
-    if (facts[k].extra_state > 0) {  // a moment filter: its moments above P are extra state, checked by its margins
-      const std::string extra = std::to_string(facts[k].extra_state);
-      size = entry + item + "state_size = " + ns + "::state_size - " + extra + ";\n" + item + "extra_state_size = " +
-             extra + ";\n" + item + "margin_count = " + std::to_string(facts[k].margin_names.size()) + ";\n" + item +
-             "realisability_margins = &pfgen_simulation::entry::" + names[k] + "_realisability_margins;\n" + item +
-             "margin_names = pfgen_simulation::entry::" + names[k] + "_margin_names;\n";
-    }
+    const std::string size = entry + plugin_state_fields(item, ns, names[k], facts[k]);
     if (!facts[k].in_lanes) return size;  // step_lanes NULL, lanes 0
     return size + item + "step_lanes = &pfgen_simulation::entry::" + names[k] + "_step_lanes;\n" + item +
            "lanes = pfgen_simulation::batch::kLanes;\n";

@@ -22,16 +22,7 @@ std::string sampled_filter_table(const Model& model, const std::vector<std::stri
     out += item + "name = " + plugin_c_string(labels[k]) + ";\n";
     out += item + "n = " + ns + "::n;\n";
     out += item + "p = " + ns + "::p;\n";
-    if (facts[k].extra_state > 0) {  // a moment filter: its moments above P are extra state, checked by its margins
-      const std::string extra = std::to_string(facts[k].extra_state);
-      out += item + "state_size = " + ns + "::state_size - " + extra + ";\n";
-      out += item + "extra_state_size = " + extra + ";\n";
-      out += item + "margin_count = " + std::to_string(facts[k].margin_names.size()) + ";\n";
-      out += item + "realisability_margins = &pfgen_simulation::entry::" + names[k] + "_realisability_margins;\n";
-      out += item + "margin_names = pfgen_simulation::entry::" + names[k] + "_margin_names;\n";
-    } else {
-      out += item + "state_size = " + ns + "::state_size;\n";
-    }
+    out += plugin_state_fields(item, ns, names[k], facts[k]);
     out += item + "substeps = " + ns + "::substeps;\n";
     out += item + "initial_state = &pfgen_simulation::entry::" + names[k] + "_initial_state;\n";
     out += item + "predict = &pfgen_simulation::entry::" + names[k] + "_predict;\n";

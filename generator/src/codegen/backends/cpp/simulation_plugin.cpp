@@ -95,6 +95,17 @@ std::string realisability_wrapper(const Model& model, const std::string& identif
   return out + "};\n";
 }
 
+std::string plugin_state_fields(const std::string& item, const std::string& ns, const std::string& identifier,
+                                const PluginFilterFacts& facts) {
+  if (facts.extra_state == 0) return item + "state_size = " + ns + "::state_size;\n";
+  // A moment filter: its moments above P are extra state, checked by its margins.
+  const std::string extra = std::to_string(facts.extra_state);
+  return item + "state_size = " + ns + "::state_size - " + extra + ";\n" + item + "extra_state_size = " + extra +
+         ";\n" + item + "margin_count = " + std::to_string(facts.margin_names.size()) + ";\n" + item +
+         "realisability_margins = &pfgen_simulation::entry::" + identifier + "_realisability_margins;\n" + item +
+         "margin_names = pfgen_simulation::entry::" + identifier + "_margin_names;\n";
+}
+
 const std::string& plugin_abi_header() { return embedded_template("pfgen_runtime/plugin_abi.h"); }
 
 bool steps_in_lanes(const GeneratedFilter& filter) {

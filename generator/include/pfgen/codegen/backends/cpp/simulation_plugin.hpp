@@ -44,5 +44,9 @@ std::string plugin_filter_namespace(const Model& model, const std::string& ident
 // A moment filter's realisability margins behind the ABI's signature, <identifier>_realisability_margins, and their
 // names, <identifier>_margin_names (empty for another filter): continuous and sampled filters alike.
 std::string realisability_wrapper(const Model& model, const std::string& identifier, const PluginFilterFacts& facts);
+// A table entry's state_size (m and P) and, for a moment filter, its extra state and margins (the wrapper's above):
+// the lines `item`state_size = ... of the filter `identifier`, namespace alias `ns`. Continuous and sampled tables.
+std::string plugin_state_fields(const std::string& item, const std::string& ns, const std::string& identifier,
+                                const PluginFilterFacts& facts);
 
 }  // namespace pfgen::codegen
