@@ -197,6 +197,21 @@ std::vector<double> random_state(std::mt19937& rng, const FilterVariables& vars)
   return s;
 }
 
+// The start of main() in the step-convergence drivers: one path of the cubic sensor's x (a = 1, sigma = rho = 0.5,
+// x0 = 0.8) and its dy on 2^16 steps of [0, 1], and the model's parameters (F the filter's namespace).
+const char* const kCubicSensorPath = R"(  const std::size_t finest = std::size_t{1} << 16;
+  std::mt19937_64 rng(29);
+  std::normal_distribution<double> normal;
+  const double dt = 1.0 / finest;
+  double x = 0.8;
+  std::vector<double> dy(finest);
+  for (std::size_t k = 0; k < finest; ++k) {
+    dy[k] = x * x * x * dt + 0.5 * std::sqrt(dt) * normal(rng);
+    x += -x * dt + 0.5 * std::sqrt(dt) * normal(rng);
+  }
+  const F::Params<double> params{};
+)";
+
 // What a C++ driver beside the filter's header in dir prints: compiled warning-free and run, each required to succeed.
 std::string compiled_output(const TempDir& dir, const std::string& program) {
   write_file(dir.file("main.cpp"), program);
@@ -291,18 +306,7 @@ TEST_CASE("generated polynomial-observation step: first order to the Ito filter 
   const std::string program = "#include <cmath>\n#include <cstdio>\n#include <random>\n#include <vector>\n#include \"" +
                               header + "\"\n" + R"(namespace F = pm::cubic_sensor::optimal;
 int main() {
-  const std::size_t finest = std::size_t{1} << 16;
-  std::mt19937_64 rng(29);
-  std::normal_distribution<double> normal;
-  const double dt = 1.0 / finest;
-  double x = 0.8;
-  std::vector<double> dy(finest);
-  for (std::size_t k = 0; k < finest; ++k) {
-    dy[k] = x * x * x * dt + 0.5 * std::sqrt(dt) * normal(rng);
-    x += -x * dt + 0.5 * std::sqrt(dt) * normal(rng);
-  }
-  const F::Params<double> params{};
-  for (std::size_t steps : {std::size_t{1} << 8, std::size_t{1} << 10, std::size_t{1} << 12, finest}) {
+)" + kCubicSensorPath + R"(  for (std::size_t steps : {std::size_t{1} << 8, std::size_t{1} << 10, std::size_t{1} << 12, finest}) {
     double s[2] = {0.5, 0.5};
     const std::size_t per = finest / steps;
     for (std::size_t k = 0; k < steps; ++k) {
@@ -410,18 +414,7 @@ State increment(const State& s, double t, double h, double dY, bool corrected, c
   return d;
 }
 int main() {
-  const std::size_t finest = std::size_t{1} << 16;
-  std::mt19937_64 rng(29);
-  std::normal_distribution<double> normal;
-  const double dt = 1.0 / finest;
-  double x = 0.8;
-  std::vector<double> dy(finest);
-  for (std::size_t k = 0; k < finest; ++k) {
-    dy[k] = x * x * x * dt + 0.5 * std::sqrt(dt) * normal(rng);
-    x += -x * dt + 0.5 * std::sqrt(dt) * normal(rng);
-  }
-  const F::Params<double> params{};
-  State start(4);
+)" + kCubicSensorPath + R"(  State start(4);
   F::initial_state(start.data());
   for (std::size_t steps : {std::size_t{1} << 8, std::size_t{1} << 10, std::size_t{1} << 12, finest}) {
     State s = start;
