@@ -28,7 +28,6 @@ import concurrent.futures
 import json
 import math
 import os
-import re
 import subprocess
 import sys
 import tempfile
@@ -48,7 +47,6 @@ def baseline(filters):
 def target(filters):
     """The order-4 moment filter of the target."""
     return "cd-closure4" if "cd-closure4" in filters else "closure4"
-REALISABLE_HEADER = "Runs stopped where a moment filter's moments left the realisable set"
 
 
 def parse_args():
@@ -64,20 +62,6 @@ def parse_args():
     p.add_argument("--jobs", type=int, default=2, help="pfgen processes side by side, one thread each")
     p.add_argument("--cache", help="directory of per-run results (default: a temporary one)")
     return p.parse_args()
-
-
-def realisable_stops(report):
-    """The filters listed under the report's realisable-set section."""
-    names = set()
-    lines = report.splitlines()
-    for i, line in enumerate(lines):
-        if line.startswith(REALISABLE_HEADER):
-            for follow in lines[i + 1:]:
-                m = re.match(r"^\s+(\S+): \d+ runs?", follow)
-                if not m:
-                    break
-                names.add(m.group(1))
-    return names
 
 
 def reference_own_error(report, states):
@@ -111,7 +95,6 @@ def one_run(args, filters, seed, workdir):
         sys.exit("closure_vs_reference: %s failed:\n%s" % (" ".join(cmd), out.stderr))
     data = np.genfromtxt(csv_path, delimiter=",", names=True, deletechars="")  # keep "cd-optimal"
     states = [n[len("reference_m_"):] for n in data.dtype.names if n.startswith("reference_m_")]
-    realisable = realisable_stops(out.stdout)
     stops, psd_losses = {}, {}
     with open(stops_path) as f:
         next(f)
@@ -120,7 +103,7 @@ def one_run(args, filters, seed, workdir):
             if event == "psd_loss":  # recorded, but the filter goes on
                 psd_losses[source] = float(t)
                 continue
-            kind = "realisable" if source in realisable else event
+            kind = "realisable" if event == "unrealisable" else event
             stops[source] = {"kind": kind, "t": float(t)}
     rec = {"seed": seed, "wall_s": wall, "states": states, "stops": stops,
            "psd_losses": psd_losses, "own_error": reference_own_error(out.stdout, states), "mse": {}, "dist": {}}

@@ -281,11 +281,13 @@ TEST_CASE("simulate runs the sampled moment filters with their moments: closer t
 TEST_CASE("simulate stops a moment filter's run where its moments leave the realisable set, in its own section",
           "[record][compiler]") {
   // The double well's closure4 leaves the realisable set (a state's Pearson bound) in most runs; the plugin hands
-  // simulate its margins, and each such run is stopped, counted as diverged and listed in the section.
+  // simulate its margins, and each such run is stopped, counted as diverged and listed in the section; the stops
+  // CSV names each such run's event `unrealisable`.
   TempDir dir;
   const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/reference/double_well.yaml";
   const auto result = pfgen_test::run_pfgen({"simulate", model, "--filters", "optimal,closure3,closure4", "--runs", "20",
-                                             "--threads", "2", "--cache-dir=" + dir.file("cache"), "-q"});
+                                             "--threads", "2", "--stops-csv", dir.file("stops.csv"),
+                                             "--cache-dir=" + dir.file("cache"), "-q"});
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
   CHECK_THAT(result.out, Contains("Runs stopped where a moment filter's moments left the realisable set"));
@@ -293,4 +295,13 @@ TEST_CASE("simulate stops a moment filter's run where its moments leave the real
   CHECK_THAT(result.out, Contains("  closure3: 15 runs"));
   const std::size_t section = result.out.find("left the realisable set");
   CHECK(result.out.find("  optimal: ", section) == std::string::npos);  // the Gaussian closure has no margins
+  std::map<std::string, int> events;  // "source,event" -> rows
+  std::istringstream stops(pfgen_test::read_file(dir.file("stops.csv")));
+  std::string line;
+  std::getline(stops, line);
+  CHECK(line == "source,event,run,t");
+  while (std::getline(stops, line)) ++events[line.substr(0, line.find(',', line.find(',') + 1))];
+  CHECK(events["closure4,unrealisable"] == 14);
+  CHECK(events["closure3,unrealisable"] == 15);
+  CHECK(events.size() == 2);  // no other stop, and no `diverged` row for a realisability stop
 }

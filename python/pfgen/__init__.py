@@ -452,14 +452,16 @@ class Simulation:
         #: column name -> numpy array, one value per recorded time (NaN where the CSV is empty)
         self.series = {name: _np.array(values, dtype=float) for name, values in zip(native.columns, native.series)}
         #: filter name -> dict of completed, diverged, psd_losses, unrealisable (a moment filter's runs
-        #: stopped where its moments left the realisable set, among diverged), rms, rms_se, peak_median,
+        #: stopped where its moments left the realisable set, among diverged), too_stiff and undefined
+        #: (runs stopped for want of sub-steps, or where the equations were not finite: among diverged),
+        #: rms, rms_se, peak_median,
         #: peak_q95, reference_distance, reference_distance_se, own_error (per state: numpy arrays;
         #: own_error, the particle reference's own Monte Carlo error, in the "reference" entry only)
         self.summary = {}
         for f in native.filters:
             self.summary[f.name] = {
                 "completed": f.completed, "diverged": f.diverged, "psd_losses": f.psd_losses,
-                "unrealisable": f.unrealisable,
+                "unrealisable": f.unrealisable, "too_stiff": f.too_stiff, "undefined": f.undefined,
                 "rms": _np.array(f.rms), "rms_se": _np.array(f.rms_se),
                 "peak_median": _np.array(f.peak_median), "peak_q95": _np.array(f.peak_q95),
                 "reference_distance": _np.array(f.reference_distance),

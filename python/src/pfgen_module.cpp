@@ -189,6 +189,8 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readonly("diverged", &api::FilterSummary::diverged)
       .def_readonly("psd_losses", &api::FilterSummary::psd_losses)
       .def_readonly("unrealisable", &api::FilterSummary::unrealisable)
+      .def_readonly("too_stiff", &api::FilterSummary::too_stiff)
+      .def_readonly("undefined", &api::FilterSummary::undefined)
       .def_readonly("rms", &api::FilterSummary::rms)
       .def_readonly("rms_se", &api::FilterSummary::rms_se)
       .def_readonly("peak_median", &api::FilterSummary::peak_median)

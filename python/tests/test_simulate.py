@@ -175,3 +175,31 @@ def test_a_daemon_thread_in_pfgen_at_exit():
     for _ in range(3):
         done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
         assert done.returncode == 0, done.stderr
+
+
+STIFF = """name: stiff
+states: [x]
+drift: ["-x^3"]
+diffusion: [["1"]]
+observation: {A: [["1"]], B: [["1e-4"]]}
+initial: {x0: [3], m0: [0], P0: [[100]]}
+simulation: {T: 1, dt: 0.1}
+"""
+
+
+def test_runs_stopped_as_too_stiff_are_counted_as_the_report_lists_them(pfgen_command, work_dir):
+    # A prior variance of 100 against samples of noise 1e-4 at dt = 0.1: the first grid step would need more
+    # sub-steps than simulate allows, in every run and for every filter.
+    model = work_dir / "stiff.yaml"
+    model.write_text(STIFF)
+    done = pfgen_command.run("simulate", str(model), "--runs", "4", "--filters", "optimal,ekf", "--quiet",
+                             "--cache-dir", str(work_dir / "cache"))
+    result = pfgen.simulate(pfgen.Model.load(str(model)), runs=4, filters=["optimal", "ekf"],
+                            cache_dir=str(work_dir / "cache"))
+    assert result.report == done.stdout
+    lines = result.report.splitlines()
+    heading = next(k for k, line in enumerate(lines) if line.startswith("Runs stopped as too stiff for dt"))
+    assert lines[heading + 1:heading + 3] == ["  optimal: 4 runs", "  ekf: 4 runs"]
+    for name in ("optimal", "ekf"):
+        summary = result.summary[name]
+        assert (summary["too_stiff"], summary["diverged"], summary["undefined"], summary["unrealisable"]) == (4, 4, 0, 0)

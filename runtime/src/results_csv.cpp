@@ -210,6 +210,24 @@ void write_criterion_csv(const std::string& path, const MonteCarloResult& result
   write_csv("criterion CSV", path, format_criterion_csv(result));
 }
 
+namespace {
+
+// The runs of a run-ordered event list, asked in increasing run order beside another such list.
+class RunMarks {
+ public:
+  explicit RunMarks(const std::vector<RunEvent>& marked) : marked_(marked) {}
+  bool has(std::size_t run) {
+    while (next_ < marked_.size() && marked_[next_].run < run) ++next_;
+    return next_ < marked_.size() && marked_[next_].run == run;
+  }
+
+ private:
+  const std::vector<RunEvent>& marked_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace
+
 std::string format_stops_csv(const MonteCarloResult& result) {
   std::string out = "source,event,run,t\n";
   auto row = [&out](const std::string& source, const char* event, const RunEvent& e) {
@@ -219,14 +237,14 @@ std::string format_stops_csv(const MonteCarloResult& result) {
     out += '\n';
   };
   // A truth whose G lost definiteness is also among the truth's divergences: one row, named so.
-  const std::vector<RunEvent>& losses = result.truth_covariance_losses.events;
-  std::size_t k = 0;
-  for (const RunEvent& e : result.truth_divergences.events) {
-    while (k < losses.size() && losses[k].run < e.run) ++k;
-    row("truth", k < losses.size() && losses[k].run == e.run ? "covariance" : "diverged", e);
-  }
+  RunMarks covariance(result.truth_covariance_losses.events);
+  for (const RunEvent& e : result.truth_divergences.events)
+    row("truth", covariance.has(e.run) ? "covariance" : "diverged", e);
   for (const FilterStatistics& filter : result.filters) {
-    for (const RunEvent& e : filter.divergences.events) row(filter.name, "diverged", e);
+    // A moment filter's stop where its moments left the realisable set is named so.
+    RunMarks unrealisable(filter.unrealisable.events);
+    for (const RunEvent& e : filter.divergences.events)
+      row(filter.name, unrealisable.has(e.run) ? "unrealisable" : "diverged", e);
     for (const RunEvent& e : filter.psd_losses.events) row(filter.name, "psd_loss", e);
   }
   // The particle reference: runs where every particle diverged (source "reference").

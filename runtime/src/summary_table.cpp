@@ -402,22 +402,22 @@ std::string format_summary_table(const MonteCarloResult& result, const std::vect
       out << "\nGrid steps integrated in sub-steps (one step would have changed P by more than its tolerance):\n"
           << refined.str();
     // Runs stopped for a reason of their own, a section each: "  name: N runs" per filter with any.
-    auto stopped_runs = [&](const std::string& heading, std::size_t FilterStatistics::*runs) {
+    auto stopped_runs = [&](const std::string& heading, auto runs_of) {
       std::ostringstream lines;
       for (const FilterStatistics& filter : result.filters)
-        if (filter.*runs > 0) lines << "  " << filter.name << ": " << filter.*runs << " runs\n";
+        if (runs_of(filter) > 0) lines << "  " << filter.name << ": " << runs_of(filter) << " runs\n";
       if (!lines.str().empty()) out << "\n" << heading << ":\n" << lines.str();
     };
     stopped_runs("Runs stopped as too stiff for dt (a grid step needed more filter sub-steps than allowed; counted as "
                  "diverged)",
-                 &FilterStatistics::too_stiff_runs);
+                 [](const FilterStatistics& f) { return f.too_stiff_runs; });
     stopped_runs("Runs stopped where the filter's equations were not finite at its own state (a definition, such as "
                  "a Cholesky entry, could not be computed there; counted as diverged; no smaller step would help)",
-                 &FilterStatistics::undefined_runs);
+                 [](const FilterStatistics& f) { return f.undefined_runs; });
     stopped_runs("Runs stopped where a moment filter's moments left the realisable set (P not positive definite, "
                  "or a state's kurtosis below Pearson's bound 1 + skewness^2; counted as diverged; the closure's "
                  "known failure, docs/theory.md §2.10)",
-                 &FilterStatistics::unrealisable_runs);
+                 [](const FilterStatistics& f) { return f.unrealisable.count(); });
     out << reference_section(result, state_names);
     out << sampled_section(result);
     out << criterion_section(result);

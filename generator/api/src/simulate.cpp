@@ -105,7 +105,9 @@ SimulationResult Model::simulate(const SimulationOptions& options) const {
       FilterSummary summary = summary_of(filter.name, filter.horizon);
       summary.diverged = filter.divergences.count();
       summary.psd_losses = filter.psd_losses.count();
-      summary.unrealisable = filter.unrealisable_runs;
+      summary.unrealisable = filter.unrealisable.count();
+      summary.too_stiff = filter.too_stiff_runs;
+      summary.undefined = filter.undefined_runs;
       summary.peak_median = filter.peak_median;
       summary.peak_q95 = filter.peak_q95;
       if (filter.reference) {

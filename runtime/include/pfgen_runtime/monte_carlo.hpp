@@ -310,7 +310,8 @@ struct FilterStatistics {
   std::uint64_t refined_steps = 0;  // grid steps taken in sub-steps (FilterStepper), all runs
   std::size_t refined_runs = 0;     // runs with at least one
   std::size_t too_stiff_runs = 0;   // runs stopped (and counted as diverged) for want of sub-steps
-  std::size_t unrealisable_runs = 0;  // moment filters' runs stopped where the moments left the realisable set
+  // A moment filter's runs stopped where its moments left the realisable set (among divergences too).
+  EventSummary unrealisable;
   std::size_t undefined_runs = 0;   // runs stopped (diverged) where its equations were not finite at its state
   std::optional<SampledMetrics> sampled;  // sampled filters only
   std::optional<CriterionStatistics> criterion;  // when MonteCarloOptions::criterion is set

@@ -39,7 +39,8 @@ void write_criterion_csv(const std::string& path, const MonteCarloResult& result
 
 // Every run that stopped before T, one row per event: source, event, run, t, with source "truth"
 // (event "diverged": beyond the bound or non-finite, or G lost definiteness: "covariance") or a
-// filter's name (event "diverged", which includes too stiff for dt, or "psd_loss"); truth rows
+// filter's name (event "diverged", which includes too stiff for dt, "unrealisable" where a moment
+// filter's moments left the realisable set, or "psd_loss"); truth rows
 // first, then each filter's in result order, each in run order. So a study of when a state blows
 // up (paper 000 under Stratonovich noise) has every time, not only the first and the median.
 // write_stops_csv writes it atomically like write_results_csv.

@@ -504,7 +504,7 @@ void aggregate(const Plan& plan, const std::vector<FilterModel>& filters, const 
       stats.refined_runs += filter.refined_steps > 0;
       stats.too_stiff_runs += filter.too_stiff;
       stats.undefined_runs += filter.undefined;
-      stats.unrealisable_runs += filter.unrealisable;
+      if (filter.unrealisable) stats.unrealisable.events.push_back({r, filter.divergence_t});
     }
     nees_statistics(runs, f, plan, stats);
     if (filters[f].timing->takes_samples()) stats.sampled = sampled_metrics(runs, f, steps, filters[f].p);

@@ -189,8 +189,12 @@ struct FilterSummary {
   std::size_t completed = 0;   // runs that reached T
   std::size_t diverged = 0;
   std::size_t psd_losses = 0;
-  // A moment filter's runs stopped where its moments left the realisable set (counted in diverged).
+  // Among diverged, the runs stopped for a reason of their own, as the report's sections list them: a moment
+  // filter's moments left the realisable set; a grid step needed more sub-steps than allowed (too stiff for
+  // dt); the filter's equations were not finite at its own state (undefined).
   std::size_t unrealisable = 0;
+  std::size_t too_stiff = 0;
+  std::size_t undefined = 0;
   Vector rms, rms_se;          // RMS error over [0, T] and its standard error
   Vector peak_median, peak_q95;  // of max_t |x - m| over the completed runs
   // With the particle reference: RMS(m - m_ref) and its standard error (empty without).
