@@ -2,9 +2,11 @@
 // filter whose equations have more terms than code generation can hold in memory is refused before
 // any of it is built, in one message naming the filter, its terms and the memory it would need.
 // The dense cubic n = 20 optimal filter (3.6 million terms, about 0.7 GB) is within the budget;
-// lowered below it, the budget refuses it. Smaller filters are untouched.
+// lowered below it, the budget refuses it. Smaller filters are untouched. A moment filter's higher
+// moments count kMomentTermWeight terms each.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -40,6 +42,34 @@ TEST_CASE("codegen refuses a filter beyond its budget of equation terms, before 
   const FilterEquations within = derive_filter(small, FilterKind::Optimal);
   CHECK(codegen::codegen_terms(within) < codegen::kMaxCodegenTerms);
   CHECK_NOTHROW(codegen::generate_filter_code(small, within, codegen::CodegenOptions{}));
+}
+
+TEST_CASE("codegen counts a moment filter's higher moments, each as kMomentTermWeight terms of its budget",
+          "[codegen][unit]") {
+  // The 3-state dense cubic closure4: its higher moments' terms are most of its equations'. With the budget set
+  // between its plain term count and its load, it is refused in the message's moment form; optimal is not.
+  const Model model = pfgen_test::dense_cubic_model(3);
+  const FilterEquations closure4 = derive_filter(model, FilterKind::Closure4);
+  const FilterEquations optimal = derive_filter(model, FilterKind::Optimal);
+  const double terms = codegen::codegen_terms(closure4), moments = codegen::moment_terms(closure4);
+  CHECK(moments > 0.8 * terms);
+  CHECK(codegen::moment_terms(optimal) == 0);
+  CHECK(codegen::codegen_load(optimal) == codegen::codegen_terms(optimal));
+  CHECK(codegen::codegen_load(closure4) == terms + (codegen::kMomentTermWeight - 1) * moments);
+  codegen::CodegenOptions lowered;
+  lowered.max_equation_terms = terms + moments;  // above its terms, below its load
+  CHECK_NOTHROW(codegen::generate_filter_code(model, optimal, lowered));
+  try {
+    (void)codegen::generate_filter_code(model, closure4, lowered);
+    FAIL("closure4 was generated beyond its budget");
+  } catch (const codegen::CodegenError& e) {
+    const std::string message = e.what();
+    INFO(message);
+    CHECK(message.find("<api>: filter 'closure4' of model dense_cubic_3 has " + std::to_string(std::lround(terms)) +
+                       " terms in its equations, " + std::to_string(std::lround(moments)) +
+                       " of them its higher moments', which count 3.5 each; code generation holds at most ") == 0);
+    CHECK(message.find("a lower order generates") != std::string::npos);
+  }
 }
 
 TEST_CASE("codegen and simulate refuse a sampled observation of more outputs than the unrolled update takes",

@@ -24,7 +24,7 @@
 #include <utility>
 
 #include "message_pieces.hpp"
-#include "pfgen/toolchain/content_hash.hpp"
+#include "pfgen_support/content_hash.hpp"
 
 namespace pfgen::cli {
 
@@ -254,7 +254,7 @@ void MpiJob::build_in_turn(const std::function<void()>& build) {
 void MpiJob::check_same_job(const std::string& job, const std::string& problem) {
   // The smallest and the largest hash over the ranks (the largest as the complement of the
   // smallest complement) are equal when every rank has the same job.
-  const std::uint64_t hash = toolchain::ContentHash().add(job).value();
+  const std::uint64_t hash = pfgen_support::ContentHash().add(job).value();
   const std::uint64_t mine[2] = {hash, ~hash};
   std::uint64_t low[2] = {0, 0};
   MPI_Request request;

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <system_error>
 
-#include "pfgen/toolchain/content_hash.hpp"
+#include "pfgen_support/content_hash.hpp"
 #include "pfgen_support/atomic_file.hpp"
 
 namespace pfgen::toolchain {
@@ -69,7 +69,7 @@ std::vector<std::string> flags_of(const PluginBuildOptions& options) {
 
 std::string key_of(const std::string& source, const std::vector<std::string>& compiler,
                    const std::vector<std::string>& flags) {
-  ContentHash hash;
+  pfgen_support::ContentHash hash;
   hash.add("pfgen " PFGEN_VERSION).add(command_line(compiler)).add(compiler_identity(compiler));
   hash.add(std::to_string(flags.size()));
   for (const auto& flag : flags) hash.add(flag);

@@ -30,8 +30,11 @@ using Language = std::string;
 // optimal filters take 77 MB at n = 12 (0.3 million terms), 250 MB at n = 16 (1.2 million) and
 // 670 MB at n = 20 (3.6 million), where derive alone needs 250 MB. A filter with more terms than
 // this (about 2 GB) is refused before any of it is built, naming the filter and its count
-// (CodegenError).
+// (CodegenError). A moment filter's higher-moment terms take about 0.7 kB each (closure4 of the
+// dense cubic models: 1.2 GB at n = 7 for 1.6 million terms, 2.8 GB at n = 8 for 4.1 million), so
+// each counts as kMomentTermWeight terms against the budget.
 inline constexpr double kMaxCodegenTerms = 10000000;
+inline constexpr double kMomentTermWeight = 3.5;
 
 struct CodegenOptions {
   Language language = "cpp";
@@ -47,7 +50,8 @@ struct CodegenOptions {
   // gigabytes for one function of tens of thousands of operations. Every example but ins16 is far
   // below. 0: never split (tests lower it to compare split and unsplit code on a small model).
   std::size_t max_function_ops = 500;
-  // The most terms a filter's equations may have (codegen_terms); tests lower it.
+  // The most terms a filter's equations may have (codegen_load: a higher moment's count
+  // kMomentTermWeight each); tests lower it.
   double max_equation_terms = kMaxCodegenTerms;
 };
 
@@ -75,8 +79,13 @@ std::vector<std::string> filter_file_paths(const std::string& model_name, const 
 
 
 // The terms of the polynomials code generation reads from `eq` (drifts, gain, predicted
-// observation, the P equations' parts, x*'s drift, a polynomial observation's P_gain).
+// observation, the P equations' parts, x*'s drift, a polynomial observation's P_gain, a moment
+// filter's higher moments and realisability margins); moment_terms: those of the last two.
 double codegen_terms(const FilterEquations& eq);
+double moment_terms(const FilterEquations& eq);
+// What the budget compares with CodegenOptions::max_equation_terms: codegen_terms with each of the
+// moment_terms counted kMomentTermWeight times.
+double codegen_load(const FilterEquations& eq);
 
 GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& eq, const CodegenOptions& options);
 

@@ -4,7 +4,7 @@
 // same model starts at once.
 //
 // Cache layout: <cache_dir>/<key>/plugin.so, plugin.cpp (the source), build.log (the command
-// and the compiler's output). The key is a 64-bit FNV-1a hash (content_hash.hpp) of the pfgen
+// and the compiler's output). The key is a 64-bit FNV-1a hash (pfgen_support/content_hash.hpp) of the pfgen
 // version, the compiler command, the first line of its `--version`, the flags and the whole
 // source (which contains the ABI header, and so its version). An entry counts only when its
 // plugin.cpp equals the source byte for byte, so a hash collision costs a rebuild, never a

@@ -11,6 +11,7 @@
 #include "pfgen/codegen/observation_code.hpp"
 #include "pfgen/codegen/template_text.hpp"
 #include "pfgen/model/model_filters.hpp"
+#include "pfgen_support/content_hash.hpp"
 
 namespace pfgen::codegen {
 namespace {
@@ -122,15 +123,19 @@ void check_c_names(const Model& model, const std::string& name_space) {
 }
 
 std::string c_part_name(const std::string& prefix, const std::string& function, std::size_t k) {
-  const std::string name = prefix + "_" + function + "_part" + std::to_string(k);
-  if (name.size() > kCSignificantInternalCharacters)
-    throw CPartNameError("the C name '" + name + "' of a part of the split function " + function + " is longer than " +
-                       std::to_string(kCSignificantInternalCharacters) +
-                       " characters, and C99 tells its parts apart only by their first " +
-                       std::to_string(kCSignificantInternalCharacters) +
-                       "; give the model or --namespace a shorter name, or write the function whole "
-                       "(--max-function-ops 0)");
-  return name;
+  const std::string tail = "_" + function + "_part" + std::to_string(k);
+  if (prefix.size() + tail.size() <= kCSignificantInternalCharacters) return prefix + tail;
+  // The prefix's head, then 8 hex digits of the whole prefix's hash, which tell filters (and models)
+  // with the same head apart when their files are built as one translation unit.
+  const std::string tag = "_" + pfgen_support::ContentHash().add(prefix).hex().substr(0, 8);
+  const std::size_t room = kCSignificantInternalCharacters - std::min(kCSignificantInternalCharacters, tag.size() + tail.size());
+  std::string head = prefix.substr(0, room);
+  while (!head.empty() && head.back() == '_') head.pop_back();  // "__" is reserved
+  if (head.empty())
+    throw CPartNameError("the C name of a part of the split function " + function + " cannot be made within " +
+                         std::to_string(kCSignificantInternalCharacters) + " characters; write the function whole "
+                         "(--max-function-ops 0)");
+  return head + tag + tail;
 }
 
 }  // namespace pfgen::codegen

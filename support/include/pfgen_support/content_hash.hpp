@@ -1,11 +1,12 @@
 #pragma once
 // A 64-bit FNV-1a hash over a sequence of fields, each preceded by its length so that
-// ("ab", "c") and ("a", "bc") differ. Not cryptographic: it names cache entries, and the
-// plugin cache compares the stored source before trusting an entry (plugin_compiler.cpp).
+// ("ab", "c") and ("a", "bc") differ. Not cryptographic: it names cache entries (the plugin
+// cache compares the stored source before trusting an entry) and tells apart the shortened C names
+// of split functions' parts.
 #include <cstdint>
 #include <string>
 
-namespace pfgen::toolchain {
+namespace pfgen_support {
 
 class ContentHash {
  public:
@@ -18,4 +19,4 @@ class ContentHash {
   std::uint64_t state_ = 14695981039346656037ull;  // the FNV-1a 64 offset basis
 };
 
-}  // namespace pfgen::toolchain
+}  // namespace pfgen_support

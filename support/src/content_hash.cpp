@@ -1,8 +1,8 @@
-#include "pfgen/toolchain/content_hash.hpp"
+#include "pfgen_support/content_hash.hpp"
 
 #include <cstdio>
 
-namespace pfgen::toolchain {
+namespace pfgen_support {
 
 void ContentHash::bytes(const void* data, std::size_t size) {
   const auto* p = static_cast<const unsigned char*>(data);
@@ -31,4 +31,4 @@ std::string ContentHash::hex() const {
   return buffer;
 }
 
-}  // namespace pfgen::toolchain
+}  // namespace pfgen_support
