@@ -13,13 +13,15 @@ back, on `--record-points` equally spaced points of [0, T]. It prints:
   - the stops: in how many runs each filter stopped, by kind (`realisable`: a moment filter's
     moments left the realisable set; `diverged`: m or P passed simulate's bound), and the median stop
     time;
-  - over the runs where every filter and the reference reached T, per state: each filter's excess
+  - over the runs where every filter and the reference reached T (the survivors; a line saying so when
+    there is none), per state: each filter's excess
     mean-square error MSE(x - m) - MSE(x - m_ref) and its distance RMS(m - m_ref), each with its
     standard error over runs (paired: the same runs and truths for every filter), and the
     reference's own Monte Carlo error (pfgen's, from a second independent set of N particles);
-  - the target's test: closure4's excess minus half of optimal's, paired run by run;
-  - for each filter that stopped: optimal's excess on the runs where that filter stopped and where
-    it did not, which shows whether the survivors are the easy runs.
+  - the target's test: closure4's excess minus half of optimal's, paired run by run (cd-closure4's
+    and cd-optimal's for sampled observations: the baseline below);
+  - for each filter that stopped: the baseline's excess on the runs where that filter stopped and
+    where it did not, which shows whether the survivors are the easy runs.
 Each run's figures are kept in --cache (one JSON file per seed), so a second call with more runs
 only runs the new seeds.
 """
@@ -239,10 +241,14 @@ def main():
 
     groups = [(s, [s]) for s in states] + ([("sum", states)] if len(states) > 1 else [])
     common = [r for r in runs if all(f in r["dist"] for f in filters)]
-    print("Over the %d runs where every filter and the reference reached T (paired; excess = "
-          "MSE(x - m) - MSE(x - m_ref), mean ± standard error over runs):" % len(common))
-    comparison_table(common, filters, groups, lambda r, f, s: r["mse"][f][s],
-                     lambda r, f, s: r["dist"][f][s], with_reference=True)
+    if common:
+        print("Over the %d runs where every filter and the reference reached T (paired; excess = "
+              "MSE(x - m) - MSE(x - m_ref), mean ± standard error over runs):" % len(common))
+        comparison_table(common, filters, groups, lambda r, f, s: r["mse"][f][s],
+                         lambda r, f, s: r["dist"][f][s], with_reference=True)
+    else:
+        print("No run where every filter and the reference reached T: no table of the survivors.")
+        print()
 
     pre = [r for r in runs if len(r.get("pre", {})) == len(filters) + 1]
     if pre:
@@ -253,12 +259,12 @@ def main():
                          lambda r, f, s: r["pre"][f][s][1], with_reference=False)
 
     usable = [r for r in runs if "truth" not in r["stops"] and "reference" not in r["stops"]]
-    print("Are the survivors the easy runs? optimal's excess MSE and the reference's MSE(x - m_ref) "
+    base = baseline(filters)
+    print("Are the survivors the easy runs? %s's excess MSE and the reference's MSE(x - m_ref) "
           "(summed over states) on the runs where a filter stopped and on those where it reached T; "
-          "the filter's own excess on the latter:")
+          "the filter's own excess on the latter:" % base)
     print("%-10s %24s %24s %26s %22s" % ("filter", "runs it stopped in", "runs it reached T",
                                          "its own excess there", "MSE(x - m_ref): s / r"))
-    base = baseline(filters)
     for f in filters:
         if f == base or base not in filters:
             continue
