@@ -67,7 +67,9 @@ TEST_CASE("codegen counts a moment filter's higher moments, each as kMomentTermW
     INFO(message);
     CHECK(message.find("<api>: filter 'closure4' of model dense_cubic_3 has " + std::to_string(std::lround(terms)) +
                        " terms in its equations, " + std::to_string(std::lround(moments)) +
-                       " of them its higher moments', which count 3.5 each; code generation holds at most ") == 0);
+                       " of them its higher moments', which count 3.5 each (" +
+                       std::to_string(std::lround(codegen::codegen_load(closure4))) +
+                       " in all); code generation holds at most ") == 0);
     CHECK(message.find("a lower order generates") != std::string::npos);
   }
 }

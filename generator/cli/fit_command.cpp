@@ -102,7 +102,7 @@ FitOutcome fit(const FitOptions& options) {
       const auto i = static_cast<std::size_t>(at - states.begin());
       for (const auto& [position, seen] : prior_means)
         if (seen == i) throw CliValueError("--estimate: " + quoted(name) + " is named twice");
-      if (filter.timing->extra_state() > 0)
+      if (filter.timing->keeps_history())
         throw CliValueError("--estimate: " + quoted(name) + ": the filter '" + filter.name +
                             "' keeps a history that starts from the model's m0, so its prior mean is not estimated");
       prior_means.push_back({problem.names.size(), i});

@@ -74,11 +74,11 @@ GeneratedFilter generate_filter_code(const Model& model, const FilterEquations& 
                     terms, options.max_equation_terms, terms * 0.2e3 / 1e9);
     else
       std::snprintf(text, sizeof text,
-                    "has %.0f terms in its equations, %.0f of them its higher moments', which count %.1f each; "
-                    "code generation holds at most %.0f (about 0.2 kB each while it builds the code: this would "
-                    "need about %.1f GB); derive and eval handle it, and a model with fewer states, a lower "
-                    "degree or a lower order generates",
-                    terms, moments, kMomentTermWeight, options.max_equation_terms, load * 0.2e3 / 1e9);
+                    "has %.0f terms in its equations, %.0f of them its higher moments', which count %.1f each "
+                    "(%.0f in all); code generation holds at most %.0f (about 0.2 kB each while it builds the "
+                    "code: this would need about %.1f GB); derive and eval handle it, and a model with fewer "
+                    "states, a lower degree or a lower order generates",
+                    terms, moments, kMomentTermWeight, load, options.max_equation_terms, load * 0.2e3 / 1e9);
     throw CodegenError(source_place(model) + "filter '" + eq.name + "' of model " + model.name + " " + text);
   }
   observation_code(model.observation).check_size(model, eq);

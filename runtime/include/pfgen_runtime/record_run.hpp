@@ -21,9 +21,10 @@ namespace pfgen_runtime {
 
 class RecordRun {
  public:
-  // The filter from its initial state (the model's m0, P0, or `initial` when not empty: m then
-  // P's upper triangle; std::invalid_argument for a filter with extra state, which starts from
-  // the model's) at t0, at the parameter values `values` (the plugin's order).
+  // The filter from its initial state (the model's m0, P0, or `initial` when not empty: m, P's
+  // upper triangle, then a moment filter's higher moments; std::invalid_argument for a filter that
+  // keeps a history, a delayed one, which starts from the model's) at t0, at the parameter values
+  // `values` (the plugin's order).
   RecordRun(const RecordFilter& filter, std::vector<double> values, double t0, const RecordRunOptions& options,
             const std::vector<double>& initial = {});
   // To the row at t > time() (or t == time() for the first row: a sample there updates the prior,

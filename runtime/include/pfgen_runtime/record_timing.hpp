@@ -62,8 +62,12 @@ struct RecordProgress {
 class RecordTiming {
  public:
   virtual ~RecordTiming() = default;
-  // Entries of the state after m and P (a delayed filter's x* and history), 0 for the others.
+  // Entries of the state after m and P (a delayed filter's x* and history, a moment filter's higher
+  // moments), 0 for the others.
   virtual std::size_t extra_state() const { return 0; }
+  // Whether they hold a history begun from the model's m0 (a delayed filter's), so that the state cannot
+  // start from another m; a moment filter's central moments depend on P0 only.
+  virtual bool keeps_history() const { return false; }
   // The row at t with its observation (p entries, NaN: missing); `first` for the record's first
   // row. false when the filter failed there (progress.failure says how).
   // std::invalid_argument for a row this timing cannot take (out of order, a partly missing
@@ -142,6 +146,7 @@ class RecordFixedIncrements final : public RecordIncrements {
       : RecordIncrements(step, predicted_observation, observation_noise), fixed_dt_(fixed_dt),
         extra_state_(extra_state) {}
   std::size_t extra_state() const override { return extra_state_; }
+  bool keeps_history() const override { return true; }
 
  protected:
   double interval(const RecordProgress& progress, double t) const override;

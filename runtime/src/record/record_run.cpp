@@ -13,7 +13,7 @@ RecordRun::RecordRun(const RecordFilter& filter, std::vector<double> values, dou
   std::vector<double>& state = progress_.state;
   if (initial.empty())
     filter.initial_state(state.data());
-  else if (filter.timing->extra_state() > 0)
+  else if (filter.timing->keeps_history())
     throw std::invalid_argument("the filter '" + filter.name + "' keeps a history and starts from the model's m0 and P0");
   else if (initial.size() == state.size())
     state = initial;

@@ -125,8 +125,9 @@ void check_c_names(const Model& model, const std::string& name_space) {
 std::string c_part_name(const std::string& prefix, const std::string& function, std::size_t k) {
   const std::string tail = "_" + function + "_part" + std::to_string(k);
   if (prefix.size() + tail.size() <= kCSignificantInternalCharacters) return prefix + tail;
-  // The prefix's head, then 8 hex digits of the whole prefix's hash, which tell filters (and models)
-  // with the same head apart when their files are built as one translation unit.
+  // The prefix's head, and at the end 8 hex digits of the whole prefix's hash, which tell filters (and
+  // models) with the same head apart when their files are built as one translation unit. At the end, since
+  // no name made whole ends so: a filter or model named <head>_<hash> would meet <head>_<hash>_..._part<k>.
   const std::string tag = "_" + pfgen_support::ContentHash().add(prefix).hex().substr(0, 8);
   const std::size_t room = kCSignificantInternalCharacters - std::min(kCSignificantInternalCharacters, tag.size() + tail.size());
   std::string head = prefix.substr(0, room);
@@ -135,7 +136,7 @@ std::string c_part_name(const std::string& prefix, const std::string& function, 
     throw CPartNameError("the C name of a part of the split function " + function + " cannot be made within " +
                          std::to_string(kCSignificantInternalCharacters) + " characters; write the function whole "
                          "(--max-function-ops 0)");
-  return head + tag + tail;
+  return head + tail + tag;
 }
 
 }  // namespace pfgen::codegen

@@ -39,8 +39,9 @@ void check_c_names(const Model& model, const std::string& name_space);
 
 // A static part of a split function: `<prefix>_<function>_part<k>`. Where that is longer than
 // kCSignificantInternalCharacters (parts differ only in k, at the end), the prefix is cut to fit and
-// followed by 8 hex digits of its hash: `<head>_<hash>_<function>_part<k>`. CPartNameError (which the
-// C backend gives the model file's name) only when not even that fits.
+// the name ends in 8 hex digits of the prefix's hash: `<head>_<function>_part<k>_<hash>`, which no
+// whole name ends in. CPartNameError (which the C backend gives the model file's name) only when not
+// even that fits.
 class CPartNameError : public CodegenError {
  public:
   using CodegenError::CodegenError;
