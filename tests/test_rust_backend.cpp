@@ -244,7 +244,7 @@ TEST_CASE("the Rust backend's modules compile with warnings denied and equal the
         codegen::CodegenOptions options;
         options.scalar = scalar == "f32" ? codegen::ScalarMode::Float : codegen::ScalarMode::Double;
         options.grid_step = model.simulation.dt;  // a delayed filter's grid, as `pfgen codegen` takes it
-        // Short: the moment filters' split C functions (van_der_pol_energy's closure4) pass 63 characters under longer.
+        // A short prefix for the C functions the comparison program calls (c_block below).
         options.name_space = "cs";
         options.language = "c";
         const codegen::GeneratedFilter c = codegen::generate_filter_code(model, eq, options);
