@@ -48,8 +48,7 @@ std::string write_filter(const TempDir& dir, const Model& model, const FilterEqu
   codegen::CodegenOptions options;
   options.scalar = codegen::ScalarMode::Double;
   options.language = language;
-  // A short namespace: C99 tells names apart by their first 63 characters, and the moment filters' split functions
-  // (range_squared's closure4 stratonovich_correction_part0) would pass that under pfgen_models.
+  // A short namespace, which the programs below name (pm_ in C, pm:: in C++).
   options.name_space = "pm";
   const codegen::GeneratedFilter filter = codegen::generate_filter_code(model, eq, options);
   for (const auto& file : filter.files) {
