@@ -21,7 +21,8 @@ back, on `--record-points` equally spaced points of [0, T]. It prints:
   - the target's test: closure4's excess minus half of optimal's, paired run by run (cd-closure4's
     and cd-optimal's for sampled observations: the baseline below);
   - for each filter that stopped: the baseline's excess on the runs where that filter stopped and
-    where it did not, which shows whether the survivors are the easy runs.
+    where it did not, which shows whether the survivors are the easy runs (a line saying so when no
+    filter stopped).
 Each run's figures are kept in --cache (one JSON file per seed), so a second call with more runs
 only runs the new seeds.
 """
@@ -62,7 +63,7 @@ def parse_args():
     p.add_argument("--T", type=float)
     p.add_argument("--record-points", type=int, default=1001)
     p.add_argument("--jobs", type=int, default=2, help="pfgen processes side by side, one thread each")
-    p.add_argument("--cache", help="directory of per-run results (default: a temporary one)")
+    p.add_argument("--cache", help="directory of per-run results (default: a temporary one, removed at the end)")
     return p.parse_args()
 
 
@@ -195,7 +196,9 @@ def comparison_table(runs, filters, groups, mse, dist, with_reference):
 def main():
     args = parse_args()
     filters = args.filters.split(",")
-    cache = args.cache or tempfile.mkdtemp(prefix="closure_vs_reference.")
+    # Without --cache the runs' figures go to a temporary directory, removed when the script ends.
+    own_cache = None if args.cache else tempfile.TemporaryDirectory(prefix="closure_vs_reference.")
+    cache = args.cache or own_cache.name
     os.makedirs(cache, exist_ok=True)
     records = {}
     todo = []
@@ -260,18 +263,20 @@ def main():
 
     usable = [r for r in runs if "truth" not in r["stops"] and "reference" not in r["stops"]]
     base = baseline(filters)
+    compared = [f for f in filters if f != base and base in filters
+                and any(f in r["stops"] and base in r["mse"] for r in usable)]
+    if not compared:
+        print("Are the survivors the easy runs? No filter stopped in a run the reference and the truth "
+              "finished: no table.")
+        return
     print("Are the survivors the easy runs? %s's excess MSE and the reference's MSE(x - m_ref) "
           "(summed over states) on the runs where a filter stopped and on those where it reached T; "
           "the filter's own excess on the latter:" % base)
     print("%-10s %24s %24s %26s %22s" % ("filter", "runs it stopped in", "runs it reached T",
                                          "its own excess there", "MSE(x - m_ref): s / r"))
-    for f in filters:
-        if f == base or base not in filters:
-            continue
+    for f in compared:
         stopped = [r for r in usable if f in r["stops"] and base in r["mse"]]
         kept = [r for r in usable if f not in r["stops"] and base in r["mse"]]
-        if not stopped:
-            continue
         ex = lambda r, g: sum(r["mse"][g][s] - r["mse"]["reference"][s] for s in states)
         ref = lambda r: sum(r["mse"]["reference"][s] for s in states)
         a = mean_se([ex(r, base) for r in stopped])
