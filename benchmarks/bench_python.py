@@ -47,7 +47,8 @@ def main():
     args = parser.parse_args()
     program = os.path.join(args.build, "generator", "pfgen")
     dense_yaml = os.path.join(args.build, "benchmarks", "dense_cubic_yaml")
-    work = tempfile.mkdtemp()
+    work_dir = tempfile.TemporaryDirectory()  # removed when the script ends
+    work = work_dir.name
     dense = os.path.join(work, "dense_cubic_10.yaml")
     with open(dense, "w") as f:
         subprocess.run([dense_yaml, "10"], check=True, stdout=f)
