@@ -156,6 +156,23 @@ TEST_CASE("kind registry: the model room and the derivation offer exactly the ki
   }
 }
 
+TEST_CASE("kind registry: a moment filter needs a positive definite P0, where its runs would not stop at once",
+          "[unit][kinds]") {
+  // basin_skliar_partial's P0 = [[1, 1], [1, 1]] is singular: its realisability stop (P not positive definite)
+  // would end every run at t = 0.
+  const Model singular = load_model_file(example("basin_skliar_partial.yaml"));
+  CHECK_FALSE(filter_kind_needs(singular).prior_positive_definite);
+  for (FilterKind kind : {FilterKind::Closure3, FilterKind::Closure4}) {
+    const auto reason = unsupported_reason(singular, kind);
+    REQUIRE(reason);
+    CHECK_THAT(*reason, Catch::Contains("needs a positive definite initial.P0"));
+  }
+  CHECK_FALSE(unsupported_reason(singular, FilterKind::Optimal));
+  const Model regular = load_model_file(example("basin2006_quadratic.yaml"));
+  CHECK(filter_kind_needs(regular).prior_positive_definite);
+  CHECK_FALSE(unsupported_reason(regular, FilterKind::Closure4));
+}
+
 TEST_CASE("kind registry: command-line help, errors and defaults list the registry's kinds", "[integration][kinds]") {
   const std::string model = example("basin2006_quadratic.yaml");  // every mean-square continuous kind
   std::string bar, comma;

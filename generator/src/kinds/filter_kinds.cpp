@@ -117,6 +117,11 @@ std::optional<std::string> unsupported_reason(const FilterKindInfo& kind, const 
   if (kind.expectation == ExpectationRule::CumulantNeglect && model.observation == ObservationKind::Sampled &&
       model.samples_degree > 1)
     return "is derived for samples through C0 + C x (c has degree " + std::to_string(model.samples_degree) + ")";
+  // A moment filter's run stops where P is not positive definite (docs/theory.md §2.10): from a singular P0 it
+  // would stop at once, in every run.
+  if (kind.expectation == ExpectationRule::CumulantNeglect && !model.prior_positive_definite)
+    return std::string("needs a positive definite initial.P0 (a moment filter's run stops where P is not; this P0 is "
+                       "singular)");
   if (kind.criterion == Criterion::RiskSensitive) {
     if (!model.has_risk_criterion) return std::string("needs a risk: section (risk: {epsilon: ...})");
     if (!model.state_independent_diffusion)

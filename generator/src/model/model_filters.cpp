@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include <Eigen/Dense>
+
 #include "pfgen/algebra/polynomial.hpp"
 
 namespace pfgen {
@@ -12,6 +14,13 @@ FilterKindNeeds filter_kind_needs(const Model& model) {
   needs.observation = model.observation.kind();
   needs.has_risk_criterion = model.risk.has_value();
   if (model.observation.samples()) needs.samples_degree = model.observation.rate().degree(model.states);
+  if (model.initial && !model.initial->P0.empty()) {
+    const std::size_t n = model.initial->P0.size();
+    Eigen::MatrixXd P0(n, n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) P0(i, j) = model.initial->P0[i][j].to_double();
+    needs.prior_positive_definite = Eigen::LLT<Eigen::MatrixXd>(P0).info() == Eigen::Success;
+  }
   // Only the risk-sensitive kind reads the facts below, and only with a risk: section: skip the
   // expansions for every other model.
   if (!needs.has_risk_criterion) return needs;

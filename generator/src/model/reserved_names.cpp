@@ -37,9 +37,18 @@ std::optional<std::string> symbol_name_problem(const std::string& name) {
   static const std::regex delayed("^(md|phi|xs)_?[0-9][0-9_]*$");
   if (std::regex_match(name, delayed))
     return "'" + name + "' is reserved for the delayed-observation filters' m(t - h), Phi* and x* entries";
+  // M3_111, M4_1122 (and dM3_111): a moment filter's higher central moments (closure3, closure4, docs/theory.md
+  // §2.10), state entries of its generated code.
+  static const std::regex moments("^d?M[0-9]+_[0-9][0-9_]*$");
+  if (std::regex_match(name, moments))
+    return "'" + name + "' is reserved for the moment filters' higher central moments (M3_111 = E[(x1 - m1)^3])";
   static const std::regex printed("^(d(m|P)_?[0-9][0-9_]*|K_?[0-9]+_[0-9]+|dy_?[0-9]+|dt)$");
   if (std::regex_match(name, printed))
     return "'" + name + "' is a name of the printed equations (dm1 = (...) dt + K1_1 (dy1 - ... dt), dP12)";
+  // L11_1, L3_111_1: the dy coefficients of dP11 and dM3_111 under a polynomial observation.
+  static const std::regex gains("^L_?[0-9][0-9_]*_[0-9]+$");
+  if (std::regex_match(name, gains))
+    return "'" + name + "' is a name of the printed equations (dP11 = (...) dt + L11_1 (dy1 - ... dt))";
   // PCt11 and Pyy11: a sampled update's P C^T and innovation covariance C P C^T + R (printed as
   // S11 it read as a state S's).
   static const std::regex update("^(PCt|Pyy)_?[0-9][0-9_]*$");
