@@ -7,7 +7,8 @@ std::string higher_moments_header_text(const FilterEquations& eq) {
   const std::string k = std::to_string(eq.variables.order());
   std::string out = "central moments: M3_ijl = E[(x-m)_i (x-m)_j (x-m)_l]";
   if (eq.variables.order() >= 4) out += ", M4_ijlq = E[(x-m)_i (x-m)_j (x-m)_l (x-m)_q]";
-  return out + " (i <= j <= l <= q); moments above order " + k + " read as those of the law whose cumulants above order " +
+  out += eq.variables.order() >= 4 ? " (i <= j <= l <= q)" : " (i <= j <= l)";
+  return out + "; moments above order " + k + " read as those of the law whose cumulants above order " +
          k + " are zero\n";
 }
 
