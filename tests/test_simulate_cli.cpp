@@ -188,7 +188,9 @@ TEST_CASE("simulate: bad settings are one-line errors naming the option or field
       {{"--batch", "2x"}, "--batch: Value 2x not in range 1 to 1024"},
       {{"--shown-run", "300"}, "--shown-run: run 300 is not among the 200 runs (numbered from 0)"},
       {{"--plot", dir.file("e.pdf")}, "--plot: '" + dir.file("e.pdf") + "' must end in .png or .svg"},
-      {{"-o", dir.file("missing/r.csv")}, "does not exist"},
+      {{"-o", dir.file("missing/r.csv")}, "-o: '" + dir.file("missing/r.csv") + "': directory '" + dir.file("missing") +
+                                           "' does not exist"},
+      {{"--stops-csv", dir.file("missing/s.csv")}, "--stops-csv: '" + dir.file("missing/s.csv") + "': directory"},
       {{"--dt", "1e-8", "--threads", "2"}, "--dt: the job needs about 27.5 GiB"},
       // Threads and recorded points bounded by the machine, named by their option.
       {{"--threads", "100000", "--runs", "100000"}, "--threads: 100000 threads on a machine with"},

@@ -63,7 +63,7 @@ void check_distinct_outputs(const std::vector<NamedPath>& inputs, const std::vec
 void check_output_file(const NamedPath& output) {
   const auto parent = std::filesystem::path(output.path).parent_path();
   if (!parent.empty() && !std::filesystem::is_directory(parent))
-    throw CliValueError("'" + output.path + "': directory '" + parent.string() + "' does not exist");
+    throw CliValueError(output.role + ": '" + output.path + "': directory '" + parent.string() + "' does not exist");
   // A directory is no output file: -o DIR failed only after the whole run, and --plot DIR.png
   // removed an empty DIR.png (the stale-plot removal) before gnuplot failed on it.
   if (std::filesystem::is_directory(output.path))
