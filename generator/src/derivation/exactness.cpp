@@ -64,29 +64,26 @@ ExactnessReport moment_closure_exactness(const ExactnessFacts& facts, FilterKind
   const std::string nonlinear_h =
       h_degree > 1 ? "the observation's h has degree " + std::to_string(h_degree) : std::string();
   const std::string order = std::to_string(filter_kind_info(kind).closure_order);
+  // Samples (through C0 + C x) make the exact case the Kalman filter, continuous observations the Kalman-Bucy filter.
   const bool sampled = facts.model.observation.samples().has_value();
-  if (nonaffine.empty() && multiplicative.empty() && nonlinear_h.empty() && sampled) {
-    report.exact = true;
-    report.condition = "Kalman";
-    report.explanation = "exact: $f|f$ is affine and $g|g$ does not depend on $x|x$, so from the Gaussian prior the "
-                         "law stays Gaussian between and at the samples: the moments of order 3 and above stay those "
-                         "of $N(m, P)|N(m, P)$ and $m|m$, $P|P$ are the Kalman filter's (up to the sub-steps' "
-                         "integration error)";
-    return report;
-  }
+  const std::string linear_filter = sampled ? "Kalman" : "Kalman-Bucy";
   if (nonaffine.empty() && multiplicative.empty() && nonlinear_h.empty()) {
     report.exact = true;
-    report.condition = "Kalman-Bucy";
-    report.explanation = "exact: $f|f$ and $h|h$ are affine and $g|g$ does not depend on $x|x$, so from the Gaussian "
-                         "prior the conditional law stays Gaussian: the moments of order 3 and above stay those of "
-                         "$N(m, P)|N(m, P)$ and $m|m$, $P|P$ are the Kalman-Bucy filter's";
+    report.condition = linear_filter;
+    report.explanation =
+        sampled ? "exact: $f|f$ is affine and $g|g$ does not depend on $x|x$, so from the Gaussian prior the law stays "
+                  "Gaussian between and at the samples: the moments of order 3 and above stay those of "
+                  "$N(m, P)|N(m, P)$ and $m|m$, $P|P$ are the Kalman filter's (up to the sub-steps' integration error)"
+                : "exact: $f|f$ and $h|h$ are affine and $g|g$ does not depend on $x|x$, so from the Gaussian prior the "
+                  "conditional law stays Gaussian: the moments of order 3 and above stay those of $N(m, P)|N(m, P)$ "
+                  "and $m|m$, $P|P$ are the Kalman-Bucy filter's";
     return report;
   }
   report.condition = "none";
   report.explanation = "approximation: the conditional law's cumulants of order above " + order +
                        " are set to zero (cumulant neglect), so the moments above order " + order +
                        " that the equations read are those of that closed law";
-  report.failed.push_back(std::string(sampled ? "Kalman: " : "Kalman-Bucy: ") +
+  report.failed.push_back(linear_filter + ": " +
                           (!nonaffine.empty() ? nonaffine : !multiplicative.empty() ? multiplicative : nonlinear_h));
   return report;
 }

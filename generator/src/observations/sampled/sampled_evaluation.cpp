@@ -15,16 +15,22 @@ void evaluate_moment_update(const FilterEquations& eq, const PolynomialEvaluator
   const SampledUpdate& u = eq.update;
   const std::size_t n = eq.n(), r = u.r();
   auto num = [](const GiNaC::ex& e) { return GiNaC::ex_to<GiNaC::numeric>(e); };
+  // C (r x n) and R (r x r) at the point, each entry evaluated once.
+  NumericMatrix C(r, std::vector<GiNaC::numeric>(n)), R(r, std::vector<GiNaC::numeric>(r));
+  for (unsigned b = 0; b < r; ++b) {
+    for (unsigned j = 0; j < n; ++j) C[b][j] = num(value.exact(u.C[b][j]));
+    for (unsigned c = 0; c < r; ++c) R[b][c] = num(value.exact(u.R[u.upper_index(b, c)]));
+  }
   NumericMatrix A(n, std::vector<GiNaC::numeric>(n)), P(n, std::vector<GiNaC::numeric>(n)),
       Q(n, std::vector<GiNaC::numeric>(n, 0));
   for (unsigned i = 0; i < n; ++i)
     for (unsigned j = 0; j < n; ++j) {
       GiNaC::numeric a = i == j ? 1 : 0;
-      for (unsigned b = 0; b < r; ++b) a -= num(K(i, b)) * num(value.exact(u.C[b][j]));
+      for (unsigned b = 0; b < r; ++b) a -= num(K(i, b)) * C[b][j];
       A[i][j] = a;
       P[i][j] = point.P[i][j];
       for (unsigned b = 0; b < r; ++b)
-        for (unsigned c = 0; c < r; ++c) Q[i][j] += num(K(i, b)) * num(value.exact(u.R[u.upper_index(b, c)])) * num(K(j, c));
+        for (unsigned c = 0; c < r; ++c) Q[i][j] += num(K(i, b)) * R[b][c] * num(K(j, c));
     }
   std::vector<GiNaC::numeric> moments;
   for (std::size_t q = 0; q < vars.higher_moments().size(); ++q)
