@@ -113,10 +113,6 @@ std::optional<std::string> unsupported_reason(const FilterKindInfo& kind, const 
     return std::string("needs additive_diffusion or additive_diffusion_covariance");
   if (std::find(kind.observations.begin(), kind.observations.end(), model.observation) == kind.observations.end())
     return "is not derived for " + observation_kind_info(model.observation).name + " observations";
-  // The sampled moment filters' update is the linear one's (observations/sampled/sampled_moment_update.hpp).
-  if (kind.expectation == ExpectationRule::CumulantNeglect && model.observation == ObservationKind::Sampled &&
-      model.samples_degree > 1)
-    return "is derived for samples through C0 + C x (c has degree " + std::to_string(model.samples_degree) + ")";
   // A moment filter's run stops where P is not positive definite (docs/theory.md §2.10): from a singular P0 it
   // would stop at once, in every run.
   if (kind.expectation == ExpectationRule::CumulantNeglect && !model.prior_positive_definite)

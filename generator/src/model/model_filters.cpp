@@ -13,7 +13,6 @@ FilterKindNeeds filter_kind_needs(const Model& model) {
   needs.has_additive_diffusion = model.additive_diffusion.has_value();
   needs.observation = model.observation.kind();
   needs.has_risk_criterion = model.risk.has_value();
-  if (model.observation.samples()) needs.samples_degree = model.observation.rate().degree(model.states);
   if (model.initial && !model.initial->P0.empty()) {
     const std::size_t n = model.initial->P0.size();
     Eigen::MatrixXd P0(n, n);

@@ -25,6 +25,13 @@ struct SampledUpdate {
   std::vector<Polynomial> R;                      // r(r+1)/2, upper triangle: Uv Uv^T, or R_c = S - C P C^T
   // A polynomial c: C and R as above, read by the reports; `at_mean` for the extended kind's.
   bool polynomial_samples = false, at_mean = false;
+  // A moment filter's samples through a polynomial c (observations/sampled/closure_sampled_update.hpp): C = E[J_c]
+  // and R = Uv Uv^T under the closed law, and z = (x - m, c - E[c] - C (x - m))'s joint central moments that are not
+  // the filter's own, `joint[q]` the one with ascending indices `joint_indices[q]` (0-based over z's n + r entries),
+  // from which P and the higher moments are updated. Empty otherwise.
+  bool closed_law = false;
+  std::vector<std::vector<std::size_t>> joint_indices;
+  std::vector<Polynomial> joint;
   std::size_t r() const { return C.size(); }
   // Index of S_ab (or R_ab), a and b in either order, in the packed upper triangle.
   std::size_t upper_index(std::size_t a, std::size_t b) const {

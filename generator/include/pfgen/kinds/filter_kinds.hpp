@@ -87,7 +87,6 @@ struct FilterKindNeeds {
   bool state_independent_diffusion = false;  // g (or G) free of the states
   unsigned drift_degree = 0;               // the highest total degree of a drift entry in the states
   unsigned drift_degree_row = 0;           // 1-based row of the first entry of that degree
-  unsigned samples_degree = 1;             // sampled observations: the degree of c in the states (1: C0 + C x)
   bool prior_positive_definite = true;     // initial.P0 (when given) positive definite
 };
 // The risk-sensitive kind is derived for drifts of degree <= 3 (the second- and third-degree systems

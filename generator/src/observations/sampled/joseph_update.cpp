@@ -29,6 +29,28 @@ ir::Statement call(const std::string& function, const std::string& out) {
 
 }  // namespace
 
+ir::Block mean_and_gain_complement_statements() {
+  const Expr n = ir::dimension("n"), p = ir::dimension("p");
+  const Expr zero = ir::whole_scalar(0), one = ir::whole_scalar(1);
+  const Expr i = index("i"), j = index("j");
+  ir::Block out;
+  // m += K (y - h).
+  out.push_back(over(
+      "i", ir::integer(0), n,
+      {over("r", ir::integer(0), p,
+            {ir::accumulate(ir::element("state", i),
+                            ir::mul(at("K", "i", p, "r"),
+                                    ir::grouped(ir::sub(ir::element("y", index("r")), ir::element("h", index("r"))))))})}));
+  out.push_back(ir::comment("A = Id - K C"));
+  out.push_back(over(
+      "i", ir::integer(0), n,
+      {over("j", ir::integer(0), n,
+            {ir::declare_variable("sum", Type::Scalar, ir::select(ir::equal(i, j), one, zero)),
+             over("r", ir::integer(0), p, {ir::decrease(ir::name("sum"), ir::mul(at("K", "i", p, "r"), at("C", "r", n, "j")))}),
+             ir::assign(at("A", "i", n, "j"), ir::name("sum"))})}));
+  return out;
+}
+
 JosephUpdate joseph_update_statements() {
   const Expr n = ir::dimension("n"), p = ir::dimension("p");
   const Expr zero = ir::whole_scalar(0), one = ir::whole_scalar(1);
@@ -55,20 +77,7 @@ JosephUpdate joseph_update_statements() {
                           {over("j", i, n,
                                 {ir::assign_symmetric(at("P", "i", n, "j"), at("P", "j", n, "i"),
                                                       ir::element("state", ir::post_increment("k")))})}));
-  // m += K (y - h).
-  u.update.push_back(over(
-      "i", ir::integer(0), n,
-      {over("r", ir::integer(0), p,
-            {ir::accumulate(ir::element("state", i),
-                            ir::mul(at("K", "i", p, "r"),
-                                    ir::grouped(ir::sub(ir::element("y", index("r")), ir::element("h", index("r"))))))})}));
-  u.update.push_back(ir::comment("A = Id - K C"));
-  u.update.push_back(over(
-      "i", ir::integer(0), n,
-      {over("j", ir::integer(0), n,
-            {ir::declare_variable("sum", Type::Scalar, ir::select(ir::equal(i, j), one, zero)),
-             over("r", ir::integer(0), p, {ir::decrease(ir::name("sum"), ir::mul(at("K", "i", p, "r"), at("C", "r", n, "j")))}),
-             ir::assign(at("A", "i", n, "j"), ir::name("sum"))})}));
+  for (ir::Statement& s : mean_and_gain_complement_statements()) u.update.push_back(std::move(s));
   // AP = A P.
   u.update.push_back(over(
       "i", ir::integer(0), n,

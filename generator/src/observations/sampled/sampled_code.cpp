@@ -22,6 +22,7 @@ std::vector<FunctionStats> SampledFunctions::stats() const {
   std::vector<FunctionStats> all = {derivatives.stats};
   if (euler_square) all.push_back(euler_square->stats);
   for (const FunctionCode* code : {&innovation, &matrices, &observation}) all.push_back(code->stats);
+  if (joint) all.push_back(joint->stats);
   return all;
 }
 
@@ -42,13 +43,14 @@ SampledFunctions sampled_functions(const Model& model, const FilterEquations& eq
   f.matrices = function_code("observation_matrices", matrices, names.out, model, eq, options, names, emitter);
   f.observation =
       function_code("predicted_observation", eq.predicted_observation, names.h, model, eq, options, names, emitter);
+  if (u.closed_law) f.joint = function_code("joint_moments", u.joint, names.out, model, eq, options, names, emitter);
   return f;
 }
 
 FilterFile SampledCode::filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                                     const FunctionNames& names, const StatementEmitter& emitter) const {
   SampledFunctions f = sampled_functions(model, eq, options, names, emitter);
-  const bool euler = f.euler_square.has_value();
+  const bool euler = f.euler_square.has_value(), joint = f.joint.has_value();
   FilterFile file;
   file.layout = "sampled_filter";
   file.p = eq.update.r();
@@ -59,18 +61,23 @@ FilterFile SampledCode::filter_file(const Model& model, const FilterEquations& e
   file.add_function("innovation", std::move(f.innovation));
   file.add_function("matrices", std::move(f.matrices));
   file.add_function("observation", std::move(f.observation));
+  if (joint) file.add_function("joint", std::move(*f.joint));
   // cd-euler's Cov(f) dt^2 function, and the prediction sub-step's comment and signature, are each
   // framed by a partial of the backend's; the sub-step's body is statements.
   file.frames = {{"euler_function", euler ? "euler_square" : ""},
-                 {"predict_function", euler ? "predict_euler" : "predict_heun"}};
+                 {"predict_function", euler ? "predict_euler" : "predict_heun"},
+                 {"joint_function", joint ? "joint_moments" : ""}};
   file.blocks.emplace("initial_body", initial_state_statements(initial_values(model, eq.variables)));
   file.blocks.emplace("solve_body", cholesky_gain_statements(file.p));
   file.blocks.emplace("predict_body", predict_statements(euler));
   file.blocks.emplace("advance_body", advance_statements());
-  JosephUpdate update = joseph_update_statements();
-  // A moment filter's higher moments after m and P, before the update returns.
-  ir::Block moments = moment_update_statements(eq.variables);
-  update.update.insert(update.update.end() - 1, std::make_move_iterator(moments.begin()), std::make_move_iterator(moments.end()));
+  JosephUpdate update = joint ? joint_moment_update_statements(eq.variables, eq.update.r(), eq.update.joint_indices)
+                              : joseph_update_statements();
+  // A moment filter's higher moments after m and P, before the update returns (with samples through C0 + C x).
+  if (!joint) {
+    ir::Block moments = moment_update_statements(eq.variables);
+    update.update.insert(update.update.end() - 1, std::make_move_iterator(moments.begin()), std::make_move_iterator(moments.end()));
+  }
   file.blocks.emplace("update_arrays", std::move(update.arrays));
   file.blocks.emplace("update_matrices", std::move(update.matrices));
   file.blocks.emplace("update_views", std::move(update.views));
@@ -82,6 +89,10 @@ FilterFile SampledCode::filter_file(const Model& model, const FilterEquations& e
                 {"substeps", std::to_string(eq.update.substeps)},
                 {"predict_meaning", euler ? "cd-euler's exact moments of one Euler step." : "Heun's scheme on the prediction ODEs."}};
   add_sample_meanings(file.words, eq.update);
+  if (joint) {
+    file.words["joint_count"] = std::to_string(eq.update.joint.size());
+    file.words["joint_fourth"] = eq.variables.order() >= 4 ? ", then Z4_ijlq" : "";
+  }
   // A moment filter's margins, after the other functions in the banner.
   std::optional<FunctionCode> margins = realisability_code(model, eq, options, names, emitter);
   if (margins) file.stats.push_back(margins->stats);
@@ -95,6 +106,20 @@ const ObservationCode& sampled_observation_code() {
 }
 
 void add_sample_meanings(std::map<std::string, std::string>& values, const SampledUpdate& update) {
+  values["innovation_terms_meaning"] = "P C^T (n x p, row-major), S = C P C^T + Uv Uv^T (upper triangle, row by row)";
+  values["covariance_update"] = "P = (Id - K C) P (Id - K C)^T + K R K^T, Id the identity (Joseph form: P stays symmetric "
+                                "and positive\n// semi-definite under rounding)";
+  if (update.closed_law) {
+    values["innovation_terms_meaning"] = "Cov(x, c) (n x p, row-major), S = Cov(c) + Uv Uv^T (upper triangle, row by "
+                                         "row); both under\n// the filter's closed law";
+    values["covariance_update"] = "P and the higher moments those of x+ - m+ = Abar z - K v, Abar = [Id - K C, -K], z "
+                                  "= (x - m, d)\n// (joint_moments()), P C^T read as Cov(x, c)";
+    values["matrices_meaning"] = "out = [C = E[J_c] (p x n, row-major), R = Uv Uv^T (upper triangle, row by row)], E under the\n"
+                                 "// filter's closed law.";
+    values["sample_meaning"] = "E[c]";
+    values["innovation_meaning"] = "y - h";
+    return;
+  }
   if (!update.polynomial_samples) {
     values["matrices_meaning"] =
         "out = [C (p x n, row-major), R = Uv Uv^T (upper triangle, row by row)]; they do not depend on\n// the filter state.";

@@ -2,12 +2,13 @@
 // samples (the equations are the prediction), for cd-euler the dt^2 term of its Euler moment map,
 // the prediction's sub-steps per period (substep_choice), and at each sample the update of the
 // rate: the Kalman update's polynomial parts for C0 + C x (sampled_update), or the moment-matching
-// update of a polynomial c (polynomial_sampled_update). One class per rate, chosen once
+// update of a polynomial c (polynomial_sampled_update; a moment filter's closure_sampled_update). One class per rate, chosen once
 // (sampled_observation_derivation).
 #include "pfgen/derivation/derivation_budget.hpp"
 #include "pfgen/derivation/gaussian_expectation.hpp"
 #include "pfgen/derivation/observation_derivation.hpp"
 #include "pfgen/model/model_error.hpp"
+#include "pfgen/observations/sampled/closure_sampled_update.hpp"
 #include "pfgen/observations/sampled/sampled_exactness.hpp"
 #include "pfgen/observations/sampled/sampled_update.hpp"
 #include "pfgen/observations/sampled/substep_choice.hpp"
@@ -101,9 +102,11 @@ class PolynomialSamples final : public SampledTiming {
  protected:
   // A polynomial c of degree >= 2: x given the samples is not Gaussian even for a linear system.
   std::string nonlinear_samples() const override { return "the samples' c is not linear in the states"; }
-  // The extended kind's update reads c(m) and J_c(m) (frame gave E[c]'s).
+  // The extended kind's update reads c(m) and J_c(m), a moment filter's the moments of its closed law (frame gave
+  // the Gaussian law's).
   void update_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
     if (is_extended_kalman(kind)) eq.update = polynomial_sampled_update(model, eq.variables, true, eq.predicted_observation);
+    if (uses_cumulant_closure(kind)) eq.update = closure_sampled_update(model, eq.variables, eq.predicted_observation);
   }
 };
 

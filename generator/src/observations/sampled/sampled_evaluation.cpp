@@ -1,6 +1,8 @@
 // The sampled observation in `pfgen eval`: its filters read t, m and P only; their values are the
 // prediction's (m and P drifts, cd-euler's dt^2 term) and the update's S = C P C^T + R and
 // K = P C^T S^-1, formed exactly (GiNaC's rational matrix inverse) and rounded once.
+#include <map>
+
 #include "pfgen/evaluation/observation_evaluation.hpp"
 #include "pfgen/evaluation/polynomial_evaluator.hpp"
 #include "pfgen/observations/sampled/sampled_moment_update.hpp"
@@ -8,12 +10,13 @@
 namespace pfgen {
 namespace {
 
-// A moment filter's higher moments after the update (sampled_moment_update.hpp), exactly, then rounded once.
+// A moment filter's higher moments after the update (sampled_moment_update.hpp), exactly, then rounded once: A = I - K C
+// applied to the prior's moments, or with samples through a polynomial c Abar = [A, -K] to z's (closure_sampled_update).
 void evaluate_moment_update(const FilterEquations& eq, const PolynomialEvaluator& value, const EvaluationPoint& point,
                             const GiNaC::matrix& K, EvaluatedFilter& out) {
   const FilterVariables& vars = eq.variables;
   const SampledUpdate& u = eq.update;
-  const std::size_t n = eq.n(), r = u.r();
+  const std::size_t n = eq.n(), r = u.r(), columns = u.closed_law ? n + r : n;
   auto num = [](const GiNaC::ex& e) { return GiNaC::ex_to<GiNaC::numeric>(e); };
   // C (r x n) and R (r x r) at the point, each entry evaluated once.
   NumericMatrix C(r, std::vector<GiNaC::numeric>(n)), R(r, std::vector<GiNaC::numeric>(r));
@@ -21,24 +24,28 @@ void evaluate_moment_update(const FilterEquations& eq, const PolynomialEvaluator
     for (unsigned j = 0; j < n; ++j) C[b][j] = num(value.exact(u.C[b][j]));
     for (unsigned c = 0; c < r; ++c) R[b][c] = num(value.exact(u.R[u.upper_index(b, c)]));
   }
-  NumericMatrix A(n, std::vector<GiNaC::numeric>(n)), P(n, std::vector<GiNaC::numeric>(n)),
-      Q(n, std::vector<GiNaC::numeric>(n, 0));
-  for (unsigned i = 0; i < n; ++i)
+  NumericMatrix A(n, std::vector<GiNaC::numeric>(columns)), Q(n, std::vector<GiNaC::numeric>(n, 0));
+  for (unsigned i = 0; i < n; ++i) {
     for (unsigned j = 0; j < n; ++j) {
       GiNaC::numeric a = i == j ? 1 : 0;
       for (unsigned b = 0; b < r; ++b) a -= num(K(i, b)) * C[b][j];
       A[i][j] = a;
-      P[i][j] = point.P[i][j];
       for (unsigned b = 0; b < r; ++b)
         for (unsigned c = 0; c < r; ++c) Q[i][j] += num(K(i, b)) * R[b][c] * num(K(j, c));
     }
-  std::vector<GiNaC::numeric> moments;
-  for (std::size_t q = 0; q < vars.higher_moments().size(); ++q)
-    moments.push_back(central_moment_value(vars, point, vars.first_higher_moment() + static_cast<std::uint32_t>(q)));
-  const std::vector<GiNaC::numeric> after = updated_higher_moments(vars, A, P, Q, moments);
-  for (std::size_t q = 0; q < after.size(); ++q)
+    for (unsigned b = 0; b < columns - n; ++b) A[i][n + b] = -num(K(i, b));
+  }
+  std::map<std::vector<std::size_t>, GiNaC::numeric> joint;
+  for (std::size_t q = 0; q < u.joint.size(); ++q) joint.emplace(u.joint_indices[q], num(value.exact(u.joint[q])));
+  auto z = [&](const std::vector<std::size_t>& t) -> GiNaC::numeric {
+    if (t.back() >= n) return joint.at(t);
+    if (t.size() == 2) return point.P[t[0]][t[1]];
+    return central_moment_value(vars, point, vars.higher_moment(t));
+  };
+  const MomentsAfterUpdate after = updated_moments(vars, A, z, Q);
+  for (std::size_t q = 0; q < after.higher.size(); ++q)
     out.moments_after_update.push_back(PolynomialEvaluator::rounded(
-        after[q], vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q)) + " after the update"));
+        after.higher[q], vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q)) + " after the update"));
 }
 
 void evaluate_update(const FilterEquations& eq, const PolynomialEvaluator& value, const EvaluationPoint& point,

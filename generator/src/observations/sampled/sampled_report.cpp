@@ -15,10 +15,20 @@
 namespace pfgen {
 namespace {
 
-// A moment filter's higher moments at a sample: those of the law of x + K (y - C0 - C x - v), v ~ N(0, R)
-// (sampled_moment_update.hpp), one line per order.
-std::vector<std::string> moment_update_lines(const FilterVariables& vars) {
+// A moment filter's moments at a sample: those of the law of x + K (y - C0 - C x - v), v ~ N(0, R)
+// (sampled_moment_update.hpp), or with a polynomial c those of Abar z - K v (closure_sampled_update.hpp), one line
+// per order.
+std::vector<std::string> moment_update_lines(const FilterVariables& vars, const SampledUpdate& u) {
   std::vector<std::string> lines;
+  if (u.closed_law) {
+    lines.push_back("P <- Abar Z2 Abar^T + K R K^T");
+    lines.push_back("M3_ijl <- sum_abc Abar_ia Abar_jb Abar_lc Z3_abc");
+    if (vars.order() >= 4)
+      lines.push_back("M4_ijlq <- sum_abcd Abar_ia Abar_jb Abar_lc Abar_qd Z4_abcd + U_ij Q_lq + U_il Q_jq + U_iq Q_jl + "
+                      "U_jl Q_iq + U_jq Q_il + U_lq Q_ij + Q_ij Q_lq + Q_il Q_jq + Q_iq Q_jl");
+    return lines;
+  }
+  lines.push_back("P <- (I - K C) P (I - K C)^T + K R K^T");
   if (vars.higher_moments().empty()) return lines;
   lines.push_back("M3_ijl <- sum_abc A_ia A_jb A_lc M3_abc");
   if (vars.order() >= 4)
@@ -27,31 +37,54 @@ std::vector<std::string> moment_update_lines(const FilterVariables& vars) {
   return lines;
 }
 
-std::string moment_update_where(const FilterVariables& vars) {
+std::string moment_update_where(const FilterVariables& vars, const SampledUpdate& u) {
+  if (u.closed_law)
+    return std::string("Abar = [I - K C, -K]") + (vars.order() >= 4 ? ", U = Abar Z2 Abar^T, Q = K R K^T" : "") +
+           ": the moments of the law of x + K (y - c(x) - v) = m+ + Abar z - K v, v ~ N(0, R), z = (x - m, d), d = c(x) "
+           "- h - C (x - m); Z the joint moments of z, the filter's P and M where all indices are x - m's";
   return std::string("A = I - K C") + (vars.order() >= 4 ? ", U = A P A^T, Q = K R K^T" : "") +
          ": the moments of the law of x + K (y - C0 - C x - v), v ~ N(0, R)";
 }
 
-std::string moment_update_text(const FilterVariables& vars) {
+// The update's lines after m's: P's, then the higher moments' and where their symbols come from.
+std::string moment_update_text(const FilterVariables& vars, const SampledUpdate& u) {
   std::string out;
-  for (const std::string& line : moment_update_lines(vars)) out += line + "\n";
-  return out.empty() ? out : out + "  (" + moment_update_where(vars) + ")\n";
+  for (const std::string& line : moment_update_lines(vars, u)) out += line + "\n";
+  return vars.higher_moments().empty() ? out : out + "  (" + moment_update_where(vars, u) + ")\n";
 }
 
-std::string moment_update_formula(const FilterVariables& vars) {
+std::string moment_update_formula(const FilterVariables& vars, const SampledUpdate& u) {
   std::string out;
-  for (const std::string& line : moment_update_lines(vars)) out += line + "; ";
-  return out + moment_update_where(vars);
+  const std::vector<std::string> lines = moment_update_lines(vars, u);
+  for (std::size_t k = 1; k < lines.size(); ++k) out += lines[k] + "; ";
+  return out + moment_update_where(vars, u);
 }
 
-std::vector<std::string> moment_update_latex(const FilterVariables& vars) {
+std::vector<std::string> moment_update_latex(const FilterVariables& vars, const SampledUpdate& u) {
   std::vector<std::string> lines;
   if (vars.higher_moments().empty()) return lines;
-  lines.push_back("\\mu_{ijl} &\\leftarrow \\textstyle\\sum_{abc} A_{ia} A_{jb} A_{lc}\\, \\mu_{abc}, \\quad A = I - K C");
+  const std::string A = u.closed_law ? "\\bar{A}" : "A", mu = u.closed_law ? "Z" : "\\mu";
+  auto product = [&](const std::string& indices) {
+    std::string out;
+    for (std::size_t k = 0; k < indices.size(); ++k)
+      out += (k ? " " : "") + A + "_{" + indices.substr(k, 1) + std::string("abcd").substr(k, 1) + "}";
+    return out;
+  };
+  lines.push_back("\\mu_{ijl} &\\leftarrow \\textstyle\\sum_{abc} " + product("ijl") + "\\, " + mu + "_{abc}" +
+                  (u.closed_law ? ", \\quad \\bar{A} = [I - K C, \\ -K]" : ", \\quad A = I - K C"));
   if (vars.order() >= 4)
-    lines.push_back("\\mu_{ijlq} &\\leftarrow \\textstyle\\sum_{abcd} A_{ia} A_{jb} A_{lc} A_{qd}\\, \\mu_{abcd} + "
-                    "\\sum_{6} U_{ij} Q_{lq} + \\sum_{3} Q_{ij} Q_{lq}, \\quad U = A P A^{T}, \\ Q = K R K^{T}");
+    lines.push_back("\\mu_{ijlq} &\\leftarrow \\textstyle\\sum_{abcd} " + product("ijlq") + "\\, " + mu + "_{abcd} + "
+                    "\\sum_{6} U_{ij} Q_{lq} + \\sum_{3} Q_{ij} Q_{lq}, \\quad U = " + A + " " +
+                    (u.closed_law ? "Z" : "P") + " " + A + "^{T}, \\ Q = K R K^{T}");
   return lines;
+}
+
+// A joint moment of z = (x - m, d) (n + r entries) with these ascending 0-based indices: "Z3_113", "Z_{113}".
+std::string joint_name(const std::vector<std::size_t>& t, std::size_t columns, bool latex) {
+  std::string indices;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    indices += (k && columns >= 10 ? (latex ? "," : "_") : "") + std::to_string(t[k] + 1);
+  return latex ? "Z_{" + indices + "}" : "Z" + std::to_string(t.size()) + "_" + indices;
 }
 
 std::vector<ReportPart> P_parts(const FilterEquations& eq, std::size_t u) { return {{&eq.P_moment[u]}, {&eq.P_diffusion[u]}}; }
@@ -119,11 +152,18 @@ class RowSampleReport final : public SampleRateReport {
     return out + ")";
   }
   std::string update_text(const SampledUpdate& u) const override {
+    if (u.closed_law)
+      return "moment matching under the closed law: h = E[c], PCt = Cov(x, c), Pyy = Cov(c) + Uv Uv^T, C = E[J_c], "
+             "R = Uv Uv^T, z = (x - m, d), d = c(x) - h - C (x - m)";
     return u.at_mean ? "linearised at m: h = c(m), C = J_c(m), R = Uv Uv^T (Joseph form)"
                      : "Gaussian moment matching: h = E[c], C = E[J_c], R = Cov(c) - C P C^T + Uv Uv^T (Joseph form, "
                        "equal to P - K S K^T)";
   }
   std::string update_latex(const SampledUpdate& u) const override {
+    if (u.closed_law)
+      return "moment matching under the closed law: $h = E[c]$, $P C^{T} = \\mathrm{Cov}(x, c)$, $S = \\mathrm{Cov}(c) + "
+             "U_v U_v^{T}$, $C = E[J_c]$, $R = U_v U_v^{T}$, $Z$ the joint moments of $z = (x - m, d)$, "
+             "$d = c(x) - h - C (x - m)$";
     return u.at_mean ? "linearised at $m$: $h = c(m)$, $C = J_c(m)$, $R = U_v U_v^{T}$, Joseph form"
                      : "Gaussian moment matching: $h = E[c]$, $C = E[J_c]$, $R = \\mathrm{Cov}(c) - C P C^{T} + U_v U_v^{T}$, "
                        "Joseph form, equal to $P - K S K^{T}$";
@@ -210,10 +250,11 @@ std::string sampled_equations_text(const Model& model, const FilterEquations& eq
   for (std::size_t a = 0; a < r; ++a)
     for (std::size_t b = a; b < r; ++b)
       out += "Pyy" + index2(a, b) + " = " + writer.print(u.S[u.upper_index(a, b)]) + "\n";
+  for (std::size_t q = 0; q < u.joint.size(); ++q)
+    out += joint_name(u.joint_indices[q], n + r, false) + " = " + writer.print(u.joint[q]) + "\n";
   out += "K = PCt Pyy^-1\n";
   out += "m <- m + K (y - h)\n";
-  out += "P <- (I - K C) P (I - K C)^T + K R K^T\n";
-  out += moment_update_text(vars);
+  out += moment_update_text(vars, u);
   out += "C = [";
   for (std::size_t a = 0; a < r; ++a) {
     out += a ? "; " : "";
@@ -280,9 +321,13 @@ std::string sampled_equations_latex(const Model& model, const FilterEquations& e
     for (std::size_t b = a; b < r; ++b)
       update.push_back(latex_align_lines("S_{" + std::to_string(a + 1) + "," + std::to_string(b + 1) + "}",
                                          writer.print(u.S[u.upper_index(a, b)])));
-  update.push_back("K &= P C^{T} S^{-1}, \\quad m \\leftarrow m + K (y - h), \\quad "
-                   "P \\leftarrow (I - K C) P (I - K C)^{T} + K R K^{T}");
-  for (std::string& line : moment_update_latex(vars)) update.push_back(std::move(line));
+  for (std::size_t q = 0; q < u.joint.size(); ++q)
+    update.push_back(latex_align_lines(joint_name(u.joint_indices[q], n + r, true), writer.print(u.joint[q])));
+  update.push_back(u.closed_law ? "K &= P C^{T} S^{-1}, \\quad m \\leftarrow m + K (y - h), \\quad "
+                                  "P \\leftarrow \\bar{A} Z \\bar{A}^{T} + K R K^{T}"
+                                : "K &= P C^{T} S^{-1}, \\quad m \\leftarrow m + K (y - h), \\quad "
+                                  "P \\leftarrow (I - K C) P (I - K C)^{T} + K R K^{T}");
+  for (std::string& line : moment_update_latex(vars, u)) update.push_back(std::move(line));
   out += block(update);
   return out + realisability_latex(eq, writer);
 }
@@ -336,8 +381,13 @@ Json sampled_equations_json(const Model& model, const FilterEquations& eq) {
   update.add("PCt", PCt);
   update.add("S", full(u.S, r, S_index));
   update.add("gain", Json::string("PCt S^-1"));
-  update.add("covariance", Json::string("(I - K C) P (I - K C)^T + K R K^T"));
-  if (!vars.higher_moments().empty()) update.add("moments", Json::string(moment_update_formula(vars)));
+  update.add("covariance", Json::string(u.closed_law ? "Abar Z2 Abar^T + K R K^T" : "(I - K C) P (I - K C)^T + K R K^T"));
+  if (!vars.higher_moments().empty()) update.add("moments", Json::string(moment_update_formula(vars, u)));
+  if (u.closed_law) {
+    Json joint = Json::object();
+    for (std::size_t q = 0; q < u.joint.size(); ++q) joint.add(joint_name(u.joint_indices[q], n + r, false), text(u.joint[q]));
+    update.add("joint_moments", joint);
+  }
   Json C = Json::array();
   for (std::size_t a = 0; a < r; ++a) {
     Json row = Json::array();

@@ -25,4 +25,8 @@ struct JosephUpdate {
 
 JosephUpdate joseph_update_statements();
 
+// Its m += K (y - h) and A = Id - K C (n x n, row-major, into the local A), which the moment filters' update of a
+// polynomial c shares (sampled_moment_update.hpp).
+ir::Block mean_and_gain_complement_statements();
+
 }  // namespace pfgen::codegen

@@ -24,8 +24,10 @@ class SampledCode final : public ObservationCode {
   FilterFile filter_file(const Model& model, const FilterEquations& eq, const CodegenOptions& options,
                          const FunctionNames& names, const StatementEmitter& emitter) const override;
   std::vector<std::string> layouts() const override { return {"sampled_filter"}; }
-  // cd-euler's, and a moment filter's (cd-closure3, cd-closure4)
-  std::vector<std::string> declaring_frames() const override { return {"euler_square", "realisability_margins"}; }
+  // cd-euler's, and a moment filter's (cd-closure3, cd-closure4; joint_moments() with a polynomial c)
+  std::vector<std::string> declaring_frames() const override {
+    return {"euler_square", "realisability_margins", "joint_moments"};
+  }
   std::string plugin_wrappers(const Model& model, const std::vector<std::string>& names,
                               const std::vector<PluginFilterFacts>& facts) const override;
   std::map<std::string, std::string> plugin_table(const Model& model, const std::vector<std::string>& names,
@@ -42,6 +44,7 @@ struct SampledFunctions {
   FunctionCode derivatives;
   std::optional<FunctionCode> euler_square;
   FunctionCode innovation, matrices, observation;
+  std::optional<FunctionCode> joint;  // a moment filter's joint_moments() with samples through a polynomial c
   // Their statistics in the order of the file's banner and --stats (euler_square() after
   // derivatives(), for cd-euler).
   std::vector<FunctionStats> stats() const;

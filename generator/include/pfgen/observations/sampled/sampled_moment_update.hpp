@@ -9,22 +9,31 @@
 //              + Q_ij Q_lq + Q_il Q_jq + Q_iq Q_jl.
 // They are the moments of an actual law whenever (m, P, M3, M4) are, so the update keeps a realisable state
 // realisable; for a Gaussian prior they are N(m+, P+)'s. The samples do not enter them: only m+ reads y.
+#include <functional>
 #include <vector>
 
 #include <ginac/ginac.h>
 
 #include "pfgen/codegen/ir/statements.hpp"
+#include "pfgen/observations/sampled/joseph_update.hpp"
 #include "pfgen/derivation/filter_variables.hpp"
 
 namespace pfgen {
 
-using NumericMatrix = std::vector<std::vector<GiNaC::numeric>>;  // n x n, full
+using NumericMatrix = std::vector<std::vector<GiNaC::numeric>>;  // rows of entries, full
 
-// The higher moments after the update (FilterVariables::higher_moments() order), exactly: A = I - K C, P the
-// prior covariance, Q = K R K^T, `moments` the prior's higher moments in the same order.
-std::vector<GiNaC::numeric> updated_higher_moments(const FilterVariables& vars, const NumericMatrix& A,
-                                                   const NumericMatrix& P, const NumericMatrix& Q,
-                                                   const std::vector<GiNaC::numeric>& moments);
+// The central moment of z with these indices (ascending, 0-based over A's columns), of order 2 up to the filter's.
+using JointMoment = std::function<GiNaC::numeric(const std::vector<std::size_t>&)>;
+
+struct MomentsAfterUpdate {
+  NumericMatrix P;                    // n x n
+  std::vector<GiNaC::numeric> higher; // FilterVariables::higher_moments() order
+};
+
+// The moments of x+ - m+ = A z + w, w ~ N(0, Q) independent of z, exactly: A (n x N) and z's moments `z`, N = n and
+// z = x - m for samples through C0 + C x, z = (x - m, d) and A = Abar for a polynomial c (closure_sampled_update.hpp).
+MomentsAfterUpdate updated_moments(const FilterVariables& vars, const NumericMatrix& A, const JointMoment& z,
+                                   const NumericMatrix& Q);
 
 }  // namespace pfgen
 
@@ -35,5 +44,12 @@ namespace pfgen::codegen {
 // state into a full tensor, A applied to one index at a time (n^(k+1) products per order instead of n^(2k)), then at
 // order 4 the noise's terms, and packed back into the state. Empty without higher moments.
 ir::Block moment_update_statements(const FilterVariables& vars);
+
+// A moment filter's update at a sample through a polynomial c (closure_sampled_update.hpp): the Joseph update's
+// arrays, views and solve, the joint moments z (`joint`, SampledUpdate::joint's order) taken by the file's
+// joint_moments() before m moves, then m += K (y - h), A = I - K C, Abar = [A, -K], and P and each higher order
+// as Abar's contraction of z's moments (read from the state where all indices are e's) plus the noise's terms.
+JosephUpdate joint_moment_update_statements(const FilterVariables& vars, std::size_t r,
+                                            const std::vector<std::vector<std::size_t>>& joint);
 
 }  // namespace pfgen::codegen
