@@ -122,10 +122,12 @@ def one_run(args, filters, seed, workdir):
             rec["mse"].setdefault(f, {})[s] = float(np.mean((x - m) ** 2))
             rec["dist"].setdefault(f, {})[s] = float(np.mean((m - mref) ** 2))
     # Every filter up to the run's first stop, so that no run is left out: the window [0, tau),
-    # tau the earliest stop of any filter (T if none stopped).
+    # tau the earliest stop of any filter ([0, T] if none stopped; a stop at T itself, at the last
+    # sample, leaves T out). A stop's time and the record's grid are computed apart (39 x 0.1 and
+    # 390 x 0.01 differ in the last bit), so a grid point within rounding of tau is tau.
     t = data["t"]
     tau = min([v["t"] for v in stops.values()] + [float(t[-1])])
-    keep = t < tau if tau < t[-1] else np.ones_like(t, dtype=bool)
+    keep = t < tau - 1e-9 * max(1.0, abs(tau)) if stops else np.ones_like(t, dtype=bool)
     rec["tau"] = tau
     rec["pre"] = {}
     if "reference" not in stops and "truth" not in stops and keep.any():
