@@ -37,7 +37,7 @@ double terms_in(const std::vector<Polynomial>& polynomials) {
 }  // namespace
 
 double moment_terms(const FilterEquations& eq) {
-  double terms = terms_in(eq.higher_drift) + terms_in(eq.realisability);
+  double terms = terms_in(eq.higher_drift) + terms_in(eq.realisability) + terms_in(eq.update.joint);
   for (const auto& row : eq.higher_gain) terms += terms_in(row);
   return terms;
 }

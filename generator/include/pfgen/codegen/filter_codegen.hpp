@@ -80,7 +80,8 @@ std::vector<std::string> filter_file_paths(const std::string& model_name, const 
 
 // The terms of the polynomials code generation reads from `eq` (drifts, gain, predicted
 // observation, the P equations' parts, x*'s drift, a polynomial observation's P_gain, a moment
-// filter's higher moments and realisability margins); moment_terms: those of the last two.
+// filter's higher moments, realisability margins and joint moments at a sample); moment_terms: those of
+// the last three.
 double codegen_terms(const FilterEquations& eq);
 double moment_terms(const FilterEquations& eq);
 // What the budget compares with CodegenOptions::max_equation_terms: codegen_terms with each of the
