@@ -136,9 +136,10 @@ FilterEquations unscented_filter(const Model& model, FilterEquations eq) {
 
 // A moment filter (moment_closure.hpp): its variables carry the central moments up to the kind's order, and
 // the Kushner-Stratonovich equations of each, closed, give every term, a continuous observation's included
-// (linear or polynomial alike). With samples (cd-closure3, cd-closure4, through C0 + C x) the equations
-// have no observation term: they are the prediction, and the sampled module's frame gave the update of m and
-// P, which code generation and eval extend to the higher moments (sampled_moment_update.hpp).
+// (linear or polynomial alike). With samples (cd-closure3, cd-closure4) the equations have no observation
+// term: they are the prediction, and the sampled module gives the update: through C0 + C x its frame's of m and
+// P, which code generation and eval extend to the higher moments (sampled_moment_update.hpp); through a
+// polynomial c its observation_terms' moment matching under the closed law (closure_sampled_update.hpp).
 FilterEquations moment_filter(const Model& model, FilterKind kind, FilterEquations eq) {
   const std::vector<Polynomial> f = state_polynomials(model.drift, model);
   const unsigned order = filter_kind_info(kind).closure_order;
@@ -155,7 +156,7 @@ FilterEquations moment_filter(const Model& model, FilterKind kind, FilterEquatio
   MomentClosureTerms terms = moment_closure_terms(model, eq.variables, h, rate.noise());
   eq.m_drift = std::move(terms.m_drift);
   eq.gain = std::move(terms.gain);
-  if (!sampled) eq.predicted_observation = std::move(terms.predicted_observation);  // else the frame's C0 + C m
+  if (!sampled) eq.predicted_observation = std::move(terms.predicted_observation);  // else the sampled module's
   eq.P_moment = std::move(terms.P_moment);
   eq.P_diffusion = std::move(terms.P_diffusion);
   eq.P_correction = std::move(terms.P_correction);

@@ -76,7 +76,7 @@ const std::vector<FilterKindInfo>& filter_kinds() {
        E::CumulantNeglect, D::Model, rate, Prediction::Ode, DelayGain::Undelayed, Criterion::MeanSquare,
        /*in_defaults=*/false, /*closure_order=*/4},
       // Their sampled form: the same moment equations between samples, and at each sample the moments of the
-      // Kalman-updated law x + K (y - C0 - C x - v) (docs/theory.md §2.10).
+      // Kalman-updated law x + K (y - c(x) - v), c = C0 + C x or a polynomial (docs/theory.md §2.10).
       {FilterKind::CdClosure3, "cd-closure3",
        "continuous-discrete moment filter of order 3: the closed moment ODEs of m, P and the third central moments "
        "between samples, at each the Kalman update of m and P and the third moments of the updated law; opt-in",
