@@ -13,6 +13,7 @@
 
 #include "pfgen/derivation/filter_equations.hpp"
 #include "pfgen/evaluation/point_evaluator.hpp"
+#include "pfgen/model/model_error.hpp"
 #include "pfgen/model/yaml_model_loader.hpp"
 #include "support/cli_helpers.hpp"
 #include "support/process.hpp"
@@ -405,4 +406,33 @@ TEST_CASE("generated moment filters with samples through a polynomial c: from a 
       }
     }
   }
+}
+
+TEST_CASE("moment filters with samples through a polynomial c: the derivation budget refuses, in one line naming "
+          "observation.sampled.c, a c whose joint moments would take too long",
+          "[closure][sampled][derivation_budget][unit]") {
+  // x1^8 + x2^8 + x3^8: z's fourth moments read E[e^g] up to order 32 (unbudgeted this took more than 5 minutes).
+  const std::string text = R"(name: octic_samples
+states: [x1, x2, x3]
+drift: ["-x1", "-x2", "-x3"]
+diffusion: [["0.3", "0", "0"], ["0", "0.3", "0"], ["0", "0", "0.3"]]
+observation:
+  sampled: {period: 0.2, c: ["x1^8 + x2^8 + x3^8 + x1*x2", "x1^2 + x3^3"], Uv: [["0.3", "0"], ["0", "0.3"]]}
+initial: {x0: [1, 1, 1], m0: [1, 1, 1], P0: [[0.3, 0, 0], [0, 0.3, 0], [0, 0, 0.3]]}
+)";
+  const Model model = load_model_text(text, "octic_samples.yaml");
+  try {
+    derive_filter(model, FilterKind::CdClosure4);
+    FAIL("cd-closure4 derived");
+  } catch (const ModelError& e) {
+    const std::string message = e.what();
+    INFO(message);
+    CHECK(message.find("octic_samples.yaml") != std::string::npos);
+    CHECK(message.find("observation.sampled.c") != std::string::npos);
+    CHECK(message.find("products of terms (limit 10000000") != std::string::npos);
+    CHECK(message.find("moments up to order 32") != std::string::npos);
+    CHECK(message.find('\n') == std::string::npos);
+  }
+  // Order 3 reads them up to order 24, within the budget.
+  CHECK(derive_filter(model, FilterKind::CdClosure3).update.joint.size() == 34);
 }

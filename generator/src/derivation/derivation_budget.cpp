@@ -595,4 +595,50 @@ void check_closure_budget(const Model& model, const ClosureInputs& inputs) {
   throw error;
 }
 
+void check_closure_samples_budget(const Model& model, unsigned order, const std::string& kind,
+                                  const std::vector<Polynomial>& c,
+                                  const std::vector<std::vector<std::size_t>>& joint_moments) {
+  // Each joint moment is E of a product of its factors: e_i (one term) or d_a, whose terms are at most those of
+  // c_a(m + e), prod (alpha_i + 1) for each monomial x^alpha. Each term of the product is an E[e^g] of at most the
+  // terms of the largest such moment, E[e^(k alpha)] for a monomial x^alpha of c (z's moments of order k multiply
+  // k factors).
+  const std::size_t n = model.n();
+  double largest = 0;
+  std::uint32_t degree = 0;
+  std::vector<double> row_terms;
+  for (const Polynomial& row : c) {
+    double terms = 0;
+    for (const auto& [monomial, coefficient] : row.terms()) {
+      std::vector<std::uint32_t> shape;
+      double expanded = 1;
+      for (const auto& [state, exponent] : monomial.factors()) {
+        shape.push_back(order * exponent);
+        expanded *= exponent + 1;
+      }
+      terms += expanded;
+      largest = std::max(largest, closed_moment_terms(shape, order, 4 * kMaxClosureProducts));
+      degree = std::max(degree, monomial.degree());
+    }
+    row_terms.push_back(terms);
+  }
+  double products = 0;
+  for (const auto& t : joint_moments) {
+    double terms = 1;
+    for (std::size_t index : t) terms *= index < n ? 1.0 : row_terms[index - n];
+    products += terms;
+  }
+  const double work = largest * products;
+  if (work <= kMaxClosureProducts) return;
+  ModelError error("observation.sampled.c",
+                   "filter " + kind + " updates each sample from the joint moments of x - m and c of orders up to " +
+                       std::to_string(order) + ", which with c of degree " + std::to_string(degree) +
+                       " would take up to " + count_text(work) + " products of terms (limit " +
+                       count_text(kMaxClosureProducts) + "; they read the closed law's moments up to order " +
+                       std::to_string(order * degree) + "); use " +
+                       (order > 3 ? "cd-closure" + std::to_string(order - 1) + ", " : std::string()) +
+                       "fewer states or a c with fewer terms or of lower degree");
+  error.set_file(model.source);
+  throw error;
+}
+
 }  // namespace pfgen

@@ -94,6 +94,15 @@ ClosureWork closure_derivation_work(const Model& model, const ClosureInputs& inp
 // observation) when closure_derivation_work is above kMaxClosureProducts.
 void check_closure_budget(const Model& model, const ClosureInputs& inputs);
 
+// A moment filter's update at samples through a polynomial c (observations/sampled/closure_sampled_update.hpp):
+// each of its joint moments (ascending indices over z = (x - m, d), n + r entries) is the expectation of a product
+// of factors e_i and d_a, whose terms read the closed law's moments up to order k deg c. Counts the products of
+// terms (the product's terms, at most those of the c_a(m + e) it multiplies, times the terms of the largest moment
+// read) and throws ModelError naming observation.sampled.c above kMaxClosureProducts.
+void check_closure_samples_budget(const Model& model, unsigned order, const std::string& kind,
+                                  const std::vector<Polynomial>& c,
+                                  const std::vector<std::vector<std::size_t>>& joint_moments);
+
 // An observation through polynomials in the states, whose expectations the derivation takes: a
 // polynomial h (dy = h dt + B dW2) or a sampled c (y_k = c(x(t_k)) + Uv v_k). Empty for a linear one.
 struct ObservationPolynomials {

@@ -3,6 +3,7 @@
 #include <map>
 
 #include "pfgen/derivation/closed_expectation.hpp"
+#include "pfgen/derivation/derivation_budget.hpp"
 
 namespace pfgen {
 namespace {
@@ -33,10 +34,13 @@ std::vector<std::vector<std::size_t>> joint_moment_indices(std::size_t n, std::s
   return out;
 }
 
-SampledUpdate closure_sampled_update(const Model& model, const FilterVariables& vars, std::vector<Polynomial>& predicted) {
+SampledUpdate closure_sampled_update(const Model& model, const FilterVariables& vars, const std::string& kind,
+                                     std::vector<Polynomial>& predicted) {
   const ObservationRate& rate = model.observation.rate();
   const std::size_t n = vars.n(), r = rate.p();
   const std::vector<Polynomial> c = rate.polynomials(model.states);
+  const std::vector<std::vector<std::size_t>> joint = joint_moment_indices(n, r, vars.order());
+  check_closure_samples_budget(model, static_cast<unsigned>(vars.order()), kind, c, joint);
   ClosedExpectation E(vars);
   SampledUpdate out;
   out.period = model.observation.samples()->period;
@@ -79,7 +83,7 @@ SampledUpdate closure_sampled_update(const Model& model, const FilterVariables& 
     if (t.size() > 1) value = self(std::vector<std::size_t>(t.begin(), t.end() - 1), self) * z[t.back()];
     return products.emplace(t, std::move(value)).first->second;
   };
-  out.joint_indices = joint_moment_indices(n, r, vars.order());
+  out.joint_indices = joint;
   for (const auto& t : out.joint_indices) out.joint.push_back(E.of(product(t, product)));
   return out;
 }

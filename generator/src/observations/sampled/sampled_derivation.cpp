@@ -106,7 +106,7 @@ class PolynomialSamples final : public SampledTiming {
   // the Gaussian law's).
   void update_terms(const Model& model, FilterKind kind, FilterEquations& eq) const override {
     if (is_extended_kalman(kind)) eq.update = polynomial_sampled_update(model, eq.variables, true, eq.predicted_observation);
-    if (uses_cumulant_closure(kind)) eq.update = closure_sampled_update(model, eq.variables, eq.predicted_observation);
+    if (uses_cumulant_closure(kind)) eq.update = closure_sampled_update(model, eq.variables, filter_kind_name(kind), eq.predicted_observation);
   }
 };
 

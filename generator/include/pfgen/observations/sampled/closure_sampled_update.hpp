@@ -11,6 +11,7 @@
 //
 // The derivation returns z's joint moments that are not the filter's own (an index of d among the indices), each a
 // polynomial in the filter variables (ClosedExpectation); the gain's parts, the predicted sample E[c], C and R.
+#include <string>
 #include <vector>
 
 #include "pfgen/derivation/filter_variables.hpp"
@@ -19,7 +20,9 @@
 
 namespace pfgen {
 
-SampledUpdate closure_sampled_update(const Model& model, const FilterVariables& vars, std::vector<Polynomial>& predicted);
+// `kind` names the filter in the budget's message (check_closure_samples_budget), checked before any expectation.
+SampledUpdate closure_sampled_update(const Model& model, const FilterVariables& vars, const std::string& kind,
+                                     std::vector<Polynomial>& predicted);
 
 // z's joint moments of orders 2 .. vars.order() with at least one index of d (>= n), indices ascending over the
 // n + r entries of z, by order then lexicographically: SampledUpdate::joint's order.
