@@ -260,17 +260,28 @@ void polynomial_updated_law(const std::vector<Vec>& prior, const Vec& prior_weig
 
 bool close(double value, double expected) { return std::abs(value - expected) <= 1e-12 + 1e-9 * std::abs(expected); }
 
+// The prior N(kGaussMean, kGaussP) as points, its moment-matching gain and S, and the updated law as points.
+struct GaussianUpdate {
+  std::vector<Vec> prior, K, S, after;
+  Vec prior_weights, after_weights;
+};
+
+GaussianUpdate gaussian_update() {
+  GaussianUpdate law;
+  gaussian_prior(law.prior, law.prior_weights);
+  law.K = moment_matching_gain(law.prior, law.prior_weights, law.S);
+  polynomial_updated_law(law.prior, law.prior_weights, law.K, law.after, law.after_weights);
+  return law;
+}
+
 }  // namespace
 
 TEST_CASE("moment filters with samples through a polynomial c: from a Gaussian prior, eval's gain, S and moments "
           "after the update are those of the moment-matching update of N(m, P) (Gauss-Hermite)",
           "[closure][sampled][unit]") {
   const Model model = load_model_file(kPolynomialModel);
-  std::vector<Vec> prior, after, S;
-  Vec prior_weights, after_weights;
-  gaussian_prior(prior, prior_weights);
-  const std::vector<Vec> K = moment_matching_gain(prior, prior_weights, S);
-  polynomial_updated_law(prior, prior_weights, K, after, after_weights);
+  const GaussianUpdate law = gaussian_update();
+  const std::vector<Vec>& K = law.K;
   for (FilterKind kind : {FilterKind::CdClosure3, FilterKind::CdClosure4}) {
     const FilterEquations eq = derive_filter(model, kind);
     const FilterVariables& vars = eq.variables;
@@ -287,12 +298,12 @@ TEST_CASE("moment filters with samples through a polynomial c: from a Gaussian p
       for (std::size_t a = 0; a < 2; ++a) {
         INFO("K" << i + 1 << a + 1 << ": eval " << value.gain[i][a] << ", quadrature " << K[i][a]);
         CHECK(close(value.gain[i][a], K[i][a]));
-        INFO("S" << i + 1 << a + 1 << ": eval " << value.innovation_covariance[i][a] << ", quadrature " << S[i][a]);
-        CHECK(close(value.innovation_covariance[i][a], S[i][a]));
+        INFO("S" << i + 1 << a + 1 << ": eval " << value.innovation_covariance[i][a] << ", quadrature " << law.S[i][a]);
+        CHECK(close(value.innovation_covariance[i][a], law.S[i][a]));
       }
     REQUIRE(value.moments_after_update.size() == vars.higher_moments().size());
     for (std::size_t q = 0; q < vars.higher_moments().size(); ++q) {
-      const double expected = central(after, after_weights, vars.higher_moments()[q]);
+      const double expected = central(law.after, law.after_weights, vars.higher_moments()[q]);
       INFO(vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q))
            << ": eval " << value.moments_after_update[q] << ", quadrature " << expected);
       CHECK(close(value.moments_after_update[q], expected));
@@ -346,11 +357,7 @@ TEST_CASE("generated moment filters with samples through a polynomial c: from a 
           "updates give the moment-matching update of N(m, P) (Gauss-Hermite)",
           "[closure][sampled][codegen][compiler]") {
   const Model model = load_model_file(kPolynomialModel);
-  std::vector<Vec> prior, after, S;
-  Vec prior_weights, after_weights;
-  gaussian_prior(prior, prior_weights);
-  const std::vector<Vec> K = moment_matching_gain(prior, prior_weights, S);
-  polynomial_updated_law(prior, prior_weights, K, after, after_weights);
+  const GaussianUpdate law = gaussian_update();
   TempDir dir;
   for (const std::string language : {"cpp", "c"}) {
     const ProcessResult generated = run_pfgen({"codegen", kPolynomialModel, "--filter", "cd-closure3,cd-closure4",
@@ -363,7 +370,7 @@ TEST_CASE("generated moment filters with samples through a polynomial c: from a 
     const FilterVariables& vars = eq.variables;
     const std::string file = eq.name == "cd-closure3" ? "cd_closure3" : "cd_closure4";
     INFO(eq.name);
-    Vec state = filter_state(vars, prior, prior_weights);  // the grid is exact: N(m, P)'s moments
+    Vec state = filter_state(vars, law.prior, law.prior_weights);  // the grid is exact: N(m, P)'s moments
     std::ostringstream values;
     values.precision(17);
     for (double v : state) values << v << ", ";
@@ -387,7 +394,7 @@ TEST_CASE("generated moment filters with samples through a polynomial c: from a 
         "gcc -std=c99 -O2 -Wall -Wextra -Werror -I " + pfgen_test::shell_quote(source_dir) + " " +
             pfgen_test::shell_quote(dir.file("main.c")) + " " + pfgen_test::shell_quote(source_dir + "/" + file + ".c") +
             " -lm -o " + pfgen_test::shell_quote(dir.file("update_c"))};
-    const Vec expected = filter_state(vars, after, after_weights);
+    const Vec expected = filter_state(vars, law.after, law.after_weights);
     for (std::size_t b = 0; b < commands.size(); ++b) {
       INFO(commands[b]);
       const ProcessResult compiled = pfgen_test::run_process(commands[b]);
