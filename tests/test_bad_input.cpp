@@ -209,6 +209,8 @@ const std::vector<BadModel>& bad_models() {
        "'M3_111' is reserved for the moment filters' higher central moments"},
       {"parameter_named_like_a_gain.yaml", "parameters.L11_1", 0, 0, 5,
        "'L11_1' is a name of the printed equations"},
+      {"parameter_named_like_a_joint_moment.yaml", "parameters.Z2_12", 0, 0, 5,
+       "'Z2_12' is a name of the printed sampled update"},
       {"filter_unknown_field.yaml", "filters.mine.Q_drift", 0, 0, 12,
        "unknown field (known: m_drift, P_drift, gain, define, description)"},
       {"filter_unknown_symbol.yaml", "filters.mine.m_drift", 1, 0, 11, "unknown symbol 'm' in '-m'"},

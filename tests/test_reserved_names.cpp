@@ -156,12 +156,13 @@ TEST_CASE("reserved names: names of the printed equations are refused for symbol
   for (const char* name : {"m1", "P12", "dm1", "dP12", "K1_1", "dy1", "dt", "P1_10"})
     CHECK(pfgen::symbol_name_problem(name));
   // The moment filters' state entries (in their generated code too) and their printed names.
-  for (const char* name : {"M3_111", "M4_1122", "M3_1_2_10", "dM3_111", "L11_1", "L3_111_1", "L1_10_2"}) {
+  for (const char* name : {"M3_111", "M4_1122", "M3_1_2_10", "dM3_111", "L11_1", "L3_111_1", "L1_10_2", "Z2_13",
+                           "Z4_1_2_10_11"}) {
     INFO(name);
     CHECK(pfgen::symbol_name_problem(name));
   }
   for (const char* name : {"m", "P", "K", "dy", "dx", "y1", "tau", "t", "mu", "Kp", "M", "M3", "L", "L1", "Lx_1",
-                           "M_a"}) {
+                           "M_a", "Z", "Z2", "Z_a"}) {
     INFO(name);
     CHECK(!pfgen::symbol_name_problem(name));
   }

@@ -443,3 +443,33 @@ initial: {x0: [1, 1, 1], m0: [1, 1, 1], P0: [[0.3, 0, 0], [0, 0.3, 0], [0, 0, 0.
   // Order 3 reads them up to order 24, within the budget.
   CHECK(derive_filter(model, FilterKind::CdClosure3).update.joint.size() == 34);
 }
+
+TEST_CASE("eval of a sampled moment filter refuses a point where S is not positive definite or c has a pole, "
+          "naming what", "[closure][sampled][unit]") {
+  const Model square = load_model_file(pfgen_test::test_data_dir() + "/sampled_square_sensor.yaml");
+  const FilterEquations eq = derive_filter(square, FilterKind::CdClosure4);
+  EvaluationPoint point;
+  point.m = {GiNaC::numeric(1)};
+  point.P = {{GiNaC::numeric(1, 5)}};
+  // S = M4 - P^2 + 4 m^2 P + 4 m M3 + 0.09 = -1 - 0.04 + 0.8 + 0.09 < 0: generated update() returns false there.
+  point.moments["M4_1111"] = GiNaC::numeric(-1);
+  CHECK_THROWS_WITH(evaluate_at(square, eq, point),
+                    Catch::Contains("the innovation covariance S is not positive definite at the point that --m, "
+                                    "--P and --moment give"));
+  // c = x^2 / a at a = 0.
+  const Model pole = load_model_text(R"(name: pole_samples
+states: [x]
+parameters: {a: 0}
+drift: ["-x"]
+diffusion: [["0.5"]]
+observation:
+  sampled: {period: 0.2, c: ["x^2/a"], Uv: [["0.3"]]}
+initial: {x0: [1], m0: [1], P0: [[0.2]]}
+)",
+                                     "pole_samples.yaml");
+  for (FilterKind kind : {FilterKind::CdOptimal, FilterKind::CdClosure3}) {
+    point.moments.clear();
+    CHECK_THROWS_WITH(evaluate_at(pole, derive_filter(pole, kind), point),
+                      Catch::Contains("cannot be computed at this point (a pole of a function"));
+  }
+}

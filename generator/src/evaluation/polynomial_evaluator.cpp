@@ -44,15 +44,24 @@ GiNaC::ex PolynomialEvaluator::exact(const Polynomial& p) const {
   return sum;
 }
 
-double PolynomialEvaluator::operator()(const Polynomial& p, const std::string& what) const {
-  GiNaC::ex value;
+GiNaC::ex PolynomialEvaluator::exact(const Polynomial& p, const std::string& what) const {
   try {
-    value = exact(p);
+    const GiNaC::ex value = exact(p);
+    if (GiNaC::is_a<GiNaC::numeric>(value)) return value;
+    const GiNaC::ex approximate = value.evalf();  // sqrt(2) and the like stay symbolic until evaluated
+    if (!GiNaC::is_a<GiNaC::numeric>(approximate))
+      throw EvaluationError(what + " does not evaluate to a number at this point");
+    return approximate;
+  } catch (const EvaluationError&) {
+    throw;
   } catch (const std::exception&) {  // GiNaC's pole_error for 1/0 or tgamma(-1), CLN's overflow
     throw EvaluationError(what + " cannot be computed at this point (a pole of a function, a division by zero or "
                                  "an overflow)");
   }
-  return rounded(value, what);
+}
+
+double PolynomialEvaluator::operator()(const Polynomial& p, const std::string& what) const {
+  return rounded(exact(p, what), what);
 }
 
 double PolynomialEvaluator::rounded(const GiNaC::ex& exact_value, const std::string& what) {

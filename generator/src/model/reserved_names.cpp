@@ -54,6 +54,11 @@ std::optional<std::string> symbol_name_problem(const std::string& name) {
   static const std::regex update("^(PCt|Pyy)_?[0-9][0-9_]*$");
   if (std::regex_match(name, update))
     return "'" + name + "' is a name of the printed sampled update (PCt11 = (P C^T)11, Pyy11 = (C P C^T + R)11)";
+  // Z2_13, Z3_113: a moment filter's joint moments of x - m and d at a sample through a polynomial c
+  // (observations/sampled/closure_sampled_update.hpp).
+  static const std::regex joint("^Z[0-9]+_[0-9][0-9_]*$");
+  if (std::regex_match(name, joint))
+    return "'" + name + "' is a name of the printed sampled update (Z2_13 = E[(x1 - m1) d1], a joint moment)";
   return std::nullopt;
 }
 

@@ -40,7 +40,9 @@ std::string matrix_lines(const LatexPrinter& printer, const std::string& label, 
     for (std::size_t j = 0; j < m[i].size(); ++j) {
       if (m[i][j].is_zero()) continue;
       const std::string index = vector ? std::to_string(i + 1) : std::to_string(i + 1) + "," + std::to_string(j + 1);
-      lines.push_back(latex_align_lines(name + "_{" + index + "}", printer.print(m[i][j])));
+      // A name with its own subscript (U_v) is braced, so that the entry's is not a second one.
+      const std::string base = name.find('_') == std::string::npos ? name : "{" + name + "}";
+      lines.push_back(latex_align_lines(base + "_{" + index + "}", printer.print(m[i][j])));
     }
   if (lines.empty()) return name + " &= 0";
   std::string out;

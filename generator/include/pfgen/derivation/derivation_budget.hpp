@@ -98,7 +98,10 @@ void check_closure_budget(const Model& model, const ClosureInputs& inputs);
 // each of its joint moments (ascending indices over z = (x - m, d), n + r entries) is the expectation of a product
 // of factors e_i and d_a, whose terms read the closed law's moments up to order k deg c. Counts the products of
 // terms (the product's terms, at most those of the c_a(m + e) it multiplies, times the terms of the largest moment
-// read) and throws ModelError naming observation.sampled.c above kMaxClosureProducts.
+// read) and throws ModelError naming observation.sampled.c above kMaxClosureProducts, or when k deg c is above
+// kMaxSampledMomentOrder.
+// The highest order of the closed law's moments that update may read (k deg c).
+inline constexpr unsigned kMaxSampledMomentOrder = 100;
 void check_closure_samples_budget(const Model& model, unsigned order, const std::string& kind,
                                   const std::vector<Polynomial>& c,
                                   const std::vector<std::vector<std::size_t>>& joint_moments);

@@ -24,6 +24,8 @@ class PolynomialEvaluator {
 
   // The value before rounding: exact where the inputs are.
   GiNaC::ex exact(const Polynomial& p) const;
+  // The same, with an EvaluationError naming `what` where it cannot be computed (a pole, an overflow).
+  GiNaC::ex exact(const Polynomial& p, const std::string& what) const;
   // Rounded; EvaluationError naming `what` when it is not a real, finite number.
   double operator()(const Polynomial& p, const std::string& what) const;
   static double rounded(const GiNaC::ex& exact_value, const std::string& what);

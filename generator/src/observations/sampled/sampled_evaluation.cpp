@@ -21,8 +21,8 @@ void evaluate_moment_update(const FilterEquations& eq, const PolynomialEvaluator
   // C (r x n) and R (r x r) at the point, each entry evaluated once.
   NumericMatrix C(r, std::vector<GiNaC::numeric>(n)), R(r, std::vector<GiNaC::numeric>(r));
   for (unsigned b = 0; b < r; ++b) {
-    for (unsigned j = 0; j < n; ++j) C[b][j] = num(value.exact(u.C[b][j]));
-    for (unsigned c = 0; c < r; ++c) R[b][c] = num(value.exact(u.R[u.upper_index(b, c)]));
+    for (unsigned j = 0; j < n; ++j) C[b][j] = num(value.exact(u.C[b][j], entry_name("C", b, j)));
+    for (unsigned c = 0; c < r; ++c) R[b][c] = num(value.exact(u.R[u.upper_index(b, c)], entry_name("R", b, c)));
   }
   NumericMatrix A(n, std::vector<GiNaC::numeric>(columns)), Q(n, std::vector<GiNaC::numeric>(n, 0));
   for (unsigned i = 0; i < n; ++i) {
@@ -36,7 +36,8 @@ void evaluate_moment_update(const FilterEquations& eq, const PolynomialEvaluator
     for (unsigned b = 0; b < columns - n; ++b) A[i][n + b] = -num(K(i, b));
   }
   std::map<std::vector<std::size_t>, GiNaC::numeric> joint;
-  for (std::size_t q = 0; q < u.joint.size(); ++q) joint.emplace(u.joint_indices[q], num(value.exact(u.joint[q])));
+  for (std::size_t q = 0; q < u.joint.size(); ++q)
+    joint.emplace(u.joint_indices[q], num(value.exact(u.joint[q], "the update's joint moment " + std::to_string(q + 1))));
   auto z = [&](const std::vector<std::size_t>& t) -> GiNaC::numeric {
     if (t.back() >= n) return joint.at(t);
     if (t.size() == 2) return point.P[t[0]][t[1]];
@@ -64,17 +65,25 @@ void evaluate_update(const FilterEquations& eq, const PolynomialEvaluator& value
   out.innovation_covariance.assign(r, std::vector<double>(r));
   for (unsigned a = 0; a < r; ++a)
     for (unsigned b = 0; b < r; ++b) {
-      S(a, b) = value.exact(u.S[u.upper_index(a, b)]);
+      S(a, b) = value.exact(u.S[u.upper_index(a, b)], entry_name("innovation_covariance", a, b));
       out.innovation_covariance[a][b] = PolynomialEvaluator::rounded(S(a, b), entry_name("innovation_covariance", a, b));
     }
   for (unsigned i = 0; i < n; ++i)
-    for (unsigned a = 0; a < r; ++a) PCt(i, a) = value.exact(u.PCt[i][a]);
-  GiNaC::matrix S_inverse;
-  try {
-    S_inverse = S.inverse();
-  } catch (const std::exception&) {
-    throw EvaluationError("the innovation covariance C P C^T + Uv Uv^T is singular at this point");
+    for (unsigned a = 0; a < r; ++a) PCt(i, a) = value.exact(u.PCt[i][a], entry_name("PCt", i, a));
+  // The update needs S positive definite (the generated update() takes its Cholesky factor and returns false
+  // otherwise): with P positive semi-definite it is, but a moment filter's S reads the moments given.
+  for (unsigned k = 1; k <= r; ++k) {
+    GiNaC::matrix leading(k, k);
+    for (unsigned a = 0; a < k; ++a)
+      for (unsigned b = 0; b < k; ++b) leading(a, b) = S(a, b);
+    const GiNaC::ex minor = leading.determinant();
+    if (!GiNaC::is_a<GiNaC::numeric>(minor) || !GiNaC::ex_to<GiNaC::numeric>(minor).is_positive())
+      throw EvaluationError("the innovation covariance S is not positive definite at the point that --m, --P and --moment give (its leading " +
+                            std::to_string(k) + " x " + std::to_string(k) +
+                            " minor is not positive): the update is undefined there, and the generated update() "
+                            "returns false");
   }
+  const GiNaC::matrix S_inverse = S.inverse();
   const GiNaC::matrix K = PCt.mul(S_inverse);
   out.gain.assign(n, std::vector<double>(r));
   for (unsigned i = 0; i < n; ++i)
