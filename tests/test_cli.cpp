@@ -393,7 +393,7 @@ TEST_CASE("eval of the sampled examples matches the hand-computed prediction and
       CHECK(j.keys() == std::vector<std::string>{"model", "filter", "prediction", "update"});
     } else {
       CHECK(j.keys() == std::vector<std::string>{"model", "filter", "prediction", "update", "moments", "moment_drift",
-                                                 "moments_after_update"});
+                                                 "P_after_update", "moments_after_update"});
       const std::vector<double> drift = numbers(j["moment_drift"]), after = numbers(j["moments_after_update"]);
       REQUIRE(drift.size() == c.moment_drift.size());
       REQUIRE(after.size() == c.moments_after_update.size());

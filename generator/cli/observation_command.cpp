@@ -43,9 +43,10 @@ void add_moment_eval_json(const EvaluatedFilter& value, Json& out) {
   out.add("moments", names);
   out.add("moment_drift", values_json(value.moment_drift));
   // A sampled moment filter has no dy terms; its moments change at each sample instead.
-  if (!value.moments_after_update.empty())
+  if (!value.moments_after_update.empty()) {
+    out.add("P_after_update", values_json(value.P_after_update));
     out.add("moments_after_update", values_json(value.moments_after_update));
-  else
+  } else
     out.add("moment_gain", values_json(value.moment_gain));
 }
 

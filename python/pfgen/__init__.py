@@ -282,8 +282,8 @@ class Filter:
         "delayed_inputs"); a polynomial observation's or a moment filter's P_gain (p x n x n: dP's
         coefficients of dy_r - predicted_observation_r dt); a moment filter's "moments" (their
         names, a list), "moment_drift" (one per moment) and "moment_gain" (one row of p per moment),
-        or for a sampled one (cd-closure3, cd-closure4) "moments_after_update" (after an update at the
-        point) in place of "moment_gain"."""
+        or for a sampled one (cd-closure3, cd-closure4) "P_after_update" and "moments_after_update"
+        (after an update at the point) in place of "moment_gain"."""
         values = _parameters(parameters)
         values.update(_parameters(more_parameters))
         native = self._native.eval(

@@ -81,6 +81,7 @@ Evaluation Filter::eval(const Point& point) const {
     out.moment_names = value.moment_names;
     out.moment_drift = value.moment_drift;
     out.moment_gain = value.moment_gain;
+    out.P_after_update = value.P_after_update;
     out.moments_after_update = value.moments_after_update;
     return out;
   });

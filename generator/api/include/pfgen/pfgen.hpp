@@ -84,8 +84,9 @@ struct Evaluation {
   std::vector<std::string> moment_names;
   Vector moment_drift;
   Matrix moment_gain;
-  // A sampled moment filter's (cd-closure3, cd-closure4) higher moments after an update at the point: eval's
-  // "moments_after_update" (empty for the other filters).
+  // A sampled moment filter's (cd-closure3, cd-closure4) P and higher moments after an update at the point:
+  // eval's "P_after_update" and "moments_after_update" (empty for the other filters).
+  Matrix P_after_update;
   Vector moments_after_update;
 };
 

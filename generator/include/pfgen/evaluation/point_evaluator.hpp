@@ -50,7 +50,9 @@ struct EvaluatedFilter {
   std::vector<std::string> moment_names;
   std::vector<double> moment_drift;
   std::vector<std::vector<double>> moment_gain;
-  // Sampled moment filters only (cd-closure3, cd-closure4): the higher moments after an update at the point.
+  // Sampled moment filters only (cd-closure3, cd-closure4): P (n x n) and the higher moments after an update at
+  // the point.
+  std::vector<std::vector<double>> P_after_update;
   std::vector<double> moments_after_update;
 };
 

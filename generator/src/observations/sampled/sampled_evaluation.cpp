@@ -44,6 +44,10 @@ void evaluate_moment_update(const FilterEquations& eq, const PolynomialEvaluator
     return central_moment_value(vars, point, vars.higher_moment(t));
   };
   const MomentsAfterUpdate after = updated_moments(vars, A, z, Q);
+  out.P_after_update.assign(n, std::vector<double>(n));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      out.P_after_update[i][j] = PolynomialEvaluator::rounded(after.P[i][j], entry_name("P_after_update", i, j));
   for (std::size_t q = 0; q < after.higher.size(); ++q)
     out.moments_after_update.push_back(PolynomialEvaluator::rounded(
         after.higher[q], vars.text_name(vars.first_higher_moment() + static_cast<std::uint32_t>(q)) + " after the update"));

@@ -6,8 +6,9 @@
 //   x+ - m+ = A e - K d - K v = Abar z - K v,   A = I - K C,   Abar = [A, -K],   z = (e, d),
 // and every central moment of x+ is a contraction of z's joint central moments with Abar, plus v's terms: the linear
 // update's formulas (sampled_moment_update.hpp) with A replaced by Abar and the moments of e by those of z,
-// P+ = Abar Z2 Abar^T + K R K^T included. The Joseph form cannot hold P+ here: under a non-Gaussian law
-// Cov(x, c) = P C^T + Cov(e, d), and Cov(e, d) is not zero.
+// P+ = Abar Z2 Abar^T + K R K^T included. cd-optimal's Joseph form (C = E[J_c], R_c) does not give P+ here: under
+// a non-Gaussian law Cov(x, c) = P C^T + Cov(e, d), and Cov(e, d) is not zero (a Joseph form with the slope
+// Cov(c, x) P^-1 would, but the higher moments need z's anyway).
 //
 // The derivation returns z's joint moments that are not the filter's own (an index of d among the indices), each a
 // polynomial in the filter variables (ClosedExpectation); the gain's parts, the predicted sample E[c], C and R.
