@@ -48,7 +48,7 @@ double record_log_likelihood(const pfgen_runtime::RecordFilter& filter, const Re
                           ": " + e.what());
     }
     if (!ok) {
-      why = record.line_word + " " + std::to_string(record.lines[row]) + " of the record: " + run.failure();
+      why = record.place(row) + ": the filter '" + run.filter_name() + "' failed: " + run.failure();
       return std::nan("");
     }
   }

@@ -143,6 +143,7 @@ Record read_record(const RecordJobOptions& options, const RecordJob& job) {
   Record record;
   record.p = source->observation_columns().size();
   record.line_word = source->line_word();
+  record.path = source->path();
   std::vector<double> row(record.p);
   double t = 0;
   while (source->next(t, row.data())) {
