@@ -128,6 +128,15 @@ TEST_CASE("estimate and fit refuse bad options and data with one clear line", "[
   fails_with({"estimate", model, "--data", data, "--time-column", "year", "-o", model}, "-o");
   fails_with({"estimate", model, "--data", data, "--time-column", "year", "--plot", dir.file("p.png")},
              "--plot: the plot reads the CSV; give -o FILE.csv too");
+  // A last sample too far off to score would print a log-likelihood of -inf; fit names the file and line too.
+  write_file(dir.file("far.csv"), "year,volume\n1871,1120\n1872,1160\n1873,1e308\n");
+  fails_with({"estimate", model, "--data", dir.file("far.csv"), "--time-column", "year"},
+             "far.csv:4: the filter 'cd-optimal' failed: the observation is too far from its prediction to score in "
+             "double precision at t = 1873");
+  fails_with({"fit", model, "--data", dir.file("far.csv"), "--time-column", "year", "--estimate", "q"},
+             "the log-likelihood is not finite at the start: ");
+  fails_with({"fit", model, "--data", dir.file("far.csv"), "--time-column", "year", "--estimate", "q"},
+             "far.csv:4: the filter 'cd-optimal' failed");
 }
 
 TEST_CASE("estimate writes no CSV when the record fails part way", "[record][compiler]") {

@@ -59,6 +59,13 @@ std::string at_time(double t) {
   return text;
 }
 
+// An observation whose whitened innovation squares beyond double precision (1e308 against a prediction near 1)
+// would score -inf: a failure at its row, not a log-likelihood.
+std::string too_far(double t) {
+  return "the observation is too far from its prediction to score in double precision " + at_time(t) +
+         " (its whitened innovation squared is not finite)";
+}
+
 }  // namespace
 
 RecordProgress::RecordProgress(std::size_t n, std::size_t p, std::size_t r, std::size_t state_size,
@@ -138,6 +145,7 @@ bool RecordSamples::predict_and_update(RecordProgress& run, double t, const doub
   for (std::size_t i = 0; i < p; ++i) run.innovation[i] = y[i] - run.yhat[i];
   if (!cholesky(run.S.data(), p)) return run.fail("the innovation covariance S is not positive definite " + at_time(t));
   const double square = whitened_square(run.S.data(), p, run.innovation.data(), run.normalized.data());
+  if (!std::isfinite(square)) return run.fail(too_far(t));
   run.scores.add(run.normalized.data(),
                  -0.5 * (static_cast<double>(p) * kLogTwoPi + log_determinant(run.S.data(), p) + square));
   if (!update_(run.state.data(), run.values.data(), t, y))
@@ -241,6 +249,7 @@ bool RecordIncrements::score_and_step(RecordProgress& run, double t, const doubl
   // Girsanov: h^T R^-1 dy - 1/2 h^T R^-1 h dt = (|L^-1 dy|^2 - |L^-1 (dy - h dt)|^2) / (2 dt), R = L L^T.
   const double dy_square = whitened_square(run.R.data(), p, run.dy.data(), run.whitened.data());
   const double innovation_square = whitened_square(run.R.data(), p, run.innovation.data(), run.whitened.data());
+  if (!std::isfinite(square) || !std::isfinite(dy_square - innovation_square)) return run.fail(too_far(t));
   run.scores.add(run.normalized.data(), (dy_square - innovation_square) / (2 * interval));
   run.observed = true;
   for (std::size_t i = 0; i < p; ++i) run.dy[i] /= static_cast<double>(run.options.substeps);
