@@ -106,6 +106,9 @@ const ObservationCode& sampled_observation_code() {
 }
 
 void add_sample_meanings(std::map<std::string, std::string>& values, const SampledUpdate& update) {
+  // The file's first line: C0 + C x's words for every filter but a moment filter's through a polynomial c (the
+  // Gaussian kinds' files keep them, unchanged).
+  values["samples_equation"] = update.closed_law ? "c(x(t_k)) + Uv v_k" : "C0 + C x(t_k) + Uv v_k";
   values["innovation_terms_meaning"] = "P C^T (n x p, row-major), S = C P C^T + Uv Uv^T (upper triangle, row by row)";
   values["covariance_update"] = "P = (Id - K C) P (Id - K C)^T + K R K^T, Id the identity (Joseph form: P stays symmetric "
                                 "and positive\n// semi-definite under rounding)";
