@@ -64,9 +64,7 @@ struct Record {
   std::string line_word = "line";  // what `lines` counts, in messages: "line" or "row"
   std::string path;                // the record's name in messages: the file's path, or the arrays' name
   // Row `row` as a message places it, as the record's source does: "nile.csv:12", "<data> row 3".
-  std::string place(std::size_t row) const {
-    return line_word == "line" ? path + ":" + std::to_string(lines[row]) : path + " row " + std::to_string(lines[row]);
-  }
+  std::string place(std::size_t row) const { return pfgen_runtime::record_place(path, line_word, lines[row]); }
   std::size_t p = 0;
 };
 Record read_record(const RecordJobOptions& options, const RecordJob& job);

@@ -353,6 +353,18 @@ Exponents minus_one(Exponents a, std::uint32_t state) {
   return a;
 }
 
+// e^a e^b as one exponent list (both sorted by state): a state in both is one factor.
+Exponents merged(const Exponents& a, const Exponents& b) {
+  Exponents g;
+  std::merge(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(g));
+  for (std::size_t k = 1; k < g.size(); ++k)
+    if (g[k].first == g[k - 1].first) {
+      g[k - 1].second += g[k].second;
+      g.erase(g.begin() + static_cast<std::ptrdiff_t>(k--));
+    }
+  return g;
+}
+
 // The terms m^c e^d of q(m + e), grouped by d: each monomial x^alpha gives one for every d <= alpha,
 // so d's count is the number of q's monomials above it.
 std::vector<std::pair<Exponents, double>> deviation_parts(const Polynomial& q) {
@@ -391,15 +403,8 @@ class ClosureCount {
   // of the recursion that computes E[e^(b+d)] the first time. The first part bounds E[e^b q]'s terms.
   double expectation(const Exponents& b, const std::vector<std::pair<Exponents, double>>& q) {
     double products = 0;
-    Exponents g;
     for (const auto& [d, count] : q) {
-      g.clear();
-      std::merge(b.begin(), b.end(), d.begin(), d.end(), std::back_inserter(g));
-      for (std::size_t k = 1; k < g.size(); ++k)  // a state in both: one factor
-        if (g[k].first == g[k - 1].first) {
-          g[k - 1].second += g[k].second;
-          g.erase(g.begin() + static_cast<std::ptrdiff_t>(k--));
-        }
+      const Exponents g = merged(b, d);
       products += count * moment(g) + recursion(g);
     }
     return products;
@@ -612,30 +617,24 @@ void check_closure_samples_budget(const Model& model, unsigned order, const std:
     for (const auto& [d, count] : deviation_parts(c[a])) factor[n + a][d] += count;
     degree = std::max(degree, c[a].degree());
   }
-  auto merged = [](const Exponents& a, const Exponents& b) {
-    Exponents g;
-    std::merge(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(g));
-    for (std::size_t k = 1; k < g.size(); ++k)  // a state in both: one factor
-      if (g[k].first == g[k - 1].first) {
-        g[k - 1].second += g[k].second;
-        g.erase(g.begin() + static_cast<std::ptrdiff_t>(k--));
-      }
-    return g;
+  // One line naming the field: what the update reads with this c, why it is refused, what to use instead.
+  auto refuse = [&](const std::string& why, const std::string& instead) {
+    ModelError error("observation.sampled.c",
+                     "filter " + kind + " updates each sample from the joint moments of x - m and c of orders up to " +
+                         std::to_string(order) + ", which with c of degree " + std::to_string(degree) + why + "; use " +
+                         (order > 3 ? "cd-closure" + std::to_string(order - 1) + (instead.empty() ? " or " : ", ")
+                                    : std::string()) +
+                         (instead.empty() ? "a c of lower degree" : instead));
+    error.set_file(model.source);
+    throw error;
   };
   // A single state's high power costs more per product than the count says (its coefficients are binomials of
   // many digits, its closed moments long): x^48 under cd-closure3 takes 8 s and 1.7 GB for 1.6 million products.
   // So the order of the moments read is capped as well (x^32 under cd-closure3: 1.2 s, 270 MB).
-  if (order * degree > kMaxSampledMomentOrder) {
-    ModelError error("observation.sampled.c",
-                     "filter " + kind + " updates each sample from the joint moments of x - m and c of orders up to " +
-                         std::to_string(order) + ", which with c of degree " + std::to_string(degree) +
-                         " read the closed law's moments up to order " + std::to_string(order * degree) + " (limit " +
-                         std::to_string(kMaxSampledMomentOrder) + "); use " +
-                         (order > 3 ? "cd-closure" + std::to_string(order - 1) + " or " : std::string()) +
-                         "a c of lower degree");
-    error.set_file(model.source);
-    throw error;
-  }
+  if (order * degree > kMaxSampledMomentOrder)
+    refuse(" read the closed law's moments up to order " + std::to_string(order * degree) + " (limit " +
+               std::to_string(kMaxSampledMomentOrder) + ")",
+           "");
   ClosureCount count(order, stop_above);
   double work = 0;
   for (const auto& t : joint_moments) {
@@ -657,16 +656,10 @@ void check_closure_samples_budget(const Model& model, unsigned order, const std:
     if (work > stop_above) break;
   }
   if (work <= kMaxClosureProducts) return;
-  ModelError error("observation.sampled.c",
-                   "filter " + kind + " updates each sample from the joint moments of x - m and c of orders up to " +
-                       std::to_string(order) + ", which with c of degree " + std::to_string(degree) + " would take " +
-                       (work > stop_above ? "more than " + count_text(stop_above) : "up to " + count_text(work)) +
-                       " products of terms (limit " + count_text(kMaxClosureProducts) +
-                       "; they read the closed law's moments up to order " + std::to_string(order * degree) + "); use " +
-                       (order > 3 ? "cd-closure" + std::to_string(order - 1) + ", " : std::string()) +
-                       "fewer states or a c with fewer terms or of lower degree");
-  error.set_file(model.source);
-  throw error;
+  refuse(" would take " + (work > stop_above ? "more than " + count_text(stop_above) : "up to " + count_text(work)) +
+             " products of terms (limit " + count_text(kMaxClosureProducts) +
+             "; they read the closed law's moments up to order " + std::to_string(order * degree) + ")",
+         "fewer states or a c with fewer terms or of lower degree");
 }
 
 }  // namespace pfgen

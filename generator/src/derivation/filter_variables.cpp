@@ -10,21 +10,27 @@ namespace pfgen {
 
 namespace {
 
-// Every ascending index list of `order` indices below n, in lexicographic order.
-void ascending_indices(std::size_t n, std::size_t order, std::vector<std::size_t>& prefix,
-                       std::vector<std::vector<std::size_t>>& out) {
+void append_ascending(std::size_t n, std::size_t order, std::vector<std::size_t>& prefix,
+                      std::vector<std::vector<std::size_t>>& out) {
   if (prefix.size() == order) {
     out.push_back(prefix);
     return;
   }
   for (std::size_t i = prefix.empty() ? 0 : prefix.back(); i < n; ++i) {
     prefix.push_back(i);
-    ascending_indices(n, order, prefix, out);
+    append_ascending(n, order, prefix, out);
     prefix.pop_back();
   }
 }
 
 }  // namespace
+
+std::vector<std::vector<std::size_t>> ascending_indices(std::size_t n, std::size_t order) {
+  std::vector<std::vector<std::size_t>> out;
+  std::vector<std::size_t> prefix;
+  append_ascending(n, order, prefix, out);
+  return out;
+}
 
 FilterVariables::FilterVariables(std::size_t n, bool delayed, std::size_t order)
     : n_(n), delayed_(delayed), order_(order), text_names_(filter_variable_names(n)) {
@@ -37,10 +43,8 @@ FilterVariables::FilterVariables(std::size_t n, bool delayed, std::size_t order)
       P_entries_.emplace_back(i, j);
     }
   }
-  for (std::size_t r = 3; r <= order; ++r) {
-    std::vector<std::size_t> prefix;
-    ascending_indices(n, r, prefix, moments_);
-  }
+  for (std::size_t r = 3; r <= order; ++r)
+    for (auto& indices : ascending_indices(n, r)) moments_.push_back(std::move(indices));
   for (const auto& indices : moments_) {
     text_names_.push_back(pfgen_support::central_moment_name(indices, n));
     latex_names_.push_back(pfgen_support::central_moment_latex_name(indices, n));

@@ -45,19 +45,17 @@ GiNaC::ex PolynomialEvaluator::exact(const Polynomial& p) const {
 }
 
 GiNaC::ex PolynomialEvaluator::exact(const Polynomial& p, const std::string& what) const {
+  GiNaC::ex value;
   try {
-    const GiNaC::ex value = exact(p);
-    if (GiNaC::is_a<GiNaC::numeric>(value)) return value;
-    const GiNaC::ex approximate = value.evalf();  // sqrt(2) and the like stay symbolic until evaluated
-    if (!GiNaC::is_a<GiNaC::numeric>(approximate))
-      throw EvaluationError(what + " does not evaluate to a number at this point");
-    return approximate;
-  } catch (const EvaluationError&) {
-    throw;
+    value = exact(p);
+    if (!GiNaC::is_a<GiNaC::numeric>(value)) value = value.evalf();  // sqrt(2) and the like stay symbolic till then
   } catch (const std::exception&) {  // GiNaC's pole_error for 1/0 or tgamma(-1), CLN's overflow
     throw EvaluationError(what + " cannot be computed at this point (a pole of a function, a division by zero or "
                                  "an overflow)");
   }
+  if (!GiNaC::is_a<GiNaC::numeric>(value))
+    throw EvaluationError(what + " does not evaluate to a real number at this point");
+  return value;
 }
 
 double PolynomialEvaluator::operator()(const Polynomial& p, const std::string& what) const {

@@ -23,7 +23,7 @@ class RecordArrays : public RecordSource {
   std::size_t line() const override { return row_; }
   const char* line_word() const override { return "row"; }
   const std::string& path() const override { return name_; }
-  std::string place() const override { return name_ + " row " + std::to_string(row_); }
+  std::string place() const override { return record_place(name_, line_word(), row_); }
   const std::vector<std::string>& observation_columns() const override { return columns_.names; }
   const std::string& time_column() const override { return header_[columns_.time_index]; }
 

@@ -27,7 +27,7 @@ class RecordReader : public RecordSource {
   std::size_t line() const override { return line_; }
   const char* line_word() const override { return "line"; }
   const std::string& path() const override { return path_; }
-  std::string place() const override { return path_ + ":" + std::to_string(line_); }
+  std::string place() const override { return record_place(path_, line_word(), line_); }
   const std::vector<std::string>& observation_columns() const override { return names_; }
   const std::string& time_column() const override { return time_name_; }
 

@@ -18,6 +18,12 @@ class RecordError : public pfgen_support::Error {
   using pfgen_support::Error::Error;
 };
 
+// A row as messages place it: "nile.csv:12" for a file's line, "<data> row 3" for the arrays' row (`line_word`
+// "line" or "row", as RecordSource::line_word).
+inline std::string record_place(const std::string& name, const std::string& line_word, std::size_t line) {
+  return line_word == "line" ? name + ":" + std::to_string(line) : name + " " + line_word + " " + std::to_string(line);
+}
+
 class RecordSource {
  public:
   virtual ~RecordSource() = default;

@@ -20,6 +20,10 @@
 
 namespace pfgen {
 
+// Every ascending list of `order` indices below n (i <= j <= ...), in lexicographic order: the higher moments'
+// indices at each order, and a sampled moment filter's joint moments'.
+std::vector<std::vector<std::size_t>> ascending_indices(std::size_t n, std::size_t order);
+
 class FilterVariables {
  public:
   explicit FilterVariables(std::size_t n = 0, bool delayed = false, std::size_t order = 2);

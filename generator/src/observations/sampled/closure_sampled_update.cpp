@@ -6,31 +6,12 @@
 #include "pfgen/derivation/derivation_budget.hpp"
 
 namespace pfgen {
-namespace {
-
-void ascending(std::size_t N, std::size_t order, std::vector<std::size_t>& prefix,
-               std::vector<std::vector<std::size_t>>& out) {
-  if (prefix.size() == order) {
-    out.push_back(prefix);
-    return;
-  }
-  for (std::size_t i = prefix.empty() ? 0 : prefix.back(); i < N; ++i) {
-    prefix.push_back(i);
-    ascending(N, order, prefix, out);
-    prefix.pop_back();
-  }
-}
-
-}  // namespace
 
 std::vector<std::vector<std::size_t>> joint_moment_indices(std::size_t n, std::size_t r, std::size_t order) {
-  std::vector<std::vector<std::size_t>> all, out;
-  for (std::size_t k = 2; k <= order; ++k) {
-    std::vector<std::size_t> prefix;
-    ascending(n + r, k, prefix, all);
-  }
-  for (auto& t : all)
-    if (t.back() >= n) out.push_back(std::move(t));
+  std::vector<std::vector<std::size_t>> out;
+  for (std::size_t k = 2; k <= order; ++k)
+    for (auto& t : ascending_indices(n + r, k))
+      if (t.back() >= n) out.push_back(std::move(t));
   return out;
 }
 
