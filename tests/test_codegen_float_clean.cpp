@@ -365,6 +365,11 @@ TEST_CASE("float codegen refuses a constant beyond float's range instead of writ
   CHECK(r.exit_code != 0);
   CHECK(r.err.find("out of the range of float") != std::string::npos);
   CHECK(!fs::exists(dir.file("out/huge")));
+  // The advice holds in every language: C and Rust have no template scalar.
+  ProcessResult as_c = run_pfgen({"codegen", dir.file("huge.yaml"), "-o", dir.file("out"), "--language", "c", "--scalar", "float"});
+  CHECK(as_c.exit_code != 0);
+  CHECK(as_c.err.find("use --scalar double") != std::string::npos);
+  CHECK(as_c.err.find("template") == std::string::npos);
   ProcessResult as_double = run_pfgen({"codegen", dir.file("huge.yaml"), "-o", dir.file("out"), "--scalar", "double"});
   INFO(as_double.err);
   CHECK(as_double.exit_code == 0);

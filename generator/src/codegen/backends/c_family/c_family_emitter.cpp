@@ -45,7 +45,7 @@ std::string CFamilyEmitter::literal(const GiNaC::numeric& value) const {
                        "equations' numbers in range");
   if (mode_ == ScalarMode::Float && !std::isfinite(static_cast<float>(d)))
     throw CodegenError("the constant " + shortest_double(d) +
-                       " is out of the range of float (above 3.4e38 in magnitude); use --scalar double or template");
+                       " is out of the range of float (above 3.4e38 in magnitude); use --scalar double");
   // Nor may a nonzero constant become 0 unnoticed: below float's (or double's) range it would,
   // which changes the equations rather than rounding them. GiNaC gives no subnormal doubles
   // (1e-310 becomes 0), so double's limit is the smallest normal one.
@@ -55,7 +55,7 @@ std::string CFamilyEmitter::literal(const GiNaC::numeric& value) const {
   if (mode_ == ScalarMode::Float && d != 0 && static_cast<float>(d) == 0.0f)
     throw CodegenError("the constant " + shortest_double(d) +
                        " is below the smallest positive float (1.4e-45 in magnitude) and would be 0; use --scalar "
-                       "double or template");
+                       "double");
   std::string text;
   switch (mode_) {
     case ScalarMode::Float: text = with_point(shortest_float(static_cast<float>(d))) + "f"; break;
