@@ -114,6 +114,10 @@ TEST_CASE("polynomial observation: what the model file refuses", "[observation][
   CHECK(refusal("{h: [\"x*y\"], B: [[0]]}") ==
         "m.yaml:5:31: error: field 'observation.B', row 1: row is zero at the parameter defaults and t = 0, so "
         "observation 1 has no noise and B B^T is not positive definite");
+  // Not zero, but 1e-600 is 0 in double: said so, not called zero.
+  CHECK(refusal("{h: [\"x*y\"], B: [[1e-300]]}") ==
+        "m.yaml:5:31: error: field 'observation.B', row 1: row is too small: its squared norm is 0 in double at the "
+        "parameter defaults and t = 0, so observation 1 has no noise and B B^T is not positive definite");
   CHECK(refusal("{h: [\"x*y + x^2\"], B: [[2]]}") == "accepted");
 }
 

@@ -244,6 +244,7 @@ void require_positive_definite_noise(const Model& model, const ExMatrix& N, cons
   const std::string NNt = name + " " + name + "^T";
   Eigen::MatrixXd R(p, p);
   ExMatrix Rsym = multiply_by_transpose(N);
+  std::vector<bool> exact_zero_diagonal(p, false);
   for (std::size_t i = 0; i < p; ++i)
     for (std::size_t j = 0; j < p; ++j) {
       GiNaC::ex value = at_defaults(model, Rsym[i][j]);
@@ -251,11 +252,15 @@ void require_positive_definite_noise(const Model& model, const ExMatrix& N, cons
         throw ModelError(field, NNt + " entry (" + std::to_string(i + 1) + "," + std::to_string(j + 1) +
                                     ") is not a real number at the parameter defaults");
       R(i, j) = GiNaC::ex_to<GiNaC::numeric>(value).to_double();
+      if (i == j) exact_zero_diagonal[i] = value.is_zero();
     }
   for (std::size_t i = 0; i < p; ++i)
     if (R(i, i) <= 0)
+      // A row of tiny entries (1e-300) is not zero, but its squared norm is 0 in double.
       throw ModelError(field,
-                       "row is zero at the parameter defaults and t = 0, so observation " + std::to_string(i + 1) +
+                       std::string(exact_zero_diagonal[i] ? "row is zero"
+                                                          : "row is too small: its squared norm is 0 in double") +
+                           " at the parameter defaults and t = 0, so observation " + std::to_string(i + 1) +
                            " has no noise and " + NNt + " is not positive definite",
                        one_based(i));
   Eigen::LLT<Eigen::MatrixXd> cholesky(R);
