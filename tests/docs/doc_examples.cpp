@@ -242,7 +242,7 @@ int run_page(const Options& options, const std::string& page) {
   const fs::path scratch = options.work / page_slug(page);
   fs::remove_all(scratch);
   fs::create_directories(scratch);
-  for (const char* shared : {"examples", "tests", "scripts", "docs"})
+  for (const char* shared : {"examples", "tests", "scripts", "docs", "benchmarks"})
     fs::create_directory_symlink(options.source / shared, scratch / shared);
   if (!options.build.empty()) fs::create_directory_symlink(fs::absolute(options.build), scratch / "build");
 
