@@ -245,6 +245,53 @@ TEST_CASE("a moment filter over a record fails where its moments leave the reali
   CHECK_THAT(ran.out, Contains("closure4 ") && Contains("passes: consistent and white"));
 }
 
+TEST_CASE("fit of a moment filter says where its likelihood ends: a profile interval's end at the filter's edge, "
+          "an estimate at that edge", "[record][compiler]") {
+  // The double well's record (tests/record_data/make_double_well_record.py): closure4 leaves its realisable set
+  // for a small enough noise s, so the log-likelihood stops existing there. Beyond that edge nothing is inside
+  // a likelihood interval, and an estimate against it is no maximum.
+  TempDir dir;
+  const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/reference/double_well.yaml";
+  const std::string record = std::string(PFGEN_SOURCE_DIR) + "/tests/data/double_well_increments.csv";
+  std::istringstream lines(pfgen_test::read_file(record));
+  std::string first_rows, line;
+  for (int k = 0; k < 302 && std::getline(lines, line); ++k) first_rows += line + "\n";
+  write_file(dir.file("dw.csv"), first_rows);
+  const std::string cache = "--cache-dir=" + dir.file("cache");
+  const auto profiled = pfgen_test::run_pfgen({"fit", model, "--data", dir.file("dw.csv"), "--filter", "closure4",
+                                               "--estimate", "s", "--bounds", "s=0.1:2", "--profile", "-o",
+                                               dir.file("fit.json"), cache, "-q"});
+  INFO(profiled.out << profiled.err);
+  REQUIRE(profiled.exit_code == 0);
+  CHECK_THAT(profiled.out, Contains(" (the filter fails beyond), 2 (bound)]"));
+  const std::string json = pfgen_test::read_file(dir.file("fit.json"));
+  CHECK_THAT(json, Contains("\"profile_filter_fails_beyond\": [true, false]"));
+  // The end is the edge, found independently by estimate: 1 % below it the filter fails, 1 % above it runs.
+  const std::size_t at = json.find("\"profile\": [") + 12;
+  const double low = std::stod(json.substr(at));
+  REQUIRE(low > 0.1);
+  auto run_at = [&](double s) {
+    return pfgen_test::run_pfgen({"estimate", model, "--data", dir.file("dw.csv"), "--filters", "closure4", "--set",
+                                  "s=" + std::to_string(s), cache, "-q"});
+  };
+  const auto below = run_at(0.99 * low);
+  CHECK(below.exit_code == 1);
+  CHECK_THAT(below.err, Contains("moments left the realisable set"));
+  CHECK(run_at(1.01 * low).exit_code == 0);
+
+  // Three parameters on the whole record: the optimiser stops against the edge; the report says so, names the
+  // failing neighbour and gives no standard errors rather than calling the information not positive definite.
+  const auto edge = pfgen_test::run_pfgen({"fit", model, "--data", record, "--filter", "closure4", "--estimate",
+                                           "s,c,r", "-o", dir.file("edge.json"), cache, "-q"});
+  INFO(edge.out << edge.err);
+  REQUIRE(edge.exit_code == 0);
+  CHECK_THAT(edge.out, Contains("the estimate is at the edge of where the filter runs, not at a maximum: the "
+                                "log-likelihood cannot be evaluated next to it, at s = ") &&
+                           Contains("the filter 'closure4' failed: its moments left the realisable set") &&
+                           Contains("; no standard errors"));
+  CHECK_THAT(pfgen_test::read_file(dir.file("edge.json")), Contains("\"at_edge_of_filter\": true"));
+}
+
 TEST_CASE("the sampled moment filters over the Nile record are the Kalman filter's, log-likelihood and all",
           "[record][compiler]") {
   // A random walk sampled with Gaussian noise from a Gaussian prior: the law stays Gaussian, so cd-closure3 and

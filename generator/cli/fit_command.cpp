@@ -208,8 +208,12 @@ FitOutcome fit(const FitOptions& options) {
     out += line;
     for (const FittedParameter& p : r.parameters) {
       const std::string wald = "[" + cell(p.wald_low) + ", " + cell(p.wald_high) + "]";
-      const std::string profile = "[" + cell(p.profile_low) + (p.profile_low_is_bound ? " (bound)" : "") + ", " +
-                                  cell(p.profile_high) + (p.profile_high_is_bound ? " (bound)" : "") + "]";
+      auto end_note = [](bool is_bound, bool is_edge) {
+        return std::string(is_bound ? " (bound)" : is_edge ? " (the filter fails beyond)" : "");
+      };
+      const std::string profile = "[" + cell(p.profile_low) + end_note(p.profile_low_is_bound, p.profile_low_is_edge) +
+                                  ", " + cell(p.profile_high) +
+                                  end_note(p.profile_high_is_bound, p.profile_high_is_edge) + "]";
       std::snprintf(line, sizeof line, "%-12s %14s %14s %29s%s%s\n", p.name.c_str(), cell(p.estimate).c_str(),
                     cell(p.std_error).c_str(), wald.c_str(),
                     options.profile ? ("  " + std::string(29 - std::min<std::size_t>(29, profile.size()), ' ') + profile).c_str() : "",
@@ -235,11 +239,17 @@ FitOutcome fit(const FitOptions& options) {
             ", \"estimate\": " + json_number(p.estimate) + ", \"std_error\": " + json_number(p.std_error) +
             ", \"wald\": [" + json_number(p.wald_low) + ", " + json_number(p.wald_high) + "], \"profile\": [" +
             json_number(p.profile_low) + ", " + json_number(p.profile_high) + "], \"profile_at_bound\": [" +
-            (p.profile_low_is_bound ? "true" : "false") + ", " + (p.profile_high_is_bound ? "true" : "false") +
-            "], \"at_bound\": " +
-            (p.at_bound ? "true" : "false") + "}";
+            (p.profile_low_is_bound ? "true" : "false") + ", " + (p.profile_high_is_bound ? "true" : "false") + "]" +
+            // Only where an end is an edge of the filter's region, so that other fits' files are as before.
+            (p.profile_low_is_edge || p.profile_high_is_edge
+                 ? std::string(", \"profile_filter_fails_beyond\": [") + (p.profile_low_is_edge ? "true" : "false") +
+                       ", " + (p.profile_high_is_edge ? "true" : "false") + "]"
+                 : std::string()) +
+            ", \"at_bound\": " + (p.at_bound ? "true" : "false") + "}";
   }
-  json += "\n  ]\n}\n";
+  json += "\n  ]";
+  if (r.at_edge) json += ",\n  \"at_edge_of_filter\": true,\n  \"note\": " + json_quote(r.information_note);
+  json += "\n}\n";
   return outcome;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 
@@ -181,11 +182,21 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
   Eigen::MatrixXd H(k, k);
   std::vector<double> h(k);
   for (std::size_t i = 0; i < k; ++i) h[i] = 1e-4 * std::max(1.0, std::abs(best.u[i]));
+  std::string edge;  // the first neighbour where the filter fails, and why
   auto f_at = [&](std::size_t i, double di, std::size_t j, double dj) {
     std::vector<double> x = best.u;
     x[i] += di;
     x[j] += dj;
-    return scaled.value(x.data());
+    const double value = scaled.value(x.data());
+    if (!std::isfinite(value) && edge.empty()) {
+      for (std::size_t q = 0; q < k; ++q) {
+        char value_text[32];
+        std::snprintf(value_text, sizeof value_text, "%.6g", x[q] * scaled.scale[q]);
+        edge += (q ? ", " : "") + problem.names[q] + " = " + value_text;
+      }
+      edge += " (" + scaled.why + ")";
+    }
+    return value;
   };
   for (std::size_t i = 0; i < k; ++i)
     for (std::size_t j = i; j < k; ++j) {
@@ -200,7 +211,11 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
   Eigen::LLT<Eigen::MatrixXd> llt(information);
   const bool has_errors = information.allFinite() && llt.info() == Eigen::Success;
   Eigen::MatrixXd covariance;
-  if (has_errors)
+  out.at_edge = !edge.empty();
+  if (out.at_edge)
+    out.information_note = "the estimate is at the edge of where the filter runs, not at a maximum: the log-likelihood "
+                           "cannot be evaluated next to it, at " + edge + "; no standard errors";
+  else if (has_errors)
     covariance = llt.solve(Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)));
   else
     out.information_note = "the observed information is not positive definite at the estimate: no standard errors";
@@ -209,7 +224,7 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
     p.name = problem.names[i];
     p.estimate = best.u[i] * scaled.scale[i];
     p.at_bound = best.u[i] <= lower[i] || best.u[i] >= upper[i];
-    p.std_error = has_errors ? std::sqrt(covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))) *
+    p.std_error = has_errors && !out.at_edge ? std::sqrt(covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))) *
                                    scaled.scale[i]
                              : kNaN;
     p.wald_low = p.estimate - kZ95 * p.std_error;
@@ -227,23 +242,25 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
     std::vector<std::size_t> others;
     for (std::size_t j = 0; j < k; ++j)
       if (j != i) others.push_back(j);
+    // > 0 beyond the interval's end; NaN where the filter fails (no likelihood, so not inside).
     auto deficit = [&](double ui) {
       std::vector<double> x = best.u;
       x[i] = ui;
       const Run run = search(scaled, x, lower, upper, problem.max_evaluations, others);
-      return best.value - run.value - kChi95Half;  // > 0 beyond the interval's end
+      return std::isfinite(run.value) ? best.value - run.value - kChi95Half : kNaN;
     };
     const double width = std::isfinite(out.parameters[i].std_error) ? out.parameters[i].std_error / scaled.scale[i]
                                                                       : 0.1 * std::max(1.0, std::abs(best.u[i]));
     for (int side : {-1, 1}) {
       double inside = best.u[i], outside = best.u[i];
-      bool found = false;
+      bool found = false, fails = false;  // fails: `outside` is a value where the filter fails
       double step = width;
       for (int tries = 0; tries < 30; ++tries) {
         outside = std::clamp(best.u[i] + side * step, lower[i], upper[i]);
         const double d = deficit(outside);
-        if (d > 0) {
+        if (!(d <= 0)) {
           found = true;
+          fails = std::isnan(d);
           break;
         }
         inside = outside;
@@ -258,12 +275,21 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
         }
         continue;
       }
+      // Bisect to the crossing of the chi-square level or to the edge of where the filter runs,
+      // whichever the last value beyond the end is.
       for (int b = 0; b < 40; ++b) {
         const double mid = 0.5 * (inside + outside);
-        (deficit(mid) > 0 ? outside : inside) = mid;
+        const double d = deficit(mid);
+        if (d <= 0) {
+          inside = mid;
+        } else {
+          outside = mid;
+          fails = std::isnan(d);
+        }
       }
       (side < 0 ? out.parameters[i].profile_low : out.parameters[i].profile_high) =
-          0.5 * (inside + outside) * scaled.scale[i];
+          (fails ? inside : 0.5 * (inside + outside)) * scaled.scale[i];
+      (side < 0 ? out.parameters[i].profile_low_is_edge : out.parameters[i].profile_high_is_edge) = fails;
     }
   }
   out.evaluations = scaled.evaluations;

@@ -31,6 +31,9 @@ struct FittedParameter {
   double wald_low = 0, wald_high = 0;
   double profile_low = 0, profile_high = 0;  // NaN unless asked; the bound where the interval reaches it
   bool profile_low_is_bound = false, profile_high_is_bound = false;
+  // The profile interval's end is the last value where the filter runs: just beyond it the
+  // log-likelihood cannot be evaluated (a moment filter leaves its realisable set, say).
+  bool profile_low_is_edge = false, profile_high_is_edge = false;
   bool at_bound = false;
 };
 
@@ -42,6 +45,9 @@ struct FitResult {
   std::size_t evaluations = 0;  // of the log-likelihood, all starts
   std::size_t best_start = 0;   // 0-based
   std::string information_note;  // why there are no standard errors, if there are none
+  // A step of the differences from the estimate meets a value where the filter fails: the
+  // estimate lies at the edge of where the log-likelihood exists (information_note says where).
+  bool at_edge = false;
 };
 
 // Throws CliValueError when the log-likelihood is not finite at the first start (naming why).
