@@ -2,6 +2,7 @@
 // direct computation, and estimate/fit's refusals of bad input.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
 #include <map>
 #include <sstream>
 
@@ -147,6 +148,32 @@ TEST_CASE("estimate writes no CSV when the record fails part way", "[record][com
                                              "-o", dir.file("out.csv"), "--cache-dir=" + dir.file("cache"), "-q"});
   CHECK(result.exit_code == 1);
   CHECK(dir.entries() == std::vector<std::string>{"bad.csv", "cache"});
+}
+
+TEST_CASE("estimate and simulate asked for a plot without gnuplot on PATH refuse before writing anything",
+          "[record][integration]") {
+  // Before, the CSV replaced the existing one and the .gp script was written, and only then did the plot fail.
+  TempDir dir;
+  std::filesystem::create_directory(dir.file("empty-path"));
+  const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.yaml";
+  const std::string data = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.csv";
+  write_file(dir.file("out.csv"), "keep\n");
+  const std::vector<std::vector<std::string>> commands = {
+      {"estimate", model, "--data", data, "--time-column", "year", "-o", dir.file("out.csv"), "--plot",
+       dir.file("out.png"), "--cache-dir=" + dir.file("cache"), "-q"},
+      {"simulate", model, "--runs", "2", "-o", dir.file("out.csv"), "--plot", dir.file("out.png"),
+       "--cache-dir=" + dir.file("cache"), "-q"}};
+  for (const auto& command : commands) {
+    std::vector<std::string> argv{"/usr/bin/env", "PATH=" + dir.file("empty-path"), pfgen_test::pfgen_executable()};
+    argv.insert(argv.end(), command.begin(), command.end());
+    const auto result = pfgen_test::run_program(argv);
+    INFO(command[0] << ": " << result.err);
+    CHECK(result.exit_code == 1);
+    CHECK(result.err == "pfgen: error: --plot: gnuplot is not on PATH: install gnuplot (scripts/install-deps.sh "
+                        "installs gnuplot-nox), or leave --plot out\n");
+    CHECK(dir.entries() == std::vector<std::string>{"empty-path", "out.csv"});
+    CHECK(pfgen_test::read_file(dir.file("out.csv")) == "keep\n");
+  }
 }
 
 TEST_CASE("the model file's bounds: reach fit, and bad ones are refused with their field", "[record][compiler]") {

@@ -160,6 +160,7 @@ EstimateOutcome estimate(const EstimateOptions& options) {
     outputs.push_back({"--plot", options.plot_path});
     outputs.push_back({"--plot's gnuplot script", pfgen_runtime::gnuplot_script_path(options.plot_path)});
     pfgen_runtime::gnuplot_terminal(options.plot_path, 1, 1);  // .png or .svg, before any work
+    require_plotter();
   }
   if (record.model) inputs.erase(inputs.begin());
   check_distinct_outputs(inputs, outputs);

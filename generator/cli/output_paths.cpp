@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli_options.hpp"
+#include "pfgen_runtime/gnuplot_plot.hpp"
 
 namespace pfgen::cli {
 namespace fs = std::filesystem;
@@ -89,6 +90,14 @@ bool create_directories_or_none(const fs::path& directory, std::error_code& erro
   if (fs::create_directories(directory, error) || !error) return true;
   for (const fs::path& made : missing) fs::remove(made, ignored);  // deepest first; only empty ones go
   return false;
+}
+
+void require_plotter() {
+  try {
+    pfgen_runtime::require_gnuplot();
+  } catch (const std::runtime_error& e) {
+    throw CliValueError(e.what());
+  }
 }
 
 }  // namespace pfgen::cli

@@ -30,6 +30,10 @@ void check_distinct_outputs(const std::vector<NamedPath>& inputs, const std::vec
 // printed and then lost.
 void check_output_file(const NamedPath& output);
 
+// Throws CliValueError (naming --plot) when no gnuplot is on PATH to draw a plot the command was
+// asked for: checked before any work, so that no CSV or script is written for a plot that cannot be.
+void require_plotter();
+
 // A name in `path` longer than the file system takes (pathconf's NAME_MAX where the path would
 // go, 255 bytes on most), which no file or directory can have; or nothing.
 struct TooLongName {

@@ -87,6 +87,7 @@ void check_output_paths(const SimulateOptions& options) {
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (ext != ".png" && ext != ".svg")
       throw CliValueError("--plot: '" + options.plot_path + "' must end in .png or .svg");
+    require_plotter();
   }
   // Every file the run writes, the CSV beside a plot and the plot's gnuplot script included.
   std::vector<NamedPath> written;

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,8 @@
 #include "pfgen_runtime/results_csv.hpp"
 #include "pfgen_support/atomic_file.hpp"
 #include "pfgen_support/process.hpp"
+
+#include <unistd.h>
 
 namespace pfgen_runtime {
 
@@ -188,6 +191,23 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
 
 std::string gnuplot_script_path(const std::string& plot_path) { return plot_path + ".gp"; }
 
+void require_gnuplot() {
+  // As execvp searches: each PATH entry in turn (an empty one is the current directory).
+  const char* path = std::getenv("PATH");
+  std::string entries = path ? path : "/usr/local/bin:/usr/bin:/bin";
+  std::size_t begin = 0;
+  while (begin <= entries.size()) {
+    std::size_t end = entries.find(':', begin);
+    if (end == std::string::npos) end = entries.size();
+    const std::string directory = end > begin ? entries.substr(begin, end - begin) : ".";
+    const std::string candidate = directory + "/gnuplot";
+    if (::access(candidate.c_str(), X_OK) == 0 && !std::filesystem::is_directory(candidate)) return;
+    begin = end + 1;
+  }
+  throw std::runtime_error("--plot: gnuplot is not on PATH: install gnuplot (scripts/install-deps.sh installs "
+                           "gnuplot-nox), or leave --plot out");
+}
+
 void write_gnuplot_plot(const std::string& plot_path,
                         const std::function<std::string(const std::string& drawn_path)>& script_for) {
   // gnuplot draws into a temporary beside the plot (same extension, so the same terminal), run from
@@ -221,7 +241,14 @@ void write_gnuplot_plot(const std::string& plot_path,
     std::ostringstream message;
     message << "gnuplot failed on '" << script_path << "' (exit status " << status << ")";
     if (status == 0) message << " and wrote no plot '" << plot_path << "'";
-    if (!errors.empty()) message << ":\n" << errors;
+    // gnuplot's own first error line, so that the message stays one line (the script is kept to rerun).
+    std::istringstream lines(errors);
+    std::string line;
+    while (std::getline(lines, line))
+      if (line.find_first_not_of(" \t\r^") != std::string::npos) {
+        message << ": " << line.substr(0, 300);
+        break;
+      }
     throw std::runtime_error(message.str());
   }
   write(plot_path, plot, "plot");
