@@ -119,6 +119,8 @@ TEST_CASE("polynomial observation: what the model file refuses", "[observation][
         "m.yaml:5:31: error: field 'observation.B', row 1: row is too small: its squared norm is 0 in double at the "
         "parameter defaults and t = 0, so observation 1 has no noise and B B^T is not positive definite");
   CHECK(refusal("{h: [\"x*y + x^2\"], B: [[2]]}") == "accepted");
+  // A large noise is positive definite: the check's tolerance must not overflow (B B^T = 1e200).
+  CHECK(refusal("{h: [\"x*y\"], B: [[1e100]]}") == "accepted");
 }
 
 TEST_CASE("polynomial observation: the coefficient form refuses a nonlinear h, at the model file",

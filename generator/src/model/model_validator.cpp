@@ -27,6 +27,15 @@
 namespace pfgen {
 namespace {
 
+// An eigenvalue in a message: std::to_string's fixed six decimals, as the messages have always
+// shown, up to 1e15; beyond, %g, since fixed notation would print hundreds of digits (1e200).
+std::string eigenvalue_text(double value) {
+  if (std::abs(value) < 1e15) return std::to_string(value);
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
 // In the canonical order of pfgen's printer: GiNaC's own varies from run to run.
 std::string to_text(const GiNaC::ex& e) { return TextPrinter().print(e); }
 
@@ -233,7 +242,7 @@ void validate_diffusion(const Model& model, const Diffusion& d, const std::strin
   const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(G).eigenvalues().minCoeff();
   if (smallest < -1e-12 * std::max(1.0, G.cwiseAbs().maxCoeff()))
     throw ModelError(G_field, "not positive semi-definite at the parameter defaults (smallest eigenvalue " +
-                                  std::to_string(smallest) + "): a covariance cannot be negative");
+                                  eigenvalue_text(smallest) + "): a covariance cannot be negative");
 }
 
 // N N^T must be positive definite: numerically, at the parameters' defaults and t = 0. `name` is
@@ -265,10 +274,10 @@ void require_positive_definite_noise(const Model& model, const ExMatrix& N, cons
                        one_based(i));
   Eigen::LLT<Eigen::MatrixXd> cholesky(R);
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(R);
-  if (cholesky.info() != Eigen::Success || eigen.eigenvalues().minCoeff() <= 1e-12 * std::max(1.0, R.norm()))
+  if (cholesky.info() != Eigen::Success || eigen.eigenvalues().minCoeff() <= 1e-12 * std::max(1.0, R.stableNorm()))
     throw ModelError(field,
                      NNt + " is not positive definite (smallest eigenvalue " +
-                         std::to_string(eigen.eigenvalues().minCoeff()) +
+                         eigenvalue_text(eigen.eigenvalues().minCoeff()) +
                          " at the parameter defaults and t = 0); every observation needs its own noise");
 }
 
@@ -347,7 +356,7 @@ void validate_observation(const Model& model) {
 void require_positive_semidefinite(const Eigen::MatrixXd& m, const std::string& field) {
   const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m).eigenvalues().minCoeff();
   if (smallest < -1e-12 * std::max(1.0, m.norm()))
-    throw ModelError(field, "not positive semi-definite (smallest eigenvalue " + std::to_string(smallest) + ")");
+    throw ModelError(field, "not positive semi-definite (smallest eigenvalue " + eigenvalue_text(smallest) + ")");
 }
 
 void validate_initial(const Model& model) {
