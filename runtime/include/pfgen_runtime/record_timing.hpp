@@ -77,6 +77,10 @@ class RecordTiming {
   // The log-likelihood of the record so far, which a fit maximises: the samples' (the scores'),
   // or the increments' Gaussian log-density (the discrete record's).
   virtual double log_likelihood(const RecordProgress& progress) const = 0;
+  // What a failure's message may add about the steps the rows take, since a step too long for a
+  // moment filter can leave its realisable set: continuous data's --substeps; nothing for samples,
+  // whose sub-steps are the model's.
+  virtual std::string step_hint(const RecordProgress&) const { return ""; }
 };
 
 class RecordSamples final : public RecordTiming {
@@ -119,6 +123,7 @@ class RecordIncrements : public RecordTiming {
   std::size_t extra_state() const override { return extra_state_; }
   bool absorb(RecordProgress& progress, double t, const double* observation, bool first) const override;
   double log_likelihood(const RecordProgress& progress) const override { return progress.increment_log_density; }
+  std::string step_hint(const RecordProgress& progress) const override;
 
  protected:
   // Where the filter's steps fall over the row's interval from progress.t to t: its length, the

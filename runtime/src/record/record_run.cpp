@@ -37,7 +37,8 @@ bool RecordRun::realisable() {
   if (!event) return true;
   std::ostringstream why;
   why.precision(10);
-  why << "its moments left the realisable set at t = " << event->t << " (" << event->what << " is " << event->value << ")";
+  why << "its moments left the realisable set at t = " << event->t << " (" << event->what << " is " << event->value << ")"
+      << filter_.timing->step_hint(progress_);
   return progress_.fail(why.str());
 }
 

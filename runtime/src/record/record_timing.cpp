@@ -153,6 +153,12 @@ bool RecordSamples::predict_and_update(RecordProgress& run, double t, const doub
   return true;
 }
 
+std::string RecordIncrements::step_hint(const RecordProgress& progress) const {
+  const std::size_t k = progress.options.substeps;
+  return "; the filter took " + std::to_string(k) + (k == 1 ? " step" : " steps") +
+         " per row: if they are too long for its moments, --substeps takes more";
+}
+
 bool RecordIncrements::absorb(RecordProgress& run, double t, const double* observation, bool first) const {
   // The first row at the prior's time marks where the record starts: an increment needs an
   // interval before it, so there is nothing to absorb.
