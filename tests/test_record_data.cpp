@@ -272,6 +272,38 @@ TEST_CASE("a moment filter over a record fails where its moments leave the reali
   CHECK_THAT(ran.out, Contains("closure4 ") && Contains("passes: consistent and white"));
 }
 
+TEST_CASE("estimate reports a filter that stops part way and goes on with the others; only a lone one fails it",
+          "[record][compiler]") {
+  // closure3 leaves its realisable set at row 462 of the double well's record; optimal and closure4 run through.
+  TempDir dir;
+  const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/reference/double_well.yaml";
+  const std::string record = std::string(PFGEN_SOURCE_DIR) + "/tests/data/double_well_increments.csv";
+  const std::string cache = "--cache-dir=" + dir.file("cache");
+  const auto all = pfgen_test::run_pfgen({"estimate", model, "--data", record, "--filters", "optimal,closure3,closure4",
+                                          "-o", dir.file("out.csv"), cache, "-q"});
+  INFO(all.out << all.err);
+  REQUIRE(all.exit_code == 0);
+  CHECK_THAT(all.out, Contains("\nclosure3         stopped at " + record + ":462: its moments left the realisable set "
+                               "at t = 4.6 (Pearson's bound of x1 is -"));
+  CHECK_THAT(all.out, Contains("\noptimal   ") && Contains("\nclosure4  ") && Contains("passes: consistent and white"));
+  // Every row is written; closure3's 2 n + 3 p = 7 cells are empty from its row on, and only there.
+  std::istringstream csv(pfgen_test::read_file(dir.file("out.csv")));
+  std::string line;
+  std::size_t rows = 0, emptied = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    if (line.find(",,,,,,,,") != std::string::npos) ++emptied;
+  }
+  CHECK(rows == 1002);
+  CHECK(emptied == 1002 - 462 + 1);
+  // Alone, its failure is the command's: exit 1, the row named, no CSV.
+  const auto alone = pfgen_test::run_pfgen({"estimate", model, "--data", record, "--filters", "closure3", "-o",
+                                            dir.file("alone.csv"), cache, "-q"});
+  CHECK(alone.exit_code == 1);
+  CHECK_THAT(alone.err, Contains(record + ":462: the filter 'closure3' failed: its moments left the realisable set"));
+  CHECK(!std::filesystem::exists(dir.file("alone.csv")));
+}
+
 TEST_CASE("fit of a moment filter says where its likelihood ends: a profile interval's end at the filter's edge, "
           "an estimate at that edge", "[record][compiler]") {
   // The double well's record (tests/record_data/make_double_well_record.py): closure4 leaves its realisable set

@@ -73,6 +73,11 @@ void append_row(std::string& out, double t, const std::vector<double>& y, const 
   out += number(t);
   for (double v : y) out += "," + number(v);
   for (const RecordRun& run : runs) {
+    if (run.failed()) {  // stopped: no estimate from its row on
+      const std::size_t cells = 2 * n + (full ? m_and_P - n : 0) + 3 * y.size();
+      out.append(cells, ',');
+      continue;
+    }
     const std::vector<double>& s = run.state();
     for (std::size_t i = 0; i < n; ++i) out += "," + number(s[i]);
     for (std::size_t i = 0; i < n; ++i)
@@ -122,6 +127,10 @@ std::string plot_script(const std::string& plot_path, const std::string& csv_pat
   return s + "unset multiplot\n";
 }
 
+std::string pad_to(const std::string& text, std::size_t width) {
+  return text.size() >= width ? text : text + std::string(width - text.size(), ' ');
+}
+
 std::string scores_table(const std::vector<FilterScores>& scores, bool continuous) {
   std::string out;
   char line[400];
@@ -130,6 +139,10 @@ std::string scores_table(const std::vector<FilterScores>& scores, bool continuou
                 "Ljung-Box p", "verdict");
   out += line;
   for (const FilterScores& f : scores) {
+    if (!f.stopped.empty()) {
+      out += pad_to(f.filter, 16) + " stopped at " + f.stopped + "\n";
+      continue;
+    }
     const auto& s = f.summary;
     double p_value = 1;
     for (const auto& test : s.whiteness) p_value = std::min(p_value, test.p_value);
@@ -191,6 +204,8 @@ EstimateOutcome estimate(const EstimateOptions& options) {
   double t = 0, first = 0, last = 0;
   std::size_t rows = 0;
   std::vector<RecordRun> runs;
+  std::vector<std::string> stopped;  // per run: where and why it failed, once it has
+  std::size_t running = 0;
   std::string buffer;
   while (reader.next(t, y.data())) {
     const bool first_row = rows++ == 0;
@@ -199,8 +214,12 @@ EstimateOutcome estimate(const EstimateOptions& options) {
       const double t0 = prior_time(record, t, reader.path());
       runs.reserve(job.filters.size());
       for (const RecordFilter& filter : job.filters) runs.emplace_back(filter, job.values, t0, job.run_options);
+      stopped.assign(runs.size(), "");
+      running = runs.size();
     }
-    for (RecordRun& run : runs) {
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      RecordRun& run = runs[k];
+      if (run.failed()) continue;
       const std::string where = reader.place() + ": ";
       bool ok = false;
       try {
@@ -208,7 +227,10 @@ EstimateOutcome estimate(const EstimateOptions& options) {
       } catch (const std::invalid_argument& e) {
         throw CliValueError(where + e.what());
       }
-      if (!ok) throw CliValueError(where + "the filter '" + run.filter_name() + "' failed: " + run.failure());
+      if (ok) continue;
+      // The last filter still running fails the command, as a lone filter always has.
+      if (--running == 0) throw CliValueError(where + "the filter '" + run.filter_name() + "' failed: " + run.failure());
+      stopped[k] = reader.place() + ": " + run.failure();
     }
     last = t;
     if (writes_csv) {
@@ -231,8 +253,9 @@ EstimateOutcome estimate(const EstimateOptions& options) {
   outcome.time_column = reader.time_column();
   outcome.observation_columns = observed;
   outcome.columns = columns;
-  for (const RecordRun& run : runs)
-    outcome.scores.push_back({run.filter_name(), run.scores().summary(), run.increment_log_density()});
+  for (std::size_t k = 0; k < runs.size(); ++k)
+    outcome.scores.push_back(
+        {runs[k].filter_name(), runs[k].scores().summary(), runs[k].increment_log_density(), stopped[k]});
   char line[300];
   std::string values;
   for (std::size_t k = 0; k < job.parameter_names.size(); ++k)

@@ -3,7 +3,9 @@
 // data time each filter's m, standard deviations (or all of P), predicted observation, innovation
 // and normalised innovation as CSV (-o), a plot of the estimates with their 2-sigma bands (--plot),
 // and per filter the scores: the log-likelihood, the normalised innovations' mean square against
-// its 95 % band, their whiteness, and a verdict in words.
+// its 95 % band, their whiteness, and a verdict in words. A filter that fails part way (a moment
+// filter leaving its realisable set) stops there and is reported as stopped, as `simulate` counts
+// its stops; the others go on. Only when every filter has failed is it an error.
 #include <string>
 #include <vector>
 
@@ -25,6 +27,10 @@ struct FilterScores {
   std::string filter;
   pfgen_runtime::InnovationSummary summary;
   double increment_log_density = 0;  // continuous data only
+  // Where and why the filter stopped before the record's end ("dw.csv:462: its moments left the
+  // realisable set at t = 4.6 (...)"); empty when it ran through. Its scores are then those of the
+  // rows before, and its CSV cells are empty from that row on.
+  std::string stopped;
 };
 
 struct EstimateOutcome {

@@ -782,7 +782,9 @@ class Estimate:
         self.series = dict(zip(native.columns, native.series))
         #: filter name -> dict of the scores: log_likelihood, increment_log_density (continuous data;
         #: else NaN), count, mean_square, band (low, high), consistent, white, ljung_box (per
-        #: observation entry: lags, statistic, p_value), verdict
+        #: observation entry: lags, statistic, p_value), verdict, and stopped: where and why the
+        #: filter stopped before the record's end (its scores then those of the rows before; its
+        #: series NaN from there), or None when it ran through
         self.scores = {}
         for f in native.filters:
             self.scores[f.name] = {
@@ -791,7 +793,7 @@ class Estimate:
                 "consistent": f.consistent, "white": f.white,
                 "ljung_box": [{"lags": lags, "statistic": q, "p_value": p}
                               for lags, q, p in zip(f.ljung_box_lags, f.ljung_box_statistic, f.ljung_box_p)],
-                "verdict": f.verdict}
+                "verdict": f.verdict, "stopped": f.stopped or None}
         #: filter name -> FilterRun
         self.filters = {name: FilterRun(name, self.series, self.state_names, self.observation_columns, full_covariance)
                         for name in self.scores}

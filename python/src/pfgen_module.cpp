@@ -238,6 +238,7 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readonly("name", &api::RecordScores::name)
       .def_readonly("log_likelihood", &api::RecordScores::log_likelihood)
       .def_readonly("increment_log_density", &api::RecordScores::increment_log_density)
+      .def_readonly("stopped", &api::RecordScores::stopped)
       .def_readonly("count", &api::RecordScores::count)
       .def_readonly("mean_square", &api::RecordScores::mean_square)
       .def_readonly("band_low", &api::RecordScores::band_low)

@@ -12,6 +12,7 @@ import pfgen
 
 NILE, NILE_DATA = "examples/records/nile.yaml", "examples/records/nile.csv"
 VDP, VDP_DATA = "examples/van_der_pol.yaml", "examples/records/van_der_pol_increments.csv"
+WELL, WELL_DATA = "examples/reference/double_well.yaml", "tests/data/double_well_increments.csv"
 
 
 def read_columns(path):
@@ -28,6 +29,7 @@ def without_wrote(stdout):
 @pytest.mark.parametrize("model, data, time, filters", [
     (NILE, NILE_DATA, "year", None),
     (VDP, VDP_DATA, "t", ["optimal", "ekf"]),
+    (WELL, WELL_DATA, "t", ["optimal", "closure3", "closure4"]),  # closure3 stops part way
 ])
 def test_estimate_is_the_commands(pfgen_command, work_dir, model, data, time, filters):
     out = work_dir / "estimates.csv"
@@ -52,11 +54,24 @@ def test_estimate_is_the_commands(pfgen_command, work_dir, model, data, time, fi
         np.testing.assert_array_equal(np.sqrt(np.maximum(run.P[:, 0, 0], 0)), run.sd[:, 0])
         np.testing.assert_array_equal(run.P[:, 0, -1], run.P[:, -1, 0])
         scores = result.scores[name]
+        if scores["stopped"]:  # its line says where instead of the scores
+            assert f"{name:<16} stopped at {scores['stopped']}\n" in result.report
+            continue
         assert f"{scores['log_likelihood']:.6f}" in result.report
         assert scores["verdict"] in result.report
         assert scores["consistent"] == (scores["band"][0] <= scores["mean_square"] <= scores["band"][1])
         assert len(scores["ljung_box"]) == p
     np.testing.assert_array_equal(result.t, written[time])
+
+
+def test_a_filter_that_stops_is_marked_and_the_others_go_on():
+    result = pfgen.estimate(pfgen.Model.load(WELL), WELL_DATA, filters=["optimal", "closure3", "closure4"])
+    assert result.scores["closure3"]["stopped"].startswith(
+        WELL_DATA + ":462: its moments left the realisable set at t = 4.6")
+    assert result.scores["optimal"]["stopped"] is None and result.scores["closure4"]["stopped"] is None
+    m = result.filters["closure3"].m
+    assert np.isfinite(m[:460]).all() and np.isnan(m[460:]).all()  # the data's row 461 (t = 4.6) on
+    assert np.isfinite(result.filters["closure4"].m).all()
 
 
 def test_the_same_numbers_from_memory():

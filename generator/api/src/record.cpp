@@ -61,6 +61,7 @@ RecordScores scores_of(const cli::FilterScores& filter, bool continuous) {
   out.name = filter.filter;
   out.log_likelihood = s.log_likelihood;
   out.increment_log_density = continuous ? filter.increment_log_density : std::nan("");
+  out.stopped = filter.stopped;
   out.count = s.count;
   out.mean_square = s.mean_square;
   out.band_low = s.band_low;

@@ -270,6 +270,10 @@ struct RecordScores {
   Vector ljung_box_statistic, ljung_box_p;
   bool consistent = false, white = false;
   std::string verdict;
+  // Where and why the filter stopped before the record's end (a moment filter leaving its
+  // realisable set: "FILE:LINE: its moments left ..."), its scores then those of the rows before;
+  // empty when it ran through.
+  std::string stopped;
 };
 
 struct EstimateResult {
