@@ -70,6 +70,13 @@ TEST_CASE("the record reader reads missing cells as NaN, skips comments and blan
   CHECK(std::isnan(values[2]));
   CHECK(values[3] == 2);
   CHECK(reader.line() == 7);
+  // A UTF-8 byte-order mark before the header (or before a comment) is skipped, not read into the first name.
+  for (const std::string& start : {std::string("t,y\n"), std::string("# exported\nt,y\n")}) {
+    write_file(path, "\xEF\xBB\xBF" + start + "0,1\n");
+    pfgen_runtime::RecordReader marked(path, "t", {}, 1);
+    REQUIRE(marked.next(t, &y));
+    CHECK(y == 1);
+  }
 }
 
 TEST_CASE("innovation scores: the mean square, its band and Ljung-Box as computed directly", "[record][unit]") {

@@ -63,6 +63,8 @@ bool RecordReader::read_line() {
     // gcount counts the newline that getline consumed but did not store.
     std::string_view text(buffer_.data(), static_cast<std::size_t>(length) - (in_.eof() ? 0 : 1));
     if (in_.eof()) in_.clear(std::ios::eofbit);
+    // A UTF-8 byte-order mark (spreadsheets write one) is not part of the first column's name.
+    if (line_ == 1 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
     const std::string_view content = trimmed(text);
     if (content.empty() || content.front() == '#') {
       if (in_.eof()) return false;
