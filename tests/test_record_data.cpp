@@ -129,6 +129,19 @@ TEST_CASE("estimate and fit refuse bad options and data with one clear line", "[
              "'h' is not among the estimated parameters");
   fails_with({"fit", model, "--data", data, "--time-column", "year", "--estimate", "q", "--starts", "3"},
              "give q both ends in --bounds");
+  fails_with({"fit", model, "--data", data, "--time-column", "year", "--estimate", "q", "--bounds", "q=0:,q=1:"},
+             "--bounds: 'q' is given bounds twice");
+  // The Nile's record is sampled: the continuous data's options would do nothing, so they are refused.
+  fails_with({"estimate", model, "--data", data, "--time-column", "year", "--substeps", "5"},
+             "--substeps: sampled observations are predicted in the model's sub-steps "
+             "(observation.sampled.substeps per period); --substeps is for continuous data");
+  fails_with({"fit", model, "--data", data, "--time-column", "year", "--estimate", "q", "--data-form", "rates"},
+             "--data-form: sampled observations are read as samples y_k; --data-form rates is for continuous data");
+  write_file(dir.file("none.csv"), "year,volume\n1871,NA\n1872,\n");
+  fails_with({"fit", model, "--data", dir.file("none.csv"), "--time-column", "year", "--estimate", "q"},
+             "none.csv: every observation is missing: the record has no sample to fit");
+  fails_with({"estimate", model, "--data", data, "--time-column", "year", "--t0", "-1e9"},
+             "check the time column and the prior's time (--t0)");
   fails_with({"estimate", model, "--data", data}, "the header has no time column 't' (its columns: year, volume)");
   write_file(dir.file("bad.csv"), "year,volume\n1871,1120\n1872,abc\n");
   fails_with({"estimate", model, "--data", dir.file("bad.csv"), "--time-column", "year"},

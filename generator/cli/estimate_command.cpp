@@ -217,6 +217,7 @@ EstimateOutcome estimate(const EstimateOptions& options) {
       stopped.assign(runs.size(), "");
       running = runs.size();
     }
+    std::string row_failure;  // the first filter to fail at this row, which names the row's failure
     for (std::size_t k = 0; k < runs.size(); ++k) {
       RecordRun& run = runs[k];
       if (run.failed()) continue;
@@ -228,8 +229,10 @@ EstimateOutcome estimate(const EstimateOptions& options) {
         throw CliValueError(where + e.what());
       }
       if (ok) continue;
-      // The last filter still running fails the command, as a lone filter always has.
-      if (--running == 0) throw CliValueError(where + "the filter '" + run.filter_name() + "' failed: " + run.failure());
+      if (row_failure.empty()) row_failure = where + "the filter '" + run.filter_name() + "' failed: " + run.failure();
+      // The last filter still running fails the command, as a lone filter always has; where every
+      // filter fails at one row (a value too far off to score), the first one names it.
+      if (--running == 0) throw CliValueError(row_failure);
       stopped[k] = reader.place() + ": " + run.failure();
     }
     last = t;

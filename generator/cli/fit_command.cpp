@@ -132,6 +132,7 @@ FitOutcome fit(const FitOptions& options) {
         if (bound.high) problem.upper.back() = bound.high->to_double();
       }
   }
+  std::vector<bool> bounded(problem.names.size(), false);  // by --bounds, which names each parameter once
   for (const std::string& entry : options.bounds) {
     const std::size_t equals = entry.find('='), colon = entry.find(':', equals == std::string::npos ? 0 : equals);
     if (equals == std::string::npos || colon == std::string::npos)
@@ -142,6 +143,8 @@ FitOutcome fit(const FitOptions& options) {
     if (k == problem.names.size())
       throw CliValueError("--bounds: " + quoted(name) + " is not among the estimated parameters (--estimate " +
                           join(problem.names, ",") + ")");
+    if (bounded[k]) throw CliValueError("--bounds: " + quoted(name) + " is given bounds twice");
+    bounded[k] = true;
     problem.lower[k] = bound_number(entry, entry.substr(equals + 1, colon - equals - 1), -HUGE_VAL);
     problem.upper[k] = bound_number(entry, entry.substr(colon + 1), HUGE_VAL);
     if (!(problem.lower[k] < problem.upper[k]))
@@ -161,6 +164,10 @@ FitOutcome fit(const FitOptions& options) {
   problem.profile = options.profile;
 
   const Record data = read_record(record, job);
+  // Samples all missing leave the likelihood at 0 whatever the parameters: say so, rather than
+  // that each parameter does not enter the filter.
+  if (std::all_of(data.values.begin(), data.values.end(), [](double v) { return std::isnan(v); }))
+    throw CliValueError(data.path + ": every observation is missing: the record has no sample to fit");
   const double t0 = prior_time(record, data.times.front(), record.data_path);
   const LogLikelihood log_likelihood = [&](const std::vector<double>& theta, std::string& why) {
     std::vector<double> values = job.values;

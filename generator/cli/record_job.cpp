@@ -91,6 +91,14 @@ RecordJob prepare_record_job(const RecordJobOptions& options) {
     throw CliValueError("--data-form: '" + options.data_form + "' is neither increments nor rates");
   if (options.substeps < 1 || options.substeps > 1000000)
     throw CliValueError("--substeps: " + std::to_string(options.substeps) + " is not between 1 and 1000000");
+  // Samples are rows y_k, predicted between in the model's own sub-steps: the continuous data's
+  // options would be ignored, so they are refused rather than accepted for nothing.
+  if (model.observation.is_sampled() && options.substeps != 1)
+    throw CliValueError("--substeps: sampled observations are predicted in the model's sub-steps "
+                        "(observation.sampled.substeps per period); --substeps is for continuous data");
+  if (model.observation.is_sampled() && options.data_form != "increments")
+    throw CliValueError("--data-form: sampled observations are read as samples y_k; --data-form " + options.data_form +
+                        " is for continuous data");
   job.run_options.continuous =
       options.data_form == "rates" ? pfgen_runtime::ContinuousData::Rates : pfgen_runtime::ContinuousData::Increments;
   job.run_options.substeps = options.substeps;

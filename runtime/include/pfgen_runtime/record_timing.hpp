@@ -100,7 +100,7 @@ class RecordSamples final : public RecordTiming {
   double log_likelihood(const RecordProgress& progress) const override;
 
  private:
-  bool predict_and_update(RecordProgress& progress, double t, const double* y) const;
+  bool predict_and_update(RecordProgress& progress, double t, const double* y, bool first) const;
   std::size_t substeps_;
   double period_;
   Predict predict_;

@@ -102,15 +102,15 @@ bool RecordProgress::finish_row(double t_row, bool ok) {
   return ok;
 }
 
-bool RecordSamples::absorb(RecordProgress& run, double t, const double* y, bool) const {
+bool RecordSamples::absorb(RecordProgress& run, double t, const double* y, bool first) const {
   // A sample at the filter's own time (the prior's, or the last row's) updates it there.
   if (!(t >= run.t)) throw std::invalid_argument("the time " + std::to_string(t) + " does not come after the filter's");
-  return run.finish_row(t, predict_and_update(run, t, y));
+  return run.finish_row(t, predict_and_update(run, t, y, first));
 }
 
 double RecordSamples::log_likelihood(const RecordProgress& run) const { return run.scores.log_likelihood(); }
 
-bool RecordSamples::predict_and_update(RecordProgress& run, double t, const double* y) const {
+bool RecordSamples::predict_and_update(RecordProgress& run, double t, const double* y, bool first) const {
   const std::size_t p = run.p;
   std::size_t missing = 0;
   for (std::size_t i = 0; i < p; ++i) missing += std::isnan(y[i]) ? 1 : 0;
@@ -124,11 +124,12 @@ bool RecordSamples::predict_and_update(RecordProgress& run, double t, const doub
   // A gap that long is far more likely a wrong time (a year for a day) than a record: 10^7
   // sub-steps take seconds, and 10^9 minutes.
   if (steps > kMaxSubsteps) {
-    char text[240];
+    char text[320];
     std::snprintf(text, sizeof text,
                   "the interval from t = %.10g to %.10g needs %.3g prediction sub-steps (%zu per period %.10g), more "
-                  "than %.0e: check the time column",
-                  run.t, t, steps, substeps_, period_, kMaxSubsteps);
+                  "than %.0e: check the time column%s",
+                  run.t, t, steps, substeps_, period_, kMaxSubsteps,
+                  first ? " and the prior's time (--t0)" : "");
     throw std::invalid_argument(text);
   }
   const auto count = static_cast<std::size_t>(steps);
