@@ -74,7 +74,11 @@ def _out_of_range(option, value):
 
 
 def _float_array(values, option):
-    """numpy's float array of `values`; an int beyond a double's range is pfgen's Error."""
+    """numpy's float array of `values`; an int beyond a double's range, or a complex value (which
+    numpy would cut to its real part with a warning), is pfgen's Error."""
+    kind = getattr(getattr(values, "dtype", None), "kind", None)
+    if kind == "c" or (kind in (None, "O") and any(isinstance(v, complex) for v in _np.ravel(_np.asarray(values, dtype=object)))):
+        raise Error(f"error: {option}: complex values are not read: give real numbers")
     try:
         return _np.asarray(values, dtype=float)
     except OverflowError:

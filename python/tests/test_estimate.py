@@ -123,6 +123,8 @@ def test_estimate_refuses_bad_arguments(pfgen_command):
         pfgen.estimate(model, {"year": [1, 2], "volume": ["a", "b"]}, time="year")
     with pytest.raises(pfgen.Error, match=r"^error: --data: column 'volume' has 1 values, the first column 2"):
         pfgen.estimate(model, {"year": [1, 2], "volume": [3]}, time="year")
+    with pytest.raises(pfgen.Error, match=r"^error: --data: complex values are not read: give real numbers"):
+        pfgen.estimate(model, ([1871, 1872], np.array([1100 + 1j, 1200])), time="year")  # numpy would drop 1j
     with pytest.raises(pfgen.Error, match=r"^error: --data: 2 times need values of shape \(2, p\), got \(3, 1\)"):
         pfgen.estimate(model, ([1, 2], [1, 2, 3]))
     with pytest.raises(pfgen.Error, match=r"^error: <data> row 2: column 't': the time 1 does not come after"):
