@@ -711,6 +711,11 @@ TEST_CASE("option values no double holds, and filters a model does not offer, ar
       {{"eval", example("delay_linear.yaml"), "--filter", "delay-optimal", "--m=1", "--P", "1", "--phi", "1e400"},
        "--phi: '1e400' is beyond the largest double"},
       {{"eval", quadratic, "--filter", "optimal", "--m=1e-400", "--P", "1"}, "--m: '1e-400' is below the smallest"},
+      // An exponent too long to read exactly is out of range too, not "not a number".
+      {{"eval", quadratic, "--filter", "closure4", "--m=1", "--P", "1", "--moment", "M4_1111=1e5000000000000"},
+       "--moment: '1e5000000000000' is beyond the largest double"},
+      {{"eval", quadratic, "--filter", "optimal", "--m=-2.5E-123456", "--P", "1"},
+       "--m: '-2.5E-123456' is below the smallest normal double"},
       {{"simulate", quadratic, "--risk-epsilon", "1e-9999"}, "--risk-epsilon: '1e-9999' is outside the range of a double"},
       {{"simulate", quadratic, "--T", "1e400"}, "--T: '1e400' is outside the range of a double"},
       {{"simulate", quadratic, "--risk-epsilon", std::string(10000, '9')}, "...' (10000 characters) is outside"},
