@@ -448,7 +448,7 @@ TEST_CASE("eval with bad --m, --P, --t, --set or --filter gives one error line",
     check_option_error(eval_partial({"--m=0x10,2", good_P}), {"--m", "'0x10' is not a number"});
     check_option_error(eval_partial({"--m=nan,2", good_P}), {"--m", "'nan' is not a number"});
     // An exact rational with 10^11 digits would exhaust memory.
-    check_option_error(eval_partial({"--m=1e99999999999,2", good_P}), {"--m", "is not a number"});
+    check_option_error(eval_partial({"--m=1e99999999999,2", good_P}), {"--m", "'1e99999999999' is beyond the largest double"});
   }
   SECTION("--P with the wrong shape") {
     check_option_error(eval_partial({"--m=-1.5,2", "--P=0.5,-0.2"}), {"--P", "expected 2 rows, found 1"});
