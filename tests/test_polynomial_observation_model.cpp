@@ -121,6 +121,9 @@ TEST_CASE("polynomial observation: what the model file refuses", "[observation][
   CHECK(refusal("{h: [\"x*y + x^2\"], B: [[2]]}") == "accepted");
   // A large noise is positive definite: the check's tolerance must not overflow (B B^T = 1e200).
   CHECK(refusal("{h: [\"x*y\"], B: [[1e100]]}") == "accepted");
+  CHECK(refusal("{h: [\"x*y\"], B: [[1e155]]}") ==
+        "m.yaml:5:30: error: field 'observation.B': B B^T overflows double at the parameter values (an entry is "
+        "beyond about 1.8e308): the noise is too large for the filters to compute with");
 }
 
 TEST_CASE("polynomial observation: the coefficient form refuses a nonlinear h, at the model file",

@@ -196,6 +196,24 @@ TEST_CASE("estimate and simulate asked for a plot without gnuplot on PATH refuse
   }
 }
 
+TEST_CASE("a gnuplot that fails is named by its first error line, not a warning before it", "[record][compiler]") {
+  TempDir dir;
+  std::filesystem::create_directory(dir.file("bin"));
+  const std::string fake = dir.file("bin/gnuplot");
+  write_file(fake, "#!/bin/sh\necho 'line 0: warning: Cannot find or open file' >&2\n"
+                   "echo '\"script\" line 9: No data in plot' >&2\nexit 1\n");
+  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  const std::string model = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.yaml";
+  const std::string data = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.csv";
+  const auto result = pfgen_test::run_program({"/usr/bin/env", "PATH=" + dir.file("bin") + ":/usr/bin:/bin",
+                                               pfgen_test::pfgen_executable(), "estimate", model, "--data", data,
+                                               "--time-column", "year", "-o", dir.file("out.csv"), "--plot",
+                                               dir.file("out.png"), "--cache-dir=" + dir.file("cache"), "-q"});
+  CHECK(result.exit_code == 1);
+  CHECK(result.err == "pfgen: error: gnuplot failed on '" + dir.file("out.png.gp") +
+                          "' (exit status 1): \"script\" line 9: No data in plot\n");
+}
+
 TEST_CASE("the model file's bounds: reach fit, and bad ones are refused with their field", "[record][compiler]") {
   TempDir dir;
   const std::string data = std::string(PFGEN_SOURCE_DIR) + "/examples/records/nile.csv";
@@ -357,6 +375,19 @@ TEST_CASE("fit of a moment filter says where its likelihood ends: a profile inte
   CHECK(below.exit_code == 1);
   CHECK_THAT(below.err, Contains("moments left the realisable set"));
   CHECK(run_at(1.01 * low).exit_code == 0);
+  // Without bounds the first step out (the Wald half-width, 1.95) lands past the hole, at s < 0, where the
+  // filter runs again (s enters as s^2): the search probes between its steps, so the same edge is found.
+  const auto unbounded = pfgen_test::run_pfgen({"fit", model, "--data", dir.file("dw.csv"), "--filter", "closure4",
+                                                "--estimate", "s", "--profile", cache, "-q"});
+  INFO(unbounded.out);
+  CHECK_THAT(unbounded.out, Contains("[0.211268 (the filter fails beyond), "));
+  // An estimate held at a bound whose neighbour beyond it fails is at its bound, not at the filter's edge.
+  const auto at_bound = pfgen_test::run_pfgen({"fit", model, "--data", record, "--filter", "closure4", "--estimate",
+                                               "s", "--set", "c=0.443535", "--set", "r=0.488226", "--bounds",
+                                               "s=0.4865:2", cache, "-q"});
+  INFO(at_bound.out);
+  CHECK_THAT(at_bound.out, Contains("(at its bound)"));
+  CHECK(at_bound.out.find("edge") == std::string::npos);
 
   // Three parameters on the whole record: the optimiser stops against the edge; the report says so, names the
   // failing neighbour and gives no standard errors rather than calling the information not positive definite.
@@ -369,6 +400,27 @@ TEST_CASE("fit of a moment filter says where its likelihood ends: a profile inte
                            Contains("the filter 'closure4' failed: its moments left the realisable set") &&
                            Contains("; no standard errors"));
   CHECK_THAT(pfgen_test::read_file(dir.file("edge.json")), Contains("\"at_edge_of_filter\": true"));
+
+  // Profiling c from that estimate: the others' values there fail at once, so the search starts them elsewhere
+  // too, and c's interval reaches below 0.2 (before, it ended at 0.27, marked as the filter's edge). Checked
+  // apart: at c = 0.2, s refitted (from 0.6: at 0.5 the filter fails), the log-likelihood is within chi2_0.95(1)/2 = 1.92 of the maximum.
+  const auto profiled_c = pfgen_test::run_pfgen({"fit", model, "--data", record, "--filter", "closure4", "--estimate",
+                                                 "s,c", "--profile", "-o", dir.file("c.json"), cache, "-q"});
+  INFO(profiled_c.out);
+  REQUIRE(profiled_c.exit_code == 0);
+  const std::string c_json = pfgen_test::read_file(dir.file("c.json"));
+  const std::size_t c_at = c_json.find("\"name\": \"c\"");
+  REQUIRE(c_at != std::string::npos);
+  const double c_low = std::stod(c_json.substr(c_json.find("\"profile\": [", c_at) + 12));
+  CHECK(c_low < 0.2);
+  const double best = std::stod(c_json.substr(c_json.find("\"log_likelihood\": ") + 18));
+  const auto at_c = pfgen_test::run_pfgen({"fit", model, "--data", record, "--filter", "closure4", "--estimate", "s",
+                                           "--set", "c=0.2", "--set", "s=0.6", "-o", dir.file("c02.json"), cache,
+                                           "-q"});
+  INFO(at_c.out);
+  REQUIRE(at_c.exit_code == 0);
+  const std::string c02 = pfgen_test::read_file(dir.file("c02.json"));
+  CHECK(std::stod(c02.substr(c02.find("\"log_likelihood\": ") + 18)) > best - 1.920729410347062);
 }
 
 TEST_CASE("the sampled moment filters over the Nile record are the Kalman filter's, log-likelihood and all",

@@ -135,6 +135,13 @@ TEST_CASE("estimate and fit refuse a record that does not fit the delay's grid w
     arguments.push_back("-q");
     pfgen_test::check_refused_in_one_line(arguments, message);
   };
+  // A prior's time far before the record: the step from it is longer than the delay, said so with --t0
+  // (before: an inconsistent plugin, 0 steps of history).
+  const std::string record = std::string(PFGEN_SOURCE_DIR) + "/examples/records/delay_linear_increments.csv";
+  fails_with({"estimate", model, "--data", record, "--t0", "-1e9"},
+             "delay_linear_increments.csv:2: the record's step 1e+09 (the delayed filters' grid step), from the prior's "
+             "time (--t0) to the first row: the delay h = 0.5 and the step dt = 1e+09: h must be at least one step "
+             "(h / dt = 5e-10)");
   // A step that does not divide h = 0.5.
   write_file(dir.file("coarse.csv"), "t,y\n0,\n0.03,0.01\n0.06,0.02\n");
   fails_with({"estimate", model, "--data", dir.file("coarse.csv")},
@@ -165,4 +172,20 @@ TEST_CASE("estimate and fit refuse a record that does not fit the delay's grid w
   // The same record with its prior at t = 0 runs (the first interval, from 0 to 1, is not the step).
   fails_with({"estimate", dir.file("timed.yaml"), "--data", dir.file("late.csv"), "--t0", "0"},
              "late.csv:2: the record's step 1 (the delayed filters' grid step)");
+}
+
+TEST_CASE("estimate's table keeps one line per filter when a model far off its data scores -5.7e53",
+          "[record][delayed][compiler]") {
+  // a = 5 makes the delayed filters' innovations huge; the fixed six decimals would print 54 digits and cut the
+  // line (the verdicts ran into the next filter's row).
+  TempDir dir;
+  const auto result = pfgen_test::run_pfgen({"estimate", std::string(PFGEN_SOURCE_DIR) + "/examples/delay_linear.yaml",
+                                             "--data",
+                                             std::string(PFGEN_SOURCE_DIR) + "/examples/records/delay_linear_increments.csv",
+                                             "--set", "a=5", "--cache-dir=" + dir.file("cache"), "-q"});
+  INFO(result.out << result.err);
+  REQUIRE(result.exit_code == 0);
+  CHECK_THAT(result.out, Contains("\ndelay-optimal        -5.66571e+53              -5.66571e+53        1000"));
+  CHECK_THAT(result.out, Contains("(Ljung-Box p = 0 at 10 lags)\ndelay-uncorrected "));
+  CHECK_THAT(result.out, Contains("(Ljung-Box p = 0 at 10 lags)\ndelay-ekf "));
 }

@@ -127,6 +127,14 @@ std::string plot_script(const std::string& plot_path, const std::string& csv_pat
   return s + "unset multiplot\n";
 }
 
+// A log-likelihood in the table: six decimals, as always; beyond 1e15 in magnitude %g, since the
+// fixed form would print dozens of digits (a model far off its data scores -5.7e53).
+std::string score_text(double value) {
+  char text[48];
+  std::snprintf(text, sizeof text, std::abs(value) < 1e15 ? "%.6f" : "%.6g", value);
+  return text;
+}
+
 std::string pad_to(const std::string& text, std::size_t width) {
   return text.size() >= width ? text : text + std::string(width - text.size(), ' ');
 }
@@ -146,16 +154,17 @@ std::string scores_table(const std::vector<FilterScores>& scores, bool continuou
     const auto& s = f.summary;
     double p_value = 1;
     for (const auto& test : s.whiteness) p_value = std::min(p_value, test.p_value);
-    char band[64], density[40] = "", ljung[32];
+    char band[64], density[48] = "", ljung[32], likelihood[48];
     std::snprintf(band, sizeof band, "[%.4g, %.4g]", s.band_low, s.band_high);
-    if (continuous) std::snprintf(density, sizeof density, " %25.6f", f.increment_log_density);
+    if (continuous) std::snprintf(density, sizeof density, " %25s", score_text(f.increment_log_density).c_str());
     if (s.whiteness.empty())
       std::snprintf(ljung, sizeof ljung, "-");
     else
       std::snprintf(ljung, sizeof ljung, "%.3g", p_value);
-    std::snprintf(line, sizeof line, "%-16s %16.6f%s %11zu %11.4g %18s %11s  %s\n", f.filter.c_str(), s.log_likelihood,
-                  density, s.count, s.mean_square, band, ljung, s.verdict().c_str());
-    out += line;
+    std::snprintf(likelihood, sizeof likelihood, "%16s", score_text(s.log_likelihood).c_str());
+    std::snprintf(line, sizeof line, "%-16s %s%s %11zu %11.4g %18s %11s  ", f.filter.c_str(), likelihood, density,
+                  s.count, s.mean_square, band, ljung);
+    out += line + s.verdict() + "\n";
   }
   return out;
 }

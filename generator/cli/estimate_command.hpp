@@ -28,8 +28,9 @@ struct FilterScores {
   pfgen_runtime::InnovationSummary summary;
   double increment_log_density = 0;  // continuous data only
   // Where and why the filter stopped before the record's end ("dw.csv:462: its moments left the
-  // realisable set at t = 4.6 (...)"); empty when it ran through. Its scores are then those of the
-  // rows before, and its CSV cells are empty from that row on.
+  // realisable set at t = 4.6 (...)"); empty when it ran through. Its scores then count the rows
+  // up to that one (whose innovation is scored before the step that fails), and its CSV cells are
+  // empty from that row on.
   std::string stopped;
 };
 

@@ -162,6 +162,7 @@ FitOutcome fit(const FitOptions& options) {
   problem.starts = options.starts;
   problem.seed = options.seed;
   problem.profile = options.profile;
+  problem.filter_can_stop = static_cast<bool>(filter.realisability.margins);
 
   const Record data = read_record(record, job);
   // Samples all missing leave the likelihood at 0 whatever the parameters: say so, rather than

@@ -188,7 +188,10 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
     x[i] += di;
     x[j] += dj;
     const double value = scaled.value(x.data());
-    if (!std::isfinite(value) && edge.empty()) {
+    // A neighbour beyond a bound is the bound's business (at_bound), not an edge of the filter's.
+    bool within = true;
+    for (std::size_t q = 0; q < k; ++q) within = within && x[q] >= lower[q] && x[q] <= upper[q];
+    if (!std::isfinite(value) && within && edge.empty()) {
       for (std::size_t q = 0; q < k; ++q) {
         char value_text[32];
         std::snprintf(value_text, sizeof value_text, "%.6g", x[q] * scaled.scale[q]);
@@ -243,11 +246,33 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
     for (std::size_t j = 0; j < k; ++j)
       if (j != i) others.push_back(j);
     // > 0 beyond the interval's end; NaN where the filter fails (no likelihood, so not inside).
+    // The others start at the estimate's values; where the filter fails there (an estimate at the
+    // edge of where it runs), at the last inside point's, then at each other moved by a factor, so
+    // that a value is only called failing where no start tried runs.
+    std::vector<double> last_inside = best.u;
     auto deficit = [&](double ui) {
       std::vector<double> x = best.u;
       x[i] = ui;
-      const Run run = search(scaled, x, lower, upper, problem.max_evaluations, others);
-      return std::isfinite(run.value) ? best.value - run.value - kChi95Half : kNaN;
+      Run run = search(scaled, x, lower, upper, problem.max_evaluations, others);
+      if (!std::isfinite(run.value)) {
+        std::vector<std::vector<double>> starts{last_inside};
+        for (std::size_t j : others)
+          for (double factor : {1.1, 0.9, 1.5, 0.5, 2.0}) {
+            std::vector<double> moved = best.u;
+            moved[j] = std::clamp(moved[j] * factor, lower[j], upper[j]);
+            starts.push_back(moved);
+          }
+        for (std::vector<double>& start : starts) {
+          start[i] = ui;
+          if (!std::isfinite(scaled.value(start.data()))) continue;
+          run = search(scaled, start, lower, upper, problem.max_evaluations, others);
+          if (std::isfinite(run.value)) break;
+        }
+      }
+      if (!std::isfinite(run.value)) return kNaN;
+      const double d = best.value - run.value - kChi95Half;
+      if (d <= 0) last_inside = run.u;
+      return d;
     };
     const double width = std::isfinite(out.parameters[i].std_error) ? out.parameters[i].std_error / scaled.scale[i]
                                                                       : 0.1 * std::max(1.0, std::abs(best.u[i]));
@@ -257,6 +282,18 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
       double step = width;
       for (int tries = 0; tries < 30; ++tries) {
         outside = std::clamp(best.u[i] + side * step, lower[i], upper[i]);
+        // A moment filter's likelihood can fail between two values where it runs: a step must not
+        // pass over such a hole, so points between the last inside value and this one are probed
+        // first, nearest first (where the filter cannot stop, nothing is probed, as before).
+        if (problem.filter_can_stop) {
+          for (double fraction : {1.0 / 16, 1.0 / 8, 1.0 / 4, 1.0 / 2}) {
+            const double between = inside + fraction * (outside - inside);
+            if (std::isnan(deficit(between))) {
+              outside = between;
+              break;
+            }
+          }
+        }
         const double d = deficit(outside);
         if (!(d <= 0)) {
           found = true;

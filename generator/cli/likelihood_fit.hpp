@@ -22,6 +22,9 @@ struct FitProblem {
   unsigned long long seed = 1;
   bool profile = false;              // profile-likelihood intervals too
   std::size_t max_evaluations = 2000;  // of the log-likelihood, per start
+  // The filter stops where its moments leave the realisable set (a moment filter): the likelihood
+  // has holes, so the profile's stepping out also probes between its steps for them.
+  bool filter_can_stop = false;
 };
 
 struct FittedParameter {

@@ -63,10 +63,12 @@ double delayed_grid_step(const RecordJobOptions& options, const RecordJob& job,
   }
   const double step = interval / static_cast<double>(options.substeps);
   const DelaySteps steps = delay_steps(model.observation.delay(), step);
+  // The first interval from the prior's time is --t0's when given: the message says so.
+  const std::string from = first > t0 && options.t0 ? ", from the prior's time (--t0) to the first row" : "";
   if (!steps.problem.empty())
     throw CliValueError(source->place() + ": the record's step " + pfgen_support::shortest_double(interval) +
                         (options.substeps > 1 ? " over --substeps " + std::to_string(options.substeps) : "") +
-                        " (the delayed filters' grid step): " + steps.problem);
+                        " (the delayed filters' grid step)" + from + ": " + steps.problem);
   // The grid step is h / D exactly (the interval's decimals, 3.01 - 3, are not): so the same step
   // in any record gives the same plugin, and every interval is compared with it.
   const double dt =

@@ -787,7 +787,7 @@ class Estimate:
         #: filter name -> dict of the scores: log_likelihood, increment_log_density (continuous data;
         #: else NaN), count, mean_square, band (low, high), consistent, white, ljung_box (per
         #: observation entry: lags, statistic, p_value), verdict, and stopped: where and why the
-        #: filter stopped before the record's end (its scores then those of the rows before; its
+        #: filter stopped before the record's end (its scores then those of the rows up to that one; its
         #: series NaN from there), or None when it ran through
         self.scores = {}
         for f in native.filters:
@@ -849,7 +849,8 @@ class Fit:
         parameters = native.parameters
         #: name -> estimate (without convergence: the last point)
         self.estimates = {p.name: p.estimate for p in parameters}
-        #: name -> standard error (NaN where the observed information is not positive definite)
+        #: name -> standard error (NaN where the observed information is not positive definite, or
+        #: where the estimate is at the edge of where the filter runs: see note)
         self.std_errors = {p.name: p.std_error for p in parameters}
         #: name -> (low, high), the 95 % Wald interval
         self.wald = {p.name: (p.wald_low, p.wald_high) for p in parameters}
@@ -857,6 +858,14 @@ class Fit:
         self.profile = {p.name: (p.profile_low, p.profile_high) for p in parameters}
         #: the estimated parameters at a bound
         self.at_bound = [p.name for p in parameters if p.at_bound]
+        #: name -> (low, high): whether that end of the profile interval is the last value where the
+        #: filter runs (a moment filter's likelihood ends where its moments leave the realisable set)
+        self.profile_fails_beyond = {p.name: (p.profile_low_fails_beyond, p.profile_high_fails_beyond)
+                                     for p in parameters}
+        #: True where the estimate is at the edge of where the filter runs: not a maximum, no standard errors
+        self.at_edge = native.at_edge
+        #: why there are no standard errors, if there are none ("" otherwise)
+        self.note = native.note
 
     def __repr__(self):
         return self.report

@@ -284,7 +284,9 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readonly("wald_high", &api::FittedParameter::wald_high)
       .def_readonly("profile_low", &api::FittedParameter::profile_low)
       .def_readonly("profile_high", &api::FittedParameter::profile_high)
-      .def_readonly("at_bound", &api::FittedParameter::at_bound);
+      .def_readonly("at_bound", &api::FittedParameter::at_bound)
+      .def_readonly("profile_low_fails_beyond", &api::FittedParameter::profile_low_fails_beyond)
+      .def_readonly("profile_high_fails_beyond", &api::FittedParameter::profile_high_fails_beyond);
 
   py::class_<api::FitResult>(m, "FitResult")
       .def_readonly("report", &api::FitResult::report)
@@ -294,7 +296,9 @@ PYBIND11_MODULE(_pfgen, m) {
       .def_readonly("parameters", &api::FitResult::parameters)
       .def_readonly("log_likelihood", &api::FitResult::log_likelihood)
       .def_readonly("aic", &api::FitResult::aic)
-      .def_readonly("evaluations", &api::FitResult::evaluations);
+      .def_readonly("evaluations", &api::FitResult::evaluations)
+      .def_readonly("at_edge", &api::FitResult::at_edge)
+      .def_readonly("note", &api::FitResult::note);
 
   py::class_<api::Model>(m, "Model")
       .def_static("load", &api::Model::load, Released())

@@ -45,6 +45,23 @@ def test_fit_is_the_commands_on_increments(pfgen_command):
     assert fit.aic == pytest.approx(2 - 2 * fit.log_likelihood, rel=1e-15)
 
 
+def test_fit_says_where_a_moment_filters_likelihood_ends():
+    # closure4 on the double well's record: its likelihood ends where the moments leave the realisable set.
+    model = pfgen.Model.load("examples/reference/double_well.yaml")
+    data = "tests/data/double_well_increments.csv"
+    fit = pfgen.fit(model, data, ["s", "c"], filter="closure4", profile=True)
+    assert fit.at_edge and fit.note.startswith("the estimate is at the edge of where the filter runs")
+    assert all(math.isnan(error) for error in fit.std_errors.values())
+    assert fit.profile_fails_beyond["s"][0] and not fit.profile_fails_beyond["c"][0]
+    written = json.loads(fit.json)
+    assert written["at_edge_of_filter"] and written["note"] == fit.note
+    for entry in written["parameters"]:
+        assert tuple(entry.get("profile_filter_fails_beyond", [False, False])) == fit.profile_fails_beyond[entry["name"]]
+    # The filters that cannot stop say nothing of it.
+    nile = pfgen.fit(pfgen.Model.load(NILE), NILE_DATA, "h", bounds={"h": (0, None)}, time="year", profile=True)
+    assert not nile.at_edge and nile.note == "" and nile.profile_fails_beyond == {"h": (False, False)}
+
+
 def test_fit_from_arrays_is_the_files():
     model = pfgen.Model.load(NILE)
     data = np.genfromtxt(NILE_DATA, delimiter=",", names=True)

@@ -241,14 +241,19 @@ void write_gnuplot_plot(const std::string& plot_path,
     std::ostringstream message;
     message << "gnuplot failed on '" << script_path << "' (exit status " << status << ")";
     if (status == 0) message << " and wrote no plot '" << plot_path << "'";
-    // gnuplot's own first error line, so that the message stays one line (the script is kept to rerun).
+    // gnuplot's own first line that is not a warning (else its first line), so that the message
+    // stays one line; the script is kept to rerun.
     std::istringstream lines(errors);
-    std::string line;
-    while (std::getline(lines, line))
-      if (line.find_first_not_of(" \t\r^") != std::string::npos) {
-        message << ": " << line.substr(0, 300);
+    std::string line, first, error;
+    while (std::getline(lines, line)) {
+      if (line.find_first_not_of(" \t\r^") == std::string::npos) continue;
+      if (first.empty()) first = line;
+      if (line.find("warning:") == std::string::npos) {
+        error = line;
         break;
       }
+    }
+    if (!first.empty()) message << ": " << (error.empty() ? first : error).substr(0, 300);
     throw std::runtime_error(message.str());
   }
   write(plot_path, plot, "plot");

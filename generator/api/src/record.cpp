@@ -146,9 +146,11 @@ FitResult Model::fit(const FitOptions& options) const {
     out.log_likelihood = r.log_likelihood;
     out.aic = outcome.aic;
     out.evaluations = r.evaluations;
+    out.at_edge = r.at_edge;
+    out.note = r.information_note;
     for (const cli::FittedParameter& p : r.parameters)
-      out.parameters.push_back(
-          {p.name, p.estimate, p.std_error, p.wald_low, p.wald_high, p.profile_low, p.profile_high, p.at_bound});
+      out.parameters.push_back({p.name, p.estimate, p.std_error, p.wald_low, p.wald_high, p.profile_low,
+                                p.profile_high, p.at_bound, p.profile_low_is_edge, p.profile_high_is_edge});
     return out;
   });
 }

@@ -27,6 +27,10 @@ DelaySteps delay_steps(const GiNaC::numeric& delay, double dt) {
     out.problem = where + ": h must be a whole number of steps (h / dt = " + pfgen_support::shortest_double(ratio) + ")";
     return out;
   }
+  if (*whole < 1 && h > 0) {  // a step longer than the delay rounds h / dt to 0 steps, which no history holds
+    out.problem = where + ": h must be at least one step (h / dt = " + pfgen_support::shortest_double(ratio) + ")";
+    return out;
+  }
   out.steps = static_cast<std::size_t>(*whole);
   return out;
 }

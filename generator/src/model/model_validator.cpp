@@ -263,6 +263,9 @@ void require_positive_definite_noise(const Model& model, const ExMatrix& N, cons
       R(i, j) = GiNaC::ex_to<GiNaC::numeric>(value).to_double();
       if (i == j) exact_zero_diagonal[i] = value.is_zero();
     }
+  if (!R.allFinite())
+    throw ModelError(field, NNt + " overflows double at the parameter values (an entry is beyond about 1.8e308): "
+                            "the noise is too large for the filters to compute with");
   for (std::size_t i = 0; i < p; ++i)
     if (R(i, i) <= 0)
       // A row of tiny entries (1e-300) is not zero, but its squared norm is 0 in double.

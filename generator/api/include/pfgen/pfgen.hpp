@@ -271,8 +271,8 @@ struct RecordScores {
   bool consistent = false, white = false;
   std::string verdict;
   // Where and why the filter stopped before the record's end (a moment filter leaving its
-  // realisable set: "FILE:LINE: its moments left ..."), its scores then those of the rows before;
-  // empty when it ran through.
+  // realisable set: "FILE:LINE: its moments left ..."), its scores then those of the rows up to that
+  // one; empty when it ran through.
   std::string stopped;
 };
 
@@ -314,6 +314,9 @@ struct FittedParameter {
   double wald_low = 0, wald_high = 0;
   double profile_low = 0, profile_high = 0;
   bool at_bound = false;
+  // A moment filter's likelihood ends where its moments leave the realisable set: the profile
+  // interval's end is then the last value where the filter runs (`(the filter fails beyond)`).
+  bool profile_low_fails_beyond = false, profile_high_fails_beyond = false;
 };
 
 // A fit that did not converge is a result too (converged false, the last point in parameters), as
@@ -326,6 +329,10 @@ struct FitResult {
   std::vector<FittedParameter> parameters;
   double log_likelihood = 0, aic = 0;
   std::size_t evaluations = 0;
+  // The estimate lies at the edge of where the filter runs (a neighbour of the differences fails):
+  // not a maximum, no standard errors. note: why there are no standard errors, if there are none.
+  bool at_edge = false;
+  std::string note;
 };
 
 // A model: loaded from a model file or YAML text, or built with ModelBuilder. Checked when made.
