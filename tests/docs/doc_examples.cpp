@@ -35,6 +35,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "pfgen_support/process.hpp"
 
 namespace fs = std::filesystem;
@@ -336,8 +338,12 @@ int main(int argc, char** argv) {
     if (!options.python.empty()) {  // `python3` on the pages is the module's interpreter
       const fs::path python_bin = options.work / "python-bin";
       fs::create_directories(python_bin);
-      fs::remove(python_bin / "python3");
-      fs::create_symlink(fs::absolute(options.python), python_bin / "python3");
+      // Pages run in parallel share this directory: the link is made under a name of this process's
+      // own and renamed into place, which replaces atomically (remove-then-create raced: "File exists").
+      const fs::path own = python_bin / ("python3." + std::to_string(getpid()));
+      fs::remove(own);
+      fs::create_symlink(fs::absolute(options.python), own);
+      fs::rename(own, python_bin / "python3");
       search = python_bin.string() + ":" + search;
     }
     setenv("PATH", search.c_str(), 1);
