@@ -155,7 +155,7 @@ TEST_CASE("estimate and fit refuse a record that does not fit the delay's grid w
              "uneven.csv:5: delayed observations need equally spaced rows: the interval from t = 0.02 is 0.02, not the "
              "filters' step 0.01 (relative 1e-9)");
   fails_with({"fit", model, "--data", dir.file("uneven.csv"), "--estimate", "a"},
-             "--data line 5: delayed observations need equally spaced rows");
+             "uneven.csv:5: delayed observations need equally spaced rows");
   // One row at the prior's time: no step to generate the filters for.
   write_file(dir.file("one.csv"), "t,y\n0,\n");
   fails_with({"estimate", model, "--data", dir.file("one.csv")},

@@ -44,8 +44,8 @@ double record_log_likelihood(const pfgen_runtime::RecordFilter& filter, const Re
     try {
       ok = run.advance(record.times[row], record.values.data() + row * record.p);
     } catch (const std::invalid_argument& e) {
-      throw CliValueError(job.model.source + ": --data " + record.line_word + " " + std::to_string(record.lines[row]) +
-                          ": " + e.what());
+      // Placed as estimate places it ("uneven.csv:5", "<data> row 3"), as the filter's failures are.
+      throw CliValueError(record.place(row) + ": " + e.what());
     }
     if (!ok) {
       why = record.place(row) + ": the filter '" + run.filter_name() + "' failed: " + run.failure();
