@@ -9,6 +9,37 @@
 
 namespace pfgen {
 
+namespace {
+
+// The length of the well-formed UTF-8 sequence starting at text[k] (a byte >= 0x80), or 0 when it
+// is not one (a stray continuation byte, a truncated, overlong or surrogate sequence, or above U+10FFFF).
+std::size_t utf8_sequence(const std::string& text, std::size_t k) {
+  const auto byte = [&](std::size_t i) { return i < text.size() ? static_cast<unsigned char>(text[i]) : 0u; };
+  const unsigned c = byte(k);
+  // The sequence's length and its second byte's range (RFC 3629's table).
+  std::size_t length = 0;
+  unsigned low = 0x80, high = 0xBF;
+  if (c >= 0xC2 && c <= 0xDF) {
+    length = 2;
+  } else if (c >= 0xE0 && c <= 0xEF) {
+    length = 3;
+    if (c == 0xE0) low = 0xA0;   // no overlong forms
+    if (c == 0xED) high = 0x9F;  // no surrogates
+  } else if (c >= 0xF0 && c <= 0xF4) {
+    length = 4;
+    if (c == 0xF0) low = 0x90;   // no overlong forms
+    if (c == 0xF4) high = 0x8F;  // nothing above U+10FFFF
+  } else {
+    return 0;
+  }
+  if (byte(k + 1) < low || byte(k + 1) > high) return 0;
+  for (std::size_t i = 2; i < length; ++i)
+    if (byte(k + i) < 0x80 || byte(k + i) > 0xBF) return 0;
+  return length;
+}
+
+}  // namespace
+
 std::string json_quote(const std::string& text) {
   std::string out;
   out.reserve(text.size() + 2);
@@ -17,6 +48,17 @@ std::string json_quote(const std::string& text) {
   std::size_t plain_from = 0;
   for (std::size_t k = 0; k < text.size(); ++k) {
     const unsigned char c = static_cast<unsigned char>(text[k]);
+    if (c >= 0x80) {
+      // JSON is UTF-8: a byte that is not (a file's path may hold any) becomes U+FFFD.
+      if (const std::size_t length = utf8_sequence(text, k)) {
+        k += length - 1;
+        continue;
+      }
+      out.append(text, plain_from, k - plain_from);
+      plain_from = k + 1;
+      out += "\\ufffd";
+      continue;
+    }
     if (c >= 0x20 && c != '"' && c != '\\') continue;
     out.append(text, plain_from, k - plain_from);
     plain_from = k + 1;
