@@ -210,15 +210,6 @@ std::string temporary_directory() {
   return dir.string();
 }
 
-bool gnuplot_on_path() {
-  const char* path = std::getenv("PATH");
-  std::stringstream entries(path ? path : "");
-  std::string entry;
-  while (std::getline(entries, entry, ':'))
-    if (!entry.empty() && access((entry + "/gnuplot").c_str(), X_OK) == 0) return true;
-  return false;
-}
-
 std::string read_file(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   std::stringstream text;
@@ -1028,7 +1019,7 @@ TEST_CASE("monte carlo: the plot gives every filter its own dash type and width,
 }
 
 TEST_CASE("monte carlo: gnuplot draws the error plot as SVG and PNG", "[montecarlo][runtime][gnuplot][compiler]") {
-  if (!gnuplot_on_path()) {
+  if (!pfgen_runtime::gnuplot_on_path()) {
     WARN("gnuplot is not on PATH: plot test skipped (scripts/install-deps.sh installs it)");
     return;
   }

@@ -127,14 +127,6 @@ std::string plot_script(const std::string& plot_path, const std::string& csv_pat
   return s + "unset multiplot\n";
 }
 
-// A log-likelihood in the table: six decimals, as always; beyond 1e15 in magnitude %g, since the
-// fixed form would print dozens of digits (a model far off its data scores -5.7e53).
-std::string score_text(double value) {
-  char text[48];
-  std::snprintf(text, sizeof text, std::abs(value) < 1e15 ? "%.6f" : "%.6g", value);
-  return text;
-}
-
 std::string pad_to(const std::string& text, std::size_t width) {
   return text.size() >= width ? text : text + std::string(width - text.size(), ' ');
 }
@@ -156,12 +148,14 @@ std::string scores_table(const std::vector<FilterScores>& scores, bool continuou
     for (const auto& test : s.whiteness) p_value = std::min(p_value, test.p_value);
     char band[64], density[48] = "", ljung[32], likelihood[48];
     std::snprintf(band, sizeof band, "[%.4g, %.4g]", s.band_low, s.band_high);
-    if (continuous) std::snprintf(density, sizeof density, " %25s", score_text(f.increment_log_density).c_str());
+    // Six decimals, as always, unless the value would print dozens of digits (a model far off its data).
+    if (continuous)
+      std::snprintf(density, sizeof density, " %25s", pfgen_support::fixed_unless_huge(f.increment_log_density).c_str());
     if (s.whiteness.empty())
       std::snprintf(ljung, sizeof ljung, "-");
     else
       std::snprintf(ljung, sizeof ljung, "%.3g", p_value);
-    std::snprintf(likelihood, sizeof likelihood, "%16s", score_text(s.log_likelihood).c_str());
+    std::snprintf(likelihood, sizeof likelihood, "%16s", pfgen_support::fixed_unless_huge(s.log_likelihood).c_str());
     std::snprintf(line, sizeof line, "%-16s %s%s %11zu %11.4g %18s %11s  ", f.filter.c_str(), likelihood, density,
                   s.count, s.mean_square, band, ljung);
     out += line + s.verdict() + "\n";
@@ -214,7 +208,6 @@ EstimateOutcome estimate(const EstimateOptions& options) {
   std::size_t rows = 0;
   std::vector<RecordRun> runs;
   std::vector<std::string> stopped;  // per run: where and why it failed, once it has
-  std::size_t running = 0;
   std::string buffer;
   while (reader.next(t, y.data())) {
     const bool first_row = rows++ == 0;
@@ -224,7 +217,6 @@ EstimateOutcome estimate(const EstimateOptions& options) {
       runs.reserve(job.filters.size());
       for (const RecordFilter& filter : job.filters) runs.emplace_back(filter, job.values, t0, job.run_options);
       stopped.assign(runs.size(), "");
-      running = runs.size();
     }
     std::string row_failure;  // the first filter to fail at this row, which names the row's failure
     for (std::size_t k = 0; k < runs.size(); ++k) {
@@ -241,7 +233,8 @@ EstimateOutcome estimate(const EstimateOptions& options) {
       if (row_failure.empty()) row_failure = where + "the filter '" + run.filter_name() + "' failed: " + run.failure();
       // The last filter still running fails the command, as a lone filter always has; where every
       // filter fails at one row (a value too far off to score), the first one names it.
-      if (--running == 0) throw CliValueError(row_failure);
+      if (std::all_of(runs.begin(), runs.end(), [](const RecordRun& r) { return r.failed(); }))
+        throw CliValueError(row_failure);
       stopped[k] = reader.place() + ": " + run.failure();
     }
     last = t;

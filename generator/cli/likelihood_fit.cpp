@@ -188,10 +188,11 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
     x[i] += di;
     x[j] += dj;
     const double value = scaled.value(x.data());
+    if (std::isfinite(value) || !edge.empty()) return value;
     // A neighbour beyond a bound is the bound's business (at_bound), not an edge of the filter's.
     bool within = true;
     for (std::size_t q = 0; q < k; ++q) within = within && x[q] >= lower[q] && x[q] <= upper[q];
-    if (!std::isfinite(value) && within && edge.empty()) {
+    if (within) {
       for (std::size_t q = 0; q < k; ++q) {
         char value_text[32];
         std::snprintf(value_text, sizeof value_text, "%.6g", x[q] * scaled.scale[q]);
@@ -212,14 +213,14 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
     }
   const Eigen::MatrixXd information = -H;
   Eigen::LLT<Eigen::MatrixXd> llt(information);
-  const bool has_errors = information.allFinite() && llt.info() == Eigen::Success;
-  Eigen::MatrixXd covariance;
   out.at_edge = !edge.empty();
-  if (out.at_edge)
+  const bool has_errors = !out.at_edge && information.allFinite() && llt.info() == Eigen::Success;
+  Eigen::MatrixXd covariance;
+  if (has_errors)
+    covariance = llt.solve(Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)));
+  else if (out.at_edge)
     out.information_note = "the estimate is at the edge of where the filter runs, not at a maximum: the log-likelihood "
                            "cannot be evaluated next to it, at " + edge + "; no standard errors";
-  else if (has_errors)
-    covariance = llt.solve(Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)));
   else
     out.information_note = "the observed information is not positive definite at the estimate: no standard errors";
   for (std::size_t i = 0; i < k; ++i) {
@@ -227,7 +228,7 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
     p.name = problem.names[i];
     p.estimate = best.u[i] * scaled.scale[i];
     p.at_bound = best.u[i] <= lower[i] || best.u[i] >= upper[i];
-    p.std_error = has_errors && !out.at_edge ? std::sqrt(covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))) *
+    p.std_error = has_errors ? std::sqrt(covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))) *
                                    scaled.scale[i]
                              : kNaN;
     p.wald_low = p.estimate - kZ95 * p.std_error;
@@ -284,17 +285,21 @@ FitResult maximise_likelihood(const FitProblem& problem, const LogLikelihood& lo
         outside = std::clamp(best.u[i] + side * step, lower[i], upper[i]);
         // A moment filter's likelihood can fail between two values where it runs: a step must not
         // pass over such a hole, so points between the last inside value and this one are probed
-        // first, nearest first (where the filter cannot stop, nothing is probed, as before).
+        // first, nearest first (where the filter cannot stop, nothing is probed, as before). A hole
+        // found is the step's outside value, its deficit NaN already.
+        double d = kNaN;
+        bool hole = false;
         if (problem.filter_can_stop) {
           for (double fraction : {1.0 / 16, 1.0 / 8, 1.0 / 4, 1.0 / 2}) {
             const double between = inside + fraction * (outside - inside);
             if (std::isnan(deficit(between))) {
               outside = between;
+              hole = true;
               break;
             }
           }
         }
-        const double d = deficit(outside);
+        if (!hole) d = deficit(outside);
         if (!(d <= 0)) {
           found = true;
           fails = std::isnan(d);

@@ -91,8 +91,9 @@ RecordJob prepare_record_job(const RecordJobOptions& options) {
   const Model& model = job.model;
   if (options.data_form != "increments" && options.data_form != "rates")
     throw CliValueError("--data-form: '" + options.data_form + "' is neither increments nor rates");
-  if (options.substeps < 1 || options.substeps > 1000000)
-    throw CliValueError("--substeps: " + std::to_string(options.substeps) + " is not between 1 and 1000000");
+  if (options.substeps < 1 || options.substeps > pfgen_runtime::kMaxRowSubsteps)
+    throw CliValueError("--substeps: " + std::to_string(options.substeps) + " is not between 1 and " +
+                        std::to_string(pfgen_runtime::kMaxRowSubsteps));
   // Samples are rows y_k, predicted between in the model's own sub-steps: the continuous data's
   // options would be ignored, so they are refused rather than accepted for nothing.
   if (model.observation.is_sampled() && options.substeps != 1)

@@ -76,8 +76,14 @@ def _out_of_range(option, value):
 def _float_array(values, option):
     """numpy's float array of `values`; an int beyond a double's range, or a complex value (which
     numpy would cut to its real part with a warning), is pfgen's Error."""
-    kind = getattr(getattr(values, "dtype", None), "kind", None)
-    if kind == "c" or (kind in (None, "O") and any(isinstance(v, complex) for v in _np.ravel(_np.asarray(values, dtype=object)))):
+    # numpy's own reading of a list says whether it holds a complex value; only a list it reads as
+    # objects (None, ints beyond int64 beside them) is looked through one by one.
+    try:
+        read = values if isinstance(values, _np.ndarray) else _np.asarray(values)
+    except (ValueError, TypeError):
+        read = None  # ragged or unreadable: the conversion below says so, as before
+    if read is not None and (read.dtype.kind == "c" or
+                             (read.dtype.kind == "O" and any(isinstance(v, complex) for v in read.ravel()))):
         raise Error(f"error: {option}: complex values are not read: give real numbers")
     try:
         return _np.asarray(values, dtype=float)

@@ -191,7 +191,7 @@ std::string gnuplot_error_script(const std::string& plot_path, const std::string
 
 std::string gnuplot_script_path(const std::string& plot_path) { return plot_path + ".gp"; }
 
-void require_gnuplot() {
+bool gnuplot_on_path() {
   // As execvp searches: each PATH entry in turn (an empty one is the current directory).
   const char* path = std::getenv("PATH");
   std::string entries = path ? path : "/usr/local/bin:/usr/bin:/bin";
@@ -201,9 +201,14 @@ void require_gnuplot() {
     if (end == std::string::npos) end = entries.size();
     const std::string directory = end > begin ? entries.substr(begin, end - begin) : ".";
     const std::string candidate = directory + "/gnuplot";
-    if (::access(candidate.c_str(), X_OK) == 0 && !std::filesystem::is_directory(candidate)) return;
+    if (::access(candidate.c_str(), X_OK) == 0 && !std::filesystem::is_directory(candidate)) return true;
     begin = end + 1;
   }
+  return false;
+}
+
+void require_gnuplot() {
+  if (gnuplot_on_path()) return;
   throw std::runtime_error("--plot: gnuplot is not on PATH: install gnuplot (scripts/install-deps.sh installs "
                            "gnuplot-nox), or leave --plot out");
 }

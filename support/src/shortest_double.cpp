@@ -1,6 +1,7 @@
 #include "pfgen_support/shortest_double.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -22,6 +23,12 @@ std::string shortest_chars(double value) {
   const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
   if (error != std::errc()) throw std::logic_error("shortest_chars: std::to_chars failed");
   return std::string(buffer, end);
+}
+
+std::string fixed_unless_huge(double value) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, std::abs(value) < 1e15 ? "%f" : "%g", value);
+  return buffer;
 }
 
 }  // namespace pfgen_support

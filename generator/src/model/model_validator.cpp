@@ -27,14 +27,9 @@
 namespace pfgen {
 namespace {
 
-// An eigenvalue in a message: std::to_string's fixed six decimals, as the messages have always
-// shown, up to 1e15; beyond, %g, since fixed notation would print hundreds of digits (1e200).
-std::string eigenvalue_text(double value) {
-  if (std::abs(value) < 1e15) return std::to_string(value);
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
+// An eigenvalue in a message: std::to_string's six decimals, as the messages have always shown,
+// unless that would print hundreds of digits (1e200).
+std::string eigenvalue_text(double value) { return pfgen_support::fixed_unless_huge(value); }
 
 // In the canonical order of pfgen's printer: GiNaC's own varies from run to run.
 std::string to_text(const GiNaC::ex& e) { return TextPrinter().print(e); }

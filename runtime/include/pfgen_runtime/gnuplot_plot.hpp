@@ -41,8 +41,10 @@ void write_error_plot(const std::string& plot_path, const std::string& csv_path,
 void write_gnuplot_plot(const std::string& plot_path,
                         const std::function<std::string(const std::string& drawn_path)>& script_for);
 
-// std::runtime_error naming --plot when no executable gnuplot is on PATH: called before any work, so
-// that a run asked for a plot it cannot draw writes nothing.
+// Whether an executable gnuplot is on PATH, searched as execvp searches it; require_gnuplot throws
+// std::runtime_error naming --plot when not: called before any work, so that a run asked for a plot
+// it cannot draw writes nothing.
+bool gnuplot_on_path();
 void require_gnuplot();
 
 // The terminal line's text for plot_path (.png: pngcairo, .svg: svg; std::invalid_argument

@@ -24,6 +24,9 @@ namespace pfgen_runtime {
 
 enum class ContinuousData { Increments, Rates };
 
+// The most filter steps per data interval of continuous data (--substeps).
+inline constexpr std::size_t kMaxRowSubsteps = 1000000;
+
 struct RecordRunOptions {
   ContinuousData continuous = ContinuousData::Increments;
   std::size_t substeps = 1;  // continuous data: filter steps per data interval

@@ -156,9 +156,8 @@ bool RecordSamples::predict_and_update(RecordProgress& run, double t, const doub
 
 std::string RecordIncrements::step_hint(const RecordProgress& progress) const {
   const std::size_t k = progress.options.substeps;
-  constexpr std::size_t kMostSubsteps = 1000000;  // the command line's limit
   return "; the filter took " + std::to_string(k) + (k == 1 ? " step" : " steps") + " per row" +
-         (k < kMostSubsteps ? ": if they are too long for its moments, --substeps takes more" : "");
+         (k < kMaxRowSubsteps ? ": if they are too long for its moments, --substeps takes more" : "");
 }
 
 bool RecordIncrements::absorb(RecordProgress& run, double t, const double* observation, bool first) const {

@@ -16,4 +16,9 @@ namespace pfgen_support {
 std::string shortest_double(double value);
 std::string shortest_chars(double value);
 
+// printf's %f (six decimals), the form tables and messages have always shown, up to 1e15 in
+// magnitude; beyond, %g, since the fixed form would print dozens or hundreds of digits (a
+// log-likelihood of -5.7e53, an eigenvalue of 1e200).
+std::string fixed_unless_huge(double value);
+
 }  // namespace pfgen_support
