@@ -1,7 +1,6 @@
 #include "cli_options.hpp"
 
 #include <algorithm>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -31,16 +30,7 @@ std::string join(const std::vector<std::string>& parts, const std::string& separ
 
 GiNaC::numeric parse_number(const std::string& option, const std::string& text) {
   auto value = parse_exact_number(text);
-  if (!value) {
-    // A well-formed number whose exponent is too long to read exactly is out of double's range.
-    static const std::regex huge_exponent(R"(\s*[+-]?(\d+\.?\d*|\.\d+)[eE]([+-]?)\d{5,}\s*)");
-    std::smatch parts;
-    if (std::regex_match(text, parts, huge_exponent) && parts[1].str().find_first_of("123456789") != std::string::npos)
-      throw CliValueError(option + ": " + pfgen_support::quoted(text) +
-                          (parts[2] == "-" ? " is below the smallest normal double (about 2.2e-308 in magnitude)"
-                                           : " is beyond the largest double (about 1.8e308)"));
-    throw CliValueError(option + ": " + pfgen_support::quoted(text) + " is not a number");
-  }
+  if (!value) throw CliValueError(option + ": " + pfgen_support::quoted(text) + " " + unread_number_problem(text));
   // --phi 1e400 was accepted and reported later as "gain[1][1] is not finite", naming no option.
   if (auto problem = double_range_problem(*value))
     throw CliValueError(option + ": " + pfgen_support::quoted(text) + " " + *problem);

@@ -153,6 +153,20 @@ std::optional<GiNaC::numeric> parse_exact_number(const std::string& text) {
   return negative ? -value : value;
 }
 
+std::string unread_number_problem(const std::string& text) {
+  std::size_t start = text.find_first_not_of(" \t");
+  if (start == std::string::npos) return "is not a number";
+  std::string s = text.substr(start, text.find_last_not_of(" \t") - start + 1);
+  if (s[0] == '-' || s[0] == '+') s = s.substr(1);
+  const std::size_t e = s.find_first_of("eE");
+  // Well formed, refused only by literal_value's bound on the exponent, and not zero.
+  if (s.empty() || scan_number(s, 0) != s.size() || e == std::string::npos ||
+      s.find_first_of("123456789") >= e)
+    return "is not a number";
+  return s[e + 1] == '-' ? "is below the smallest normal double (about 2.2e-308 in magnitude)"
+                         : "is beyond the largest double (about 1.8e308)";
+}
+
 std::optional<std::string> double_range_problem(const GiNaC::numeric& value) {
   if (value.is_zero() || !value.is_real()) return std::nullopt;
   const GiNaC::numeric magnitude = GiNaC::abs(value);

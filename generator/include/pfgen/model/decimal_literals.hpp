@@ -15,6 +15,11 @@ std::string rationalize_decimal_literals(const std::string& expression);
 // Parses one real number ("-1.5", "2", "1e-3") exactly; nullopt if `text` is not one.
 std::optional<GiNaC::numeric> parse_exact_number(const std::string& text);
 
+// Why parse_exact_number refused `text`, beginning with "is": a well-formed number whose exponent
+// is too long to read exactly (1e5000000000000) is out of double's range; anything else is not a
+// number.
+std::string unread_number_problem(const std::string& text);
+
 // Why an exact number cannot become a double, or nothing: a nonzero value below the smallest
 // normal double (about 2.2e-308; 1e-400 would be 0 in generated code and simulation) or beyond the
 // largest (about 1.8e308). The text begins with "is", for "'1e-400' is ...".
